@@ -1,0 +1,89 @@
+#pragma once
+// B-spline basis functions and their derivatives at one parameter: the p+1 functions that are non-zero on
+// span s (t_s <= u < t_{s+1}), by the triangular Cox-de Boor scheme (Piegl & Tiller A2.2, A2.3).
+// Allocation-free: scratch lives on the stack, bounded by kMaxDegree.
+#include <algorithm>
+
+#include "trivar/core/error.hpp"
+
+namespace trivar {
+
+inline constexpr int kMaxDegree = 31;
+
+// N[0..p] = B_{s-p,p}(u), ..., B_{s,p}(u).
+inline void basis_values(const double* t, int p, int s, double u, double* N) {
+  double left[kMaxDegree + 1], right[kMaxDegree + 1];
+  N[0] = 1.0;
+  for (int j = 1; j <= p; ++j) {
+    left[j] = u - t[s + 1 - j];
+    right[j] = t[s + j] - u;
+    double saved = 0.0;
+    for (int r = 0; r < j; ++r) {
+      const double tmp = N[r] / (right[r + 1] + left[j - r]);
+      N[r] = saved + right[r + 1] * tmp;
+      saved = left[j - r] * tmp;
+    }
+    N[j] = saved;
+  }
+}
+
+// ders[k*(p+1) + i] = d^k/du^k B_{s-p+i,p}(u) for k = 0..n (derivatives above p are zero).
+inline void basis_derivatives(const double* t, int p, int s, double u, int n, double* ders) {
+  double ndu[kMaxDegree + 1][kMaxDegree + 1];
+  double left[kMaxDegree + 1], right[kMaxDegree + 1];
+  double a[2][kMaxDegree + 1];
+  ndu[0][0] = 1.0;
+  for (int j = 1; j <= p; ++j) {
+    left[j] = u - t[s + 1 - j];
+    right[j] = t[s + j] - u;
+    double saved = 0.0;
+    for (int r = 0; r < j; ++r) {
+      ndu[j][r] = right[r + 1] + left[j - r];  // lower triangle: knot differences
+      const double tmp = ndu[r][j - 1] / ndu[j][r];
+      ndu[r][j] = saved + right[r + 1] * tmp;
+      saved = left[j - r] * tmp;
+    }
+    ndu[j][j] = saved;
+  }
+  const int w = p + 1;
+  for (int j = 0; j <= p; ++j) ders[j] = ndu[j][p];
+  const int nk = std::min(n, p);
+  for (int r = 0; r <= p; ++r) {
+    int s1 = 0, s2 = 1;
+    a[0][0] = 1.0;
+    for (int k = 1; k <= nk; ++k) {
+      double d = 0.0;
+      const int rk = r - k, pk = p - k;
+      if (r >= k) {
+        a[s2][0] = a[s1][0] / ndu[pk + 1][rk];
+        d = a[s2][0] * ndu[rk][pk];
+      }
+      const int j1 = rk >= -1 ? 1 : -rk;
+      const int j2 = (r - 1 <= pk) ? k - 1 : p - r;
+      for (int j = j1; j <= j2; ++j) {
+        a[s2][j] = (a[s1][j] - a[s1][j - 1]) / ndu[pk + 1][rk + j];
+        d += a[s2][j] * ndu[rk + j][pk];
+      }
+      if (r <= pk) {
+        a[s2][k] = -a[s1][k - 1] / ndu[pk + 1][r];
+        d += a[s2][k] * ndu[r][pk];
+      }
+      ders[k * w + r] = d;
+      std::swap(s1, s2);
+    }
+  }
+  double f = p;
+  for (int k = 1; k <= nk; ++k) {
+    for (int j = 0; j <= p; ++j) ders[k * w + j] *= f;
+    f *= (p - k);
+  }
+  for (int k = nk + 1; k <= n; ++k)
+    for (int j = 0; j <= p; ++j) ders[k * w + j] = 0.0;
+}
+
+inline void check_degree(int p) {
+  require(p >= 0 && p <= kMaxDegree,
+          "degree " + std::to_string(p) + " is outside the supported range [0, " + std::to_string(kMaxDegree) + "]");
+}
+
+}  // namespace trivar

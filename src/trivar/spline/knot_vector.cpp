@@ -1,0 +1,123 @@
+#include "trivar/spline/knot_vector.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "trivar/core/error.hpp"
+#include "trivar/spline/basis.hpp"
+
+namespace trivar {
+
+namespace {
+std::string num(double x) {
+  std::ostringstream s;
+  s.precision(17);
+  s << x;
+  return s.str();
+}
+}  // namespace
+
+KnotVector::KnotVector(int degree, std::vector<double> knots) : p_(degree), t_(std::move(knots)) {
+  require(p_ >= 0 && p_ <= kMaxDegree, "knot vector: degree " + std::to_string(p_) + " is outside [0, " +
+                                           std::to_string(kMaxDegree) + "]");
+  const int m = static_cast<int>(t_.size());
+  require(m >= 2 * (p_ + 1), "knot vector: degree " + std::to_string(p_) + " needs at least " +
+                                 std::to_string(2 * (p_ + 1)) + " knots, got " + std::to_string(m));
+  for (int i = 0; i < m; ++i) {
+    require(std::isfinite(t_[i]), "knot vector: knot " + std::to_string(i) + " is not finite");
+    if (i > 0)
+      require(t_[i] >= t_[i - 1], "knot vector: knot " + std::to_string(i) + " (" + num(t_[i]) +
+                                      ") is smaller than knot " + std::to_string(i - 1) + " (" + num(t_[i - 1]) +
+                                      "); knots must be non-decreasing");
+  }
+  for (int i = 0; i < m;) {
+    int j = i;
+    while (j < m && t_[j] == t_[i]) ++j;
+    require(j - i <= p_ + 1, "knot vector: knot " + num(t_[i]) + " at index " + std::to_string(i) +
+                                 " has multiplicity " + std::to_string(j - i) + " > degree + 1 = " +
+                                 std::to_string(p_ + 1));
+    i = j;
+  }
+  const int n = size();
+  require(t_[p_] < t_[n], "knot vector: empty domain [t_" + std::to_string(p_) + ", t_" + std::to_string(n) +
+                              "] = [" + num(t_[p_]) + ", " + num(t_[n]) + "]");
+  first_span_ = p_;
+  while (t_[first_span_] == t_[first_span_ + 1]) ++first_span_;
+  last_span_ = n - 1;
+  while (t_[last_span_] == t_[last_span_ + 1]) --last_span_;
+}
+
+KnotVector KnotVector::open_uniform(int degree, int elements, double a, double b) {
+  require(elements >= 1, "knot vector: number of elements must be >= 1, got " + std::to_string(elements));
+  require(a < b, "knot vector: domain [" + num(a) + ", " + num(b) + "] is empty");
+  std::vector<double> bp(elements + 1);
+  for (int i = 0; i <= elements; ++i) bp[i] = i == elements ? b : a + (b - a) * i / elements;
+  return from_breakpoints(degree, bp);
+}
+
+KnotVector KnotVector::from_breakpoints(int degree, std::span<const double> bp, int interior_mult) {
+  require(bp.size() >= 2, "knot vector: need at least two breakpoints");
+  std::vector<double> t;
+  for (size_t i = 0; i < bp.size(); ++i) {
+    const int mult = (i == 0 || i + 1 == bp.size()) ? degree + 1 : interior_mult;
+    t.insert(t.end(), mult, bp[i]);
+  }
+  return KnotVector(degree, std::move(t));
+}
+
+int KnotVector::find_span(double u) const {
+  if (u >= t_[last_span_ + 1]) return last_span_;
+  if (u < t_[first_span_ + 1]) return first_span_;
+  auto it = std::upper_bound(t_.begin() + first_span_ + 1, t_.begin() + last_span_ + 1, u);
+  return static_cast<int>(it - t_.begin()) - 1;
+}
+
+int KnotVector::multiplicity(double u) const {
+  auto r = std::equal_range(t_.begin(), t_.end(), u);
+  return static_cast<int>(r.second - r.first);
+}
+
+std::vector<double> KnotVector::unique() const {
+  std::vector<double> u(t_);
+  u.erase(std::unique(u.begin(), u.end()), u.end());
+  return u;
+}
+
+std::vector<int> KnotVector::multiplicities() const {
+  std::vector<int> m;
+  for (size_t i = 0; i < t_.size();) {
+    size_t j = i;
+    while (j < t_.size() && t_[j] == t_[i]) ++j;
+    m.push_back(static_cast<int>(j - i));
+    i = j;
+  }
+  return m;
+}
+
+std::vector<double> KnotVector::breakpoints() const {
+  std::vector<double> b(t_.begin() + p_, t_.begin() + size() + 1);
+  b.erase(std::unique(b.begin(), b.end()), b.end());
+  return b;
+}
+
+std::vector<double> KnotVector::greville() const {
+  const int n = size();
+  std::vector<double> g(n);
+  for (int i = 0; i < n; ++i) {
+    if (p_ == 0) {
+      g[i] = 0.5 * (t_[i] + t_[i + 1]);
+      continue;
+    }
+    double s = 0;
+    for (int j = 1; j <= p_; ++j) s += t_[i + j];
+    g[i] = s / p_;
+  }
+  return g;
+}
+
+bool KnotVector::is_clamped() const {
+  return multiplicity(t_.front()) == p_ + 1 && multiplicity(t_.back()) == p_ + 1;
+}
+
+}  // namespace trivar

@@ -1,0 +1,57 @@
+#pragma once
+// KnotVector: a validated, non-decreasing knot sequence of a given degree, with the queries every spline
+// algorithm needs (span search, multiplicities, breakpoints, Greville abscissae).
+#include <span>
+#include <vector>
+
+namespace trivar {
+
+class KnotVector {
+public:
+  KnotVector() = default;
+  // Validates: finite values, non-decreasing, at least 2(p+1) knots, every multiplicity <= p+1 and a
+  // non-empty domain [t_p, t_n]. Throws trivar::Error naming the offending knot index.
+  KnotVector(int degree, std::vector<double> knots);
+
+  // Clamped (open) knot vector on [a, b] with `elements` equal intervals.
+  static KnotVector open_uniform(int degree, int elements, double a = 0.0, double b = 1.0);
+  // Clamped knot vector with the given distinct breakpoints, interior ones of multiplicity `interior_mult`.
+  static KnotVector from_breakpoints(int degree, std::span<const double> breakpoints, int interior_mult = 1);
+
+  int degree() const { return p_; }
+  int order() const { return p_ + 1; }
+  // Number of B-splines (control points) in this direction.
+  int size() const { return static_cast<int>(t_.size()) - p_ - 1; }
+  const std::vector<double>& knots() const { return t_; }
+  const double* data() const { return t_.data(); }
+  double operator[](int i) const { return t_[i]; }
+  double start() const { return t_[p_]; }
+  double end() const { return t_[size()]; }
+
+  // Index s with t_s <= u < t_{s+1} and t_s < t_{s+1}, p <= s < n. Parameters left of the domain map to the
+  // first span and parameters at or right of the end to the last non-empty span, so u = end() evaluates the
+  // closed right end of the domain.
+  int find_span(double u) const;
+  // Number of knots equal to u (exact comparison: knots are data, not results of arithmetic).
+  int multiplicity(double u) const;
+  // Distinct knot values of the whole vector and their multiplicities.
+  std::vector<double> unique() const;
+  std::vector<int> multiplicities() const;
+  // Distinct knot values inside the domain [start, end]: the element boundaries.
+  std::vector<double> breakpoints() const;
+  int num_elements() const { return static_cast<int>(breakpoints().size()) - 1; }
+  // Greville abscissae (t_{i+1} + ... + t_{i+p}) / p; for p = 0 the interval midpoints.
+  std::vector<double> greville() const;
+  // True when both ends have multiplicity p+1 (the usual clamped form).
+  bool is_clamped() const;
+
+  bool operator==(const KnotVector&) const = default;
+
+private:
+  int p_ = 0;
+  std::vector<double> t_;
+  int first_span_ = 0;
+  int last_span_ = 0;
+};
+
+}  // namespace trivar

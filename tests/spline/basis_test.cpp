@@ -1,0 +1,74 @@
+#include "trivar/spline/basis.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "support/spline_fixtures.hpp"
+
+using namespace trivar;
+
+TEST(Basis, MatchesCoxDeBoorAndSumsToOne) {
+  std::mt19937 rng(7);
+  for (int p = 0; p <= 6; ++p) {
+    const KnotVector kv = test::random_knots(p, 7, rng, -1.0, 2.0);
+    std::vector<double> N(p + 1);
+    for (int q = 0; q <= 500; ++q) {
+      const double u = -1.0 + 3.0 * q / 500;
+      const int s = kv.find_span(u);
+      basis_values(kv.data(), p, s, u, N.data());
+      double sum = 0;
+      for (int i = 0; i <= p; ++i) {
+        sum += N[i];
+        EXPECT_GE(N[i], -1e-15);
+        EXPECT_NEAR(N[i], test::cox_de_boor(kv.knots(), s - p + i, p, u, kv.end()), 1e-13) << p << " " << u;
+      }
+      EXPECT_NEAR(sum, 1.0, 1e-14);
+    }
+  }
+}
+
+TEST(Basis, DerivativesMatchFiniteDifferencesAndSumToZero) {
+  std::mt19937 rng(11);
+  for (int p = 1; p <= 6; ++p) {
+    const KnotVector kv = test::random_knots(p, 5, rng, 0.0, 1.0);
+    const int n = 3;
+    std::vector<double> ders((n + 1) * (p + 1)), lo((n + 1) * (p + 1)), hi((n + 1) * (p + 1));
+    for (int q = 0; q < 200; ++q) {
+      const double u = (q + 0.5) / 200;
+      const int s = kv.find_span(u);
+      const double h = 1e-6;
+      if (kv.find_span(u - h) != s || kv.find_span(u + h) != s) continue;  // stay on one polynomial piece
+      basis_derivatives(kv.data(), p, s, u, n, ders.data());
+      basis_derivatives(kv.data(), p, s, u - h, n, lo.data());
+      basis_derivatives(kv.data(), p, s, u + h, n, hi.data());
+      for (int k = 0; k < n; ++k) {
+        double sum = 0;
+        for (int i = 0; i <= p; ++i) {
+          const double fd = (hi[k * (p + 1) + i] - lo[k * (p + 1) + i]) / (2 * h);
+          const double scale = 1.0 + std::abs(ders[(k + 1) * (p + 1) + i]);
+          EXPECT_NEAR(ders[(k + 1) * (p + 1) + i], fd, 1e-5 * scale) << "p=" << p << " k=" << k + 1;
+          sum += ders[(k + 1) * (p + 1) + i];
+        }
+        EXPECT_NEAR(sum, 0.0, 1e-8);
+      }
+      if (p < n) {
+        for (int i = 0; i <= p; ++i) EXPECT_EQ(ders[n * (p + 1) + i], 0.0);
+      }
+    }
+  }
+}
+
+TEST(Basis, BernsteinOnSingleInterval) {
+  // On [0,1] with clamped knots the basis is Bernstein: B_i^3(u) = C(3,i) u^i (1-u)^(3-i).
+  const KnotVector kv(3, {0, 0, 0, 0, 1, 1, 1, 1});
+  double N[4], d[8];
+  const double u = 0.3;
+  basis_values(kv.data(), 3, 3, u, N);
+  const double ref[4] = {0.343, 3 * 0.3 * 0.49, 3 * 0.09 * 0.7, 0.027};
+  for (int i = 0; i < 4; ++i) EXPECT_NEAR(N[i], ref[i], 1e-15);
+  basis_derivatives(kv.data(), 3, 3, u, 1, d);
+  // d/du (1-u)^3 = -3 (1-u)^2
+  EXPECT_NEAR(d[4], -3 * 0.49, 1e-14);
+  EXPECT_NEAR(d[7], 3 * 0.09, 1e-14);
+}

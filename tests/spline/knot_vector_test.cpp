@@ -1,0 +1,86 @@
+#include "trivar/spline/knot_vector.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "trivar/core/error.hpp"
+
+using trivar::Error;
+using trivar::KnotVector;
+
+TEST(KnotVector, RejectsInvalidInputWithClearMessages) {
+  auto message = [](auto&& f) {
+    try {
+      f();
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message([] { KnotVector(2, {0, 0, 0, 1, 0.5, 1, 1, 1}); }).find("knot 4 (0.5) is smaller than knot 3"),
+            std::string::npos);
+  EXPECT_NE(message([] { KnotVector(2, {0, 0, 0, 0, 1, 1, 1}); }).find("multiplicity 4 > degree + 1 = 3"),
+            std::string::npos);
+  EXPECT_NE(message([] { KnotVector(3, {0, 0, 0, 1, 1, 1}); }).find("needs at least 8 knots"), std::string::npos);
+  EXPECT_NE(message([] { KnotVector(1, {0, 1, 1, 2}); }).find("empty domain"), std::string::npos);
+  EXPECT_NE(message([] { KnotVector(1, {0, 0, std::nan(""), 1}); }).find("not finite"), std::string::npos);
+  EXPECT_NE(message([] { KnotVector(-1, {0, 1}); }).find("degree -1"), std::string::npos);
+}
+
+TEST(KnotVector, SpanSearchAtRepeatedKnotsAndEnds) {
+  const KnotVector kv(2, {0, 0, 0, 1, 2, 2, 3, 4, 4, 4});
+  // Span s satisfies t_s <= u < t_{s+1} with a non-empty interval.
+  EXPECT_EQ(kv.find_span(0.0), 2);
+  EXPECT_EQ(kv.find_span(0.5), 2);
+  EXPECT_EQ(kv.find_span(1.0), 3);
+  EXPECT_EQ(kv.find_span(2.0), 5);  // knot 2 is doubled: indices 4, 5
+  EXPECT_EQ(kv.find_span(1.999), 3);
+  EXPECT_EQ(kv.find_span(3.5), 6);
+  EXPECT_EQ(kv.find_span(4.0), 6);  // right end: last non-empty span
+  EXPECT_EQ(kv.find_span(5.0), 6);
+  EXPECT_EQ(kv.find_span(-1.0), 2);
+  for (double u = 0; u <= 4.0; u += 0.01) {
+    const int s = kv.find_span(u);
+    EXPECT_LT(kv[s], kv[s + 1]);
+    EXPECT_LE(kv[s], u);
+    if (u < 4.0) {
+      EXPECT_LT(u, kv[s + 1]);
+    }
+  }
+}
+
+TEST(KnotVector, UnclampedSpanSkipsEmptyLeadingIntervals) {
+  const KnotVector kv(2, {0, 1, 1, 1, 2, 3, 3});  // domain [t_2, t_4] = [1, 2]; t_2 == t_3
+  EXPECT_EQ(kv.start(), 1.0);
+  EXPECT_EQ(kv.end(), 2.0);
+  EXPECT_EQ(kv.find_span(1.0), 3);
+  EXPECT_EQ(kv.find_span(0.5), 3);
+  EXPECT_EQ(kv.find_span(2.0), 3);
+}
+
+TEST(KnotVector, MultiplicitiesBreakpointsGreville) {
+  const KnotVector kv(3, {0, 0, 0, 0, 1, 2, 2, 3, 3, 3, 3});
+  EXPECT_EQ(kv.size(), 7);
+  EXPECT_EQ(kv.multiplicity(2.0), 2);
+  EXPECT_EQ(kv.multiplicity(0.5), 0);
+  EXPECT_EQ(kv.unique(), (std::vector<double>{0, 1, 2, 3}));
+  EXPECT_EQ(kv.multiplicities(), (std::vector<int>{4, 1, 2, 4}));
+  EXPECT_EQ(kv.breakpoints(), (std::vector<double>{0, 1, 2, 3}));
+  EXPECT_EQ(kv.num_elements(), 3);
+  EXPECT_TRUE(kv.is_clamped());
+  const auto g = kv.greville();
+  ASSERT_EQ(g.size(), 7u);
+  EXPECT_DOUBLE_EQ(g[0], 0.0);
+  EXPECT_DOUBLE_EQ(g[1], 1.0 / 3);
+  EXPECT_DOUBLE_EQ(g[2], 1.0);
+  EXPECT_DOUBLE_EQ(g[3], 5.0 / 3);
+  EXPECT_DOUBLE_EQ(g[6], 3.0);
+}
+
+TEST(KnotVector, OpenUniform) {
+  const auto kv = KnotVector::open_uniform(2, 4, 0.0, 2.0);
+  EXPECT_EQ(kv.knots(), (std::vector<double>{0, 0, 0, 0.5, 1, 1.5, 2, 2, 2}));
+  EXPECT_EQ(kv.size(), 6);
+  EXPECT_THROW(KnotVector::open_uniform(2, 0), Error);
+}
