@@ -1,0 +1,32 @@
+#include "trivar/core/atomic_file.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+#include "trivar/core/error.hpp"
+
+namespace trivar {
+
+void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write, bool binary) {
+  namespace fs = std::filesystem;
+  const fs::path target(path);
+  fs::path tmp = target;
+  tmp += ".tmp" + std::to_string(::getpid());
+  try {
+    {
+      std::ofstream out(tmp, binary ? std::ios::binary | std::ios::out : std::ios::out);
+      require(static_cast<bool>(out), "cannot create output file " + path);
+      write(out);
+      out.flush();
+      require(static_cast<bool>(out), "write failed for output file " + path);
+    }
+    fs::rename(tmp, target);
+  } catch (...) {
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    throw;
+  }
+}
+
+}  // namespace trivar
