@@ -1,1 +1,62 @@
-int main() { return 0; }
+// trivar: command-line access to the library. Every failure ends as exactly one line
+// "trivar: error: ..." on stderr and a non-zero exit code (see ExitCode in cli.hpp).
+#include <cstdio>
+#include <exception>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <omp.h>
+
+#include "cli.hpp"
+#include "trivar/core/error.hpp"
+
+namespace {
+
+// Messages are one line by contract; foreign exceptions (parsers, the standard library) are folded to one.
+void print_error(std::string message) {
+  for (char& c : message)
+    if (c == '\n' || c == '\r') c = ' ';
+  std::fprintf(stderr, "trivar: error: %s\n", message.c_str());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace trivar::cli;
+  Context ctx;
+  CLI::App app{"trivar: volumetric and locally refined spline models", "trivar"};
+  app.set_version_flag("--version", std::string("trivar ") + TRIVAR_VERSION);
+  app.require_subcommand(1);
+  app.fallthrough();
+  app.add_option("--threads", ctx.threads, "Threads for batch work (0: all available)")
+      ->check(CLI::NonNegativeNumber)
+      ->each([](const std::string& n) {
+        // Batch loops use OpenMP's default thread count when not told otherwise.
+        if (const int t = std::stoi(n); t > 0) omp_set_num_threads(t);
+      });
+
+  add_info_command(app, ctx);
+  add_eval_command(app, ctx);
+  add_convert_command(app, ctx);
+  add_refine_command(app, ctx);
+  add_elevate_command(app, ctx);
+  add_check_command(app, ctx);
+  add_make_command(app, ctx);
+  add_invert_command(app, ctx);
+  add_demo_command(app, ctx);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    print_error(e.what());
+    return kUsage;
+  } catch (const trivar::Error& e) {
+    print_error(e.what());
+    return kBadInput;
+  } catch (const std::exception& e) {
+    print_error(e.what());
+    return kBadInput;
+  }
+  return ctx.exit_code;
+}

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "trivar/core/error.hpp"
+#include "trivar/spline/knot_vector.hpp"
 
 namespace trivar {
 
@@ -20,6 +21,46 @@ inline void basis_values(const double* t, int p, int s, double u, double* N) {
     double saved = 0.0;
     for (int r = 0; r < j; ++r) {
       const double tmp = N[r] / (right[r + 1] + left[j - r]);
+      N[r] = saved + right[r + 1] * tmp;
+      saved = left[j - r] * tmp;
+    }
+    N[j] = saved;
+  }
+}
+
+// As above on a KnotVector, multiplying by its precomputed inverse knot differences instead of dividing.
+inline void basis_values(const KnotVector& kv, int s, double u, double* N) {
+  const double* t = kv.data();
+  const double* inv = kv.inverse_differences(s);
+  const int p = kv.degree();
+  double left[kMaxDegree + 1], right[kMaxDegree + 1];
+  N[0] = 1.0;
+  for (int j = 1; j <= p; ++j) {
+    left[j] = u - t[s + 1 - j];
+    right[j] = t[s + j] - u;
+    double saved = 0.0;
+    for (int r = 0; r < j; ++r) {
+      const double tmp = N[r] * *inv++;
+      N[r] = saved + right[r + 1] * tmp;
+      saved = left[j - r] * tmp;
+    }
+    N[j] = saved;
+  }
+}
+
+// The same with the degree fixed at compile time, for the specialised evaluation kernels.
+template <int P>
+inline void basis_values_fixed(const KnotVector& kv, int s, double u, double* N) {
+  const double* t = kv.data();
+  const double* inv = kv.inverse_differences(s);
+  double left[P + 1], right[P + 1];
+  N[0] = 1.0;
+  for (int j = 1; j <= P; ++j) {
+    left[j] = u - t[s + 1 - j];
+    right[j] = t[s + j] - u;
+    double saved = 0.0;
+    for (int r = 0; r < j; ++r) {
+      const double tmp = N[r] * *inv++;
       N[r] = saved + right[r + 1] * tmp;
       saved = left[j - r] * tmp;
     }

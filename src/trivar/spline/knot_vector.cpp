@@ -46,6 +46,16 @@ KnotVector::KnotVector(int degree, std::vector<double> knots) : p_(degree), t_(s
   while (t_[first_span_] == t_[first_span_ + 1]) ++first_span_;
   last_span_ = n - 1;
   while (t_[last_span_] == t_[last_span_ + 1]) --last_span_;
+  const double h = t_[first_span_ + 1] - t_[first_span_];
+  bool uniform = true;
+  for (int i = first_span_; i <= last_span_ && uniform; ++i)
+    uniform = t_[i + 1] > t_[i] && std::abs((t_[i + 1] - t_[i]) - h) <= 1e-14 * (std::abs(t_[i]) + h);
+  if (uniform) uniform_inv_h_ = 1.0 / h;
+  // Every difference is positive on a non-empty span: t_{s+1+r} >= t_{s+1} > t_s >= t_{s+1-j+r}.
+  for (int sp = first_span_; sp <= last_span_; ++sp)
+    for (int j = 1; j <= p_; ++j)
+      for (int r = 0; r < j; ++r)
+        inv_diff_.push_back(t_[sp] < t_[sp + 1] ? 1.0 / (t_[sp + 1 + r] - t_[sp + 1 - j + r]) : 0.0);
 }
 
 KnotVector KnotVector::open_uniform(int degree, int elements, double a, double b) {
@@ -64,13 +74,6 @@ KnotVector KnotVector::from_breakpoints(int degree, std::span<const double> bp, 
     t.insert(t.end(), mult, bp[i]);
   }
   return KnotVector(degree, std::move(t));
-}
-
-int KnotVector::find_span(double u) const {
-  if (u >= t_[last_span_ + 1]) return last_span_;
-  if (u < t_[first_span_ + 1]) return first_span_;
-  auto it = std::upper_bound(t_.begin() + first_span_ + 1, t_.begin() + last_span_ + 1, u);
-  return static_cast<int>(it - t_.begin()) - 1;
 }
 
 int KnotVector::multiplicity(double u) const {

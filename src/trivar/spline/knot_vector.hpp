@@ -1,6 +1,7 @@
 #pragma once
 // KnotVector: a validated, non-decreasing knot sequence of a given degree, with the queries every spline
 // algorithm needs (span search, multiplicities, breakpoints, Greville abscissae).
+#include <algorithm>
 #include <span>
 #include <vector>
 
@@ -31,7 +32,7 @@ public:
   // Index s with t_s <= u < t_{s+1} and t_s < t_{s+1}, p <= s < n. Parameters left of the domain map to the
   // first span and parameters at or right of the end to the last non-empty span, so u = end() evaluates the
   // closed right end of the domain.
-  int find_span(double u) const;
+  inline int find_span(double u) const;
   // Number of knots equal to u (exact comparison: knots are data, not results of arithmetic).
   int multiplicity(double u) const;
   // Distinct knot values of the whole vector and their multiplicities.
@@ -45,13 +46,37 @@ public:
   // True when both ends have multiplicity p+1 (the usual clamped form).
   bool is_clamped() const;
 
-  bool operator==(const KnotVector&) const = default;
+  // Reciprocals of the knot differences t_{s+1+r} - t_{s+1-j+r} (j = 1..p, r = 0..j-1, in that order) that the
+  // triangular basis scheme divides by on span s; precomputed so per-point evaluation only multiplies.
+  const double* inverse_differences(int span) const {
+    return inv_diff_.data() + static_cast<std::size_t>(span - first_span_) * (p_ * (p_ + 1) / 2);
+  }
+
+  bool operator==(const KnotVector& o) const { return p_ == o.p_ && t_ == o.t_; }
 
 private:
   int p_ = 0;
   std::vector<double> t_;
   int first_span_ = 0;
   int last_span_ = 0;
+  // Set when the interior knots are simple and equally spaced: find_span is then O(1).
+  double uniform_inv_h_ = 0.0;
+  std::vector<double> inv_diff_;
 };
+
+inline int KnotVector::find_span(double u) const {
+  if (u >= t_[last_span_ + 1]) return last_span_;
+  if (u < t_[first_span_ + 1]) return first_span_;
+  if (uniform_inv_h_ > 0.0) {
+    // Guess from the spacing, then correct the rounding of the division by at most one step.
+    int s = first_span_ + static_cast<int>((u - t_[first_span_]) * uniform_inv_h_);
+    s = std::clamp(s, first_span_, last_span_);
+    while (s > first_span_ && u < t_[s]) --s;
+    while (s < last_span_ && u >= t_[s + 1]) ++s;
+    return s;
+  }
+  auto it = std::upper_bound(t_.begin() + first_span_ + 1, t_.begin() + last_span_ + 1, u);
+  return static_cast<int>(it - t_.begin()) - 1;
+}
 
 }  // namespace trivar

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 
 #include "trivar/core/error.hpp"
 #include "trivar/core/parallel.hpp"
@@ -15,37 +16,109 @@ namespace trivar {
 
 namespace {
 
-// Sum over the active (p+1)^D block of control values, weighted by the tensor product of N[k]:
-// acc[0..st) += sum_i prod_k N[k][i_k] * c(first + i). ST > 0 fixes the stride at compile time for the
-// common control dimensions so the innermost loop unrolls.
-template <int L, int ST, int D>
-inline void contract(const double* base, const std::array<std::size_t, D>& step, const std::array<int, D>& len,
-                     const std::array<const double*, D>& N, double w, int st, double* acc) {
-  if constexpr (L == 0) {
-    const int s = ST > 0 ? ST : st;
-    for (int a = 0; a < len[0]; ++a) {
-      const double c = w * N[0][a];
-      const double* p = base + static_cast<std::size_t>(a) * s;
-      for (int d = 0; d < s; ++d) acc[d] += c * p[d];
-    }
+// Sum factorisation of one evaluation. The control values of the active block that share the indices
+// i_1..i_{D-1} form one contiguous row of L = (p_0+1)*stride values. First the rows are combined with the
+// weights prod_{k>=1} N_k[i_k] into acc[0..L) (a long, vectorisable axpy), then acc is reduced with N_0.
+// LF > 0 fixes L at compile time for the common (degree, control dimension) pairs so the axpy unrolls.
+template <int K, int LF, int D>
+inline void accumulate_rows(const double* base, const std::array<std::size_t, D>& step,
+                            const std::array<int, D>& len, const std::array<const double*, D>& N, double w, int L,
+                            double* acc) {
+  if constexpr (K == 0) {
+    const int n = LF > 0 ? LF : L;
+    for (int x = 0; x < n; ++x) acc[x] += w * base[x];
   } else {
-    for (int a = 0; a < len[L]; ++a)
-      contract<L - 1, ST, D>(base + a * step[L], step, len, N, w * N[L][a], st, acc);
+    for (int a = 0; a < len[K]; ++a)
+      accumulate_rows<K - 1, LF, D>(base + a * step[K], step, len, N, w * N[K][a], L, acc);
   }
 }
 
+template <int D, int LF>
+void rows_kernel(const double* base, const std::array<std::size_t, D>& step, const std::array<int, D>& len,
+                 const std::array<const double*, D>& N, int L, double* acc) {
+  const int n = LF > 0 ? LF : L;
+  for (int x = 0; x < n; ++x) acc[x] = 0.0;
+  accumulate_rows<D - 1, LF, D>(base, step, len, N, 1.0, L, acc);
+}
+
+template <int D, std::size_t... Ls>
+constexpr auto make_rows_table(std::index_sequence<Ls...>) {
+  using Fn = void (*)(const double*, const std::array<std::size_t, D>&, const std::array<int, D>&,
+                      const std::array<const double*, D>&, int, double*);
+  return std::array<Fn, sizeof...(Ls)>{&rows_kernel<D, static_cast<int>(Ls)>...};
+}
+
+// acc[0..L) for rows of length L; L <= 32 dispatches to a kernel with L fixed at compile time.
 template <int D>
-inline void contract_dispatch(const double* base, const std::array<std::size_t, D>& step,
-                              const std::array<int, D>& len, const std::array<const double*, D>& N, int st,
-                              double* acc) {
-  std::fill(acc, acc + st, 0.0);
-  switch (st) {
-    case 1: contract<D - 1, 1, D>(base, step, len, N, 1.0, st, acc); break;
-    case 2: contract<D - 1, 2, D>(base, step, len, N, 1.0, st, acc); break;
-    case 3: contract<D - 1, 3, D>(base, step, len, N, 1.0, st, acc); break;
-    case 4: contract<D - 1, 4, D>(base, step, len, N, 1.0, st, acc); break;
-    default: contract<D - 1, 0, D>(base, step, len, N, 1.0, st, acc); break;
+inline void accumulate(const double* base, const std::array<std::size_t, D>& step, const std::array<int, D>& len,
+                       const std::array<const double*, D>& N, int L, double* acc) {
+  static constexpr auto table = make_rows_table<D>(std::make_index_sequence<33>{});
+  table[L <= 32 ? L : 0](base, step, len, N, L, acc);
+}
+
+// Whole evaluation with every degree equal to P and the stride equal to ST: all loops have compile-time
+// bounds. This is the hot path of slicing and tessellation (cubic and quadratic geometry, 3-D, often rational).
+template <int P, int ST, int K, int D>
+inline void fixed_rows(const double* base, const std::array<std::size_t, D>& step, const double (*N)[P + 1],
+                       double w, double* acc) {
+  if constexpr (K == 0) {
+    for (int x = 0; x < (P + 1) * ST; ++x) acc[x] += w * base[x];
+  } else {
+    for (int a = 0; a <= P; ++a) fixed_rows<P, ST, K - 1, D>(base + a * step[K], step, N, w * N[K][a], acc);
   }
+}
+
+template <int P, int ST, int D>
+void eval_fixed(const std::array<KnotVector, D>& knots, const double* coefs, const Param<D>& u, double* h) {
+  double N[D][P + 1];
+  std::array<std::size_t, D> step;
+  std::size_t offset = 0, stride_k = ST;
+  for (int k = 0; k < D; ++k) {
+    const KnotVector& kv = knots[k];
+    const double uk = std::clamp(u[k], kv.start(), kv.end());
+    const int s = kv.find_span(uk);
+    basis_values_fixed<P>(kv, s, uk, N[k]);
+    step[k] = stride_k;
+    offset += static_cast<std::size_t>(s - P) * stride_k;
+    stride_k *= static_cast<std::size_t>(kv.size());
+  }
+  double acc[(P + 1) * ST] = {};
+  fixed_rows<P, ST, D - 1, D>(coefs + offset, step, N, 1.0, acc);
+  for (int d = 0; d < ST; ++d) h[d] = 0.0;
+  for (int a = 0; a <= P; ++a)
+    for (int d = 0; d < ST; ++d) h[d] += N[0][a] * acc[a * ST + d];
+}
+
+template <int D>
+using FixedKernel = void (*)(const std::array<KnotVector, D>&, const double*, const Param<D>&, double*);
+
+// Kernel for (degree, stride) when every direction has that degree and the pair is common, else null.
+template <int D>
+FixedKernel<D> fixed_kernel(const std::array<KnotVector, D>& knots, int st) {
+  const int p = knots[0].degree();
+  for (int k = 1; k < D; ++k)
+    if (knots[k].degree() != p) return nullptr;
+  auto pick = [&]<int P>() -> FixedKernel<D> {
+    switch (st) {
+      case 1: return &eval_fixed<P, 1, D>;
+      case 3: return &eval_fixed<P, 3, D>;
+      case 4: return &eval_fixed<P, 4, D>;
+      default: return nullptr;
+    }
+  };
+  switch (p) {
+    case 1: return pick.template operator()<1>();
+    case 2: return pick.template operator()<2>();
+    case 3: return pick.template operator()<3>();
+    default: return nullptr;
+  }
+}
+
+// out[0..st) = sum_a N0[a] * acc[a*st .. a*st+st).
+inline void reduce_first(const double* acc, const double* N0, int len0, int st, double* out) {
+  std::fill(out, out + st, 0.0);
+  for (int a = 0; a < len0; ++a)
+    for (int d = 0; d < st; ++d) out[d] += N0[a] * acc[a * st + d];
 }
 
 // Multi-indices up to kMaxDerivativeOrder; graded, so the table for any lower order is a prefix of it.
@@ -69,11 +142,13 @@ TensorSpline<D>::TensorSpline(std::array<KnotVector, D> knots, int dim, bool rat
                                          std::to_string(num_coefs()) + " control points x " +
                                          std::to_string(stride()) + "), got " + std::to_string(coefs_.size()));
   for (std::size_t i = 0; i < coefs_.size(); ++i)
-    require(std::isfinite(coefs_[i]), "spline: coefficient value " + std::to_string(i) + " is not finite");
+    if (!std::isfinite(coefs_[i])) throw Error("spline: coefficient value " + std::to_string(i) + " is not finite");
+  fixed_ = fixed_kernel<D>(knots_, stride());
   if (rational_)
     for (int i = 0; i < num_coefs(); ++i)
-      require(weight(i) > 0.0, "spline: weight of control point " + std::to_string(i) + " is " +
-                                   std::to_string(weight(i)) + "; weights must be positive");
+      if (!(weight(i) > 0.0))
+        throw Error("spline: weight of control point " + std::to_string(i) + " is " + std::to_string(weight(i)) +
+                    "; weights must be positive");
 }
 
 template <int D>
@@ -159,6 +234,14 @@ Box<D> TensorSpline<D>::domain() const {
 
 template <int D>
 void TensorSpline<D>::eval(const Param<D>& u, double* out) const {
+  if (fixed_) {
+    if (!rational_) return fixed_(knots_, coefs_.data(), u, out);
+    double h[4];
+    fixed_(knots_, coefs_.data(), u, h);
+    const double inv = 1.0 / h[dim_];
+    for (int d = 0; d < dim_; ++d) out[d] = h[d] * inv;
+    return;
+  }
   double N[D][kMaxDegree + 1];
   std::array<const double*, D> Np;
   std::array<int, D> len;
@@ -169,7 +252,7 @@ void TensorSpline<D>::eval(const Param<D>& u, double* out) const {
     const int p = kv.degree();
     const double uk = std::clamp(u[k], kv.start(), kv.end());
     const int s = kv.find_span(uk);
-    basis_values(kv.data(), p, s, uk, N[k]);
+    basis_values(kv, s, uk, N[k]);
     Np[k] = N[k];
     len[k] = p + 1;
     step[k] = stride_k;
@@ -177,22 +260,26 @@ void TensorSpline<D>::eval(const Param<D>& u, double* out) const {
     stride_k *= static_cast<std::size_t>(kv.size());
   }
   const int st = stride();
+  const int L = len[0] * st;
+  constexpr int kStack = 4 * (kMaxDegree + 1);
+  double acc_stack[kStack], h_stack[4];
+  double* acc = L <= kStack ? acc_stack : scratch(static_cast<std::size_t>(L) + st);
+  accumulate<D>(coefs_.data() + offset, step, len, Np, L, acc);
   if (!rational_) {
-    contract_dispatch<D>(coefs_.data() + offset, step, len, Np, st, out);
+    reduce_first(acc, N[0], len[0], st, out);
     return;
   }
-  double small[8];
-  double* acc = st <= 8 ? small : scratch(st);
-  contract_dispatch<D>(coefs_.data() + offset, step, len, Np, st, acc);
-  const double inv = 1.0 / acc[dim_];
-  for (int d = 0; d < dim_; ++d) out[d] = acc[d] * inv;
+  double* h = st <= 4 ? h_stack : acc + L;
+  reduce_first(acc, N[0], len[0], st, h);
+  const double inv = 1.0 / h[dim_];
+  for (int d = 0; d < dim_; ++d) out[d] = h[d] * inv;
 }
 
 template <int D>
 void TensorSpline<D>::eval_derivs(const Param<D>& u, int order, double* out) const {
-  require(order >= 0 && order <= kMaxDerivativeOrder,
-          "spline: derivative order " + std::to_string(order) + " is outside [0, " +
-              std::to_string(kMaxDerivativeOrder) + "]");
+  if (order < 0 || order > kMaxDerivativeOrder)
+    throw Error("spline: derivative order " + std::to_string(order) + " is outside [0, " +
+                std::to_string(kMaxDerivativeOrder) + "]");
   const int st = stride();
   const int nd = derivative_count(D, order);
   // Per direction: rows of basis derivatives 0..order, each p+1 long.
@@ -213,11 +300,25 @@ void TensorSpline<D>::eval_derivs(const Param<D>& u, int order, double* out) con
   }
   const auto& table = derivative_table<D>();
   double* h = rational_ ? scratch<2>(static_cast<std::size_t>(nd) * st) : out;
+  // Row sums depend only on the derivative orders in directions 1..D-1 (the "tail" of the multi-index);
+  // compute each tail once and reduce it with every derivative order of direction 0 that uses it.
+  const int L = len[0] * st;
+  double* acc = scratch<3>(static_cast<std::size_t>(L));
+  auto row = [&](int k, int order_k) {
+    return ders + static_cast<std::size_t>(k) * (order + 1) * (kMaxDegree + 1) + order_k * len[k];
+  };
   for (int a = 0; a < nd; ++a) {
+    if (table[a][0] != 0) continue;  // tails are the multi-indices with a_0 = 0
     std::array<const double*, D> Np;
-    for (int k = 0; k < D; ++k)
-      Np[k] = ders + static_cast<std::size_t>(k) * (order + 1) * (kMaxDegree + 1) + table[a][k] * len[k];
-    contract_dispatch<D>(coefs_.data() + offset, step, len, Np, st, h + static_cast<std::size_t>(a) * st);
+    for (int k = 0; k < D; ++k) Np[k] = row(k, table[a][k]);
+    accumulate<D>(coefs_.data() + offset, step, len, Np, L, acc);
+    int tail_order = 0;
+    for (int k = 1; k < D; ++k) tail_order += table[a][k];
+    for (int a0 = 0; a0 + tail_order <= order; ++a0) {
+      auto alpha = table[a];
+      alpha[0] = a0;
+      reduce_first(acc, row(0, a0), len[0], st, h + static_cast<std::size_t>(derivative_position<D>(alpha)) * st);
+    }
   }
   if (!rational_) return;
   // Generalised quotient rule: S^(a) = (A^(a) - sum_{0 < b <= a} C(a,b) w^(b) S^(a-b)) / w.
@@ -280,7 +381,7 @@ void TensorSpline<D>::eval_grid(const std::array<std::vector<double>, D>& params
       const double uk = std::clamp(params[k][q], kv.start(), kv.end());
       const int s = kv.find_span(uk);
       first[k][q] = s - p;
-      basis_values(kv.data(), p, s, uk, basis[k].data() + q * (p + 1));
+      basis_values(kv, s, uk, basis[k].data() + q * (p + 1));
     }
   }
   // Contract the last direction first; the array keeps shape (n_0, .., n_{k-1}, m_k, .., m_{D-1}).

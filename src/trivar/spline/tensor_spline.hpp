@@ -69,6 +69,8 @@ private:
   int dim_ = 0;
   bool rational_ = false;
   std::vector<double> coefs_;
+  // Specialised evaluation kernel chosen at construction for common degree / stride pairs (or null).
+  void (*fixed_)(const std::array<KnotVector, D>&, const double*, const Param<D>&, double*) = nullptr;
 };
 
 extern template class TensorSpline<1>;

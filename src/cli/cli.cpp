@@ -1,0 +1,43 @@
+#include "cli.hpp"
+
+#include <charconv>
+#include <system_error>
+
+#include "trivar/core/error.hpp"
+#include "trivar/io/spline_file.hpp"
+
+namespace trivar::cli {
+
+std::vector<AnySpline> read_objects(const std::string& path) { return io::read_spline_file(path); }
+
+AnySpline read_single(const std::string& path, const std::string& command) {
+  std::vector<AnySpline> objects = read_objects(path);
+  require(objects.size() == 1, command + ": " + path + " holds " + std::to_string(objects.size()) +
+                                   " objects; this command takes a file with exactly one");
+  return std::move(objects.front());
+}
+
+const char* kind_name(int parametric_dim) {
+  switch (parametric_dim) {
+    case 1: return "curve";
+    case 2: return "surface";
+    default: return "volume";
+  }
+}
+
+std::string fmt(double x) {
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, x);
+  return r.ec == std::errc() ? std::string(buf, r.ptr) : std::string("?");
+}
+
+std::string fmt(const double* x, int n, const char* sep) {
+  std::string s;
+  for (int i = 0; i < n; ++i) {
+    if (i) s += sep;
+    s += fmt(x[i]);
+  }
+  return s;
+}
+
+}  // namespace trivar::cli

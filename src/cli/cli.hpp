@@ -1,0 +1,51 @@
+#pragma once
+// Shared vocabulary of the `trivar` command-line tool: exit codes, the run context every subcommand
+// writes its result into, file helpers and number formatting. One file per subcommand registers itself
+// through the add_*_command functions declared here.
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "trivar/spline/any_spline.hpp"
+
+namespace trivar::cli {
+
+// Documented in docs/cli.md; scripts rely on them.
+enum ExitCode : int {
+  kSuccess = 0,
+  kBadInput = 1,   // trivar::Error or another exception: bad file, bad parameter, I/O failure
+  kUsage = 2,      // command line could not be parsed
+  kInvalid = 3,    // check: the Jacobian determinant is proven to change sign or vanish
+  kOutside = 4,    // invert: the point is not in the image of the domain
+  kUndecided = 5,  // check: neither proven valid nor invalid; invert: inside but Newton did not converge
+};
+
+struct Context {
+  int threads = 0;  // --threads; 0 means all available
+  int exit_code = kSuccess;
+};
+
+void add_info_command(CLI::App& app, Context& ctx);
+void add_eval_command(CLI::App& app, Context& ctx);
+void add_convert_command(CLI::App& app, Context& ctx);
+void add_refine_command(CLI::App& app, Context& ctx);
+void add_elevate_command(CLI::App& app, Context& ctx);
+void add_check_command(CLI::App& app, Context& ctx);
+void add_make_command(CLI::App& app, Context& ctx);
+void add_invert_command(CLI::App& app, Context& ctx);
+void add_demo_command(CLI::App& app, Context& ctx);
+
+// All objects of a spline file (.json, .g2); throws trivar::Error naming the file on any problem.
+std::vector<AnySpline> read_objects(const std::string& path);
+// The single object of a file, for commands that act on one spline.
+AnySpline read_single(const std::string& path, const std::string& command);
+
+// "curve", "surface", "volume".
+const char* kind_name(int parametric_dim);
+// Shortest text that parses back to the same double.
+std::string fmt(double x);
+// Values joined by `sep`.
+std::string fmt(const double* x, int n, const char* sep = " ");
+
+}  // namespace trivar::cli

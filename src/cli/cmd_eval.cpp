@@ -1,0 +1,71 @@
+// trivar eval FILE u [v [w]] [--derivs K]: value and partial derivatives at one parameter.
+#include <cstdio>
+#include <string>
+#include <variant>
+
+#include "cli.hpp"
+#include "trivar/core/error.hpp"
+#include "trivar/spline/derivative_index.hpp"
+
+namespace trivar::cli {
+
+namespace {
+
+// "S", "S_u", "S_uvv", ...: the derivative's multi-index spelled out.
+template <int D>
+std::string derivative_label(const std::array<int, D>& a) {
+  std::string s = "S";
+  for (int k = 0; k < D; ++k)
+    if (a[k] > 0) {
+      if (s.size() == 1) s += '_';
+      s.append(static_cast<std::size_t>(a[k]), "uvw"[k]);
+    }
+  return s;
+}
+
+template <int D>
+void evaluate(const TensorSpline<D>& s, const std::vector<double>& params, int order) {
+  require(static_cast<int>(params.size()) == D, "eval: a " + std::string(kind_name(D)) + " takes " + std::to_string(D) +
+                                                    " parameter" + (D > 1 ? "s" : "") + ", got " +
+                                                    std::to_string(params.size()));
+  const Box<D> dom = s.domain();
+  Param<D> u;
+  for (int k = 0; k < D; ++k) {
+    u[k] = params[k];
+    require(u[k] >= dom.lo[k] && u[k] <= dom.hi[k], "eval: parameter " + std::string(1, "uvw"[k]) + " = " +
+                                                        fmt(u[k]) + " is outside the domain [" + fmt(dom.lo[k]) +
+                                                        ", " + fmt(dom.hi[k]) + "]");
+  }
+  const auto indices = derivative_multi_indices<D>(order);
+  std::vector<double> out(indices.size() * s.dim());
+  s.eval_derivs(u, order, out.data());
+  std::size_t width = 0;
+  for (const auto& a : indices) width = std::max(width, derivative_label<D>(a).size());
+  for (std::size_t i = 0; i < indices.size(); ++i) {
+    std::string label = derivative_label<D>(indices[i]);
+    label.resize(width, ' ');
+    std::printf("%s = %s\n", label.c_str(), fmt(out.data() + i * s.dim(), s.dim()).c_str());
+  }
+}
+
+}  // namespace
+
+void add_eval_command(CLI::App& app, Context&) {
+  auto* cmd = app.add_subcommand("eval", "Evaluate a spline and its partial derivatives at a parameter");
+  struct Args {
+    std::string file;
+    std::vector<double> params;
+    int derivs = 0;
+  };
+  auto a = std::make_shared<Args>();
+  cmd->add_option("FILE", a->file, "Spline file with one object (.json, .g2)")->required();
+  cmd->add_option("PARAMS", a->params, "Parameters u [v [w]], one per parametric direction")->required()->expected(1, 3);
+  cmd->add_option("--derivs", a->derivs, "Also print all partial derivatives up to this total order")
+      ->check(CLI::Range(0, kMaxDerivativeOrder));
+  cmd->callback([a] {
+    const AnySpline s = read_single(a->file, "eval");
+    std::visit([&](const auto& spline) { evaluate(spline, a->params, a->derivs); }, s);
+  });
+}
+
+}  // namespace trivar::cli

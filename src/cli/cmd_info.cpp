@@ -1,0 +1,113 @@
+// trivar info FILE [--json]: what a spline file holds.
+#include <cstdio>
+#include <string>
+#include <variant>
+
+#include <nlohmann/json.hpp>
+
+#include "cli.hpp"
+
+namespace trivar::cli {
+
+namespace {
+
+// Distinct knots with multiplicities "0(3) 0.5 1(3)", the middle elided when there are many.
+std::string knot_summary(const KnotVector& kv) {
+  const std::vector<double> u = kv.unique();
+  const std::vector<int> m = kv.multiplicities();
+  constexpr std::size_t kShown = 4;  // first and last values kept when eliding
+  std::string s;
+  for (std::size_t i = 0; i < u.size(); ++i) {
+    if (u.size() > 2 * kShown + 1 && i == kShown) {
+      s += " ... (" + std::to_string(u.size() - 2 * kShown) + " more)";
+      i = u.size() - kShown - 1;
+      continue;
+    }
+    if (!s.empty()) s += ' ';
+    s += fmt(u[i]);
+    if (m[i] > 1) s += "(" + std::to_string(m[i]) + ")";
+  }
+  return s;
+}
+
+template <int D>
+nlohmann::json describe(const TensorSpline<D>& s) {
+  nlohmann::json j;
+  j["kind"] = kind_name(D);
+  j["parametric_dim"] = D;
+  j["dim"] = s.dim();
+  j["rational"] = s.is_rational();
+  const Box<D> dom = s.domain();
+  int elements = 1;
+  for (int k = 0; k < D; ++k) {
+    const KnotVector& kv = s.knots(k);
+    j["degrees"].push_back(kv.degree());
+    j["counts"].push_back(kv.size());
+    j["elements"].push_back(kv.num_elements());
+    j["domain"].push_back({dom.lo[k], dom.hi[k]});
+    j["knots"].push_back(kv.knots());
+    elements *= kv.num_elements();
+  }
+  j["num_control_points"] = s.num_coefs();
+  j["num_elements"] = elements;
+  std::vector<double> lo(s.dim()), hi(s.dim());
+  s.control_bounds(lo.data(), hi.data());
+  j["control_bounds"] = {{"lo", lo}, {"hi", hi}};
+  return j;
+}
+
+template <int D>
+void print_text(const TensorSpline<D>& s) {
+  const char* names = "uvw";
+  auto per_direction = [&](auto&& value, const char* sep) {
+    std::string r;
+    for (int k = 0; k < D; ++k) r += (k ? sep : "") + value(k);
+    return r;
+  };
+  const Box<D> dom = s.domain();
+  int elements = 1;
+  for (int k = 0; k < D; ++k) elements *= s.knots(k).num_elements();
+  std::vector<double> lo(s.dim()), hi(s.dim());
+  s.control_bounds(lo.data(), hi.data());
+  std::string bounds;
+  for (int d = 0; d < s.dim(); ++d) bounds += (d ? " x [" : "[") + fmt(lo[d]) + ", " + fmt(hi[d]) + "]";
+
+  std::printf("  kind: %s, control dim %d, %s\n", kind_name(D), s.dim(), s.is_rational() ? "rational (NURBS)" : "polynomial");
+  std::printf("  degrees: %s\n", per_direction([&](int k) { return std::to_string(s.degree(k)); }, " ").c_str());
+  std::printf("  control points: %s = %d\n", per_direction([&](int k) { return std::to_string(s.count(k)); }, " x ").c_str(),
+              s.num_coefs());
+  for (int k = 0; k < D; ++k)
+    std::printf("  knots %c: %d knots, %s\n", names[k], static_cast<int>(s.knots(k).knots().size()),
+                knot_summary(s.knots(k)).c_str());
+  std::printf("  domain: %s\n",
+              per_direction([&](int k) { return "[" + fmt(dom.lo[k]) + ", " + fmt(dom.hi[k]) + "]"; }, " x ").c_str());
+  std::printf("  elements: %s = %d\n",
+              per_direction([&](int k) { return std::to_string(s.knots(k).num_elements()); }, " x ").c_str(), elements);
+  std::printf("  control bounding box: %s\n", bounds.c_str());
+}
+
+}  // namespace
+
+void add_info_command(CLI::App& app, Context&) {
+  auto* cmd = app.add_subcommand("info", "Describe the splines in a file: kind, degrees, counts, knots, domain");
+  auto file = std::make_shared<std::string>();
+  auto json = std::make_shared<bool>(false);
+  cmd->add_option("FILE", *file, "Spline file (.json, .g2)")->required();
+  cmd->add_flag("--json", *json, "Print one JSON document instead of text");
+  cmd->callback([file, json] {
+    const std::vector<AnySpline> objects = read_objects(*file);
+    if (*json) {
+      nlohmann::json out{{"file", *file}, {"objects", nlohmann::json::array()}};
+      for (const AnySpline& o : objects) out["objects"].push_back(std::visit([](const auto& s) { return describe(s); }, o));
+      std::printf("%s\n", out.dump(2).c_str());
+      return;
+    }
+    std::printf("%s: %zu object%s\n", file->c_str(), objects.size(), objects.size() == 1 ? "" : "s");
+    for (std::size_t i = 0; i < objects.size(); ++i) {
+      std::printf("object %zu:\n", i);
+      std::visit([](const auto& s) { print_text(s); }, objects[i]);
+    }
+  });
+}
+
+}  // namespace trivar::cli

@@ -1,0 +1,115 @@
+// trivar make box|revolve ... -o FILE: models built from a few numbers.
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "cli.hpp"
+#include "trivar/core/error.hpp"
+#include "trivar/io/spline_file.hpp"
+#include "trivar/model/block.hpp"
+#include "trivar/model/revolve.hpp"
+#include "trivar/spline/knot_insertion.hpp"
+
+namespace trivar::cli {
+
+namespace {
+
+// Per-direction values: one value applies to every direction.
+template <class T, int D>
+std::array<T, D> per_direction(const std::vector<T>& v, const char* option) {
+  require(v.size() == 1 || static_cast<int>(v.size()) == D, std::string("make box: ") + option + " takes 1 or " +
+                                                                 std::to_string(D) + " values, got " +
+                                                                 std::to_string(v.size()));
+  std::array<T, D> r;
+  for (int k = 0; k < D; ++k) r[k] = v[v.size() == 1 ? 0 : k];
+  return r;
+}
+
+template <int D>
+AnySpline box(const std::vector<int>& degrees, const std::vector<int>& elements, const std::vector<double>& size) {
+  return make_block<D>(per_direction<int, D>(degrees, "--degree"), per_direction<int, D>(elements, "--elements"),
+                       per_direction<double, D>(size, "--size"));
+}
+
+void add_box(CLI::App& make) {
+  auto* cmd = make.add_subcommand("box", "Block [0,X] x [0,Y] x [0,Z] with the identity parametrisation");
+  struct Args {
+    std::vector<int> degrees{1}, elements{1};
+    std::vector<double> size{1.0};
+    std::string out;
+  };
+  auto a = std::make_shared<Args>();
+  cmd->add_option("--degree", a->degrees, "Degree per direction (one value: all directions)")
+      ->expected(1, 3)
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--elements", a->elements, "Elements per direction; the number of values sets the kind: "
+                                              "2 a surface (in the plane z = 0), 3 a volume")
+      ->expected(1, 3)
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--size", a->size, "Edge lengths (one value: all directions)")
+      ->expected(1, 3)
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("-o,--output", a->out, "Output spline file (.json, .g2)")->required();
+  cmd->callback([a] {
+    // The direction count is the longest of the per-direction lists; a single list of one value is a volume.
+    std::size_t n = std::max({a->degrees.size(), a->elements.size(), a->size.size()});
+    if (n == 1) n = 3;
+    require(n >= 2, "make box: give two values (surface) or three (volume) per option");
+    const AnySpline s = n == 2 ? box<2>(a->degrees, a->elements, a->size) : box<3>(a->degrees, a->elements, a->size);
+    io::write_spline_file(a->out, {s});
+  });
+}
+
+void add_revolve(CLI::App& make) {
+  auto* cmd = make.add_subcommand("revolve", "Exact NURBS volume of revolution of a rectangle about the z-axis");
+  struct Args {
+    std::vector<double> radii{1.0, 2.0};
+    double height = 1.0, angle = 360.0;
+    std::vector<int> degrees{2}, elements{1};
+    std::string out;
+  };
+  auto a = std::make_shared<Args>();
+  cmd->add_option("--radii", a->radii, "Inner and outer radius r0 < r1 (r0 = 0 touches the axis: singular volume)")
+      ->expected(2)
+      ->capture_default_str();
+  cmd->add_option("--height", a->height, "Height along z")->check(CLI::PositiveNumber)->capture_default_str();
+  cmd->add_option("--angle", a->angle, "Sweep angle in degrees, in (0, 360]")->capture_default_str();
+  cmd->add_option("--degree", a->degrees, "Degree of the radial and axial directions (angular: always 2)")
+      ->expected(1, 2)
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--elements", a->elements,
+                  "Elements: radial [axial [per angular segment]]; one value applies to radial and axial. The angle "
+                  "is split into one rational segment per started 90 degrees")
+      ->expected(1, 3)
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("-o,--output", a->out, "Output spline file (.json, .g2)")->required();
+  cmd->callback([a] {
+    require(a->angle > 0 && a->angle <= 360, "make revolve: --angle must be in (0, 360] degrees, got " + fmt(a->angle));
+    const Ints<2> degrees{a->degrees[0], a->degrees.back()};
+    const Ints<2> elements{a->elements[0], a->elements[a->elements.size() > 1 ? 1 : 0]};
+    const int angular = a->elements.size() > 2 ? a->elements[2] : 1;
+    // angle / 180 * pi keeps 360 degrees exactly 2 pi.
+    const double radians = a->angle / 180.0 * std::numbers::pi;
+    const TensorSpline<2> profile = make_rectangle_profile(a->radii[0], a->radii[1], 0.0, a->height, degrees, elements);
+    TensorSpline<3> vol = revolve<3>(profile, {0, 0, 0}, {0, 0, 1}, radians);
+    if (angular > 1) vol = refine_uniform(vol, Ints<3>{1, 1, angular});
+    io::write_spline_file(a->out, {AnySpline(std::move(vol))});
+  });
+}
+
+}  // namespace
+
+void add_make_command(CLI::App& app, Context&) {
+  auto* make = app.add_subcommand("make", "Build a model: make box ..., make revolve ...");
+  make->require_subcommand(1);
+  add_box(*make);
+  add_revolve(*make);
+}
+
+}  // namespace trivar::cli

@@ -1,0 +1,30 @@
+#pragma once
+// trivar's native JSON spline format (schema in docs/formats.md). One object per file:
+//   {"trivar": 1, "kind": "curve"|"surface"|"volume", "dim": 3, "rational": false,
+//    "degrees": [..], "knots": [[..], ..], "control_points": [[x, y, z], ..], "weights": [..]}
+// or several: {"trivar": 1, "objects": [ {..}, {..} ]}. Control points are Cartesian, u fastest; "weights"
+// is present exactly when "rational" is true. Numbers are written so that they parse back to the same double.
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "trivar/spline/any_spline.hpp"
+
+namespace trivar::io {
+
+// The JSON object of one spline (with "trivar": 1, so it is a valid file on its own). Throws trivar::Error
+// for an empty (default-constructed) spline or a Cartesian control point that is not finite.
+nlohmann::json to_json(const AnySpline& s);
+
+// Validates and converts one object. `where` prefixes every error message (e.g. "part.json: objects[2]"),
+// which then names the JSON path inside the object and what was expected.
+AnySpline spline_from_json(const nlohmann::json& j, const std::string& where);
+
+// Reads a file holding one object or {"trivar": 1, "objects": [...]} (at least one object).
+std::vector<AnySpline> read_json(const std::string& path);
+
+// Writes one object, or the "objects" form for several; nothing is written when any object is invalid.
+void write_json(const std::string& path, const std::vector<AnySpline>& objects);
+
+}  // namespace trivar::io

@@ -1,0 +1,383 @@
+#include "trivar/io/vtk_writer.hpp"
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <climits>
+#include <cmath>
+#include <limits>
+#include <ostream>
+#include <type_traits>
+
+#include "trivar/core/atomic_file.hpp"
+#include "trivar/core/error.hpp"
+#include "trivar/spline/bezier_extraction.hpp"
+
+namespace trivar::io {
+
+namespace {
+
+// VTK cell type numbers (vtkCellType.h).
+constexpr std::array<int, 3> kLinearCell = {3, 9, 12};    // VTK_LINE, VTK_QUAD, VTK_HEXAHEDRON
+constexpr std::array<int, 3> kBezierCell = {75, 77, 79};  // VTK_BEZIER_CURVE, _QUADRILATERAL, _HEXAHEDRON
+constexpr int kVtkLine = 3;
+constexpr std::array<const char*, 4> kReservedNames = {"param", "RationalWeights", "higher_components", "element"};
+
+// One <Piece>: everything per point and per cell, already in VTK layout.
+struct Piece {
+  std::vector<double> points;   // 3 per point
+  std::vector<double> params;   // 3 per point
+  std::vector<double> weights;  // 1 per point, Bezier mode only
+  std::vector<double> higher;   // `extra` per point
+  std::vector<std::vector<double>> fields;
+  std::vector<long long> connectivity, offsets;
+  std::vector<int> types, element, degrees;  // degrees: 3 per cell, Bezier mode only
+
+  void add_point(const double* x, int dim, int extra, const double* u, int D) {
+    for (int d = 0; d < 3; ++d) points.push_back(d < dim ? x[d] : 0.0);
+    for (int d = 0; d < extra; ++d) higher.push_back(3 + d < dim ? x[3 + d] : 0.0);
+    for (int k = 0; k < 3; ++k) params.push_back(k < D ? u[k] : 0.0);
+  }
+  // Called after the cell's points were appended to `connectivity` (VTK offsets mark cell ends).
+  void end_cell(int type, int elem) {
+    types.push_back(type);
+    element.push_back(elem);
+    offsets.push_back(static_cast<long long>(connectivity.size()));
+  }
+  long long num_points() const { return static_cast<long long>(points.size() / 3); }
+};
+
+// Discontinuous across an interior breakpoint: knot multiplicity p + 1 (C^-1).
+bool discontinuous_at(const KnotVector& kv, double b) { return kv.multiplicity(b) > kv.degree(); }
+
+template <int D>
+long long product(const std::array<int, D>& n) {
+  long long r = 1;
+  for (int k = 0; k < D; ++k) r *= n[k];
+  return r;
+}
+
+// Calls f(i) for every multi-index 0 <= i < n, first index fastest.
+template <int D, class F>
+void for_each_index(const std::array<int, D>& n, F&& f) {
+  if (product<D>(n) == 0) return;
+  std::array<int, D> i{};
+  while (true) {
+    f(i);
+    int k = 0;
+    while (k < D && ++i[k] == n[k]) i[k++] = 0;
+    if (k == D) return;
+  }
+}
+
+template <int D>
+int linear(const std::array<int, D>& i, const std::array<int, D>& n) {
+  int l = 0;
+  for (int k = D - 1; k >= 0; --k) l = l * n[k] + i[k];
+  return l;
+}
+
+// Position of Bezier node i (0 <= i_k <= p_k) in VTK's higher-order cell point order: corners, then edge
+// interiors, then face interiors, then the body, with VTK's edge and face numbering (vtkHigherOrder*
+// ::PointIndexFromIJK; hexahedra in the VTK >= 9 edge order, i.e. XML file version >= 2.1).
+template <int D>
+int vtk_node_index(const std::array<int, D>& i, const std::array<int, D>& p) {
+  if constexpr (D == 1) {
+    return i[0] == 0 ? 0 : i[0] == p[0] ? 1 : i[0] + 1;
+  } else {
+    std::array<bool, D> bdy;
+    int nbdy = 0;
+    for (int k = 0; k < D; ++k) nbdy += (bdy[k] = (i[k] == 0 || i[k] == p[k])) ? 1 : 0;
+    const bool hi0 = i[0] == p[0], hi1 = i[1] == p[1];
+    const int corner = hi0 ? (hi1 ? 2 : 1) : (hi1 ? 3 : 0);  // counter-clockwise in the (u, v) plane
+    const int a = p[0] - 1, b = p[1] - 1;                     // interior nodes per edge along u, v
+    if constexpr (D == 2) {
+      if (nbdy == 2) return corner;
+      if (!bdy[0]) return 4 + (i[0] - 1) + (hi1 ? a + b : 0);
+      if (!bdy[1]) return 4 + (i[1] - 1) + (hi0 ? a : 2 * a + b);
+      return 4 + 2 * (a + b) + (i[0] - 1) + a * (i[1] - 1);
+    } else {
+      const bool hi2 = i[2] == p[2];
+      const int c = p[2] - 1;
+      if (nbdy == 3) return corner + (hi2 ? 4 : 0);
+      if (nbdy == 2) {
+        if (!bdy[0]) return 8 + (i[0] - 1) + (hi1 ? a + b : 0) + (hi2 ? 2 * (a + b) : 0);
+        if (!bdy[1]) return 8 + (i[1] - 1) + (hi0 ? a : 2 * a + b) + (hi2 ? 2 * (a + b) : 0);
+        return 8 + 4 * (a + b) + (i[2] - 1) + c * corner;
+      }
+      int offset = 8 + 4 * (a + b + c);
+      if (nbdy == 1) {
+        if (bdy[0]) return offset + (i[1] - 1) + b * (i[2] - 1) + (hi0 ? b * c : 0);
+        offset += 2 * b * c;
+        if (bdy[1]) return offset + (i[0] - 1) + a * (i[2] - 1) + (hi1 ? c * a : 0);
+        offset += 2 * c * a;
+        return offset + (i[0] - 1) + a * (i[1] - 1) + (hi2 ? a * b : 0);
+      }
+      offset += 2 * (b * c + c * a + a * b);
+      return offset + (i[0] - 1) + a * ((i[1] - 1) + b * (i[2] - 1));
+    }
+  }
+}
+
+template <int D>
+void check_size(const std::array<int, D>& n, const std::string& path) {
+  long long total = 1;
+  for (int k = 0; k < D; ++k) {
+    total *= n[k];
+    require(total <= INT_MAX, path + ": too many points for one VTU piece");
+  }
+}
+
+template <int D>
+void add_sampled(Piece& piece, const TensorSpline<D>& s, int n, int extra, const std::string& path) {
+  // Per direction: sample parameters and, per element, the index of its first sample.
+  std::array<std::vector<double>, D> u;
+  std::array<std::vector<int>, D> first;
+  std::array<int, D> ne, nu;
+  for (int k = 0; k < D; ++k) {
+    const std::vector<double> bp = s.knots(k).breakpoints();
+    ne[k] = static_cast<int>(bp.size()) - 1;
+    for (int e = 0; e < ne[k]; ++e) {
+      const bool own_start = e == 0 || discontinuous_at(s.knots(k), bp[e]);
+      if (e > 0 && own_start) u[k].back() = std::nextafter(bp[e], -std::numeric_limits<double>::infinity());
+      first[k].push_back(static_cast<int>(u[k].size()) - (own_start ? 0 : 1));
+      for (int j = own_start ? 0 : 1; j <= n; ++j)
+        u[k].push_back(j == n ? bp[e + 1] : bp[e] + (bp[e + 1] - bp[e]) * j / n);
+    }
+    nu[k] = static_cast<int>(u[k].size());
+  }
+  check_size<D>(nu, path);
+  std::vector<double> x(static_cast<std::size_t>(product<D>(nu)) * s.dim());
+  s.eval_grid(u, x);
+  const long long base = piece.num_points();
+  for_each_index<D>(nu, [&](const std::array<int, D>& i) {
+    double param[D];
+    for (int k = 0; k < D; ++k) param[k] = u[k][i[k]];
+    piece.add_point(x.data() + static_cast<std::size_t>(linear<D>(i, nu)) * s.dim(), s.dim(), extra, param, D);
+  });
+
+  std::array<int, D> cells;
+  for (int k = 0; k < D; ++k) cells[k] = ne[k] * n;
+  static constexpr int kCorner[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                                        {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  for_each_index<D>(cells, [&](const std::array<int, D>& c) {
+    std::array<int, D> e, lo;
+    for (int k = 0; k < D; ++k) {
+      e[k] = c[k] / n;
+      lo[k] = first[k][e[k]] + c[k] % n;
+    }
+    for (int q = 0; q < (1 << D); ++q) {
+      std::array<int, D> g;
+      for (int k = 0; k < D; ++k) g[k] = lo[k] + kCorner[q][k];
+      piece.connectivity.push_back(base + linear<D>(g, nu));
+    }
+    piece.end_cell(kLinearCell[D - 1], linear<D>(e, ne));
+  });
+}
+
+template <int D>
+void add_bezier(Piece& piece, const TensorSpline<D>& s, int extra, const std::string& path) {
+  // Per direction: global Bezier node index of each element's first node; shared across continuous joins.
+  std::array<std::vector<int>, D> first;
+  std::array<std::vector<double>, D> bp;
+  std::array<int, D> ne, nn, p;
+  for (int k = 0; k < D; ++k) {
+    p[k] = s.degree(k);
+    require(p[k] >= 1, path + ": Bezier cells need degree >= 1 in every direction, direction " +
+                           std::string(1, "uvw"[k]) + " has degree 0 (use sampled output)");
+    bp[k] = s.knots(k).breakpoints();
+    ne[k] = static_cast<int>(bp[k].size()) - 1;
+    int next = 0;
+    for (int e = 0; e < ne[k]; ++e) {
+      if (e > 0 && discontinuous_at(s.knots(k), bp[k][e])) ++next;
+      first[k].push_back(next);
+      next += p[k];
+    }
+    nn[k] = next + 1;
+  }
+  check_size<D>(nn, path);
+  const long long base = piece.num_points();
+  const std::size_t total = static_cast<std::size_t>(product<D>(nn));
+  std::vector<double> x(total * s.dim()), w(total), param(total * D);
+
+  const auto elements = bezier_elements(s);
+  std::array<int, D> local;
+  for (int k = 0; k < D; ++k) local[k] = p[k] + 1;
+  const int npe = static_cast<int>(product<D>(local));
+  std::vector<long long> conn(npe);
+  const int dim = s.dim();
+  for (int l = 0; l < static_cast<int>(elements.size()); ++l) {
+    const BezierElement<D>& el = elements[l];
+    std::array<int, D> e;
+    for (int k = 0, r = l; k < D; ++k) {
+      e[k] = r % ne[k];
+      r /= ne[k];
+    }
+    for_each_index<D>(local, [&](const std::array<int, D>& i) {
+      std::array<int, D> g;
+      for (int k = 0; k < D; ++k) g[k] = first[k][e[k]] + i[k];
+      const std::size_t G = static_cast<std::size_t>(linear<D>(g, nn));
+      const double* c = el.coefs.data() + static_cast<std::size_t>(linear<D>(i, local)) * el.stride();
+      const double wt = el.rational ? c[dim] : 1.0;
+      for (int d = 0; d < dim; ++d) x[G * dim + d] = c[d] / wt;
+      w[G] = wt;
+      for (int k = 0; k < D; ++k) param[G * D + k] = el.domain.lo[k] + (el.domain.hi[k] - el.domain.lo[k]) * i[k] / p[k];
+      conn[vtk_node_index<D>(i, p)] = base + static_cast<long long>(G);
+    });
+    piece.connectivity.insert(piece.connectivity.end(), conn.begin(), conn.end());
+    piece.end_cell(kBezierCell[D - 1], linear<D>(e, ne));
+    for (int k = 0; k < 3; ++k) piece.degrees.push_back(k < D ? p[k] : 0);
+  }
+  for (std::size_t G = 0; G < total; ++G) piece.add_point(x.data() + G * dim, dim, extra, param.data() + G * D, D);
+  piece.weights.insert(piece.weights.end(), w.begin(), w.end());
+}
+
+template <int D>
+void add_control_net(Piece& piece, const TensorSpline<D>& s, int extra, bool bezier) {
+  const long long base = piece.num_points();
+  std::array<std::vector<double>, D> greville;
+  for (int k = 0; k < D; ++k) greville[k] = s.knots(k).greville();
+  const auto n = s.counts();
+  std::vector<double> x(s.dim());
+  for_each_index<D>(n, [&](const std::array<int, D>& i) {
+    const int l = s.linear_index(i);
+    s.control_point(l, x.data());
+    double param[D];
+    for (int k = 0; k < D; ++k) param[k] = greville[k][i[k]];
+    piece.add_point(x.data(), s.dim(), extra, param, D);
+    if (bezier) piece.weights.push_back(s.weight(l));
+    for (int k = 0; k < D; ++k) {
+      if (i[k] + 1 == n[k]) continue;
+      auto j = i;
+      ++j[k];
+      piece.connectivity.push_back(base + l);
+      piece.connectivity.push_back(base + s.linear_index(j));
+      piece.end_cell(kVtkLine, -1);
+      if (bezier) piece.degrees.insert(piece.degrees.end(), {1, 0, 0});
+    }
+  });
+}
+
+void put(std::ostream& os, double x) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, x);
+  os.write(buf, r.ptr - buf);
+}
+
+std::string xml_escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+// One DataArray in ASCII, `components` values per line.
+template <class T>
+void data_array(std::ostream& os, const char* type, const std::string& name, int components, const std::vector<T>& v) {
+  os << "        <DataArray type=\"" << type << "\"";
+  if (!name.empty()) os << " Name=\"" << xml_escape(name) << "\"";
+  os << " NumberOfComponents=\"" << components << "\" format=\"ascii\">\n";
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    os << (i % static_cast<std::size_t>(components) == 0 ? "          " : " ");
+    if constexpr (std::is_floating_point_v<T>)
+      put(os, v[i]);
+    else
+      os << v[i];
+    if ((i + 1) % static_cast<std::size_t>(components) == 0) os << '\n';
+  }
+  os << "        </DataArray>\n";
+}
+
+void write_piece(std::ostream& os, const Piece& p, const VtkOptions& opts, int extra) {
+  const std::size_t ncells = p.types.size();
+  os << "    <Piece NumberOfPoints=\"" << p.num_points() << "\" NumberOfCells=\"" << ncells << "\">\n";
+  os << "      <PointData";
+  if (opts.bezier_cells) os << " RationalWeights=\"RationalWeights\"";
+  os << ">\n";
+  data_array(os, "Float64", "param", 3, p.params);
+  if (opts.bezier_cells) data_array(os, "Float64", "RationalWeights", 1, p.weights);
+  if (extra > 0) data_array(os, "Float64", "higher_components", extra, p.higher);
+  for (std::size_t f = 0; f < opts.fields.size(); ++f)
+    data_array(os, "Float64", opts.fields[f].name, opts.fields[f].components, p.fields[f]);
+  os << "      </PointData>\n      <CellData";
+  if (opts.bezier_cells) os << " HigherOrderDegrees=\"HigherOrderDegrees\"";
+  os << ">\n";
+  data_array(os, "Int32", "element", 1, p.element);
+  if (opts.bezier_cells) data_array(os, "Int32", "HigherOrderDegrees", 3, p.degrees);
+  os << "      </CellData>\n      <Points>\n";
+  data_array(os, "Float64", "", 3, p.points);
+  os << "      </Points>\n      <Cells>\n";
+  data_array(os, "Int64", "connectivity", 1, p.connectivity);
+  data_array(os, "Int64", "offsets", 1, p.offsets);
+  data_array(os, "UInt8", "types", 1, p.types);
+  os << "      </Cells>\n    </Piece>\n";
+}
+
+void validate(const std::string& path, const VtkOptions& opts) {
+  require(opts.bezier_cells || opts.samples_per_element >= 1,
+          path + ": samples_per_element must be >= 1, got " + std::to_string(opts.samples_per_element));
+  for (std::size_t f = 0; f < opts.fields.size(); ++f) {
+    const VtkPointField& field = opts.fields[f];
+    require(!field.name.empty(), path + ": point field " + std::to_string(f) + " has no name");
+    require(field.components >= 1, path + ": point field '" + field.name + "' needs >= 1 components");
+    require(static_cast<bool>(field.value), path + ": point field '" + field.name + "' has no value function");
+    require(std::find(kReservedNames.begin(), kReservedNames.end(), field.name) == kReservedNames.end(),
+            path + ": point field name '" + field.name + "' is reserved");
+    for (std::size_t g = 0; g < f; ++g)
+      require(opts.fields[g].name != field.name, path + ": duplicate point field name '" + field.name + "'");
+  }
+}
+
+}  // namespace
+
+void write_vtu(const std::string& path, const std::vector<AnySpline>& objects, const VtkOptions& opts) {
+  require(!objects.empty(), path + ": nothing to write (no objects)");
+  validate(path, opts);
+  int extra = 0;
+  for (const auto& o : objects) extra = std::max(extra, std::visit([](const auto& s) { return s.dim(); }, o) - 3);
+
+  std::vector<Piece> pieces(objects.size());
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    const std::string where = objects.size() > 1 ? path + ": object " + std::to_string(i + 1) : path;
+    std::visit(
+        [&](const auto& s) {
+          constexpr int D = std::decay_t<decltype(s)>::kDim;
+          require(s.dim() >= 1, where + ": cannot write an empty spline (no control points)");
+          Piece& piece = pieces[i];
+          if (opts.bezier_cells)
+            add_bezier(piece, s, extra, where);
+          else
+            add_sampled(piece, s, opts.samples_per_element, extra, where);
+          if (opts.control_net) add_control_net(piece, s, extra, opts.bezier_cells);
+          for (const VtkPointField& field : opts.fields) {
+            std::vector<double>& values = piece.fields.emplace_back(
+                static_cast<std::size_t>(piece.num_points()) * static_cast<std::size_t>(field.components));
+            for (long long q = 0; q < piece.num_points(); ++q)
+              field.value(static_cast<int>(i), std::span<const double>(piece.params.data() + 3 * q, D),
+                          std::span<double>(values.data() + q * field.components, field.components));
+          }
+        },
+        objects[i]);
+  }
+
+  write_file_atomically(path, [&](std::ostream& os) {
+    os << "<?xml version=\"1.0\"?>\n"
+          "<VTKFile type=\"UnstructuredGrid\" version=\"2.1\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+          "  <UnstructuredGrid>\n";
+    for (const Piece& p : pieces) write_piece(os, p, opts, extra);
+    os << "  </UnstructuredGrid>\n</VTKFile>\n";
+  });
+}
+
+void write_vtu(const std::string& path, const AnySpline& s, const VtkOptions& opts) {
+  write_vtu(path, std::vector<AnySpline>{s}, opts);
+}
+
+}  // namespace trivar::io

@@ -1,0 +1,49 @@
+#pragma once
+// VTK XML UnstructuredGrid (.vtu, ASCII) output of splines for ParaView, in two modes:
+//  - sampled (default): every element is sampled on an (n+1)^D grid of parameters (n = samples_per_element)
+//    and cut into VTK_LINE / VTK_QUAD / VTK_HEXAHEDRON cells. Neighbouring elements share their boundary
+//    samples unless the spline is discontinuous there (interior knot of multiplicity degree + 1), in which
+//    case each side gets its own points, the left one evaluated at the largest double below the knot.
+//  - bezier_cells: one VTK_BEZIER_CURVE / _QUADRILATERAL / _HEXAHEDRON (types 75 / 77 / 79) per element,
+//    exact up to rounding: its Bezier control points (Cartesian) in VTK's higher-order point order
+//    (corners, edges, faces, interior), cell data "HigherOrderDegrees" and point data "RationalWeights".
+//    Elements share the Bezier points of common boundaries where the spline is continuous.
+// Point data "param" holds the parameter (u, v, w) of every point, padded with zeros for curves and surfaces
+// (for Bezier points: the equally spaced Bezier node parameters). Points take the first three control
+// components (padded with zeros when dim < 3); further components go to point data "higher_components".
+// Cell data "element" is the index of the spline element (u fastest) a cell belongs to.
+#include <functional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "trivar/spline/any_spline.hpp"
+
+namespace trivar::io {
+
+// An extra point-data array: value(piece, u, out) writes `components` values at parameter u (one value per
+// parametric direction) of object number `piece` (0 for write_vtu of a single spline). Called serially.
+// In Bezier mode it is sampled at the Bezier node parameters and ParaView interpolates those values with the
+// Bernstein basis, so there it is a visual approximation unless the field is affine on each element.
+struct VtkPointField {
+  std::string name;
+  int components = 1;
+  std::function<void(int piece, std::span<const double> u, std::span<double> out)> value;
+};
+
+struct VtkOptions {
+  int samples_per_element = 4;  // n >= 1, sampled mode only
+  bool bezier_cells = false;
+  // Also write the control net: the Cartesian control points (param = Greville abscissae) joined by
+  // VTK_LINE cells along every direction; their "element" cell data is -1.
+  bool control_net = false;
+  std::vector<VtkPointField> fields;
+};
+
+// Throws trivar::Error (nothing written) for an empty spline, samples_per_element < 1, a degree-0 direction
+// in Bezier mode, or a missing, duplicate or reserved field name.
+void write_vtu(const std::string& path, const AnySpline& s, const VtkOptions& opts = {});
+// Several objects, one <Piece> each (ParaView shows them as one data set).
+void write_vtu(const std::string& path, const std::vector<AnySpline>& objects, const VtkOptions& opts = {});
+
+}  // namespace trivar::io
