@@ -62,7 +62,7 @@ void BM_VolumeValue(benchmark::State& state) {
     benchmark::DoNotOptimize(out.data());
   }
   state.counters["threads"] = threads;
-  state.counters["points/s"] = benchmark::Counter(static_cast<double>(kPoints) * state.iterations(), benchmark::Counter::kIsRate);
+  state.counters["points/s"] = benchmark::Counter(static_cast<double>(kPoints) * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_VolumeValue)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime();
 
@@ -76,7 +76,7 @@ void BM_VolumeValueFirstDerivs(benchmark::State& state) {
     benchmark::DoNotOptimize(out.data());
   }
   state.counters["threads"] = threads;
-  state.counters["points/s"] = benchmark::Counter(static_cast<double>(kPoints) * state.iterations(), benchmark::Counter::kIsRate);
+  state.counters["points/s"] = benchmark::Counter(static_cast<double>(kPoints) * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_VolumeValueFirstDerivs)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime();
 
@@ -92,7 +92,7 @@ void BM_VolumeGrid100(benchmark::State& state) {
     benchmark::DoNotOptimize(out.data());
   }
   state.counters["threads"] = threads;
-  state.counters["points/s"] = benchmark::Counter(1e6 * state.iterations(), benchmark::Counter::kIsRate);
+  state.counters["points/s"] = benchmark::Counter(1e6 * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_VolumeGrid100)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime();
 
@@ -106,7 +106,7 @@ void BM_SurfaceValue(benchmark::State& state) {
     benchmark::DoNotOptimize(out.data());
   }
   state.counters["threads"] = threads;
-  state.counters["points/s"] = benchmark::Counter(static_cast<double>(kPoints) * state.iterations(), benchmark::Counter::kIsRate);
+  state.counters["points/s"] = benchmark::Counter(static_cast<double>(kPoints) * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_SurfaceValue)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime();
 

@@ -17,6 +17,28 @@ AnySpline read_single(const std::string& path, const std::string& command) {
   return std::move(objects.front());
 }
 
+namespace {
+
+CLI::Validator number_check(const std::string& description, bool (*ok)(double, double), double bound) {
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        double x = 0;
+        if (!CLI::detail::lexical_cast(text, x)) return "'" + text + "' is not a number";
+        return ok(x, bound) ? std::string() : "must be " + description + ", got " + text;
+      },
+      description);
+}
+
+}  // namespace
+
+CLI::Validator at_least(double min) {
+  return number_check(">= " + fmt(min), [](double x, double b) { return x >= b; }, min);
+}
+
+CLI::Validator positive() {
+  return number_check("> 0", [](double x, double b) { return x > b; }, 0.0);
+}
+
 const char* kind_name(int parametric_dim) {
   switch (parametric_dim) {
     case 1: return "curve";

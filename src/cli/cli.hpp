@@ -41,6 +41,10 @@ std::vector<AnySpline> read_objects(const std::string& path);
 // The single object of a file, for commands that act on one spline.
 AnySpline read_single(const std::string& path, const std::string& command);
 
+// Option checks with one-line messages: a number >= min, or > 0.
+CLI::Validator at_least(double min);
+CLI::Validator positive();
+
 // "curve", "surface", "volume".
 const char* kind_name(int parametric_dim);
 // Shortest text that parses back to the same double.

@@ -40,10 +40,10 @@ void add_check_command(CLI::App& app, Context& ctx) {
   auto a = std::make_shared<Args>();
   cmd->add_option("FILE", a->file, "Spline file (.json, .g2): volumes, or surfaces with control dimension 2")->required();
   cmd->add_option("--max-depth", a->opts.max_depth, "Subdivision levels per element")
-      ->check(CLI::NonNegativeNumber)
+      ->check(at_least(0))
       ->capture_default_str();
   cmd->add_option("--gap", a->opts.relative_gap, "Stop refining an element when its bounds agree to this relative gap")
-      ->check(CLI::PositiveNumber)
+      ->check(positive())
       ->capture_default_str();
   cmd->callback([a, &ctx] {
     const std::vector<AnySpline> objects = read_objects(a->file);

@@ -3,14 +3,13 @@
 #include <string>
 
 #include "cli.hpp"
-#include "trivar/core/error.hpp"
 #include "trivar/io/spline_file.hpp"
 #include "trivar/io/vtk_writer.hpp"
 
 namespace trivar::cli {
 
 void add_convert_command(CLI::App& app, Context&) {
-  auto* cmd = app.add_subcommand("convert", "Convert a spline file; the format follows the extension (.json .g2 .vtu)");
+  auto* cmd = app.add_subcommand("convert", "Convert a spline file; the format follows the extension (.json .g2 .vtu; every object is one VTU piece)");
   struct Args {
     std::string in, out;
     io::VtkOptions vtk;
@@ -19,15 +18,13 @@ void add_convert_command(CLI::App& app, Context&) {
   cmd->add_option("IN", a->in, "Input spline file (.json, .g2)")->required();
   cmd->add_option("OUT", a->out, "Output file (.json, .g2, .vtu)")->required();
   cmd->add_option("--samples", a->vtk.samples_per_element, "VTK: samples per element and direction")
-      ->check(CLI::PositiveNumber);
+      ->check(at_least(1));
   cmd->add_flag("--bezier", a->vtk.bezier_cells, "VTK: write exact rational Bezier cells instead of sampled ones");
-  cmd->add_flag("--control-net", a->vtk.control_net, "VTK: write the control net instead of the geometry");
+  cmd->add_flag("--control-net", a->vtk.control_net, "VTK: write the control net (points and polygon lines) instead of the geometry");
   cmd->callback([a] {
     const std::vector<AnySpline> objects = read_objects(a->in);
     if (std::filesystem::path(a->out).extension() == ".vtu") {
-      require(objects.size() == 1, "convert: " + a->in + " holds " + std::to_string(objects.size()) +
-                                       " objects; a .vtu file holds one");
-      io::write_vtu(a->out, objects.front(), a->vtk);
+      io::write_vtu(a->out, objects, a->vtk);
       return;
     }
     io::write_spline_file(a->out, objects);

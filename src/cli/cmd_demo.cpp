@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <numbers>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,11 @@ void gauss_legendre(int n, std::vector<double>& x, std::vector<double>& w) {
   }
 }
 
+// det[S_u, S_v, S_w] from the three first derivatives stored one after the other.
+double jacobian_determinant(const double* a) {
+  return a[0] * (a[4] * a[8] - a[5] * a[7]) - a[1] * (a[3] * a[8] - a[5] * a[6]) + a[2] * (a[3] * a[7] - a[4] * a[6]);
+}
+
 // Volume as the integral of det J over the elements; the quadrature points are evaluated as one batch.
 double volume_by_quadrature(const SplineVolume& s, int points_per_direction, int threads) {
   std::vector<double> gx, gw;
@@ -73,15 +79,12 @@ double volume_by_quadrature(const SplineVolume& s, int points_per_direction, int
   s.eval_derivs_batch(params, 1, d, threads);
   double total = 0;
   for (std::size_t q = 0; q < params.size(); ++q) {
-    const double* a = d.data() + q * per + 3;  // S_u, S_v, S_w follow the value
-    const double det = a[0] * (a[4] * a[8] - a[5] * a[7]) - a[1] * (a[3] * a[8] - a[5] * a[6]) +
-                       a[2] * (a[3] * a[7] - a[4] * a[6]);
-    total += qw[q] * det;
+    total += qw[q] * jacobian_determinant(d.data() + q * per + 3);
   }
   return total;
 }
 
-// Largest |distance to the z-axis - (r0 + u (r1 - r0))| on a grid of samples: zero for an exact model.
+// Largest |distance to the z-axis - (r0 + v (r1 - r0))| on a grid of samples: zero for an exact model.
 double max_radius_error(const SplineVolume& s, double r0, double r1, int samples, int threads) {
   std::array<std::vector<double>, 3> grid;
   for (auto& g : grid)
@@ -90,8 +93,8 @@ double max_radius_error(const SplineVolume& s, double r0, double r1, int samples
   s.eval_grid(grid, x, threads);
   double worst = 0;
   for (std::size_t p = 0; p < x.size() / 3; ++p) {
-    const double u = grid[0][p % samples];
-    worst = std::max(worst, std::abs(std::hypot(x[3 * p], x[3 * p + 1]) - (r0 + u * (r1 - r0))));
+    const double v = grid[1][(p / samples) % samples];
+    worst = std::max(worst, std::abs(std::hypot(x[3 * p], x[3 * p + 1]) - (r0 + v * (r1 - r0))));
   }
   return worst;
 }
@@ -107,7 +110,7 @@ void add_demo_command(CLI::App& app, Context& ctx) {
     const int parts = 2;
     const double angle = degrees / 180.0 * kPi;
 
-    const SplineSurface profile = make_rectangle_profile(r0, r1, 0.0, height, {2, 2}, {1, 1});
+    const SplineSurface profile = make_rectangle_profile({0.0, height}, {r0, r1}, {2, 2}, {1, 1});
     const SplineVolume coarse = revolve<3>(profile, {0, 0, 0}, {0, 0, 1}, angle);
     const SplineVolume model = refine_uniform(coarse, Ints<3>{parts, parts, parts});
     const JacobianReport<3> jac = check_jacobian(model);
@@ -118,10 +121,16 @@ void add_demo_command(CLI::App& app, Context& ctx) {
     const std::filesystem::path dir(*out);
     std::filesystem::create_directories(dir);
     const std::string json = (dir / "ring.json").string(), vtu = (dir / "ring.vtu").string(),
-                      net = (dir / "ring_net.vtu").string();
+                      bezier = (dir / "ring_bezier.vtu").string(), net = (dir / "ring_net.vtu").string();
     io::write_spline_file(json, {AnySpline(model)});
-    io::write_vtu(vtu, model, {.samples_per_element = 6});
-    io::write_vtu(net, model, {.control_net = true});
+    const io::VtkPointField det_j{"detJ", 1, [&model](int, std::span<const double> u, std::span<double> v) {
+                                    double d[derivative_count(3, 1) * 3];
+                                    model.eval_derivs({u[0], u[1], u[2]}, 1, d);
+                                    v[0] = jacobian_determinant(d + 3);
+                                  }};
+    io::write_vtu(vtu, model, io::VtkOptions{4, false, false}, {det_j});
+    io::write_vtu(bezier, model, io::VtkOptions{1, true, false});
+    io::write_vtu(net, model, io::VtkOptions{1, false, true});
 
     std::printf("trivar demo: exact NURBS volume of revolution\n");
     std::printf("  profile      rectangle r in [%s, %s], z in [0, %s], degree 2 x 2, swept %s degrees about z\n",
@@ -139,7 +148,8 @@ void add_demo_command(CLI::App& app, Context& ctx) {
     std::printf("  radius error %.1e on 21^3 samples (the rational model is exact)\n", radius_error);
     std::printf("outputs:\n");
     std::printf("  %s  the model (trivar JSON; try: trivar info %s)\n", json.c_str(), json.c_str());
-    std::printf("  %s  sampled geometry, for ParaView\n", vtu.c_str());
+    std::printf("  %s  sampled geometry with point data detJ, for ParaView\n", vtu.c_str());
+    std::printf("  %s  exact rational Bezier cells, for ParaView\n", bezier.c_str());
     std::printf("  %s  control net, for ParaView\n", net.c_str());
     if (!jac.valid) ctx.exit_code = jac.invalid ? kInvalid : kUndecided;
   });

@@ -21,7 +21,7 @@ void add_elevate_command(CLI::App& app, Context&) {
   cmd->add_option("-o,--output", a->out, "Output spline file (.json, .g2)")->required();
   cmd->add_option("--by", a->by, "Degrees to add: one value for every direction, or one per direction")
       ->expected(1, 3)
-      ->check(CLI::NonNegativeNumber)
+      ->check(at_least(0))
       ->capture_default_str();
   cmd->callback([a] {
     std::vector<AnySpline> objects = read_objects(a->in);

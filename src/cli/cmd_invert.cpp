@@ -16,10 +16,14 @@ int invert_point(const TensorSpline<D>& s, const std::vector<double>& x, const I
   require(static_cast<int>(x.size()) == s.dim(), "invert: the spline has control dimension " + std::to_string(s.dim()) +
                                                      ", got " + std::to_string(x.size()) + " coordinates");
   const InversionResult<D> r = invert(s, x.data(), opts);
+  if (!r.found) {
+    std::printf("outside\n");  // provably no parameter maps to x: there is nothing else to report
+    return kOutside;
+  }
   std::printf("param: %s\n", fmt(r.param.data(), D).c_str());
   std::printf("residual: %s\n", fmt(r.residual).c_str());
-  std::printf("%s\n", r.converged ? "converged" : r.found ? "not converged" : "outside");
-  return r.converged ? kSuccess : r.found ? kUndecided : kOutside;
+  std::printf("%s\n", r.converged ? "converged" : "not converged");
+  return r.converged ? kSuccess : kUndecided;
 }
 
 }  // namespace
@@ -36,7 +40,7 @@ void add_invert_command(CLI::App& app, Context& ctx) {
       ->required();
   cmd->add_option("POINT", a->x, "Model-space point x [y [z]]")->required()->expected(1, 3);
   cmd->add_option("--tolerance", a->opts.tolerance, "Accepted residual, relative to the control bounding-box diagonal")
-      ->check(CLI::PositiveNumber)
+      ->check(positive())
       ->capture_default_str();
   cmd->callback([a, &ctx] {
     const AnySpline s = read_single(a->file, "invert");

@@ -42,30 +42,30 @@ void add_box(CLI::App& make) {
   auto a = std::make_shared<Args>();
   cmd->add_option("--degree", a->degrees, "Degree per direction (one value: all directions)")
       ->expected(1, 3)
-      ->check(CLI::PositiveNumber)
+      ->check(at_least(1))
       ->capture_default_str();
   cmd->add_option("--elements", a->elements, "Elements per direction; the number of values sets the kind: "
                                               "2 a surface (in the plane z = 0), 3 a volume")
       ->expected(1, 3)
-      ->check(CLI::PositiveNumber)
+      ->check(at_least(1))
       ->capture_default_str();
   cmd->add_option("--size", a->size, "Edge lengths (one value: all directions)")
       ->expected(1, 3)
-      ->check(CLI::PositiveNumber)
+      ->check(positive())
       ->capture_default_str();
   cmd->add_option("-o,--output", a->out, "Output spline file (.json, .g2)")->required();
   cmd->callback([a] {
     // The direction count is the longest of the per-direction lists; a single list of one value is a volume.
     std::size_t n = std::max({a->degrees.size(), a->elements.size(), a->size.size()});
     if (n == 1) n = 3;
-    require(n >= 2, "make box: give two values (surface) or three (volume) per option");
     const AnySpline s = n == 2 ? box<2>(a->degrees, a->elements, a->size) : box<3>(a->degrees, a->elements, a->size);
     io::write_spline_file(a->out, {s});
   });
 }
 
 void add_revolve(CLI::App& make) {
-  auto* cmd = make.add_subcommand("revolve", "Exact NURBS volume of revolution of a rectangle about the z-axis");
+  auto* cmd = make.add_subcommand("revolve", "Exact NURBS volume of revolution of a rectangle about the z-axis: "
+                                             "u along the axis, v radial, w angular (det J > 0)");
   struct Args {
     std::vector<double> radii{1.0, 2.0};
     double height = 1.0, angle = 360.0;
@@ -76,27 +76,29 @@ void add_revolve(CLI::App& make) {
   cmd->add_option("--radii", a->radii, "Inner and outer radius r0 < r1 (r0 = 0 touches the axis: singular volume)")
       ->expected(2)
       ->capture_default_str();
-  cmd->add_option("--height", a->height, "Height along z")->check(CLI::PositiveNumber)->capture_default_str();
+  cmd->add_option("--height", a->height, "Height along z")->check(positive())->capture_default_str();
   cmd->add_option("--angle", a->angle, "Sweep angle in degrees, in (0, 360]")->capture_default_str();
-  cmd->add_option("--degree", a->degrees, "Degree of the radial and axial directions (angular: always 2)")
+  cmd->add_option("--degree", a->degrees, "Degree of u (axial) and v (radial); one value: both. Angular: always 2")
       ->expected(1, 2)
-      ->check(CLI::PositiveNumber)
+      ->check(at_least(1))
       ->capture_default_str();
   cmd->add_option("--elements", a->elements,
-                  "Elements: radial [axial [per angular segment]]; one value applies to radial and axial. The angle "
-                  "is split into one rational segment per started 90 degrees")
+                  "Elements of u (axial), v (radial) and w (angular, per segment); one value applies to u and v. "
+                  "The angle is split into one rational segment per started 90 degrees")
       ->expected(1, 3)
-      ->check(CLI::PositiveNumber)
+      ->check(at_least(1))
       ->capture_default_str();
   cmd->add_option("-o,--output", a->out, "Output spline file (.json, .g2)")->required();
   cmd->callback([a] {
     require(a->angle > 0 && a->angle <= 360, "make revolve: --angle must be in (0, 360] degrees, got " + fmt(a->angle));
+    require(a->radii[0] < a->radii[1],
+            "make revolve: --radii must satisfy r0 < r1, got " + fmt(a->radii[0]) + " " + fmt(a->radii[1]));
     const Ints<2> degrees{a->degrees[0], a->degrees.back()};
     const Ints<2> elements{a->elements[0], a->elements[a->elements.size() > 1 ? 1 : 0]};
     const int angular = a->elements.size() > 2 ? a->elements[2] : 1;
     // angle / 180 * pi keeps 360 degrees exactly 2 pi.
     const double radians = a->angle / 180.0 * std::numbers::pi;
-    const TensorSpline<2> profile = make_rectangle_profile(a->radii[0], a->radii[1], 0.0, a->height, degrees, elements);
+    const TensorSpline<2> profile = make_rectangle_profile({0.0, a->height}, {a->radii[0], a->radii[1]}, degrees, elements);
     TensorSpline<3> vol = revolve<3>(profile, {0, 0, 0}, {0, 0, 1}, radians);
     if (angular > 1) vol = refine_uniform(vol, Ints<3>{1, 1, angular});
     io::write_spline_file(a->out, {AnySpline(std::move(vol))});

@@ -78,7 +78,7 @@ void add_refine_command(CLI::App& app, Context&) {
   cmd->add_option("FILE", a->in, "Input spline file (.json, .g2)")->required();
   cmd->add_option("-o,--output", a->out, "Output spline file (.json, .g2)")->required();
   auto* uniform = cmd->add_option("--uniform", a->uniform, "Split every element into N equal parts in every direction")
-                      ->check(CLI::PositiveNumber);
+                      ->check(at_least(1));
   auto* insert = cmd->add_option("--insert", a->insert,
                                  "Insert knots: dir:value[,value...] with dir u, v, w (or 0, 1, 2); repeatable; "
                                  "applied before --uniform")

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <exception>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <omp.h>
@@ -29,7 +30,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.fallthrough();
   app.add_option("--threads", ctx.threads, "Threads for batch work (0: all available)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(at_least(0))
       ->each([](const std::string& n) {
         // Batch loops use OpenMP's default thread count when not told otherwise.
         if (const int t = std::stoi(n); t > 0) omp_set_num_threads(t);
@@ -49,7 +50,16 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
-    print_error(e.what());
+    // CLI11 reports an unknown command word only as a missing subcommand.
+    CLI::App* node = &app;
+    while (!node->get_subcommands().empty()) node = node->get_subcommands().front();
+    const std::vector<std::string> rest = app.remaining(true);
+    if (node->get_require_subcommand_min() > 0 && !rest.empty()) {
+      const std::string prefix = node == &app ? "trivar" : "trivar " + node->get_name();
+      print_error("unknown command '" + rest.front() + "' (see " + prefix + " --help)");
+    } else {
+      print_error(e.what());
+    }
     return kUsage;
   } catch (const trivar::Error& e) {
     print_error(e.what());

@@ -46,13 +46,15 @@ TEST(Block, SurfaceAndCurveLieInModelSpace) {
 }
 
 TEST(Block, RectangleProfileInTheXzPlane) {
-  const auto p = make_rectangle_profile(1.0, 3.0, -1.0, 0.5, {2, 1}, {2, 2});
+  // u along the axis, v radial: the normal S_u x S_v = (0, 0, 1.5) x (2, 0, 0) points to +y.
+  const auto p = make_rectangle_profile({-1.0, 0.5}, {1.0, 3.0}, {2, 1}, {2, 2});
+  std::vector<double> d(static_cast<std::size_t>(derivative_count(2, 1)) * 3);
   for (const auto& u : test::random_params(p, 100, 3)) {
-    double x[3];
-    p.eval(u, x);
-    EXPECT_NEAR(x[0], 1.0 + 2.0 * u[0], 1e-14);
-    EXPECT_EQ(x[1], 0.0);
-    EXPECT_NEAR(x[2], -1.0 + 1.5 * u[1], 1e-14);
+    p.eval_derivs(u, 1, d.data());
+    EXPECT_NEAR(d[0], 1.0 + 2.0 * u[1], 1e-14);
+    EXPECT_EQ(d[1], 0.0);
+    EXPECT_NEAR(d[2], -1.0 + 1.5 * u[0], 1e-14);
+    EXPECT_NEAR(d[3 + 2] * d[6 + 0] - d[3 + 0] * d[6 + 2], 3.0, 1e-13);
   }
 }
 
@@ -61,6 +63,6 @@ TEST(Block, RejectsBadInput) {
   EXPECT_THROW(make_block<3>({1, 1, 1}, {1, 0, 1}, {1, 1, 1}), Error);
   EXPECT_THROW(make_block<3>({1, 1, 1}, {1, 1, 1}, {1, -1, 1}), Error);
   EXPECT_THROW(make_block<2>({1, 1}, {1, 1}, {1, std::nan("")}), Error);
-  EXPECT_THROW(make_rectangle_profile(2, 1, 0, 1), Error);
-  EXPECT_THROW(make_rectangle_profile(1, 2, 1, 1), Error);
+  EXPECT_THROW(make_rectangle_profile({0, 1}, {2, 1}), Error);
+  EXPECT_THROW(make_rectangle_profile({1, 1}, {1, 2}), Error);
 }

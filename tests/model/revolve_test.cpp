@@ -40,7 +40,7 @@ void gauss_legendre(int n, std::vector<double>& x, std::vector<double>& w) {
   }
 }
 
-// Integral over the parameter domain of |det J| (D = 3) or |S_u x S_v| (D = 2), per element, n points each way.
+// Integral over the parameter domain of det J (D = 3) or |S_u x S_v| (D = 2), per element, n points each way.
 template <int D>
 double measure(const TensorSpline<D>& s, int n) {
   std::vector<double> gx, gw;
@@ -68,7 +68,7 @@ double measure(const TensorSpline<D>& s, int n) {
     const Eigen::Vector3d a(d[3], d[4], d[5]), b(d[6], d[7], d[8]);
     if constexpr (D == 3) {
       const Eigen::Vector3d c(d[9], d[10], d[11]);
-      total += w * std::abs(a.dot(b.cross(c)));
+      total += w * a.dot(b.cross(c));  // signed: the tests also check the orientation
     } else {
       total += w * a.cross(b).norm();
     }
@@ -96,14 +96,14 @@ TEST(Revolve, RectangleProfileGivesExactRadiiAndHeights) {
   const double r0 = 0.7, r1 = 2.3, z0 = -0.4, z1 = 1.1;
   const Axis z_axis{{0, 0, 0}, {0, 0, 1}};
   for (double angle : {pi / 2, 2 * pi / 3, pi, 4.0, 2 * pi}) {
-    const auto profile = make_rectangle_profile(r0, r1, z0, z1, {2, 1}, {3, 2});
+    const auto profile = make_rectangle_profile({z0, z1}, {r0, r1}, {1, 2}, {2, 3});
     const auto vol = revolve<3>(profile, z_axis.point, z_axis.dir, angle);
     ASSERT_TRUE(vol.is_rational());
     for (const auto& u : test::random_params(vol, 500, 11)) {
       Eigen::Vector3d x;
       vol.eval(u, x.data());
-      EXPECT_NEAR(z_axis.radius(x), r0 + u[0] * (r1 - r0), 1e-12);
-      EXPECT_NEAR(x.z(), z0 + u[1] * (z1 - z0), 1e-12);
+      EXPECT_NEAR(z_axis.radius(x), r0 + u[1] * (r1 - r0), 1e-12);
+      EXPECT_NEAR(x.z(), z0 + u[0] * (z1 - z0), 1e-12);
     }
     // The sweep starts on the profile and ends at the requested angle; the angle grows with w.
     Eigen::Vector3d start, end;
@@ -127,7 +127,7 @@ TEST(Revolve, RectangleProfileGivesExactRadiiAndHeights) {
 }
 
 TEST(Revolve, FullTurnHasNineControlPointsAndQuarterKnots) {
-  const auto vol = revolve<3>(make_rectangle_profile(1, 2, 0, 1), {0, 0, 0}, {0, 0, 1}, 2 * pi);
+  const auto vol = revolve<3>(make_rectangle_profile({0, 1}, {1, 2}), {0, 0, 0}, {0, 0, 1}, 2 * pi);
   const KnotVector& kv = vol.knots(2);
   EXPECT_EQ(kv.degree(), 2);
   EXPECT_EQ(vol.count(2), 9);
@@ -136,16 +136,20 @@ TEST(Revolve, FullTurnHasNineControlPointsAndQuarterKnots) {
   // Weights along the angular direction: 1, cos 45, 1, ... for a bilinear (non-rational) profile.
   for (int j = 0; j < 9; ++j)
     EXPECT_NEAR(vol.weight(vol.linear_index({1, 1, j})), j % 2 ? std::sqrt(0.5) : 1.0, 1e-15);
-  // Quarter turns start exactly on the axes: control point (2, 0, 1) goes to (0, 2, 1) at j = 2.
-  double x[3];
-  vol.control_point(vol.linear_index({1, 1, 2}), x);
-  EXPECT_NEAR(x[0], 0, 1e-15);
-  EXPECT_NEAR(x[1], 2, 1e-15);
-  EXPECT_NEAR(x[2], 1, 1e-15);
+  // Quarter turns are exact in floating point: control point (2, 0, 1) goes through the square corners
+  // (2, 2, 1), (-2, 2, 1), ... and the axis points (0, 2, 1), (-2, 0, 1), ... and back to (2, 0, 1).
+  const double expected_xy[9][2] = {{2, 0}, {2, 2}, {0, 2}, {-2, 2}, {-2, 0}, {-2, -2}, {0, -2}, {2, -2}, {2, 0}};
+  for (int j = 0; j < 9; ++j) {
+    double x[3];
+    vol.control_point(vol.linear_index({1, 1, j}), x);
+    EXPECT_EQ(x[0], expected_xy[j][0]) << j;
+    EXPECT_EQ(x[1], expected_xy[j][1]) << j;
+    EXPECT_EQ(x[2], 1.0) << j;
+  }
 }
 
 TEST(Revolve, SegmentsPerStartedQuarterTurn) {
-  const auto profile = make_rectangle_profile(1, 2, 0, 1);
+  const auto profile = make_rectangle_profile({0, 1}, {1, 2});
   const std::vector<std::pair<double, int>> cases{{0.3, 1}, {pi / 2, 1}, {pi / 2 + 1e-6, 2}, {pi, 2}, {1.5 * pi, 3}, {5.0, 4}};
   for (const auto& [angle, segments] : cases) {
     const auto vol = revolve<3>(profile, {0, 0, 0}, {0, 0, 1}, angle);
@@ -182,9 +186,9 @@ TEST(Revolve, RationalProfileWeightsMultiply) {
 TEST(Revolve, VolumeOfRevolvedAnnulusByQuadrature) {
   const double r0 = 0.5, r1 = 1.75, z0 = 0.25, z1 = 2.0, h = z1 - z0;
   for (double angle : {pi / 2, 2.0, 2 * pi}) {
-    const auto vol = revolve<3>(make_rectangle_profile(r0, r1, z0, z1, {1, 2}, {2, 1}), {0, 0, 0}, {0, 0, 1}, angle);
+    const auto vol = revolve<3>(make_rectangle_profile({z0, z1}, {r0, r1}, {2, 1}, {1, 2}), {0, 0, 0}, {0, 0, 1}, angle);
     const double exact = pi * (r1 * r1 - r0 * r0) * h * angle / (2 * pi);
-    EXPECT_NEAR(measure(vol, 24), exact, 1e-10 * exact) << angle;
+    EXPECT_NEAR(measure(vol, 24), exact, 1e-10) << angle;
   }
 }
 
@@ -202,7 +206,7 @@ TEST(Revolve, CurveToSurfaceGivesCylinderArea) {
 }
 
 TEST(Revolve, RejectsBadInput) {
-  const auto profile = make_rectangle_profile(1, 2, 0, 1);
+  const auto profile = make_rectangle_profile({0, 1}, {1, 2});
   EXPECT_THROW(revolve<3>(profile, {0, 0, 0}, {0, 0, 0}, 1.0), Error);
   EXPECT_THROW(revolve<3>(profile, {0, 0, 0}, {0, 0, 1}, 0.0), Error);
   EXPECT_THROW(revolve<3>(profile, {0, 0, 0}, {0, 0, 1}, -1.0), Error);

@@ -177,3 +177,21 @@ TEST(TensorSpline, ConstructorRejectsBadInput) {
   EXPECT_THROW(SplineCurve({kv}, 1, true, {0, 1, 1, -1}), Error);
   EXPECT_THROW(SplineCurve({kv}, 1, false, {0, NAN}), Error);
 }
+
+TEST(TensorSpline, SpecialisedKernelsMatchTheGeneralPath) {
+  // Equal degrees 1..3 with control dimension 1 or 3 (polynomial and rational) take the compile-time kernels;
+  // order 2 always takes the general path, whose first entries are the value and first derivatives.
+  for (int p = 1; p <= 3; ++p)
+    for (int dim : {1, 3})
+      for (bool rational : {false, true}) {
+        const auto s = test::random_spline<3>({p, p, p}, {3, 4, 2}, dim, rational, 50 + p);
+        std::vector<double> d1(4 * dim), d2(10 * dim);
+        for (const auto& u : test::random_params(s, 100, 51)) {
+          s.eval_derivs(u, 1, d1.data());
+          s.eval_derivs(u, 2, d2.data());
+          const auto ref = test::reference_eval(s, u);
+          for (int i = 0; i < 4 * dim; ++i) EXPECT_NEAR(d1[i], d2[i], 1e-11 * (1 + std::abs(d2[i])));
+          for (int d = 0; d < dim; ++d) EXPECT_NEAR(d1[d], ref[d], 1e-12);
+        }
+      }
+}

@@ -21,7 +21,9 @@ void write_file_atomically(const std::string& path, const std::function<void(std
       out.flush();
       require(static_cast<bool>(out), "write failed for output file " + path);
     }
-    fs::rename(tmp, target);
+    std::error_code ec;
+    fs::rename(tmp, target, ec);
+    require(!ec, "cannot write output file " + path + ": " + ec.message());
   } catch (...) {
     std::error_code ec;
     fs::remove(tmp, ec);

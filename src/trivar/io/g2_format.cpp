@@ -128,9 +128,12 @@ private:
     // Auxiliary data (e.g. a display colour) carries no geometry.
     for (int i = 0; i < aux; ++i) read_real("auxiliary value " + std::to_string(i + 1) + " of " + std::to_string(aux));
     switch (it - kClassTypes.begin()) {
-      case 0: return read_spline<1>(object);
-      case 1: return read_spline<2>(object);
-      default: return read_spline<3>(object);
+      case 0:
+        return read_spline<1>(object);
+      case 1:
+        return read_spline<2>(object);
+      default:
+        return read_spline<3>(object);
     }
   }
 
@@ -180,13 +183,14 @@ private:
                  std::to_string(n) + " (" + std::to_string(stride) + " values each) of " + name;
         }));
       if (rational && coefs.back() <= 0)
-        fail(line(), "non-positive weight " + std::to_string(coefs.back()) + " of coefficient " +
+        fail(line(), "non-positive weight " + std::string(tokens_[pos_ - 1].text) + " of coefficient " +
                          std::to_string(i + 1) + " of " + name);
     }
     // Coefficients end a line; more values on that line mean ncoef or dim does not match the data.
     if (pos_ < tokens_.size() && tokens_[pos_].line == line())
-      fail(line(), "more values than expected: " + name + " has " + std::to_string(n) + " coefficients of " +
-                       std::to_string(stride) + " values (wrong number of coefficients?)");
+      fail(line(), "more values than expected: the line goes on after the last coefficient of " + name +
+                       ", which has " + std::to_string(n) + " coefficients of " + std::to_string(stride) +
+                       " values (wrong number of coefficients or values per coefficient?)");
     return TensorSpline<D>(std::move(kv), dim, rational == 1, std::move(coefs));
   }
 
@@ -240,8 +244,8 @@ void write_g2(const std::string& path, const std::vector<AnySpline>& objects) {
   for (std::size_t i = 0; i < objects.size(); ++i)
     std::visit(
         [&](const auto& s) {
-          require(s.dim() >= 1, path + ": object " + std::to_string(i + 1) +
-                                    ": cannot write an empty spline (no control points)");
+          require(s.dim() >= 1,
+                  path + ": object " + std::to_string(i + 1) + ": cannot write an empty spline (no control points)");
         },
         objects[i]);
   write_file_atomically(path, [&](std::ostream& os) {

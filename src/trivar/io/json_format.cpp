@@ -20,8 +20,8 @@ using nlohmann::json;
 constexpr std::array<const char*, 3> kKinds = {"curve", "surface", "volume"};
 constexpr std::array<char, 3> kDirections = {'u', 'v', 'w'};
 // Written in this order (nlohmann::json sorts keys alphabetically, which would bury "trivar" and "kind").
-constexpr std::array<std::string_view, 9> kKeyOrder = {"trivar",  "kind",           "dim",     "rational", "degrees",
-                                                      "knots",   "control_points", "weights", "objects"};
+constexpr std::array<std::string_view, 9> kKeyOrder = {"trivar", "kind",           "dim",     "rational", "degrees",
+                                                       "knots",  "control_points", "weights", "objects"};
 
 // Error naming the file/object (`where`), the JSON path inside the object (may be empty) and the problem.
 [[noreturn]] void fail(const std::string& where, const std::string& path, const std::string& what) {
@@ -37,7 +37,8 @@ const json& member(const json& j, const char* key, const std::string& where) {
 }
 
 int get_int(const json& j, const std::string& where, const std::string& path, int lo) {
-  if (!j.is_number_integer()) fail(where, path, std::string("expected an integer, got ") + j.type_name());
+  if (!j.is_number_integer())
+    fail(where, path, "expected an integer, got " + (j.is_number() ? j.dump() : std::string(j.type_name())));
   const auto v = j.get<long long>();
   if (v < lo || v > INT_MAX) fail(where, path, "expected an integer >= " + std::to_string(lo) + ", got " + j.dump());
   return static_cast<int>(v);
@@ -154,8 +155,8 @@ json to_json(const AnySpline& any) {
           s.control_point(l, x.data());
           for (int d = 0; d < s.dim(); ++d)
             require(std::isfinite(x[d]), "control point " + std::to_string(l) +
-                                             " is not finite in Cartesian form (weight " +
-                                             std::to_string(s.weight(l)) + " too small)");
+                                             " is not finite in Cartesian form (weight " + std::to_string(s.weight(l)) +
+                                             " too small)");
           cps.push_back(x);
           if (s.is_rational()) weights.push_back(s.weight(l));
         }
@@ -180,9 +181,12 @@ AnySpline spline_from_json(const json& j, const std::string& where) {
   const json& rational = member(j, "rational", where);
   if (!rational.is_boolean()) fail(where, "rational", std::string("expected true or false, got ") + rational.dump());
   switch (k - kKinds.begin()) {
-    case 0: return spline_of_kind<1>(j, where, dim, rational.get<bool>());
-    case 1: return spline_of_kind<2>(j, where, dim, rational.get<bool>());
-    default: return spline_of_kind<3>(j, where, dim, rational.get<bool>());
+    case 0:
+      return spline_of_kind<1>(j, where, dim, rational.get<bool>());
+    case 1:
+      return spline_of_kind<2>(j, where, dim, rational.get<bool>());
+    default:
+      return spline_of_kind<3>(j, where, dim, rational.get<bool>());
   }
 }
 
@@ -193,8 +197,9 @@ std::vector<AnySpline> read_json(const std::string& path) {
   json doc;
   try {
     doc = json::parse(in);
-  } catch (const json::parse_error& e) {
-    // nlohmann prefixes "[json.exception.parse_error.N] " and may quote input containing line breaks.
+  } catch (const json::exception& e) {
+    // Syntax errors and out-of-range numbers. nlohmann prefixes "[json.exception.<kind>.N] " and may quote
+    // input containing line breaks.
     std::string what = e.what();
     if (const auto p = what.find("] "); p != std::string::npos) what.erase(0, p + 2);
     std::replace(what.begin(), what.end(), '\n', ' ');
@@ -209,11 +214,13 @@ std::vector<AnySpline> read_json(const std::string& path) {
     if (key != "trivar" && key != "objects") fail(path, "", "unexpected key \"" + key + "\" next to \"objects\"");
   const json& objects = doc["objects"];
   if (!objects.is_array() || objects.empty())
-    fail(path, "objects", std::string("expected a non-empty array of spline objects, got ") +
-                              (objects.is_array() ? "an empty array" : objects.type_name()));
+    fail(path, "objects",
+         std::string("expected a non-empty array of spline objects, got ") +
+             (objects.is_array() ? "an empty array" : objects.type_name()));
   std::vector<AnySpline> out;
   out.reserve(objects.size());
-  for (std::size_t i = 0; i < objects.size(); ++i) out.push_back(spline_from_json(objects[i], indexed(path + ": objects", i)));
+  for (std::size_t i = 0; i < objects.size(); ++i)
+    out.push_back(spline_from_json(objects[i], indexed(path + ": objects", i)));
   return out;
 }
 

@@ -4,10 +4,9 @@
 //    "degrees": [..], "knots": [[..], ..], "control_points": [[x, y, z], ..], "weights": [..]}
 // or several: {"trivar": 1, "objects": [ {..}, {..} ]}. Control points are Cartesian, u fastest; "weights"
 // is present exactly when "rational" is true. Numbers are written so that they parse back to the same double.
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "trivar/spline/any_spline.hpp"
 

@@ -21,7 +21,8 @@ namespace {
 constexpr std::array<int, 3> kLinearCell = {3, 9, 12};    // VTK_LINE, VTK_QUAD, VTK_HEXAHEDRON
 constexpr std::array<int, 3> kBezierCell = {75, 77, 79};  // VTK_BEZIER_CURVE, _QUADRILATERAL, _HEXAHEDRON
 constexpr int kVtkLine = 3;
-constexpr std::array<const char*, 4> kReservedNames = {"param", "RationalWeights", "higher_components", "element"};
+constexpr std::array<const char*, 5> kReservedNames = {"param", "RationalWeights", "higher_components", "element",
+                                                       "direction"};
 
 // One <Piece>: everything per point and per cell, already in VTK layout.
 struct Piece {
@@ -31,7 +32,7 @@ struct Piece {
   std::vector<double> higher;   // `extra` per point
   std::vector<std::vector<double>> fields;
   std::vector<long long> connectivity, offsets;
-  std::vector<int> types, element, degrees;  // degrees: 3 per cell, Bezier mode only
+  std::vector<int> types, element, degrees;  // element: or direction (control net); degrees: Bezier mode only
 
   void add_point(const double* x, int dim, int extra, const double* u, int D) {
     for (int d = 0; d < 3; ++d) points.push_back(d < dim ? x[d] : 0.0);
@@ -90,11 +91,10 @@ int vtk_node_index(const std::array<int, D>& i, const std::array<int, D>& p) {
     for (int k = 0; k < D; ++k) nbdy += (bdy[k] = (i[k] == 0 || i[k] == p[k])) ? 1 : 0;
     const bool hi0 = i[0] == p[0], hi1 = i[1] == p[1];
     const int corner = hi0 ? (hi1 ? 2 : 1) : (hi1 ? 3 : 0);  // counter-clockwise in the (u, v) plane
-    const int a = p[0] - 1, b = p[1] - 1;                     // interior nodes per edge along u, v
+    const int a = p[0] - 1, b = p[1] - 1;                    // interior nodes per edge along u, v
     if constexpr (D == 2) {
       if (nbdy == 2) return corner;
-      if (!bdy[0]) return 4 + (i[0] - 1) + (hi1 ? a + b : 0);
-      if (!bdy[1]) return 4 + (i[1] - 1) + (hi0 ? a : 2 * a + b);
+      if (nbdy == 1) return 4 + (bdy[1] ? (i[0] - 1) + (hi1 ? a + b : 0) : (i[1] - 1) + (hi0 ? a : 2 * a + b));
       return 4 + 2 * (a + b) + (i[0] - 1) + a * (i[1] - 1);
     } else {
       const bool hi2 = i[2] == p[2];
@@ -221,7 +221,8 @@ void add_bezier(Piece& piece, const TensorSpline<D>& s, int extra, const std::st
       const double wt = el.rational ? c[dim] : 1.0;
       for (int d = 0; d < dim; ++d) x[G * dim + d] = c[d] / wt;
       w[G] = wt;
-      for (int k = 0; k < D; ++k) param[G * D + k] = el.domain.lo[k] + (el.domain.hi[k] - el.domain.lo[k]) * i[k] / p[k];
+      for (int k = 0; k < D; ++k)
+        param[G * D + k] = el.domain.lo[k] + (el.domain.hi[k] - el.domain.lo[k]) * i[k] / p[k];
       conn[vtk_node_index<D>(i, p)] = base + static_cast<long long>(G);
     });
     piece.connectivity.insert(piece.connectivity.end(), conn.begin(), conn.end());
@@ -233,7 +234,7 @@ void add_bezier(Piece& piece, const TensorSpline<D>& s, int extra, const std::st
 }
 
 template <int D>
-void add_control_net(Piece& piece, const TensorSpline<D>& s, int extra, bool bezier) {
+void add_control_net(Piece& piece, const TensorSpline<D>& s, int extra) {
   const long long base = piece.num_points();
   std::array<std::vector<double>, D> greville;
   for (int k = 0; k < D; ++k) greville[k] = s.knots(k).greville();
@@ -245,15 +246,13 @@ void add_control_net(Piece& piece, const TensorSpline<D>& s, int extra, bool bez
     double param[D];
     for (int k = 0; k < D; ++k) param[k] = greville[k][i[k]];
     piece.add_point(x.data(), s.dim(), extra, param, D);
-    if (bezier) piece.weights.push_back(s.weight(l));
     for (int k = 0; k < D; ++k) {
       if (i[k] + 1 == n[k]) continue;
       auto j = i;
       ++j[k];
       piece.connectivity.push_back(base + l);
       piece.connectivity.push_back(base + s.linear_index(j));
-      piece.end_cell(kVtkLine, -1);
-      if (bezier) piece.degrees.insert(piece.degrees.end(), {1, 0, 0});
+      piece.end_cell(kVtkLine, k);
     }
   });
 }
@@ -268,49 +267,62 @@ std::string xml_escape(const std::string& s) {
   std::string out;
   for (char c : s) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
 }
 
-// One DataArray in ASCII, `components` values per line.
+// One DataArray in ASCII: one tuple per line, scalars eight to a line.
 template <class T>
 void data_array(std::ostream& os, const char* type, const std::string& name, int components, const std::vector<T>& v) {
   os << "        <DataArray type=\"" << type << "\"";
   if (!name.empty()) os << " Name=\"" << xml_escape(name) << "\"";
   os << " NumberOfComponents=\"" << components << "\" format=\"ascii\">\n";
+  const std::size_t per_line = components == 1 ? 8 : static_cast<std::size_t>(components);
   for (std::size_t i = 0; i < v.size(); ++i) {
-    os << (i % static_cast<std::size_t>(components) == 0 ? "          " : " ");
+    os << (i % per_line == 0 ? "          " : " ");
     if constexpr (std::is_floating_point_v<T>)
       put(os, v[i]);
     else
       os << v[i];
-    if ((i + 1) % static_cast<std::size_t>(components) == 0) os << '\n';
+    if ((i + 1) % per_line == 0 || i + 1 == v.size()) os << '\n';
   }
   os << "        </DataArray>\n";
 }
 
-void write_piece(std::ostream& os, const Piece& p, const VtkOptions& opts, int extra) {
+enum class Mode { sampled, bezier, net };
+
+void write_piece(std::ostream& os, const Piece& p, Mode mode, const std::vector<VtkPointField>& fields, int extra) {
+  const bool bezier = mode == Mode::bezier;
   const std::size_t ncells = p.types.size();
   os << "    <Piece NumberOfPoints=\"" << p.num_points() << "\" NumberOfCells=\"" << ncells << "\">\n";
   os << "      <PointData";
-  if (opts.bezier_cells) os << " RationalWeights=\"RationalWeights\"";
+  if (bezier) os << " RationalWeights=\"RationalWeights\"";
   os << ">\n";
   data_array(os, "Float64", "param", 3, p.params);
-  if (opts.bezier_cells) data_array(os, "Float64", "RationalWeights", 1, p.weights);
+  if (bezier) data_array(os, "Float64", "RationalWeights", 1, p.weights);
   if (extra > 0) data_array(os, "Float64", "higher_components", extra, p.higher);
-  for (std::size_t f = 0; f < opts.fields.size(); ++f)
-    data_array(os, "Float64", opts.fields[f].name, opts.fields[f].components, p.fields[f]);
+  for (std::size_t f = 0; f < fields.size(); ++f)
+    data_array(os, "Float64", fields[f].name, fields[f].components, p.fields[f]);
   os << "      </PointData>\n      <CellData";
-  if (opts.bezier_cells) os << " HigherOrderDegrees=\"HigherOrderDegrees\"";
+  if (bezier) os << " HigherOrderDegrees=\"HigherOrderDegrees\"";
   os << ">\n";
-  data_array(os, "Int32", "element", 1, p.element);
-  if (opts.bezier_cells) data_array(os, "Int32", "HigherOrderDegrees", 3, p.degrees);
+  data_array(os, "Int32", mode == Mode::net ? "direction" : "element", 1, p.element);
+  if (bezier) data_array(os, "Int32", "HigherOrderDegrees", 3, p.degrees);
   os << "      </CellData>\n      <Points>\n";
   data_array(os, "Float64", "", 3, p.points);
   os << "      </Points>\n      <Cells>\n";
@@ -320,26 +332,28 @@ void write_piece(std::ostream& os, const Piece& p, const VtkOptions& opts, int e
   os << "      </Cells>\n    </Piece>\n";
 }
 
-void validate(const std::string& path, const VtkOptions& opts) {
-  require(opts.bezier_cells || opts.samples_per_element >= 1,
-          path + ": samples_per_element must be >= 1, got " + std::to_string(opts.samples_per_element));
-  for (std::size_t f = 0; f < opts.fields.size(); ++f) {
-    const VtkPointField& field = opts.fields[f];
+void validate(const std::string& path, Mode mode, int samples, const std::vector<VtkPointField>& fields) {
+  require(mode != Mode::sampled || samples >= 1,
+          path + ": samples_per_element must be >= 1, got " + std::to_string(samples));
+  for (std::size_t f = 0; f < fields.size(); ++f) {
+    const VtkPointField& field = fields[f];
     require(!field.name.empty(), path + ": point field " + std::to_string(f) + " has no name");
     require(field.components >= 1, path + ": point field '" + field.name + "' needs >= 1 components");
     require(static_cast<bool>(field.value), path + ": point field '" + field.name + "' has no value function");
     require(std::find(kReservedNames.begin(), kReservedNames.end(), field.name) == kReservedNames.end(),
             path + ": point field name '" + field.name + "' is reserved");
     for (std::size_t g = 0; g < f; ++g)
-      require(opts.fields[g].name != field.name, path + ": duplicate point field name '" + field.name + "'");
+      require(fields[g].name != field.name, path + ": duplicate point field name '" + field.name + "'");
   }
 }
 
 }  // namespace
 
-void write_vtu(const std::string& path, const std::vector<AnySpline>& objects, const VtkOptions& opts) {
+void write_vtu(const std::string& path, const std::vector<AnySpline>& objects, const VtkOptions& opts,
+               const std::vector<VtkPointField>& fields) {
   require(!objects.empty(), path + ": nothing to write (no objects)");
-  validate(path, opts);
+  const Mode mode = opts.control_net ? Mode::net : opts.bezier_cells ? Mode::bezier : Mode::sampled;
+  validate(path, mode, opts.samples_per_element, fields);
   int extra = 0;
   for (const auto& o : objects) extra = std::max(extra, std::visit([](const auto& s) { return s.dim(); }, o) - 3);
 
@@ -351,14 +365,20 @@ void write_vtu(const std::string& path, const std::vector<AnySpline>& objects, c
           constexpr int D = std::decay_t<decltype(s)>::kDim;
           require(s.dim() >= 1, where + ": cannot write an empty spline (no control points)");
           Piece& piece = pieces[i];
-          if (opts.bezier_cells)
-            add_bezier(piece, s, extra, where);
-          else
-            add_sampled(piece, s, opts.samples_per_element, extra, where);
-          if (opts.control_net) add_control_net(piece, s, extra, opts.bezier_cells);
-          for (const VtkPointField& field : opts.fields) {
-            std::vector<double>& values = piece.fields.emplace_back(
-                static_cast<std::size_t>(piece.num_points()) * static_cast<std::size_t>(field.components));
+          switch (mode) {
+            case Mode::sampled:
+              add_sampled(piece, s, opts.samples_per_element, extra, where);
+              break;
+            case Mode::bezier:
+              add_bezier(piece, s, extra, where);
+              break;
+            case Mode::net:
+              add_control_net(piece, s, extra);
+              break;
+          }
+          for (const VtkPointField& field : fields) {
+            std::vector<double>& values = piece.fields.emplace_back(static_cast<std::size_t>(piece.num_points()) *
+                                                                    static_cast<std::size_t>(field.components));
             for (long long q = 0; q < piece.num_points(); ++q)
               field.value(static_cast<int>(i), std::span<const double>(piece.params.data() + 3 * q, D),
                           std::span<double>(values.data() + q * field.components, field.components));
@@ -371,13 +391,14 @@ void write_vtu(const std::string& path, const std::vector<AnySpline>& objects, c
     os << "<?xml version=\"1.0\"?>\n"
           "<VTKFile type=\"UnstructuredGrid\" version=\"2.1\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
           "  <UnstructuredGrid>\n";
-    for (const Piece& p : pieces) write_piece(os, p, opts, extra);
+    for (const Piece& p : pieces) write_piece(os, p, mode, fields, extra);
     os << "  </UnstructuredGrid>\n</VTKFile>\n";
   });
 }
 
-void write_vtu(const std::string& path, const AnySpline& s, const VtkOptions& opts) {
-  write_vtu(path, std::vector<AnySpline>{s}, opts);
+void write_vtu(const std::string& path, const AnySpline& s, const VtkOptions& opts,
+               const std::vector<VtkPointField>& fields) {
+  write_vtu(path, std::vector<AnySpline>{s}, opts, fields);
 }
 
 }  // namespace trivar::io

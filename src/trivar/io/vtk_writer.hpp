@@ -1,5 +1,5 @@
 #pragma once
-// VTK XML UnstructuredGrid (.vtu, ASCII) output of splines for ParaView, in two modes:
+// VTK XML UnstructuredGrid (.vtu, ASCII) output of splines for ParaView, in three modes:
 //  - sampled (default): every element is sampled on an (n+1)^D grid of parameters (n = samples_per_element)
 //    and cut into VTK_LINE / VTK_QUAD / VTK_HEXAHEDRON cells. Neighbouring elements share their boundary
 //    samples unless the spline is discontinuous there (interior knot of multiplicity degree + 1), in which
@@ -8,10 +8,12 @@
 //    exact up to rounding: its Bezier control points (Cartesian) in VTK's higher-order point order
 //    (corners, edges, faces, interior), cell data "HigherOrderDegrees" and point data "RationalWeights".
 //    Elements share the Bezier points of common boundaries where the spline is continuous.
+//  - control_net: the control net instead of the geometry: Cartesian control points joined by VTK_LINE cells
+//    along every direction ("param" = Greville abscissae, cell data "direction" = 0, 1, 2 for u, v, w).
 // Point data "param" holds the parameter (u, v, w) of every point, padded with zeros for curves and surfaces
 // (for Bezier points: the equally spaced Bezier node parameters). Points take the first three control
 // components (padded with zeros when dim < 3); further components go to point data "higher_components".
-// Cell data "element" is the index of the spline element (u fastest) a cell belongs to.
+// Cell data "element" is the index of the spline element (u fastest) a cell belongs to (sampled, Bezier).
 #include <functional>
 #include <span>
 #include <string>
@@ -32,18 +34,17 @@ struct VtkPointField {
 };
 
 struct VtkOptions {
-  int samples_per_element = 4;  // n >= 1, sampled mode only
+  int samples_per_element = 4;  // n >= 1, sampled mode
   bool bezier_cells = false;
-  // Also write the control net: the Cartesian control points (param = Greville abscissae) joined by
-  // VTK_LINE cells along every direction; their "element" cell data is -1.
-  bool control_net = false;
-  std::vector<VtkPointField> fields;
+  bool control_net = false;  // takes precedence over bezier_cells
 };
 
 // Throws trivar::Error (nothing written) for an empty spline, samples_per_element < 1, a degree-0 direction
-// in Bezier mode, or a missing, duplicate or reserved field name.
-void write_vtu(const std::string& path, const AnySpline& s, const VtkOptions& opts = {});
+// in Bezier mode, or a field without name or value function, with a duplicate or reserved name.
+void write_vtu(const std::string& path, const AnySpline& s, const VtkOptions& opts = {},
+               const std::vector<VtkPointField>& fields = {});
 // Several objects, one <Piece> each (ParaView shows them as one data set).
-void write_vtu(const std::string& path, const std::vector<AnySpline>& objects, const VtkOptions& opts = {});
+void write_vtu(const std::string& path, const std::vector<AnySpline>& objects, const VtkOptions& opts = {},
+               const std::vector<VtkPointField>& fields = {});
 
 }  // namespace trivar::io

@@ -35,17 +35,19 @@ TensorSpline<D> make_block(const Ints<D>& degrees, const Ints<D>& elements, cons
   return TensorSpline<D>::from_cartesian(std::move(kv), 3, pts);
 }
 
-TensorSpline<2> make_rectangle_profile(double r0, double r1, double z0, double z1, const Ints<2>& degrees,
+TensorSpline<2> make_rectangle_profile(const Param<2>& heights, const Param<2>& radii, const Ints<2>& degrees,
                                        const Ints<2>& elements) {
-  require(std::isfinite(r0) && std::isfinite(r1) && r0 < r1,
-          "rectangle profile: radii must satisfy r0 < r1, got " + std::to_string(r0) + " " + std::to_string(r1));
+  const auto [z0, z1] = heights;
+  const auto [r0, r1] = radii;
   require(std::isfinite(z0) && std::isfinite(z1) && z0 < z1,
           "rectangle profile: heights must satisfy z0 < z1, got " + std::to_string(z0) + " " + std::to_string(z1));
-  TensorSpline<2> s = make_block<2>(degrees, elements, {r1 - r0, z1 - z0});
-  // The block lies in the xy-plane; move its second coordinate to z and shift to [r0, r1] x [z0, z1].
+  require(std::isfinite(r0) && std::isfinite(r1) && r0 < r1,
+          "rectangle profile: radii must satisfy r0 < r1, got " + std::to_string(r0) + " " + std::to_string(r1));
+  TensorSpline<2> s = make_block<2>(degrees, elements, {z1 - z0, r1 - r0});
+  // The block (axial, radial, 0) lies in the xy-plane; map it to (radius, 0, height).
   for (int i = 0; i < s.num_coefs(); ++i) {
     double* c = s.coefs().data() + static_cast<std::size_t>(i) * 3;
-    const double radial = c[0], axial = c[1];
+    const double axial = c[0], radial = c[1];
     c[0] = r0 + radial;
     c[1] = 0;
     c[2] = z0 + axial;

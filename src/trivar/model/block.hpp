@@ -13,11 +13,12 @@ namespace trivar {
 template <int D>
 TensorSpline<D> make_block(const Ints<D>& degrees, const Ints<D>& elements, const Param<D>& size);
 
-// Profile for a volume of revolution about the z-axis: the rectangle [r0, r1] x [z0, z1] in the xz-plane,
-// S(u, v) = (r0 + u (r1 - r0), 0, z0 + v (z1 - z0)) on [0, 1]^2, u radial and v axial, with the given
-// degrees and element counts. Throws trivar::Error unless r0 < r1 and z0 < z1 (finite); r0 may be zero or
-// negative (the revolved volume is then singular on the axis, see revolve()).
-TensorSpline<2> make_rectangle_profile(double r0, double r1, double z0, double z1, const Ints<2>& degrees = {1, 1},
+// Profile for a volume of revolution about the z-axis: the rectangle z in [z0, z1], radius in [r0, r1] in the
+// xz-plane, S(u, v) = (r0 + v (r1 - r0), 0, z0 + u (z1 - z0)) on [0, 1]^2: u along the axis, v radial, with the
+// given degrees and element counts (u first). In this order (z, r, angle) is a right-handed frame, so revolving
+// counter-clockwise about +z gives det J > 0. Throws trivar::Error unless z0 < z1 and r0 < r1 (finite); r0 may
+// be zero or negative (the revolved volume is then singular on the axis, see revolve()).
+TensorSpline<2> make_rectangle_profile(const Param<2>& heights, const Param<2>& radii, const Ints<2>& degrees = {1, 1},
                                        const Ints<2>& elements = {1, 1});
 
 }  // namespace trivar

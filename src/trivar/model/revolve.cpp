@@ -1,7 +1,9 @@
 #include "trivar/model/revolve.hpp"
 
 #include <cmath>
+#include <iomanip>
 #include <numbers>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -20,6 +22,22 @@ int arc_segments(double angle) {
   return std::max(1, static_cast<int>(std::ceil(quarters - 1e-12)));
 }
 
+// (cos a, sin a), exact at multiples of a quarter turn: std::cos(pi / 2) is 6e-17, which would put the control
+// points of quarter, half and full turns off the axes they belong on.
+Eigen::Vector2d cos_sin(double a) {
+  constexpr double quarter = 0.5 * std::numbers::pi;
+  const double q = std::round(a / quarter);
+  double r = a - q * quarter;
+  if (std::abs(r) < 1e-14) r = 0;  // rounding of the angle, not a real offset
+  const double c = std::cos(r), s = std::sin(r);
+  switch (static_cast<int>(q) & 3) {
+    case 0: return {c, s};
+    case 1: return {-s, c};
+    case 2: return {-c, -s};
+    default: return {s, -c};
+  }
+}
+
 }  // namespace
 
 template <int D>
@@ -30,12 +48,10 @@ TensorSpline<D> revolve(const TensorSpline<D - 1>& profile, const Eigen::Vector3
   require(axis_point.allFinite() && axis_dir.allFinite() && axis_dir.norm() > 0,
           "revolve: axis direction must be finite and non-zero");
   require(std::isfinite(angle_radians) && angle_radians > 0 && angle_radians <= 2 * std::numbers::pi,
-          "revolve: angle must be in (0, 2 pi] radians, got " + std::to_string(angle_radians));
+          "revolve: angle must be in (0, 2 pi] radians, got " + (std::ostringstream() << std::setprecision(17) << angle_radians).str());
 
   const Eigen::Vector3d d = axis_dir.normalized();
   const int segments = arc_segments(angle_radians);
-  const double half = 0.5 * angle_radians / segments;
-  const double mid_weight = std::cos(half);
 
   std::vector<double> knots{0, 0, 0};
   for (int s = 1; s < segments; ++s) knots.insert(knots.end(), 2, static_cast<double>(s) / segments);
@@ -45,17 +61,17 @@ TensorSpline<D> revolve(const TensorSpline<D - 1>& profile, const Eigen::Vector3
   for (int k = 0; k + 1 < D; ++k) kv[k] = profile.knots(k);
   kv[D - 1] = KnotVector(2, std::move(knots));
 
-  // Angular control j sits at angle j * half; odd j are the tangent intersections, pushed out by
-  // 1 / cos(half) and weighted cos(half), which makes each arc exactly circular.
+  // Even angular controls j lie on the circle at angle (j / 2) * segment. Odd ones are the tangent
+  // intersections, (P_{j-1} + P_{j+1}) / (1 + cos(segment)) about the axis, weighted cos(segment / 2), which
+  // makes each arc exactly circular; this form keeps quarter-turn intersections exact.
   const int n_angular = 2 * segments + 1;
-  std::vector<double> cos_a(n_angular), sin_a(n_angular), scale(n_angular), weight(n_angular);
-  for (int j = 0; j < n_angular; ++j) {
-    cos_a[j] = std::cos(j * half);
-    sin_a[j] = std::sin(j * half);
-    const bool middle = j % 2 == 1;
-    scale[j] = middle ? 1.0 / mid_weight : 1.0;
-    weight[j] = middle ? mid_weight : 1.0;
-  }
+  const double segment = angle_radians / segments;
+  const double to_corner = 1.0 / (1.0 + cos_sin(segment)[0]);
+  std::vector<Eigen::Vector2d> rot(n_angular);  // coefficients of (radial, normal)
+  std::vector<double> weight(n_angular);
+  for (int j = 0; j < n_angular; j += 2) rot[j] = cos_sin((j / 2) * segment);
+  for (int j = 1; j < n_angular; j += 2) rot[j] = to_corner * (rot[j - 1] + rot[j + 1]);
+  for (int j = 0; j < n_angular; ++j) weight[j] = j % 2 ? std::cos(0.5 * segment) : 1.0;
 
   // The profile's grid is the fast part of the result's grid (angular direction last), so every angular
   // index is one contiguous copy of the rotated profile.
@@ -69,7 +85,7 @@ TensorSpline<D> revolve(const TensorSpline<D - 1>& profile, const Eigen::Vector3
     const Eigen::Vector3d radial = x - foot;
     const Eigen::Vector3d normal = d.cross(radial);
     for (int j = 0; j < n_angular; ++j) {
-      const Eigen::Vector3d p = foot + scale[j] * (cos_a[j] * radial + sin_a[j] * normal);
+      const Eigen::Vector3d p = foot + rot[j][0] * radial + rot[j][1] * normal;
       const double wj = w * weight[j];
       double* c = h.data() + (static_cast<std::size_t>(j) * n_profile + i) * 4;
       for (int k = 0; k < 3; ++k) c[k] = wj * p[k];

@@ -29,11 +29,14 @@ inline void basis_values(const double* t, int p, int s, double u, double* N) {
 }
 
 // As above on a KnotVector, multiplying by its precomputed inverse knot differences instead of dividing.
+// P >= 0 fixes the degree at compile time (the loops unroll in the specialised evaluation kernels); P = -1
+// takes it from kv.
+template <int P = -1>
 inline void basis_values(const KnotVector& kv, int s, double u, double* N) {
   const double* t = kv.data();
   const double* inv = kv.inverse_differences(s);
-  const int p = kv.degree();
-  double left[kMaxDegree + 1], right[kMaxDegree + 1];
+  const int p = P >= 0 ? P : kv.degree();
+  double left[(P >= 0 ? P : kMaxDegree) + 1], right[(P >= 0 ? P : kMaxDegree) + 1];
   N[0] = 1.0;
   for (int j = 1; j <= p; ++j) {
     left[j] = u - t[s + 1 - j];
@@ -48,16 +51,28 @@ inline void basis_values(const KnotVector& kv, int s, double u, double* N) {
   }
 }
 
-// The same with the degree fixed at compile time, for the specialised evaluation kernels.
-template <int P>
-inline void basis_values_fixed(const KnotVector& kv, int s, double u, double* N) {
+// Values and first derivatives: N[0..p] and dN[0..p]. The derivative of B_{i,p} is
+// p (B_{i,p-1}/(t_{i+p}-t_i) - B_{i+1,p-1}/(t_{i+p+1}-t_{i+1})), read off the degree p-1 stage of the same triangle.
+template <int P = -1>
+inline void basis_values_first_derivatives(const KnotVector& kv, int s, double u, double* N, double* dN) {
   const double* t = kv.data();
   const double* inv = kv.inverse_differences(s);
-  double left[P + 1], right[P + 1];
+  const int p = P >= 0 ? P : kv.degree();
+  double left[(P >= 0 ? P : kMaxDegree) + 1], right[(P >= 0 ? P : kMaxDegree) + 1];
   N[0] = 1.0;
-  for (int j = 1; j <= P; ++j) {
+  for (int j = 1; j <= p; ++j) {
     left[j] = u - t[s + 1 - j];
     right[j] = t[s + j] - u;
+    if (j == p) {
+      // N holds the p degree-(p-1) functions; inv the reciprocals t_{s+1+r} - t_{s+1-p+r} of this stage.
+      double prev = 0.0;
+      for (int r = 0; r < p; ++r) {
+        const double a = N[r] * inv[r] * p;
+        dN[r] = prev - a;
+        prev = a;
+      }
+      dN[p] = prev;
+    }
     double saved = 0.0;
     for (int r = 0; r < j; ++r) {
       const double tmp = N[r] * *inv++;
@@ -66,6 +81,7 @@ inline void basis_values_fixed(const KnotVector& kv, int s, double u, double* N)
     }
     N[j] = saved;
   }
+  if (p == 0) dN[0] = 0.0;
 }
 
 // ders[k*(p+1) + i] = d^k/du^k B_{s-p+i,p}(u) for k = 0..n (derivatives above p are zero).

@@ -60,9 +60,10 @@ void for_each_line(const Ints<D>& n_in, const Ints<D>& n_out, int dir, F&& f) {
   });
 }
 
+// C(n, 0..n); exact in double for the degrees a Jacobian reaches (C(n, i) < 2^53 up to n = 56).
 std::vector<double> binomial_row(int n) {
-  std::vector<double> r(n + 1);
-  for (int i = 0; i <= n; ++i) r[i] = static_cast<double>(binomial(n, i));
+  std::vector<double> r(n + 1, 1.0);
+  for (int i = 1; i <= n; ++i) r[i] = r[i - 1] * (n - i + 1) / i;
   return r;
 }
 
@@ -226,9 +227,13 @@ Bernstein<D>& Bernstein<D>::operator*=(double s) {
 }
 
 template <int D>
-Bernstein<D> operator*(const Bernstein<D>& a, const Bernstein<D>& b) {
+Bernstein<D> operator*(const Bernstein<D>& a_in, const Bernstein<D>& b_in) {
   // Scaled coefficients c_i C(n,i) multiply as plain polynomial coefficients (a discrete convolution);
-  // dividing by C(n+m, k) returns to the Bernstein basis.
+  // dividing by C(n+m, k) returns to the Bernstein basis. The factor with the longer first-direction rows
+  // runs in the innermost, contiguous loop.
+  const bool swap = a_in.degree(0) > b_in.degree(0);
+  const Bernstein<D>& a = swap ? b_in : a_in;
+  const Bernstein<D>& b = swap ? a_in : b_in;
   Ints<D> p{};
   for (int k = 0; k < D; ++k) p[k] = a.degree(k) + b.degree(k);
   const Ints<D> sp = strides_of<D>(p);
@@ -238,10 +243,12 @@ Bernstein<D> operator*(const Bernstein<D>& a, const Bernstein<D>& b) {
     bb[k] = binomial_row(b.degree(k));
     bp[k] = binomial_row(p[k]);
   }
+  // Scaled coefficients of f, and the offset in the product of each coefficient (every_coef = false: of each
+  // first-direction row).
   auto scaled = [&](const Bernstein<D>& f, const std::array<std::vector<double>, D>& bin, std::vector<double>& v,
-                    std::vector<int>& off) {
+                    std::vector<int>& off, bool every_coef) {
     v.resize(f.size());
-    off.resize(f.size());
+    off.clear();
     const auto c = f.coefs();
     for_each_index<D>(f.degrees(), [&](int q, const Ints<D>& i) {
       double w = c[q];
@@ -251,20 +258,23 @@ Bernstein<D> operator*(const Bernstein<D>& a, const Bernstein<D>& b) {
         o += i[k] * sp[k];
       }
       v[q] = w;
-      off[q] = o;
+      if (every_coef || i[0] == 0) off.push_back(o);
     });
   };
   std::vector<double> va, vb;
   std::vector<int> oa, ob;
-  scaled(a, ba, va, oa);
-  scaled(b, bb, vb, ob);
+  scaled(a, ba, va, oa, true);
+  scaled(b, bb, vb, ob, false);
   Bernstein<D> out(p, 0.0);
   double* c = out.coefs().data();
-  const int na = a.size(), nb = b.size();
+  const int na = a.size(), rows = static_cast<int>(ob.size()), len = b.degree(0) + 1;
   for (int i = 0; i < na; ++i) {
     const double x = va[i];
-    double* ci = c + oa[i];
-    for (int j = 0; j < nb; ++j) ci[ob[j]] += x * vb[j];
+    for (int r = 0; r < rows; ++r) {
+      double* ci = c + oa[i] + ob[r];
+      const double* bj = vb.data() + static_cast<std::ptrdiff_t>(r) * len;
+      for (int j = 0; j < len; ++j) ci[j] += x * bj[j];
+    }
   }
   for_each_index<D>(p, [&](int q, const Ints<D>& i) {
     double d = 1.0;

@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -43,39 +44,93 @@ Bernstein<D> determinant(const std::vector<std::vector<Bernstein<D>>>& m) {
   return minor[(std::size_t{1} << n) - 1];
 }
 
-// det J of a polynomial element, or the homogeneous numerator N = w^(D+1) det J and the weight w of a
-// rational one, with derivatives taken with respect to the global parameters.
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+
+double max_abs(const std::span<const double> v) {
+  double m = 0;
+  for (double x : v) m = std::max(m, std::abs(x));
+  return m;
+}
+
+// On one element: N = det J (polynomial) or N = w^(D+1) det J and W = w^(D+1) raised to a common degree
+// (rational), derivatives taken with respect to the global parameters, and `error`, a bound on the
+// floating-point error of every coefficient of N (polynomial) or of every ratio N_i / W_i (rational) on the
+// element and its sub-boxes down to max_depth.
 template <int D>
 struct ElementDet {
-  Bernstein<D> n;
-  Bernstein<D> w;
+  Bernstein<D> n, w;
+  double error = 0;
 };
 
+// The error bound is a first-order a-priori estimate in the style of Higham's gamma_k, with a factor 2 of
+// safety: the Bezier net is taken exact to 2 ulps of its row magnitude, a difference quotient
+// p (P_{i+1} - P_i) / h then errs by 4 ulps of p / h times that magnitude, each Bernstein product coefficient
+// by (terms + 4) ulps of the product of its factors' largest coefficients, and each de Casteljau level by
+// degree ulps of the largest coefficient. Column magnitudes C_k = sum over rows of the largest coefficient
+// bound every coefficient of every partial Laplace sum by prod C_k.
 template <int D>
-ElementDet<D> element_det(const BezierElement<D>& e) {
+ElementDet<D> element_det(const BezierElement<D>& e, int max_depth) {
   const int st = e.stride(), rows = e.rational ? D + 1 : D, first_deriv = e.rational ? 1 : 0;
   int npts = 1;
   for (int k = 0; k < D; ++k) npts *= e.degrees[k] + 1;
   std::vector<std::vector<Bernstein<D>>> m(rows, std::vector<Bernstein<D>>(rows));
+  std::vector<double> magnitude(rows, 0.0), input_error(rows, 0.0);
+  int terms = 0;
   for (int r = 0; r < rows; ++r) {
     // The weight row first: det[(w, w x), d(w, w x)] = w^(D+1) det J with this order.
     const int c = e.rational ? (r == 0 ? D : r - 1) : r;
     std::vector<double> v(npts);
     for (int q = 0; q < npts; ++q) v[q] = e.coefs[static_cast<std::size_t>(q) * st + c];
     const Bernstein<D> f(e.degrees, std::move(v));
+    const double fmax = max_abs(f.coefs());
     for (int k = 0; k < D; ++k) {
-      m[r][first_deriv + k] = f.derivative(k);
-      m[r][first_deriv + k] *= 1.0 / e.domain.extent(k);
+      Bernstein<D>& d = m[r][first_deriv + k];
+      d = f.derivative(k);
+      d *= 1.0 / e.domain.extent(k);
+      magnitude[first_deriv + k] += max_abs(d.coefs());
+      input_error[first_deriv + k] += 4 * kEps * e.degrees[k] / e.domain.extent(k) * fmax;
+      terms = std::max(terms, d.size());
     }
-    if (e.rational) m[r][0] = f;
+    if (e.rational) {
+      m[r][0] = f;
+      magnitude[0] += fmax;
+      input_error[0] += 2 * kEps * fmax;
+    }
   }
   ElementDet<D> out;
   out.n = determinant(m);
-  if (e.rational) out.w = m[0][0];
+  double product = 1, propagated = 0;
+  for (int k = 0; k < rows; ++k) product *= magnitude[k];
+  for (int k = 0; k < rows; ++k) {
+    double others = input_error[k];
+    for (int j = 0; j < rows; ++j)
+      if (j != k) others *= magnitude[j];
+    propagated += others;
+  }
+  int top_degree = 0;
+  if (e.rational) {
+    // W = w^(D+1) with N at the same degree: det J = sum (N_i / W_i) W_i B_i / sum W_j B_j is a convex
+    // combination of the ratios, which therefore bound it and converge to it under subdivision.
+    out.w = m[0][0];
+    for (int k = 0; k < D; ++k) out.w = out.w * m[0][0];
+    Ints<D> common{};
+    for (int k = 0; k < D; ++k) common[k] = std::max(out.n.degree(k), out.w.degree(k));
+    out.n = out.n.elevate(common);
+    out.w = out.w.elevate(common);
+  }
+  for (int k = 0; k < D; ++k) top_degree = std::max(top_degree, out.n.degree(k));
+  const double steps = rows * (terms + 4) + max_depth * top_degree + (e.rational ? top_degree + 4 : 0);
+  const double n_error = 2 * (propagated + steps * kEps * product);
+  if (e.rational) {
+    const double w_relative = 2 * steps * kEps, w_min = out.w.min_coef();
+    out.error = (n_error + w_relative * max_abs(out.n.coefs())) / w_min;
+  } else {
+    out.error = n_error;
+  }
   return out;
 }
 
-// A sub-box [lo, hi] (element-local coordinates in [0,1]^D) with the pieces of N and w on it.
+// A sub-box [lo, hi] (element-local coordinates in [0,1]^D) with the pieces of N and W on it.
 template <int D>
 struct Piece {
   Bernstein<D> n, w;
@@ -98,7 +153,7 @@ public:
   ElementRefiner(const BezierElement<D>& e, const JacobianOptions& o) : e_(e), o_(o) {}
 
   ElementResult<D> run() {
-    ElementDet<D> det = element_det(e_);
+    ElementDet<D> det = element_det(e_, o_.max_depth);
     Piece<D> root;
     root.n = std::move(det.n);
     root.w = std::move(det.w);
@@ -137,22 +192,17 @@ public:
         std::push_heap(heap.begin(), heap.end(), later);
       }
     }
+    res_.lower -= det.error;
     return res_;
   }
 
 private:
   // Lower bound of det J on the piece, and its corner values offered as the element minimum.
   void settle(Piece<D>& p) {
-    const double nlo = p.n.min_coef();
-    if (e_.rational) {
-      const double wlo = p.w.min_coef(), whi = p.w.max_coef();
-      p.lower = nlo >= 0 ? nlo / std::pow(whi, D + 1) : nlo / std::pow(wlo, D + 1);
-    } else {
-      p.lower = nlo;
-    }
+    p.lower = e_.rational ? ratios(p).min_coef() : p.n.min_coef();
     for (int c = 0; c < (1 << D); ++c) {
       double v = p.n.corner(c);
-      if (e_.rational) v /= std::pow(p.w.corner(c), D + 1);
+      if (e_.rational) v /= p.w.corner(c);
       if (v < res_.value) {
         res_.value = v;
         for (int k = 0; k < D; ++k) {
@@ -163,16 +213,23 @@ private:
     }
   }
 
-  // The direction in which the bound is loosest: relative coefficient variation of N, plus that of w
-  // weighted by the power D+1 it enters det J with.
+  // The ratios N_i / W_i of a rational piece: a net (not a polynomial) whose range bounds det J.
+  static Bernstein<D> ratios(const Piece<D>& p) {
+    Bernstein<D> r = p.n;
+    const auto w = p.w.coefs();
+    auto c = r.coefs();
+    for (std::size_t i = 0; i < c.size(); ++i) c[i] /= w[i];
+    return r;
+  }
+
+  // The direction in which the bounding net varies most, so that halving it tightens the bound most.
   int split_direction(const Piece<D>& p) const {
-    const double scale = std::max(std::abs(p.n.min_coef()), std::abs(p.n.max_coef()));
-    const double wlo = e_.rational ? p.w.min_coef() : 1.0;
+    const Bernstein<D> net = e_.rational ? ratios(p) : Bernstein<D>();
+    const Bernstein<D>& b = e_.rational ? net : p.n;
     int best = 0;
     double best_score = -1;
     for (int k = 0; k < D; ++k) {
-      double score = scale > 0 ? p.n.variation(k) / scale : 0.0;
-      if (e_.rational) score += (D + 1) * p.w.variation(k) / wlo;
+      const double score = b.variation(k);
       if (score > best_score) {
         best_score = score;
         best = k;

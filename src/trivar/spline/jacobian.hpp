@@ -6,14 +6,16 @@
 //
 // Polynomial map of degrees (p_k): det[S_u, S_v, S_w] of the derivative nets, degree D p_k - 1.
 // Rational map: with S^ = (w, w x, ...) homogeneous, N = det[S^, S^_u, S^_v, S^_w] = w^(D+1) det J (degree
-// (D+1) p_k - 1), so sign(N) = sign(det J). The bounds reported are bounds of det J itself: on a sub-box where
-// N lies in [N_lo, N_hi] and w in [w_lo, w_hi] (Bernstein coefficient ranges, w_lo > 0),
-//   det J >= N_lo / w_hi^(D+1) if N_lo >= 0, else N_lo / w_lo^(D+1),
-// and corner values N / w^(D+1) are actual values of det J.
+// (D+1) p_k - 1), so sign(N) = sign(det J). The bounds reported are bounds of det J itself: with N and
+// W = w^(D+1) written at a common degree, det J = sum_i (N_i / W_i) W_i B_i / sum_j W_j B_j and W_i > 0, so
+// det J lies between the smallest and largest ratio N_i / W_i (rational convex hull; tighter than
+// min N / max w^(D+1), and converging under subdivision). Corner ratios are actual values of det J.
 //
-// What is certified: the conclusions hold for the Bernstein coefficients as computed in double precision;
-// their rounding error (a few ulps of the coefficient magnitudes) is not enclosed, so a minimum within
-// ~1e-14 relative of zero is within rounding of either verdict.
+// What is certified: min_lower_bound is the smallest coefficient (ratio) over all sub-boxes minus an
+// a-priori bound of its floating-point error (first order, from the magnitudes of the Bezier nets and the
+// operation counts; see jacobian.cpp), so `valid` is not claimed for a map whose minimum is zero up to
+// rounding, e.g. a collapsed face. min_value and `invalid` use corner values as computed in double precision,
+// like any evaluation of det J.
 #include "trivar/core/box.hpp"
 #include "trivar/spline/tensor_spline.hpp"
 

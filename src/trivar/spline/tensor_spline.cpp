@@ -77,7 +77,7 @@ void eval_fixed(const std::array<KnotVector, D>& knots, const double* coefs, con
     const KnotVector& kv = knots[k];
     const double uk = std::clamp(u[k], kv.start(), kv.end());
     const int s = kv.find_span(uk);
-    basis_values_fixed<P>(kv, s, uk, N[k]);
+    basis_values<P>(kv, s, uk, N[k]);
     step[k] = stride_k;
     offset += static_cast<std::size_t>(s - P) * stride_k;
     stride_k *= static_cast<std::size_t>(kv.size());
@@ -89,20 +89,66 @@ void eval_fixed(const std::array<KnotVector, D>& knots, const double* coefs, con
     for (int d = 0; d < ST; ++d) h[d] += N[0][a] * acc[a * ST + d];
 }
 
+// Value and first derivatives with compile-time degree and stride: one pass over the rows accumulates the
+// value row sum and, for each direction k >= 1, the row sum with N_k replaced by its derivative; direction 0
+// is differentiated in the final reduction. h receives (D+1)*ST homogeneous values: f, f_u, f_v, (f_w).
+template <int P, int ST, int K, int D>
+inline void fixed_rows_d1(const double* base, const std::array<std::size_t, D>& step, const double (*N)[P + 1],
+                          const double (*dN)[P + 1], const std::array<double, D>& w, double (*acc)[(P + 1) * ST]) {
+  if constexpr (K == 0) {
+    for (int t = 0; t < D; ++t)
+      for (int x = 0; x < (P + 1) * ST; ++x) acc[t][x] += w[t] * base[x];
+  } else {
+    for (int a = 0; a <= P; ++a) {
+      std::array<double, D> wa;
+      for (int t = 0; t < D; ++t) wa[t] = w[t] * (t == K ? dN[K][a] : N[K][a]);
+      fixed_rows_d1<P, ST, K - 1, D>(base + a * step[K], step, N, dN, wa, acc);
+    }
+  }
+}
+
+template <int P, int ST, int D>
+void eval_fixed_d1(const std::array<KnotVector, D>& knots, const double* coefs, const Param<D>& u, double* h) {
+  double N[D][P + 1], dN[D][P + 1];
+  std::array<std::size_t, D> step;
+  std::size_t offset = 0, stride_k = ST;
+  for (int k = 0; k < D; ++k) {
+    const KnotVector& kv = knots[k];
+    const double uk = std::clamp(u[k], kv.start(), kv.end());
+    const int s = kv.find_span(uk);
+    basis_values_first_derivatives<P>(kv, s, uk, N[k], dN[k]);
+    step[k] = stride_k;
+    offset += static_cast<std::size_t>(s - P) * stride_k;
+    stride_k *= static_cast<std::size_t>(kv.size());
+  }
+  double acc[D][(P + 1) * ST] = {};
+  std::array<double, D> w;
+  w.fill(1.0);
+  fixed_rows_d1<P, ST, D - 1, D>(coefs + offset, step, N, dN, w, acc);
+  for (int x = 0; x < (D + 1) * ST; ++x) h[x] = 0.0;
+  for (int a = 0; a <= P; ++a)
+    for (int d = 0; d < ST; ++d) {
+      h[d] += N[0][a] * acc[0][a * ST + d];
+      h[ST + d] += dN[0][a] * acc[0][a * ST + d];
+      for (int t = 1; t < D; ++t) h[(t + 1) * ST + d] += N[0][a] * acc[t][a * ST + d];
+    }
+}
+
 template <int D>
 using FixedKernel = void (*)(const std::array<KnotVector, D>&, const double*, const Param<D>&, double*);
 
 // Kernel for (degree, stride) when every direction has that degree and the pair is common, else null.
+// First derivatives select the kernel that also returns f_u, f_v, (f_w).
 template <int D>
-FixedKernel<D> fixed_kernel(const std::array<KnotVector, D>& knots, int st) {
+FixedKernel<D> fixed_kernel(const std::array<KnotVector, D>& knots, int st, bool first_derivatives) {
   const int p = knots[0].degree();
   for (int k = 1; k < D; ++k)
     if (knots[k].degree() != p) return nullptr;
   auto pick = [&]<int P>() -> FixedKernel<D> {
     switch (st) {
-      case 1: return &eval_fixed<P, 1, D>;
-      case 3: return &eval_fixed<P, 3, D>;
-      case 4: return &eval_fixed<P, 4, D>;
+      case 1: return first_derivatives ? &eval_fixed_d1<P, 1, D> : &eval_fixed<P, 1, D>;
+      case 3: return first_derivatives ? &eval_fixed_d1<P, 3, D> : &eval_fixed<P, 3, D>;
+      case 4: return first_derivatives ? &eval_fixed_d1<P, 4, D> : &eval_fixed<P, 4, D>;
       default: return nullptr;
     }
   };
@@ -143,7 +189,8 @@ TensorSpline<D>::TensorSpline(std::array<KnotVector, D> knots, int dim, bool rat
                                          std::to_string(stride()) + "), got " + std::to_string(coefs_.size()));
   for (std::size_t i = 0; i < coefs_.size(); ++i)
     if (!std::isfinite(coefs_[i])) throw Error("spline: coefficient value " + std::to_string(i) + " is not finite");
-  fixed_ = fixed_kernel<D>(knots_, stride());
+  fixed_ = fixed_kernel<D>(knots_, stride(), false);
+  fixed_d1_ = fixed_kernel<D>(knots_, stride(), true);
   if (rational_)
     for (int i = 0; i < num_coefs(); ++i)
       if (!(weight(i) > 0.0))
@@ -281,6 +328,20 @@ void TensorSpline<D>::eval_derivs(const Param<D>& u, int order, double* out) con
     throw Error("spline: derivative order " + std::to_string(order) + " is outside [0, " +
                 std::to_string(kMaxDerivativeOrder) + "]");
   const int st = stride();
+  if (order == 1 && fixed_d1_) {
+    double h[(D + 1) * 4];
+    fixed_d1_(knots_, coefs_.data(), u, h);
+    if (!rational_) {
+      std::copy(h, h + (D + 1) * st, out);
+      return;
+    }
+    // Quotient rule: S = A / w, S' = (A' - w' S) / w.
+    const double inv = 1.0 / h[dim_];
+    for (int d = 0; d < dim_; ++d) out[d] = h[d] * inv;
+    for (int k = 1; k <= D; ++k)
+      for (int d = 0; d < dim_; ++d) out[k * dim_ + d] = (h[k * st + d] - h[k * st + dim_] * out[d]) * inv;
+    return;
+  }
   const int nd = derivative_count(D, order);
   // Per direction: rows of basis derivatives 0..order, each p+1 long.
   double* ders = scratch<1>(static_cast<std::size_t>(D) * (order + 1) * (kMaxDegree + 1));

@@ -71,6 +71,7 @@ private:
   std::vector<double> coefs_;
   // Specialised evaluation kernel chosen at construction for common degree / stride pairs (or null).
   void (*fixed_)(const std::array<KnotVector, D>&, const double*, const Param<D>&, double*) = nullptr;
+  void (*fixed_d1_)(const std::array<KnotVector, D>&, const double*, const Param<D>&, double*) = nullptr;
 };
 
 extern template class TensorSpline<1>;

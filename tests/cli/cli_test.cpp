@@ -1,0 +1,293 @@
+// Runs the built `trivar` binary in a temporary directory and checks its outputs, exit codes and error
+// messages. Reference values come from the models' closed forms (box: x = size * u; revolution: exact radii).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+#include <sys/wait.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Result {
+  int code = -1;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+std::vector<std::string> lines(const std::string& text) {
+  std::vector<std::string> r;
+  std::istringstream in(text);
+  for (std::string l; std::getline(in, l);) r.push_back(l);
+  return r;
+}
+
+// The numbers after "label", "label = " or "label: " on the first line that starts with label.
+std::vector<double> numbers_after(const std::string& text, const std::string& label) {
+  for (const std::string& l : lines(text)) {
+    if (l.rfind(label, 0) != 0) continue;
+    std::size_t pos = l.find_first_not_of(' ', label.size());
+    if (pos != std::string::npos && (l[pos] == '=' || l[pos] == ':')) ++pos;
+    std::istringstream in(l.substr(std::min(pos, l.size())));
+    std::vector<double> v;
+    for (double x; in >> x;) v.push_back(x);
+    return v;
+  }
+  ADD_FAILURE() << "no line starting with '" << label << "' in:\n" << text;
+  return {};
+}
+
+class Cli : public ::testing::Test {
+protected:
+  void SetUp() override {
+    std::string tmpl = (fs::temp_directory_path() / "trivar_cli_XXXXXX").string();
+    ASSERT_NE(mkdtemp(tmpl.data()), nullptr);
+    root_ = tmpl;
+    work_ = root_ / "work";
+    fs::create_directories(work_);
+  }
+  void TearDown() override { fs::remove_all(root_); }
+
+  // Runs `trivar args` in the work directory; stdout and stderr are captured outside it so that the work
+  // directory holds only what the tool wrote.
+  Result run(const std::string& args) const {
+    const std::string cmd = "cd '" + work_.string() + "' && '" TRIVAR_CLI_PATH "' " + args + " > '" +
+                            (root_ / "stdout").string() + "' 2> '" + (root_ / "stderr").string() + "'";
+    const int status = std::system(cmd.c_str());
+    Result r;
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = slurp(root_ / "stdout");
+    r.err = slurp(root_ / "stderr");
+    return r;
+  }
+  Result ok(const std::string& args) const {
+    Result r = run(args);
+    EXPECT_EQ(r.code, 0) << "trivar " << args << "\n" << r.err;
+    return r;
+  }
+  // A failing command: one stderr line "trivar: error: ...", the expected exit code, nothing on stdout and
+  // no new file in the work directory.
+  void fails(const std::string& args, int code = 1) const {
+    const auto before = listing();
+    const Result r = run(args);
+    EXPECT_EQ(r.code, code) << "trivar " << args;
+    const auto err = lines(r.err);
+    ASSERT_EQ(err.size(), 1u) << "trivar " << args << "\n" << r.err;
+    EXPECT_EQ(err[0].rfind("trivar: error: ", 0), 0u) << err[0];
+    EXPECT_TRUE(r.out.empty()) << r.out;
+    EXPECT_EQ(listing(), before) << "trivar " << args << " left files behind";
+  }
+  std::vector<std::string> listing() const {
+    std::vector<std::string> names;
+    for (const auto& e : fs::recursive_directory_iterator(work_)) names.push_back(e.path().string());
+    std::sort(names.begin(), names.end());
+    return names;
+  }
+  void write(const std::string& name, const std::string& text) const { std::ofstream(work_ / name) << text; }
+  bool exists(const std::string& name) const { return fs::exists(work_ / name); }
+
+  fs::path root_, work_;
+};
+
+// Degree-1 unit cube in trivar JSON with x mirrored when `mirrored`: det J = -1 everywhere.
+std::string unit_cube_json(bool mirrored) {
+  nlohmann::json j{{"trivar", 1}, {"kind", "volume"}, {"dim", 3}, {"rational", false}, {"degrees", {1, 1, 1}}};
+  j["knots"] = {{0, 0, 1, 1}, {0, 0, 1, 1}, {0, 0, 1, 1}};
+  for (int k = 0; k < 2; ++k)
+    for (int jj = 0; jj < 2; ++jj)
+      for (int i = 0; i < 2; ++i) j["control_points"].push_back({mirrored ? -i : i, jj, k});
+  return j.dump();
+}
+
+}  // namespace
+
+TEST_F(Cli, VersionAndHelp) {
+  EXPECT_NE(ok("--version").out.find(TRIVAR_VERSION), std::string::npos);
+  for (const char* sub : {"info", "eval", "convert", "refine", "elevate", "check", "make", "make box", "make revolve",
+                          "invert", "demo"})
+    EXPECT_NE(ok(std::string(sub) + " --help").out.find("Usage"), std::string::npos) << sub;
+}
+
+TEST_F(Cli, MakeBoxInfoShowsCounts) {
+  ok("make box --degree 2 3 1 --elements 2 2 4 --size 2 1 3 -o box.json");
+  const Result text = ok("info box.json");
+  EXPECT_NE(text.out.find("control points: 4 x 5 x 5 = 100"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("elements: 2 x 2 x 4 = 16"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("degrees: 2 3 1"), std::string::npos) << text.out;
+  const auto j = nlohmann::json::parse(ok("info box.json --json").out);
+  const auto& o = j.at("objects").at(0);
+  EXPECT_EQ(o.at("kind"), "volume");
+  EXPECT_EQ(o.at("counts"), nlohmann::json({4, 5, 5}));
+  EXPECT_EQ(o.at("num_elements"), 16);
+  EXPECT_EQ(o.at("control_bounds").at("hi"), nlohmann::json({2.0, 1.0, 3.0}));
+
+  ok("make box --degree 2 --elements 3 2 --size 4 1 -o plate.json");
+  const auto p = nlohmann::json::parse(ok("info --json plate.json").out).at("objects").at(0);
+  EXPECT_EQ(p.at("kind"), "surface");
+  EXPECT_EQ(p.at("counts"), nlohmann::json({5, 4}));
+}
+
+TEST_F(Cli, EvalOfBoxIsScaledIdentity) {
+  ok("make box --degree 3 --elements 3 --size 2 1 3 -o box.json");
+  const Result r = ok("eval box.json 0.5 0.5 0.5 --derivs 1");
+  const auto x = numbers_after(r.out, "S ");
+  ASSERT_EQ(x.size(), 3u);
+  EXPECT_NEAR(x[0], 1.0, 1e-14);
+  EXPECT_NEAR(x[1], 0.5, 1e-14);
+  EXPECT_NEAR(x[2], 1.5, 1e-14);
+  const auto su = numbers_after(r.out, "S_u"), sw = numbers_after(r.out, "S_w");
+  ASSERT_EQ(su.size(), 3u);
+  EXPECT_NEAR(su[0], 2.0, 1e-13);
+  EXPECT_NEAR(sw[2], 3.0, 1e-13);
+  const auto y = numbers_after(ok("eval box.json 0.25 1 0").out, "S");
+  ASSERT_EQ(y.size(), 3u);
+  EXPECT_NEAR(y[0], 0.5, 1e-14);
+  EXPECT_NEAR(y[1], 1.0, 1e-14);
+  EXPECT_NEAR(y[2], 0.0, 1e-14);
+}
+
+TEST_F(Cli, RevolvedModelIsValidAndExact) {
+  ok("make revolve --radii 1 2 --height 1.5 --angle 270 --degree 2 --elements 2 1 2 -o ring.json");
+  const Result c = run("check ring.json");
+  EXPECT_EQ(c.code, 0) << c.out << c.err;
+  EXPECT_EQ(lines(c.out).at(0), "valid");
+  EXPECT_EQ(lines(c.out).at(1).rfind("min det J >= ", 0), 0u);
+  EXPECT_GT(numbers_after(c.out, "min det J >=").at(0), 0.0);
+  // u along the axis, v radial, w angular: u = 0.5 is height 0.75, v = 0.25 radius 1.25, w = 1 angle 270 degrees.
+  const auto x = numbers_after(ok("eval ring.json 0.5 0.25 1").out, "S");
+  ASSERT_EQ(x.size(), 3u);
+  EXPECT_NEAR(x[0], 0.0, 1e-12);
+  EXPECT_NEAR(x[1], -1.25, 1e-12);
+  EXPECT_NEAR(x[2], 0.75, 1e-12);
+  for (const char* w : {"0.1", "0.37", "0.9"}) {
+    const auto y = numbers_after(ok(std::string("eval ring.json 0.5 0.25 ") + w).out, "S");
+    EXPECT_NEAR(std::hypot(y[0], y[1]), 1.25, 1e-12);
+  }
+}
+
+TEST_F(Cli, CheckReportsInvalidModel) {
+  write("mirrored.json", unit_cube_json(true));
+  const Result r = run("check mirrored.json");
+  EXPECT_EQ(r.code, 3) << r.err;
+  EXPECT_EQ(lines(r.out).at(0), "invalid");
+  EXPECT_NEAR(numbers_after(r.out, "min det J found").at(0), -1.0, 1e-12);
+  write("cube.json", unit_cube_json(false));
+  EXPECT_EQ(lines(ok("check cube.json").out).at(0), "valid");
+}
+
+TEST_F(Cli, RefineAndElevateKeepGeometry) {
+  ok("make revolve --angle 200 --elements 2 -o ring.json");
+  ok("refine ring.json --uniform 3 -o fine.json");
+  ok("refine ring.json --insert u:0.3,0.7 --insert w:0.55 -o inserted.json");
+  ok("elevate ring.json --by 1 -o elevated.json");
+  const auto fine = nlohmann::json::parse(ok("info --json fine.json").out).at("objects").at(0);
+  EXPECT_EQ(fine.at("elements"), nlohmann::json({6, 6, 9}));
+  const auto ins = nlohmann::json::parse(ok("info --json inserted.json").out).at("objects").at(0);
+  EXPECT_EQ(ins.at("elements"), nlohmann::json({4, 2, 4}));
+  const auto ele = nlohmann::json::parse(ok("info --json elevated.json").out).at("objects").at(0);
+  EXPECT_EQ(ele.at("degrees"), nlohmann::json({3, 3, 3}));
+  for (const char* u : {"0.1 0.2 0.3", "0.77 0.5 0.91", "1 0 0.5"}) {
+    const auto ref = numbers_after(ok(std::string("eval ring.json ") + u + " --derivs 1").out, "S_v");
+    for (const char* f : {"fine.json", "inserted.json", "elevated.json"}) {
+      const auto x = numbers_after(ok(std::string("eval ") + f + " " + u + " --derivs 1").out, "S_v");
+      ASSERT_EQ(x.size(), 3u);
+      for (int k = 0; k < 3; ++k) EXPECT_NEAR(x[k], ref[k], 1e-12) << f << " at " << u;
+    }
+  }
+}
+
+TEST_F(Cli, ConvertRoundTripIsIdentical) {
+  ok("make revolve --angle 120 --degree 3 2 --elements 2 3 -o a.json");
+  ok("convert a.json b.g2");
+  ok("convert b.g2 c.json");
+  EXPECT_EQ(slurp(work_ / "a.json"), slurp(work_ / "c.json"));
+  ok("convert a.json a.vtu --samples 3");
+  ok("convert a.json bezier.vtu --bezier");
+  EXPECT_NE(slurp(work_ / "a.vtu").find("UnstructuredGrid"), std::string::npos);
+  EXPECT_NE(slurp(work_ / "bezier.vtu").find("UnstructuredGrid"), std::string::npos);
+}
+
+TEST_F(Cli, InvertFindsParameterOrReportsOutside) {
+  ok("make box --degree 2 --elements 2 --size 2 1 3 -o box.json");
+  const Result r = ok("invert box.json 0.5 0.25 2.25");
+  const auto u = numbers_after(r.out, "param");
+  ASSERT_EQ(u.size(), 3u);
+  EXPECT_NEAR(u[0], 0.25, 1e-10);
+  EXPECT_NEAR(u[1], 0.25, 1e-10);
+  EXPECT_NEAR(u[2], 0.75, 1e-10);
+  EXPECT_NE(r.out.find("converged"), std::string::npos);
+  const Result out = run("invert box.json 5 -1 0.5");
+  EXPECT_EQ(out.code, 4) << out.err;
+  EXPECT_NE(out.out.find("outside"), std::string::npos);
+}
+
+TEST_F(Cli, BadInputGivesOneErrorLineAndNoOutput) {
+  ok("make box --elements 2 -o box.json");
+  write("broken.json", "{ \"trivar\": 1, \"kind\": ");
+  write("badknots.json", [] {
+    auto j = nlohmann::json::parse(unit_cube_json(false));
+    j["knots"][1] = {0, 0, 1, 0.5};
+    return j.dump();
+  }());
+  fails("info missing.json");
+  fails("refine missing.json --uniform 2 -o out.json");
+  fails("info broken.json");
+  fails("convert broken.json out.g2");
+  fails("check badknots.json");
+  fails("convert badknots.json out.json");
+  fails("eval box.json 1.5 0.5 0.5");
+  fails("eval box.json 0.5 0.5");
+  fails("convert box.json out.xyz");
+  fails("make box --elements 2 -o box.xyz");
+  fails("make revolve --radii 2 1 -o ring.json");
+  fails("make revolve --angle 400 -o ring.json");
+  fails("refine box.json --insert q:0.5 -o out.json");
+  fails("refine box.json --insert u:1.5 -o out.json");
+  fails("refine box.json -o out.json");
+  // Usage errors: exit code 2.
+  fails("", 2);
+  fails("frobnicate", 2);
+  fails("eval", 2);
+  fails("make box --elements two -o b.json", 2);
+  fails("refine box.json --uniform 0 -o out.json", 2);
+}
+
+TEST_F(Cli, DemoWritesItsOutputs) {
+  const Result r = ok("demo --out demo_out");
+  EXPECT_NE(r.out.find("valid"), std::string::npos) << r.out;
+  for (const char* f : {"demo_out/ring.json", "demo_out/ring.vtu", "demo_out/ring_bezier.vtu", "demo_out/ring_net.vtu"})
+    EXPECT_TRUE(exists(f)) << f;
+  EXPECT_EQ(lines(ok("check demo_out/ring.json").out).at(0), "valid");
+  // Same results whatever the thread count.
+  const std::string one = ok("--threads 1 demo --out one").out, two = ok("--threads 2 demo --out two").out;
+  EXPECT_EQ(one.substr(0, one.find("outputs:")), two.substr(0, two.find("outputs:")));
+}
+
+TEST_F(Cli, ExamplesBehaveAsDocumented) {
+  const std::string examples = "'" TRIVAR_TEST_DATA "/../../examples/";
+  EXPECT_NE(ok("info " + examples + "cube.g2'").out.find("control points: 4 x 4 x 4 = 64"), std::string::npos);
+  EXPECT_EQ(lines(ok("check " + examples + "quarter_annulus.json'").out).at(0), "valid");
+  const Result bad = run("check " + examples + "mirrored_cube.json'");
+  EXPECT_EQ(bad.code, 3);
+  EXPECT_EQ(lines(bad.out).at(0), "invalid");
+  // Radius 1.5 at v = 0.5, height 0.25 at u = 0.5, 45 degrees at w = 0.5.
+  const auto x = numbers_after(ok("eval " + examples + "quarter_annulus.json' 0.5 0.5 0.5").out, "S");
+  ASSERT_EQ(x.size(), 3u);
+  EXPECT_NEAR(x[0], 1.5 * std::sqrt(0.5), 1e-15);
+  EXPECT_NEAR(x[1], 1.5 * std::sqrt(0.5), 1e-15);
+  EXPECT_NEAR(x[2], 0.25, 1e-15);
+}
