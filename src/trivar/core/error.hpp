@@ -3,6 +3,7 @@
 // wrong and where (file, line, entity, direction, index), so the CLI can print it verbatim.
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 namespace trivar {
 
@@ -14,6 +15,13 @@ public:
 // Throws Error(message) when the condition is false; used for input validation, never for internal logic.
 inline void require(bool condition, const std::string& message) {
   if (!condition) throw Error(message);
+}
+
+// As above with the message built only on failure, for checks on paths that run per element or per point.
+template <class MakeMessage>
+  requires std::is_invocable_r_v<std::string, MakeMessage>
+inline void require(bool condition, MakeMessage&& make_message) {
+  if (!condition) throw Error(make_message());
 }
 
 }  // namespace trivar

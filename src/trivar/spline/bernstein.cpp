@@ -70,7 +70,10 @@ std::vector<double> binomial_row(int n) {
 template <int D>
 std::string degrees_text(const Ints<D>& n) {
   std::string s = "(";
-  for (int k = 0; k < D; ++k) s += (k ? "," : "") + std::to_string(n[k]);
+  for (int k = 0; k < D; ++k) {
+    if (k) s += ',';
+    s += std::to_string(n[k]);
+  }
   return s + ")";
 }
 
@@ -92,19 +95,22 @@ double contract(const double* c, const Ints<D>& n, const Ints<D>& stride, const 
 template <int D>
 Bernstein<D>::Bernstein(const Ints<D>& degrees, double value) : n_(degrees) {
   for (int k = 0; k < D; ++k)
-    require(degrees[k] >= 0, "Bernstein: negative degree " + std::to_string(degrees[k]) + " in direction " +
-                                 std::to_string(k));
+    require(degrees[k] >= 0, [&] {
+      return "Bernstein: negative degree " + std::to_string(degrees[k]) + " in direction " + std::to_string(k);
+    });
   c_.assign(count_of<D>(n_), value);
 }
 
 template <int D>
 Bernstein<D>::Bernstein(const Ints<D>& degrees, std::vector<double> coefs) : n_(degrees), c_(std::move(coefs)) {
   for (int k = 0; k < D; ++k)
-    require(degrees[k] >= 0, "Bernstein: negative degree " + std::to_string(degrees[k]) + " in direction " +
-                                 std::to_string(k));
-  require(static_cast<int>(c_.size()) == count_of<D>(n_),
-          "Bernstein: " + std::to_string(c_.size()) + " coefficients given for degrees " + degrees_text<D>(n_) +
-              ", expected " + std::to_string(count_of<D>(n_)));
+    require(degrees[k] >= 0, [&] {
+      return "Bernstein: negative degree " + std::to_string(degrees[k]) + " in direction " + std::to_string(k);
+    });
+  require(static_cast<int>(c_.size()) == count_of<D>(n_), [&] {
+    return "Bernstein: " + std::to_string(c_.size()) + " coefficients given for degrees " + degrees_text<D>(n_) +
+           ", expected " + std::to_string(count_of<D>(n_));
+  });
 }
 
 template <int D>
@@ -163,8 +169,10 @@ Bernstein<D> Bernstein<D>::elevate(const Ints<D>& to) const {
   Ints<D> by{};
   bool same = true;
   for (int k = 0; k < D; ++k) {
-    require(to[k] >= n_[k], "Bernstein::elevate: target degree " + std::to_string(to[k]) + " below degree " +
-                                std::to_string(n_[k]) + " in direction " + std::to_string(k));
+    require(to[k] >= n_[k], [&] {
+      return "Bernstein::elevate: target degree " + std::to_string(to[k]) + " below degree " +
+             std::to_string(n_[k]) + " in direction " + std::to_string(k);
+    });
     by[k] = to[k] - n_[k];
     same = same && by[k] == 0;
   }
