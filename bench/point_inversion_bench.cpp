@@ -7,31 +7,15 @@
 #include <random>
 #include <vector>
 
+#include "bench_volumes.hpp"
 #include "trivar/spline/point_inversion.hpp"
 
 using namespace trivar;
 
 namespace {
 
-// Greville points of uniform cubic knots under a smooth near-identity deformation (positive Jacobian).
-SplineVolume curved_tricubic() {
-  std::array<KnotVector, 3> kv;
-  for (auto& k : kv) k = KnotVector::open_uniform(3, 4);
-  const auto g = kv[0].greville();
-  const double pi = std::numbers::pi;
-  std::vector<double> pts;
-  for (double c : g)
-    for (double b : g)
-      for (double a : g) {
-        pts.push_back(a + 0.15 * std::sin(pi * b));
-        pts.push_back(b + 0.15 * std::sin(pi * c));
-        pts.push_back(c + 0.1 * std::sin(pi * a));
-      }
-  return SplineVolume::from_cartesian(kv, 3, pts);
-}
-
 struct Workload {
-  SplineVolume s = curved_tricubic();
+  SplineVolume s = bench::perturbed_cube(3, 4, 0.15);
   PointInverter<3> inverter{s};
   std::vector<Param<3>> params, guesses;
   std::vector<double> points;

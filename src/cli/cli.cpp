@@ -1,9 +1,8 @@
 #include "cli.hpp"
 
-#include <charconv>
-#include <system_error>
 
 #include "trivar/core/error.hpp"
+#include "trivar/core/number_format.hpp"
 #include "trivar/io/spline_file.hpp"
 
 namespace trivar::cli {
@@ -47,11 +46,7 @@ const char* kind_name(int parametric_dim) {
   }
 }
 
-std::string fmt(double x) {
-  char buf[64];
-  const auto r = std::to_chars(buf, buf + sizeof buf, x);
-  return r.ec == std::errc() ? std::string(buf, r.ptr) : std::string("?");
-}
+std::string fmt(double x) { return format_number(x); }
 
 std::string fmt(const double* x, int n, const char* sep) {
   std::string s;

@@ -18,6 +18,7 @@
 #include "trivar/spline/derivative_index.hpp"
 #include "trivar/spline/jacobian.hpp"
 #include "trivar/spline/knot_insertion.hpp"
+#include "trivar/spline/measure.hpp"
 
 namespace trivar::cli {
 
@@ -25,63 +26,9 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-// n-point Gauss-Legendre nodes and weights on [0, 1] by Newton's method on the Legendre recurrence.
-void gauss_legendre(int n, std::vector<double>& x, std::vector<double>& w) {
-  x.assign(n, 0);
-  w.assign(n, 0);
-  for (int i = 0; i < n; ++i) {
-    double z = std::cos(kPi * (i + 0.75) / (n + 0.5)), dp = 1;
-    for (int it = 0; it < 100; ++it) {
-      double p0 = 1, p1 = z;
-      for (int k = 2; k <= n; ++k) {
-        const double p2 = ((2 * k - 1) * z * p1 - (k - 1) * p0) / k;
-        p0 = p1;
-        p1 = p2;
-      }
-      dp = n * (z * p1 - p0) / (z * z - 1);
-      const double dz = p1 / dp;
-      z -= dz;
-      if (std::abs(dz) < 1e-15) break;
-    }
-    x[i] = 0.5 * (1 - z);
-    w[i] = 1.0 / ((1 - z * z) * dp * dp);
-  }
-}
-
 // det[S_u, S_v, S_w] from the three first derivatives stored one after the other.
 double jacobian_determinant(const double* a) {
   return a[0] * (a[4] * a[8] - a[5] * a[7]) - a[1] * (a[3] * a[8] - a[5] * a[6]) + a[2] * (a[3] * a[7] - a[4] * a[6]);
-}
-
-// Volume as the integral of det J over the elements; the quadrature points are evaluated as one batch.
-double volume_by_quadrature(const SplineVolume& s, int points_per_direction, int threads) {
-  std::vector<double> gx, gw;
-  gauss_legendre(points_per_direction, gx, gw);
-  std::array<std::vector<double>, 3> nodes, weights;
-  for (int k = 0; k < 3; ++k) {
-    const std::vector<double> bp = s.knots(k).breakpoints();
-    for (std::size_t e = 0; e + 1 < bp.size(); ++e)
-      for (int q = 0; q < points_per_direction; ++q) {
-        nodes[k].push_back(bp[e] + gx[q] * (bp[e + 1] - bp[e]));
-        weights[k].push_back(gw[q] * (bp[e + 1] - bp[e]));
-      }
-  }
-  std::vector<Param<3>> params;
-  std::vector<double> qw;
-  for (std::size_t k = 0; k < nodes[2].size(); ++k)
-    for (std::size_t j = 0; j < nodes[1].size(); ++j)
-      for (std::size_t i = 0; i < nodes[0].size(); ++i) {
-        params.push_back({nodes[0][i], nodes[1][j], nodes[2][k]});
-        qw.push_back(weights[0][i] * weights[1][j] * weights[2][k]);
-      }
-  const int per = derivative_count(3, 1) * 3;
-  std::vector<double> d(params.size() * per);
-  s.eval_derivs_batch(params, 1, d, threads);
-  double total = 0;
-  for (std::size_t q = 0; q < params.size(); ++q) {
-    total += qw[q] * jacobian_determinant(d.data() + q * per + 3);
-  }
-  return total;
 }
 
 // Largest |distance to the z-axis - (r0 + v (r1 - r0))| on a grid of samples: zero for an exact model.
@@ -114,7 +61,7 @@ void add_demo_command(CLI::App& app, Context& ctx) {
     const SplineVolume coarse = revolve<3>(profile, {0, 0, 0}, {0, 0, 1}, angle);
     const SplineVolume model = refine_uniform(coarse, Ints<3>{parts, parts, parts});
     const JacobianReport<3> jac = check_jacobian(model);
-    const double volume = volume_by_quadrature(model, 8, ctx.threads);
+    const double volume = signed_measure(model, 8, ctx.threads);
     const double exact = angle / 2 * (r1 * r1 - r0 * r0) * height;
     const double radius_error = max_radius_error(model, r0, r1, 21, ctx.threads);
 

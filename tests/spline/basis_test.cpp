@@ -72,3 +72,25 @@ TEST(Basis, BernsteinOnSingleInterval) {
   EXPECT_NEAR(d[4], -3 * 0.49, 1e-14);
   EXPECT_NEAR(d[7], 3 * 0.09, 1e-14);
 }
+
+TEST(Basis, PrecomputedAndFirstDerivativeVariantsMatchTheTriangularScheme) {
+  std::mt19937 rng(13);
+  for (int p = 0; p <= 5; ++p) {
+    const KnotVector kv = test::random_knots(p, 6, rng, 0.0, 3.0);
+    std::vector<double> a(p + 1), b(p + 1), d(p + 1), ders(2 * (p + 1));
+    for (int q = 0; q <= 300; ++q) {
+      const double u = 3.0 * q / 300;
+      const int s = kv.find_span(u);
+      basis_values(kv.data(), p, s, u, a.data());
+      basis_values(kv, s, u, b.data());
+      basis_derivatives(kv.data(), p, s, u, 1, ders.data());
+      std::vector<double> c(p + 1);
+      basis_values_first_derivatives(kv, s, u, c.data(), d.data());
+      for (int i = 0; i <= p; ++i) {
+        EXPECT_NEAR(a[i], b[i], 1e-15);
+        EXPECT_NEAR(c[i], a[i], 1e-15);
+        EXPECT_NEAR(d[i], ders[p + 1 + i], 1e-12 * (1 + std::abs(d[i])));
+      }
+    }
+  }
+}

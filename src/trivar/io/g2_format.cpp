@@ -13,6 +13,7 @@
 
 #include "trivar/core/atomic_file.hpp"
 #include "trivar/core/error.hpp"
+#include "trivar/core/number_format.hpp"
 
 namespace trivar::io {
 
@@ -200,12 +201,6 @@ private:
   std::size_t pos_ = 0;
 };
 
-void put(std::ostream& os, double x) {
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, x);
-  os.write(buf, r.ptr - buf);
-}
-
 template <int D>
 void write_spline(std::ostream& os, const TensorSpline<D>& s) {
   os << kClassTypes[D - 1] << " 1 0 0\n" << s.dim() << ' ' << (s.is_rational() ? 1 : 0) << '\n';
@@ -214,7 +209,7 @@ void write_spline(std::ostream& os, const TensorSpline<D>& s) {
     const auto& t = s.knots(k).knots();
     for (std::size_t i = 0; i < t.size(); ++i) {
       if (i) os << ' ';
-      put(os, t[i]);
+      write_number(os, t[i]);
     }
     os << '\n';
   }
@@ -222,7 +217,7 @@ void write_spline(std::ostream& os, const TensorSpline<D>& s) {
   for (int l = 0; l < s.num_coefs(); ++l) {
     for (int d = 0; d < st; ++d) {
       if (d) os << ' ';
-      put(os, s.coef(l)[d]);
+      write_number(os, s.coef(l)[d]);
     }
     os << '\n';
   }

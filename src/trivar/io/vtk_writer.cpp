@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <climits>
 #include <cmath>
 #include <limits>
@@ -11,6 +10,7 @@
 
 #include "trivar/core/atomic_file.hpp"
 #include "trivar/core/error.hpp"
+#include "trivar/core/number_format.hpp"
 #include "trivar/spline/bezier_extraction.hpp"
 
 namespace trivar::io {
@@ -257,12 +257,6 @@ void add_control_net(Piece& piece, const TensorSpline<D>& s, int extra) {
   });
 }
 
-void put(std::ostream& os, double x) {
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, x);
-  os.write(buf, r.ptr - buf);
-}
-
 std::string xml_escape(const std::string& s) {
   std::string out;
   for (char c : s) {
@@ -296,7 +290,7 @@ void data_array(std::ostream& os, const char* type, const std::string& name, int
   for (std::size_t i = 0; i < v.size(); ++i) {
     os << (i % per_line == 0 ? "          " : " ");
     if constexpr (std::is_floating_point_v<T>)
-      put(os, v[i]);
+      write_number(os, v[i]);
     else
       os << v[i];
     if ((i + 1) % per_line == 0 || i + 1 == v.size()) os << '\n';

@@ -1,15 +1,14 @@
 #include "trivar/model/revolve.hpp"
 
 #include <cmath>
-#include <iomanip>
 #include <numbers>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include <Eigen/Geometry>
 
 #include "trivar/core/error.hpp"
+#include "trivar/core/number_format.hpp"
 
 namespace trivar {
 
@@ -48,7 +47,7 @@ TensorSpline<D> revolve(const TensorSpline<D - 1>& profile, const Eigen::Vector3
   require(axis_point.allFinite() && axis_dir.allFinite() && axis_dir.norm() > 0,
           "revolve: axis direction must be finite and non-zero");
   require(std::isfinite(angle_radians) && angle_radians > 0 && angle_radians <= 2 * std::numbers::pi,
-          "revolve: angle must be in (0, 2 pi] radians, got " + (std::ostringstream() << std::setprecision(17) << angle_radians).str());
+          "revolve: angle must be in (0, 2 pi] radians, got " + format_number(angle_radians));
 
   const Eigen::Vector3d d = axis_dir.normalized();
   const int segments = arc_segments(angle_radians);

@@ -4,38 +4,18 @@
 // Allocation-free: scratch lives on the stack, bounded by kMaxDegree.
 #include <algorithm>
 
-#include "trivar/core/error.hpp"
 #include "trivar/spline/knot_vector.hpp"
 
 namespace trivar {
 
 inline constexpr int kMaxDegree = 31;
 
-// N[0..p] = B_{s-p,p}(u), ..., B_{s,p}(u).
-inline void basis_values(const double* t, int p, int s, double u, double* N) {
-  double left[kMaxDegree + 1], right[kMaxDegree + 1];
-  N[0] = 1.0;
-  for (int j = 1; j <= p; ++j) {
-    left[j] = u - t[s + 1 - j];
-    right[j] = t[s + j] - u;
-    double saved = 0.0;
-    for (int r = 0; r < j; ++r) {
-      const double tmp = N[r] / (right[r + 1] + left[j - r]);
-      N[r] = saved + right[r + 1] * tmp;
-      saved = left[j - r] * tmp;
-    }
-    N[j] = saved;
-  }
-}
-
-// As above on a KnotVector, multiplying by its precomputed inverse knot differences instead of dividing.
-// P >= 0 fixes the degree at compile time (the loops unroll in the specialised evaluation kernels); P = -1
-// takes it from kv.
-template <int P = -1>
-inline void basis_values(const KnotVector& kv, int s, double u, double* N) {
-  const double* t = kv.data();
-  const double* inv = kv.inverse_differences(s);
-  const int p = P >= 0 ? P : kv.degree();
+// The triangular scheme. P >= 0 fixes the degree at compile time (loops unroll in the specialised evaluation
+// kernels), P = -1 takes p. With kInverse the knot differences come as precomputed reciprocals `inv`
+// (KnotVector::inverse_differences), so per-point evaluation only multiplies.
+template <int P, bool kInverse>
+inline void basis_values_impl(const double* t, int p_runtime, int s, double u, const double* inv, double* N) {
+  const int p = P >= 0 ? P : p_runtime;
   double left[(P >= 0 ? P : kMaxDegree) + 1], right[(P >= 0 ? P : kMaxDegree) + 1];
   N[0] = 1.0;
   for (int j = 1; j <= p; ++j) {
@@ -43,12 +23,23 @@ inline void basis_values(const KnotVector& kv, int s, double u, double* N) {
     right[j] = t[s + j] - u;
     double saved = 0.0;
     for (int r = 0; r < j; ++r) {
-      const double tmp = N[r] * *inv++;
+      const double tmp = kInverse ? N[r] * *inv++ : N[r] / (right[r + 1] + left[j - r]);
       N[r] = saved + right[r + 1] * tmp;
       saved = left[j - r] * tmp;
     }
     N[j] = saved;
   }
+}
+
+// N[0..p] = B_{s-p,p}(u), ..., B_{s,p}(u) on the raw knot array t (any knot sequence, e.g. local knots).
+inline void basis_values(const double* t, int p, int s, double u, double* N) {
+  basis_values_impl<-1, false>(t, p, s, u, nullptr, N);
+}
+
+// The same on a KnotVector, using its precomputed reciprocal knot differences.
+template <int P = -1>
+inline void basis_values(const KnotVector& kv, int s, double u, double* N) {
+  basis_values_impl<P, true>(kv.data(), kv.degree(), s, u, kv.inverse_differences(s), N);
 }
 
 // Values and first derivatives: N[0..p] and dN[0..p]. The derivative of B_{i,p} is
@@ -88,7 +79,7 @@ inline void basis_values_first_derivatives(const KnotVector& kv, int s, double u
 inline void basis_derivatives(const double* t, int p, int s, double u, int n, double* ders) {
   double ndu[kMaxDegree + 1][kMaxDegree + 1];
   double left[kMaxDegree + 1], right[kMaxDegree + 1];
-  double a[2][kMaxDegree + 1];
+  double a[2][kMaxDegree + 1] = {};  // initialised: GCC cannot see that only written entries are read
   ndu[0][0] = 1.0;
   for (int j = 1; j <= p; ++j) {
     left[j] = u - t[s + 1 - j];
@@ -136,11 +127,6 @@ inline void basis_derivatives(const double* t, int p, int s, double u, int n, do
   }
   for (int k = nk + 1; k <= n; ++k)
     for (int j = 0; j <= p; ++j) ders[k * w + j] = 0.0;
-}
-
-inline void check_degree(int p) {
-  require(p >= 0 && p <= kMaxDegree,
-          "degree " + std::to_string(p) + " is outside the supported range [0, " + std::to_string(kMaxDegree) + "]");
 }
 
 }  // namespace trivar

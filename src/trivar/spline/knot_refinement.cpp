@@ -1,9 +1,9 @@
 #include "trivar/spline/knot_refinement.hpp"
 
 #include <algorithm>
-#include <sstream>
 
 #include "trivar/core/error.hpp"
+#include "trivar/core/number_format.hpp"
 
 namespace trivar {
 
@@ -30,13 +30,6 @@ void boehm_insert(std::vector<double>& K, std::vector<double>& c, int p, double 
   c.swap(q);
 }
 
-std::string num(double x) {
-  std::ostringstream s;
-  s.precision(17);
-  s << x;
-  return s.str();
-}
-
 }  // namespace
 
 void express_in(std::span<const double> local, int p, const KnotVector& to, int& first, std::vector<double>& coefs) {
@@ -47,7 +40,7 @@ void express_in(std::span<const double> local, int p, const KnotVector& to, int&
   const auto lo = std::upper_bound(t.begin(), t.end(), a);  // first knot of `to` strictly inside (a, b)
   const auto hi = std::lower_bound(t.begin(), t.end(), b);
   require(lo - t.begin() >= m_start && *(lo - m_start) == a && t.end() - hi >= m_end && *(hi + (m_end - 1)) == b,
-          "knot refinement: target knot vector does not contain the support ends " + num(a) + ", " + num(b));
+          "knot refinement: target knot vector does not contain the support ends " + format_number(a) + ", " + format_number(b));
   first = static_cast<int>(lo - t.begin()) - m_start;
 
   std::vector<double> K(local.begin(), local.end());
@@ -60,10 +53,10 @@ void express_in(std::span<const double> local, int p, const KnotVector& to, int&
       ++li;
       continue;
     }
-    require(li == le || *li > *ti, "knot refinement: target knot vector lacks knot " + num(*li));
+    require(li == le || *li > *ti, "knot refinement: target knot vector lacks knot " + format_number(*li));
     boehm_insert(K, coefs, p, *ti);
   }
-  require(li == le, "knot refinement: target knot vector lacks knot " + (li == le ? std::string() : num(*li)));
+  require(li == le, "knot refinement: target knot vector lacks knot " + (li == le ? std::string() : format_number(*li)));
 }
 
 SparseRowMatrix refinement_matrix(const KnotVector& from, const KnotVector& to) {
@@ -86,8 +79,8 @@ SparseRowMatrix refinement_matrix(const KnotVector& from, const KnotVector& to) 
 KnotVector with_knots(const KnotVector& kv, std::span<const double> knots) {
   std::vector<double> t = kv.knots();
   for (double z : knots) {
-    require(z >= kv.start() && z <= kv.end(), "knot insertion: knot " + num(z) + " is outside the domain [" +
-                                                  num(kv.start()) + ", " + num(kv.end()) + "]");
+    require(z >= kv.start() && z <= kv.end(), "knot insertion: knot " + format_number(z) + " is outside the domain [" +
+                                                  format_number(kv.start()) + ", " + format_number(kv.end()) + "]");
     t.insert(std::upper_bound(t.begin(), t.end(), z), z);
   }
   return KnotVector(kv.degree(), std::move(t));

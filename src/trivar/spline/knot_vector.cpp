@@ -2,21 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 #include "trivar/core/error.hpp"
+#include "trivar/core/number_format.hpp"
 #include "trivar/spline/basis.hpp"
 
 namespace trivar {
-
-namespace {
-std::string num(double x) {
-  std::ostringstream s;
-  s.precision(17);
-  s << x;
-  return s.str();
-}
-}  // namespace
 
 KnotVector::KnotVector(int degree, std::vector<double> knots) : p_(degree), t_(std::move(knots)) {
   require(p_ >= 0 && p_ <= kMaxDegree, "knot vector: degree " + std::to_string(p_) + " is outside [0, " +
@@ -27,21 +18,21 @@ KnotVector::KnotVector(int degree, std::vector<double> knots) : p_(degree), t_(s
   for (int i = 0; i < m; ++i) {
     require(std::isfinite(t_[i]), "knot vector: knot " + std::to_string(i) + " is not finite");
     if (i > 0)
-      require(t_[i] >= t_[i - 1], "knot vector: knot " + std::to_string(i) + " (" + num(t_[i]) +
-                                      ") is smaller than knot " + std::to_string(i - 1) + " (" + num(t_[i - 1]) +
+      require(t_[i] >= t_[i - 1], "knot vector: knot " + std::to_string(i) + " (" + format_number(t_[i]) +
+                                      ") is smaller than knot " + std::to_string(i - 1) + " (" + format_number(t_[i - 1]) +
                                       "); knots must be non-decreasing");
   }
   for (int i = 0; i < m;) {
     int j = i;
     while (j < m && t_[j] == t_[i]) ++j;
-    require(j - i <= p_ + 1, "knot vector: knot " + num(t_[i]) + " at index " + std::to_string(i) +
+    require(j - i <= p_ + 1, "knot vector: knot " + format_number(t_[i]) + " at index " + std::to_string(i) +
                                  " has multiplicity " + std::to_string(j - i) + " > degree + 1 = " +
                                  std::to_string(p_ + 1));
     i = j;
   }
   const int n = size();
   require(t_[p_] < t_[n], "knot vector: empty domain [t_" + std::to_string(p_) + ", t_" + std::to_string(n) +
-                              "] = [" + num(t_[p_]) + ", " + num(t_[n]) + "]");
+                              "] = [" + format_number(t_[p_]) + ", " + format_number(t_[n]) + "]");
   first_span_ = p_;
   while (t_[first_span_] == t_[first_span_ + 1]) ++first_span_;
   last_span_ = n - 1;
@@ -60,7 +51,7 @@ KnotVector::KnotVector(int degree, std::vector<double> knots) : p_(degree), t_(s
 
 KnotVector KnotVector::open_uniform(int degree, int elements, double a, double b) {
   require(elements >= 1, "knot vector: number of elements must be >= 1, got " + std::to_string(elements));
-  require(a < b, "knot vector: domain [" + num(a) + ", " + num(b) + "] is empty");
+  require(a < b, "knot vector: domain [" + format_number(a) + ", " + format_number(b) + "] is empty");
   std::vector<double> bp(elements + 1);
   for (int i = 0; i <= elements; ++i) bp[i] = i == elements ? b : a + (b - a) * i / elements;
   return from_breakpoints(degree, bp);
