@@ -462,18 +462,28 @@ void TensorSpline<D>::eval_grid(const std::array<std::vector<double>, D>& params
     if (direct) {
       dst = out.data();
     } else {
-      next.assign(mk * post * row, 0.0);
+      next.resize(mk * post * row);
       dst = next.data();
     }
-    parallel_for(static_cast<std::ptrdiff_t>(mk * post), threads, [&](std::ptrdiff_t r) {
-      const std::size_t q = static_cast<std::size_t>(r) % mk, o = static_cast<std::size_t>(r) / mk;
-      double* d = dst + (q + mk * o) * row;
-      std::fill(d, d + row, 0.0);
-      const double* N = basis[k].data() + q * len;
-      const double* s = src + (first[k][q] + nk * o) * row;
-      for (int a = 0; a < len; ++a)
-        for (std::size_t x = 0; x < row; ++x) d[x] += N[a] * s[a * row + x];
-    });
+    // Short rows (the last contraction: one control value per point) get compile-time row lengths.
+    auto contract_axis = [&]<std::size_t RF>() {
+      const std::size_t rl = RF > 0 ? RF : row;
+      parallel_for(static_cast<std::ptrdiff_t>(mk * post), threads, [&](std::ptrdiff_t r) {
+        const std::size_t q = static_cast<std::size_t>(r) % mk, o = static_cast<std::size_t>(r) / mk;
+        double* d = dst + (q + mk * o) * rl;
+        const double* N = basis[k].data() + q * len;
+        const double* s = src + (first[k][q] + nk * o) * rl;
+        for (std::size_t x = 0; x < rl; ++x) d[x] = N[0] * s[x];
+        for (int a = 1; a < len; ++a)
+          for (std::size_t x = 0; x < rl; ++x) d[x] += N[a] * s[a * rl + x];
+      });
+    };
+    switch (row) {
+      case 1: contract_axis.template operator()<1>(); break;
+      case 3: contract_axis.template operator()<3>(); break;
+      case 4: contract_axis.template operator()<4>(); break;
+      default: contract_axis.template operator()<0>(); break;
+    }
     shape[k] = mk;
     if (direct) return;
     cur.swap(next);
