@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "trivar/core/error.hpp"
@@ -83,4 +84,23 @@ TEST(KnotVector, OpenUniform) {
   EXPECT_EQ(kv.knots(), (std::vector<double>{0, 0, 0, 0.5, 1, 1.5, 2, 2, 2}));
   EXPECT_EQ(kv.size(), 6);
   EXPECT_THROW(KnotVector::open_uniform(2, 0), Error);
+}
+
+TEST(KnotVector, UniformFastSpanSearchAgreesWithBinarySearch) {
+  // Uniform knots take an O(1) path; compare with the definition on many elements, at and next to knots.
+  for (int p : {1, 2, 3}) {
+    const auto kv = KnotVector::open_uniform(p, 1000, -1.0, 2.0);
+    const auto& t = kv.knots();
+    auto reference = [&](double u) {
+      if (u >= kv.end()) return kv.size() - 1;
+      if (u < kv.start()) return p;
+      return static_cast<int>(std::upper_bound(t.begin(), t.end(), u) - t.begin()) - 1;
+    };
+    for (int i = 0; i <= 1000; ++i) {
+      const double knot = t[p + i];
+      for (double u : {knot, std::nextafter(knot, -10.0), std::nextafter(knot, 10.0)}) EXPECT_EQ(kv.find_span(u), reference(u)) << u;
+    }
+    EXPECT_EQ(kv.find_span(-5.0), p);
+    EXPECT_EQ(kv.find_span(7.0), kv.size() - 1);
+  }
 }

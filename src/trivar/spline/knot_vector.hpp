@@ -65,16 +65,17 @@ private:
 };
 
 inline int KnotVector::find_span(double u) const {
-  if (u >= t_[last_span_ + 1]) return last_span_;
-  if (u < t_[first_span_ + 1]) return first_span_;
   if (uniform_inv_h_ > 0.0) {
-    // Guess from the spacing, then correct the rounding of the division by at most one step.
-    int s = first_span_ + static_cast<int>((u - t_[first_span_]) * uniform_inv_h_);
-    s = std::clamp(s, first_span_, last_span_);
-    while (s > first_span_ && u < t_[s]) --s;
-    while (s < last_span_ && u >= t_[s + 1]) ++s;
+    // Guess from the spacing (the clamp also handles parameters outside the domain), then correct the
+    // rounding of the product by at most one step.
+    const double x = (u - t_[first_span_]) * uniform_inv_h_;
+    int s = first_span_ + static_cast<int>(std::clamp(x, 0.0, static_cast<double>(last_span_ - first_span_)));
+    if (s > first_span_ && u < t_[s]) --s;
+    if (s < last_span_ && u >= t_[s + 1]) ++s;
     return s;
   }
+  if (u >= t_[last_span_ + 1]) return last_span_;
+  if (u < t_[first_span_ + 1]) return first_span_;
   auto it = std::upper_bound(t_.begin() + first_span_ + 1, t_.begin() + last_span_ + 1, u);
   return static_cast<int>(it - t_.begin()) - 1;
 }
