@@ -1,0 +1,93 @@
+#pragma once
+// MeshRectangle<D>: one piece of an LR box mesh, an axis-aligned (D-1)-dimensional box at a constant value in
+// one direction (a mesh line for D = 2, a mesh rectangle for D = 3) with a knot multiplicity.
+#include <algorithm>
+#include <array>
+#include <vector>
+
+#include "trivar/core/box.hpp"
+
+namespace trivar {
+
+template <int D>
+struct MeshRectangle {
+  int dir = 0;          // the direction in which the rectangle is constant
+  double value = 0.0;   // its parameter in that direction
+  Box<D> extent{};      // extent in the other directions; lo[dir] == hi[dir] == value
+  int multiplicity = 1;
+
+  // The rectangle {u_dir = value} x [lo, hi] (entries of lo / hi at `dir` are ignored).
+  static MeshRectangle make(int dir, double value, const Param<D>& lo, const Param<D>& hi, int multiplicity = 1) {
+    MeshRectangle r;
+    r.dir = dir;
+    r.value = value;
+    r.extent.lo = lo;
+    r.extent.hi = hi;
+    r.extent.lo[dir] = r.extent.hi[dir] = value;
+    r.multiplicity = multiplicity;
+    return r;
+  }
+
+  // True when the extent meets the box `b` in a set of positive (D-1)-dimensional measure, `dir` ignored.
+  bool overlaps_across(const Box<D>& b) const {
+    for (int j = 0; j < D; ++j)
+      if (j != dir && (extent.hi[j] <= b.lo[j] || extent.lo[j] >= b.hi[j])) return false;
+    return true;
+  }
+  // True when the box `b`, `dir` ignored, lies within the extent.
+  bool contains_across(const Box<D>& b) const {
+    for (int j = 0; j < D; ++j)
+      if (j != dir && (b.lo[j] < extent.lo[j] || b.hi[j] > extent.hi[j])) return false;
+    return true;
+  }
+};
+
+// True when the union of the rectangles among `rects` at (dir, value) with multiplicity >= `multiplicity`
+// covers the box `b` (its `dir` entries ignored). Unions of rectangles are not boxes in 3D, so coverage is
+// decided on the cells of the grid spanned by all rectangle bounds inside `b`.
+template <int D>
+bool mesh_covers(const std::vector<MeshRectangle<D>>& rects, int dir, double value, const Box<D>& b,
+                 int multiplicity) {
+  std::vector<const MeshRectangle<D>*> hits;
+  for (const auto& r : rects)
+    if (r.dir == dir && r.value == value && r.multiplicity >= multiplicity && r.overlaps_across(b)) hits.push_back(&r);
+  if (hits.empty()) return false;
+  std::array<std::vector<double>, D> cuts;
+  for (int j = 0; j < D; ++j) {
+    if (j == dir) continue;
+    cuts[j] = {b.lo[j], b.hi[j]};
+    for (const auto* r : hits) {
+      if (r->extent.lo[j] > b.lo[j] && r->extent.lo[j] < b.hi[j]) cuts[j].push_back(r->extent.lo[j]);
+      if (r->extent.hi[j] > b.lo[j] && r->extent.hi[j] < b.hi[j]) cuts[j].push_back(r->extent.hi[j]);
+    }
+    std::sort(cuts[j].begin(), cuts[j].end());
+    cuts[j].erase(std::unique(cuts[j].begin(), cuts[j].end()), cuts[j].end());
+  }
+  // Odometer over the grid cells; each cell's centre must lie in some rectangle.
+  std::array<int, D> c{};
+  for (;;) {
+    Param<D> mid{};
+    for (int j = 0; j < D; ++j)
+      if (j != dir) mid[j] = 0.5 * (cuts[j][c[j]] + cuts[j][c[j] + 1]);
+    bool inside = false;
+    for (const auto* r : hits) {
+      bool in = true;
+      for (int j = 0; j < D && in; ++j)
+        if (j != dir && (mid[j] < r->extent.lo[j] || mid[j] > r->extent.hi[j])) in = false;
+      if (in) {
+        inside = true;
+        break;
+      }
+    }
+    if (!inside) return false;
+    int j = 0;
+    for (; j < D; ++j) {
+      if (j == dir) continue;
+      if (++c[j] + 1 < static_cast<int>(cuts[j].size())) break;
+      c[j] = 0;
+    }
+    if (j == D) return true;
+  }
+}
+
+}  // namespace trivar
