@@ -9,26 +9,11 @@
 #include <vector>
 
 #include "trivar/core/box.hpp"
+#include "trivar/lr/lr_bspline.hpp"
 #include "trivar/lr/mesh_rectangle.hpp"
 #include "trivar/spline/tensor_spline.hpp"
 
 namespace trivar {
-
-template <int D>
-struct LRBSpline {
-  std::array<std::vector<double>, D> knots;  // p_k + 2 local knots in direction k
-  double gamma = 1.0;
-  std::vector<double> coef;                  // stride() values, homogeneous when rational
-
-  Box<D> support() const {
-    Box<D> b;
-    for (int k = 0; k < D; ++k) {
-      b.lo[k] = knots[k].front();
-      b.hi[k] = knots[k].back();
-    }
-    return b;
-  }
-};
 
 template <int D>
 class LRSpline {
