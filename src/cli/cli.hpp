@@ -33,6 +33,8 @@ void add_refine_command(CLI::App& app, Context& ctx);
 void add_elevate_command(CLI::App& app, Context& ctx);
 void add_check_command(CLI::App& app, Context& ctx);
 void add_make_command(CLI::App& app, Context& ctx);
+// make extrude|ruled|loft|coons: constructors from input splines, registered under `make`.
+void add_make_constructors(CLI::App& make);
 void add_invert_command(CLI::App& app, Context& ctx);
 void add_demo_command(CLI::App& app, Context& ctx);
 

@@ -108,10 +108,11 @@ void add_revolve(CLI::App& make) {
 }  // namespace
 
 void add_make_command(CLI::App& app, Context&) {
-  auto* make = app.add_subcommand("make", "Build a model: make box ..., make revolve ...");
+  auto* make = app.add_subcommand("make", "Build a model: make box|revolve|extrude|ruled|loft|coons ...");
   make->require_subcommand(1);
   add_box(*make);
   add_revolve(*make);
+  add_make_constructors(*make);
 }
 
 }  // namespace trivar::cli
