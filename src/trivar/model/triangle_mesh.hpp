@@ -1,0 +1,23 @@
+#pragma once
+// TriangleMesh: an indexed triangle mesh (shared vertices), the form in which trivar hands model boundaries to
+// STL, 3MF and AMF writers; with the checks and integrals those outputs are validated by.
+#include <array>
+#include <vector>
+
+namespace trivar {
+
+struct TriangleMesh {
+  std::vector<std::array<double, 3>> vertices;
+  std::vector<std::array<int, 3>> triangles;  // counter-clockwise seen from outside
+};
+
+// True when every undirected edge is used by exactly two triangles, once in each direction (a closed,
+// consistently oriented 2-manifold).
+bool is_watertight(const TriangleMesh& m);
+
+double surface_area(const TriangleMesh& m);
+
+// Signed enclosed volume by the divergence theorem (positive for outward-oriented closed meshes).
+double enclosed_volume(const TriangleMesh& m);
+
+}  // namespace trivar
