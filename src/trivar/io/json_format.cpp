@@ -190,7 +190,7 @@ AnySpline spline_from_json(const json& j, const std::string& where) {
   }
 }
 
-std::vector<AnySpline> read_json(const std::string& path) {
+json read_json_document(const std::string& path) {
   require(!std::filesystem::is_directory(path), path + ": is a directory, expected a JSON file");
   std::ifstream in(path);
   require(static_cast<bool>(in), path + ": cannot open file for reading");
@@ -206,8 +206,20 @@ std::vector<AnySpline> read_json(const std::string& path) {
     throw Error(path + ": invalid JSON: " + what);
   }
   if (!doc.is_object()) fail(path, "", std::string("expected a JSON object, got ") + doc.type_name());
-  if (!doc.contains("trivar")) fail(path, "", "missing key \"trivar\" (not a trivar spline file)");
+  if (!doc.contains("trivar")) fail(path, "", "missing key \"trivar\" (not a trivar file)");
   if (doc["trivar"] != 1) fail(path, "trivar", "unsupported format version " + doc["trivar"].dump() + " (expected 1)");
+  return doc;
+}
+
+void write_json_document(const std::string& path, const json& doc) {
+  write_file_atomically(path, [&](std::ostream& os) {
+    print(os, doc, 0);
+    os << '\n';
+  });
+}
+
+std::vector<AnySpline> read_json(const std::string& path) {
+  const json doc = read_json_document(path);
   if (!doc.contains("objects")) return {spline_from_json(doc, path)};
 
   for (const auto& [key, value] : doc.items())
@@ -245,10 +257,7 @@ void write_json(const std::string& path, const std::vector<AnySpline>& objects) 
       }
     }
   }
-  write_file_atomically(path, [&](std::ostream& os) {
-    print(os, doc, 0);
-    os << '\n';
-  });
+  write_json_document(path, doc);
 }
 
 }  // namespace trivar::io

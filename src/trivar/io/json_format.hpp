@@ -20,6 +20,12 @@ nlohmann::json to_json(const AnySpline& s);
 // which then names the JSON path inside the object and what was expected.
 AnySpline spline_from_json(const nlohmann::json& j, const std::string& where);
 
+// The parsed top-level object of a trivar JSON file, with "trivar": 1 checked; throws trivar::Error naming the
+// file on I/O and syntax errors.
+nlohmann::json read_json_document(const std::string& path);
+// Writes a document atomically in the project's layout (spline keys in schema order, numeric arrays on one line).
+void write_json_document(const std::string& path, const nlohmann::json& doc);
+
 // Reads a file holding one object or {"trivar": 1, "objects": [...]} (at least one object).
 std::vector<AnySpline> read_json(const std::string& path);
 

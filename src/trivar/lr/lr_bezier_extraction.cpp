@@ -1,0 +1,233 @@
+#include "trivar/lr/lr_bezier_extraction.hpp"
+
+#include <algorithm>
+#include <string>
+
+#include "trivar/core/error.hpp"
+#include "trivar/core/parallel.hpp"
+#include "trivar/spline/basis.hpp"
+
+namespace trivar {
+
+Incidence Incidence::transposed(int num_targets) const {
+  Incidence t;
+  t.offsets.assign(static_cast<std::size_t>(num_targets) + 1, 0);
+  for (int j : ids) ++t.offsets[static_cast<std::size_t>(j) + 1];
+  for (std::size_t j = 0; j < static_cast<std::size_t>(num_targets); ++j) t.offsets[j + 1] += t.offsets[j];
+  t.ids.resize(ids.size());
+  std::vector<int> fill(t.offsets.begin(), t.offsets.end() - 1);
+  for (int i = 0; i < size(); ++i)
+    for (int j : (*this)[i]) t.ids[static_cast<std::size_t>(fill[static_cast<std::size_t>(j)]++)] = i;
+  return t;
+}
+
+namespace {
+
+// Static k-d tree over points (element centres), median split cycling through the directions; answers "which
+// points lie in the open box".
+template <int D>
+class CentreTree {
+public:
+  explicit CentreTree(std::span<const Box<D>> elements) : idx_(elements.size()), pts_(elements.size()) {
+    std::vector<Param<D>> c(elements.size());
+    for (std::size_t e = 0; e < elements.size(); ++e) c[e] = elements[e].center();
+    for (std::size_t e = 0; e < idx_.size(); ++e) idx_[e] = static_cast<int>(e);
+    build(c, 0, static_cast<int>(idx_.size()), 0);
+    for (std::size_t i = 0; i < idx_.size(); ++i) pts_[i] = c[static_cast<std::size_t>(idx_[i])];
+  }
+
+  void query(const Box<D>& box, std::vector<int>& out) const { query(box, 0, static_cast<int>(idx_.size()), 0, out); }
+
+private:
+  static constexpr int kLeaf = 8;
+  std::vector<int> idx_;
+  std::vector<Param<D>> pts_;
+
+  void build(const std::vector<Param<D>>& c, int lo, int hi, int depth) {
+    if (hi - lo <= kLeaf) return;
+    const int axis = depth % D, mid = (lo + hi) / 2;
+    std::nth_element(idx_.begin() + lo, idx_.begin() + mid, idx_.begin() + hi, [&](int a, int b) {
+      return c[static_cast<std::size_t>(a)][static_cast<std::size_t>(axis)] <
+             c[static_cast<std::size_t>(b)][static_cast<std::size_t>(axis)];
+    });
+    build(c, lo, mid, depth + 1);
+    build(c, mid + 1, hi, depth + 1);
+  }
+
+  static bool inside(const Param<D>& p, const Box<D>& b) {
+    for (int k = 0; k < D; ++k)
+      if (!(b.lo[k] < p[static_cast<std::size_t>(k)] && p[static_cast<std::size_t>(k)] < b.hi[k])) return false;
+    return true;
+  }
+
+  void query(const Box<D>& box, int lo, int hi, int depth, std::vector<int>& out) const {
+    if (hi - lo <= kLeaf) {
+      for (int i = lo; i < hi; ++i)
+        if (inside(pts_[static_cast<std::size_t>(i)], box)) out.push_back(idx_[static_cast<std::size_t>(i)]);
+      return;
+    }
+    const int axis = depth % D, mid = (lo + hi) / 2;
+    const double v = pts_[static_cast<std::size_t>(mid)][static_cast<std::size_t>(axis)];
+    if (box.lo[axis] < v) query(box, lo, mid, depth + 1, out);
+    if (inside(pts_[static_cast<std::size_t>(mid)], box)) out.push_back(idx_[static_cast<std::size_t>(mid)]);
+    if (box.hi[axis] > v) query(box, mid + 1, hi, depth + 1, out);
+  }
+};
+
+}  // namespace
+
+template <int D>
+Incidence support_elements(std::span<const LRBSpline<D>> basis, std::span<const Box<D>> elements, int threads) {
+  const CentreTree<D> tree(elements);
+  const int nb = static_cast<int>(basis.size());
+  // Contiguous chunks of B-splines, each filling its own buffer, then concatenated in order.
+  const int chunks = std::max(1, std::min(nb, 64 * resolve_threads(threads)));
+  std::vector<std::vector<int>> ids(static_cast<std::size_t>(chunks));
+  std::vector<int> counts(static_cast<std::size_t>(nb));
+  parallel_for(chunks, threads, [&](std::ptrdiff_t c) {
+    const int b0 = static_cast<int>(c * nb / chunks), b1 = static_cast<int>((c + 1) * nb / chunks);
+    auto& out = ids[static_cast<std::size_t>(c)];
+    for (int b = b0; b < b1; ++b) {
+      const std::size_t start = out.size();
+      tree.query(basis[static_cast<std::size_t>(b)].support(), out);
+      std::sort(out.begin() + static_cast<std::ptrdiff_t>(start), out.end());
+      counts[static_cast<std::size_t>(b)] = static_cast<int>(out.size() - start);
+    }
+  });
+  Incidence r;
+  r.offsets.resize(static_cast<std::size_t>(nb) + 1);
+  for (std::size_t b = 0; b < static_cast<std::size_t>(nb); ++b) r.offsets[b + 1] = r.offsets[b] + counts[b];
+  r.ids.reserve(static_cast<std::size_t>(r.offsets.back()));
+  for (const auto& v : ids) r.ids.insert(r.ids.end(), v.begin(), v.end());
+  return r;
+}
+
+template <int D>
+Incidence element_supports(std::span<const LRBSpline<D>> basis, std::span<const Box<D>> elements, int threads) {
+  return support_elements<D>(basis, elements, threads).transposed(static_cast<int>(elements.size()));
+}
+
+void local_extraction_row(std::span<const double> knots, double a, double b, double* row) {
+  const int p = static_cast<int>(knots.size()) - 2;
+  require(p >= 0 && p <= kMaxDegree, [&] {
+    return "local_extraction_row: " + std::to_string(knots.size()) + " local knots, expected p + 2 with p in 0.." +
+           std::to_string(kMaxDegree);
+  });
+  require(knots.front() <= a && a < b && b <= knots.back(), [&] {
+    return "local_extraction_row: interval [" + std::to_string(a) + ", " + std::to_string(b) +
+           "] is not a non-empty part of the support [" + std::to_string(knots.front()) + ", " +
+           std::to_string(knots.back()) + "]";
+  });
+  // The B-spline embedded in a knot vector padded by p + 1 knots on each side (coefficient 1, the padding
+  // B-splines 0), so inserting at the ends of the support is ordinary interior knot insertion.
+  constexpr int kCap = 5 * kMaxDegree + 8;
+  double T[kCap], P[kCap];
+  const double w = knots.back() - knots.front();
+  int n = 0;
+  for (int i = p + 1; i >= 1; --i) T[n++] = knots.front() - i * w;
+  for (double t : knots) T[n++] = t;
+  for (int i = 1; i <= p + 1; ++i) T[n++] = knots.back() + i * w;
+  int nc = n - p - 1;
+  std::fill(P, P + nc, 0.0);
+  P[p + 1] = 1.0;
+  for (double z : {a, b}) {
+    for (int m = static_cast<int>(std::count(T, T + n, z)); m < p + 1; ++m) {
+      const int k = static_cast<int>(std::upper_bound(T, T + n, z) - T) - 1;
+      for (int i = nc; i >= k + 1; --i) P[i] = P[i - 1];
+      for (int i = k; i >= k - p + 1; --i) {
+        const double alpha = (z - T[i]) / (T[i + p] - T[i]);
+        P[i] = alpha * P[i] + (1.0 - alpha) * P[i - 1];
+      }
+      for (int i = n; i > k + 1; --i) T[i] = T[i - 1];
+      T[k + 1] = z;
+      ++n;
+      ++nc;
+    }
+  }
+  const int r = static_cast<int>(std::lower_bound(T, T + n, a) - T);
+  std::copy(P + r, P + r + p + 1, row);
+}
+
+template <int D>
+Eigen::MatrixXd extraction_operator(const Ints<D>& degrees, std::span<const LRBSpline<D>> basis,
+                                    std::span<const int> ids, const Box<D>& element) {
+  int cols = 1;
+  for (int k = 0; k < D; ++k) cols *= degrees[static_cast<std::size_t>(k)] + 1;
+  Eigen::MatrixXd C(static_cast<Eigen::Index>(ids.size()), cols);
+  double rows[D][kMaxDegree + 1];
+  for (std::size_t r = 0; r < ids.size(); ++r) {
+    const LRBSpline<D>& bs = basis[static_cast<std::size_t>(ids[r])];
+    for (int k = 0; k < D; ++k) {
+      const auto& t = bs.knots[static_cast<std::size_t>(k)];
+      require(static_cast<int>(t.size()) == degrees[static_cast<std::size_t>(k)] + 2, [&] {
+        return "extraction_operator: B-spline " + std::to_string(ids[r]) + " has " + std::to_string(t.size()) +
+               " knots in direction " + std::to_string(k) + ", expected p + 2 = " +
+               std::to_string(degrees[static_cast<std::size_t>(k)] + 2);
+      });
+      local_extraction_row(t, element.lo[k], element.hi[k], rows[k]);
+    }
+    std::array<int, D> j{};
+    for (int c = 0; c < cols; ++c) {
+      double v = bs.gamma;
+      for (int k = 0; k < D; ++k) v *= rows[k][j[static_cast<std::size_t>(k)]];
+      C(static_cast<Eigen::Index>(r), c) = v;
+      for (int k = 0; k < D; ++k) {
+        if (++j[static_cast<std::size_t>(k)] <= degrees[static_cast<std::size_t>(k)]) break;
+        j[static_cast<std::size_t>(k)] = 0;
+      }
+    }
+  }
+  return C;
+}
+
+template <int D>
+BezierElement<D> bezier_element(const Ints<D>& degrees, std::span<const LRBSpline<D>> basis,
+                                std::span<const int> ids, const Box<D>& element, int dim, bool rational) {
+  const Eigen::MatrixXd C = extraction_operator<D>(degrees, basis, ids, element);
+  BezierElement<D> e;
+  e.domain = element;
+  for (int k = 0; k < D; ++k) e.degrees[static_cast<std::size_t>(k)] = degrees[static_cast<std::size_t>(k)];
+  e.dim = dim;
+  e.rational = rational;
+  const int st = e.stride();
+  e.coefs.assign(static_cast<std::size_t>(C.cols() * st), 0.0);
+  for (Eigen::Index r = 0; r < C.rows(); ++r) {
+    const auto& c = basis[static_cast<std::size_t>(ids[static_cast<std::size_t>(r)])].coef;
+    require(static_cast<int>(c.size()) == st, [&] {
+      return "bezier_element: B-spline " + std::to_string(ids[static_cast<std::size_t>(r)]) + " has " +
+             std::to_string(c.size()) + " coefficient values, expected " + std::to_string(st);
+    });
+    for (Eigen::Index j = 0; j < C.cols(); ++j)
+      for (int s = 0; s < st; ++s) e.coefs[static_cast<std::size_t>(j * st + s)] += C(r, j) * c[static_cast<std::size_t>(s)];
+  }
+  return e;
+}
+
+template <int D>
+std::vector<BezierElement<D>> bezier_elements(const Ints<D>& degrees, std::span<const LRBSpline<D>> basis,
+                                              std::span<const Box<D>> elements, int dim, bool rational,
+                                              int threads) {
+  const Incidence on = element_supports<D>(basis, elements, threads);
+  std::vector<BezierElement<D>> out(elements.size());
+  parallel_for(static_cast<std::ptrdiff_t>(elements.size()), threads, [&](std::ptrdiff_t e) {
+    out[static_cast<std::size_t>(e)] =
+        bezier_element<D>(degrees, basis, on[static_cast<int>(e)], elements[static_cast<std::size_t>(e)], dim, rational);
+  });
+  return out;
+}
+
+#define TRIVAR_INSTANTIATE(D)                                                                                   \
+  template Incidence support_elements<D>(std::span<const LRBSpline<D>>, std::span<const Box<D>>, int);          \
+  template Incidence element_supports<D>(std::span<const LRBSpline<D>>, std::span<const Box<D>>, int);          \
+  template Eigen::MatrixXd extraction_operator<D>(const Ints<D>&, std::span<const LRBSpline<D>>,                \
+                                                  std::span<const int>, const Box<D>&);                         \
+  template BezierElement<D> bezier_element<D>(const Ints<D>&, std::span<const LRBSpline<D>>, std::span<const int>, \
+                                              const Box<D>&, int, bool);                                        \
+  template std::vector<BezierElement<D>> bezier_elements<D>(const Ints<D>&, std::span<const LRBSpline<D>>,      \
+                                                            std::span<const Box<D>>, int, bool, int);
+TRIVAR_INSTANTIATE(1)
+TRIVAR_INSTANTIATE(2)
+TRIVAR_INSTANTIATE(3)
+#undef TRIVAR_INSTANTIATE
+
+}  // namespace trivar

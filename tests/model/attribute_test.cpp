@@ -1,0 +1,72 @@
+#include "trivar/model/attribute.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "trivar/core/error.hpp"
+#include "trivar/model/block.hpp"
+#include "trivar/model/vcell.hpp"
+#include "trivar/spline/affine_transform.hpp"
+
+using namespace trivar;
+
+namespace {
+
+// A rotated, shifted, stretched cell: x = R diag(2, 1, 3) u + b, so x(u) is known in closed form.
+const Eigen::Matrix3d kR = (Eigen::Matrix3d() << 0, -1, 0, 1, 0, 0, 0, 0, 1).finished();
+const Eigen::Vector3d kB(1, 2, 3);
+
+VCell rotated_cell() {
+  return VCell(transform(make_block<3>({2, 1, 1}, {2, 1, 3}, {2, 1, 3}), kR, kB));
+}
+
+}  // namespace
+
+TEST(Attribute, ConstantFieldAndExpressionsEvaluateAtCellParameters) {
+  VCell cell = rotated_cell();
+  cell.set_attribute("color", Attribute::constant({0.1, 0.2, 0.3}));
+  // Field on [0, 2] x [0, 1] x [-1, 1], linear: f = (s0, s1 + s2); mapped affinely onto the cell domain [0,1]^3.
+  const KnotVector k0 = KnotVector::open_uniform(1, 1, 0, 2), k1 = KnotVector::open_uniform(1, 1, 0, 1),
+                   k2 = KnotVector::open_uniform(1, 1, -1, 1);
+  std::vector<double> c;
+  for (double s2 : {-1.0, 1.0})
+    for (double s1 : {0.0, 1.0})
+      for (double s0 : {0.0, 2.0}) c.insert(c.end(), {s0, s1 + s2});
+  cell.set_attribute("field", Attribute::field(TensorSpline<3>::from_cartesian({k0, k1, k2}, 2, c)));
+  cell.set_attribute("model", Attribute::expression({"x + 10*y", "z^2"}, Attribute::Space::model));
+  cell.set_attribute("param", Attribute::expression({"u*v*w"}, Attribute::Space::parametric));
+  for (const Param<3>& u : {Param<3>{0.2, 0.7, 0.4}, Param<3>{1, 0, 0.5}, Param<3>{0.9, 0.1, 0.95}}) {
+    double out[3];
+    cell.eval_attribute("color", u, out);
+    EXPECT_EQ(out[2], 0.3);
+    cell.eval_attribute("field", u, out);
+    EXPECT_NEAR(out[0], 2 * u[0], 1e-15);
+    EXPECT_NEAR(out[1], u[1] + (2 * u[2] - 1), 1e-15);
+    const Eigen::Vector3d x = kR * Eigen::Vector3d(2 * u[0], u[1], 3 * u[2]) + kB;
+    cell.eval_attribute("model", u, out);
+    EXPECT_NEAR(out[0], x.x() + 10 * x.y(), 1e-13);
+    EXPECT_NEAR(out[1], x.z() * x.z(), 1e-13);
+    cell.eval_attribute("param", u, out);
+    EXPECT_NEAR(out[0], u[0] * u[1] * u[2], 1e-15);
+  }
+  EXPECT_EQ(cell.attribute("model").components(), 2);
+  EXPECT_EQ(cell.attribute("field").components(), 2);
+  EXPECT_EQ(cell.attribute("param").kind(), Attribute::Kind::expression);
+}
+
+TEST(Attribute, InvalidAttributesFailCleanly) {
+  EXPECT_THROW(Attribute::constant({}), Error);
+  EXPECT_THROW(Attribute::constant({NAN}), Error);
+  EXPECT_THROW(Attribute::expression({}, Attribute::Space::model), Error);
+  EXPECT_THROW(Attribute::expression({"u + 1"}, Attribute::Space::model), Error);  // u is not a model variable
+  EXPECT_THROW(Attribute::expression({"x", "y +"}, Attribute::Space::model), Error);
+  EXPECT_THROW(Attribute::field(TensorSpline<3>()), Error);
+  const VCell cell = rotated_cell();
+  try {
+    cell.attribute("density");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "V-cell: no attribute 'density'");
+  }
+}

@@ -1,0 +1,102 @@
+#include "trivar/model/expression.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "trivar/core/error.hpp"
+
+using namespace trivar;
+
+namespace {
+
+double value(const char* text, std::vector<double> vars = {}, std::vector<std::string> names = {}) {
+  return Expression::parse(text, std::move(names)).eval(vars);
+}
+
+std::string error_of(const char* text) {
+  try {
+    Expression::parse(text, {"x", "y", "z"});
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+}  // namespace
+
+TEST(Expression, PrecedenceAndAssociativityFollowMathematics) {
+  EXPECT_EQ(value("1+2*3"), 7.0);
+  EXPECT_EQ(value("(1+2)*3"), 9.0);
+  EXPECT_EQ(value("10/4"), 2.5);
+  EXPECT_EQ(value("8-3-2"), 3.0);          // left associative
+  EXPECT_EQ(value("16/4/2"), 2.0);
+  EXPECT_EQ(value("2^3^2"), 512.0);        // right associative: 2^9
+  EXPECT_EQ(value("-2^2"), -4.0);          // unary minus binds looser than ^
+  EXPECT_EQ(value("2^-1"), 0.5);
+  EXPECT_EQ(value("2*-3"), -6.0);
+  EXPECT_EQ(value("--3"), 3.0);
+  EXPECT_EQ(value("+4"), 4.0);
+  EXPECT_EQ(value("1.5e2 + .5 + 2E-1"), 150.7);
+}
+
+TEST(Expression, FunctionsAndConstantsMatchTheStandardLibrary) {
+  const double pi = std::numbers::pi;
+  EXPECT_NEAR(value("sin(pi/2)"), 1.0, 1e-15);
+  EXPECT_NEAR(value("cos(pi)"), -1.0, 1e-15);
+  EXPECT_NEAR(value("tan(pi/4)"), 1.0, 1e-15);
+  EXPECT_NEAR(value("log(exp(1.5))"), 1.5, 1e-15);
+  EXPECT_EQ(value("sqrt(16)+abs(-3)"), 7.0);
+  EXPECT_EQ(value("pow(2, 10)"), 1024.0);
+  EXPECT_NEAR(value("atan2(1, -1)"), 0.75 * pi, 1e-15);
+  EXPECT_EQ(value("max(1, 5, 3)"), 5.0);
+  EXPECT_EQ(value("min(2, -1)"), -1.0);
+  EXPECT_EQ(value("pi"), pi);
+  EXPECT_TRUE(std::isnan(value("log(-1)")));  // IEEE semantics, no exception
+  EXPECT_TRUE(std::isinf(value("1/0")));
+}
+
+TEST(Expression, VariablesBindInTheGivenOrder) {
+  const auto e = Expression::parse("x*y - z^2 + 0.5*sin(x)", {"x", "y", "z"});
+  for (double x : {-1.0, 0.3, 2.0})
+    for (double z : {0.0, 1.5}) {
+      const double vars[3] = {x, 4.0, z};
+      EXPECT_NEAR(e.eval(vars), x * 4.0 - z * z + 0.5 * std::sin(x), 1e-15);
+    }
+  const auto uvw = Expression::parse("u + 10*v + 100*w", {"u", "v", "w"});
+  const double p[3] = {1, 2, 3};
+  EXPECT_EQ(uvw.eval(p), 321.0);
+  const double two[2] = {1, 2};
+  EXPECT_THROW(uvw.eval(two), Error);
+}
+
+TEST(Expression, DeepNestingWithinTheStackLimitEvaluates) {
+  std::string text = "1";
+  for (int k = 0; k < 40; ++k) text = "(" + text + "+1)";
+  EXPECT_EQ(value(text.c_str()), 41.0);
+  std::string deep = "1";
+  for (int k = 0; k < 80; ++k) deep = "1+(" + deep + ")";  // 81 pending operands
+  EXPECT_THROW(Expression::parse(deep, {}), Error);
+}
+
+TEST(Expression, MalformedInputGivesOneLineMessagesWithPositions) {
+  EXPECT_EQ(error_of(""), "expression '': empty expression at position 0 (end of input)");
+  EXPECT_EQ(error_of("1+"), "expression '1+': expected a number, variable, function or '(' at position 2 (end of input)");
+  EXPECT_EQ(error_of("2*(x+1"), "expression '2*(x+1': missing ')' at position 6 (end of input)");
+  EXPECT_EQ(error_of("foo(1)"), "expression 'foo(1)': unknown function 'foo' at position 0");
+  EXPECT_EQ(error_of("x + q"), "expression 'x + q': unknown name 'q' at position 4");
+  EXPECT_EQ(error_of("sin(1, 2)"), "expression 'sin(1, 2)': function 'sin' takes 1 argument, got 2 at position 0");
+  EXPECT_EQ(error_of("max(1)"), "expression 'max(1)': function 'max' takes at least 2 arguments, got 1 at position 0");
+  EXPECT_EQ(error_of("pow(1)"), "expression 'pow(1)': function 'pow' takes 2 arguments, got 1 at position 0");
+  EXPECT_EQ(error_of("1 2"), "expression '1 2': unexpected '2' after a complete expression at position 2");
+  EXPECT_EQ(error_of("2e+"), "expression '2e+': malformed exponent in number at position 0");
+  EXPECT_EQ(error_of("3 # 4"), "expression '3 # 4': unexpected '#' after a complete expression at position 2");
+  EXPECT_EQ(error_of("x * #"), "expression 'x * #': unexpected '#' at position 4");
+  EXPECT_EQ(error_of("sin + 1"), "expression 'sin + 1': function 'sin' needs an argument list at position 0");
+  EXPECT_EQ(error_of("(x))"), "expression '(x))': unexpected ')' after a complete expression at position 3");
+  EXPECT_EQ(error_of("."), "expression '.': malformed number at position 0");
+  EXPECT_THROW(Expression::parse("x", {"sin"}), Error);
+  EXPECT_THROW(Expression::parse("x", {"x", "x"}), Error);
+  EXPECT_THROW(Expression::parse("x", {"1x"}), Error);
+}
