@@ -7,6 +7,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include <optional>
+
+#include "trivar/model/vmodel.hpp"
 #include "trivar/spline/any_spline.hpp"
 
 namespace trivar::cli {
@@ -35,11 +38,20 @@ void add_check_command(CLI::App& app, Context& ctx);
 void add_make_command(CLI::App& app, Context& ctx);
 // make extrude|ruled|loft|coons: constructors from input splines, registered under `make`.
 void add_make_constructors(CLI::App& make);
+// make ball|cylinder|cone|torus: V-model primitives, registered under `make`.
+void add_make_primitives(CLI::App& make);
 void add_invert_command(CLI::App& app, Context& ctx);
+void add_export_command(CLI::App& app, Context& ctx);
 void add_demo_command(CLI::App& app, Context& ctx);
 
 // All objects of a spline file (.json, .g2); throws trivar::Error naming the file on any problem.
 std::vector<AnySpline> read_objects(const std::string& path);
+// The V-model in a .json file whose "kind" is "vmodel" (glued), or nothing for any other file; throws
+// trivar::Error naming the file when it is a malformed model.
+std::optional<VModel> read_model_if_any(const std::string& path);
+// Prints a V-model's description (text, or one JSON document).
+void print_model_info(const std::string& path, const VModel& model, bool json);
+
 // The single object of a file, for commands that act on one spline.
 AnySpline read_single(const std::string& path, const std::string& command);
 

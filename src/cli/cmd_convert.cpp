@@ -1,9 +1,13 @@
-// trivar convert IN OUT: between spline formats by extension (.json, .g2) and to VTK (.vtu) for viewing.
+// trivar convert IN OUT: between spline formats by extension (.json, .g2) and to VTK (.vtu) for viewing;
+// V-models to .vtu (every cell a piece, attributes as point data) or .json.
 #include <filesystem>
 #include <string>
 
 #include "cli.hpp"
+#include "trivar/core/error.hpp"
 #include "trivar/io/spline_file.hpp"
+#include "trivar/io/vmodel_json.hpp"
+#include "trivar/io/vmodel_vtk.hpp"
 #include "trivar/io/vtk_writer.hpp"
 
 namespace trivar::cli {
@@ -15,13 +19,23 @@ void add_convert_command(CLI::App& app, Context&) {
     io::VtkOptions vtk;
   };
   auto a = std::make_shared<Args>();
-  cmd->add_option("IN", a->in, "Input spline file (.json, .g2)")->required();
+  cmd->add_option("IN", a->in, "Input spline file (.json, .g2) or V-model (.json)")->required();
   cmd->add_option("OUT", a->out, "Output file (.json, .g2, .vtu)")->required();
   cmd->add_option("--samples", a->vtk.samples_per_element, "VTK: samples per element and direction")
       ->check(at_least(1));
   cmd->add_flag("--bezier", a->vtk.bezier_cells, "VTK: write exact rational Bezier cells instead of sampled ones");
   cmd->add_flag("--control-net", a->vtk.control_net, "VTK: write the control net (points and polygon lines) instead of the geometry");
   cmd->callback([a] {
+    if (const std::optional<VModel> model = read_model_if_any(a->in)) {
+      const std::string ext = std::filesystem::path(a->out).extension().string();
+      require(ext == ".vtu" || ext == ".json",
+              "convert: a V-model converts to .vtu (cells with attributes) or .json, not '" + ext + "'");
+      if (ext == ".vtu")
+        io::write_vmodel_vtu(a->out, *model, a->vtk);
+      else
+        io::write_vmodel(a->out, *model);
+      return;
+    }
     const std::vector<AnySpline> objects = read_objects(a->in);
     if (std::filesystem::path(a->out).extension() == ".vtu") {
       io::write_vtu(a->out, objects, a->vtk);

@@ -1,4 +1,4 @@
-// trivar info FILE [--json]: what a spline file holds.
+// trivar info FILE [--json]: what a spline file or a V-model holds.
 #include <cstdio>
 #include <string>
 #include <variant>
@@ -89,12 +89,16 @@ void print_text(const TensorSpline<D>& s) {
 }  // namespace
 
 void add_info_command(CLI::App& app, Context&) {
-  auto* cmd = app.add_subcommand("info", "Describe the splines in a file: kind, degrees, counts, knots, domain");
+  auto* cmd = app.add_subcommand("info", "Describe the splines in a file (kind, degrees, counts, knots, domain) or a V-model (topology, volume, attributes)");
   auto file = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
-  cmd->add_option("FILE", *file, "Spline file (.json, .g2)")->required();
+  cmd->add_option("FILE", *file, "Spline file (.json, .g2) or V-model (.json)")->required();
   cmd->add_flag("--json", *json, "Print one JSON document instead of text");
   cmd->callback([file, json] {
+    if (const std::optional<VModel> model = read_model_if_any(*file)) {
+      print_model_info(*file, *model, *json);
+      return;
+    }
     const std::vector<AnySpline> objects = read_objects(*file);
     if (*json) {
       nlohmann::json out{{"file", *file}, {"objects", nlohmann::json::array()}};

@@ -108,11 +108,12 @@ void add_revolve(CLI::App& make) {
 }  // namespace
 
 void add_make_command(CLI::App& app, Context&) {
-  auto* make = app.add_subcommand("make", "Build a model: make box|revolve|extrude|ruled|loft|coons ...");
+  auto* make = app.add_subcommand("make", "Build a model: make box|revolve|extrude|ruled|loft|coons|ball|cylinder|cone|torus ...");
   make->require_subcommand(1);
   add_box(*make);
   add_revolve(*make);
   add_make_constructors(*make);
+  add_make_primitives(*make);
 }
 
 }  // namespace trivar::cli

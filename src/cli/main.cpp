@@ -44,6 +44,7 @@ int main(int argc, char** argv) {
   add_check_command(app, ctx);
   add_make_command(app, ctx);
   add_invert_command(app, ctx);
+  add_export_command(app, ctx);
   add_demo_command(app, ctx);
 
   try {

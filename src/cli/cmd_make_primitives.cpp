@@ -1,0 +1,151 @@
+// trivar make ball|cylinder|cone|torus [dimensions] [--materials m] -o model.json: V-model primitives, each a
+// complex of non-singular cells, optionally with m material fractions blending smoothly across the part.
+#include <memory>
+#include <string>
+
+#include "cli.hpp"
+#include "trivar/core/error.hpp"
+#include "trivar/io/vmodel_json.hpp"
+#include "trivar/model/ball.hpp"
+#include "trivar/model/cone.hpp"
+#include "trivar/model/cylinder.hpp"
+#include "trivar/model/torus.hpp"
+
+namespace trivar::cli {
+
+namespace {
+
+// m fractions that blend linearly between m equally spaced stations of a normalised coordinate rho in [0, 1]
+// (the hat functions of degree-1 B-splines): a partition of unity, each material pure at its station.
+std::vector<std::string> blend_components(int m, const std::string& rho) {
+  if (m == 1) return {"1"};
+  std::vector<std::string> c;
+  for (int i = 0; i < m; ++i)
+    c.push_back("max(0, 1 - abs((" + rho + ") * " + std::to_string(m - 1) + " - " + std::to_string(i) + "))");
+  return c;
+}
+
+struct PrimitiveArgs {
+  int materials = 0;
+  std::string blend = "radial";
+  std::string out;
+};
+
+void add_common(CLI::App* cmd, PrimitiveArgs& a, const char* axial_meaning) {
+  cmd->add_option("--materials", a.materials,
+                  "Give every cell an attribute \"material\" with this many fractions that blend smoothly")
+      ->check(at_least(1));
+  cmd->add_option("--blend", a.blend, std::string("Direction of the blend: radial, or axial (") + axial_meaning + ")")
+      ->check(CLI::IsMember({"radial", "axial"}))
+      ->capture_default_str();
+  cmd->add_option("-o,--output", a.out, "Output V-model file (.json)")->required();
+}
+
+// Builds, attributes, glues and writes the model. `radial` and `axial` are rho expressions in x, y, z.
+void write_model(const CellComplex& cells, const PrimitiveArgs& a, const std::string& radial, const std::string& axial) {
+  VModel m;
+  for (const auto& c : cells) m.add_cell(VCell(c));
+  if (a.materials > 0) {
+    // clamp: rounding can put boundary points a hair outside [0, 1].
+    const std::string rho = "min(1, max(0, " + (a.blend == "radial" ? radial : axial) + "))";
+    const Attribute material = Attribute::expression(blend_components(a.materials, rho), Attribute::Space::model);
+    for (int i = 0; i < m.num_cells(); ++i) m.cell(i).set_attribute("material", material);
+  }
+  m.glue();
+  io::write_vmodel(a.out, m);
+}
+
+std::string num(double x) { return "(" + fmt(x) + ")"; }
+
+void add_ball(CLI::App& make) {
+  auto* cmd = make.add_subcommand("ball", "Ball of 7 non-singular cells (a core cube and 6 shells out to exact "
+                                          "sphere patches)");
+  struct Args : PrimitiveArgs {
+    BallSpec spec;
+    std::vector<double> center{0, 0, 0};
+  };
+  auto a = std::make_shared<Args>();
+  cmd->add_option("--radius", a->spec.radius, "Radius")->check(positive())->capture_default_str();
+  cmd->add_option("--center", a->center, "Centre x y z")->expected(3);
+  cmd->add_option("--core", a->spec.core, "Core cube size as a fraction of the largest that fits, in (0, 1)")
+      ->capture_default_str();
+  add_common(cmd, *a, "along z");
+  cmd->callback([a] {
+    a->spec.center = {a->center[0], a->center[1], a->center[2]};
+    const std::string x = "(x - " + num(a->center[0]) + ")", y = "(y - " + num(a->center[1]) + ")",
+                      z = "(z - " + num(a->center[2]) + ")";
+    const double r = a->spec.radius;
+    write_model(make_ball(a->spec), *a, "sqrt(" + x + "^2 + " + y + "^2 + " + z + "^2) / " + num(r),
+                "(" + z + " + " + num(r) + ") / " + num(2 * r));
+  });
+}
+
+void add_cylinder(CLI::App& make) {
+  auto* cmd = make.add_subcommand("cylinder", "Solid cylinder about the z-axis, 5 cells: a core box and 4 ruled "
+                                              "cells out to exact arcs");
+  struct Args : PrimitiveArgs {
+    CylinderSpec spec;
+  };
+  auto a = std::make_shared<Args>();
+  cmd->add_option("--radius", a->spec.radius, "Radius")->check(positive())->capture_default_str();
+  cmd->add_option("--height", a->spec.height, "Height along z")->check(positive())->capture_default_str();
+  cmd->add_option("--core", a->spec.core, "Core square size as a fraction of the largest that fits, in (0, 1)")
+      ->capture_default_str();
+  add_common(cmd, *a, "along z");
+  cmd->callback([a] {
+    write_model(make_cylinder(a->spec), *a, "sqrt(x^2 + y^2) / " + num(a->spec.radius), "z / " + num(a->spec.height));
+  });
+}
+
+void add_cone(CLI::App& make) {
+  auto* cmd = make.add_subcommand("cone", "Frustum about the z-axis (top radius > 0: a full apex is singular), "
+                                          "5 cells");
+  struct Args : PrimitiveArgs {
+    ConeSpec spec;
+  };
+  auto a = std::make_shared<Args>();
+  cmd->add_option("--radii", a->spec.bottom_radius, "Bottom radius")->check(positive())->capture_default_str();
+  cmd->add_option("--top-radius", a->spec.top_radius, "Top radius (> 0)")->check(positive())->capture_default_str();
+  cmd->add_option("--height", a->spec.height, "Height along z")->check(positive())->capture_default_str();
+  cmd->add_option("--core", a->spec.core, "Core square size as a fraction of the largest that fits, in (0, 1)")
+      ->capture_default_str();
+  add_common(cmd, *a, "along z");
+  cmd->callback([a] {
+    const ConeSpec& c = a->spec;
+    // Radius at height z: r0 + (r1 - r0) z / h.
+    const std::string radius = "(" + num(c.bottom_radius) + " + " + num(c.top_radius - c.bottom_radius) + " * z / " +
+                               num(c.height) + ")";
+    write_model(make_cone(c), *a, "sqrt(x^2 + y^2) / " + radius, "z / " + num(c.height));
+  });
+}
+
+void add_torus(CLI::App& make) {
+  auto* cmd = make.add_subcommand("torus", "Ring torus about the z-axis, 5 cells of revolution");
+  struct Args : PrimitiveArgs {
+    TorusSpec spec;
+  };
+  auto a = std::make_shared<Args>();
+  cmd->add_option("--major", a->spec.major_radius, "Major radius (tube centre circle)")->check(positive())->capture_default_str();
+  cmd->add_option("--minor", a->spec.minor_radius, "Minor radius (tube), less than the major radius")
+      ->check(positive())
+      ->capture_default_str();
+  cmd->add_option("--core", a->spec.core, "Core square size as a fraction of the largest that fits, in (0, 1)")
+      ->capture_default_str();
+  add_common(cmd, *a, "around the ring");
+  cmd->callback([a] {
+    const TorusSpec& t = a->spec;
+    const std::string tube = "sqrt((sqrt(x^2 + y^2) - " + num(t.major_radius) + ")^2 + z^2) / " + num(t.minor_radius);
+    write_model(make_torus(t), *a, tube, "(atan2(y, x) + pi) / (2 * pi)");
+  });
+}
+
+}  // namespace
+
+void add_make_primitives(CLI::App& make) {
+  add_ball(make);
+  add_cylinder(make);
+  add_cone(make);
+  add_torus(make);
+}
+
+}  // namespace trivar::cli

@@ -1,0 +1,87 @@
+// Description of a V-model for `trivar info`: topology counts, boundary, volume, bounds and attributes.
+#include <cstdio>
+#include <map>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "cli.hpp"
+#include "trivar/model/model_boundary.hpp"
+
+namespace trivar::cli {
+
+namespace {
+
+const char* kind_word(Attribute::Kind k) {
+  switch (k) {
+    case Attribute::Kind::constant: return "constant";
+    case Attribute::Kind::field: return "field";
+    case Attribute::Kind::expression: return "expression";
+  }
+  return "?";
+}
+
+nlohmann::json describe(const VModel& m) {
+  const VTopology& t = m.topology();
+  const ModelBoundary b = model_boundary(m);
+  const Box<3> box = m.bounding_box();
+  nlohmann::json j{{"kind", "vmodel"},
+                   {"cells", m.num_cells()},
+                   {"shared_surfaces", t.num_shared_surfaces()},
+                   {"boundary_surfaces", t.num_boundary_surfaces()},
+                   {"curves", t.curves.size()},
+                   {"points", t.points.size()},
+                   {"non_conforming_faces", t.non_conforming.size()},
+                   {"boundary_closed", b.closed()},
+                   {"gluing_tolerance", t.tolerance},
+                   {"volume", m.volume()},
+                   {"control_bounds", {{"lo", box.lo}, {"hi", box.hi}}}};
+  std::map<std::string, nlohmann::json> attrs;
+  for (int i = 0; i < m.num_cells(); ++i)
+    for (const auto& [name, a] : m.cell(i).attributes()) {
+      nlohmann::json& e = attrs[name];
+      e["components"] = a.components();
+      e["cells"].push_back(i);
+      e["kinds"][kind_word(a.kind())] = true;
+    }
+  j["attributes"] = nlohmann::json::object();
+  for (auto& [name, e] : attrs) {
+    nlohmann::json kinds = nlohmann::json::array();
+    for (const auto& [k, v] : e["kinds"].items()) kinds.push_back(k);
+    e["kinds"] = kinds;
+    j["attributes"][name] = e;
+  }
+  for (const NonConformingFace& f : t.non_conforming) j["non_conforming"].push_back(f.describe());
+  return j;
+}
+
+}  // namespace
+
+void print_model_info(const std::string& path, const VModel& m, bool json) {
+  const nlohmann::json d = describe(m);
+  if (json) {
+    std::printf("%s\n", nlohmann::json{{"file", path}, {"model", d}}.dump(2).c_str());
+    return;
+  }
+  std::printf("%s: V-model, %d cell%s\n", path.c_str(), m.num_cells(), m.num_cells() == 1 ? "" : "s");
+  std::printf("  topology: %d shared surfaces, %d boundary surfaces, %zu curves, %zu points\n",
+              d["shared_surfaces"].get<int>(), d["boundary_surfaces"].get<int>(), d["curves"].get<std::size_t>(),
+              d["points"].get<std::size_t>());
+  std::printf("  boundary: %s\n", d["boundary_closed"].get<bool>() ? "closed" : "open");
+  std::printf("  non-conforming faces: %zu\n", d["non_conforming_faces"].get<std::size_t>());
+  for (const auto& s : d.value("non_conforming", nlohmann::json::array())) std::printf("    %s\n", s.get<std::string>().c_str());
+  std::printf("  volume: %s\n", fmt(d["volume"].get<double>()).c_str());
+  const Box<3> box = m.bounding_box();
+  std::printf("  control bounding box: [%s, %s] x [%s, %s] x [%s, %s]\n", fmt(box.lo[0]).c_str(), fmt(box.hi[0]).c_str(),
+              fmt(box.lo[1]).c_str(), fmt(box.hi[1]).c_str(), fmt(box.lo[2]).c_str(), fmt(box.hi[2]).c_str());
+  for (const auto& [name, e] : d["attributes"].items())
+    std::printf("  attribute %s: %d component%s, %s, on %zu of %d cells\n", name.c_str(), e["components"].get<int>(),
+                e["components"].get<int>() == 1 ? "" : "s", e["kinds"].dump().c_str(), e["cells"].size(), m.num_cells());
+  for (int i = 0; i < m.num_cells(); ++i) {
+    const TensorSpline<3>& g = m.cell(i).geometry();
+    std::printf("  cell %d: degrees %d %d %d, control points %d x %d x %d, %s\n", i, g.degree(0), g.degree(1),
+                g.degree(2), g.count(0), g.count(1), g.count(2), g.is_rational() ? "rational" : "polynomial");
+  }
+}
+
+}  // namespace trivar::cli
