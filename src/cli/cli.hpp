@@ -40,6 +40,20 @@ void add_make_command(CLI::App& app, Context& ctx);
 void add_make_constructors(CLI::App& make);
 // make ball|cylinder|cone|torus: V-model primitives, registered under `make`.
 void add_make_primitives(CLI::App& make);
+
+// Material options of commands that write V-models: --materials m [--blend radial|axial] gives every cell an
+// attribute "material" of m fractions blending linearly between m stations of a normalised coordinate;
+// --material-field takes the fractions as formulas in x, y, z.
+struct MaterialArgs {
+  int materials = 0;
+  std::string blend = "radial";
+  std::vector<std::string> field;
+};
+void add_material_options(CLI::App* cmd, MaterialArgs& a, const char* axial_meaning);
+// Glues the cells into a V-model with the material attribute and writes it. `radial` and `axial` are the
+// normalised coordinates (formulas in x, y, z, 0 to 1 across the part) the blend follows.
+void write_model(const std::vector<TensorSpline<3>>& cells, const MaterialArgs& a, const std::string& radial,
+                 const std::string& axial, const std::string& out);
 void add_invert_command(CLI::App& app, Context& ctx);
 void add_export_command(CLI::App& app, Context& ctx);
 void add_demo_command(CLI::App& app, Context& ctx);

@@ -1,11 +1,12 @@
-// trivar export MODEL OUT [--tolerance t]: the boundary of a V-model (or of a single volume) for
-// manufacturing: binary STL, watertight by construction.
+// trivar export MODEL OUT [--tolerance t]: the boundary of a V-model (or of volumes) for manufacturing as
+// binary STL, watertight by construction, or the cells with their attributes as VTK.
 #include <filesystem>
 #include <string>
 
 #include "cli.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/io/stl_writer.hpp"
+#include "trivar/io/vmodel_vtk.hpp"
 #include "trivar/model/model_tessellation.hpp"
 
 namespace trivar::cli {
@@ -28,21 +29,25 @@ VModel model_of(const std::string& path) {
 }  // namespace
 
 void add_export_command(CLI::App& app, Context&) {
-  auto* cmd = app.add_subcommand("export", "Write the boundary of a V-model or volume as a watertight mesh (.stl)");
+  auto* cmd = app.add_subcommand("export", "Write the boundary of a V-model or volume as a watertight mesh (.stl), or its cells with attributes (.vtu)");
   struct Args {
     std::string in, out;
     double tolerance = 0.01;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("MODEL", a->in, "V-model (.json) or spline file with volumes (.json, .g2)")->required();
-  cmd->add_option("OUT", a->out, "Output mesh (.stl)")->required();
+  cmd->add_option("OUT", a->out, "Output file (.stl, .vtu)")->required();
   cmd->add_option("--tolerance", a->tolerance, "Chordal tolerance in model units")
       ->check(positive())
       ->capture_default_str();
   cmd->callback([a] {
     const std::string ext = std::filesystem::path(a->out).extension().string();
-    require(ext == ".stl", "export: unknown output format '" + ext + "' (expected .stl)");
+    require(ext == ".stl" || ext == ".vtu", "export: unknown output format '" + ext + "' (expected .stl or .vtu)");
     const VModel m = model_of(a->in);
+    if (ext == ".vtu") {
+      io::write_vmodel_vtu(a->out, m);
+      return;
+    }
     const ModelTessellation t = tessellate_boundary(m, {.chordal_tolerance = a->tolerance});
     io::write_stl(a->out, t.mesh);
     std::printf("%s: %zu triangles, %zu vertices, watertight %s, enclosed volume %s\n", a->out.c_str(),

@@ -1,4 +1,5 @@
 // trivar make box|revolve ... -o FILE: models built from a few numbers.
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -34,9 +35,10 @@ AnySpline box(const std::vector<int>& degrees, const std::vector<int>& elements,
 
 void add_box(CLI::App& make) {
   auto* cmd = make.add_subcommand("box", "Block [0,X] x [0,Y] x [0,Z] with the identity parametrisation");
-  struct Args {
+  struct Args : MaterialArgs {
     std::vector<int> degrees{1}, elements{1};
     std::vector<double> size{1.0};
+    bool model = false;
     std::string out;
   };
   auto a = std::make_shared<Args>();
@@ -53,8 +55,23 @@ void add_box(CLI::App& make) {
       ->expected(1, 3)
       ->check(positive())
       ->capture_default_str();
-  cmd->add_option("-o,--output", a->out, "Output spline file (.json, .g2)")->required();
+  cmd->add_flag("--model", a->model, "Write a one-cell V-model (.json) instead of a spline file");
+  add_material_options(cmd, *a, "along z");
+  cmd->add_option("-o,--output", a->out, "Output spline file (.json, .g2), or V-model with --model")->required();
   cmd->callback([a] {
+    if (a->model || a->materials > 0 || !a->field.empty()) {
+      require(a->model, "make box: --materials and --material-field need --model");
+      require(std::max({a->degrees.size(), a->elements.size(), a->size.size()}) != 2,
+              "make box: a V-model is a volume; give 1 or 3 values per option");
+      const auto size = per_direction<double, 3>(a->size, "--size");
+      // Normalised radial coordinate: distance from the box centre over the half diagonal.
+      const std::string half = "(" + fmt(std::sqrt(size[0] * size[0] + size[1] * size[1] + size[2] * size[2]) / 2) + ")";
+      const std::string radial = "sqrt((x - " + fmt(size[0] / 2) + ")^2 + (y - " + fmt(size[1] / 2) + ")^2 + (z - " +
+                                 fmt(size[2] / 2) + ")^2) / " + half;
+      const SplineVolume cell = std::get<TensorSpline<3>>(box<3>(a->degrees, a->elements, a->size));
+      write_model({cell}, *a, radial, "z / (" + fmt(size[2]) + ")", a->out);
+      return;
+    }
     // The direction count is the longest of the per-direction lists; a single list of one value is a volume.
     std::size_t n = std::max({a->degrees.size(), a->elements.size(), a->size.size()});
     if (n == 1) n = 3;
@@ -64,15 +81,21 @@ void add_box(CLI::App& make) {
 }
 
 void add_revolve(CLI::App& make) {
-  auto* cmd = make.add_subcommand("revolve", "Exact NURBS volume of revolution of a rectangle about the z-axis: "
-                                             "u along the axis, v radial, w angular (det J > 0)");
+  auto* cmd = make.add_subcommand("revolve", "Exact NURBS volume of revolution of a rectangle about the z-axis "
+                                             "(u along the axis, v radial, w angular, det J > 0), or of a "
+                                             "--profile curve or surface about any axis");
   struct Args {
     std::vector<double> radii{1.0, 2.0};
     double height = 1.0, angle = 360.0;
     std::vector<int> degrees{2}, elements{1};
-    std::string out;
+    std::string profile, out;
+    std::vector<double> axis_point{0, 0, 0}, axis_dir{0, 0, 1};
   };
   auto a = std::make_shared<Args>();
+  cmd->add_option("--profile", a->profile, "File with a curve or surface to revolve instead of the rectangle "
+                                           "(then --radii, --height, --degree and --elements do not apply)");
+  cmd->add_option("--axis-point", a->axis_point, "A point of the axis (with --profile)")->expected(3);
+  cmd->add_option("--axis-dir", a->axis_dir, "Direction of the axis (with --profile)")->expected(3);
   cmd->add_option("--radii", a->radii, "Inner and outer radius r0 < r1 (r0 = 0 touches the axis: singular volume)")
       ->expected(2)
       ->capture_default_str();
@@ -91,13 +114,23 @@ void add_revolve(CLI::App& make) {
   cmd->add_option("-o,--output", a->out, "Output spline file (.json, .g2)")->required();
   cmd->callback([a] {
     require(a->angle > 0 && a->angle <= 360, "make revolve: --angle must be in (0, 360] degrees, got " + fmt(a->angle));
+    // angle / 180 * pi keeps 360 degrees exactly 2 pi.
+    const double radians = a->angle / 180.0 * std::numbers::pi;
+    if (!a->profile.empty()) {
+      const AnySpline p = read_single(a->profile, "make revolve");
+      const Eigen::Vector3d point(a->axis_point[0], a->axis_point[1], a->axis_point[2]);
+      const Eigen::Vector3d dir(a->axis_dir[0], a->axis_dir[1], a->axis_dir[2]);
+      require(parametric_dimension(p) <= 2, "make revolve: --profile " + a->profile + " must hold a curve or surface");
+      io::write_spline_file(a->out, {parametric_dimension(p) == 1
+                                         ? AnySpline(revolve<2>(std::get<TensorSpline<1>>(p), point, dir, radians))
+                                         : AnySpline(revolve<3>(std::get<TensorSpline<2>>(p), point, dir, radians))});
+      return;
+    }
     require(a->radii[0] < a->radii[1],
             "make revolve: --radii must satisfy r0 < r1, got " + fmt(a->radii[0]) + " " + fmt(a->radii[1]));
     const Ints<2> degrees{a->degrees[0], a->degrees.back()};
     const Ints<2> elements{a->elements[0], a->elements[a->elements.size() > 1 ? 1 : 0]};
     const int angular = a->elements.size() > 2 ? a->elements[2] : 1;
-    // angle / 180 * pi keeps 360 degrees exactly 2 pi.
-    const double radians = a->angle / 180.0 * std::numbers::pi;
     const TensorSpline<2> profile = make_rectangle_profile({0.0, a->height}, {a->radii[0], a->radii[1]}, degrees, elements);
     TensorSpline<3> vol = revolve<3>(profile, {0, 0, 0}, {0, 0, 1}, radians);
     if (angular > 1) vol = refine_uniform(vol, Ints<3>{1, 1, angular});
@@ -108,7 +141,7 @@ void add_revolve(CLI::App& make) {
 }  // namespace
 
 void add_make_command(CLI::App& app, Context&) {
-  auto* make = app.add_subcommand("make", "Build a model: make box|revolve|extrude|ruled|loft|coons|ball|cylinder|cone|torus ...");
+  auto* make = app.add_subcommand("make", "Build a model: make box|revolve|extrude|ruled|loft|coons|sweep|morph|ball|cylinder|cone|torus ...");
   make->require_subcommand(1);
   add_box(*make);
   add_revolve(*make);

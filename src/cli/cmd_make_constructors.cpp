@@ -1,5 +1,6 @@
-// trivar make extrude|ruled|loft|coons ... -o FILE: volumes (or surfaces) built from input splines.
+// trivar make extrude|ruled|loft|coons|sweep|morph ... -o FILE: volumes (or surfaces) built from input splines.
 #include <array>
+#include <cstdio>
 #include <memory>
 #include <string>
 #include <vector>
@@ -12,7 +13,9 @@
 #include "trivar/model/coons.hpp"
 #include "trivar/model/extrude.hpp"
 #include "trivar/model/loft.hpp"
+#include "trivar/model/metamorphosis.hpp"
 #include "trivar/model/ruled.hpp"
+#include "trivar/model/sweep.hpp"
 
 namespace trivar::cli {
 
@@ -156,6 +159,53 @@ void add_coons(CLI::App& make) {
   });
 }
 
+void add_sweep(CLI::App& make) {
+  auto* cmd = make.add_subcommand("sweep", "Sweep a surface along a path curve with a rotation-minimising frame "
+                                           "(approximate; prints the error bound)");
+  struct Args {
+    std::string profile, path, out;
+    SweepOptions opts;
+  };
+  auto a = std::make_shared<Args>();
+  cmd->add_option("PROFILE", a->profile, "File with the surface, placed at the start of the path")->required();
+  cmd->add_option("PATH", a->path, "File with the path curve")->required();
+  cmd->add_option("--sections", a->opts.sections, "Minimum number of elements along the path")
+      ->check(at_least(1))
+      ->capture_default_str();
+  cmd->add_option("--degree", a->opts.degree, "Degree along the path")->check(at_least(1))->capture_default_str();
+  cmd->add_option("-o,--output", a->out, "Output spline file (.json, .g2)")->required();
+  cmd->callback([a] {
+    const AnySpline profile = read_single(a->profile, "make sweep"), path = read_single(a->path, "make sweep");
+    require(parametric_dimension(profile) == 2, "make sweep: " + a->profile + " must hold a surface");
+    require(parametric_dimension(path) == 1, "make sweep: " + a->path + " must hold a curve");
+    const SweepResult r = sweep(std::get<TensorSpline<2>>(profile), std::get<TensorSpline<1>>(path), a->opts);
+    io::write_spline_file(a->out, {AnySpline(r.volume)});
+    std::printf("max error %s\n", fmt(r.max_error).c_str());
+  });
+}
+
+void add_morph(CLI::App& make) {
+  auto* cmd = make.add_subcommand("morph", "Metamorphosis between two surfaces: a volume whose w = 0 and w = 1 "
+                                           "faces are the inputs, with a smooth time blend");
+  struct Args {
+    std::vector<std::string> inputs;
+    int smoothness = 0;
+    std::string out;
+  };
+  auto a = std::make_shared<Args>();
+  cmd->add_option("INPUTS", a->inputs, "Two files with one surface each, or one file with two")->required()->expected(1, 2);
+  cmd->add_option("--smoothness", a->smoothness, "Vanishing time derivatives at both ends (0: linear, i.e. ruled)")
+      ->check(at_least(0))
+      ->capture_default_str();
+  cmd->add_option("-o,--output", a->out, "Output spline file (.json, .g2)")->required();
+  cmd->callback([a] {
+    const std::vector<AnySpline> in = read_all(a->inputs);
+    require(in.size() == 2, "make morph: needs exactly 2 surfaces, got " + std::to_string(in.size()));
+    require(common_dimension(in, "make morph") == 2, "make morph: the inputs must be surfaces");
+    io::write_spline_file(a->out, {AnySpline(metamorphosis(as<2>(in)[0], as<2>(in)[1], a->smoothness))});
+  });
+}
+
 }  // namespace
 
 void add_make_constructors(CLI::App& make) {
@@ -163,6 +213,8 @@ void add_make_constructors(CLI::App& make) {
   add_ruled(make);
   add_loft(make);
   add_coons(make);
+  add_sweep(make);
+  add_morph(make);
 }
 
 }  // namespace trivar::cli

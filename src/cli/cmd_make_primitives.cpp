@@ -25,42 +25,54 @@ std::vector<std::string> blend_components(int m, const std::string& rho) {
   return c;
 }
 
-struct PrimitiveArgs {
-  int materials = 0;
-  std::string blend = "radial";
-  std::string out;
-};
+}  // namespace
 
-void add_common(CLI::App* cmd, PrimitiveArgs& a, const char* axial_meaning) {
-  cmd->add_option("--materials", a.materials,
-                  "Give every cell an attribute \"material\" with this many fractions that blend smoothly")
-      ->check(at_least(1));
+void add_material_options(CLI::App* cmd, MaterialArgs& a, const char* axial_meaning) {
+  auto* m = cmd->add_option("--materials", a.materials,
+                            "Give every cell an attribute \"material\" with this many fractions that blend smoothly")
+                ->check(at_least(1));
   cmd->add_option("--blend", a.blend, std::string("Direction of the blend: radial, or axial (") + axial_meaning + ")")
       ->check(CLI::IsMember({"radial", "axial"}))
       ->capture_default_str();
-  cmd->add_option("-o,--output", a.out, "Output V-model file (.json)")->required();
+  auto* f = cmd->add_option("--material-field", a.field,
+                            "Material fractions as formulas in x, y, z, one per material (instead of --materials)");
+  m->excludes(f);
 }
 
-// Builds, attributes, glues and writes the model. `radial` and `axial` are rho expressions in x, y, z.
-void write_model(const CellComplex& cells, const PrimitiveArgs& a, const std::string& radial, const std::string& axial) {
+void write_model(const std::vector<TensorSpline<3>>& cells, const MaterialArgs& a, const std::string& radial,
+                 const std::string& axial, const std::string& out) {
   VModel m;
   for (const auto& c : cells) m.add_cell(VCell(c));
+  std::vector<std::string> components = a.field;
   if (a.materials > 0) {
     // clamp: rounding can put boundary points a hair outside [0, 1].
-    const std::string rho = "min(1, max(0, " + (a.blend == "radial" ? radial : axial) + "))";
-    const Attribute material = Attribute::expression(blend_components(a.materials, rho), Attribute::Space::model);
+    components = blend_components(a.materials, "min(1, max(0, " + (a.blend == "radial" ? radial : axial) + "))");
+  }
+  if (!components.empty()) {
+    const Attribute material = Attribute::expression(components, Attribute::Space::model);
     for (int i = 0; i < m.num_cells(); ++i) m.cell(i).set_attribute("material", material);
   }
   m.glue();
-  io::write_vmodel(a.out, m);
+  io::write_vmodel(out, m);
 }
 
+namespace {
+
 std::string num(double x) { return "(" + fmt(x) + ")"; }
+
+struct ModelArgs : MaterialArgs {
+  std::string out;
+};
+
+void add_primitive_options(CLI::App* cmd, ModelArgs& a, const char* axial_meaning) {
+  add_material_options(cmd, a, axial_meaning);
+  cmd->add_option("-o,--output", a.out, "Output V-model file (.json)")->required();
+}
 
 void add_ball(CLI::App& make) {
   auto* cmd = make.add_subcommand("ball", "Ball of 7 non-singular cells (a core cube and 6 shells out to exact "
                                           "sphere patches)");
-  struct Args : PrimitiveArgs {
+  struct Args : ModelArgs {
     BallSpec spec;
     std::vector<double> center{0, 0, 0};
   };
@@ -69,21 +81,21 @@ void add_ball(CLI::App& make) {
   cmd->add_option("--center", a->center, "Centre x y z")->expected(3);
   cmd->add_option("--core", a->spec.core, "Core cube size as a fraction of the largest that fits, in (0, 1)")
       ->capture_default_str();
-  add_common(cmd, *a, "along z");
+  add_primitive_options(cmd, *a, "along z");
   cmd->callback([a] {
     a->spec.center = {a->center[0], a->center[1], a->center[2]};
     const std::string x = "(x - " + num(a->center[0]) + ")", y = "(y - " + num(a->center[1]) + ")",
                       z = "(z - " + num(a->center[2]) + ")";
     const double r = a->spec.radius;
     write_model(make_ball(a->spec), *a, "sqrt(" + x + "^2 + " + y + "^2 + " + z + "^2) / " + num(r),
-                "(" + z + " + " + num(r) + ") / " + num(2 * r));
+                "(" + z + " + " + num(r) + ") / " + num(2 * r), a->out);
   });
 }
 
 void add_cylinder(CLI::App& make) {
   auto* cmd = make.add_subcommand("cylinder", "Solid cylinder about the z-axis, 5 cells: a core box and 4 ruled "
                                               "cells out to exact arcs");
-  struct Args : PrimitiveArgs {
+  struct Args : ModelArgs {
     CylinderSpec spec;
   };
   auto a = std::make_shared<Args>();
@@ -91,16 +103,17 @@ void add_cylinder(CLI::App& make) {
   cmd->add_option("--height", a->spec.height, "Height along z")->check(positive())->capture_default_str();
   cmd->add_option("--core", a->spec.core, "Core square size as a fraction of the largest that fits, in (0, 1)")
       ->capture_default_str();
-  add_common(cmd, *a, "along z");
+  add_primitive_options(cmd, *a, "along z");
   cmd->callback([a] {
-    write_model(make_cylinder(a->spec), *a, "sqrt(x^2 + y^2) / " + num(a->spec.radius), "z / " + num(a->spec.height));
+    write_model(make_cylinder(a->spec), *a, "sqrt(x^2 + y^2) / " + num(a->spec.radius), "z / " + num(a->spec.height),
+                a->out);
   });
 }
 
 void add_cone(CLI::App& make) {
   auto* cmd = make.add_subcommand("cone", "Frustum about the z-axis (top radius > 0: a full apex is singular), "
                                           "5 cells");
-  struct Args : PrimitiveArgs {
+  struct Args : ModelArgs {
     ConeSpec spec;
   };
   auto a = std::make_shared<Args>();
@@ -109,19 +122,19 @@ void add_cone(CLI::App& make) {
   cmd->add_option("--height", a->spec.height, "Height along z")->check(positive())->capture_default_str();
   cmd->add_option("--core", a->spec.core, "Core square size as a fraction of the largest that fits, in (0, 1)")
       ->capture_default_str();
-  add_common(cmd, *a, "along z");
+  add_primitive_options(cmd, *a, "along z");
   cmd->callback([a] {
     const ConeSpec& c = a->spec;
     // Radius at height z: r0 + (r1 - r0) z / h.
     const std::string radius = "(" + num(c.bottom_radius) + " + " + num(c.top_radius - c.bottom_radius) + " * z / " +
                                num(c.height) + ")";
-    write_model(make_cone(c), *a, "sqrt(x^2 + y^2) / " + radius, "z / " + num(c.height));
+    write_model(make_cone(c), *a, "sqrt(x^2 + y^2) / " + radius, "z / " + num(c.height), a->out);
   });
 }
 
 void add_torus(CLI::App& make) {
   auto* cmd = make.add_subcommand("torus", "Ring torus about the z-axis, 5 cells of revolution");
-  struct Args : PrimitiveArgs {
+  struct Args : ModelArgs {
     TorusSpec spec;
   };
   auto a = std::make_shared<Args>();
@@ -131,11 +144,11 @@ void add_torus(CLI::App& make) {
       ->capture_default_str();
   cmd->add_option("--core", a->spec.core, "Core square size as a fraction of the largest that fits, in (0, 1)")
       ->capture_default_str();
-  add_common(cmd, *a, "around the ring");
+  add_primitive_options(cmd, *a, "around the ring");
   cmd->callback([a] {
     const TorusSpec& t = a->spec;
     const std::string tube = "sqrt((sqrt(x^2 + y^2) - " + num(t.major_radius) + ")^2 + z^2) / " + num(t.minor_radius);
-    write_model(make_torus(t), *a, tube, "(atan2(y, x) + pi) / (2 * pi)");
+    write_model(make_torus(t), *a, tube, "(atan2(y, x) + pi) / (2 * pi)", a->out);
   });
 }
 

@@ -7,6 +7,7 @@
 
 #include "cli.hpp"
 #include "trivar/model/model_boundary.hpp"
+#include "trivar/spline/jacobian.hpp"
 
 namespace trivar::cli {
 
@@ -52,6 +53,15 @@ nlohmann::json describe(const VModel& m) {
     j["attributes"][name] = e;
   }
   for (const NonConformingFace& f : t.non_conforming) j["non_conforming"].push_back(f.describe());
+  for (int i = 0; i < m.num_cells(); ++i) {
+    const TensorSpline<3>& g = m.cell(i).geometry();
+    const JacobianReport<3> r = check_jacobian(g);
+    j["cell_info"].push_back({{"degrees", {g.degree(0), g.degree(1), g.degree(2)}},
+                              {"counts", {g.count(0), g.count(1), g.count(2)}},
+                              {"rational", g.is_rational()},
+                              {"jacobian", r.valid ? "valid" : r.invalid ? "invalid" : "undecided"},
+                              {"min_det_j_lower_bound", r.min_lower_bound}});
+  }
   return j;
 }
 
@@ -78,9 +88,10 @@ void print_model_info(const std::string& path, const VModel& m, bool json) {
     std::printf("  attribute %s: %d component%s, %s, on %zu of %d cells\n", name.c_str(), e["components"].get<int>(),
                 e["components"].get<int>() == 1 ? "" : "s", e["kinds"].dump().c_str(), e["cells"].size(), m.num_cells());
   for (int i = 0; i < m.num_cells(); ++i) {
-    const TensorSpline<3>& g = m.cell(i).geometry();
-    std::printf("  cell %d: degrees %d %d %d, control points %d x %d x %d, %s\n", i, g.degree(0), g.degree(1),
-                g.degree(2), g.count(0), g.count(1), g.count(2), g.is_rational() ? "rational" : "polynomial");
+    const nlohmann::json& c = d["cell_info"][static_cast<std::size_t>(i)];
+    std::printf("  cell %d: degrees %s, control points %s, %s, Jacobian %s, min det J >= %s\n", i,
+                c["degrees"].dump().c_str(), c["counts"].dump().c_str(), c["rational"].get<bool>() ? "rational" : "polynomial",
+                c["jacobian"].get<std::string>().c_str(), fmt(c["min_det_j_lower_bound"].get<double>()).c_str());
   }
 }
 

@@ -1,5 +1,6 @@
 // trivar make ball|cylinder|cone|torus, info, convert and export on V-models; reference values are the
 // primitives' closed-form volumes.
+#include <cmath>
 #include <cstring>
 #include <numbers>
 
@@ -27,6 +28,12 @@ TEST_F(ModelCli, PrimitivesHaveExactVolumesAndClosedBoundaries) {
   EXPECT_NE(info.out.find("topology: 18 shared surfaces, 6 boundary surfaces"), std::string::npos) << info.out;
   EXPECT_NE(info.out.find("boundary: closed"), std::string::npos) << info.out;
   EXPECT_NEAR(volume_of("ball.json"), 4.0 / 3.0 * kPi * 8, 1e-9 * 4.0 / 3.0 * kPi * 8);
+  const auto cells = nlohmann::json::parse(ok("info --json ball.json").out).at("model").at("cell_info");
+  ASSERT_EQ(cells.size(), 7u);
+  for (const auto& c : cells) {
+    EXPECT_EQ(c.at("jacobian"), "valid");
+    EXPECT_GT(c.at("min_det_j_lower_bound").get<double>(), 0.0);
+  }
 
   ok("make cylinder --radius 0.5 --height 3 -o cyl.json");
   EXPECT_NEAR(volume_of("cyl.json"), kPi * 0.25 * 3, 1e-12);
@@ -48,6 +55,48 @@ TEST_F(ModelCli, MaterialsBlendAsAPartitionOfUnity) {
   EXPECT_NE(vtu.find("Name=\"vcell\""), std::string::npos);
   ok("convert graded.json copy.json");
   EXPECT_EQ(nlohmann::json::parse(ok("info --json copy.json").out).at("model").at("attributes"), j.at("attributes"));
+}
+
+TEST_F(ModelCli, BoxModelWithFormulaMaterials) {
+  ok("make box --model --size 2 1 1 --material-field x/2 1-x/2 -o box.json");
+  const auto j = nlohmann::json::parse(ok("info --json box.json").out).at("model");
+  EXPECT_EQ(j.at("cells"), 1);
+  EXPECT_NEAR(j.at("volume").get<double>(), 2.0, 1e-14);
+  EXPECT_EQ(j.at("attributes").at("material").at("components"), 2);
+  ok("export box.json box.vtu");
+  EXPECT_NE(slurp(work_ / "box.vtu").find("Name=\"material\""), std::string::npos);
+  fails("make box --materials 2 -o b.json");
+  fails("make box --model --materials 2 --material-field x -o b.json", 2);
+}
+
+TEST_F(ModelCli, SweepMorphAndRevolveFromFiles) {
+  ok("make box --elements 1 1 --size 1 1 -o square.json");
+  write("line.json", R"({"trivar": 1, "kind": "curve", "dim": 3, "rational": false, "degrees": [1],
+                         "knots": [[0, 0, 1, 1]], "control_points": [[0, 0, 0], [0, 0, 2]]})");
+  // Along a straight path the sweep is the extrusion: the unit square times [0, 2] in z.
+  const Result s = ok("make sweep square.json line.json -o swept.json");
+  EXPECT_LT(numbers_after(s.out, "max error").at(0), 1e-12);
+  const auto x = numbers_after(ok("eval swept.json 0.5 0.25 0.5").out, "S");
+  ASSERT_EQ(x.size(), 3u);
+  EXPECT_NEAR(x[0], 0.5, 1e-12);
+  EXPECT_NEAR(x[1], 0.25, 1e-12);
+  EXPECT_NEAR(x[2], 1.0, 1e-12);
+
+  ok("make box --elements 1 1 --size 2 2 -o big.json");
+  ok("make morph square.json big.json --smoothness 1 -o morph.json");
+  // w = 0.5: the smoothstep blend is 1/2, so the corner (1, 1) of u = v = 1 sits at (1.5, 1.5).
+  const auto y = numbers_after(ok("eval morph.json 1 1 0.5").out, "S");
+  EXPECT_NEAR(y.at(0), 1.5, 1e-14);
+
+  // A quarter turn of the segment x in [1, 2] about the z-axis: a quarter annulus of radii 1 and 2.
+  write("seg.json", R"({"trivar": 1, "kind": "curve", "dim": 3, "rational": false, "degrees": [1],
+                        "knots": [[0, 0, 1, 1]], "control_points": [[1, 0, 0], [2, 0, 0]]})");
+  ok("make revolve --profile seg.json --angle 90 -o quarter.json");
+  const auto p = numbers_after(ok("eval quarter.json 0.5 0.5").out, "S");
+  ASSERT_EQ(p.size(), 3u);
+  EXPECT_NEAR(std::hypot(p[0], p[1]), 1.5, 1e-14);
+  fails("make sweep line.json square.json -o x.json");
+  fails("make revolve --profile seg.json --axis-dir 0 0 0 -o x.json");
 }
 
 TEST_F(ModelCli, ExportWritesAWatertightStl) {
