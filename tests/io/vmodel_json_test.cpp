@@ -101,6 +101,11 @@ TEST(VModelJson, SummaryDescribesTheTopology) {
   // Ball: the core shares its 6 faces with the shells, neighbouring shells share 12 faces; 6 sphere patches.
   EXPECT_EQ(j.at("summary").at("shared_surfaces"), 18);
   EXPECT_EQ(j.at("summary").at("boundary_surfaces"), 6);
+  // V-curves: 12 cube edges, 12 sphere-patch edges and 8 radial edges from cube corners to the sphere;
+  // V-points: 8 cube corners and 8 sphere-patch corners.
+  EXPECT_EQ(j.at("summary").at("curves"), 32);
+  EXPECT_EQ(j.at("summary").at("points"), 16);
+  EXPECT_EQ(j.at("summary").at("non_conforming_faces"), 0);
   EXPECT_TRUE(io::is_vmodel_json(j));
 }
 
