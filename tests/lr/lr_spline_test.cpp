@@ -46,7 +46,7 @@ TensorSpline<D> ones_like(const TensorSpline<D>& s) {
 template <int D>
 MeshRectangle<D> fullspan_rectangle(const LRSpline<D>& lr, const Box<D>& e, int k, int multiplicity) {
   Box<D> span = Box<D>::empty();
-  for (const auto& [key, b] : lr.basis()) {
+  for (const auto& b : lr.basis_functions()) {
     const auto s = b.support();
     bool contains = true;
     for (int j = 0; j < D; ++j) contains = contains && s.lo[j] <= e.lo[j] && e.hi[j] <= s.hi[j];
@@ -69,8 +69,7 @@ void check_random_refinement(const Ints<D>& degrees, const Ints<D>& elements, bo
   std::mt19937 rng(seed + 2);
   int done = 0;
   for (int attempt = 0; attempt < 10 * refinements && done < refinements; ++attempt) {
-    const auto& els = lr.elements();
-    const auto e = els[std::uniform_int_distribution<std::size_t>(0, els.size() - 1)(rng)];
+    const auto e = lr.element(std::uniform_int_distribution<int>(0, lr.num_elements() - 1)(rng));
     const int k = std::uniform_int_distribution<int>(0, D - 1)(rng);
     const int m = std::uniform_int_distribution<int>(1, std::min(2, degrees[k] + 1))(rng);
     const auto r = fullspan_rectangle(lr, e, k, m);
@@ -95,7 +94,7 @@ void check_random_refinement(const Ints<D>& degrees, const Ints<D>& elements, bo
     pou = std::max(pou, std::abs(v - 1.0));
   }
   EXPECT_LE(pou, 1e-12);
-  for (const auto& [key, b] : lr.basis()) {
+  for (const auto& b : lr.basis_functions()) {
     EXPECT_GT(b.gamma, 0.0);
     EXPECT_LE(b.gamma, 1.0 + 1e-14);
   }
@@ -163,7 +162,7 @@ TEST(LRSpline, FullSpanPlanesOnEveryElementReproduceTensorRefinement) {
   LRSpline<3> lr(s);
   auto t = s;
   int expected_inserts = 0;
-  const auto cells = lr.elements();
+  const std::vector<Box<3>> cells(lr.elements().begin(), lr.elements().end());
   for (int k = 0; k < 3; ++k) {
     const auto br = s.knots(k).breakpoints();
     std::vector<double> mids;
@@ -180,7 +179,7 @@ TEST(LRSpline, FullSpanPlanesOnEveryElementReproduceTensorRefinement) {
   EXPECT_EQ(lr.num_basis(), t.num_coefs());
   EXPECT_EQ(static_cast<int>(lr.elements().size()),
             t.knots(0).num_elements() * t.knots(1).num_elements() * t.knots(2).num_elements());
-  for (const auto& [key, b] : lr.basis()) EXPECT_NEAR(b.gamma, 1.0, 1e-13);  // tensor B-splines again
+  for (const auto& b : lr.basis_functions()) EXPECT_NEAR(b.gamma, 1.0, 1e-13);  // tensor B-splines again
   EXPECT_LE(deviation(lr, t, test::random_params(t, 500, 32), false), 1e-12);
 }
 
@@ -244,4 +243,94 @@ TEST(LRSpline, RaisingMultiplicityOfExistingLines) {
   EXPECT_GT(part.num_basis(), s.num_coefs());
   EXPECT_LT(part.num_basis(), t.num_coefs());
   EXPECT_LE(deviation(part, s, params, false), 1e-12);
+}
+
+TEST(LRSpline, DerivativesMatchFiniteDifferencesAfterRefinement) {
+  const auto s = test::random_spline<3>({3, 2, 2}, {3, 3, 2}, 2, true, 61);
+  LRSpline<3> lr(s);
+  const auto d = s.domain();
+  lr.insert(MeshRectangle<3>::make(0, 0.5 * (d.lo[0] + d.hi[0]), d.lo, d.hi));
+  const double h = 1e-6;
+  std::mt19937 rng(62);
+  for (int t = 0; t < 50; ++t) {
+    Param<3> u;
+    for (int k = 0; k < 3; ++k)
+      u[k] = std::uniform_real_distribution<double>(d.lo[k] + 0.01, d.hi[k] - 0.01)(rng);
+    double a[8];
+    lr.eval_first_derivatives(u, a);
+    for (int k = 0; k < 3; ++k) {
+      auto up = u, um = u;
+      up[k] += h;
+      um[k] -= h;
+      double vp[2], vm[2];
+      lr.eval(up, vp);
+      lr.eval(um, vm);
+      for (int i = 0; i < 2; ++i) EXPECT_NEAR(a[2 * (k + 1) + i], (vp[i] - vm[i]) / (2 * h), 1e-5 * (1 + std::abs(a[2 * (k + 1) + i])));
+    }
+  }
+}
+
+TEST(LRSpline, BatchEvaluationIsThreadCountIndependent) {
+  const auto s = test::random_spline<3>({3, 3, 3}, {4, 4, 4}, 3, false, 71);
+  LRSpline<3> lr(s);
+  const auto d = s.domain();
+  lr.insert(MeshRectangle<3>::make(1, 0.5 * (d.lo[1] + d.hi[1]), d.lo, d.hi));
+  const auto params = test::random_params(s, 2000, 72);
+  std::vector<double> one(params.size() * 3), two(one.size()), ref(one.size());
+  lr.eval_many(params, one, 1);
+  lr.eval_many(params, two, 2);
+  for (std::size_t i = 0; i < params.size(); ++i) lr.eval(params[i], ref.data() + 3 * i);
+  EXPECT_EQ(one, two);
+  EXPECT_EQ(one, ref);
+  std::vector<double> da(params.size() * 12), db(da.size());
+  lr.eval_first_derivatives_many(params, da, 1);
+  lr.eval_first_derivatives_many(params, db, 2);
+  EXPECT_EQ(da, db);
+  EXPECT_LE(deviation(lr, s, params, false), 1e-12);
+}
+
+TEST(LRSpline, ConstructionFromPartsRoundTripsAndValidates) {
+  const auto s = test::random_spline<2>({2, 3}, {4, 3}, 2, true, 81);
+  LRSpline<2> lr(s);
+  const auto d = s.domain();
+  const double x = 0.5 * (s.knots(0).breakpoints()[1] + s.knots(0).breakpoints()[2]);
+  lr.insert(MeshRectangle<2>::make(0, x, d.lo, Param<2>{0, s.knots(1).breakpoints()[2]}));
+  std::vector<LRBSpline<2>> basis(lr.basis_functions().begin(), lr.basis_functions().end());
+  std::reverse(basis.begin(), basis.end());  // any order: the constructor sorts
+  LRSpline<2> copy({2, 3}, 2, true, basis, lr.mesh());
+  EXPECT_EQ(copy.num_basis(), lr.num_basis());
+  EXPECT_EQ(copy.num_elements(), lr.num_elements());
+  for (int b = 0; b < lr.num_basis(); ++b) EXPECT_EQ(copy.basis_function(b).knots, lr.basis_function(b).knots);
+  EXPECT_LE(deviation(copy, s, test::random_params(s, 300, 82), false), 1e-12);
+
+  const auto expect_error = [&](std::vector<LRBSpline<2>> b, std::vector<MeshRectangle<2>> m, const char* what) {
+    try {
+      LRSpline<2> bad({2, 3}, 2, true, std::move(b), std::move(m));
+      ADD_FAILURE() << "no error for " << what;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  };
+  auto b1 = basis;
+  b1[0].knots[0].pop_back();
+  expect_error(b1, lr.mesh(), "knots in direction 0");
+  auto b2 = basis;
+  b2[1].gamma = 1.5;
+  expect_error(b2, lr.mesh(), "scaling factor");
+  auto b3 = basis;
+  b3[2].coef.pop_back();
+  expect_error(b3, lr.mesh(), "control values");
+  auto b4 = basis;
+  b4[3].knots[1].back() = d.hi[1] + 1;
+  b4[3].knots[1][4] = d.hi[1] + 1;
+  expect_error(b4, lr.mesh(), "outside the domain");
+  auto m1 = lr.mesh();
+  m1.push_back(MeshRectangle<2>::make(1, 0.5 * (d.lo[1] + d.hi[1]), Param<2>{x, 0}, Param<2>{d.hi[0] + 0.5 * (x - d.hi[0]), 0}));
+  expect_error(basis, m1, "ends inside an element");
+  auto m2 = lr.mesh();
+  m2.back().multiplicity = 7;
+  expect_error(basis, m2, "multiplicity");
+  auto b5 = basis;
+  b5.push_back(basis[0]);
+  expect_error(b5, lr.mesh(), "same knots");
 }

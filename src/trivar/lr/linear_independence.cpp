@@ -199,8 +199,11 @@ ExactResult exact_test(const Ints<D>& degrees, std::span<const LRBSpline<D>> bas
         }
         cols += P;
       }
-    for (auto& t : entries) t = Eigen::Triplet<double>(t.row(), t.col(), t.value() / row_max[static_cast<std::size_t>(t.row())]);
-    res.rank += block_rank(static_cast<int>(rows.size()), cols, entries, rank_tolerance);
+    // Rows scaled to max-norm 1, so the rank tolerance is relative per B-spline.
+    std::vector<Eigen::Triplet<double>> scaled;
+    scaled.reserve(entries.size());
+    for (const auto& t : entries) scaled.emplace_back(t.row(), t.col(), t.value() / row_max[static_cast<std::size_t>(t.row())]);
+    res.rank += block_rank(static_cast<int>(rows.size()), cols, scaled, rank_tolerance);
   }
   res.status = res.rank == res.tested ? Independence::independent : Independence::not_independent;
   return res;

@@ -1,56 +1,429 @@
 #include "trivar/lr/lr_spline.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <string>
+#include <unordered_map>
 
 #include "trivar/core/error.hpp"
+#include "trivar/core/parallel.hpp"
+#include "trivar/lr/lr_mesh.hpp"
 #include "trivar/spline/basis.hpp"
 
 namespace trivar {
 
 namespace {
 
+// +0.0 for -0.0, so that equal values hash equally.
+inline std::uint64_t bits(double v) { return std::bit_cast<std::uint64_t>(v == 0.0 ? 0.0 : v); }
+
 template <int D>
-std::vector<double> key_of(const LRBSpline<D>& b) {
-  std::vector<double> key;
-  for (int k = 0; k < D; ++k) key.insert(key.end(), b.knots[k].begin(), b.knots[k].end());
-  return key;
+std::uint64_t knot_hash(const LRBSpline<D>& b) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (int k = 0; k < D; ++k)
+    for (double v : b.knots[k]) h = (h ^ bits(v)) * 1099511628211ull ^ (h >> 29);
+  return h;
 }
 
-// Value (and derivative) of the single B-spline of degree p on local knots y[0..p+1] at u, where
-// y[0] <= u <= y[p+1]. The local knots are padded by p copies of each end so that the library's triangular
-// scheme, which reads p knots either side of the span, applies unchanged.
-template <bool kDerivs>
-void local_bspline(const double* y, int p, double u, double& value, double& deriv) {
-  double t[3 * kMaxDegree + 2];
-  for (int i = 0; i < p; ++i) {
-    t[i] = y[0];
-    t[2 * p + 2 + i] = y[p + 1];
+template <int D>
+bool same_knots(const LRBSpline<D>& a, const LRBSpline<D>& b) {
+  for (int k = 0; k < D; ++k)
+    if (a.knots[k] != b.knots[k]) return false;
+  return true;
+}
+
+// The id order: lexicographic in the knot vectors, the last direction most significant.
+template <int D>
+bool knot_less(const LRBSpline<D>& a, const LRBSpline<D>& b) {
+  for (int k = D - 1; k >= 0; --k)
+    if (a.knots[k] != b.knots[k]) return a.knots[k] < b.knots[k];
+  return false;
+}
+
+struct PlaneKey {
+  int dir;
+  double value;
+  bool operator==(const PlaneKey& o) const { return dir == o.dir && value == o.value; }
+};
+struct PlaneHash {
+  std::size_t operator()(const PlaneKey& k) const {
+    return static_cast<std::size_t>(bits(k.value) * 0x9E3779B97F4A7C15ull + static_cast<std::uint64_t>(k.dir));
   }
-  std::copy(y, y + p + 2, t + p);
-  int s = 0;
-  if (u >= y[p + 1]) {
-    s = p;
-    while (y[s] == y[s + 1]) --s;
-  } else {
-    while (u >= y[s + 1]) ++s;
+};
+
+template <int D>
+bool center_inside(const Box<D>& e, const Box<D>& s) {
+  for (int k = 0; k < D; ++k) {
+    const double c = 0.5 * (e.lo[k] + e.hi[k]);
+    if (c <= s.lo[k] || c >= s.hi[k]) return false;
   }
-  const int span = s + p;
-  if constexpr (kDerivs) {
-    double ders[2 * (kMaxDegree + 1)];
-    basis_derivatives(t, p, span, u, 1, ders);
-    value = ders[p - s];
-    deriv = ders[p + 1 + p - s];
-  } else {
-    double N[kMaxDegree + 1];
-    basis_values(t, p, span, u, N);
-    value = N[p - s];
-    deriv = 0.0;
-  }
+  return true;
 }
 
 }  // namespace
+
+// The working state of one insertion call: indices that are cheap to build from the compact form (O(size)) and
+// make every step of an insertion local, and the lazily deleted B-spline slots. finish() compacts.
+template <int D>
+struct LRSpline<D>::Batch {
+  using Rect = MeshRectangle<D>;
+  LRSpline& s;
+  std::vector<char> dead;
+  std::unordered_multimap<std::uint64_t, int> by_knots;
+  std::unordered_map<PlaneKey, std::vector<int>, PlaneHash> planes;  // mesh_ ids; multiplicity 0 = removed
+  ElementGrid<D> grid;
+  int max_multiplicity = 1;
+  bool changed = false;
+  std::vector<int> queue;
+  std::vector<int> stamp;
+  int epoch = 0;
+  std::vector<double> candidates;
+  std::vector<const Rect*> plane_rects;
+  std::vector<LRBSpline<D>> pieces, next;
+
+  explicit Batch(LRSpline& spline) : s(spline), grid(spline.domain_, spline.elements_.size()) {
+    dead.assign(s.basis_.size(), 0);
+    by_knots.reserve(s.basis_.size() * 2);
+    for (std::size_t i = 0; i < s.basis_.size(); ++i) by_knots.emplace(knot_hash(s.basis_[i]), static_cast<int>(i));
+    for (std::size_t i = 0; i < s.mesh_.size(); ++i) {
+      const auto& r = s.mesh_[i];
+      planes[{r.dir, r.value}].push_back(static_cast<int>(i));
+      max_multiplicity = std::max(max_multiplicity, r.multiplicity);
+    }
+    for (std::size_t e = 0; e < s.elements_.size(); ++e) grid.add(static_cast<int>(e), s.elements_[e]);
+    stamp.assign(s.basis_.size(), 0);
+  }
+
+  // The rectangles of the plane (dir, value), plus `extra` when given, in plane_rects.
+  void gather_plane(int dir, double value, const Rect* extra) {
+    plane_rects.clear();
+    const auto it = planes.find({dir, value});
+    if (it != planes.end())
+      for (int id : it->second) plane_rects.push_back(&s.mesh_[static_cast<std::size_t>(id)]);
+    if (extra) plane_rects.push_back(extra);
+  }
+
+  void purge(std::vector<int>& list) const {
+    std::erase_if(list, [&](int b) { return dead[static_cast<std::size_t>(b)] != 0; });
+  }
+
+  bool insert_one(const Rect& r, bool strict) {
+    const int k = r.dir;
+    const double z = r.value;
+    const auto where = [&] {
+      return "LRSpline::insert: mesh rectangle in direction " + std::to_string(k) + " at " + std::to_string(z);
+    };
+    gather_plane(k, z, nullptr);
+    if (mesh_covers<D>(plane_rects, k, z, r.extent, r.multiplicity)) return false;
+
+    Box<D> q = r.extent;
+    q.lo[k] = q.hi[k] = z;
+    std::vector<int> touched;
+    grid.query(q, [&](int e) {
+      const auto& el = s.elements_[static_cast<std::size_t>(e)];
+      if (el.lo[k] <= z && z <= el.hi[k] && r.overlaps_across(el)) touched.push_back(e);
+    });
+    std::sort(touched.begin(), touched.end());
+    // Every element the rectangle cuts or lies on must be cut or bounded across its whole cross-section:
+    // otherwise the rectangle ends inside an element or inside an element face.
+    // A face the mesh already holds with r's multiplicity may be overlapped partially.
+    for (int e : touched) {
+      const auto& el = s.elements_[static_cast<std::size_t>(e)];
+      const bool straddled = el.lo[k] < z && z < el.hi[k];
+      require(r.contains_across(el) || (!straddled && mesh_covers<D>(plane_rects, k, z, el, r.multiplicity)),
+              [&] { return where() + ": rectangle ends inside an element or face"; });
+    }
+
+    // Decide before changing anything that some support is traversed: the B-splines crossing z through r's
+    // extent have support on the touched elements.
+    gather_plane(k, z, &r);
+    ++epoch;
+    bool splits = false;
+    for (int e : touched) {
+      auto& list = s.element_basis_[static_cast<std::size_t>(e)];
+      purge(list);
+      for (int b : list) {
+        if (stamp[static_cast<std::size_t>(b)] == epoch) continue;
+        stamp[static_cast<std::size_t>(b)] = epoch;
+        const auto& fn = s.basis_[static_cast<std::size_t>(b)];
+        const Box<D> S = fn.support();
+        if (!(S.lo[k] < z && z < S.hi[k]) || !r.overlaps_across(S)) continue;
+        const auto& y = fn.knots[k];
+        const int m = static_cast<int>(std::count(y.begin(), y.end(), z));
+        if (mesh_covers<D>(plane_rects, k, z, S, m + 1)) {
+          splits = true;
+          break;
+        }
+      }
+      if (splits) break;
+    }
+    if (!splits) {
+      require(!strict, [&] { return where() + ": splits no B-spline support"; });
+      return false;
+    }
+
+    changed = true;
+    add_to_mesh(r);
+    const std::size_t num_touched = touched.size();
+    for (std::size_t i = 0; i < num_touched; ++i) {
+      const int e = touched[i];
+      auto& el = s.elements_[static_cast<std::size_t>(e)];
+      if (!(el.lo[k] < z && z < el.hi[k])) continue;
+      Box<D> upper = el;
+      upper.lo[k] = z;
+      el.hi[k] = z;
+      const int e2 = static_cast<int>(s.elements_.size());
+      s.elements_.push_back(upper);
+      auto list = s.element_basis_[static_cast<std::size_t>(e)];
+      for (int b : list) s.basis_elements_[static_cast<std::size_t>(b)].push_back(e2);
+      s.element_basis_.push_back(std::move(list));
+      grid.add(e2, upper);
+      touched.push_back(e2);
+    }
+    // Only the supports r crosses have new mesh inside them, and only at z in direction k: test those there.
+    // The B-splines that splits create have smaller supports, which other lines may now cross: the queue
+    // tests them in every direction.
+    ++epoch;
+    std::vector<int> crossed;
+    for (int e : touched)
+      for (int b : s.element_basis_[static_cast<std::size_t>(e)]) {
+        if (dead[static_cast<std::size_t>(b)] || stamp[static_cast<std::size_t>(b)] == epoch) continue;
+        stamp[static_cast<std::size_t>(b)] = epoch;
+        const Box<D> S = s.basis_[static_cast<std::size_t>(b)].support();
+        if (S.lo[k] < z && z < S.hi[k] && r.overlaps_across(S)) crossed.push_back(b);
+      }
+    for (int b : crossed)
+      if (!dead[static_cast<std::size_t>(b)] && splits_at(b, k, z)) split(b, k, std::span<const double>(&z, 1));
+    while (!queue.empty()) {
+      const int b = queue.back();
+      queue.pop_back();
+      if (dead[static_cast<std::size_t>(b)]) continue;
+      int dir = 0;
+      if (find_split(b, dir)) split(b, dir, candidates);
+    }
+    return true;
+  }
+
+  void add_to_mesh(const Rect& r) {
+    Rect n = r;
+    auto& ids = planes[{r.dir, r.value}];
+    bool merged = true;
+    while (merged) {
+      merged = false;
+      for (std::size_t i = 0; i < ids.size() && !merged; ++i) {
+        auto& e = s.mesh_[static_cast<std::size_t>(ids[i])];
+        if (e.multiplicity <= n.multiplicity && n.contains_across(e.extent)) {
+          merged = true;
+        } else if (e.multiplicity == n.multiplicity) {
+          // The union is a box when the extents agree in all directions but one and touch or overlap in it.
+          int differing = -1, count = 0;
+          for (int j = 0; j < D; ++j)
+            if (j != n.dir && (e.extent.lo[j] != n.extent.lo[j] || e.extent.hi[j] != n.extent.hi[j])) {
+              differing = j;
+              ++count;
+            }
+          if (count == 1 && e.extent.lo[differing] <= n.extent.hi[differing] &&
+              n.extent.lo[differing] <= e.extent.hi[differing]) {
+            n.extent.lo[differing] = std::min(n.extent.lo[differing], e.extent.lo[differing]);
+            n.extent.hi[differing] = std::max(n.extent.hi[differing], e.extent.hi[differing]);
+            merged = true;
+          }
+        }
+        if (merged) {
+          e.multiplicity = 0;
+          ids.erase(ids.begin() + static_cast<std::ptrdiff_t>(i));
+        }
+      }
+    }
+    ids.push_back(static_cast<int>(s.mesh_.size()));
+    s.mesh_.push_back(n);
+    max_multiplicity = std::max(max_multiplicity, n.multiplicity);
+  }
+
+  // Whether the mesh line at z in direction k (z strictly inside the support) crosses b's support completely
+  // with more multiplicity than b's knots have there (see find_split).
+  bool splits_at(int b, int k, double z) {
+    const auto& fn = s.basis_[static_cast<std::size_t>(b)];
+    const auto& y = fn.knots[k];
+    const int m = static_cast<int>(std::count(y.begin(), y.end(), z));
+    if (m == 0) {
+      for (int e : s.basis_elements_[static_cast<std::size_t>(b)]) {
+        const auto& el = s.elements_[static_cast<std::size_t>(e)];
+        if (el.lo[k] < z && z < el.hi[k]) return false;
+      }
+      return true;
+    }
+    if (max_multiplicity <= m) return false;
+    gather_plane(k, z, nullptr);
+    return mesh_covers<D>(plane_rects, k, z, fn.support(), m + 1);
+  }
+
+  // A mesh line that crosses B-spline b's support completely with more multiplicity than b's knots have.
+  // Multiplicity one: a value strictly inside the support that bounds an element of the support, is not a
+  // knot, and is straddled by no element of the support (the elements tile the support, so the mesh then
+  // holds the whole cross-section). Higher multiplicities: the plane's rectangles at an interior knot.
+  // On success the lines are in `candidates`, ascending: all multiplicity-one lines of direction dir at once
+  // (splitting by all of them together avoids queueing the intermediate B-splines), or one line otherwise.
+  bool find_split(int b, int& dir) {
+    const auto& fn = s.basis_[static_cast<std::size_t>(b)];
+    const Box<D> S = fn.support();
+    const auto& L = s.basis_elements_[static_cast<std::size_t>(b)];
+    for (int k = 0; k < D; ++k) {
+      const auto& y = fn.knots[k];
+      candidates.clear();
+      for (int e : L) {
+        const auto& el = s.elements_[static_cast<std::size_t>(e)];
+        for (double v : {el.lo[k], el.hi[k]})
+          if (S.lo[k] < v && v < S.hi[k] && std::find(y.begin(), y.end(), v) == y.end() &&
+              std::find(candidates.begin(), candidates.end(), v) == candidates.end())
+            candidates.push_back(v);
+      }
+      if (!candidates.empty()) {
+        for (int e : L) {
+          const auto& el = s.elements_[static_cast<std::size_t>(e)];
+          std::erase_if(candidates, [&](double v) { return el.lo[k] < v && v < el.hi[k]; });
+          if (candidates.empty()) break;
+        }
+        if (!candidates.empty()) {
+          dir = k;
+          std::sort(candidates.begin(), candidates.end());
+          return true;
+        }
+      }
+      if (max_multiplicity > 1) {
+        for (std::size_t i = 1; i + 1 < y.size(); ++i) {
+          if (y[i] == y[i - 1] || !(S.lo[k] < y[i] && y[i] < S.hi[k])) continue;
+          const int m = static_cast<int>(std::count(y.begin(), y.end(), y[i]));
+          gather_plane(k, y[i], nullptr);
+          if (mesh_covers<D>(plane_rects, k, y[i], S, m + 1)) {
+            dir = k;
+            candidates.assign(1, y[i]);
+            return true;
+          }
+        }
+      }
+    }
+    return false;
+  }
+
+  // Splits b by the lines zs (ascending) of direction k, each crossing b's support completely: by two-term
+  // splits B[y] = a1 B[y'_0..y'_{p+1}] + a2 B[y'_1..y'_{p+2}] (y' = y with z inserted) of every piece whose
+  // support z is inside, merging equal pieces locally; then the pieces join the collection.
+  void split(int b, int k, std::span<const double> zs) {
+    std::vector<double> lines(zs.begin(), zs.end());
+    pieces.clear();
+    pieces.push_back(std::move(s.basis_[static_cast<std::size_t>(b)]));
+    kill(b, knot_hash(pieces[0]));
+    std::vector<int> L = std::move(s.basis_elements_[static_cast<std::size_t>(b)]);
+    const int p = s.degrees_[k];
+    for (double z : lines) {
+      next.clear();
+      for (auto& piece : pieces) {
+        const auto& y = piece.knots[k];
+        if (!(y.front() < z && z < y.back())) {
+          next.push_back(std::move(piece));
+          continue;
+        }
+        const double a1 = (y[p] <= z && z < y[p + 1]) ? 1.0 : (z - y[0]) / (y[p] - y[0]);
+        const double a2 = (y[0] < z && z <= y[1]) ? 1.0 : (y[p + 1] - z) / (y[p + 1] - y[1]);
+        std::vector<double> yz(y);
+        yz.insert(std::upper_bound(yz.begin(), yz.end(), z), z);
+        LRBSpline<D> b1 = piece;
+        b1.knots[k].assign(yz.begin(), yz.end() - 1);
+        b1.gamma *= a1;
+        piece.knots[k].assign(yz.begin() + 1, yz.end());
+        piece.gamma *= a2;
+        merge_into(next, std::move(b1));
+        merge_into(next, std::move(piece));
+      }
+      std::swap(pieces, next);
+    }
+    for (auto& piece : pieces) {
+      // Each piece keeps the elements of the parent's support inside its own.
+      const Box<D> S = piece.support();
+      std::vector<int> Li;
+      Li.reserve(L.size());
+      for (int e : L)
+        if (center_inside(s.elements_[static_cast<std::size_t>(e)], S)) Li.push_back(e);
+      add(std::move(piece), std::move(Li));
+    }
+  }
+
+  static void merge_into(std::vector<LRBSpline<D>>& list, LRBSpline<D>&& b) {
+    for (auto& old : list)
+      if (same_knots(old, b)) {
+        combine(old, b);
+        return;
+      }
+    list.push_back(std::move(b));
+  }
+
+  // gamma c is what the function sees: keep sum gamma_i c_i for the merged B-spline.
+  static void combine(LRBSpline<D>& old, const LRBSpline<D>& b) {
+    const double g = old.gamma + b.gamma;
+    for (std::size_t i = 0; i < old.coef.size(); ++i) old.coef[i] = (old.gamma * old.coef[i] + b.gamma * b.coef[i]) / g;
+    old.gamma = g;
+  }
+
+  void kill(int b, std::uint64_t h) {
+    dead[static_cast<std::size_t>(b)] = 1;
+    auto [lo, hi] = by_knots.equal_range(h);
+    for (auto it = lo; it != hi; ++it)
+      if (it->second == b) {
+        by_knots.erase(it);
+        return;
+      }
+  }
+
+  void add(LRBSpline<D>&& b, std::vector<int>&& L) {
+    const std::uint64_t h = knot_hash(b);
+    auto [lo, hi] = by_knots.equal_range(h);
+    for (auto it = lo; it != hi; ++it) {
+      auto& old = s.basis_[static_cast<std::size_t>(it->second)];
+      if (!same_knots(old, b)) continue;
+      combine(old, b);
+      queue.push_back(it->second);
+      return;
+    }
+    const int id = static_cast<int>(s.basis_.size());
+    for (int e : L) s.element_basis_[static_cast<std::size_t>(e)].push_back(id);
+    s.basis_.push_back(std::move(b));
+    s.basis_elements_.push_back(std::move(L));
+    dead.push_back(0);
+    stamp.push_back(0);
+    by_knots.emplace(h, id);
+    queue.push_back(id);
+  }
+
+  void finish() {
+    if (!changed) return;
+    std::vector<int> order;
+    order.reserve(s.basis_.size());
+    for (std::size_t i = 0; i < s.basis_.size(); ++i)
+      if (!dead[i]) order.push_back(static_cast<int>(i));
+    std::sort(order.begin(), order.end(), [&](int a, int b) {
+      return knot_less(s.basis_[static_cast<std::size_t>(a)], s.basis_[static_cast<std::size_t>(b)]);
+    });
+    std::vector<LRBSpline<D>> basis;
+    std::vector<std::vector<int>> basis_elements;
+    basis.reserve(order.size());
+    basis_elements.reserve(order.size());
+    for (int i : order) {
+      basis.push_back(std::move(s.basis_[static_cast<std::size_t>(i)]));
+      basis_elements.push_back(std::move(s.basis_elements_[static_cast<std::size_t>(i)]));
+      std::sort(basis_elements.back().begin(), basis_elements.back().end());
+    }
+    s.basis_ = std::move(basis);
+    s.basis_elements_ = std::move(basis_elements);
+    for (auto& list : s.element_basis_) list.clear();
+    for (std::size_t i = 0; i < s.basis_elements_.size(); ++i)
+      for (int e : s.basis_elements_[i]) s.element_basis_[static_cast<std::size_t>(e)].push_back(static_cast<int>(i));
+    std::erase_if(s.mesh_, [](const Rect& r) { return r.multiplicity == 0; });
+    s.evaluator_.reset();
+  }
+};
 
 template <int D>
 LRSpline<D>::LRSpline(const TensorSpline<D>& s) : dim_(s.dim()), rational_(s.is_rational()), domain_(s.domain()) {
@@ -59,6 +432,7 @@ LRSpline<D>::LRSpline(const TensorSpline<D>& s) : dim_(s.dim()), rational_(s.is_
     degrees_[k] = s.degree(k);
   }
   const int st = stride();
+  basis_.reserve(static_cast<std::size_t>(s.num_coefs()));
   for (int i = 0; i < s.num_coefs(); ++i) {
     const auto idx = s.multi_index(i);
     LRBSpline<D> b;
@@ -67,15 +441,13 @@ LRSpline<D>::LRSpline(const TensorSpline<D>& s) : dim_(s.dim()), rational_(s.is_
       b.knots[k].assign(t.begin() + idx[k], t.begin() + idx[k] + degrees_[k] + 2);
     }
     b.coef.assign(s.coef(i), s.coef(i) + st);
-    auto key = key_of(b);
-    basis_.emplace(std::move(key), std::move(b));
+    basis_.push_back(std::move(b));
   }
   std::array<std::vector<double>, D> breaks;
   for (int k = 0; k < D; ++k) {
     breaks[k] = s.knots(k).breakpoints();
-    for (double v : breaks[k]) {
+    for (double v : breaks[k])
       mesh_.push_back(MeshRectangle<D>::make(k, v, domain_.lo, domain_.hi, s.knots(k).multiplicity(v)));
-    }
   }
   Ints<D> c{};
   for (;;) {
@@ -92,266 +464,243 @@ LRSpline<D>::LRSpline(const TensorSpline<D>& s) : dim_(s.dim()), rational_(s.is_
     }
     if (k == D) break;
   }
-  rebuild_lookup();
+  sort_basis();
+  build_support_lists();
 }
 
 template <int D>
-void LRSpline<D>::add_to_mesh(const MeshRectangle<D>& r) {
-  MeshRectangle<D> n = r;
-  bool changed = true;
-  while (changed) {
-    changed = false;
-    for (std::size_t i = 0; i < mesh_.size() && !changed; ++i) {
-      const auto& e = mesh_[i];
-      if (e.dir != n.dir || e.value != n.value) continue;
-      if (e.multiplicity <= n.multiplicity && n.contains_across(e.extent)) {
-        changed = true;
-      } else if (e.multiplicity == n.multiplicity) {
-        // The union is a box when the extents agree in all directions but one and touch or overlap in it.
-        int differing = -1, count = 0;
-        for (int j = 0; j < D; ++j)
-          if (j != n.dir && (e.extent.lo[j] != n.extent.lo[j] || e.extent.hi[j] != n.extent.hi[j])) {
-            differing = j;
-            ++count;
-          }
-        if (count == 1 && e.extent.lo[differing] <= n.extent.hi[differing] &&
-            n.extent.lo[differing] <= e.extent.hi[differing]) {
-          n.extent.lo[differing] = std::min(n.extent.lo[differing], e.extent.lo[differing]);
-          n.extent.hi[differing] = std::max(n.extent.hi[differing], e.extent.hi[differing]);
-          changed = true;
-        }
-      }
-      if (changed) mesh_.erase(mesh_.begin() + static_cast<std::ptrdiff_t>(i));
+LRSpline<D>::LRSpline(const Ints<D>& degrees, int dim, bool rational, std::vector<LRBSpline<D>> basis,
+                      std::vector<MeshRectangle<D>> mesh)
+    : degrees_(degrees), dim_(dim), rational_(rational), basis_(std::move(basis)), mesh_(std::move(mesh)) {
+  for (int k = 0; k < D; ++k)
+    require(degrees_[k] >= 1 && degrees_[k] <= kMaxDegree,
+            "LRSpline: degree " + std::to_string(degrees_[k]) + " in direction " + std::to_string(k) + " outside 1.." +
+                std::to_string(kMaxDegree));
+  require(dim_ >= 1, "LRSpline: control dimension " + std::to_string(dim_) + " is not positive");
+  require(!mesh_.empty(), "LRSpline: empty mesh");
+  domain_ = Box<D>::empty();
+  for (std::size_t i = 0; i < mesh_.size(); ++i) {
+    const auto& r = mesh_[i];
+    const auto where = [&] { return "LRSpline: mesh rectangle " + std::to_string(i); };
+    require(r.dir >= 0 && r.dir < D, [&] { return where() + ": direction out of range"; });
+    for (int j = 0; j < D; ++j) {
+      if (j == r.dir) continue;
+      require(r.extent.lo[j] < r.extent.hi[j], [&] { return where() + ": empty extent in direction " + std::to_string(j); });
+      domain_.lo[j] = std::min(domain_.lo[j], r.extent.lo[j]);
+      domain_.hi[j] = std::max(domain_.hi[j], r.extent.hi[j]);
+    }
+    domain_.lo[r.dir] = std::min(domain_.lo[r.dir], r.value);
+    domain_.hi[r.dir] = std::max(domain_.hi[r.dir], r.value);
+  }
+  for (int k = 0; k < D; ++k)
+    require(domain_.lo[k] < domain_.hi[k], "LRSpline: the mesh spans no interval in direction " + std::to_string(k));
+  for (std::size_t i = 0; i < mesh_.size(); ++i) {
+    auto& r = mesh_[i];
+    r.extent.lo[r.dir] = r.extent.hi[r.dir] = r.value;
+    validate_rectangle(r, ("LRSpline: mesh rectangle " + std::to_string(i)).c_str());
+  }
+  const int st = stride();
+  for (std::size_t i = 0; i < basis_.size(); ++i) {
+    const auto& b = basis_[i];
+    const auto where = [&] { return "LRSpline: B-spline " + std::to_string(i); };
+    for (int k = 0; k < D; ++k) {
+      const auto& y = b.knots[k];
+      require(static_cast<int>(y.size()) == degrees_[k] + 2, [&] {
+        return where() + ": " + std::to_string(y.size()) + " knots in direction " + std::to_string(k) + ", expected " +
+               std::to_string(degrees_[k] + 2);
+      });
+      require(std::is_sorted(y.begin(), y.end()) && y.front() < y.back(),
+              [&] { return where() + ": knots in direction " + std::to_string(k) + " decrease or span no interval"; });
+      require(domain_.lo[k] <= y.front() && y.back() <= domain_.hi[k],
+              [&] { return where() + ": support outside the domain in direction " + std::to_string(k); });
+    }
+    require(b.gamma > 0.0 && b.gamma <= 1.0, [&] { return where() + ": scaling factor outside (0, 1]"; });
+    require(static_cast<int>(b.coef.size()) == st, [&] {
+      return where() + ": " + std::to_string(b.coef.size()) + " control values, expected " + std::to_string(st);
+    });
+  }
+  // Elements: the domain cut by every rectangle (cutting whole elements; a rectangle that ends inside an element
+  // is caught below, where it leaves an element it touches but does not cross completely).
+  elements_.push_back(domain_);
+  std::array<std::vector<double>, D> values;
+  for (const auto& r : mesh_) values[static_cast<std::size_t>(r.dir)].push_back(r.value);
+  std::size_t cells = 1;
+  for (auto& v : values) {
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+    cells = std::min<std::size_t>(cells * std::max<std::size_t>(v.size(), 1), std::size_t{1} << 20);
+  }
+  ElementGrid<D> grid(domain_, cells);
+  grid.add(0, domain_);
+  const auto touched = [&](const MeshRectangle<D>& r) {
+    Box<D> q = r.extent;
+    std::vector<int> out;
+    grid.query(q, [&](int e) {
+      const auto& el = elements_[static_cast<std::size_t>(e)];
+      if (el.lo[r.dir] <= r.value && r.value <= el.hi[r.dir] && r.overlaps_across(el)) out.push_back(e);
+    });
+    return out;
+  };
+  for (const auto& r : mesh_) {
+    const int k = r.dir;
+    for (int e : touched(r)) {
+      auto& el = elements_[static_cast<std::size_t>(e)];
+      if (!(el.lo[k] < r.value && r.value < el.hi[k])) continue;
+      Box<D> upper = el;
+      upper.lo[k] = r.value;
+      el.hi[k] = r.value;
+      elements_.push_back(upper);
+      grid.add(static_cast<int>(elements_.size()) - 1, upper);
     }
   }
-  mesh_.push_back(n);
-}
-
-template <int D>
-void LRSpline<D>::add_basis(LRBSpline<D>&& b, std::vector<std::vector<double>>& queue) {
-  auto key = key_of(b);
-  auto it = basis_.find(key);
-  if (it == basis_.end()) {
-    basis_.emplace(key, std::move(b));
-  } else {
-    // gamma c is what the function sees: keep sum gamma_i c_i for the merged B-spline.
-    auto& old = it->second;
-    const double g = old.gamma + b.gamma;
-    for (std::size_t i = 0; i < old.coef.size(); ++i) old.coef[i] = (old.gamma * old.coef[i] + b.gamma * b.coef[i]) / g;
-    old.gamma = g;
-  }
-  queue.push_back(std::move(key));
-}
-
-template <int D>
-bool LRSpline<D>::split_once(const std::vector<double>& key, std::vector<std::vector<double>>& queue) {
-  auto it = basis_.find(key);
-  if (it == basis_.end()) return false;
-  const Box<D> supp = it->second.support();
-  for (int k = 0; k < D; ++k) {
-    const int p = degrees_[k];
-    const auto& y = it->second.knots[k];
-    for (const auto& r : mesh_) {
-      if (r.dir != k || r.value <= supp.lo[k] || r.value >= supp.hi[k]) continue;
-      const double z = r.value;
-      const int m = static_cast<int>(std::count(y.begin(), y.end(), z));
-      if (!mesh_covers(mesh_, k, z, supp, m + 1)) continue;
-      // Two-term split B[y] = a1 B[y'_0..y'_{p+1}] + a2 B[y'_1..y'_{p+2}], y' = y with z inserted.
-      const double a1 = (y[p] <= z && z < y[p + 1]) ? 1.0 : (z - y[0]) / (y[p] - y[0]);
-      const double a2 = (y[0] < z && z <= y[1]) ? 1.0 : (y[p + 1] - z) / (y[p + 1] - y[1]);
-      std::vector<double> yz(y);
-      yz.insert(std::upper_bound(yz.begin(), yz.end(), z), z);
-      LRBSpline<D> b1 = it->second;
-      LRBSpline<D> b2 = std::move(it->second);
-      basis_.erase(it);
-      b1.knots[k].assign(yz.begin(), yz.end() - 1);
-      b1.gamma *= a1;
-      b2.knots[k].assign(yz.begin() + 1, yz.end());
-      b2.gamma *= a2;
-      add_basis(std::move(b1), queue);
-      add_basis(std::move(b2), queue);
-      return true;
+  std::unordered_map<PlaneKey, std::vector<const MeshRectangle<D>*>, PlaneHash> planes;
+  for (const auto& r : mesh_) planes[{r.dir, r.value}].push_back(&r);
+  for (std::size_t i = 0; i < mesh_.size(); ++i) {
+    const auto& r = mesh_[i];
+    const auto& plane = planes[{r.dir, r.value}];
+    for (int e : touched(r)) {
+      const auto& el = elements_[static_cast<std::size_t>(e)];
+      // Where another rectangle of the plane covers the element face, r may end inside it.
+      if (r.contains_across(el)) continue;
+      const bool straddled = el.lo[r.dir] < r.value && r.value < el.hi[r.dir];
+      require(!straddled && mesh_covers<D>(plane, r.dir, r.value, el, 1), [&] {
+        return "LRSpline: mesh rectangle " + std::to_string(i) + " ends inside an element or an element face";
+      });
     }
   }
-  return false;
+  sort_basis();
+  for (std::size_t i = 1; i < basis_.size(); ++i)
+    require(!same_knots(basis_[i - 1], basis_[i]), "LRSpline: two B-splines with the same knots");
+  build_support_lists();
+  for (std::size_t i = 0; i < basis_.size(); ++i) {
+    const Box<D> S = basis_[i].support();
+    double volume = 1.0, covered = 0.0;
+    for (int k = 0; k < D; ++k) volume *= S.extent(k);
+    for (int e : basis_elements_[i]) {
+      const auto& el = elements_[static_cast<std::size_t>(e)];
+      double v = 1.0;
+      for (int k = 0; k < D; ++k) v *= el.extent(k);
+      covered += v;
+    }
+    require(std::abs(covered - volume) <= 1e-12 * volume,
+            "LRSpline: the support of a B-spline (knots starting at " + std::to_string(S.lo[0]) +
+                ") is not a union of elements");
+  }
 }
 
 template <int D>
-bool LRSpline<D>::insert(const MeshRectangle<D>& r) {
+void LRSpline<D>::validate_rectangle(const MeshRectangle<D>& r, const char* who) const {
   const int k = r.dir;
   const auto where = [&] {
-    return "LRSpline::insert: mesh rectangle in direction " + std::to_string(k) + " at " + std::to_string(r.value);
+    return std::string(who) + " (direction " + std::to_string(k) + " at " + std::to_string(r.value) + ")";
   };
   require(k >= 0 && k < D, [&] { return where() + ": direction out of range"; });
   require(r.multiplicity >= 1 && r.multiplicity <= degrees_[k] + 1,
           [&] { return where() + ": multiplicity " + std::to_string(r.multiplicity) + " outside 1..p+1"; });
-  require(r.value > domain_.lo[k] && r.value < domain_.hi[k],
-          [&] { return where() + ": value not inside the domain"; });
+  require(domain_.lo[k] <= r.value && r.value <= domain_.hi[k], [&] { return where() + ": value outside the domain"; });
   for (int j = 0; j < D; ++j)
     if (j != k)
       require(domain_.lo[j] <= r.extent.lo[j] && r.extent.lo[j] < r.extent.hi[j] && r.extent.hi[j] <= domain_.hi[j],
               [&] { return where() + ": extent in direction " + std::to_string(j) + " empty or outside the domain"; });
-  Box<D> across = r.extent;
-  if (mesh_covers(mesh_, k, r.value, across, r.multiplicity)) return false;
-  // Every element the rectangle cuts or lies on must be cut or bounded across its whole cross-section:
-  // otherwise the rectangle ends inside an element or inside an element face.
-  for (const auto& e : elements_)
-    if (e.lo[k] <= r.value && r.value <= e.hi[k] && r.overlaps_across(e))
-      require(r.contains_across(e), [&] { return where() + ": rectangle ends inside an element or face"; });
-
-  const auto old_mesh = mesh_;
-  add_to_mesh(r);
-  std::vector<std::vector<double>> queue;
-  for (const auto& [key, b] : basis_) {
-    const Box<D> s = b.support();
-    if (s.lo[k] < r.value && r.value < s.hi[k] && r.overlaps_across(s)) queue.push_back(key);
-  }
-  int splits = 0;
-  while (!queue.empty()) {
-    const auto key = std::move(queue.back());
-    queue.pop_back();
-    if (split_once(key, queue)) ++splits;
-  }
-  if (splits == 0) {
-    mesh_ = old_mesh;
-    throw Error(where() + ": splits no B-spline support");
-  }
-  std::vector<Box<D>> refined;
-  refined.reserve(elements_.size() + 16);
-  for (const auto& e : elements_) {
-    if (e.lo[k] < r.value && r.value < e.hi[k] && r.overlaps_across(e)) {
-      Box<D> a = e, b = e;
-      a.hi[k] = r.value;
-      b.lo[k] = r.value;
-      refined.push_back(a);
-      refined.push_back(b);
-    } else {
-      refined.push_back(e);
-    }
-  }
-  elements_ = std::move(refined);
-  rebuild_lookup();
-  return true;
 }
 
-namespace {
-
 template <int D>
-int cell_of(const Box<D>& domain, const Ints<D>& grid, int k, double x) {
-  const double f = (x - domain.lo[k]) / domain.extent(k) * grid[k];
-  return std::clamp(static_cast<int>(std::floor(f)), 0, grid[k] - 1);
+void LRSpline<D>::sort_basis() {
+  std::sort(basis_.begin(), basis_.end(), knot_less<D>);
 }
 
-}  // namespace
-
 template <int D>
-void LRSpline<D>::rebuild_lookup() {
-  const double n = std::max(1.0, std::round(std::pow(static_cast<double>(elements_.size()), 1.0 / D)));
-  int total = 1;
-  for (int k = 0; k < D; ++k) {
-    grid_[k] = static_cast<int>(n);
-    total *= grid_[k];
-  }
-  buckets_.assign(static_cast<std::size_t>(total), {});
-  const auto for_cells = [&](const Box<D>& b, auto&& f) {
-    Ints<D> lo{}, hi{}, c{};
-    for (int k = 0; k < D; ++k) {
-      lo[k] = cell_of<D>(domain_, grid_, k, b.lo[k]);
-      hi[k] = cell_of<D>(domain_, grid_, k, b.hi[k]);
-    }
-    c = lo;
-    for (;;) {
-      int linear = 0;
-      for (int k = D - 1; k >= 0; --k) linear = linear * grid_[k] + c[k];
-      f(buckets_[static_cast<std::size_t>(linear)]);
-      int k = 0;
-      for (; k < D; ++k) {
-        if (++c[k] <= hi[k]) break;
-        c[k] = lo[k];
-      }
-      if (k == D) return;
-    }
-  };
-  for (int e = 0; e < static_cast<int>(elements_.size()); ++e)
-    for_cells(elements_[static_cast<std::size_t>(e)], [&](std::vector<int>& bucket) { bucket.push_back(e); });
+void LRSpline<D>::build_support_lists() {
+  ElementGrid<D> grid(domain_, elements_.size());
+  for (std::size_t e = 0; e < elements_.size(); ++e) grid.add(static_cast<int>(e), elements_[e]);
+  basis_elements_.assign(basis_.size(), {});
   element_basis_.assign(elements_.size(), {});
-  std::vector<int> stamp(elements_.size(), -1);
-  int id = 0;
-  for (const auto& [key, b] : basis_) {
-    const Box<D> s = b.support();
-    for_cells(s, [&](std::vector<int>& bucket) {
-      for (int e : bucket) {
-        if (stamp[static_cast<std::size_t>(e)] == id) continue;
-        stamp[static_cast<std::size_t>(e)] = id;
-        const auto& el = elements_[static_cast<std::size_t>(e)];
-        bool inside = true;
-        for (int k = 0; k < D && inside; ++k) inside = s.lo[k] <= el.lo[k] && el.hi[k] <= s.hi[k];
-        if (inside) element_basis_[static_cast<std::size_t>(e)].push_back(&b);
-      }
+  for (std::size_t i = 0; i < basis_.size(); ++i) {
+    const Box<D> S = basis_[i].support();
+    auto& list = basis_elements_[i];
+    grid.query(S, [&](int e) {
+      if (center_inside(elements_[static_cast<std::size_t>(e)], S)) list.push_back(e);
     });
-    ++id;
+    std::sort(list.begin(), list.end());
+    for (int e : list) element_basis_[static_cast<std::size_t>(e)].push_back(static_cast<int>(i));
   }
 }
 
 template <int D>
-int LRSpline<D>::find_element(const Param<D>& u) const {
-  int linear = 0;
-  for (int k = D - 1; k >= 0; --k) linear = linear * grid_[k] + cell_of<D>(domain_, grid_, k, u[k]);
-  for (int e : buckets_[static_cast<std::size_t>(linear)]) {
-    const auto& el = elements_[static_cast<std::size_t>(e)];
-    bool in = true;
-    for (int k = 0; k < D && in; ++k)
-      in = el.lo[k] <= u[k] && (u[k] < el.hi[k] || (u[k] == el.hi[k] && el.hi[k] == domain_.hi[k]));
-    if (in) return e;
-  }
-  throw Error("LRSpline: no element contains the parameter point (corrupt mesh)");
+bool LRSpline<D>::insert(const MeshRectangle<D>& r) {
+  validate_rectangle(r, "LRSpline::insert: mesh rectangle");
+  require(r.value > domain_.lo[r.dir] && r.value < domain_.hi[r.dir],
+          "LRSpline::insert: mesh rectangle in direction " + std::to_string(r.dir) + " at " + std::to_string(r.value) +
+              ": value not inside the domain");
+  Batch batch(*this);
+  const bool inserted = batch.insert_one(r, true);
+  batch.finish();
+  return inserted;
 }
 
 template <int D>
-template <bool kDerivs>
-void LRSpline<D>::evaluate(const Param<D>& u_in, double* out) const {
-  Param<D> u;
-  for (int k = 0; k < D; ++k) u[k] = std::clamp(u_in[k], domain_.lo[k], domain_.hi[k]);
-  const int st = stride();
-  constexpr int kParts = kDerivs ? D + 1 : 1;
-  // Homogeneous accumulators: value, then one block per partial derivative.
-  double acc[kParts * (kMaxDegree + 1)] = {};
-  require(st <= kMaxDegree + 1, "LRSpline: control dimension too large for evaluation");
-  for (const auto* b : element_basis_[static_cast<std::size_t>(find_element(u))]) {
-    double v[D], d[D];
-    for (int k = 0; k < D; ++k) local_bspline<kDerivs>(b->knots[k].data(), degrees_[k], u[k], v[k], d[k]);
-    double w[kParts];
-    w[0] = b->gamma;
-    for (int k = 0; k < D; ++k) w[0] *= v[k];
-    if constexpr (kDerivs) {
-      for (int q = 0; q < D; ++q) {
-        double x = b->gamma;
-        for (int k = 0; k < D; ++k) x *= (k == q ? d[k] : v[k]);
-        w[q + 1] = x;
-      }
-    }
-    for (int q = 0; q < kParts; ++q)
-      for (int i = 0; i < st; ++i) acc[q * st + i] += w[q] * b->coef[static_cast<std::size_t>(i)];
+int LRSpline<D>::insert(std::span<const MeshRectangle<D>> rects) {
+  for (std::size_t i = 0; i < rects.size(); ++i) {
+    const auto& r = rects[i];
+    const std::string who = "LRSpline::insert: mesh rectangle " + std::to_string(i);
+    validate_rectangle(r, who.c_str());
+    require(r.value > domain_.lo[r.dir] && r.value < domain_.hi[r.dir], who + ": value not inside the domain");
   }
-  if (!rational_) {
-    std::copy(acc, acc + kParts * st, out);
-    return;
+  if (rects.empty()) return 0;
+  Batch batch(*this);
+  int count = 0;
+  try {
+    for (const auto& r : rects)
+      if (batch.insert_one(r, false)) ++count;
+  } catch (...) {
+    batch.finish();
+    throw;
   }
-  // Quotient rule on homogeneous values: x = X / W, dx = (dX - x dW) / W.
-  const double W = acc[dim_];
-  for (int i = 0; i < dim_; ++i) out[i] = acc[i] / W;
-  for (int q = 1; q < kParts; ++q)
-    for (int i = 0; i < dim_; ++i) out[q * dim_ + i] = (acc[q * st + i] - out[i] * acc[q * st + dim_]) / W;
+  batch.finish();
+  return count;
+}
+
+template <int D>
+const ElementEvaluator<D>& LRSpline<D>::evaluator() const {
+  if (const auto* p = evaluator_.ready.load(std::memory_order_acquire)) return *p;
+  std::lock_guard lock(evaluator_.mutex);
+  if (!evaluator_.owner) {
+    evaluator_.owner = std::make_shared<const ElementEvaluator<D>>(
+        degrees_, dim_, rational_, domain_, std::span<const LRBSpline<D>>(basis_), std::span<const Box<D>>(elements_),
+        std::span<const std::vector<int>>(element_basis_));
+    evaluator_.ready.store(evaluator_.owner.get(), std::memory_order_release);
+  }
+  return *evaluator_.owner;
 }
 
 template <int D>
 void LRSpline<D>::eval(const Param<D>& u, double* out) const {
-  evaluate<false>(u, out);
+  evaluator().eval(u, out);
 }
 
 template <int D>
 void LRSpline<D>::eval_first_derivatives(const Param<D>& u, double* out) const {
-  evaluate<true>(u, out);
+  evaluator().eval_first_derivatives(u, out);
+}
+
+template <int D>
+void LRSpline<D>::eval_many(std::span<const Param<D>> u, std::span<double> out, int threads) const {
+  const auto n = static_cast<std::size_t>(dim_);
+  require(out.size() >= u.size() * n, "LRSpline::eval_many: output holds fewer than points * dim values");
+  const auto& ev = evaluator();
+  parallel_for(static_cast<std::ptrdiff_t>(u.size()), threads,
+               [&](std::ptrdiff_t i) { ev.eval(u[static_cast<std::size_t>(i)], out.data() + static_cast<std::size_t>(i) * n); });
+}
+
+template <int D>
+void LRSpline<D>::eval_first_derivatives_many(std::span<const Param<D>> u, std::span<double> out, int threads) const {
+  const auto n = static_cast<std::size_t>((D + 1) * dim_);
+  require(out.size() >= u.size() * n,
+          "LRSpline::eval_first_derivatives_many: output holds fewer than points * (D + 1) * dim values");
+  const auto& ev = evaluator();
+  parallel_for(static_cast<std::ptrdiff_t>(u.size()), threads, [&](std::ptrdiff_t i) {
+    ev.eval_first_derivatives(u[static_cast<std::size_t>(i)], out.data() + static_cast<std::size_t>(i) * n);
+  });
 }
 
 template class LRSpline<2>;

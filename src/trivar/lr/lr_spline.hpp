@@ -4,12 +4,28 @@
 // p_k + 2 local knots per direction, a scaling factor gamma in (0, 1] and a control value) over a box mesh of
 // mesh rectangles. The scaled B-splines sum to one everywhere (partition of unity), so the spline is
 // sum_i gamma_i B_i(u) c_i. Rational splines store homogeneous control values (w*x, ..., w), as TensorSpline.
+//
+// Ids. B-splines have dense ids 0..num_basis()-1 in a deterministic order: lexicographic in the local knot
+// vectors, the last direction most significant (so a converted tensor spline keeps its multi-index order, u
+// fastest). Elements have dense ids 0..num_elements()-1: those of the source in order, then every element split
+// off by a refinement appended (the lower part of a split element keeps its id). Ids, spans and references are
+// valid until the next modification.
+//
+// Refinement cost. An insertion finds the elements a rectangle touches through a bucket grid, the B-splines it
+// traverses through those elements' support lists, splits B-splines until every support is minimal (a split
+// candidate is found from the elements of the support alone: a mesh line crosses a support completely exactly
+// when no element of the support straddles it), merges identical B-splines through a hash of their knots, and
+// keeps the element <-> B-spline lists up to date incrementally. So its cost is local to the rectangle.
 #include <array>
-#include <map>
+#include <atomic>
+#include <memory>
+#include <mutex>
+#include <span>
 #include <vector>
 
 #include "trivar/core/box.hpp"
 #include "trivar/lr/lr_bspline.hpp"
+#include "trivar/lr/lr_element.hpp"
 #include "trivar/lr/mesh_rectangle.hpp"
 #include "trivar/spline/tensor_spline.hpp"
 
@@ -20,23 +36,40 @@ class LRSpline {
   static_assert(D == 2 || D == 3, "LR B-splines are surfaces or volumes");
 
 public:
-  // B-splines keyed by their concatenated local knots (u knots, then v, then w), so that identical B-splines
-  // created by different splits are found and merged.
-  using BasisMap = std::map<std::vector<double>, LRBSpline<D>>;
-
   // Exact conversion: every tensor B-spline becomes an LR B-spline with gamma = 1; the mesh holds one
-  // full-domain rectangle per distinct knot value with that knot's multiplicity.
+  // full-domain rectangle per distinct knot value (domain ends included) with that knot's multiplicity.
   explicit LRSpline(const TensorSpline<D>& s);
+
+  // From parts, for file readers. The domain is the bounding box of the mesh rectangles (which must include
+  // the boundary). Validates: degrees 1..kMaxDegree, dim >= 1, p_k + 2 non-decreasing knots per direction
+  // spanning a non-empty interval, gamma in (0, 1], stride() coefficients, every support inside the domain,
+  // every rectangle well formed (direction, multiplicity 1..p+1, extent non-empty and inside the domain), no
+  // rectangle ending inside an element or an element face, and every support a union of elements; throws
+  // trivar::Error naming the offending B-spline or rectangle. Builds the elements and the support lists; the
+  // B-splines are reordered into the id order above.
+  LRSpline(const Ints<D>& degrees, int dim, bool rational, std::vector<LRBSpline<D>> basis,
+           std::vector<MeshRectangle<D>> mesh);
 
   int dim() const { return dim_; }
   bool is_rational() const { return rational_; }
   int stride() const { return dim_ + (rational_ ? 1 : 0); }
   int degree(int k) const { return degrees_[k]; }
+  const Ints<D>& degrees() const { return degrees_; }
   const Box<D>& domain() const { return domain_; }
-  const BasisMap& basis() const { return basis_; }
+
   int num_basis() const { return static_cast<int>(basis_.size()); }
+  const LRBSpline<D>& basis_function(int id) const { return basis_[static_cast<std::size_t>(id)]; }
+  std::span<const LRBSpline<D>> basis_functions() const { return basis_; }
+  // Elements in the support of B-spline id, ascending.
+  std::span<const int> basis_elements(int id) const { return basis_elements_[static_cast<std::size_t>(id)]; }
+
+  int num_elements() const { return static_cast<int>(elements_.size()); }
+  const Box<D>& element(int e) const { return elements_[static_cast<std::size_t>(e)]; }
+  std::span<const Box<D>> elements() const { return elements_; }
+  // B-splines whose support contains element e, ascending.
+  std::span<const int> element_support(int e) const { return element_basis_[static_cast<std::size_t>(e)]; }
+
   const std::vector<MeshRectangle<D>>& mesh() const { return mesh_; }
-  const std::vector<Box<D>>& elements() const { return elements_; }
 
   // Refines by the mesh rectangle r: adds it to the mesh (merged with collinear rectangles of the same
   // multiplicity where the union is a box; where rectangles of different multiplicity overlap, the mesh
@@ -47,36 +80,71 @@ public:
   // malformed (direction, multiplicity outside 1..p+1, value not inside the domain, extent outside the
   // domain or empty), when r ends inside an element or an element face, or when r splits no B-spline
   // support (a rectangle that traverses no support is not an LR refinement).
-  // Cost: a scan of all B-splines and a rebuild of the element lookup per call.
   bool insert(const MeshRectangle<D>& r);
+  // Inserts the rectangles in order, as insert(r) each, and returns how many changed the spline. Malformed
+  // rectangles throw before anything changes. A rectangle that at its turn is already in the mesh or splits
+  // no support is skipped (an earlier rectangle of the batch may have covered it). A rectangle that at its turn
+  // ends inside an element or face throws; the rectangles before it stay inserted (the spline stays valid).
+  int insert(std::span<const MeshRectangle<D>> rects);
 
   // Value (dim values) at u; parameters outside the domain are clamped to it. Half-open supports, with the
-  // right end of the domain closed. Control dimension (plus weight) at most kMaxDegree + 1.
+  // right end of the domain closed. Allocation-free after the first call following a modification (which
+  // builds the per-element evaluation data, ElementEvaluator); const evaluation is thread-safe.
   void eval(const Param<D>& u, double* out) const;
   // Value and first partial derivatives: (D + 1) * dim values, the value then d/du_0, ..., d/du_{D-1}.
   void eval_first_derivatives(const Param<D>& u, double* out) const;
+  // eval at every u (out: u.size() * dim values, point-major); threads as parallel_for (<= 0: all). Every
+  // point is evaluated by the same code whatever the thread count, so results are bit-identical.
+  void eval_many(std::span<const Param<D>> u, std::span<double> out, int threads = 0) const;
+  // eval_first_derivatives at every u (out: u.size() * (D + 1) * dim values).
+  void eval_first_derivatives_many(std::span<const Param<D>> u, std::span<double> out, int threads = 0) const;
+
+  // The evaluation data (built on first use after a modification).
+  const ElementEvaluator<D>& evaluator() const;
 
 private:
+  struct Batch;
+
   Ints<D> degrees_{};
   int dim_ = 0;
   bool rational_ = false;
   Box<D> domain_{};
-  BasisMap basis_;
-  std::vector<MeshRectangle<D>> mesh_;
+  std::vector<LRBSpline<D>> basis_;
+  std::vector<std::vector<int>> basis_elements_;
   std::vector<Box<D>> elements_;
-  // For lookup: elements_ bucketed on a uniform grid over the domain, and per element the B-splines whose
-  // support contains it (pointers into basis_, stable under map insertion / erasure of other entries).
-  Ints<D> grid_{};
-  std::vector<std::vector<int>> buckets_;
-  std::vector<std::vector<const LRBSpline<D>*>> element_basis_;
+  std::vector<std::vector<int>> element_basis_;
+  std::vector<MeshRectangle<D>> mesh_;
 
-  void add_to_mesh(const MeshRectangle<D>& r);
-  bool split_once(const std::vector<double>& key, std::vector<std::vector<double>>& queue);
-  void add_basis(LRBSpline<D>&& b, std::vector<std::vector<double>>& queue);
-  void rebuild_lookup();
-  int find_element(const Param<D>& u) const;
-  template <bool kDerivs>
-  void evaluate(const Param<D>& u, double* out) const;
+  // Lazily built evaluation data, shared by copies (it is immutable and holds no references into *this).
+  struct LazyEvaluator {
+    mutable std::mutex mutex;
+    mutable std::atomic<const ElementEvaluator<D>*> ready{nullptr};
+    mutable std::shared_ptr<const ElementEvaluator<D>> owner;
+    LazyEvaluator() = default;
+    LazyEvaluator(const LazyEvaluator& o) { *this = o; }
+    LazyEvaluator& operator=(const LazyEvaluator& o) {
+      if (this == &o) return *this;
+      std::shared_ptr<const ElementEvaluator<D>> p;
+      {
+        std::lock_guard lock(o.mutex);
+        p = o.owner;
+      }
+      std::lock_guard lock(mutex);
+      owner = std::move(p);
+      ready.store(owner.get(), std::memory_order_release);
+      return *this;
+    }
+    void reset() {
+      std::lock_guard lock(mutex);
+      owner.reset();
+      ready.store(nullptr, std::memory_order_release);
+    }
+  };
+  LazyEvaluator evaluator_;
+
+  void validate_rectangle(const MeshRectangle<D>& r, const char* who) const;
+  void build_support_lists();
+  void sort_basis();
 };
 
 extern template class LRSpline<2>;

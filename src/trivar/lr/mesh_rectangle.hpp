@@ -3,6 +3,7 @@
 // one direction (a mesh line for D = 2, a mesh rectangle for D = 3) with a knot multiplicity.
 #include <algorithm>
 #include <array>
+#include <span>
 #include <vector>
 
 #include "trivar/core/box.hpp"
@@ -44,13 +45,17 @@ struct MeshRectangle {
 
 // True when the union of the rectangles among `rects` at (dir, value) with multiplicity >= `multiplicity`
 // covers the box `b` (its `dir` entries ignored). Unions of rectangles are not boxes in 3D, so coverage is
-// decided on the cells of the grid spanned by all rectangle bounds inside `b`.
+// decided on the cells of the grid spanned by all rectangle bounds inside `b`. Callers pass the few rectangles
+// of one plane (LRSpline keeps them indexed by plane), so the cost is independent of the mesh size.
 template <int D>
-bool mesh_covers(const std::vector<MeshRectangle<D>>& rects, int dir, double value, const Box<D>& b,
+bool mesh_covers(std::span<const MeshRectangle<D>* const> rects, int dir, double value, const Box<D>& b,
                  int multiplicity) {
   std::vector<const MeshRectangle<D>*> hits;
-  for (const auto& r : rects)
-    if (r.dir == dir && r.value == value && r.multiplicity >= multiplicity && r.overlaps_across(b)) hits.push_back(&r);
+  for (const auto* r : rects)
+    if (r->dir == dir && r->value == value && r->multiplicity >= multiplicity && r->overlaps_across(b)) {
+      if (r->contains_across(b)) return true;
+      hits.push_back(r);
+    }
   if (hits.empty()) return false;
   std::array<std::vector<double>, D> cuts;
   for (int j = 0; j < D; ++j) {

@@ -1,0 +1,76 @@
+#pragma once
+// ElementEvaluator<D>: evaluation data of a collection of scaled tensor-product B-splines over a box partition
+// (an LR spline's elements), for fast random-point evaluation without a tensor grid of global knots.
+//
+// Point location: a k-d tree whose splitting values are element boundaries (elements straddling a split go to
+// both sides), built once, O(log E) per point.
+// Per element and direction, the distinct univariate B-splines among the element's B-splines (an element of a
+// tensor-like region has p + 1 per direction, not (p + 1)^D) are stored as their Bernstein coefficients on the
+// element (by blossoming, precomputed); a point then costs one Bernstein evaluation per direction, a few dot
+// products, and one product per B-spline with its gamma * control value.
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "trivar/core/box.hpp"
+#include "trivar/lr/lr_bspline.hpp"
+
+namespace trivar {
+
+// Bernstein coefficients on [a, b] (a < b, no knot strictly inside, inside the support) of the B-spline of
+// degree p on local knots y[0..p+1]: row[i] = blossom(a, .., a, b, .., b) with i copies of b. row: p + 1 values.
+void bspline_bernstein_row(const double* y, int p, double a, double b, double* row);
+
+template <int D>
+class ElementEvaluator {
+public:
+  // element_basis[e]: the ids (into basis) of the B-splines whose support contains elements[e]. Throws
+  // trivar::Error when an element has more than 255 distinct univariate B-splines in one direction.
+  ElementEvaluator(const Ints<D>& degrees, int dim, bool rational, const Box<D>& domain,
+                   std::span<const LRBSpline<D>> basis, std::span<const Box<D>> elements,
+                   std::span<const std::vector<int>> element_basis);
+
+  // The element containing u (half-open elements, the right end of the domain closed); u inside the domain.
+  int find_element(const Param<D>& u) const;
+  // Value (dim values) / value and first partials ((D + 1) * dim values); u is clamped to the domain.
+  void eval(const Param<D>& u, double* out) const;
+  void eval_first_derivatives(const Param<D>& u, double* out) const;
+
+private:
+  struct Node {
+    int dir = -1;  // -1: leaf
+    double value = 0.0;
+    int child[2] = {-1, -1};
+    int first = 0, count = 0;  // leaf: leaf_elements_[first .. first + count)
+  };
+  struct Entry {
+    int id;
+    std::array<std::uint8_t, 4> row;  // per direction, the element's distinct univariate B-spline
+  };
+
+  Ints<D> degrees_{};
+  int dim_ = 0;
+  bool rational_ = false;
+  Box<D> domain_{};
+  std::vector<Box<D>> elements_;
+  std::vector<Node> nodes_;
+  std::vector<int> leaf_elements_;
+  std::vector<int> row_start_;      // per (element, direction): offset of its rows in rows_ (doubles)
+  std::vector<std::uint8_t> row_count_;
+  std::vector<double> rows_;        // Bernstein coefficients, p_k + 1 per row
+  std::vector<int> entry_start_;    // per element + 1: its entries in entries_
+  std::vector<Entry> entries_;
+  std::vector<double> gc_;          // gamma * control value, stride per B-spline
+
+  int build_tree(std::vector<int>& ids, const Box<D>& box, int depth);
+  template <bool kDerivs, int kStride>
+  void evaluate(const Param<D>& u, double* out) const;
+  template <bool kDerivs>
+  void dispatch(const Param<D>& u, double* out) const;
+};
+
+extern template class ElementEvaluator<2>;
+extern template class ElementEvaluator<3>;
+
+}  // namespace trivar

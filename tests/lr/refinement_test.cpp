@@ -1,0 +1,191 @@
+#include "trivar/lr/refinement.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "support/spline_fixtures.hpp"
+#include "trivar/core/error.hpp"
+#include "trivar/lr/selection.hpp"
+#include "trivar/spline/knot_insertion.hpp"
+
+using namespace trivar;
+
+namespace {
+
+template <int D>
+double value_deviation(const LRSpline<D>& lr, const TensorSpline<D>& s, const std::vector<Param<D>>& params) {
+  std::vector<double> a(static_cast<std::size_t>(s.dim())), b(a.size());
+  double worst = 0.0;
+  for (const auto& u : params) {
+    lr.eval(u, a.data());
+    s.eval(u, b.data());
+    for (std::size_t i = 0; i < a.size(); ++i) worst = std::max(worst, std::abs(a[i] - b[i]));
+  }
+  return worst;
+}
+
+// sum_i gamma_i B_i at u, from the B-spline data alone (univariate Cox-de Boor of the test fixtures).
+template <int D>
+double scaled_sum(const LRSpline<D>& lr, const Param<D>& u) {
+  double sum = 0.0;
+  for (const auto& b : lr.basis_functions()) {
+    double v = b.gamma;
+    for (int k = 0; k < D; ++k) {
+      const auto& y = b.knots[k];
+      v *= test::cox_de_boor(y, 0, static_cast<int>(y.size()) - 2, u[k], lr.domain().hi[k]);
+    }
+    sum += v;
+  }
+  return sum;
+}
+
+template <int D>
+void check_strategy(Strategy strategy, const Ints<D>& degrees, const Ints<D>& elements, bool rational, unsigned seed) {
+  const auto s = test::random_spline<D>(degrees, elements, 2, rational, seed);
+  LRSpline<D> lr(s);
+  const auto params = test::random_params(s, 200, seed + 1);
+  std::mt19937 rng(seed + 2);
+  for (int level = 0; level < 3; ++level) {
+    std::vector<int> ids;
+    const int n = strategy == Strategy::structured ? lr.num_basis() : lr.num_elements();
+    for (int i = 0; i < 3; ++i) ids.push_back(std::uniform_int_distribution<int>(0, n - 1)(rng));
+    const int before = lr.num_basis();
+    const RefineOptions opts{strategy, 1, 0.0};
+    const int inserted = strategy == Strategy::structured ? refine_functions(lr, std::span<const int>(ids), opts)
+                                                           : refine_elements(lr, std::span<const int>(ids), opts);
+    EXPECT_GT(inserted, 0);
+    EXPECT_GT(lr.num_basis(), before);
+    EXPECT_LE(value_deviation(lr, s, params), 1e-12) << to_string(strategy) << " level " << level;
+    double pou = 0.0;
+    for (const auto& u : params) pou = std::max(pou, std::abs(scaled_sum(lr, u) - 1.0));
+    EXPECT_LE(pou, 1e-12);
+    // Support lists agree with geometry: the supports containing element e are exactly its list.
+    for (int e = 0; e < lr.num_elements(); ++e) {
+      const auto c = lr.element(e).center();
+      std::vector<int> expect;
+      for (int b = 0; b < lr.num_basis(); ++b) {
+        const auto S = lr.basis_function(b).support();
+        bool in = true;
+        for (int k = 0; k < D; ++k) in = in && S.lo[k] < c[k] && c[k] < S.hi[k];
+        if (in) expect.push_back(b);
+      }
+      const auto got = lr.element_support(e);
+      ASSERT_EQ(std::vector<int>(got.begin(), got.end()), expect);
+    }
+  }
+}
+
+KnotVector uniform(int p, int n) { return KnotVector::open_uniform(p, n, 0.0, static_cast<double>(n)); }
+
+}  // namespace
+
+TEST(LRRefinement, StrategiesKeepGeometryAndPartitionOfUnity) {
+  for (Strategy st : {Strategy::fullspan, Strategy::minspan, Strategy::structured}) {
+    check_strategy<2>(st, {3, 2}, {4, 5}, false, 101);
+    check_strategy<2>(st, {2, 3}, {3, 3}, true, 102);
+    check_strategy<3>(st, {2, 2, 1}, {3, 2, 3}, false, 103);
+    check_strategy<3>(st, {1, 3, 2}, {2, 3, 2}, true, 104);
+  }
+}
+
+// Bicubic on [0,7]^2 with unit elements: the B-splines whose support contains element [3,4]x[3,4] have
+// supports [i, i+4] x [j, j+4] for i, j in 0..3, whose bounding box is [0,7]^2 (FULLSPAN), and the smallest
+// support (all equal 16, tie to lowest id: knots ascending, last direction most significant) is [0,4]x[0,4].
+TEST(LRRefinement, RectangleShapesOnAUniformMesh) {
+  const auto kv = uniform(3, 7);
+  LRSpline<2> lr(TensorSpline<2>({kv, kv}, 1, false, std::vector<double>(100, 1.0)));
+  const auto ids = elements_in_box(lr, Box<2>{{3.5, 3.5}, {3.5, 3.5}});
+  ASSERT_EQ(ids.size(), 1u);
+  auto full = element_rectangles(lr, std::span<const int>(ids), RefineOptions{Strategy::fullspan, 1, 0.0});
+  ASSERT_EQ(full.size(), 2u);
+  EXPECT_EQ(full[0].dir, 0);
+  EXPECT_EQ(full[0].value, 3.5);
+  EXPECT_EQ(full[0].extent.lo[1], 0.0);
+  EXPECT_EQ(full[0].extent.hi[1], 7.0);
+  EXPECT_EQ(full[1].dir, 1);
+  EXPECT_EQ(full[1].extent.lo[0], 0.0);
+  EXPECT_EQ(full[1].extent.hi[0], 7.0);
+  auto min = element_rectangles(lr, std::span<const int>(ids), RefineOptions{Strategy::minspan, 2, 0.0});
+  ASSERT_EQ(min.size(), 2u);
+  EXPECT_EQ(min[0].extent.lo[1], 0.0);
+  EXPECT_EQ(min[0].extent.hi[1], 4.0);
+  EXPECT_EQ(min[1].extent.lo[0], 0.0);
+  EXPECT_EQ(min[1].extent.hi[0], 4.0);
+  EXPECT_EQ(min[0].multiplicity, 2);
+  // STRUCTURED on the B-spline with knots [1..5] x [2..6]: 4 intervals per direction.
+  int id = -1;
+  for (int b = 0; b < lr.num_basis(); ++b)
+    if (lr.basis_function(b).knots[0].front() == 1.0 && lr.basis_function(b).knots[1].front() == 2.0 &&
+        lr.basis_function(b).knots[0].back() == 5.0 && lr.basis_function(b).knots[1].back() == 6.0)
+      id = b;
+  ASSERT_GE(id, 0);
+  const std::vector<int> one{id};
+  const auto st = function_rectangles(lr, std::span<const int>(one), RefineOptions{Strategy::structured, 1, 0.0});
+  ASSERT_EQ(st.size(), 8u);
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_EQ(st[static_cast<std::size_t>(i)].dir, 0);
+    EXPECT_EQ(st[static_cast<std::size_t>(i)].value, 1.5 + i);
+    EXPECT_EQ(st[static_cast<std::size_t>(i)].extent.lo[1], 2.0);
+    EXPECT_EQ(st[static_cast<std::size_t>(i)].extent.hi[1], 6.0);
+    EXPECT_EQ(st[static_cast<std::size_t>(4 + i)].value, 2.5 + i);
+    EXPECT_EQ(st[static_cast<std::size_t>(4 + i)].extent.lo[0], 1.0);
+  }
+  // Aspect ratio R = 2: a square element is cut in both directions, a 1 x 0.25 one only along its long side.
+  const auto narrow = uniform(2, 4);
+  LRSpline<2> lr2(TensorSpline<2>({narrow, KnotVector::open_uniform(2, 4, 0.0, 4.0)}, 1, false,
+                                  std::vector<double>(36, 1.0)));
+  const std::vector<int> e0{0};
+  EXPECT_EQ(element_rectangles(lr2, std::span<const int>(e0), RefineOptions{Strategy::fullspan, 1, 2.0}).size(), 2u);
+  LRSpline<2> lr3(TensorSpline<2>({narrow, KnotVector::open_uniform(2, 4, 0.0, 1.0)}, 1, false,
+                                  std::vector<double>(36, 1.0)));
+  const auto cut = element_rectangles(lr3, std::span<const int>(e0), RefineOptions{Strategy::fullspan, 1, 2.0});
+  ASSERT_EQ(cut.size(), 1u);
+  EXPECT_EQ(cut[0].dir, 0);
+}
+
+// FULLSPAN on every element of a tensor mesh, in one batch, is uniform knot insertion of every midpoint.
+TEST(LRRefinement, FullSpanEverywhereEqualsTensorInsertion) {
+  const auto s = test::random_spline<3>({3, 2, 2}, {3, 2, 4}, 3, false, 111);
+  LRSpline<3> lr(s);
+  std::vector<int> all(static_cast<std::size_t>(lr.num_elements()));
+  for (int e = 0; e < lr.num_elements(); ++e) all[static_cast<std::size_t>(e)] = e;
+  refine_elements(lr, std::span<const int>(all), RefineOptions{});
+  auto t = s;
+  for (int k = 0; k < 3; ++k) {
+    const auto br = s.knots(k).breakpoints();
+    std::vector<double> mids;
+    for (std::size_t i = 0; i + 1 < br.size(); ++i) mids.push_back(0.5 * (br[i] + br[i + 1]));
+    t = insert_knots(t, k, mids);
+  }
+  EXPECT_EQ(lr.num_basis(), t.num_coefs());
+  EXPECT_EQ(lr.num_elements(), t.knots(0).num_elements() * t.knots(1).num_elements() * t.knots(2).num_elements());
+  for (const auto& b : lr.basis_functions()) EXPECT_NEAR(b.gamma, 1.0, 1e-13);
+  EXPECT_LE(value_deviation(lr, t, test::random_params(t, 300, 112)), 1e-12);
+}
+
+// Hand count: bicubic 4 x 4 uniform, FULLSPAN on the single element [1,2]x[1,2]: both rectangles span the whole
+// domain (every support there reaches both boundaries), so the result is the tensor mesh with knots 1.5 added
+// in both directions: 8 x 8 = 64 B-splines, 5 x 5 = 25 elements.
+TEST(LRRefinement, FullSpanHandCount) {
+  const auto kv = uniform(3, 4);
+  LRSpline<2> lr(TensorSpline<2>({kv, kv}, 1, false, std::vector<double>(49, 1.0)));
+  const auto ids = elements_in_box(lr, Box<2>{{1.5, 1.5}, {1.5, 1.5}});
+  EXPECT_EQ(refine_elements(lr, std::span<const int>(ids), RefineOptions{}), 2);
+  EXPECT_EQ(lr.num_basis(), 64);
+  EXPECT_EQ(lr.num_elements(), 25);
+}
+
+TEST(LRRefinement, InvalidOptionsAndIds) {
+  const auto kv = uniform(2, 3);
+  LRSpline<2> lr(TensorSpline<2>({kv, kv}, 1, false, std::vector<double>(25, 1.0)));
+  const std::vector<int> bad{9}, ok{0};
+  EXPECT_THROW(refine_elements(lr, std::span<const int>(bad), RefineOptions{}), Error);
+  EXPECT_THROW(refine_elements(lr, std::span<const int>(ok), RefineOptions{Strategy::fullspan, 0, 0.0}), Error);
+  EXPECT_THROW(refine_elements(lr, std::span<const int>(ok), RefineOptions{Strategy::fullspan, 4, 0.0}), Error);
+  EXPECT_THROW(refine_elements(lr, std::span<const int>(ok), RefineOptions{Strategy::fullspan, 1, 0.5}), Error);
+  EXPECT_THROW(parse_strategy("bogus"), Error);
+  EXPECT_EQ(parse_strategy("minspan"), Strategy::minspan);
+  EXPECT_EQ(lr.num_basis(), 25);
+}
