@@ -11,6 +11,7 @@
 #include "trivar/core/atomic_file.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/core/number_format.hpp"
+#include "trivar/io/xml_text.hpp"
 #include "trivar/spline/bezier_extraction.hpp"
 
 namespace trivar::io {
@@ -255,29 +256,6 @@ void add_control_net(Piece& piece, const TensorSpline<D>& s, int extra) {
       piece.end_cell(kVtkLine, k);
     }
   });
-}
-
-std::string xml_escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
 }
 
 // One DataArray in ASCII: one tuple per line, scalars eight to a line.
