@@ -1,11 +1,15 @@
 // trivar export MODEL OUT [--tolerance t]: the boundary of a V-model (or of volumes) for manufacturing as
-// binary STL, watertight by construction, or the cells with their attributes as VTK.
+// binary STL, watertight by construction, as 3MF or AMF with the material grading, or the cells with their
+// attributes as VTK.
+#include <algorithm>
 #include <filesystem>
 #include <string>
 
 #include "cli.hpp"
 #include "trivar/core/error.hpp"
+#include "trivar/io/amf_writer.hpp"
 #include "trivar/io/stl_writer.hpp"
+#include "trivar/io/threemf_writer.hpp"
 #include "trivar/io/vmodel_vtk.hpp"
 #include "trivar/model/model_tessellation.hpp"
 
@@ -26,30 +30,88 @@ VModel model_of(const std::string& path) {
   return m;
 }
 
+// The model's materials, or one neutral material when it has none.
+MaterialTable materials_of(const VModel& m) {
+  return m.materials().empty() ? MaterialTable({{"part", {200, 200, 200, 255}}}) : m.materials();
+}
+
+// Material fractions of every boundary vertex, from the "material" attribute of the cell it lies on (1 for a
+// model without materials). Cells without the attribute get the first material.
+std::vector<double> vertex_fractions(const VModel& m, const ModelTessellation& t, int materials) {
+  std::vector<double> f(t.mesh.vertices.size() * static_cast<std::size_t>(materials), 0.0);
+  std::vector<double> value;
+  for (std::size_t v = 0; v < t.cell.size(); ++v) {
+    double* out = f.data() + v * static_cast<std::size_t>(materials);
+    const VCell& c = m.cell(t.cell[v]);
+    if (!c.has_attribute("material")) {
+      out[0] = 1.0;
+      continue;
+    }
+    value.resize(static_cast<std::size_t>(c.attribute("material").components()));
+    c.eval_attribute("material", t.param[v], value.data());
+    require(static_cast<int>(value.size()) == materials, [&] {
+      return "export: cell " + std::to_string(t.cell[v]) + " has " + std::to_string(value.size()) +
+             " material fractions but the model lists " + std::to_string(materials) + " materials";
+    });
+    std::copy(value.begin(), value.end(), out);
+  }
+  return f;
+}
+
+// AMF grading: the formulas of a material expression in x, y, z shared by every cell define the composite
+// exactly; otherwise the volume is the first material and the vertex colours show the grading.
+io::AmfGrading amf_grading(const VModel& m, int materials) {
+  io::AmfGrading g;
+  const Attribute* shared = nullptr;
+  for (const VCell& c : m.cells()) {
+    if (!c.has_attribute("material")) return g;
+    const Attribute& a = c.attribute("material");
+    if (a.kind() != Attribute::Kind::expression || a.space() != Attribute::Space::model || a.components() != materials)
+      return g;
+    if (shared && a.expressions().size() == shared->expressions().size())
+      for (std::size_t i = 0; i < a.expressions().size(); ++i)
+        if (a.expressions()[i].text() != shared->expressions()[i].text()) return g;
+    shared = &a;
+  }
+  if (shared)
+    for (const Expression& e : shared->expressions()) g.formulas.push_back(e.text());
+  return g;
+}
+
 }  // namespace
 
 void add_export_command(CLI::App& app, Context&) {
-  auto* cmd = app.add_subcommand("export", "Write the boundary of a V-model or volume as a watertight mesh (.stl), or its cells with attributes (.vtu)");
+  auto* cmd = app.add_subcommand("export", "Write the boundary of a V-model or volume as a watertight mesh (.stl; .3mf and .amf with graded materials), or its cells with attributes (.vtu)");
   struct Args {
     std::string in, out;
     double tolerance = 0.01;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("MODEL", a->in, "V-model (.json) or spline file with volumes (.json, .g2)")->required();
-  cmd->add_option("OUT", a->out, "Output file (.stl, .vtu)")->required();
+  cmd->add_option("OUT", a->out, "Output file (.stl, .3mf, .amf, .vtu)")->required();
   cmd->add_option("--tolerance", a->tolerance, "Chordal tolerance in model units")
       ->check(positive())
       ->capture_default_str();
   cmd->callback([a] {
     const std::string ext = std::filesystem::path(a->out).extension().string();
-    require(ext == ".stl" || ext == ".vtu", "export: unknown output format '" + ext + "' (expected .stl or .vtu)");
+    require(ext == ".stl" || ext == ".vtu" || ext == ".3mf" || ext == ".amf",
+            "export: unknown output format '" + ext + "' (expected .stl, .3mf, .amf or .vtu)");
     const VModel m = model_of(a->in);
     if (ext == ".vtu") {
       io::write_vmodel_vtu(a->out, m);
       return;
     }
     const ModelTessellation t = tessellate_boundary(m, {.chordal_tolerance = a->tolerance});
-    io::write_stl(a->out, t.mesh);
+    if (ext == ".stl") {
+      io::write_stl(a->out, t.mesh);
+    } else {
+      const MaterialTable mats = materials_of(m);
+      const std::vector<double> f = vertex_fractions(m, t, mats.size());
+      if (ext == ".3mf")
+        io::write_3mf(a->out, t.mesh, mats, f);
+      else
+        io::write_amf(a->out, t.mesh, mats, amf_grading(m, mats.size()), f);
+    }
     std::printf("%s: %zu triangles, %zu vertices, watertight %s, enclosed volume %s\n", a->out.c_str(),
                 t.mesh.triangles.size(), t.mesh.vertices.size(), is_watertight(t.mesh) ? "yes" : "no",
                 fmt(enclosed_volume(t.mesh)).c_str());

@@ -1,5 +1,7 @@
 // trivar make ball|cylinder|cone|torus [dimensions] [--materials m] -o model.json: V-model primitives, each a
 // complex of non-singular cells, optionally with m material fractions blending smoothly across the part.
+#include <array>
+#include <cmath>
 #include <memory>
 #include <string>
 
@@ -23,6 +25,26 @@ std::vector<std::string> blend_components(int m, const std::string& rho) {
   for (int i = 0; i < m; ++i)
     c.push_back("max(0, 1 - abs((" + rho + ") * " + std::to_string(m - 1) + " - " + std::to_string(i) + "))");
   return c;
+}
+
+// Materials "M1".."Mm" in the colours of a CMYK+W printer first, then spread over the hue circle.
+MaterialTable default_materials(int m) {
+  static constexpr std::array<Rgba, 5> kBase{{{0, 174, 239, 255}, {236, 0, 140, 255}, {255, 242, 0, 255},
+                                              {35, 31, 32, 255}, {245, 245, 245, 255}}};
+  MaterialTable t;
+  for (int i = 0; i < m; ++i) {
+    Rgba c = i < static_cast<int>(kBase.size()) ? kBase[static_cast<std::size_t>(i)] : Rgba{};
+    if (i >= static_cast<int>(kBase.size())) {
+      // Hue steps by the golden angle keep neighbours distinguishable for any count.
+      const double h = std::fmod(0.618033988749895 * i, 1.0) * 6.0;
+      const double x = 1.0 - std::abs(std::fmod(h, 2.0) - 1.0);
+      const double rgb[6][3] = {{1, x, 0}, {x, 1, 0}, {0, 1, x}, {0, x, 1}, {x, 0, 1}, {1, 0, x}};
+      const auto& q = rgb[static_cast<int>(h) % 6];
+      c = {static_cast<std::uint8_t>(255 * q[0]), static_cast<std::uint8_t>(255 * q[1]), static_cast<std::uint8_t>(255 * q[2]), 255};
+    }
+    t.add({"M" + std::to_string(i + 1), c});
+  }
+  return t;
 }
 
 }  // namespace
@@ -51,6 +73,7 @@ void write_model(const std::vector<TensorSpline<3>>& cells, const MaterialArgs& 
   if (!components.empty()) {
     const Attribute material = Attribute::expression(components, Attribute::Space::model);
     for (int i = 0; i < m.num_cells(); ++i) m.cell(i).set_attribute("material", material);
+    m.set_materials(default_materials(static_cast<int>(components.size())));
   }
   m.glue();
   io::write_vmodel(out, m);

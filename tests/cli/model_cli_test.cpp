@@ -114,6 +114,20 @@ TEST_F(ModelCli, ExportWritesAWatertightStl) {
   EXPECT_NE(ok("export cube.json cube.stl").out.find("enclosed volume 1"), std::string::npos);
 }
 
+TEST_F(ModelCli, GradedExportTo3mfAndAmf) {
+  ok("make ball --radius 10 --materials 3 -o ball.json");
+  const auto j = nlohmann::json::parse(slurp(work_ / "ball.json"));
+  ASSERT_EQ(j.at("materials").size(), 3u);
+  EXPECT_EQ(j.at("materials")[0].at("name"), "M1");
+  EXPECT_NE(ok("export ball.json ball.3mf --tolerance 0.05").out.find("watertight yes"), std::string::npos);
+  EXPECT_EQ(slurp(work_ / "ball.3mf").substr(0, 2), "PK");  // an OPC (zip) package
+  ok("export ball.json ball.amf --tolerance 0.05");
+  const std::string amf = slurp(work_ / "ball.amf");
+  // Every cell shares the blend formulas, so the volume is a composite material defined by them.
+  EXPECT_NE(amf.find("<composite materialid=\"1\">max(0, 1 - abs("), std::string::npos);
+  EXPECT_NE(amf.find("<metadata type=\"name\">M3</metadata>"), std::string::npos);
+}
+
 TEST_F(ModelCli, BadModelInputFailsCleanly) {
   ok("make ball -o ball.json");
   ok("make box --elements 2 2 -o plate.json");

@@ -30,6 +30,7 @@ VModel graded_ball() {
       }
   m.cell(0).set_attribute("material", Attribute::field(TensorSpline<3>(field.knot_vectors(), 2, false, coefs)));
   m.cell(1).set_attribute("temperature", Attribute::expression({"x^2 + y", "sin(z)"}, Attribute::Space::model));
+  m.set_materials(MaterialTable({{"VeroCyan", {0, 174, 239, 255}}, {"Agilus <soft>", {10, 20, 30, 128}}}));
   m.glue();
   return m;
 }
@@ -92,6 +93,9 @@ TEST(VModelJson, RoundTripKeepsCellsAttributesAndTopology) {
   EXPECT_NEAR(mat[0], 1.0, 1e-15);
   EXPECT_NEAR(mat[1], 0.0, 1e-15);
   EXPECT_NEAR(back.mass("density"), m.mass("density"), 1e-12 * m.mass("density"));
+  ASSERT_EQ(back.materials().size(), 2);
+  EXPECT_EQ(back.materials()[1].name, "Agilus <soft>");
+  EXPECT_EQ(back.materials()[1].colour, (Rgba{10, 20, 30, 128}));
 }
 
 TEST(VModelJson, SummaryDescribesTheTopology) {
@@ -122,6 +126,8 @@ TEST(VModelJson, MalformedModelsFailWithTheirPath) {
   expect_error(with([](json& j) { j["cells"] = json::array(); }), "cells");
   expect_error(with([](json& j) { j["colour"] = 1; }), "unexpected key \"colour\"");
   expect_error(with([](json& j) { j["glue"]["samples"] = 1; }), "glue: samples");
+  expect_error(with([](json& j) { j["materials"][0]["color"] = "#12345"; }), "materials[0]: color");
+  expect_error(with([](json& j) { j["materials"][1]["name"] = "VeroCyan"; }), "materials[1]");
   expect_error(with([](json& j) { j["cells"][2]["attributes"]["density"]["kind"] = "table"; }),
                "cells[2]: attributes: density: kind");
   expect_error(with([](json& j) { j["cells"][1]["attributes"]["temperature"]["components"][0] = "x +"; }),

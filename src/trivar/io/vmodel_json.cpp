@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "trivar/core/error.hpp"
 #include "trivar/io/json_format.hpp"
@@ -118,6 +119,47 @@ GlueOptions glue_from_json(const json& j, const std::string& where) {
   return o;
 }
 
+std::string hex_colour(const Rgba& c) {
+  char buf[10];
+  std::snprintf(buf, sizeof buf, "#%02X%02X%02X%02X", c.r, c.g, c.b, c.a);
+  return buf;
+}
+
+Rgba colour_from_json(const json& j, const std::string& where) {
+  const auto hex = [](char c) {
+    if (c >= '0' && c <= '9') return c - '0';
+    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+    return -1;
+  };
+  const std::string s = j.is_string() ? j.get<std::string>() : std::string();
+  bool ok = (s.size() == 7 || s.size() == 9) && s[0] == '#';
+  for (std::size_t i = 1; ok && i < s.size(); ++i) ok = hex(s[i]) >= 0;
+  if (!ok) fail(where, "expected a colour \"#RRGGBB\" or \"#RRGGBBAA\", got " + j.dump());
+  const auto byte = [&](std::size_t i) { return static_cast<std::uint8_t>(16 * hex(s[i]) + hex(s[i + 1])); };
+  return {byte(1), byte(3), byte(5), s.size() == 9 ? byte(7) : std::uint8_t{255}};
+}
+
+MaterialTable materials_from_json(const json& j, const std::string& where) {
+  if (!j.is_array()) fail(where, std::string("expected an array of materials, got ") + j.type_name());
+  MaterialTable t;
+  for (std::size_t i = 0; i < j.size(); ++i) {
+    const std::string at = where + "[" + std::to_string(i) + "]";
+    if (!j[i].is_object()) fail(at, std::string("expected an object, got ") + j[i].type_name());
+    only_keys(j[i], {"name", "color"}, at);
+    const json& name = member(j[i], "name", at);
+    if (!name.is_string()) fail(at + ": name", "expected a string, got " + name.dump());
+    try {
+      t.add({name.get<std::string>(), colour_from_json(member(j[i], "color", at), at + ": color")});
+    } catch (const Error& e) {
+      const std::string what = e.what();
+      if (what.rfind(at, 0) == 0) throw;
+      fail(at, what);
+    }
+  }
+  return t;
+}
+
 }  // namespace
 
 bool is_vmodel_json(const json& j) { return j.is_object() && j.contains("kind") && j["kind"] == "vmodel"; }
@@ -138,6 +180,11 @@ json to_json(const VModel& model, const GlueOptions& opts) {
              {"absolute_tolerance", opts.absolute_tolerance},
              {"samples", opts.samples}}},
            {"cells", std::move(cells)}};
+  if (!model.materials().empty()) {
+    json mats = json::array();
+    for (const Material& m : model.materials().materials()) mats.push_back({{"name", m.name}, {"color", hex_colour(m.colour)}});
+    doc["materials"] = std::move(mats);
+  }
   if (model.is_glued()) {
     const VTopology& t = model.topology();
     doc["summary"] = {{"cells", model.num_cells()},
@@ -152,11 +199,12 @@ json to_json(const VModel& model, const GlueOptions& opts) {
 
 VModel vmodel_from_json(const json& j, const std::string& where) {
   if (!is_vmodel_json(j)) fail(where, "expected \"kind\": \"vmodel\"");
-  only_keys(j, {"trivar", "kind", "glue", "cells", "summary"}, where);
+  only_keys(j, {"trivar", "kind", "glue", "materials", "cells", "summary"}, where);
   const GlueOptions opts = j.contains("glue") ? glue_from_json(j["glue"], where + ": glue") : GlueOptions{};
   const json& cells = member(j, "cells", where);
   if (!cells.is_array() || cells.empty()) fail(where + ": cells", "expected a non-empty array of cells");
   VModel model;
+  if (j.contains("materials")) model.set_materials(materials_from_json(j["materials"], where + ": materials"));
   for (std::size_t i = 0; i < cells.size(); ++i) {
     const std::string at = where + ": cells[" + std::to_string(i) + "]";
     const json& c = cells[i];

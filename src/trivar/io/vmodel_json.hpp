@@ -2,6 +2,7 @@
 // trivar's native JSON V-model format (schema in docs/formats.md):
 //   {"trivar": 1, "kind": "vmodel",
 //    "glue": {"relative_tolerance": 1e-7, "absolute_tolerance": 0, "samples": 5},
+//    "materials": [{"name": "VeroCyan", "color": "#00FFFFFF"}, ..],    optional, by component index
 //    "cells": [ {"geometry": {<volume object>},
 //                "attributes": {"density": {"kind": "constant", "values": [..]},
 //                               "material": {"kind": "field", "spline": {<volume object, any dim>}},

@@ -6,6 +6,7 @@
 
 #include "trivar/core/box.hpp"
 #include "trivar/model/glue.hpp"
+#include "trivar/model/material_table.hpp"
 #include "trivar/model/vcell.hpp"
 #include "trivar/model/vtopology.hpp"
 
@@ -23,6 +24,11 @@ public:
   const VCell& cell(int i) const;
   // Mutable access changes attributes only (a cell's geometry is immutable), so the topology stays valid.
   VCell& cell(int i);
+
+  // The materials the cells' "material" attributes refer to, by component index (names and display colours
+  // for slices, 3MF and AMF). Empty when the model has no material attribute.
+  const MaterialTable& materials() const { return materials_; }
+  void set_materials(MaterialTable m) { materials_ = std::move(m); }
 
   // Builds (replaces) the topology; see glue.hpp.
   const VTopology& glue(const GlueOptions& options = {});
@@ -55,6 +61,7 @@ public:
 
 private:
   std::vector<VCell> cells_;
+  MaterialTable materials_;
   VTopology topology_;
   bool glued_ = false;
 };
