@@ -218,46 +218,48 @@ void write_json_document(const std::string& path, const json& doc) {
   });
 }
 
-std::vector<AnySpline> read_json(const std::string& path) {
-  const json doc = read_json_document(path);
-  if (!doc.contains("objects")) return {spline_from_json(doc, path)};
-
+std::vector<std::pair<json, std::string>> object_documents(const json& doc, const std::string& path, const char* what) {
+  if (!doc.contains("objects")) return {{doc, path}};
   for (const auto& [key, value] : doc.items())
     if (key != "trivar" && key != "objects") fail(path, "", "unexpected key \"" + key + "\" next to \"objects\"");
   const json& objects = doc["objects"];
   if (!objects.is_array() || objects.empty())
     fail(path, "objects",
-         std::string("expected a non-empty array of spline objects, got ") +
+         std::string("expected a non-empty array of ") + what + " objects, got " +
              (objects.is_array() ? "an empty array" : objects.type_name()));
+  std::vector<std::pair<json, std::string>> out;
+  for (std::size_t i = 0; i < objects.size(); ++i) out.emplace_back(objects[i], indexed(path + ": objects", i));
+  return out;
+}
+
+json document_of(std::vector<json> objects) {
+  if (objects.size() == 1) return std::move(objects.front());
+  json doc{{"trivar", 1}, {"objects", json::array()}};
+  for (json& j : objects) {
+    j.erase("trivar");
+    doc["objects"].push_back(std::move(j));
+  }
+  return doc;
+}
+
+std::vector<AnySpline> read_json(const std::string& path) {
   std::vector<AnySpline> out;
-  out.reserve(objects.size());
-  for (std::size_t i = 0; i < objects.size(); ++i)
-    out.push_back(spline_from_json(objects[i], indexed(path + ": objects", i)));
+  for (const auto& [j, where] : object_documents(read_json_document(path), path, "spline"))
+    out.push_back(spline_from_json(j, where));
   return out;
 }
 
 void write_json(const std::string& path, const std::vector<AnySpline>& objects) {
   require(!objects.empty(), path + ": nothing to write (no objects)");
-  json doc;
-  if (objects.size() == 1) {
+  std::vector<json> docs;
+  for (std::size_t i = 0; i < objects.size(); ++i) {
     try {
-      doc = to_json(objects[0]);
+      docs.push_back(to_json(objects[i]));
     } catch (const Error& e) {
-      throw Error(path + ": " + e.what());
-    }
-  } else {
-    doc = {{"trivar", 1}, {"objects", json::array()}};
-    for (std::size_t i = 0; i < objects.size(); ++i) {
-      try {
-        json j = to_json(objects[i]);
-        j.erase("trivar");
-        doc["objects"].push_back(std::move(j));
-      } catch (const Error& e) {
-        throw Error(indexed(path + ": objects", i) + ": " + e.what());
-      }
+      throw Error((objects.size() == 1 ? path : indexed(path + ": objects", i)) + ": " + e.what());
     }
   }
-  write_json_document(path, doc);
+  write_json_document(path, document_of(std::move(docs)));
 }
 
 }  // namespace trivar::io

@@ -6,6 +6,7 @@
 // is present exactly when "rational" is true. Numbers are written so that they parse back to the same double.
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "trivar/spline/any_spline.hpp"
@@ -25,6 +26,13 @@ AnySpline spline_from_json(const nlohmann::json& j, const std::string& where);
 nlohmann::json read_json_document(const std::string& path);
 // Writes a document atomically in the project's layout (spline keys in schema order, numeric arrays on one line).
 void write_json_document(const std::string& path, const nlohmann::json& doc);
+
+// The objects of a trivar JSON document with the error prefix of each: the document itself, or the entries of
+// its "objects" array (validated: no other keys, a non-empty array; `what` names the objects in messages).
+std::vector<std::pair<nlohmann::json, std::string>> object_documents(const nlohmann::json& doc,
+                                                                     const std::string& path, const char* what);
+// The document for a list of objects: the single object itself, or {"trivar": 1, "objects": [...]}.
+nlohmann::json document_of(std::vector<nlohmann::json> objects);
 
 // Reads a file holding one object or {"trivar": 1, "objects": [...]} (at least one object).
 std::vector<AnySpline> read_json(const std::string& path);

@@ -11,7 +11,7 @@
 #include "trivar/core/atomic_file.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/core/number_format.hpp"
-#include "trivar/io/xml_text.hpp"
+#include "trivar/io/vtu_data_array.hpp"
 #include "trivar/spline/bezier_extraction.hpp"
 
 namespace trivar::io {
@@ -258,24 +258,6 @@ void add_control_net(Piece& piece, const TensorSpline<D>& s, int extra) {
   });
 }
 
-// One DataArray in ASCII: one tuple per line, scalars eight to a line.
-template <class T>
-void data_array(std::ostream& os, const char* type, const std::string& name, int components, const std::vector<T>& v) {
-  os << "        <DataArray type=\"" << type << "\"";
-  if (!name.empty()) os << " Name=\"" << xml_escape(name) << "\"";
-  os << " NumberOfComponents=\"" << components << "\" format=\"ascii\">\n";
-  const std::size_t per_line = components == 1 ? 8 : static_cast<std::size_t>(components);
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    os << (i % per_line == 0 ? "          " : " ");
-    if constexpr (std::is_floating_point_v<T>)
-      write_number(os, v[i]);
-    else
-      os << v[i];
-    if ((i + 1) % per_line == 0 || i + 1 == v.size()) os << '\n';
-  }
-  os << "        </DataArray>\n";
-}
-
 enum class Mode { sampled, bezier, net };
 
 void write_piece(std::ostream& os, const Piece& p, Mode mode, const std::vector<VtkPointField>& fields, int extra) {
@@ -285,22 +267,22 @@ void write_piece(std::ostream& os, const Piece& p, Mode mode, const std::vector<
   os << "      <PointData";
   if (bezier) os << " RationalWeights=\"RationalWeights\"";
   os << ">\n";
-  data_array(os, "Float64", "param", 3, p.params);
-  if (bezier) data_array(os, "Float64", "RationalWeights", 1, p.weights);
-  if (extra > 0) data_array(os, "Float64", "higher_components", extra, p.higher);
+  write_data_array(os, "Float64", "param", 3, p.params);
+  if (bezier) write_data_array(os, "Float64", "RationalWeights", 1, p.weights);
+  if (extra > 0) write_data_array(os, "Float64", "higher_components", extra, p.higher);
   for (std::size_t f = 0; f < fields.size(); ++f)
-    data_array(os, "Float64", fields[f].name, fields[f].components, p.fields[f]);
+    write_data_array(os, "Float64", fields[f].name, fields[f].components, p.fields[f]);
   os << "      </PointData>\n      <CellData";
   if (bezier) os << " HigherOrderDegrees=\"HigherOrderDegrees\"";
   os << ">\n";
-  data_array(os, "Int32", mode == Mode::net ? "direction" : "element", 1, p.element);
-  if (bezier) data_array(os, "Int32", "HigherOrderDegrees", 3, p.degrees);
+  write_data_array(os, "Int32", mode == Mode::net ? "direction" : "element", 1, p.element);
+  if (bezier) write_data_array(os, "Int32", "HigherOrderDegrees", 3, p.degrees);
   os << "      </CellData>\n      <Points>\n";
-  data_array(os, "Float64", "", 3, p.points);
+  write_data_array(os, "Float64", "", 3, p.points);
   os << "      </Points>\n      <Cells>\n";
-  data_array(os, "Int64", "connectivity", 1, p.connectivity);
-  data_array(os, "Int64", "offsets", 1, p.offsets);
-  data_array(os, "UInt8", "types", 1, p.types);
+  write_data_array(os, "Int64", "connectivity", 1, p.connectivity);
+  write_data_array(os, "Int64", "offsets", 1, p.offsets);
+  write_data_array(os, "UInt8", "types", 1, p.types);
   os << "      </Cells>\n    </Piece>\n";
 }
 

@@ -16,6 +16,9 @@ namespace trivar {
 
 namespace {
 
+// Scaling factors written by other tools (or by rounded sums) may exceed 1 by a few ulps; accepted up to this.
+constexpr double kGammaSlack = 1e-12;
+
 // +0.0 for -0.0, so that equal values hash equally.
 inline std::uint64_t bits(double v) { return std::bit_cast<std::uint64_t>(v == 0.0 ? 0.0 : v); }
 
@@ -362,7 +365,8 @@ struct LRSpline<D>::Batch {
 
   // gamma c is what the function sees: keep sum gamma_i c_i for the merged B-spline.
   static void combine(LRBSpline<D>& old, const LRBSpline<D>& b) {
-    const double g = old.gamma + b.gamma;
+    // Sums of scaling factors that are 1 in exact arithmetic may round above it.
+    const double g = std::min(old.gamma + b.gamma, 1.0);
     for (std::size_t i = 0; i < old.coef.size(); ++i) old.coef[i] = (old.gamma * old.coef[i] + b.gamma * b.coef[i]) / g;
     old.gamma = g;
   }
@@ -514,7 +518,7 @@ LRSpline<D>::LRSpline(const Ints<D>& degrees, int dim, bool rational, std::vecto
       require(domain_.lo[k] <= y.front() && y.back() <= domain_.hi[k],
               [&] { return where() + ": support outside the domain in direction " + std::to_string(k); });
     }
-    require(b.gamma > 0.0 && b.gamma <= 1.0, [&] { return where() + ": scaling factor outside (0, 1]"; });
+    require(b.gamma > 0.0 && b.gamma <= 1.0 + kGammaSlack, [&] { return where() + ": scaling factor outside (0, 1]"; });
     require(static_cast<int>(b.coef.size()) == st, [&] {
       return where() + ": " + std::to_string(b.coef.size()) + " control values, expected " + std::to_string(st);
     });
@@ -541,16 +545,23 @@ LRSpline<D>::LRSpline(const Ints<D>& degrees, int dim, bool rational, std::vecto
     });
     return out;
   };
-  for (const auto& r : mesh_) {
-    const int k = r.dir;
-    for (int e : touched(r)) {
-      auto& el = elements_[static_cast<std::size_t>(e)];
-      if (!(el.lo[k] < r.value && r.value < el.hi[k])) continue;
-      Box<D> upper = el;
-      upper.lo[k] = r.value;
-      el.hi[k] = r.value;
-      elements_.push_back(upper);
-      grid.add(static_cast<int>(elements_.size()) - 1, upper);
+  // A rectangle cuts an element only where it crosses it completely: a T-junction rectangle listed before the
+  // line it ends on must not cut beyond that line. Repeat until no cut is left; the final elements do not depend
+  // on the order of the rectangles.
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (const auto& r : mesh_) {
+      const int k = r.dir;
+      for (int e : touched(r)) {
+        auto& el = elements_[static_cast<std::size_t>(e)];
+        if (!(el.lo[k] < r.value && r.value < el.hi[k]) || !r.contains_across(el)) continue;
+        Box<D> upper = el;
+        upper.lo[k] = r.value;
+        el.hi[k] = r.value;
+        elements_.push_back(upper);
+        grid.add(static_cast<int>(elements_.size()) - 1, upper);
+        changed = true;
+      }
     }
   }
   std::unordered_map<PlaneKey, std::vector<const MeshRectangle<D>*>, PlaneHash> planes;

@@ -1,0 +1,29 @@
+#pragma once
+// VTK XML UnstructuredGrid (.vtu, ASCII) output of LR splines for ParaView, one <Piece> per object:
+//  - sampled (default): every element of the LR mesh is sampled on its own (n+1)^D grid of parameters
+//    (n = samples_per_element) and cut into n^D VTK_QUAD / VTK_HEXAHEDRON cells. Elements do not share points
+//    (LR meshes have T-junctions, so neighbours' samples need not match). A sample on an element's upper face
+//    inside the domain is evaluated one ulp below it, so it takes the element's own polynomial piece (also
+//    where the spline is discontinuous); its "param" is the exact face parameter.
+//  - parametric_mesh: the mesh itself, one VTK_QUAD / VTK_HEXAHEDRON per element with its corners at the
+//    parameters (u, v, 0) / (u, v, w).
+// Cell data: "element" (the element id) and "support" (the number of B-splines whose support contains the
+// element, which shows overloading). Point data: "param" (u, v, w; w = 0 for surfaces). Points take the first
+// three control components (zeros when dim < 3); further components go to point data "higher_components".
+#include <string>
+#include <vector>
+
+#include "trivar/lr/any_lr_spline.hpp"
+
+namespace trivar::io {
+
+struct LRVtkOptions {
+  int samples_per_element = 4;  // n >= 1, sampled mode
+  bool parametric_mesh = false;
+};
+
+// Throws trivar::Error (nothing written) for samples_per_element < 1, an empty list or a write failure.
+void write_lr_vtu(const std::string& path, const AnyLRSpline& s, const LRVtkOptions& opts = {});
+void write_lr_vtu(const std::string& path, const std::vector<AnyLRSpline>& objects, const LRVtkOptions& opts = {});
+
+}  // namespace trivar::io

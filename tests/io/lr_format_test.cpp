@@ -1,0 +1,213 @@
+#include "trivar/io/lr_format.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <sstream>
+
+#include "support/spline_fixtures.hpp"
+#include "trivar/core/error.hpp"
+
+using namespace trivar;
+
+namespace {
+
+// The unit cube as IFEM's unit tests spell it (orders 2, the identity map), written by LRsplines.
+constexpr const char* kCube =
+    "# LRSPLINE VOLUME\n"
+    "#\tp1\tp2\tp3\tNbasis\tNline\tNel\tdim\trat\n"
+    "\t2\t2\t2\t8\t6\t1\t3\t0\n"
+    "# Basis functions:\n"
+    "0: [0 0 1 ] x [0 0 1 ] x [0 0 1 ] 0 0 0 (1)\n"
+    "1: [0 1 1 ] x [0 0 1 ] x [0 0 1 ] 1 0 0 (1)\n"
+    "2: [0 0 1 ] x [0 1 1 ] x [0 0 1 ] 0 1 0 (1)\n"
+    "3: [0 1 1 ] x [0 1 1 ] x [0 0 1 ] 1 1 0 (1)\n"
+    "4: [0 0 1 ] x [0 0 1 ] x [0 1 1 ] 0 0 1 (1)\n"
+    "5: [0 1 1 ] x [0 0 1 ] x [0 1 1 ] 1 0 1 (1)\n"
+    "6: [0 0 1 ] x [0 1 1 ] x [0 1 1 ] 0 1 1 (1)\n"
+    "7: [0 1 1 ] x [0 1 1 ] x [0 1 1 ] 1 1 1 (1)\n"
+    "# Mesh rectangles:\n"
+    "[0, 0] x [0, 1] x [0, 1] (2)\n"
+    "[1, 1] x [0, 1] x [0, 1] (2)\n"
+    "[0, 1] x [0, 0] x [0, 1] (2)\n"
+    "[0, 1] x [1, 1] x [0, 1] (2)\n"
+    "[0, 1] x [0, 1] x [0, 0] (2)\n"
+    "[0, 1] x [0, 1] x [1, 1] (2)\n"
+    "# Elements:\n"
+    "0 [3] : (0, 0, 0) x (1, 1, 1)    {0, 1, 2, 3, 4, 5, 6, 7}\n";
+
+// A bilinear square split once at u = 0.5 (by hand: the two u-functions with support [0, 1] become three with
+// local knots [0 0 .5], [0 .5 1], [.5 1 1]); the control points make it the map (u, v) -> (2u, v).
+constexpr const char* kSplitSquare =
+    "# LRSPLINE SURFACE\n"
+    "#\tp1\tp2\tNbasis\tNline\tNel\tdim\trat\n"
+    "\t2\t2\t6\t5\t2\t2\t0\n"
+    "# Basis functions:\n"
+    "10: [0 0 0.5 ] x [0 0 1 ] 0 0 (1)\n"
+    "11: [0 0.5 1 ] x [0 0 1 ] 1 0 (1)\n"
+    "12: [0.5 1 1 ] x [0 0 1 ] 2 0 (1)\n"
+    "13: [0 0 0.5 ] x [0 1 1 ] 0 1 (1)\n"
+    "14: [0 0.5 1 ] x [0 1 1 ] 1 1 (1)\n"
+    "15: [0.5 1 1 ] x [0 1 1 ] 2 1 (1)\n"
+    "# Mesh lines:\n"
+    "0 x [0, 1] (2)\n"
+    "0.5 x [0, 1] (1)\n"
+    "1 x [0, 1] (2)\n"
+    "[0, 1] x 0 (2)\n"
+    "[0, 1] x 1 (2)\n"
+    "# Elements:\n"
+    "0 [2] : (0, 0) x (0.5, 1)    {10, 11, 13, 14}\n"
+    "1 [2] : (0.5, 0) x (1, 1)    {11, 12, 14, 15}\n";
+
+template <int D>
+const LRSpline<D>& as(const AnyLRSpline& s) {
+  return std::get<LRSpline<D>>(s);
+}
+
+template <int D>
+std::vector<Param<D>> grid_params(int n) {
+  std::vector<Param<D>> out;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  for (int i = 0; i < n; ++i) {
+    Param<D> u;
+    for (double& x : u) x = U(rng);
+    out.push_back(u);
+  }
+  return out;
+}
+
+std::string text_of(const AnyLRSpline& s) {
+  std::ostringstream os;
+  io::write_lr(os, s);
+  return os.str();
+}
+
+// A distinct interior knot of direction k (partial rectangles must end on mesh lines).
+double mid_knot(const TensorSpline<3>& t, int k) {
+  std::vector<double> v = t.knots(k).knots();
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+  return v[v.size() / 2];
+}
+
+// A refined cubic LR volume: a random tensor spline with three local insertions.
+LRSpline<3> refined_volume(bool rational) {
+  const TensorSpline<3> t = test::random_spline<3>({3, 2, 3}, {3, 2, 2}, 3, rational, 3);
+  LRSpline<3> lr(t);
+  const Box<3> d = lr.domain();
+  const auto at = [&](int k, double f) { return d.lo[k] + f * (d.hi[k] - d.lo[k]); };
+  lr.insert(MeshRectangle<3>::make(0, at(0, 0.5), {0, d.lo[1], d.lo[2]}, {0, d.hi[1], mid_knot(t, 2)}));
+  lr.insert(MeshRectangle<3>::make(2, at(2, 0.25), {d.lo[0], d.lo[1], 0}, {mid_knot(t, 0), d.hi[1], 0}));
+  lr.insert(MeshRectangle<3>::make(1, at(1, 0.6), {d.lo[0], d.lo[1], d.lo[2]}, {d.hi[0], d.hi[1], d.hi[2]}, 2));
+  return lr;
+}
+
+template <int D>
+void expect_identical(const LRSpline<D>& a, const LRSpline<D>& b) {
+  ASSERT_EQ(a.num_basis(), b.num_basis());
+  ASSERT_EQ(a.num_elements(), b.num_elements());
+  ASSERT_EQ(a.mesh().size(), b.mesh().size());
+  std::vector<double> x(static_cast<std::size_t>(a.dim())), y(x.size());
+  for (const Param<D>& u : grid_params<D>(200)) {
+    Param<D> v;
+    for (int k = 0; k < D; ++k) v[k] = a.domain().lo[k] + u[k] * (a.domain().hi[k] - a.domain().lo[k]);
+    a.eval(v, x.data());
+    b.eval(v, y.data());
+    for (std::size_t i = 0; i < x.size(); ++i) EXPECT_EQ(x[i], y[i]);
+  }
+}
+
+void expect_error(const std::string& text, const std::string& fragment) {
+  try {
+    io::parse_lr(text, "bad.lr");
+    ADD_FAILURE() << "no error for:\n" << text;
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    EXPECT_EQ(m.rfind("bad.lr:", 0), 0u) << m;
+    EXPECT_NE(m.find(fragment), std::string::npos) << m;
+    EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+  }
+}
+
+std::string replaced(std::string s, const std::string& from, const std::string& to) {
+  const std::size_t at = s.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return s.replace(at, from.size(), to);
+}
+
+}  // namespace
+
+TEST(LrFormat, ReadsLRsplinesCubeAsTheIdentity) {
+  const auto objects = io::parse_lr(kCube, "cube.lr");
+  ASSERT_EQ(objects.size(), 1u);
+  const LRSpline<3>& cube = as<3>(objects[0]);
+  EXPECT_EQ(cube.num_basis(), 8);
+  EXPECT_EQ(cube.num_elements(), 1);
+  EXPECT_EQ(cube.degree(0), 1);
+  double x[3];
+  for (const Param<3>& u : grid_params<3>(50)) {
+    cube.eval(u, x);
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(x[k], u[k], 1e-15);
+  }
+}
+
+TEST(LrFormat, ReadsHandSplitSquareWithArbitraryIds) {
+  const auto objects = io::parse_lr(kSplitSquare, "square.lr");
+  const LRSpline<2>& sq = as<2>(objects.at(0));
+  EXPECT_EQ(sq.num_basis(), 6);
+  EXPECT_EQ(sq.num_elements(), 2);
+  double x[2];
+  for (const Param<2>& u : grid_params<2>(50)) {
+    sq.eval(u, x);
+    EXPECT_NEAR(x[0], 2 * u[0], 1e-15);
+    EXPECT_NEAR(x[1], u[1], 1e-15);
+  }
+}
+
+TEST(LrFormat, SeveralBlocksRoundTripExactly) {
+  const LRSpline<3> poly = refined_volume(false), rat = refined_volume(true);
+  const AnyLRSpline square = io::parse_lr(kSplitSquare, "square.lr").at(0);
+  const std::string text = text_of(poly) + text_of(square) + text_of(rat);
+  const auto back = io::parse_lr(text, "three.lr");
+  ASSERT_EQ(back.size(), 3u);
+  expect_identical(poly, as<3>(back[0]));
+  expect_identical(as<2>(square), as<2>(back[1]));
+  expect_identical(rat, as<3>(back[2]));
+  EXPECT_TRUE(as<3>(back[2]).is_rational());
+  // Writing what was read gives the same text: ids, order and reals are reproduced exactly.
+  EXPECT_EQ(text_of(back[0]) + text_of(back[1]) + text_of(back[2]), text);
+}
+
+TEST(LrFormat, TensorSplineThroughTheFormatEvaluatesAsTheTensorSpline) {
+  const TensorSpline<2> t = test::random_spline<2>({3, 2}, {4, 3}, 3, true, 11);
+  const auto back = io::parse_lr(text_of(LRSpline<2>(t)), "t.lr");
+  double a[3], b[3];
+  for (const Param<2>& u : test::random_params(t, 200, 5)) {
+    as<2>(back.at(0)).eval(u, a);
+    t.eval(u, b);
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(a[i], b[i], 1e-13);
+  }
+}
+
+TEST(LrFormat, MalformedInputFailsWithLineAndReason) {
+  const std::string cube = kCube;
+  expect_error("", "no LR spline");
+  expect_error("# LRSPLINE CURVE\n", "expected '# LRSPLINE SURFACE'");
+  expect_error(cube.substr(0, cube.size() / 2), "expected");
+  expect_error(replaced(cube, "\t3\t0\n", "\t3\t2\n"), "rational flag");
+  expect_error(replaced(cube, "\t2\t2\t2\t8", "\t0\t2\t2\t8"), "order");
+  expect_error(replaced(cube, "3: [0 1 1 ]", "3: [0 1 1 1 ]"), "after a local knot vector");
+  expect_error(replaced(cube, "5: [0 1 1 ] x [0 0 1 ] x [0 1 1 ] 1 0 1 (1)", "5: [0 1 1 ] x [0 0 1 ] x [0 1 1 ] 1 0 (1)"),
+               "expected control value");
+  expect_error(replaced(cube, "7: [", "6: ["), "appears twice");
+  expect_error(replaced(cube, "{0, 1, 2, 3, 4, 5, 6, 7}", "{0, 1, 2, 3, 4, 5, 6, 9}"), "unknown basis function 9");
+  expect_error(replaced(cube, "[0, 1] x [0, 1] x [1, 1] (2)", "[0, 1] x [1, 1] x [1, 1] (2)"), "two directions");
+  expect_error(replaced(cube, "[0, 1] x [0, 0] x [0, 1] (2)", "[1, 0] x [0, 0] x [0, 1] (2)"), "reversed");
+  expect_error(replaced(cube, "0 0 0 (1)", "0 0 0 (nan)"), "scaling factor");
+  expect_error(replaced(cube, "\t8\t6\t1\t3", "\t8\t6\t2\t3"), "expected element id");
+  // Semantic errors come from the LRSpline constructor, with the file position in front.
+  expect_error(replaced(cube, "0 0 0 (1)", "0 0 0 (0)"), "bad.lr:");
+  expect_error(replaced(cube, "0: [0 0 1 ]", "0: [0 0 2 ]"), "bad.lr:");
+}
