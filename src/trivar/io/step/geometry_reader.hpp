@@ -1,0 +1,73 @@
+#pragma once
+// Maps ISO 10303-42 spline entities of a parsed exchange structure to trivar objects:
+//   curves   B_SPLINE_CURVE_WITH_KNOTS, BEZIER_CURVE, UNIFORM_CURVE, QUASI_UNIFORM_CURVE, and complex
+//            instances of B_SPLINE_CURVE with one of those and/or RATIONAL_B_SPLINE_CURVE   -> TensorSpline<1>
+//   surfaces the same for B_SPLINE_SURFACE(_WITH_KNOTS), BEZIER/UNIFORM/QUASI_UNIFORM_SURFACE,
+//            RATIONAL_B_SPLINE_SURFACE                                                         -> TensorSpline<2>
+//   volumes  B_SPLINE_VOLUME(_WITH_KNOTS), BEZIER/UNIFORM/QUASI_UNIFORM_VOLUME, RATIONAL_B_SPLINE_VOLUME
+//            (no knot_spec on volumes)                                                         -> TensorSpline<3>
+//   LOCALLY_REFINED_SPLINE_SURFACE / _VOLUME and RATIONAL_LOCALLY_REFINED_SPLINE_SURFACE / _VOLUME (simple
+//            or complex instances) with their LOCAL_B_SPLINEs                                  -> LRSpline<2|3>
+// Uniform, quasi-uniform and Bezier forms get the knots Part 42 defines for them (spacing 1; uniform starts at
+// -degree with simple knots; quasi-uniform starts at 0 with end multiplicity degree + 1; Bezier is quasi-uniform
+// with interior multiplicity degree). Control grids are listed u outermost in STEP and stored u fastest here.
+// Rational entities give Cartesian points and weights; trivar stores w * x, one rounding per coordinate.
+//
+// LR splines. The B-splines' local knot indices may be 0- or 1-based (the published text is inconsistent): an
+// index 0 anywhere in the entity means 0-based, otherwise 1-based. STEP stores no box mesh; it is rebuilt as the
+// union of the B-splines' knot lines (per B-spline and direction, one rectangle per distinct local knot across
+// its support, multiplicity = that knot's local multiplicity), which is the mesh of every LR spline whose mesh
+// lines all carry some B-spline's knot line (so a spline evaluates identically; the element partition can be
+// coarser than the writer's where the writer's mesh had lines no B-spline uses). Per plane the knot-line pieces
+// are merged into maximal rectangles per multiplicity level, because LRSpline cuts elements with single
+// rectangles only.
+//
+// Every rule of the standard is checked (knot sums, multiplicities, strictly increasing knots, weights > 0,
+// grid shapes, local multiplicities summing to degree + 2, scaling factors in (0, 1], domain) and every failure
+// is one trivar::Error "file:line:column: #id: KEYWORD: message". A reference to an instance of the wrong type
+// or to no instance is an error of the same form.
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "trivar/io/step/exchange_file.hpp"
+#include "trivar/lr/any_lr_spline.hpp"
+#include "trivar/spline/any_spline.hpp"
+
+namespace trivar::io::step {
+
+enum class GeometryKind { none, curve, surface, volume, lr_curve, lr_surface, lr_volume };
+
+// "curve", "surface", "volume", "lr_curve", "lr_surface", "lr_volume" ("none" for none).
+const char* to_string(GeometryKind kind);
+
+// What an instance is, by its keywords alone (no validation). LOCAL_B_SPLINE and CARTESIAN_POINT are parts,
+// not objects: none.
+GeometryKind geometry_kind(const Instance& instance);
+
+// The keywords the mapper reads (spline entities, their parts, CARTESIAN_POINT); a ReadOptions::keep filter.
+bool is_geometry_keyword(std::string_view keyword);
+
+class GeometryReader {
+public:
+  // `file_name` prefixes messages; the instances' line and column come from the parser.
+  GeometryReader(const ExchangeFile& file, std::string file_name);
+
+  // Throws trivar::Error (as above) when the instance is not a valid spline of that kind.
+  AnySpline tensor_spline(const Instance& instance) const;
+  AnyLRSpline lr_spline(const Instance& instance) const;
+  // The representation_item name (first parameter of the simple instance or of REPRESENTATION_ITEM).
+  std::string name(const Instance& instance) const;
+
+private:
+  const ExchangeFile& file_;
+  std::string file_name_;
+
+  template <int D>
+  TensorSpline<D> read_tensor(const Instance& in) const;
+  template <int D>
+  LRSpline<D> read_lr(const Instance& in) const;
+};
+
+}  // namespace trivar::io::step
