@@ -1,0 +1,276 @@
+#include "trivar/am/layer_slicer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "trivar/core/error.hpp"
+
+namespace trivar::am {
+
+namespace {
+
+bool positive_finite(double v) { return std::isfinite(v) && v > 0; }
+
+// A crossing of a row's centre line with an outline segment.
+struct Hit {
+  int row;
+  double x;
+  bool operator<(const Hit& o) const { return row != o.row ? row < o.row : x < o.x; }
+};
+
+// First row j (0..height) whose centre is >= y.
+int first_row_at_or_above(const SliceGrid& g, double y) {
+  double e = std::ceil((y - g.y0) / g.dy - 0.5);
+  int j = static_cast<int>(std::clamp(e, 0.0, static_cast<double>(g.height)));
+  while (j > 0 && g.y(j - 1) >= y) --j;
+  while (j < g.height && g.y(j) < y) ++j;
+  return j;
+}
+
+// First column i (0..width) whose centre is >= x.
+int first_column_at_or_right(const SliceGrid& g, double x) {
+  double e = std::ceil((x - g.x0) / g.dx - 0.5);
+  int i = static_cast<int>(std::clamp(e, 0.0, static_cast<double>(g.width)));
+  while (i > 0 && g.x(i - 1) >= x) --i;
+  while (i < g.width && g.x(i) < x) ++i;
+  return i;
+}
+
+// Crossings of the segment with the row centre lines y_j in [min y, max y): a vertex on a line belongs to the
+// segment above it only, so a closed polygon crosses every line an even number of times. The end points are
+// put in a canonical order first, so the same segment from two cells gives bit-identical crossings.
+void add_hits(const SliceGrid& g, const OutlineSegment& s, std::vector<Hit>& hits) {
+  double xa = s.x0, ya = s.y0, xb = s.x1, yb = s.y1;
+  if (ya == yb) return;
+  if (ya > yb || (ya == yb && xa > xb)) {
+    std::swap(xa, xb);
+    std::swap(ya, yb);
+  }
+  const int j0 = first_row_at_or_above(g, ya), j1 = first_row_at_or_above(g, yb);
+  for (int j = j0; j < j1; ++j) hits.push_back({j, xa + (g.y(j) - ya) * (xb - xa) / (yb - ya)});
+}
+
+}  // namespace
+
+SliceGrid slice_grid(const VModel& model, const SliceOptions& o) {
+  require(model.num_cells() > 0, "slicer: the model has no cells");
+  require(model.is_glued(), "slicer: the model is not glued (glue it after adding cells)");
+  require(positive_finite(o.layer_thickness),
+          [&] { return "slicer: layer thickness must be positive, got " + std::to_string(o.layer_thickness); });
+  require(positive_finite(o.dpi_x) && positive_finite(o.dpi_y),
+          [&] { return "slicer: dpi must be positive, got " + std::to_string(o.dpi_x) + " x " + std::to_string(o.dpi_y); });
+  const Box<3> bb = model.bounding_box();
+  SliceGrid g;
+  g.dx = 25.4 / o.dpi_x;
+  g.dy = 25.4 / o.dpi_y;
+  g.x0 = o.origin ? (*o.origin)[0] : bb.lo[0] - g.dx;
+  g.y0 = o.origin ? (*o.origin)[1] : bb.lo[1] - g.dy;
+  require(std::isfinite(g.x0) && std::isfinite(g.y0), "slicer: the build-plate origin must be finite");
+  if (o.image_size) {
+    g.width = (*o.image_size)[0];
+    g.height = (*o.image_size)[1];
+  } else {
+    g.width = static_cast<int>(std::min(std::ceil((bb.hi[0] + g.dx - g.x0) / g.dx), 1e9));
+    g.height = static_cast<int>(std::min(std::ceil((bb.hi[1] + g.dy - g.y0) / g.dy), 1e9));
+  }
+  require(g.width >= 1 && g.height >= 1, [&] {
+    return "slicer: empty image " + std::to_string(g.width) + " x " + std::to_string(g.height) + " pixels";
+  });
+  const double z0 = o.z_range ? (*o.z_range)[0] : bb.lo[2];
+  const double z1 = o.z_range ? (*o.z_range)[1] : bb.hi[2];
+  require(std::isfinite(z0) && std::isfinite(z1) && z0 < z1,
+          [&] { return "slicer: empty z range [" + std::to_string(z0) + ", " + std::to_string(z1) + "]"; });
+  g.z0 = z0;
+  g.thickness = o.layer_thickness;
+  // The guard keeps an exact multiple (1.0 / 0.1 = 10.000000000000002) from adding an empty layer.
+  const double n = std::ceil((z1 - z0) / o.layer_thickness * (1 - 1e-12));
+  require(n <= 1e7, "slicer: more than 1e7 layers");
+  g.layers = std::max(1, static_cast<int>(n));
+  return g;
+}
+
+LayerSlicer::LayerSlicer(const VModel& model, const SliceOptions& options)
+    : model_(model), options_(options), grid_(slice_grid(model, options)) {
+  require(positive_finite(options.outline_tolerance), "slicer: outline tolerance must be positive");
+  require(options.samples_per_span >= 1, "slicer: samples per span must be >= 1");
+  const int n = model.num_cells();
+  const VTopology& topo = model.topology();
+  SectionOptions so;
+  so.samples_per_span = options.samples_per_span;
+  so.tolerance = options.outline_tolerance * std::min(grid_.dx, grid_.dy);
+  const std::string name = options.material_attribute.value_or("material");
+  int with_material = 0;
+  for (int c = 0; c < n; ++c) {
+    const VCell& cell = model.cell(c);
+    sections_.emplace_back(cell.geometry(), so);
+    inverters_.emplace_back(cell.geometry(), options.inversion);
+    Box<3> b;
+    cell.geometry().control_bounds(b.lo.data(), b.hi.data());
+    boxes_.push_back(b);
+    std::array<bool, 6> boundary{};
+    for (int f = 0; f < 6; ++f) boundary[f] = topo.halves[static_cast<std::size_t>(6 * c + f)].twin < 0;
+    model_face_.push_back(boundary);
+    with_material += cell.has_attribute(name) ? 1 : 0;
+  }
+  material_.assign(static_cast<std::size_t>(n), nullptr);
+  require(with_material > 0 || !options.material_attribute,
+          [&] { return "slicer: no cell has the material attribute '" + name + "'"; });
+  if (with_material == 0) return;
+  for (int c = 0; c < n; ++c) {
+    require(model.cell(c).has_attribute(name), [&] {
+      return "slicer: cell " + std::to_string(c) + " has no attribute '" + name +
+             "' (other cells have it)";
+    });
+    const Attribute& a = model.cell(c).attribute(name);
+    if (c == 0) materials_ = a.components();
+    require(a.components() == materials_, [&] {
+      return "slicer: attribute '" + name + "' has " + std::to_string(a.components()) +
+             " components in cell " + std::to_string(c) + " but " + std::to_string(materials_) + " in cell 0";
+    });
+    material_[static_cast<std::size_t>(c)] = &a;
+  }
+  require(materials_ <= MaterialTable::max_materials, "slicer: more than 255 materials");
+  require(model.materials().empty() || model.materials().size() == materials_, [&] {
+    return "slicer: the model names " + std::to_string(model.materials().size()) + " materials but attribute '" +
+           name + "' has " + std::to_string(materials_) + " components";
+  });
+}
+
+SliceLayer LayerSlicer::slice(int k) const {
+  require(k >= 0 && k < grid_.layers,
+          [&] { return "slicer: layer " + std::to_string(k) + " out of range 0.." + std::to_string(grid_.layers - 1); });
+  const SliceGrid& g = grid_;
+  const int n = static_cast<int>(sections_.size()), w = g.width, h = g.height;
+  SliceLayer L;
+  L.index = k;
+  L.z = g.z(k);
+  L.width = w;
+  L.height = h;
+  L.cell.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), -1);
+  L.fractions = FractionImage(w, h, materials_, 0.0f);
+  const double z = L.z;
+
+  // Row crossings per cell and of the model boundary, sorted by (row, x).
+  std::vector<std::vector<Hit>> hits(static_cast<std::size_t>(n));
+  std::vector<Hit> model_hits;
+  std::vector<OutlineSegment> segments;
+  for (int c = 0; c < n; ++c) {
+    segments.clear();
+    sections_[static_cast<std::size_t>(c)].section(z, segments);
+    for (const auto& s : segments) {
+      add_hits(g, s, hits[static_cast<std::size_t>(c)]);
+      if (model_face_[static_cast<std::size_t>(c)][static_cast<std::size_t>(s.face)]) add_hits(g, s, model_hits);
+    }
+    std::sort(hits[static_cast<std::size_t>(c)].begin(), hits[static_cast<std::size_t>(c)].end());
+  }
+  std::sort(model_hits.begin(), model_hits.end());
+
+  // Calls paint(i_begin, i_end) for the even-odd spans of row j and advances `pos` past the row.
+  auto spans = [&](const std::vector<Hit>& hs, std::size_t& pos, int j, auto&& paint) {
+    while (pos < hs.size() && hs[pos].row < j) ++pos;
+    std::size_t e = pos;
+    while (e < hs.size() && hs[e].row == j) ++e;
+    for (std::size_t q = pos; q + 1 < e; q += 2)
+      paint(first_column_at_or_right(g, hs[q].x), first_column_at_or_right(g, hs[q + 1].x));
+    pos = e;
+  };
+
+  constexpr int kUnclaimed = -2;  // inside the part by the model fill, claimed by no cell
+  std::vector<std::size_t> pos(static_cast<std::size_t>(n), 0);
+  std::size_t model_pos = 0;
+  std::vector<Param<3>> cur(static_cast<std::size_t>(w)), prev(static_cast<std::size_t>(w));
+  double values[MaterialTable::max_materials];
+  LayerStats& st = L.stats;
+  for (int j = 0; j < h; ++j) {
+    int* row = L.cell.data() + static_cast<std::size_t>(j) * static_cast<std::size_t>(w);
+    // Later cells first, so the first claiming cell ends up on top.
+    for (int c = n - 1; c >= 0; --c)
+      spans(hits[static_cast<std::size_t>(c)], pos[static_cast<std::size_t>(c)], j,
+            [&](int a, int b) { std::fill(row + a, row + b, c); });
+    spans(model_hits, model_pos, j, [&](int a, int b) {
+      for (int i = a; i < b; ++i)
+        if (row[i] == -1) row[i] = kUnclaimed;
+    });
+
+    for (int i = 0; i < w; ++i) {
+      int c = row[i];
+      if (c == -1) continue;
+      const double x[3] = {g.x(i), g.y(j), z};
+      InversionResult<3> r;
+      bool ok = false;
+      if (c >= 0) {
+        const PointInverter<3>& inv = inverters_[static_cast<std::size_t>(c)];
+        const auto ui = static_cast<std::size_t>(i);
+        if (i >= 1 && row[i - 1] == c) {
+          Param<3> guess = cur[ui - 1];
+          if (i >= 3 && row[i - 2] == c && row[i - 3] == c) {
+            for (int d = 0; d < 3; ++d) guess[d] = 3 * cur[ui - 1][d] - 3 * cur[ui - 2][d] + cur[ui - 3][d];
+          } else if (i >= 2 && row[i - 2] == c) {
+            for (int d = 0; d < 3; ++d) guess[d] = 2 * cur[ui - 1][d] - cur[ui - 2][d];
+          }
+          r = inv.newton(x, guess);
+          ok = r.converged;
+        }
+        if (!ok && j >= 1) {
+          // The pixel below, else the nearest pixel of the cell on the previous row (where a row enters the
+          // cell, its boundary has moved sideways since the previous row).
+          const int* below = row - w;
+          int near = -1;
+          for (int d = 0; near < 0 && (i - d >= 0 || i + d < w); ++d) {
+            if (i - d >= 0 && below[i - d] == c) near = i - d;
+            else if (i + d < w && below[i + d] == c) near = i + d;
+          }
+          if (near >= 0) {
+            r = inv.newton(x, prev[static_cast<std::size_t>(near)]);
+            ok = r.converged;
+          }
+        }
+        if (!ok) {
+          r = inv.invert(x);
+          ++st.full_solves;
+          ok = r.found && r.converged;
+        }
+      }
+      if (!ok) {
+        for (int c2 = 0; c2 < n && !ok; ++c2) {
+          const PointInverter<3>& inv = inverters_[static_cast<std::size_t>(c2)];
+          if (c2 == c || !boxes_[static_cast<std::size_t>(c2)].contains({x[0], x[1], x[2]}, inv.absolute_tolerance()))
+            continue;
+          r = inv.invert(x);
+          ++st.full_solves;
+          if (r.found && r.converged) {
+            c = c2;
+            ok = true;
+            ++st.corrected_pixels;
+          }
+        }
+      }
+      if (!ok) {
+        row[i] = -1;
+        continue;
+      }
+      row[i] = c;
+      cur[static_cast<std::size_t>(i)] = r.param;
+      ++st.inside_pixels;
+      st.max_residual = std::max(st.max_residual, r.residual);
+
+      float* out = L.fractions.pixel(i, j);
+      const Attribute* a = material_[static_cast<std::size_t>(c)];
+      if (!a) {
+        out[0] = 1.0f;
+        continue;
+      }
+      a->eval(model_.cell(c).geometry(), r.param, values);
+      double sum = 0;
+      for (int m = 0; m < materials_; ++m)
+        sum += values[m] = std::isfinite(values[m]) ? std::clamp(values[m], 0.0, 1.0) : 0.0;
+      // A field that vanishes everywhere at the pixel gives no preference: equal shares.
+      for (int m = 0; m < materials_; ++m) out[m] = static_cast<float>(sum > 0 ? values[m] / sum : 1.0 / materials_);
+    }
+    std::swap(cur, prev);
+  }
+  return L;
+}
+
+}  // namespace trivar::am

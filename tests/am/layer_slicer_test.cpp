@@ -1,0 +1,213 @@
+#include "trivar/am/layer_slicer.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+
+#include "trivar/core/error.hpp"
+#include "trivar/model/ball.hpp"
+#include "trivar/model/cylinder.hpp"
+#include "trivar/model/primitives.hpp"
+#include "trivar/model/torus.hpp"
+
+using namespace trivar;
+using namespace trivar::am;
+
+namespace {
+
+VModel glued(const CellComplex& cells) {
+  VModel m;
+  for (const auto& c : cells) m.add_cell(VCell(c));
+  m.glue();
+  return m;
+}
+
+// One layer exactly at height z on the raster with lower-left corner (x0, y0), sized to cover [x0, -x0].
+SliceOptions layer_at(double z, double x0, double dpi_x = 600, double dpi_y = 600) {
+  SliceOptions o;
+  o.dpi_x = dpi_x;
+  o.dpi_y = dpi_y;
+  o.origin = {{x0, x0}};
+  o.image_size = {{static_cast<int>(std::ceil(-2 * x0 * dpi_x / 25.4)), static_cast<int>(std::ceil(-2 * x0 * dpi_y / 25.4))}};
+  o.z_range = {{z - 0.5 * o.layer_thickness, z + 0.5 * o.layer_thickness}};
+  return o;
+}
+
+// Compares the layer's inside pixels with an independent membership test of the pixel centres (computed
+// from the sampling convention, not from the slicer), allowing differences only where |level| < band.
+// Returns the number of pixels inside by the independent test.
+long long compare_with(const SliceLayer& L, const SliceOptions& o, const std::function<double(double, double)>& level,
+                       double band = 1e-6) {
+  const double dx = 25.4 / o.dpi_x, dy = 25.4 / o.dpi_y;
+  long long expected = 0, differ = 0;
+  for (int j = 0; j < L.height; ++j)
+    for (int i = 0; i < L.width; ++i) {
+      const double x = (*o.origin)[0] + (i + 0.5) * dx, y = (*o.origin)[1] + (j + 0.5) * dy;
+      const double f = level(x, y);  // negative inside
+      expected += f < 0 ? 1 : 0;
+      if ((f < 0) != (L.owner(i, j) >= 0)) {
+        ++differ;
+        EXPECT_LT(std::abs(f), band) << "pixel " << i << ", " << j << " at (" << x << ", " << y << ")";
+      }
+    }
+  EXPECT_LE(differ, 4);
+  return expected;
+}
+
+}  // namespace
+
+TEST(LayerSlicer, BallEquatorMatchesTheDiskPixelByPixel) {
+  const double R = 5;
+  const VModel m = glued(make_ball({R}));
+  SliceOptions o = layer_at(0.0, -5.5);
+  o.outline_tolerance = 1e-5;  // pixels: chords within 4e-7 mm of the circle
+  const LayerSlicer slicer(m, o);
+  ASSERT_EQ(slicer.grid().layers, 1);
+  EXPECT_DOUBLE_EQ(slicer.grid().z(0), 0.0);
+  const SliceLayer L = slicer.slice(0);
+  const long long expected = compare_with(L, o, [&](double x, double y) { return std::hypot(x, y) - R; });
+  EXPECT_NEAR(static_cast<double>(L.stats.inside_pixels), static_cast<double>(expected), 4.0);
+  EXPECT_GT(expected, 40000);
+  EXPECT_LE(L.stats.max_residual, 1e-9);
+  // Tracing: robust solves only where a row enters a cell without a traced neighbour.
+  EXPECT_LT(static_cast<double>(L.stats.full_solves), 0.01 * static_cast<double>(L.stats.inside_pixels));
+  // One material, fraction 1 inside, 0 outside.
+  ASSERT_EQ(L.fractions.channels(), 1);
+  for (int j = 0; j < L.height; ++j)
+    for (int i = 0; i < L.width; ++i) ASSERT_EQ(L.fractions(i, j), L.owner(i, j) >= 0 ? 1.0f : 0.0f);
+}
+
+TEST(LayerSlicer, BallOffEquatorAnd600x300Dpi) {
+  const double R = 5, z = 3.1;
+  const VModel m = glued(make_ball({R}));
+  SliceOptions o = layer_at(z, -5.5, 600, 300);
+  o.outline_tolerance = 1e-5;
+  const LayerSlicer slicer(m, o);
+  EXPECT_NEAR(slicer.grid().dy, 2 * slicer.grid().dx, 1e-15);
+  const SliceLayer L = slicer.slice(0);
+  const double rho = std::sqrt(R * R - z * z);
+  compare_with(L, o, [&](double x, double y) { return std::hypot(x, y) - rho; });
+  EXPECT_LE(L.stats.max_residual, 1e-9);
+}
+
+TEST(LayerSlicer, CylinderAndTorusSections) {
+  const VModel cyl = glued(make_cylinder({2.0, 1.0}));
+  SliceOptions o = layer_at(0.37, -2.2);
+  o.outline_tolerance = 1e-5;
+  const SliceLayer C = LayerSlicer(cyl, o).slice(0);
+  compare_with(C, o, [](double x, double y) { return std::hypot(x, y) - 2.0; });
+  EXPECT_LE(C.stats.max_residual, 1e-9);
+
+  const VModel torus = glued(make_torus({2.0, 0.5}));
+  for (double z : {0.0, 0.3, -0.45}) {
+    SliceOptions t = layer_at(z, -2.7);
+    t.outline_tolerance = 1e-5;
+    const SliceLayer T = LayerSlicer(torus, t).slice(0);
+    const double half = std::sqrt(0.25 - z * z);  // radial half-width of the annulus at height z
+    const long long n = compare_with(T, t, [&](double x, double y) { return std::abs(std::hypot(x, y) - 2.0) - half; });
+    EXPECT_GT(n, 1000);
+    EXPECT_LE(T.stats.max_residual, 1e-9);
+  }
+}
+
+TEST(LayerSlicer, TwoGluedBlocksHaveNoGapsAndNoOverlaps) {
+  CellComplex cells = make_box({Eigen::Vector3d(1, 1, 1), Eigen::Vector3d(0, 0, 0)});
+  const CellComplex right = make_box({Eigen::Vector3d(1, 1, 1), Eigen::Vector3d(1, 0, 0)});
+  cells.push_back(right.front());
+  const VModel m = glued(cells);
+  ASSERT_EQ(m.topology().num_shared_surfaces(), 1);
+  const double dx = 25.4 / 600;
+  // A generic raster and one with a column of centres on the shared face x = 1 (to rounding).
+  for (double x0 : {-0.013, 1 - 20.5 * dx}) {
+    SliceOptions o;
+    o.origin = {{x0, -0.05}};
+    o.image_size = {{static_cast<int>((2.1 - x0) / dx), 30}};
+    o.z_range = {{0.5 - o.layer_thickness / 2, 0.5 + o.layer_thickness / 2}};
+    const SliceLayer L = LayerSlicer(m, o).slice(0);
+    long long per_cell[2] = {0, 0};
+    for (int j = 0; j < L.height; ++j)
+      for (int i = 0; i < L.width; ++i) {
+        const double x = x0 + (i + 0.5) * dx, y = -0.05 + (j + 0.5) * dx;
+        const int c = L.owner(i, j);
+        if (c >= 0) ++per_cell[c];
+        const bool inside = x > 1e-12 && x < 2 - 1e-12 && y > 1e-12 && y < 1 - 1e-12;
+        const bool outside = x < -1e-12 || x > 2 + 1e-12 || y < -1e-12 || y > 1 + 1e-12;
+        if (inside) {
+          ASSERT_GE(c, 0) << "gap at " << x << ", " << y;
+          if (std::abs(x - 1) > 1e-12) {
+            EXPECT_EQ(c, x < 1 ? 0 : 1) << "at " << x << ", " << y;
+          }
+        }
+        if (outside) {
+          EXPECT_EQ(c, -1);
+        }
+      }
+    EXPECT_EQ(per_cell[0] + per_cell[1], L.stats.inside_pixels);
+  }
+}
+
+TEST(LayerSlicer, GradedFractionsEqualTheFieldAtThePixelCentre) {
+  CellComplex cells = make_cylinder({2.0, 1.0});
+  VModel m;
+  for (const auto& c : cells) {
+    VCell cell(c);
+    // Two materials blending along x, and one that needs clamping and normalising.
+    cell.set_attribute("material", Attribute::expression({"0.5 + 0.2 * x", "0.5 - 0.2 * x"}, Attribute::Space::model));
+    cell.set_attribute("raw", Attribute::expression({"2 * x", "1", "z"}, Attribute::Space::model));
+    m.add_cell(std::move(cell));
+  }
+  m.glue();
+  SliceOptions o = layer_at(0.6, -2.1, 600, 300);
+  const LayerSlicer slicer(m, o);
+  ASSERT_EQ(slicer.materials(), 2);
+  const SliceLayer L = slicer.slice(0);
+  o.material_attribute = "raw";
+  const SliceLayer R = LayerSlicer(m, o).slice(0);
+  ASSERT_EQ(R.fractions.channels(), 3);
+  const double dx = 25.4 / 600;
+  long long checked = 0;
+  for (int j = 0; j < L.height; ++j)
+    for (int i = 0; i < L.width; ++i) {
+      if (L.owner(i, j) < 0) continue;
+      const double x = -2.1 + (i + 0.5) * dx;
+      EXPECT_NEAR(L.fractions(i, j, 0), 0.5 + 0.2 * x, 1e-6);
+      EXPECT_NEAR(L.fractions(i, j, 1), 0.5 - 0.2 * x, 1e-6);
+      const double a = std::clamp(2 * x, 0.0, 1.0), b = 1, c = 0.6, s = a + b + c;
+      EXPECT_NEAR(R.fractions(i, j, 0), a / s, 1e-6);
+      EXPECT_NEAR(R.fractions(i, j, 1), b / s, 1e-6);
+      EXPECT_NEAR(R.fractions(i, j, 2), c / s, 1e-6);
+      ++checked;
+    }
+  EXPECT_GT(checked, 3000);  // pi 2^2 / (dx dy) = 3500
+}
+
+TEST(LayerSlicer, RejectsBadOptionsAndModels) {
+  const VModel ball = glued(make_ball({1.0}));
+  auto with = [](auto change) {
+    SliceOptions o;
+    change(o);
+    return o;
+  };
+  EXPECT_THROW(LayerSlicer(ball, with([](SliceOptions& o) { o.dpi_x = 0; })), Error);
+  EXPECT_THROW(LayerSlicer(ball, with([](SliceOptions& o) { o.dpi_y = -300; })), Error);
+  EXPECT_THROW(LayerSlicer(ball, with([](SliceOptions& o) { o.layer_thickness = 0; })), Error);
+  EXPECT_THROW(LayerSlicer(ball, with([](SliceOptions& o) { o.layer_thickness = std::nan(""); })), Error);
+  EXPECT_THROW(LayerSlicer(ball, with([](SliceOptions& o) { o.z_range = {{1.0, 1.0}}; })), Error);
+  EXPECT_THROW(LayerSlicer(ball, with([](SliceOptions& o) { o.image_size = {{0, 10}}; })), Error);
+  EXPECT_THROW(LayerSlicer(ball, with([](SliceOptions& o) { o.outline_tolerance = 0; })), Error);
+  EXPECT_THROW(LayerSlicer(ball, {}).slice(-1), Error);
+
+  VModel unglued;
+  for (const auto& c : make_ball({1.0})) unglued.add_cell(VCell(c));
+  EXPECT_THROW(LayerSlicer(unglued, {}), Error);
+
+  VModel partial;
+  for (const auto& c : make_ball({1.0})) partial.add_cell(VCell(c));
+  partial.cell(3).set_attribute("material", Attribute::constant({0.5, 0.5}));
+  partial.glue();
+  EXPECT_THROW(LayerSlicer(partial, {}), Error);
+  // A named attribute must exist; without a name a model without "material" is one material.
+  EXPECT_THROW(LayerSlicer(ball, with([](SliceOptions& o) { o.material_attribute = "density"; })), Error);
+  EXPECT_EQ(LayerSlicer(ball, {}).materials(), 1);
+}
