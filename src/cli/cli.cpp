@@ -23,6 +23,23 @@ std::optional<VModel> read_model_if_any(const std::string& path) {
   return io::vmodel_from_json(doc, path);
 }
 
+VModel read_model(const std::string& path, const std::string& command) {
+  if (std::optional<VModel> m = read_model_if_any(path)) return std::move(*m);
+  VModel m;
+  for (const AnySpline& s : read_objects(path)) {
+    require(parametric_dimension(s) == 3, [&] {
+      return command + ": " + path + " holds a " + kind_name(parametric_dimension(s)) + "; only V-models and volumes have an inside";
+    });
+    m.add_cell(VCell(std::get<TensorSpline<3>>(s)));
+  }
+  m.glue();
+  return m;
+}
+
+MaterialTable materials_or_default(const VModel& m) {
+  return m.materials().empty() ? MaterialTable({{"part", {200, 200, 200, 255}}}) : m.materials();
+}
+
 AnySpline read_single(const std::string& path, const std::string& command) {
   std::vector<AnySpline> objects = read_objects(path);
   require(objects.size() == 1, command + ": " + path + " holds " + std::to_string(objects.size()) +

@@ -9,6 +9,8 @@
 
 #include <optional>
 
+#include "trivar/am/dithering.hpp"
+#include "trivar/am/slicer.hpp"
 #include "trivar/model/vmodel.hpp"
 #include "trivar/spline/any_spline.hpp"
 
@@ -50,12 +52,18 @@ struct MaterialArgs {
   std::vector<std::string> field;
 };
 void add_material_options(CLI::App* cmd, MaterialArgs& a, const char* axial_meaning);
+// m formulas blending linearly between m equally spaced stations of rho (a formula in [0, 1]): the degree-1
+// B-splines on those stations, a partition of unity with material i pure at rho = i / (m - 1).
+std::vector<std::string> blend_components(int m, const std::string& rho);
+// Materials "M1".."Mm" with distinct display colours.
+MaterialTable default_materials(int m);
 // Glues the cells into a V-model with the material attribute and writes it. `radial` and `axial` are the
 // normalised coordinates (formulas in x, y, z, 0 to 1 across the part) the blend follows.
 void write_model(const std::vector<TensorSpline<3>>& cells, const MaterialArgs& a, const std::string& radial,
                  const std::string& axial, const std::string& out);
 void add_invert_command(CLI::App& app, Context& ctx);
 void add_export_command(CLI::App& app, Context& ctx);
+void add_slice_command(CLI::App& app, Context& ctx);
 void add_demo_command(CLI::App& app, Context& ctx);
 
 // All objects of a spline file (.json, .g2); throws trivar::Error naming the file on any problem.
@@ -63,6 +71,16 @@ std::vector<AnySpline> read_objects(const std::string& path);
 // The V-model in a .json file whose "kind" is "vmodel" (glued), or nothing for any other file; throws
 // trivar::Error naming the file when it is a malformed model.
 std::optional<VModel> read_model_if_any(const std::string& path);
+// The V-model in `path`, or the volumes of a spline file glued into one (each a cell); throws trivar::Error
+// naming `command` when the file holds curves or surfaces.
+VModel read_model(const std::string& path, const std::string& command);
+// The model's materials, or one neutral material "part" when it has none.
+MaterialTable materials_or_default(const VModel& m);
+// Slices a model with materials into DIR (replaced; written through a temporary directory): per layer a palette
+// PNG (or one 1-bit PNG per material) of the dithered materials, and manifest.json. `source` names the model
+// in messages and the manifest. Throws trivar::Error for a model without materials or bad options.
+am::SliceSummary slice_to_directory(const VModel& model, const am::SliceOptions& opts, const std::string& dir,
+                                    bool per_material, am::DitherMethod method, const std::string& source);
 // Prints a V-model's description (text, or one JSON document).
 void print_model_info(const std::string& path, const VModel& model, bool json);
 

@@ -1,9 +1,11 @@
 // trivar convert IN OUT: between spline formats by extension (.json, .g2) and to VTK (.vtu) for viewing;
-// V-models to .vtu (every cell a piece, attributes as point data) or .json.
+// V-models to .vtu (every cell a piece, attributes as point data) or .json; LR splines between .lr, .g2, .json
+// and .vtu, tensor surfaces and volumes to LR for .lr output or with --lr.
 #include <filesystem>
 #include <string>
 
 #include "cli.hpp"
+#include "lr_cli.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/io/spline_file.hpp"
 #include "trivar/io/vmodel_json.hpp"
@@ -17,6 +19,7 @@ void add_convert_command(CLI::App& app, Context&) {
   struct Args {
     std::string in, out;
     io::VtkOptions vtk;
+    bool lr = false, parametric_mesh = false;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("IN", a->in, "Input spline file (.json, .g2) or V-model (.json)")->required();
@@ -25,6 +28,8 @@ void add_convert_command(CLI::App& app, Context&) {
       ->check(at_least(1));
   cmd->add_flag("--bezier", a->vtk.bezier_cells, "VTK: write exact rational Bezier cells instead of sampled ones");
   cmd->add_flag("--control-net", a->vtk.control_net, "VTK: write the control net (points and polygon lines) instead of the geometry");
+  cmd->add_flag("--lr", a->lr, "Convert tensor surfaces and volumes to LR splines (implied by an .lr output)");
+  cmd->add_flag("--parametric-mesh", a->parametric_mesh, "VTK of LR splines: the mesh in parameter space instead of the geometry");
   cmd->callback([a] {
     if (const std::optional<VModel> model = read_model_if_any(a->in)) {
       const std::string ext = std::filesystem::path(a->out).extension().string();
@@ -36,6 +41,14 @@ void add_convert_command(CLI::App& app, Context&) {
         io::write_vmodel(a->out, *model);
       return;
     }
+    std::optional<std::vector<AnyLRSpline>> lr = read_lr_if_any(a->in);
+    if (lr || a->lr || is_lr_extension(a->out)) {
+      require(!a->vtk.bezier_cells && !a->vtk.control_net, "convert: --bezier and --control-net apply to tensor splines, not LR splines");
+      if (!lr) lr = read_as_lr(a->in, "convert");
+      write_lr_file(a->out, *lr, "convert", {a->vtk.samples_per_element, a->parametric_mesh});
+      return;
+    }
+    require(!a->parametric_mesh, "convert: --parametric-mesh applies to LR splines; give --lr to convert " + a->in);
     const std::vector<AnySpline> objects = read_objects(a->in);
     if (std::filesystem::path(a->out).extension() == ".vtu") {
       io::write_vtu(a->out, objects, a->vtk);

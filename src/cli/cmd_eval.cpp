@@ -1,9 +1,11 @@
-// trivar eval FILE u [v [w]] [--derivs K]: value and partial derivatives at one parameter.
+// trivar eval FILE u [v [w]] [--derivs K]: value and partial derivatives at one parameter (LR splines: K <= 1).
 #include <cstdio>
 #include <string>
+#include <type_traits>
 #include <variant>
 
 #include "cli.hpp"
+#include "lr_cli.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/spline/derivative_index.hpp"
 
@@ -23,8 +25,8 @@ std::string derivative_label(const std::array<int, D>& a) {
   return s;
 }
 
-template <int D>
-void evaluate(const TensorSpline<D>& s, const std::vector<double>& params, int order) {
+template <template <int> class Spline, int D>
+void evaluate(const Spline<D>& s, const std::vector<double>& params, int order) {
   require(static_cast<int>(params.size()) == D, "eval: a " + std::string(kind_name(D)) + " takes " + std::to_string(D) +
                                                     " parameter" + (D > 1 ? "s" : "") + ", got " +
                                                     std::to_string(params.size()));
@@ -38,7 +40,13 @@ void evaluate(const TensorSpline<D>& s, const std::vector<double>& params, int o
   }
   const auto indices = derivative_multi_indices<D>(order);
   std::vector<double> out(indices.size() * s.dim());
-  s.eval_derivs(u, order, out.data());
+  if constexpr (std::is_same_v<Spline<D>, LRSpline<D>>) {
+    require(order <= 1, "eval: LR splines evaluate first derivatives at most (--derivs 0 or 1), got " + std::to_string(order));
+    if (order == 0) s.eval(u, out.data());
+    else s.eval_first_derivatives(u, out.data());
+  } else {
+    s.eval_derivs(u, order, out.data());
+  }
   std::size_t width = 0;
   for (const auto& a : indices) width = std::max(width, derivative_label<D>(a).size());
   for (std::size_t i = 0; i < indices.size(); ++i) {
@@ -58,11 +66,17 @@ void add_eval_command(CLI::App& app, Context&) {
     int derivs = 0;
   };
   auto a = std::make_shared<Args>();
-  cmd->add_option("FILE", a->file, "Spline file with one object (.json, .g2)")->required();
+  cmd->add_option("FILE", a->file, "Spline file with one object (.json, .g2, or LR: .lr, .g2, .json)")->required();
   cmd->add_option("PARAMS", a->params, "Parameters u [v [w]], one per parametric direction")->required()->expected(1, 3);
   cmd->add_option("--derivs", a->derivs, "Also print all partial derivatives up to this total order")
       ->check(CLI::Range(0, kMaxDerivativeOrder));
   cmd->callback([a] {
+    if (const auto lr = read_lr_if_any(a->file)) {
+      require(lr->size() == 1, "eval: " + a->file + " holds " + std::to_string(lr->size()) +
+                                   " objects; this command takes a file with exactly one");
+      std::visit([&](const auto& spline) { evaluate(spline, a->params, a->derivs); }, lr->front());
+      return;
+    }
     const AnySpline s = read_single(a->file, "eval");
     std::visit([&](const auto& spline) { evaluate(spline, a->params, a->derivs); }, s);
   });

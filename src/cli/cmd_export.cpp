@@ -17,24 +17,6 @@ namespace trivar::cli {
 
 namespace {
 
-// A spline file with volumes becomes a model of those cells.
-VModel model_of(const std::string& path) {
-  if (std::optional<VModel> m = read_model_if_any(path)) return std::move(*m);
-  VModel m;
-  for (const AnySpline& s : read_objects(path)) {
-    require(parametric_dimension(s) == 3, "export: " + path + " holds a " + kind_name(parametric_dimension(s)) +
-                                              "; only V-models and volumes have a boundary to export");
-    m.add_cell(VCell(std::get<TensorSpline<3>>(s)));
-  }
-  m.glue();
-  return m;
-}
-
-// The model's materials, or one neutral material when it has none.
-MaterialTable materials_of(const VModel& m) {
-  return m.materials().empty() ? MaterialTable({{"part", {200, 200, 200, 255}}}) : m.materials();
-}
-
 // Material fractions of every boundary vertex, from the "material" attribute of the cell it lies on (1 for a
 // model without materials). Cells without the attribute get the first material.
 std::vector<double> vertex_fractions(const VModel& m, const ModelTessellation& t, int materials) {
@@ -96,7 +78,7 @@ void add_export_command(CLI::App& app, Context&) {
     const std::string ext = std::filesystem::path(a->out).extension().string();
     require(ext == ".stl" || ext == ".vtu" || ext == ".3mf" || ext == ".amf",
             "export: unknown output format '" + ext + "' (expected .stl, .3mf, .amf or .vtu)");
-    const VModel m = model_of(a->in);
+    const VModel m = read_model(a->in, "export");
     if (ext == ".vtu") {
       io::write_vmodel_vtu(a->out, m);
       return;
@@ -105,7 +87,7 @@ void add_export_command(CLI::App& app, Context&) {
     if (ext == ".stl") {
       io::write_stl(a->out, t.mesh);
     } else {
-      const MaterialTable mats = materials_of(m);
+      const MaterialTable mats = materials_or_default(m);
       const std::vector<double> f = vertex_fractions(m, t, mats.size());
       if (ext == ".3mf")
         io::write_3mf(a->out, t.mesh, mats, f);

@@ -1,4 +1,5 @@
-// trivar info FILE [--json]: what a spline file or a V-model holds.
+// trivar info FILE [--json] [--check-independence peeling|exact]: what a spline file, an LR spline file or a
+// V-model holds.
 #include <cstdio>
 #include <string>
 #include <variant>
@@ -6,6 +7,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cli.hpp"
+#include "lr_cli.hpp"
+#include "trivar/core/error.hpp"
 
 namespace trivar::cli {
 
@@ -86,19 +89,46 @@ void print_text(const TensorSpline<D>& s) {
   std::printf("  control bounding box: %s\n", bounds.c_str());
 }
 
+void print_lr_info(const std::string& file, const std::vector<AnyLRSpline>& objects, bool json,
+                   const std::string& check, int threads) {
+  if (json) {
+    nlohmann::json out{{"file", file}, {"objects", nlohmann::json::array()}};
+    for (const AnyLRSpline& o : objects) out["objects"].push_back(describe_lr(o, check, threads));
+    std::printf("%s\n", out.dump(2).c_str());
+    return;
+  }
+  std::printf("%s: %zu LR object%s\n", file.c_str(), objects.size(), objects.size() == 1 ? "" : "s");
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    std::printf("object %zu:\n", i);
+    print_lr_text(describe_lr(objects[i], check, threads));
+  }
+}
+
 }  // namespace
 
-void add_info_command(CLI::App& app, Context&) {
+void add_info_command(CLI::App& app, Context& ctx) {
   auto* cmd = app.add_subcommand("info", "Describe the splines in a file (kind, degrees, counts, knots, domain) or a V-model (topology, volume, attributes)");
   auto file = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
   cmd->add_option("FILE", *file, "Spline file (.json, .g2) or V-model (.json)")->required();
+  auto check = std::make_shared<std::string>();
   cmd->add_flag("--json", *json, "Print one JSON document instead of text");
-  cmd->callback([file, json] {
+  cmd->add_option("--check-independence", *check,
+                  "LR splines: test the linear independence of the B-splines (peeling: fast, may be inconclusive; "
+                  "exact: rank of the Bezier extraction)")
+      ->check(CLI::IsMember({"peeling", "exact"}));
+  cmd->callback([file, json, check, &ctx] {
     if (const std::optional<VModel> model = read_model_if_any(*file)) {
+      require(check->empty(), "info: --check-independence applies to LR splines; " + *file + " holds a V-model");
       print_model_info(*file, *model, *json);
       return;
     }
+    if (const auto lr = read_lr_if_any(*file)) {
+      print_lr_info(*file, *lr, *json, *check, ctx.threads);
+      return;
+    }
+    require(check->empty(), "info: --check-independence applies to LR splines; " + *file +
+                                " holds tensor-product splines (linearly independent by construction)");
     const std::vector<AnySpline> objects = read_objects(*file);
     if (*json) {
       nlohmann::json out{{"file", *file}, {"objects", nlohmann::json::array()}};

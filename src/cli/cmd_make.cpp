@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "cli.hpp"
+#include "lr_cli.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/io/spline_file.hpp"
 #include "trivar/model/block.hpp"
@@ -38,7 +39,7 @@ void add_box(CLI::App& make) {
   struct Args : MaterialArgs {
     std::vector<int> degrees{1}, elements{1};
     std::vector<double> size{1.0};
-    bool model = false;
+    bool model = false, lr = false;
     std::string out;
   };
   auto a = std::make_shared<Args>();
@@ -56,9 +57,12 @@ void add_box(CLI::App& make) {
       ->check(positive())
       ->capture_default_str();
   cmd->add_flag("--model", a->model, "Write a one-cell V-model (.json) instead of a spline file");
+  cmd->add_flag("--lr", a->lr, "Write the box as an LR spline (.lr, .json, .g2, .vtu), converted exactly");
   add_material_options(cmd, *a, "along z");
   cmd->add_option("-o,--output", a->out, "Output spline file (.json, .g2), or V-model with --model")->required();
   cmd->callback([a] {
+    require(!(a->lr && (a->model || a->materials > 0 || !a->field.empty())),
+            "make box: --lr does not combine with --model, --materials or --material-field");
     if (a->model || a->materials > 0 || !a->field.empty()) {
       require(a->model, "make box: --materials and --material-field need --model");
       require(std::max({a->degrees.size(), a->elements.size(), a->size.size()}) != 2,
@@ -76,6 +80,12 @@ void add_box(CLI::App& make) {
     std::size_t n = std::max({a->degrees.size(), a->elements.size(), a->size.size()});
     if (n == 1) n = 3;
     const AnySpline s = n == 2 ? box<2>(a->degrees, a->elements, a->size) : box<3>(a->degrees, a->elements, a->size);
+    if (a->lr) {
+      write_lr_file(a->out, {n == 2 ? AnyLRSpline(LRSpline<2>(std::get<TensorSpline<2>>(s)))
+                                    : AnyLRSpline(LRSpline<3>(std::get<TensorSpline<3>>(s)))},
+                    "make box");
+      return;
+    }
     io::write_spline_file(a->out, {s});
   });
 }

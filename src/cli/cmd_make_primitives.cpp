@@ -15,8 +15,6 @@
 
 namespace trivar::cli {
 
-namespace {
-
 // m fractions that blend linearly between m equally spaced stations of a normalised coordinate rho in [0, 1]
 // (the hat functions of degree-1 B-splines): a partition of unity, each material pure at its station.
 std::vector<std::string> blend_components(int m, const std::string& rho) {
@@ -46,8 +44,6 @@ MaterialTable default_materials(int m) {
   }
   return t;
 }
-
-}  // namespace
 
 void add_material_options(CLI::App* cmd, MaterialArgs& a, const char* axial_meaning) {
   auto* m = cmd->add_option("--materials", a.materials,

@@ -45,6 +45,7 @@ int main(int argc, char** argv) {
   add_make_command(app, ctx);
   add_invert_command(app, ctx);
   add_export_command(app, ctx);
+  add_slice_command(app, ctx);
   add_demo_command(app, ctx);
 
   try {

@@ -158,12 +158,19 @@ TEST_F(Cli, BadInputGivesOneErrorLineAndNoOutput) {
 TEST_F(Cli, DemoWritesItsOutputs) {
   const Result r = ok("demo --out demo_out");
   EXPECT_NE(r.out.find("valid"), std::string::npos) << r.out;
-  for (const char* f : {"demo_out/ring.json", "demo_out/ring.vtu", "demo_out/ring_bezier.vtu", "demo_out/ring_net.vtu"})
+  for (const char* f : {"demo_out/ring.json", "demo_out/ring.vtu", "demo_out/ring_bezier.vtu", "demo_out/ring_net.vtu",
+                        "demo_out/ball.json", "demo_out/ball.3mf", "demo_out/ball.stl", "demo_out/slices/manifest.json",
+                        "demo_out/slices/layer_00000.png"})
     EXPECT_TRUE(exists(f)) << f;
   EXPECT_EQ(lines(ok("check demo_out/ring.json").out).at(0), "valid");
-  // Same results whatever the thread count.
+  EXPECT_NE(r.out.find("Jacobian     valid for every cell"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("watertight yes"), std::string::npos) << r.out;
+  // Same results whatever the thread count (timings aside): the ring report and every slice file.
   const std::string one = ok("--threads 1 demo --out one").out, two = ok("--threads 2 demo --out two").out;
   EXPECT_EQ(one.substr(0, one.find("outputs:")), two.substr(0, two.find("outputs:")));
+  for (const auto& e : fs::directory_iterator(work_ / "one" / "slices"))
+    if (e.path().filename() != "manifest.json")
+      EXPECT_EQ(slurp(e.path()), slurp(work_ / "two" / "slices" / e.path().filename())) << e.path();
 }
 
 TEST_F(Cli, ExamplesBehaveAsDocumented) {

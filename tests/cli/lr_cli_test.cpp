@@ -1,0 +1,217 @@
+// LR splines on the command line: make box --lr, refine --strategy with --levels / --report, info with
+// --check-independence, eval, and conversions between .lr, .json, .g2 and .vtu. Reference values: the counts of a
+// uniform tensor refinement, and the tensor spline's own values (LR refinement leaves the geometry unchanged).
+#include <regex>
+
+#include "cli/cli_fixture.hpp"
+
+using namespace cli_test;
+
+namespace {
+
+struct ReportLine {
+  int level = 0, refined = 0, basis = 0, elements = 0, meshrects = 0;
+};
+
+// Parses --report output; every line must have exactly the documented form.
+std::vector<ReportLine> report_lines(const std::string& out) {
+  static const std::regex re(R"(level (\d+): refined (\d+), basis (\d+), elements (\d+), meshrects (\d+), seconds (\d+\.\d+))");
+  std::vector<ReportLine> r;
+  for (const std::string& l : lines(out)) {
+    std::smatch m;
+    EXPECT_TRUE(std::regex_match(l, m, re)) << "'" << l << "'";
+    if (m.empty()) continue;
+    r.push_back({std::stoi(m[1]), std::stoi(m[2]), std::stoi(m[3]), std::stoi(m[4]), std::stoi(m[5])});
+  }
+  return r;
+}
+
+}  // namespace
+
+class LRCli : public Cli {
+protected:
+  nlohmann::json info(const std::string& args) const {
+    return nlohmann::json::parse(ok("info --json " + args).out).at("objects").at(0);
+  }
+  std::vector<double> eval(const std::string& file, const std::string& params, const std::string& label = "S") const {
+    return numbers_after(ok("eval " + file + " " + params + " --derivs 1").out, label);
+  }
+};
+
+TEST_F(LRCli, StrategiesOnTheDiagonalGrowLevelByLevel) {
+  ok("make box --lr --degree 2 --elements 4 4 -o box.lr");
+  const nlohmann::json b = info("box.lr");
+  EXPECT_EQ(b.at("kind"), "lr_surface");
+  EXPECT_EQ(b.at("num_basis"), 36);     // (4 + 2)^2
+  EXPECT_EQ(b.at("num_elements"), 16);
+  EXPECT_EQ(b.at("num_meshrects"), 10);  // 5 lines per direction
+  for (const char* strategy : {"fullspan", "minspan", "structured"}) {
+    SCOPED_TRACE(strategy);
+    const std::string out = std::string(strategy) + ".lr";
+    const Result r = ok("refine box.lr -o " + out + " --strategy " + strategy + " --segment 0 0 1 1 --levels 2 --report");
+    const std::vector<ReportLine> rep = report_lines(r.out);
+    ASSERT_EQ(rep.size(), 2u) << r.out;
+    int basis = 36, elements = 16, meshrects = 10;
+    for (int i = 0; i < 2; ++i) {
+      EXPECT_EQ(rep[i].level, i + 1);
+      EXPECT_GT(rep[i].refined, 0);
+      EXPECT_GT(rep[i].basis, basis);
+      EXPECT_GT(rep[i].elements, elements);
+      EXPECT_GT(rep[i].meshrects, meshrects);
+      basis = rep[i].basis, elements = rep[i].elements, meshrects = rep[i].meshrects;
+    }
+    const nlohmann::json d = info(out);
+    EXPECT_EQ(d.at("num_basis"), basis);
+    EXPECT_EQ(d.at("num_elements"), elements);
+    EXPECT_EQ(d.at("num_meshrects"), meshrects);
+  }
+  // A volume, selected by a box.
+  ok("make box --lr --degree 2 --elements 2 2 2 -o vol.json");
+  const std::vector<ReportLine> rep =
+      report_lines(ok("refine vol.json -o vol.g2 --strategy structured --box 0 0 0 0.5 0.5 0.5 --levels 2 --report").out);
+  ASSERT_EQ(rep.size(), 2u);
+  EXPECT_GT(rep[0].basis, 64);
+  EXPECT_GT(rep[1].basis, rep[0].basis);
+  EXPECT_EQ(info("vol.g2").at("kind"), "lr_volume");
+}
+
+TEST_F(LRCli, FullspanOnEveryElementIsUniformRefinement) {
+  ok("make box --lr --degree 2 --elements 4 4 -o box.json");
+  const std::vector<ReportLine> rep =
+      report_lines(ok("refine box.json -o fine.json --strategy fullspan --levels 2 --report").out);
+  ASSERT_EQ(rep.size(), 2u);
+  // Every element halved in both directions per level: 8 x 8 then 16 x 16 elements, (n + 2)^2 B-splines.
+  EXPECT_EQ(rep[0].elements, 64);
+  EXPECT_EQ(rep[0].basis, 100);
+  EXPECT_EQ(rep[0].meshrects, 18);
+  EXPECT_EQ(rep[1].elements, 256);
+  EXPECT_EQ(rep[1].basis, 324);
+  EXPECT_EQ(info("fine.json").at("gamma").at("min"), 1.0);
+}
+
+TEST_F(LRCli, RefinedTensorSplineEvaluatesAsTheTensor) {
+  // A rational volume (exact quarter annulus) and a polynomial surface with non-uniform knots.
+  ok("make revolve --radii 1 2 --height 1 --angle 90 --degree 2 --elements 2 -o rev.json");
+  ok("refine rev.json -o rev.lr --strategy minspan --box 0 0 0 0.6 0.6 0.6 --levels 2 --multiplicity 2");
+  ok("make box --degree 3 --elements 3 2 --size 2 1 -o plate.json");
+  ok("refine plate.json --insert u:0.1 -o plate2.json");
+  ok("refine plate2.json -o plate.g2 --strategy structured --segment 0 0 1 1 --levels 2");
+  for (const char* p : {"0 0 0", "0.3 0.45 0.9", "0.55 0.125 0.25", "1 1 1", "0.7 0.3 0.05"}) {
+    SCOPED_TRACE(p);
+    for (const char* label : {"S ", "S_u", "S_v", "S_w"}) {
+      const std::vector<double> want = eval("rev.json", p, label), got = eval("rev.lr", p, label);
+      ASSERT_EQ(want.size(), 3u);
+      ASSERT_EQ(got.size(), 3u);
+      for (int d = 0; d < 3; ++d) EXPECT_NEAR(got[d], want[d], 1e-12 * (1 + std::abs(want[d]))) << label;
+    }
+  }
+  for (const char* p : {"0 0", "0.2 0.7", "0.05 0.95", "1 1", "0.5 0.5"}) {
+    SCOPED_TRACE(p);
+    for (const char* label : {"S ", "S_u", "S_v"}) {
+      const std::vector<double> want = eval("plate2.json", p, label), got = eval("plate.g2", p, label);
+      ASSERT_EQ(want.size(), 3u);
+      ASSERT_EQ(got.size(), 3u);
+      for (int d = 0; d < 3; ++d) EXPECT_NEAR(got[d], want[d], 1e-12 * (1 + std::abs(want[d]))) << label;
+    }
+  }
+  // The identity map of the plate: x = 2u, y = v exactly.
+  const std::vector<double> x = eval("plate.g2", "0.25 0.75");
+  EXPECT_NEAR(x.at(0), 0.5, 1e-14);
+  EXPECT_NEAR(x.at(1), 0.75, 1e-14);
+  fails("eval rev.lr 0.5 0.5 0.5 --derivs 2");
+}
+
+TEST_F(LRCli, RefinedSplinesAreIndependent) {
+  ok("make box --lr --degree 3 --elements 4 4 -o box.lr");
+  for (const char* strategy : {"fullspan", "structured"}) {
+    SCOPED_TRACE(strategy);
+    ok("refine box.lr -o r.lr --strategy " + std::string(strategy) + " --segment 0 0 1 1 --levels 3");
+    const nlohmann::json d = info("r.lr --check-independence peeling");
+    EXPECT_EQ(d.at("independence").at("status"), "independent");
+    EXPECT_EQ(d.at("independence").at("unresolved"), 0);
+    // These refinements go hand in hand: the B-splines are a basis of the spline space of the mesh.
+    EXPECT_EQ(d.at("dimension_formula").at("dimension"), d.at("num_basis"));
+    EXPECT_EQ(d.at("dimension_formula").at("status"), "independent");
+    EXPECT_EQ(info("r.lr --check-independence exact").at("independence").at("status"), "independent");
+    const std::string text = ok("info r.lr --check-independence peeling").out;
+    EXPECT_NE(text.find("independence (peeling): independent"), std::string::npos) << text;
+  }
+  // MINSPAN along the diagonal is a known source of dependence: three levels give more cubic B-splines than
+  // the dimension of the spline space, which the exact rank test must confirm with nullity >= the excess.
+  ok("refine box.lr -o m.lr --strategy minspan --segment 0 0 1 1 --levels 3");
+  const nlohmann::json m = info("m.lr --check-independence exact");
+  const long long excess = m.at("num_basis").get<long long>() - m.at("dimension_formula").at("dimension").get<long long>();
+  EXPECT_GT(excess, 0);
+  EXPECT_EQ(m.at("dimension_formula").at("status"), "not_independent");
+  EXPECT_EQ(m.at("independence").at("status"), "not_independent");
+  EXPECT_GE(m.at("independence").at("nullity").get<long long>(), excess);
+  EXPECT_EQ(info("m.lr --check-independence peeling").at("independence").at("status"), "not_tested");
+  EXPECT_FALSE(info("box.lr").contains("independence"));
+}
+
+TEST_F(LRCli, ConversionsRoundTrip) {
+  ok("make revolve --radii 1 2 --angle 90 --degree 2 -o rev.json");
+  ok("refine rev.json -o r.lr --strategy fullspan --segment 0 0 0 1 1 1 --levels 2");
+  ok("convert r.lr r.json");
+  ok("convert r.json r.g2");
+  ok("convert r.g2 back.lr");
+  ok("convert r.lr r.vtu --samples 2");
+  ok("convert r.lr mesh.vtu --parametric-mesh");
+  nlohmann::json a = nlohmann::json::parse(ok("info --json r.lr").out), b = nlohmann::json::parse(ok("info --json back.lr").out);
+  a.erase("file");
+  b.erase("file");
+  EXPECT_EQ(a, b);
+  // JSON is lossless; g2 stores gamma-scaled Cartesian coefficients, so values agree to rounding.
+  ok("convert r.json again.lr");
+  EXPECT_EQ(slurp(work_ / "r.lr"), slurp(work_ / "again.lr"));
+  for (const char* label : {"S ", "S_u", "S_w"}) {
+    const std::vector<double> want = eval("r.lr", "0.3 0.6 0.9", label), got = eval("back.lr", "0.3 0.6 0.9", label);
+    ASSERT_EQ(got.size(), 3u);
+    for (int d = 0; d < 3; ++d) EXPECT_NEAR(got[d], want[d], 1e-14 * (1 + std::abs(want[d]))) << label;
+  }
+  EXPECT_NE(slurp(work_ / "r.vtu").find("<Piece"), std::string::npos);
+  // Tensor to LR: implied by .lr, asked for by --lr otherwise; the values are the tensor's.
+  ok("convert rev.json t.lr");
+  ok("convert rev.json t.json --lr");
+  EXPECT_EQ(info("t.json").at("kind"), "lr_volume");
+  EXPECT_EQ(info("t.lr").at("num_basis"), 27);  // degree 2, one element per direction (one 90-degree arc)
+  const std::vector<double> want = eval("rev.json", "0.3 0.6 0.9"), got = eval("t.lr", "0.3 0.6 0.9");
+  ASSERT_EQ(got.size(), 3u);
+  for (int d = 0; d < 3; ++d) EXPECT_NEAR(got[d], want[d], 1e-14 * (1 + std::abs(want[d])));
+  EXPECT_EQ(info("rev.json").at("kind"), "volume");
+}
+
+TEST_F(LRCli, BadInputFailsWithOneLine) {
+  ok("make box --lr --degree 2 --elements 4 4 -o box.lr");
+  write("line.json", R"({"trivar": 1, "kind": "curve", "dim": 3, "rational": false, "degrees": [1],
+                         "knots": [[0, 0, 1, 1]], "control_points": [[0, 0, 0], [0, 0, 2]]})");
+  fails("refine box.lr -o o.lr --strategy widespan");
+  fails("refine box.lr -o o.lr --strategy fullspan --elements 3 16");
+  fails("refine box.lr -o o.lr --strategy structured --functions 36");
+  fails("refine box.lr -o o.lr --strategy fullspan --segment 0 0 1");
+  fails("refine box.lr -o o.lr --strategy fullspan --box 0 0 1 1 1 1");
+  fails("refine box.lr -o o.lr --strategy fullspan --box 2 2 3 3");
+  fails("refine box.lr -o o.lr --strategy structured --segment 0 0 1 0");  // along the boundary: no interior met
+  fails("refine line.json -o o.lr --strategy fullspan");
+  fails("refine box.lr -o o.lr --strategy fullspan --elements 1 --levels 2");
+  fails("refine box.lr -o o.lr --strategy fullspan --elements 1 --segment 0 0 1 1");
+  fails("refine box.lr -o o.lr --strategy fullspan --multiplicity 4");
+  fails("refine box.lr -o o.stl --strategy fullspan");
+  fails("refine box.lr -o o.lr --uniform 2");
+  fails("refine box.lr -o o.lr --strategy fullspan --uniform 2");
+  ok("make box --degree 2 --elements 2 2 -o t.json");
+  fails("refine t.json -o o.json --uniform 2 --levels 2");
+  fails("info t.json --check-independence peeling");
+  fails("info box.lr --check-independence maybe", 2);
+  fails("convert box.lr o.vtu --bezier");
+  fails("convert line.json o.lr");
+  fails("make box --lr --model -o m.json");
+  // A g2 file mixing LR and tensor objects is rejected (the first object decides the reader).
+  ok("convert box.lr b.g2");
+  ok("convert t.json t.g2");
+  write("mixed.g2", slurp(work_ / "b.g2") + slurp(work_ / "t.g2"));
+  fails("info mixed.g2");
+  // The tensor options are unchanged.
+  ok("refine t.json --uniform 2 -o t2.json");
+  EXPECT_EQ(info("t2.json").at("num_elements"), 16);
+}
