@@ -1,5 +1,5 @@
 // trivar slice MODEL --out DIR [--layer t] [--dpi X[xY]] [--mode palette|per-material]
-// [--dither error-diffusion|ordered] [--z-range z0 z1]: printer bitmaps of a graded V-model, one material per
+// [--dither error-diffusion|ordered] [--z-range z0 z1] [--tracing none|previous-point|previous-line|full]: printer bitmaps of a graded V-model, one material per
 // pixel, with a JSON manifest. The images are written to a temporary directory renamed to DIR at the end, so
 // a failed run leaves no partial output.
 #include <unistd.h>
@@ -116,6 +116,7 @@ am::SliceSummary slice_to_directory(const VModel& model, const am::SliceOptions&
         {"rows", "row 0 of the raster is the lowest y; PNG files show the layer from above, +y up"},
         {"mode", per_material ? "per-material" : "palette"},
         {"dither", method == am::DitherMethod::ordered ? "ordered" : "error-diffusion"},
+        {"tracing", am::to_string(opts.tracing)},
         {"files", !per_material ? "layer_NNNNN.png (index 0 empty, index k+1 material k)"
                                        : "layer_NNNNN_<material>.png (1-bit, white = material)"},
         {"statistics",
@@ -144,7 +145,7 @@ void add_slice_command(CLI::App& app, Context& ctx) {
   auto* cmd = app.add_subcommand("slice", "Slice a graded V-model into printer bitmaps: one material per pixel, "
                                           "one palette PNG (or one 1-bit PNG per material) per layer");
   struct Args {
-    std::string in, out, dpi = "600", mode = "palette", dither = "error-diffusion";
+    std::string in, out, dpi = "600", mode = "palette", dither = "error-diffusion", tracing = "full";
     double layer = 0.027;
     std::vector<double> z_range;
   };
@@ -161,6 +162,10 @@ void add_slice_command(CLI::App& app, Context& ctx) {
       ->check(CLI::IsMember({"error-diffusion", "ordered"}))
       ->capture_default_str();
   cmd->add_option("--z-range", a->z_range, "Slice only z0 <= z <= z1")->expected(2);
+  cmd->add_option("--tracing", a->tracing, "Start of each pixel's point inversion: none (robust search everywhere), "
+                                           "previous-point, previous-line or full")
+      ->check(CLI::IsMember({"none", "previous-point", "previous-line", "full"}))
+      ->capture_default_str();
   cmd->callback([a, &ctx] {
     const std::array<double, 2> dpi = parse_dpi(a->dpi);
     const VModel model = read_model(a->in, "slice");
@@ -169,6 +174,7 @@ void add_slice_command(CLI::App& app, Context& ctx) {
     opts.dpi_x = dpi[0];
     opts.dpi_y = dpi[1];
     opts.threads = ctx.threads;
+    opts.tracing = am::parse_tracing(a->tracing);
     if (!a->z_range.empty()) {
       require(a->z_range[0] < a->z_range[1], "slice: --z-range must satisfy z0 < z1, got " + fmt(a->z_range[0]) +
                                                  " " + fmt(a->z_range[1]));

@@ -40,7 +40,7 @@ TEST_F(SliceCli, GradedBallSlicesToPalettePngsWithAManifest) {
   // Dithering keeps the pixel count: every inside pixel gets exactly one material.
   EXPECT_EQ(m.at("materials")[0].at("pixels").get<long long>() + m.at("materials")[1].at("pixels").get<long long>(),
             m.at("statistics").at("inside_pixels").get<long long>());
-  EXPECT_LT(m.at("statistics").at("max_residual").get<double>(), 1e-9);
+  EXPECT_LT(m.at("statistics").at("max_residual").get<double>(), 1e-6 * 25.4 / 600);  // a millionth of a pixel
 }
 
 TEST_F(SliceCli, ThreadCountDoesNotChangeTheFiles) {
@@ -50,8 +50,9 @@ TEST_F(SliceCli, ThreadCountDoesNotChangeTheFiles) {
   const auto a = files_in(work_ / "one"), b = files_in(work_ / "two");
   ASSERT_EQ(a, b);
   EXPECT_NE(std::find(a.begin(), a.end(), "layer_00000_M3.png"), a.end());
-  for (const std::string& f : a)
+  for (const std::string& f : a) {
     if (f != "manifest.json") EXPECT_EQ(slurp(work_ / "one" / f), slurp(work_ / "two" / f)) << f;
+  }
   ok("slice cyl.json --out ordered --layer 0.25 --dpi 100 --dither ordered");
 }
 

@@ -176,7 +176,7 @@ void CellSection::section_face(const Face& f, double z, std::vector<OutlineSegme
 
 void CellSection::emit(const Face& f, const Param<3>& pa, const double* a, const Param<3>& pb, const double* b,
                        double z, int depth, int face, std::vector<OutlineSegment>& out) const {
-  auto chord = [&] { out.push_back({a[0], a[1], b[0], b[1], face}); };
+  auto chord = [&] { out.push_back({a[0], a[1], b[0], b[1], face, pa, pb}); };
   if (depth >= options_.max_depth) return chord();
   // The section curve's point between the ends: the parameter midpoint moved onto the plane by Newton along
   // the height gradient within the face.

@@ -24,6 +24,8 @@ namespace trivar::am {
 struct OutlineSegment {
   double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
   int face = -1;  // cell face 0..5 (2 * direction + side, as in model/vtopology.hpp)
+  // Cell parameters of the two ends: the slicer starts point inversion of a row's first pixel from them.
+  Param<3> u0{}, u1{};
 };
 
 struct SectionOptions {

@@ -2,7 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
+#include <utility>
+
+#include <Eigen/Dense>
 
 #include "trivar/core/error.hpp"
 
@@ -12,12 +16,59 @@ namespace {
 
 bool positive_finite(double v) { return std::isfinite(v) && v > 0; }
 
-// A crossing of a row's centre line with an outline segment.
+// A crossing of a row's centre line with an outline segment, with the cell parameters there (interpolated
+// along the segment, whose chord is within the outline tolerance of the section curve).
 struct Hit {
   int row;
   double x;
+  Param<3> u;
   bool operator<(const Hit& o) const { return row != o.row ? row < o.row : x < o.x; }
 };
+
+// Chord iterations: Newton steps with the inverse Jacobian of a nearby solved pixel. Neighbouring pixels'
+// Jacobians differ by O(pixel / cell size), so each step still gains about two digits, at the cost of one
+// value evaluation instead of derivatives and a factorisation.
+constexpr int kChordSteps = 3;
+// Pixels between refreshes of the inverse Jacobian: the contraction of a chord step grows with the distance
+// to where the Jacobian was taken, and a refresh costs about two value evaluations.
+constexpr int kChordRefresh = 16;
+
+bool jacobian_inverse(const TensorSpline<3>& s, const Param<3>& u, Eigen::Matrix3d& inv) {
+  double d[12];
+  s.eval_derivs(u, 1, d);
+  Eigen::Matrix3d J;
+  for (int k = 0; k < 3; ++k)
+    for (int r = 0; r < 3; ++r) J(r, k) = d[3 * (1 + k) + r];
+  bool invertible = false;
+  double det = 0;
+  J.computeInverseAndDetWithCheck(inv, det, invertible, 0.0);
+  return invertible && inv.allFinite();
+}
+
+// True, with u and residual, when chord steps from u reach |s(u) - x| <= tol without leaving the domain
+// (a root outside it belongs to another cell, or to none). `next` gets one more chord step from the accepted
+// u, taken without evaluating: a better start for the following pixels than u itself, whose error is up to
+// the tolerance and would be amplified by extrapolation.
+bool chord_solve(const TensorSpline<3>& s, const Box<3>& dom, const Eigen::Matrix3d& inv, const double* x, double tol,
+                 Param<3>& u, double& residual, Param<3>& next) {
+  for (int k = 0; k < 3; ++k) u[k] = std::clamp(u[k], dom.lo[k], dom.hi[k]);
+  double p[3];
+  for (int it = 0;; ++it) {
+    s.eval(u, p);
+    const Eigen::Vector3d r(x[0] - p[0], x[1] - p[1], x[2] - p[2]);
+    residual = r.norm();
+    const Eigen::Vector3d du = inv * r;
+    if (residual <= tol) {
+      for (int k = 0; k < 3; ++k) next[k] = u[k] + du[k];
+      return true;
+    }
+    if (it == kChordSteps || !(residual < std::numeric_limits<double>::infinity())) return false;
+    for (int k = 0; k < 3; ++k) {
+      u[k] += du[k];
+      if (!(u[k] >= dom.lo[k] && u[k] <= dom.hi[k])) return false;
+    }
+  }
+}
 
 // First row j (0..height) whose centre is >= y.
 int first_row_at_or_above(const SliceGrid& g, double y) {
@@ -42,13 +93,20 @@ int first_column_at_or_right(const SliceGrid& g, double x) {
 // put in a canonical order first, so the same segment from two cells gives bit-identical crossings.
 void add_hits(const SliceGrid& g, const OutlineSegment& s, std::vector<Hit>& hits) {
   double xa = s.x0, ya = s.y0, xb = s.x1, yb = s.y1;
+  Param<3> ua = s.u0, ub = s.u1;
   if (ya == yb) return;
-  if (ya > yb || (ya == yb && xa > xb)) {
+  if (ya > yb) {
     std::swap(xa, xb);
     std::swap(ya, yb);
+    std::swap(ua, ub);
   }
   const int j0 = first_row_at_or_above(g, ya), j1 = first_row_at_or_above(g, yb);
-  for (int j = j0; j < j1; ++j) hits.push_back({j, xa + (g.y(j) - ya) * (xb - xa) / (yb - ya)});
+  for (int j = j0; j < j1; ++j) {
+    const double t = (g.y(j) - ya) / (yb - ya);
+    Hit h{j, xa + (g.y(j) - ya) * (xb - xa) / (yb - ya), {}};
+    for (int k = 0; k < 3; ++k) h.u[k] = ua[k] + t * (ub[k] - ua[k]);
+    hits.push_back(h);
+  }
 }
 
 }  // namespace
@@ -108,6 +166,7 @@ LayerSlicer::LayerSlicer(const VModel& model, const SliceOptions& options)
     Box<3> b;
     cell.geometry().control_bounds(b.lo.data(), b.hi.data());
     boxes_.push_back(b);
+    domains_.push_back(cell.geometry().domain());
     std::array<bool, 6> boundary{};
     for (int f = 0; f < 6; ++f) boundary[f] = topo.halves[static_cast<std::size_t>(6 * c + f)].twin < 0;
     model_face_.push_back(boundary);
@@ -166,53 +225,83 @@ SliceLayer LayerSlicer::slice(int k) const {
   }
   std::sort(model_hits.begin(), model_hits.end());
 
-  // Calls paint(i_begin, i_end) for the even-odd spans of row j and advances `pos` past the row.
+  // Calls paint(i_begin, i_end, entry crossing) for the even-odd spans of row j and advances `pos` past the row.
   auto spans = [&](const std::vector<Hit>& hs, std::size_t& pos, int j, auto&& paint) {
     while (pos < hs.size() && hs[pos].row < j) ++pos;
     std::size_t e = pos;
     while (e < hs.size() && hs[e].row == j) ++e;
     for (std::size_t q = pos; q + 1 < e; q += 2)
-      paint(first_column_at_or_right(g, hs[q].x), first_column_at_or_right(g, hs[q + 1].x));
+      paint(first_column_at_or_right(g, hs[q].x), first_column_at_or_right(g, hs[q + 1].x), hs[q]);
     pos = e;
   };
 
+  const Tracing tracing = options_.tracing;
+  const bool along_row = tracing == Tracing::previous_point || tracing == Tracing::full;
+  const bool from_outline = tracing == Tracing::full;
+  const bool from_below = tracing == Tracing::previous_line || tracing == Tracing::full;
   constexpr int kUnclaimed = -2;  // inside the part by the model fill, claimed by no cell
   std::vector<std::size_t> pos(static_cast<std::size_t>(n), 0);
   std::size_t model_pos = 0;
-  std::vector<Param<3>> cur(static_cast<std::size_t>(w)), prev(static_cast<std::size_t>(w));
+  std::vector<Param<3>> cur(static_cast<std::size_t>(w)), prev(static_cast<std::size_t>(w)), seed(static_cast<std::size_t>(w));
+  std::vector<int> seed_cell(static_cast<std::size_t>(w), -1);
   double values[MaterialTable::max_materials];
   LayerStats& st = L.stats;
   for (int j = 0; j < h; ++j) {
     int* row = L.cell.data() + static_cast<std::size_t>(j) * static_cast<std::size_t>(w);
     // Later cells first, so the first claiming cell ends up on top.
     for (int c = n - 1; c >= 0; --c)
-      spans(hits[static_cast<std::size_t>(c)], pos[static_cast<std::size_t>(c)], j,
-            [&](int a, int b) { std::fill(row + a, row + b, c); });
-    spans(model_hits, model_pos, j, [&](int a, int b) {
+      spans(hits[static_cast<std::size_t>(c)], pos[static_cast<std::size_t>(c)], j, [&](int a, int b, const Hit& entry) {
+        std::fill(row + a, row + b, c);
+        if (a < b) {
+          seed[static_cast<std::size_t>(a)] = entry.u;
+          seed_cell[static_cast<std::size_t>(a)] = c;
+        }
+      });
+    spans(model_hits, model_pos, j, [&](int a, int b, const Hit&) {
       for (int i = a; i < b; ++i)
         if (row[i] == -1) row[i] = kUnclaimed;
     });
 
+    // Inverse Jacobian of the last pixel solved on this row, for chord steps in the same cell.
+    Eigen::Matrix3d chord_inverse = Eigen::Matrix3d::Zero();
+    int chord_cell = -1, chord_age = 0;
     for (int i = 0; i < w; ++i) {
       int c = row[i];
+      const auto ui = static_cast<std::size_t>(i);
+      const int seeded = std::exchange(seed_cell[ui], -1);
       if (c == -1) continue;
       const double x[3] = {g.x(i), g.y(j), z};
       InversionResult<3> r;
-      bool ok = false;
+      bool ok = false, newton_used = false, next_set = false;
+      Param<3> next;
       if (c >= 0) {
         const PointInverter<3>& inv = inverters_[static_cast<std::size_t>(c)];
-        const auto ui = static_cast<std::size_t>(i);
-        if (i >= 1 && row[i - 1] == c) {
-          Param<3> guess = cur[ui - 1];
-          if (i >= 3 && row[i - 2] == c && row[i - 3] == c) {
-            for (int d = 0; d < 3; ++d) guess[d] = 3 * cur[ui - 1][d] - 3 * cur[ui - 2][d] + cur[ui - 3][d];
-          } else if (i >= 2 && row[i - 2] == c) {
-            for (int d = 0; d < 3; ++d) guess[d] = 2 * cur[ui - 1][d] - cur[ui - 2][d];
-          }
+        const TensorSpline<3>& geo = inv.spline();
+        auto newton_from = [&](const Param<3>& guess) {
           r = inv.newton(x, guess);
-          ok = r.converged;
+          newton_used = true;
+          return r.converged;
+        };
+        next_set = false;
+        if (along_row && i >= 1 && row[i - 1] == c) {
+          // Polynomial extrapolation through up to four previous pixels of the cell (cubic: error O(h^4), a
+          // few ulps of the parameters at 600 dpi, so the first evaluation usually meets the tolerance).
+          int run = 1;
+          while (run < 4 && i - run - 1 >= 0 && row[i - run - 1] == c) ++run;
+          static constexpr double kExtrapolation[4][4] = {{1, 0, 0, 0}, {2, -1, 0, 0}, {3, -3, 1, 0}, {4, -6, 4, -1}};
+          Param<3> guess{};
+          for (int q = 0; q < run; ++q)
+            for (int d = 0; d < 3; ++d) guess[d] += kExtrapolation[run - 1][q] * cur[ui - 1 - static_cast<std::size_t>(q)][d];
+          if (chord_cell == c) {
+            r.param = guess;
+            ok = chord_solve(geo, domains_[static_cast<std::size_t>(c)], chord_inverse, x, inv.absolute_tolerance(),
+                             r.param, r.residual, next);
+          }
+          next_set = ok;
+          ok = ok || newton_from(guess);
         }
-        if (!ok && j >= 1) {
+        if (!ok && from_outline && seeded == c) ok = newton_from(seed[ui]);
+        if (!ok && from_below && j >= 1) {
           // The pixel below, else the nearest pixel of the cell on the previous row (where a row enters the
           // cell, its boundary has moved sideways since the previous row).
           const int* below = row - w;
@@ -221,14 +310,12 @@ SliceLayer LayerSlicer::slice(int k) const {
             if (i - d >= 0 && below[i - d] == c) near = i - d;
             else if (i + d < w && below[i + d] == c) near = i + d;
           }
-          if (near >= 0) {
-            r = inv.newton(x, prev[static_cast<std::size_t>(near)]);
-            ok = r.converged;
-          }
+          if (near >= 0) ok = newton_from(prev[static_cast<std::size_t>(near)]);
         }
         if (!ok) {
           r = inv.invert(x);
           ++st.full_solves;
+          newton_used = true;
           ok = r.found && r.converged;
         }
       }
@@ -250,8 +337,12 @@ SliceLayer LayerSlicer::slice(int k) const {
         row[i] = -1;
         continue;
       }
+      if (along_row && (newton_used || c != chord_cell || ++chord_age >= kChordRefresh)) {
+        chord_cell = jacobian_inverse(inverters_[static_cast<std::size_t>(c)].spline(), r.param, chord_inverse) ? c : -1;
+        chord_age = 0;
+      }
       row[i] = c;
-      cur[static_cast<std::size_t>(i)] = r.param;
+      cur[static_cast<std::size_t>(i)] = next_set ? next : r.param;
       ++st.inside_pixels;
       st.max_residual = std::max(st.max_residual, r.residual);
 

@@ -15,11 +15,13 @@
 // outside. So a pixel is never counted twice, and a centre in the part is never left out unless the model's
 // own outline excludes it.
 //
-// Tracing (per row, left to right): Newton starts from the parameters of the pixels to the left in the same
-// cell, extrapolated (quadratically from three, linearly from two), then from the pixel below or, where the
-// row enters the cell, the nearest pixel of the cell on the previous row; the robust subdivision search
-// (PointInverter::invert) runs only when these fail or none exists (about once per cell and layer). Rows are processed
-// bottom-up within a layer and no state crosses layers, so layers are independent.
+// Tracing (per row, left to right; SliceOptions::tracing selects the sources): Newton starts from the
+// parameters of the pixels to the left in the same cell, extrapolated (quadratically from three, linearly from
+// two) and refined by chord steps that reuse the last solved pixel's inverse Jacobian (one value evaluation
+// per step); where the row enters the cell, from the parameters of the outline crossing there; else from the
+// pixel below or the nearest pixel of the cell on the previous row. The robust subdivision search
+// (PointInverter::invert) runs only when these fail or none exists. Rows are processed bottom-up within a
+// layer and no state crosses layers, so layers are independent.
 #include <vector>
 
 #include "trivar/am/cell_section.hpp"
@@ -55,6 +57,7 @@ private:
   std::vector<CellSection> sections_;
   std::vector<PointInverter<3>> inverters_;
   std::vector<Box<3>> boxes_;                     // control-point box per cell, for the correction search
+  std::vector<Box<3>> domains_;                 // parameter domain per cell
   std::vector<std::array<bool, 6>> model_face_;   // face on the model boundary (no twin)
   std::vector<const Attribute*> material_;        // per cell, null when the model has no material attribute
   int materials_ = 1;

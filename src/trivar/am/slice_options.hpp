@@ -15,6 +15,14 @@
 
 namespace trivar::am {
 
+// Where Newton's method starts the point inversion of a pixel centre (the methods compared in seed 001).
+enum class Tracing {
+  none,            // the robust subdivision search for every pixel
+  previous_point,  // from the pixels to the left in the same cell (extrapolated), else the robust search
+  previous_line,   // from the pixel below or the nearest one of the cell on the previous row, else robust
+  full,            // previous point, else the cell's outline crossing where the row enters, else previous line
+};
+
 struct SliceOptions {
   double layer_thickness = 0.027;  // mm
   double dpi_x = 600, dpi_y = 600;  // printer resolution per direction, e.g. 600 x 300
@@ -39,8 +47,13 @@ struct SliceOptions {
   // Point inversion (x, y, z) -> (u, v, w) of the pixel centres. The tolerance (relative to each cell's
   // control-box diagonal) bounds |x(u, v, w) - centre|; tighter than InversionOptions' default because
   // tracing usually converges past it in the same number of Newton steps.
-  InversionOptions inversion{.tolerance = 1e-12};
+  InversionOptions inversion{.tolerance = 1e-9};
+  Tracing tracing = Tracing::full;
 };
+
+// "none", "previous-point", "previous-line", "full"; parse_tracing throws trivar::Error for other names.
+const char* to_string(Tracing t);
+Tracing parse_tracing(const std::string& name);
 
 // The options resolved against a model: the raster and the layers.
 struct SliceGrid {
