@@ -2,6 +2,8 @@
 // failing with "file:line:column: #id: KEYWORD: message".
 #include <gtest/gtest.h>
 
+#include <functional>
+
 #include <cmath>
 #include <string>
 
@@ -270,15 +272,55 @@ TEST(StepGeometryReader, UnknownEntitiesAreCounted) {
   EXPECT_EQ(c.instance_count(), 3u);
 }
 
-TEST(StepGeometryReader, LRCurvesAreListedNotConverted) {
+// Quadratic LR curve on knots 0, 1, 2, 3 with a double knot at 2 and one B-spline halved (gamma 0.5) twice
+// over, so coefficients add up: f(t) = sum gamma_i c_i B_i(t), checked against B-splines evaluated here by the
+// Cox-de Boor recursion, independently of trivar's basis code; indices 1-based.
+TEST(StepGeometryReader, LRCurvesBecomeExactBSplineCurves) {
   const auto c = parse_step(trivar::test::step_file(
-      "#1=CARTESIAN_POINT('',(0.,0.,0.));#2=CARTESIAN_POINT('',(1.,0.,0.));"
-      "#3=LOCAL_B_SPLINE('',1,(1,2),(2,1));#4=LOCAL_B_SPLINE('',1,(1,2),(1,2));"
-      "#5=LOCALLY_REFINED_SPLINE_CURVE('c',(#3,#4),(0.,1.),(#1,#2),(1.,1.),.F.,.LR_B_SPLINE.,.F.,(0.,1.));"));
-  EXPECT_TRUE(c.splines.empty());
+      "#1=CARTESIAN_POINT('',(0.,0.));#2=CARTESIAN_POINT('',(1.,2.));#3=CARTESIAN_POINT('',(3.,-1.));"
+      "#4=CARTESIAN_POINT('',(4.,1.));"
+      "#11=LOCAL_B_SPLINE('',2,(1,2,3,4),(1,1,1,1));#12=LOCAL_B_SPLINE('',2,(2,3,4),(1,1,2));"
+      "#13=LOCAL_B_SPLINE('',2,(3,4),(2,2));"
+      "#5=LOCALLY_REFINED_SPLINE_CURVE('c',(#11,#12,#12,#13),(0.,1.,2.,3.),(#1,#2,#3,#4),(1.,0.5,0.5,1.),.F.,"
+      ".LR_B_SPLINE.,.F.,(0.,3.));"));
+  ASSERT_EQ(c.splines.size(), 1u);
   EXPECT_TRUE(c.lr_splines.empty());
-  ASSERT_EQ(c.unsupported.size(), 1u);
-  EXPECT_EQ(c.unsupported[0].id, 5u);
-  EXPECT_EQ(c.unsupported[0].kind, GeometryKind::lr_curve);
-  EXPECT_EQ(c.unsupported[0].name, "c");
+  EXPECT_EQ(c.spline_info[0].kind, GeometryKind::lr_curve);
+  EXPECT_EQ(c.spline_info[0].name, "c");
+  const auto& curve = std::get<trivar::TensorSpline<1>>(c.splines[0]);
+  // Cox-de Boor on a local knot vector.
+  std::function<double(const std::vector<double>&, int, double)> B = [&](const std::vector<double>& t, int p, double x) {
+    if (p == 0) return (t[0] <= x && x < t[1]) || (x == t[1] && x == 3.0 && t[0] < t[1]) ? 1.0 : 0.0;
+    double v = 0;
+    if (t[p] > t[0]) v += (x - t[0]) / (t[p] - t[0]) * B({t.begin(), t.end() - 1}, p - 1, x);
+    if (t[p + 1] > t[1]) v += (t[p + 1] - x) / (t[p + 1] - t[1]) * B({t.begin() + 1, t.end()}, p - 1, x);
+    return v;
+  };
+  const std::vector<std::vector<double>> knots = {{0, 1, 2, 3}, {1, 2, 3, 3}, {1, 2, 3, 3}, {2, 2, 3, 3}};
+  const double gamma[4] = {1, 0.5, 0.5, 1}, cp[4][2] = {{0, 0}, {1, 2}, {3, -1}, {4, 1}};
+  for (double x = 0; x <= 3.0; x += 0.125) {
+    double expected[2] = {0, 0}, got[2];
+    for (int i = 0; i < 4; ++i)
+      for (int d = 0; d < 2; ++d) expected[d] += gamma[i] * cp[i][d] * B(knots[i], 2, x);
+    curve.eval({x}, got);
+    EXPECT_NEAR(got[0], expected[0], 1e-14) << x;
+    EXPECT_NEAR(got[1], expected[1], 1e-14) << x;
+  }
+}
+
+// The rational form: a quarter of the unit circle as three Bezier B-splines with weights 1, sqrt(2)/2, 1.
+TEST(StepGeometryReader, RationalLRCurveIsAnExactArc) {
+  const auto c = parse_step(trivar::test::step_file(
+      "#1=CARTESIAN_POINT('',(1.,0.));#2=CARTESIAN_POINT('',(1.,1.));#3=CARTESIAN_POINT('',(0.,1.));"
+      "#11=LOCAL_B_SPLINE('',2,(1,2),(3,1));#12=LOCAL_B_SPLINE('',2,(1,2),(2,2));#13=LOCAL_B_SPLINE('',2,(1,2),(1,3));"
+      "#5=RATIONAL_LOCALLY_REFINED_SPLINE_CURVE('arc',(#11,#12,#13),(0.,1.),(#1,#2,#3),(1.,1.,1.),.F.,"
+      ".LR_B_SPLINE.,.F.,(0.,1.),(1.,0.70710678118654757,1.));"));
+  ASSERT_EQ(c.splines.size(), 1u);
+  const auto& arc = std::get<trivar::TensorSpline<1>>(c.splines[0]);
+  EXPECT_TRUE(arc.is_rational());
+  for (double t = 0; t <= 1.0; t += 0.0625) {
+    double x[2];
+    arc.eval({t}, x);
+    EXPECT_NEAR(std::hypot(x[0], x[1]), 1.0, 1e-15) << t;
+  }
 }

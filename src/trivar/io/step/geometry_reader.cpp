@@ -7,6 +7,7 @@
 #include <unordered_map>
 
 #include "trivar/core/error.hpp"
+#include "trivar/spline/knot_refinement.hpp"
 
 namespace trivar::io::step {
 
@@ -29,11 +30,19 @@ constexpr std::array<const char*, 3> kRationalLR = {"RATIONAL_LOCALLY_REFINED_SP
 // Explicit attributes after the name: of b_spline_{curve,surface,volume} and of its _with_knots subtype.
 constexpr std::array<int, 3> kBaseCount = {5, 7, 4};
 constexpr std::array<int, 3> kKnotsCount = {3, 5, 6};
-// Of locally_refined_spline_{surface,volume} (index D - 2).
-constexpr std::array<int, 2> kLRCount = {12, 11};
+// Of locally_refined_spline_{curve,surface,volume}.
+constexpr std::array<int, 3> kLRCount = {8, 12, 11};
 constexpr std::array<char, 3> kDir = {'u', 'v', 'w'};
 
 enum class KnotForm { knots, bezier, uniform, quasi_uniform };
+
+template <int D>
+struct ScaledCollection {
+  Ints<D> degrees{};
+  int dim = 0;
+  bool rational = false;
+  std::vector<LRBSpline<D>> basis;
+};
 
 // Error reporting and typed access for one instance being mapped.
 class Scope {
@@ -361,6 +370,7 @@ AnySpline GeometryReader::tensor_spline(const Instance& in) const {
     case GeometryKind::curve: return read_tensor<1>(in);
     case GeometryKind::surface: return read_tensor<2>(in);
     case GeometryKind::volume: return read_tensor<3>(in);
+    case GeometryKind::lr_curve: return read_lr_curve(in);
     default: Scope(file_, file_name_, in).fail("not a B-spline curve, surface or volume");
   }
 }
@@ -369,7 +379,7 @@ AnyLRSpline GeometryReader::lr_spline(const Instance& in) const {
   switch (geometry_kind(in)) {
     case GeometryKind::lr_surface: return read_lr<2>(in);
     case GeometryKind::lr_volume: return read_lr<3>(in);
-    case GeometryKind::lr_curve: Scope(file_, file_name_, in).fail("locally refined curves are not supported");
+    case GeometryKind::lr_curve: Scope(file_, file_name_, in).fail("a locally refined curve is read as a B-spline curve");
     default: Scope(file_, file_name_, in).fail("not a locally refined surface or volume");
   }
 }
@@ -481,11 +491,11 @@ TensorSpline<D> GeometryReader::read_tensor(const Instance& in) const {
   }
 }
 
+// The scaled B-splines of a locally refined curve, surface or volume, validated.
 template <int D>
-LRSpline<D> GeometryReader::read_lr(const Instance& in) const {
-  const Scope s(file_, file_name_, in);
+ScaledCollection<D> read_scaled(const Scope& s, const Instance& in) {
   constexpr std::size_t d = D - 1;
-  const std::size_t na = static_cast<std::size_t>(kLRCount[d - 1]);
+  const std::size_t na = static_cast<std::size_t>(kLRCount[d]);
   std::vector<const Parameter*> a;
   const Parameter* weights = nullptr;
   if (!in.complex) {
@@ -500,12 +510,15 @@ LRSpline<D> GeometryReader::read_lr(const Instance& in) const {
     for (const Parameter& q : s.record(kLR[d], na)) a.push_back(&q);
     if (in.is(kRationalLR[d])) weights = &s.record(kRationalLR[d], 1).front();
   }
-  // Attribute positions: D b-spline lists, D knot lists, control points, scaling factors, independence, type.
+  // Attribute positions: D b-spline lists, D knot lists, control points, scaling factors, independence (the
+  // curve has closed_curve there), type, ..., domain.
   const Parameter& cps = *a[2 * D];
   const Parameter& scaling = *a[2 * D + 1];
-  const std::string independence = s.enumeration(*a[2 * D + 2], "linearly_independent");
-  s.check(independence == "INDEPENDENT" || independence == "NOT_INDEPENDENT" || independence == "NOT_TESTED",
-          "linearly_independent: unknown value ." + independence + ".");
+  if constexpr (D > 1) {
+    const std::string independence = s.enumeration(*a[2 * D + 2], "linearly_independent");
+    s.check(independence == "INDEPENDENT" || independence == "NOT_INDEPENDENT" || independence == "NOT_TESTED",
+            "linearly_independent: unknown value ." + independence + ".");
+  }
   const std::string type = s.enumeration(*a[2 * D + 3], "locally_refined_spline_type");
   s.check(type == "ANALYSIS_SUITABLE_T_SPLINE" || type == "HIERARCHICAL_B_SPLINE" || type == "LR_B_SPLINE" ||
               type == "SEMI_STANDARD_T_SPLINE" || type == "STANDARD_T_SPLINE",
@@ -616,9 +629,10 @@ LRSpline<D> GeometryReader::read_lr(const Instance& in) const {
       hull.hi[k] = std::max(hull.hi[k], b.knots[k].back());
     }
   const auto& dom = s.list(*a.back(), "domain");
-  s.check(dom.size() == D, "domain: " + std::to_string(dom.size()) + " entries, expected " + std::to_string(D));
+  s.check(D == 1 || dom.size() == D, "domain: " + std::to_string(dom.size()) + " entries, expected " + std::to_string(D));
   for (std::size_t k = 0; k < D; ++k) {
-    const auto range = s.numbers(dom[k], "domain[" + std::to_string(k) + "]");
+    // A curve's domain is one pair, a surface's or volume's a list of pairs.
+    const auto range = s.numbers(D == 1 ? *a.back() : dom[k], "domain[" + std::to_string(k) + "]");
     s.check(range.size() == 2, "domain[" + std::to_string(k) + "]: expected 2 values");
     const double tol = 1e-9 * std::max({1.0, std::abs(hull.lo[k]), std::abs(hull.hi[k])});
     s.check(std::abs(range[0] - hull.lo[k]) <= tol && std::abs(range[1] - hull.hi[k]) <= tol,
@@ -627,6 +641,13 @@ LRSpline<D> GeometryReader::read_lr(const Instance& in) const {
                 std::to_string(hull.hi[k]) + ")");
   }
 
+  return {degrees, dim, weights != nullptr, std::move(basis)};
+}
+
+template <int D>
+LRSpline<D> GeometryReader::read_lr(const Instance& in) const {
+  const Scope s(file_, file_name_, in);
+  auto [degrees, dim, rational, basis] = read_scaled<D>(s, in);
   // Mesh: every B-spline's knot lines, merged per plane into maximal pieces (the constructor cuts elements
   // with single rectangles, so overlapping partial pieces must become the rectangles their union forms).
   std::map<std::pair<int, double>, std::vector<MeshRectangle<D>>> planes;
@@ -645,9 +666,53 @@ LRSpline<D> GeometryReader::read_lr(const Instance& in) const {
   std::vector<MeshRectangle<D>> mesh;
   for (const auto& [key, rects] : planes) merge_plane<D>(key.first, key.second, rects, mesh);
   try {
-    return LRSpline<D>(degrees, dim, weights != nullptr, std::move(basis), std::move(mesh));
+    return LRSpline<D>(degrees, dim, rational, std::move(basis), std::move(mesh));
   } catch (const Error& e) {
     s.fail(prefix_lr(e.what()));
+  }
+}
+
+// A univariate LR B-spline space lies in the spline space on the union of the local knot vectors (each knot
+// with its largest local multiplicity, the ends raised to degree + 1 so the domain is the union of the
+// supports), so the curve is exactly a B-spline curve there: every scaled B-spline is written in that basis
+// by knot insertion and the homogeneous coefficients are summed.
+TensorSpline<1> GeometryReader::read_lr_curve(const Instance& in) const {
+  const Scope s(file_, file_name_, in);
+  const auto [degrees, dim, rational, basis] = read_scaled<1>(s, in);
+  const int p = degrees[0];
+  std::map<double, int> mult;
+  for (const auto& b : basis)
+    for (std::size_t j = 0; j < b.knots[0].size();) {
+      std::size_t e = j;
+      while (e < b.knots[0].size() && b.knots[0][e] == b.knots[0][j]) ++e;
+      int& m = mult[b.knots[0][j]];
+      m = std::max(m, static_cast<int>(e - j));
+      j = e;
+    }
+  mult.begin()->second = p + 1;
+  mult.rbegin()->second = p + 1;
+  std::vector<double> t;
+  for (const auto& [value, m] : mult) t.insert(t.end(), static_cast<std::size_t>(m), value);
+  KnotVector kv;
+  try {
+    kv = KnotVector(p, t);
+  } catch (const Error& e) {
+    s.fail(std::string("knots of the B-splines: ") + e.what());
+  }
+  const std::size_t stride = static_cast<std::size_t>(dim + (rational ? 1 : 0));
+  std::vector<double> coefs(static_cast<std::size_t>(kv.size()) * stride, 0.0);
+  std::vector<double> c;
+  for (const auto& b : basis) {
+    int first = 0;
+    express_in(b.knots[0], p, kv, first, c);
+    for (std::size_t j = 0; j < c.size(); ++j)
+      for (std::size_t q = 0; q < stride; ++q)
+        coefs[(static_cast<std::size_t>(first) + j) * stride + q] += b.gamma * c[j] * b.coef[q];
+  }
+  try {
+    return TensorSpline<1>({std::move(kv)}, dim, rational, std::move(coefs));
+  } catch (const Error& e) {
+    s.fail(e.what());
   }
 }
 

@@ -8,6 +8,8 @@
 //            (no knot_spec on volumes)                                                         -> TensorSpline<3>
 //   LOCALLY_REFINED_SPLINE_SURFACE / _VOLUME and RATIONAL_LOCALLY_REFINED_SPLINE_SURFACE / _VOLUME (simple
 //            or complex instances) with their LOCAL_B_SPLINEs                                  -> LRSpline<2|3>
+//   LOCALLY_REFINED_SPLINE_CURVE and its rational form: exactly the B-spline curve on the union of the local
+//            knot vectors (a univariate LR space is a tensor space)                            -> TensorSpline<1>
 // Uniform, quasi-uniform and Bezier forms get the knots Part 42 defines for them (spacing 1; uniform starts at
 // -degree with simple knots; quasi-uniform starts at 0 with end multiplicity degree + 1; Bezier is quasi-uniform
 // with interior multiplicity degree). Control grids are listed u outermost in STEP and stored u fastest here.
@@ -55,6 +57,7 @@ public:
   GeometryReader(const ExchangeFile& file, std::string file_name);
 
   // Throws trivar::Error (as above) when the instance is not a valid spline of that kind.
+  // Tensor kinds and locally refined curves.
   AnySpline tensor_spline(const Instance& instance) const;
   AnyLRSpline lr_spline(const Instance& instance) const;
   // The representation_item name (first parameter of the simple instance or of REPRESENTATION_ITEM).
@@ -68,6 +71,7 @@ private:
   TensorSpline<D> read_tensor(const Instance& in) const;
   template <int D>
   LRSpline<D> read_lr(const Instance& in) const;
+  TensorSpline<1> read_lr_curve(const Instance& in) const;
 };
 
 }  // namespace trivar::io::step

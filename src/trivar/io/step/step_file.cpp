@@ -52,17 +52,16 @@ StepContents map(const ExchangeFile& f, const std::string& name) {
     if (auto it = edges.find(in.id); it != edges.end()) o.edges = it->second;
     switch (kind) {
       case GeometryKind::curve:
+      case GeometryKind::lr_curve:
       case GeometryKind::surface:
       case GeometryKind::volume:
         out.splines.push_back(reader.tensor_spline(in));
         out.spline_info.push_back(std::move(o));
         break;
-      case GeometryKind::lr_surface:
-      case GeometryKind::lr_volume:
+      default:  // locally refined surfaces and volumes
         out.lr_splines.push_back(reader.lr_spline(in));
         out.lr_info.push_back(std::move(o));
         break;
-      default: out.unsupported.push_back(std::move(o)); break;
     }
   }
   return out;

@@ -36,11 +36,10 @@ struct EntityCount {
 
 struct StepContents {
   Header header;
-  std::vector<AnySpline> splines;     // file order
+  std::vector<AnySpline> splines;     // file order; locally refined curves become B-spline curves
   std::vector<StepObject> spline_info;  // parallel to splines
   std::vector<AnyLRSpline> lr_splines;
   std::vector<StepObject> lr_info;      // parallel to lr_splines
-  std::vector<StepObject> unsupported;  // found but not converted: locally refined curves (no LR curve type)
   std::map<std::string, EntityCount> entities;  // per keyword (complex instances: keywords joined by '+')
   std::size_t instance_count() const;
 };
