@@ -66,6 +66,8 @@ void add_export_command(CLI::App& app, Context& ctx);
 void add_slice_command(CLI::App& app, Context& ctx);
 void add_demo_command(CLI::App& app, Context& ctx);
 
+// True for ISO 10303-21 files: .stp, .step, .p21 (case-insensitive).
+bool is_step_file(const std::string& path);
 // All objects of a spline file (.json, .g2); throws trivar::Error naming the file on any problem.
 std::vector<AnySpline> read_objects(const std::string& path);
 // The V-model in a .json file whose "kind" is "vmodel" (glued), or nothing for any other file; throws

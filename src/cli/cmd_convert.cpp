@@ -1,13 +1,19 @@
 // trivar convert IN OUT: between spline formats by extension (.json, .g2) and to VTK (.vtu) for viewing;
 // V-models to .vtu (every cell a piece, attributes as point data) or .json; LR splines between .lr, .g2, .json
-// and .vtu, tensor surfaces and volumes to LR for .lr output or with --lr.
+// and .vtu, tensor surfaces and volumes to LR for .lr output or with --lr; STEP (.stp, .step) in both
+// directions: the B-spline and locally refined geometry of a STEP file out, any spline, LR or V-model file's
+// objects (a V-model's cell volumes) in.
+#include <cstdio>
 #include <filesystem>
+#include <type_traits>
+#include <variant>
 #include <string>
 
 #include "cli.hpp"
 #include "lr_cli.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/io/spline_file.hpp"
+#include "trivar/io/step/step_file.hpp"
 #include "trivar/io/vmodel_json.hpp"
 #include "trivar/io/vmodel_vtk.hpp"
 #include "trivar/io/vtk_writer.hpp"
@@ -22,8 +28,8 @@ void add_convert_command(CLI::App& app, Context&) {
     bool lr = false, parametric_mesh = false;
   };
   auto a = std::make_shared<Args>();
-  cmd->add_option("IN", a->in, "Input spline file (.json, .g2) or V-model (.json)")->required();
-  cmd->add_option("OUT", a->out, "Output file (.json, .g2, .vtu)")->required();
+  cmd->add_option("IN", a->in, "Input spline file (.json, .g2, .lr), STEP file (.stp, .step) or V-model (.json)")->required();
+  cmd->add_option("OUT", a->out, "Output file (.json, .g2, .lr, .vtu, .stp, .step)")->required();
   cmd->add_option("--samples", a->vtk.samples_per_element, "VTK: samples per element and direction")
       ->check(at_least(1));
   cmd->add_flag("--bezier", a->vtk.bezier_cells, "VTK: write exact rational Bezier cells instead of sampled ones");
@@ -31,6 +37,50 @@ void add_convert_command(CLI::App& app, Context&) {
   cmd->add_flag("--lr", a->lr, "Convert tensor surfaces and volumes to LR splines (implied by an .lr output)");
   cmd->add_flag("--parametric-mesh", a->parametric_mesh, "VTK of LR splines: the mesh in parameter space instead of the geometry");
   cmd->callback([a] {
+    if (is_step_file(a->out)) {
+      require(!is_step_file(a->in), "convert: " + a->in + " is already a STEP file");
+      std::vector<AnySpline> splines;
+      std::vector<AnyLRSpline> lr;
+      if (const std::optional<VModel> model = read_model_if_any(a->in)) {
+        for (const VCell& c : model->cells()) splines.emplace_back(c.geometry());
+      } else if (std::optional<std::vector<AnyLRSpline>> l = read_lr_if_any(a->in)) {
+        lr = std::move(*l);
+      } else {
+        splines = read_objects(a->in);
+      }
+      io::step::GeometryFileOptions options;
+      options.description = "trivar geometry from " + a->in;
+      io::step::write_step(a->out, splines, lr, options);
+      std::printf("%s: %zu B-spline object%s, %zu locally refined (AP242, ISO 10303-21)\n", a->out.c_str(),
+                  splines.size(), splines.size() == 1 ? "" : "s", lr.size());
+      return;
+    }
+    if (is_step_file(a->in)) {
+      io::step::StepContents c = io::step::read_step(a->in);
+      require(!c.splines.empty() || !c.lr_splines.empty(), "convert: " + a->in + " holds no B-spline or locally refined geometry");
+      if (c.lr_splines.empty() && !a->lr && !is_lr_extension(a->out)) {
+        if (std::filesystem::path(a->out).extension() == ".vtu")
+          io::write_vtu(a->out, c.splines, a->vtk);
+        else
+          io::write_spline_file(a->out, c.splines);
+        return;
+      }
+      require(c.splines.empty() || a->lr || is_lr_extension(a->out),
+              "convert: " + a->in + " holds " + std::to_string(c.splines.size()) + " B-spline and " +
+                  std::to_string(c.lr_splines.size()) + " locally refined objects; one output file holds one kind: "
+                  "give --lr to write all as LR splines");
+      for (const AnySpline& s : c.splines) {
+        std::visit(
+            [&](const auto& t) {
+              constexpr int D = std::decay_t<decltype(t)>::kDim;
+              if constexpr (D == 1) throw Error("convert: " + a->in + " holds a curve, which has no LR form; convert without --lr");
+              else c.lr_splines.emplace_back(LRSpline<D>(t));
+            },
+            s);
+      }
+      write_lr_file(a->out, c.lr_splines, "convert", {a->vtk.samples_per_element, a->parametric_mesh});
+      return;
+    }
     if (const std::optional<VModel> model = read_model_if_any(a->in)) {
       const std::string ext = std::filesystem::path(a->out).extension().string();
       require(ext == ".vtu" || ext == ".json",

@@ -1,5 +1,7 @@
-// trivar info FILE [--json] [--check-independence peeling|exact]: what a spline file, an LR spline file or a
-// V-model holds.
+// trivar info FILE [--json] [--check-independence peeling|exact]: what a spline file, an LR spline file, a
+// STEP file (entity statistics and the spline geometry found, with the faces and edges using it) or a V-model
+// holds.
+#include <algorithm>
 #include <cstdio>
 #include <string>
 #include <variant>
@@ -9,6 +11,7 @@
 #include "cli.hpp"
 #include "lr_cli.hpp"
 #include "trivar/core/error.hpp"
+#include "trivar/io/step/step_file.hpp"
 
 namespace trivar::cli {
 
@@ -104,13 +107,79 @@ void print_lr_info(const std::string& file, const std::vector<AnyLRSpline>& obje
   }
 }
 
+// Where a STEP object came from: "#id 'name' ENTITY, faces #a #b, edges #c".
+std::string step_origin(const io::step::StepObject& o) {
+  std::string r = "#" + std::to_string(o.id) + (o.name.empty() ? "" : " '" + o.name + "'") + " " + o.entity;
+  auto refs = [&](const char* what, const std::vector<std::uint64_t>& ids) {
+    if (ids.empty()) return;
+    r += std::string(", ") + what;
+    for (std::uint64_t id : ids) r += " #" + std::to_string(id);
+  };
+  refs("faces", o.faces);
+  refs("edges", o.edges);
+  return r;
+}
+
+nlohmann::json step_origin_json(const io::step::StepObject& o) {
+  return {{"id", o.id}, {"name", o.name}, {"entity", o.entity}, {"step_kind", io::step::to_string(o.kind)},
+          {"faces", o.faces}, {"edges", o.edges}};
+}
+
+void print_step_info(const std::string& file, bool json, const std::string& check, int threads) {
+  const io::step::StepContents c = io::step::read_step(file);
+  // Entity kinds by decreasing count (ties by name) so the bulk of the file comes first.
+  std::vector<std::pair<std::string, io::step::EntityCount>> kinds(c.entities.begin(), c.entities.end());
+  std::stable_sort(kinds.begin(), kinds.end(), [](const auto& a, const auto& b) { return a.second.total() > b.second.total(); });
+  if (json) {
+    nlohmann::json out{{"file", file},
+                       {"format", "step"},
+                       {"schemas", c.header.schemas},
+                       {"originating_system", c.header.originating_system},
+                       {"instances", c.instance_count()},
+                       {"entities", nlohmann::json::object()},
+                       {"objects", nlohmann::json::array()},
+                       {"lr_objects", nlohmann::json::array()}};
+    for (const auto& [k, n] : kinds) out["entities"][k] = {{"count", n.total()}, {"mapped", n.kept}};
+    for (std::size_t i = 0; i < c.splines.size(); ++i) {
+      nlohmann::json d = std::visit([](const auto& s) { return describe(s); }, c.splines[i]);
+      d["step"] = step_origin_json(c.spline_info[i]);
+      out["objects"].push_back(std::move(d));
+    }
+    for (std::size_t i = 0; i < c.lr_splines.size(); ++i) {
+      nlohmann::json d = describe_lr(c.lr_splines[i], check, threads);
+      d["step"] = step_origin_json(c.lr_info[i]);
+      out["lr_objects"].push_back(std::move(d));
+    }
+    std::printf("%s\n", out.dump(2).c_str());
+    return;
+  }
+  std::string schemas;
+  for (const auto& sc : c.header.schemas) schemas += (schemas.empty() ? "" : ", ") + sc;
+  std::printf("%s: STEP (ISO 10303-21), schema %s%s%s\n", file.c_str(), schemas.empty() ? "(none)" : schemas.c_str(),
+              c.header.originating_system.empty() ? "" : ", from ", c.header.originating_system.c_str());
+  std::printf("  instances: %zu of %zu entity kinds; geometry found: %zu B-spline object%s, %zu locally refined\n",
+              c.instance_count(), kinds.size(), c.splines.size(), c.splines.size() == 1 ? "" : "s", c.lr_splines.size());
+  constexpr std::size_t kListed = 25;
+  for (std::size_t i = 0; i < kinds.size() && i < kListed; ++i)
+    std::printf("  %8zu  %s\n", kinds[i].second.total(), kinds[i].first.c_str());
+  if (kinds.size() > kListed) std::printf("  ... %zu more entity kinds (--json lists all)\n", kinds.size() - kListed);
+  for (std::size_t i = 0; i < c.splines.size(); ++i) {
+    std::printf("object %zu: %s\n", i, step_origin(c.spline_info[i]).c_str());
+    std::visit([](const auto& s) { print_text(s); }, c.splines[i]);
+  }
+  for (std::size_t i = 0; i < c.lr_splines.size(); ++i) {
+    std::printf("LR object %zu: %s\n", i, step_origin(c.lr_info[i]).c_str());
+    print_lr_text(describe_lr(c.lr_splines[i], check, threads));
+  }
+}
+
 }  // namespace
 
 void add_info_command(CLI::App& app, Context& ctx) {
   auto* cmd = app.add_subcommand("info", "Describe the splines in a file (kind, degrees, counts, knots, domain) or a V-model (topology, volume, attributes)");
   auto file = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
-  cmd->add_option("FILE", *file, "Spline file (.json, .g2) or V-model (.json)")->required();
+  cmd->add_option("FILE", *file, "Spline file (.json, .g2, .lr), STEP file (.stp, .step) or V-model (.json)")->required();
   auto check = std::make_shared<std::string>();
   cmd->add_flag("--json", *json, "Print one JSON document instead of text");
   cmd->add_option("--check-independence", *check,
@@ -118,6 +187,10 @@ void add_info_command(CLI::App& app, Context& ctx) {
                   "exact: rank of the Bezier extraction)")
       ->check(CLI::IsMember({"peeling", "exact"}));
   cmd->callback([file, json, check, &ctx] {
+    if (is_step_file(*file)) {
+      print_step_info(*file, *json, *check, ctx.threads);
+      return;
+    }
     if (const std::optional<VModel> model = read_model_if_any(*file)) {
       require(check->empty(), "info: --check-independence applies to LR splines; " + *file + " holds a V-model");
       print_model_info(*file, *model, *json);

@@ -1,0 +1,80 @@
+// STEP files on the command line: info (entity statistics, geometry with the faces using it), convert in both
+// directions for tensor splines, LR splines and V-models. Reference values: the source files' own evaluation
+// (a STEP round trip must not change the geometry) and the entity counts of hand-written test files.
+#include "cli/cli_fixture.hpp"
+
+using namespace cli_test;
+
+class StepCli : public Cli {
+protected:
+  std::vector<double> eval(const std::string& file, const std::string& params) const {
+    return numbers_after(ok("eval " + file + " " + params + " --derivs 1").out, "S");
+  }
+};
+
+TEST_F(StepCli, InfoListsEntitiesAndTheGeometryOfACadFile) {
+  const std::string file = std::string(TRIVAR_TEST_DATA) + "/step/geometry/cad_part_ap214.stp";
+  const std::string text = ok("info " + file).out;
+  EXPECT_NE(text.find("AUTOMOTIVE_DESIGN"), std::string::npos) << text;
+  EXPECT_NE(text.find("ADVANCED_FACE"), std::string::npos) << text;
+  const nlohmann::json j = nlohmann::json::parse(ok("info --json " + file).out);
+  EXPECT_EQ(j.at("format"), "step");
+  EXPECT_EQ(j.at("entities").at("ADVANCED_FACE").at("count"), 3);
+  EXPECT_EQ(j.at("entities").at("CARTESIAN_POINT").at("count"), 15);
+  std::size_t surfaces = 0, with_faces = 0;
+  for (const auto& o : j.at("objects")) {
+    surfaces += o.at("kind") == "surface" ? 1 : 0;
+    with_faces += o.at("step").at("faces").empty() ? 0 : 1;
+  }
+  EXPECT_EQ(j.at("objects").size(), 5u);
+  EXPECT_EQ(surfaces, 2u);
+  EXPECT_EQ(with_faces, 2u);
+}
+
+TEST_F(StepCli, TensorVolumeRoundTripEvaluatesIdentically) {
+  ok("make revolve --radii 1 2 --height 1 --angle 270 -o ring.json");
+  ok("convert ring.json ring.stp");
+  ok("convert ring.stp back.json");
+  ok("convert ring.stp back.g2");
+  for (const char* p : {"0 0 0", "0.3 0.4 0.5", "1 1 1", "0.77 0.01 0.5"}) {
+    const auto a = eval("ring.json", p), b = eval("back.json", p), c = eval("back.g2", p);
+    ASSERT_EQ(a.size(), 3u);
+    for (std::size_t k = 0; k < 3; ++k) {
+      // Rational points are written Cartesian, so w * x may differ by an ulp after reading back.
+      EXPECT_NEAR(b[k], a[k], 1e-14) << p;
+      EXPECT_NEAR(c[k], a[k], 1e-14) << p;
+    }
+  }
+  const nlohmann::json j = nlohmann::json::parse(ok("info --json ring.stp").out);
+  EXPECT_EQ(j.at("objects").at(0).at("kind"), "volume");
+  EXPECT_EQ(j.at("objects").at(0).at("step").at("entity").get<std::string>().find("RATIONAL_B_SPLINE_VOLUME") !=
+                std::string::npos,
+            true);
+}
+
+TEST_F(StepCli, LRVolumeAndVModelRoundTrips) {
+  ok("make box --lr --degree 2 --elements 3 3 3 -o box.lr");
+  ok("refine box.lr -o fine.lr --strategy fullspan --elements 0 5 --report");
+  ok("convert fine.lr fine.stp");
+  ok("convert fine.stp back.lr");
+  const nlohmann::json a = nlohmann::json::parse(ok("info --json fine.lr").out).at("objects").at(0);
+  const nlohmann::json b = nlohmann::json::parse(ok("info --json back.lr").out).at("objects").at(0);
+  EXPECT_EQ(a.at("num_basis"), b.at("num_basis"));
+  EXPECT_GT(a.at("num_basis").get<int>(), 64);
+  for (const char* p : {"0.1 0.2 0.3", "0.5 0.5 0.5", "0.95 0.05 0.6"}) EXPECT_EQ(eval("fine.lr", p), eval("back.lr", p)) << p;
+
+  ok("make ball --radius 2 -o ball.json");
+  ok("convert ball.json ball.stp");
+  const nlohmann::json j = nlohmann::json::parse(ok("info --json ball.stp").out);
+  EXPECT_EQ(j.at("objects").size(), 7u);
+  EXPECT_TRUE(j.at("lr_objects").empty());
+}
+
+TEST_F(StepCli, BadFilesFailWithOneLine) {
+  for (const char* f : {"truncated_instance.stp", "bad_escape.stp", "missing_semicolon.stp"})
+    fails("convert " + std::string(TRIVAR_TEST_DATA) + "/step/malformed/" + f + " out.json");
+  fails("info " + std::string(TRIVAR_TEST_DATA) + "/step/malformed/unterminated_string.stp");
+  write("nothing.stp", "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\nFILE_NAME('','',(''),(''),'','','');\n"
+                       "FILE_SCHEMA(('X'));\nENDSEC;\nDATA;\n#1=CARTESIAN_POINT('',(0.,0.,0.));\nENDSEC;\nEND-ISO-10303-21;\n");
+  fails("convert nothing.stp out.json");
+}
