@@ -70,7 +70,9 @@ nlohmann::json describe(const VModel& m) {
 void print_model_info(const std::string& path, const VModel& m, bool json) {
   const nlohmann::json d = describe(m);
   if (json) {
-    std::printf("%s\n", nlohmann::json{{"file", path}, {"model", d}}.dump(2).c_str());
+    nlohmann::json out{{"file", path}};
+    out.update(d);
+    std::printf("%s\n", out.dump(2).c_str());
     return;
   }
   std::printf("%s: V-model, %d cell%s\n", path.c_str(), m.num_cells(), m.num_cells() == 1 ? "" : "s");

@@ -17,7 +17,7 @@ constexpr double kPi = std::numbers::pi;
 class ModelCli : public Cli {
 protected:
   double volume_of(const std::string& file) const {
-    return nlohmann::json::parse(ok("info --json " + file).out).at("model").at("volume").get<double>();
+    return nlohmann::json::parse(ok("info --json " + file).out).at("volume").get<double>();
   }
 };
 
@@ -28,7 +28,7 @@ TEST_F(ModelCli, PrimitivesHaveExactVolumesAndClosedBoundaries) {
   EXPECT_NE(info.out.find("topology: 18 shared surfaces, 6 boundary surfaces"), std::string::npos) << info.out;
   EXPECT_NE(info.out.find("boundary: closed"), std::string::npos) << info.out;
   EXPECT_NEAR(volume_of("ball.json"), 4.0 / 3.0 * kPi * 8, 1e-9 * 4.0 / 3.0 * kPi * 8);
-  const auto cells = nlohmann::json::parse(ok("info --json ball.json").out).at("model").at("cell_info");
+  const auto cells = nlohmann::json::parse(ok("info --json ball.json").out).at("cell_info");
   ASSERT_EQ(cells.size(), 7u);
   for (const auto& c : cells) {
     EXPECT_EQ(c.at("jacobian"), "valid");
@@ -45,7 +45,7 @@ TEST_F(ModelCli, PrimitivesHaveExactVolumesAndClosedBoundaries) {
 
 TEST_F(ModelCli, MaterialsBlendAsAPartitionOfUnity) {
   ok("make cylinder --radius 1 --height 2 --materials 3 --blend axial -o graded.json");
-  const auto j = nlohmann::json::parse(ok("info --json graded.json").out).at("model");
+  const auto j = nlohmann::json::parse(ok("info --json graded.json").out);
   EXPECT_EQ(j.at("attributes").at("material").at("components"), 3);
   EXPECT_EQ(j.at("attributes").at("material").at("cells").size(), 5u);
   // The VTK file carries the fractions; at z = 0 material 0 is pure, at z = 1 (rho = 0.5) material 1.
@@ -54,12 +54,12 @@ TEST_F(ModelCli, MaterialsBlendAsAPartitionOfUnity) {
   EXPECT_NE(vtu.find("Name=\"material\""), std::string::npos);
   EXPECT_NE(vtu.find("Name=\"vcell\""), std::string::npos);
   ok("convert graded.json copy.json");
-  EXPECT_EQ(nlohmann::json::parse(ok("info --json copy.json").out).at("model").at("attributes"), j.at("attributes"));
+  EXPECT_EQ(nlohmann::json::parse(ok("info --json copy.json").out).at("attributes"), j.at("attributes"));
 }
 
 TEST_F(ModelCli, BoxModelWithFormulaMaterials) {
   ok("make box --model --size 2 1 1 --material-field x/2 1-x/2 -o box.json");
-  const auto j = nlohmann::json::parse(ok("info --json box.json").out).at("model");
+  const auto j = nlohmann::json::parse(ok("info --json box.json").out);
   EXPECT_EQ(j.at("cells"), 1);
   EXPECT_NEAR(j.at("volume").get<double>(), 2.0, 1e-14);
   EXPECT_EQ(j.at("attributes").at("material").at("components"), 2);
