@@ -89,15 +89,23 @@ void split_points(const std::vector<double>& v, const char* option, Param<D>& a,
   }
 }
 
-// One level: the selection evaluated on the current mesh, then one batch of rectangles. Box and segment select
-// elements for FULLSPAN / MINSPAN and B-splines for STRUCTURED, the objects those strategies act on.
+// One level: the selection evaluated on the current mesh, then one batch of rectangles; returns how many
+// elements or B-splines were selected (the literature's "refined" count). Box and segment select elements for
+// FULLSPAN / MINSPAN and B-splines for STRUCTURED, the objects those strategies act on.
 template <int D>
 int refine_level(LRSpline<D>& lr, const Selection& sel, const RefineOptions& opts) {
   const bool structured = opts.strategy == Strategy::structured;
+  auto refine = [&](const std::vector<int>& ids, bool functions) {
+    if (functions)
+      refine_functions(lr, ids, opts);
+    else
+      refine_elements(lr, ids, opts);
+    return static_cast<int>(ids.size());
+  };
   if (!sel.elements.empty())
-    return refine_elements(lr, checked_ids(sel.elements, lr.num_elements(), "refine: --elements: element"), opts);
+    return refine(checked_ids(sel.elements, lr.num_elements(), "refine: --elements: element"), false);
   if (!sel.functions.empty())
-    return refine_functions(lr, checked_ids(sel.functions, lr.num_basis(), "refine: --functions: B-spline"), opts);
+    return refine(checked_ids(sel.functions, lr.num_basis(), "refine: --functions: B-spline"), true);
   // A box or segment that misses every element's interior is a mistake, not a request to change nothing.
   auto nonempty = [&](std::vector<int> ids, const char* option) {
     require(!ids.empty(), std::string("refine: ") + option + " meets the interior of no " +
@@ -110,17 +118,16 @@ int refine_level(LRSpline<D>& lr, const Selection& sel, const RefineOptions& opt
     for (int k = 0; k < D; ++k)
       require(a[k] <= b[k], "refine: --box: lo " + fmt(a[k]) + " > hi " + fmt(b[k]) + " in direction " + std::to_string(k));
     const Box<D> q{a, b};
-    return structured ? refine_functions(lr, nonempty(functions_in_box(lr, q), "--box"), opts)
-                      : refine_elements(lr, nonempty(elements_in_box(lr, q), "--box"), opts);
+    return refine(nonempty(structured ? functions_in_box(lr, q) : elements_in_box(lr, q), "--box"), structured);
   }
   if (!sel.segment.empty()) {
     split_points<D>(sel.segment, "--segment", a, b);
-    return structured ? refine_functions(lr, nonempty(functions_on_segment(lr, a, b), "--segment"), opts)
-                      : refine_elements(lr, nonempty(elements_on_segment(lr, a, b), "--segment"), opts);
+    return refine(nonempty(structured ? functions_on_segment(lr, a, b) : elements_on_segment(lr, a, b), "--segment"),
+                  structured);
   }
   std::vector<int> all(static_cast<std::size_t>(lr.num_elements()));
   std::iota(all.begin(), all.end(), 0);
-  return refine_elements(lr, all, opts);
+  return refine(all, false);
 }
 
 template <int D>

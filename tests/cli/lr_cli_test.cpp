@@ -54,6 +54,11 @@ TEST_F(LRCli, StrategiesOnTheDiagonalGrowLevelByLevel) {
     int basis = 36, elements = 16, meshrects = 10;
     for (int i = 0; i < 2; ++i) {
       EXPECT_EQ(rep[i].level, i + 1);
+      // The diagonal of a uniform 4 x 4 mesh crosses the interiors of 4 elements; FULLSPAN halves each of
+      // them in both directions, so the next level sees 8.
+      if (std::string(strategy) == "fullspan") {
+        EXPECT_EQ(rep[i].refined, 4 << i);
+      }
       EXPECT_GT(rep[i].refined, 0);
       EXPECT_GT(rep[i].basis, basis);
       EXPECT_GT(rep[i].elements, elements);
