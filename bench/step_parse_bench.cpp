@@ -11,6 +11,7 @@
 
 #include "trivar/io/step/parser.hpp"
 #include "trivar/io/step/real_format.hpp"
+#include "trivar/io/step/step_file.hpp"
 
 using namespace trivar::io::step;
 
@@ -121,6 +122,17 @@ void BM_ParseSurfacesOnly(benchmark::State& state) {
   report(state);
 }
 BENCHMARK(BM_ParseSurfacesOnly)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+// The whole import: parse with the mapper's filter and map every surface to a TensorSpline<2> (validated),
+// with the faces that use it.
+void BM_ReadStepGeometry(benchmark::State& state) {
+  std::size_t surfaces = 0;
+  for (auto _ : state) surfaces = read_step(generated_file()).splines.size();
+  report(state);
+  state.counters["surfaces_per_s"] =
+      benchmark::Counter(static_cast<double>(surfaces) * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_ReadStepGeometry)->Unit(benchmark::kMillisecond)->Iterations(3);
 
 }  // namespace
 
