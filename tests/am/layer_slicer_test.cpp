@@ -5,6 +5,7 @@
 #include <cmath>
 #include <functional>
 
+#include "am/slicer_test_support.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/model/ball.hpp"
 #include "trivar/model/cylinder.hpp"
@@ -13,19 +14,10 @@
 
 using namespace trivar;
 using namespace trivar::am;
+using trivar::test::glued;
+using trivar::test::kResidualBound;
 
 namespace {
-
-// Pixel centres are inverted to a millionth of a 600-dpi pixel: the default tolerance, 1e-9 of a cell's
-// control-box diagonal, on these models of a few millimetres.
-constexpr double kResidualBound = 1e-6 * 25.4 / 600;
-
-VModel glued(const CellComplex& cells) {
-  VModel m;
-  for (const auto& c : cells) m.add_cell(VCell(c));
-  m.glue();
-  return m;
-}
 
 // One layer exactly at height z on the raster with lower-left corner (x0, y0), sized to cover [x0, -x0].
 SliceOptions layer_at(double z, double x0, double dpi_x = 600, double dpi_y = 600) {

@@ -1,11 +1,12 @@
 #include "trivar/am/slicer.hpp"
-#include "trivar/am/dithering.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
+#include "am/slicer_test_support.hpp"
+#include "trivar/am/dithering.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/model/ball.hpp"
 #include "trivar/model/cylinder.hpp"
@@ -13,19 +14,10 @@
 
 using namespace trivar;
 using namespace trivar::am;
+using trivar::test::glued;
+using trivar::test::kResidualBound;
 
 namespace {
-
-// Pixel centres are inverted to a millionth of a 600-dpi pixel: the default tolerance, 1e-9 of a cell's
-// control-box diagonal, on these models of a few millimetres.
-constexpr double kResidualBound = 1e-6 * 25.4 / 600;
-
-VModel glued(const CellComplex& cells) {
-  VModel m;
-  for (const auto& c : cells) m.add_cell(VCell(c));
-  m.glue();
-  return m;
-}
 
 // Inside pixels of all layers times the voxel volume.
 double sliced_volume(const VModel& m, const SliceOptions& o, SliceSummary* s) {

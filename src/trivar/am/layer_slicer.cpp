@@ -70,23 +70,18 @@ bool chord_solve(const TensorSpline<3>& s, const Box<3>& dom, const Eigen::Matri
   }
 }
 
-// First row j (0..height) whose centre is >= y.
-int first_row_at_or_above(const SliceGrid& g, double y) {
-  double e = std::ceil((y - g.y0) / g.dy - 0.5);
-  int j = static_cast<int>(std::clamp(e, 0.0, static_cast<double>(g.height)));
-  while (j > 0 && g.y(j - 1) >= y) --j;
-  while (j < g.height && g.y(j) < y) ++j;
-  return j;
-}
-
-// First column i (0..width) whose centre is >= x.
-int first_column_at_or_right(const SliceGrid& g, double x) {
-  double e = std::ceil((x - g.x0) / g.dx - 0.5);
-  int i = static_cast<int>(std::clamp(e, 0.0, static_cast<double>(g.width)));
-  while (i > 0 && g.x(i - 1) >= x) --i;
-  while (i < g.width && g.x(i) < x) ++i;
+// First pixel index (0..n) along an axis whose centre origin + (index + 0.5) * size is >= v: rounded, then
+// corrected so the comparison is exactly the one the centres give.
+int first_centre_at_or_after(double origin, double size, int n, double v) {
+  auto centre = [&](int i) { return origin + (i + 0.5) * size; };
+  const double e = std::ceil((v - origin) / size - 0.5);
+  int i = static_cast<int>(std::clamp(e, 0.0, static_cast<double>(n)));
+  while (i > 0 && centre(i - 1) >= v) --i;
+  while (i < n && centre(i) < v) ++i;
   return i;
 }
+int first_row_at_or_above(const SliceGrid& g, double y) { return first_centre_at_or_after(g.y0, g.dy, g.height, y); }
+int first_column_at_or_right(const SliceGrid& g, double x) { return first_centre_at_or_after(g.x0, g.dx, g.width, x); }
 
 // Crossings of the segment with the row centre lines y_j in [min y, max y): a vertex on a line belongs to the
 // segment above it only, so a closed polygon crosses every line an even number of times. The end points are
