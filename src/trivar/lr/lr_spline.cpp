@@ -45,6 +45,70 @@ bool knot_less(const LRBSpline<D>& a, const LRBSpline<D>& b) {
   return false;
 }
 
+// Ids under 64-bit keys, several ids per key allowed, in one flat array with linear probing: the split loop
+// looks a B-spline up twice per split, and a node-based map spent most of that in cache misses.
+class HashIndex {
+public:
+  void reserve(std::size_t n) {
+    std::size_t cap = 16;
+    while (cap < 2 * n) cap *= 2;
+    if (cap > slots_.size()) rehash(cap);
+  }
+  void insert(std::uint64_t key, int id) {
+    // At most half full; when erased slots are most of that, rehashing at the same size clears them.
+    if (2 * (used_ + 1) > slots_.size())
+      rehash(4 * (live_ + 1) > slots_.size() ? std::max<std::size_t>(16, 2 * slots_.size()) : slots_.size());
+    for (std::size_t i = start(key);; i = (i + 1) & mask_) {
+      auto& slot = slots_[i];
+      if (slot.id >= 0) continue;
+      if (slot.id == kEmpty) ++used_;
+      slot = {key, id};
+      ++live_;
+      return;
+    }
+  }
+  void erase(std::uint64_t key, int id) {
+    for (std::size_t i = start(key); slots_[i].id != kEmpty; i = (i + 1) & mask_)
+      if (slots_[i].id == id && slots_[i].key == key) {
+        slots_[i].id = kErased;
+        --live_;
+        return;
+      }
+  }
+  // The first id under `key` for which match(id) holds, or -1.
+  template <class Match>
+  int find(std::uint64_t key, Match&& match) const {
+    if (slots_.empty()) return -1;
+    for (std::size_t i = start(key); slots_[i].id != kEmpty; i = (i + 1) & mask_)
+      if (slots_[i].id >= 0 && slots_[i].key == key && match(slots_[i].id)) return slots_[i].id;
+    return -1;
+  }
+
+private:
+  static constexpr int kEmpty = -1, kErased = -2;
+  struct Slot {
+    std::uint64_t key = 0;
+    int id = kEmpty;
+  };
+  std::vector<Slot> slots_;
+  std::size_t mask_ = 0, used_ = 0, live_ = 0;  // used_: live and erased slots
+
+  std::size_t start(std::uint64_t key) const {
+    key ^= key >> 31;
+    key *= 0x7fb5d329728ea185ull;
+    key ^= key >> 27;
+    return static_cast<std::size_t>(key) & mask_;
+  }
+  void rehash(std::size_t cap) {
+    std::vector<Slot> old = std::move(slots_);
+    slots_.assign(cap, Slot{});
+    mask_ = cap - 1;
+    used_ = live_ = 0;
+    for (const auto& slot : old)
+      if (slot.id >= 0) insert(slot.key, slot.id);
+  }
+};
+
 struct PlaneKey {
   int dir;
   double value;
@@ -92,7 +156,7 @@ struct LRSpline<D>::Batch {
   using Rect = MeshRectangle<D>;
   LRSpline& s;
   std::vector<char> dead;
-  std::unordered_multimap<std::uint64_t, int> by_knots;
+  HashIndex by_knots;
   std::unordered_map<PlaneKey, std::vector<int>, PlaneHash> planes;  // mesh_ ids; multiplicity 0 = removed
   ElementGrid<D> grid;
   int max_multiplicity = 1;
@@ -117,7 +181,7 @@ struct LRSpline<D>::Batch {
   explicit Batch(LRSpline& spline) : s(spline), grid(spline.domain_, spline.elements_.size()) {
     dead.assign(s.basis_.size(), 0);
     by_knots.reserve(s.basis_.size() * 2);
-    for (std::size_t i = 0; i < s.basis_.size(); ++i) by_knots.emplace(knot_hash(s.basis_[i]), static_cast<int>(i));
+    for (std::size_t i = 0; i < s.basis_.size(); ++i) by_knots.insert(knot_hash(s.basis_[i]), static_cast<int>(i));
     for (std::size_t i = 0; i < s.mesh_.size(); ++i) {
       const auto& r = s.mesh_[i];
       planes[{r.dir, r.value}].push_back(static_cast<int>(i));
@@ -257,6 +321,8 @@ struct LRSpline<D>::Batch {
         for (std::size_t j = 0; j < n; ++j)
           for (int c = head[static_cast<std::size_t>(L[j])]; c >= 0; c = chain[static_cast<std::size_t>(c)])
             L.push_back(static_cast<int>(base) + c);
+        // Ascending, so the pieces' lists (filtered from it) are too: new ids all exceed the old ones.
+        std::sort(L.begin() + static_cast<std::ptrdiff_t>(n), L.end());
         enqueue(b);
       }
     }
@@ -452,22 +518,15 @@ struct LRSpline<D>::Batch {
 
   void kill(int b, std::uint64_t h) {
     dead[static_cast<std::size_t>(b)] = 1;
-    auto [lo, hi] = by_knots.equal_range(h);
-    for (auto it = lo; it != hi; ++it)
-      if (it->second == b) {
-        by_knots.erase(it);
-        return;
-      }
+    by_knots.erase(h, b);
   }
 
   // The pieces' support lists go into element_basis_ when the batch is flushed or finished.
   void add(LRBSpline<D>&& b, std::vector<int>&& L) {
     const std::uint64_t h = knot_hash(b);
-    auto [lo, hi] = by_knots.equal_range(h);
-    for (auto it = lo; it != hi; ++it) {
-      auto& old = s.basis_[static_cast<std::size_t>(it->second)];
-      if (!same_knots(old, b)) continue;
-      combine(old, b);
+    const int same = by_knots.find(h, [&](int i) { return same_knots(s.basis_[static_cast<std::size_t>(i)], b); });
+    if (same >= 0) {
+      combine(s.basis_[static_cast<std::size_t>(same)], b);
       return;
     }
     const int id = static_cast<int>(s.basis_.size());
@@ -475,7 +534,7 @@ struct LRSpline<D>::Batch {
     s.basis_elements_.push_back(std::move(L));
     dead.push_back(0);
     stamp.push_back(0);
-    by_knots.emplace(h, id);
+    by_knots.insert(h, id);
     enqueue(id);
   }
 
@@ -496,7 +555,6 @@ struct LRSpline<D>::Batch {
     for (int i : order) {
       basis.push_back(std::move(s.basis_[static_cast<std::size_t>(i)]));
       basis_elements.push_back(std::move(s.basis_elements_[static_cast<std::size_t>(i)]));
-      std::sort(basis_elements.back().begin(), basis_elements.back().end());
     }
     s.basis_ = std::move(basis);
     s.basis_elements_ = std::move(basis_elements);
