@@ -456,7 +456,8 @@ struct LRSpline<D>::Batch {
 
   // Splits b by the lines zs (ascending) of direction k, each crossing b's support completely: by two-term
   // splits B[y] = a1 B[y'_0..y'_{p+1}] + a2 B[y'_1..y'_{p+2}] (y' = y with z inserted) of every piece whose
-  // support z is inside, merging equal pieces locally; then the pieces join the collection.
+  // support z is inside, merging equal pieces locally; then the pieces join the collection. Called right after
+  // find_split(b) chose the lines.
   void split(int b, int k, std::span<const double> zs) {
     std::vector<double> lines(zs.begin(), zs.end());
     pieces.clear();
@@ -486,9 +487,10 @@ struct LRSpline<D>::Batch {
       }
       std::swap(pieces, next);
     }
-    // Each piece keeps the elements of the parent's support whose centres lie inside its own.
+    // Each piece keeps the elements of the parent's support whose centres lie inside its own; `boxes` still
+    // holds those elements, in L's order, from the find_split that chose this split.
     centers.clear();
-    for (int e : L) centers.push_back(s.elements_[static_cast<std::size_t>(e)].center());
+    for (const auto& el : boxes) centers.push_back(el.center());
     for (auto& piece : pieces) {
       const Box<D> S = piece.support();
       std::vector<int> Li;
