@@ -417,19 +417,25 @@ struct LRSpline<D>::Batch {
     for (int k = 0; k < D; ++k) {
       const auto& y = fn.knots[k];
       // The elements tile the support, so every interior element bound is the lower bound of some element.
+      // Distinct values first (neighbouring elements repeat them), knots out, then the straddled ones.
       candidates.clear();
       double last = S.lo[k];
       for (const auto& el : boxes) {
         const double v = el.lo[k];
         if (v == last || v == S.lo[k]) continue;
         last = v;
-        if (std::find(y.begin(), y.end(), v) == y.end() &&
-            std::find(candidates.begin(), candidates.end(), v) == candidates.end())
-          candidates.push_back(v);
+        if (std::find(candidates.begin(), candidates.end(), v) == candidates.end()) candidates.push_back(v);
       }
+      std::erase_if(candidates, [&](double v) { return std::find(y.begin(), y.end(), v) != y.end(); });
       if (!candidates.empty()) {
         for (const auto& el : boxes) {
-          std::erase_if(candidates, [&](double v) { return el.lo[k] < v && v < el.hi[k]; });
+          for (std::size_t j = 0; j < candidates.size();)
+            if (el.lo[k] < candidates[j] && candidates[j] < el.hi[k]) {
+              candidates[j] = candidates.back();
+              candidates.pop_back();
+            } else {
+              ++j;
+            }
           if (candidates.empty()) break;
         }
         if (!candidates.empty()) {
