@@ -481,12 +481,16 @@ struct LRSpline<D>::Batch {
         }
         const double a1 = (y[p] <= z && z < y[p + 1]) ? 1.0 : (z - y[0]) / (y[p] - y[0]);
         const double a2 = (y[0] < z && z <= y[1]) ? 1.0 : (y[p + 1] - z) / (y[p + 1] - y[1]);
-        std::vector<double> yz(y);
-        yz.insert(std::upper_bound(yz.begin(), yz.end(), z), z);
+        double yz[kMaxDegree + 3];
+        const auto n = static_cast<std::ptrdiff_t>(y.size());
+        const auto at = std::upper_bound(y.begin(), y.end(), z) - y.begin();
+        std::copy(y.begin(), y.begin() + at, yz);
+        yz[at] = z;
+        std::copy(y.begin() + at, y.end(), yz + at + 1);
         LRBSpline<D> b1 = piece;
-        b1.knots[k].assign(yz.begin(), yz.end() - 1);
+        b1.knots[k].assign(yz, yz + n);
         b1.gamma *= a1;
-        piece.knots[k].assign(yz.begin() + 1, yz.end());
+        piece.knots[k].assign(yz + 1, yz + n + 1);
         piece.gamma *= a2;
         merge_into(next, std::move(b1));
         merge_into(next, std::move(piece));
