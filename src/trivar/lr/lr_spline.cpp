@@ -412,8 +412,9 @@ struct LRSpline<D>::Batch {
     const auto& fn = s.basis_[static_cast<std::size_t>(b)];
     const Box<D> S = fn.support();
     // One pass over the (scattered) elements; the directions then work on the copies.
-    boxes.clear();
-    for (int e : s.basis_elements_[static_cast<std::size_t>(b)]) boxes.push_back(s.elements_[static_cast<std::size_t>(e)]);
+    const auto& L = s.basis_elements_[static_cast<std::size_t>(b)];
+    boxes.resize(L.size());
+    for (std::size_t i = 0; i < L.size(); ++i) boxes[i] = s.elements_[static_cast<std::size_t>(L[i])];
     for (int k = 0; k < D; ++k) {
       const auto& y = fn.knots[k];
       // The elements tile the support, so every interior element bound is the lower bound of some element.
@@ -499,8 +500,9 @@ struct LRSpline<D>::Batch {
     }
     // Each piece keeps the elements of the parent's support whose centres lie inside its own; `boxes` still
     // holds those elements, in L's order, from the find_split that chose this split.
-    centers.clear();
-    for (const auto& el : boxes) centers.push_back(el.center());
+    centers.resize(boxes.size());
+    for (std::size_t i = 0; i < boxes.size(); ++i)
+      for (int j = 0; j < D; ++j) centers[i][static_cast<std::size_t>(j)] = 0.5 * (boxes[i].lo[j] + boxes[i].hi[j]);
     for (auto& piece : pieces) {
       const Box<D> S = piece.support();
       std::vector<int> Li;
