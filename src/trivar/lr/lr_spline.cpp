@@ -4,6 +4,8 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <functional>
+#include <map>
 #include <string>
 #include <unordered_map>
 
@@ -164,7 +166,8 @@ struct LRSpline<D>::Batch {
   // B-splines to test, largest support volume first: a split only makes B-splines of smaller support, so every
   // contribution to a B-spline arrives (merged by add) before it is tested and split, and each distinct B-spline
   // is split once. (Rounding can only break ties; a B-spline split twice would still give the same result.)
-  std::vector<std::pair<double, int>> queue;
+  // Supports take few distinct volumes, so a bucket per volume is cheaper than a heap of all entries.
+  std::map<double, std::vector<int>, std::greater<>> queue;
   std::vector<int> stamp;
   int epoch = 0;
   std::vector<double> candidates;
@@ -306,7 +309,7 @@ struct LRSpline<D>::Batch {
   void resolve() {
     if (touched_base.empty()) return;
     std::vector<int> head(base, -1), chain(origin.size(), -1);
-    for (std::size_t i = 0; i < origin.size(); ++i) {
+    for (std::size_t i = origin.size(); i-- > 0;) {  // so that every chain ascends
       chain[i] = head[static_cast<std::size_t>(origin[i])];
       head[static_cast<std::size_t>(origin[i])] = static_cast<int>(i);
     }
@@ -328,17 +331,17 @@ struct LRSpline<D>::Batch {
     }
     touched_base.clear();
     while (!queue.empty()) {
-      std::pop_heap(queue.begin(), queue.end());
-      const int b = queue.back().second;
-      queue.pop_back();
+      const auto largest = queue.begin();
+      const int b = largest->second.back();
+      largest->second.pop_back();
+      if (largest->second.empty()) queue.erase(largest);
       int dir = 0;
       if (!dead[static_cast<std::size_t>(b)] && find_split(b, dir)) split(b, dir, candidates);
     }
   }
 
   void enqueue(int b) {
-    queue.emplace_back(volume(s.basis_[static_cast<std::size_t>(b)].support()), b);
-    std::push_heap(queue.begin(), queue.end());
+    queue[volume(s.basis_[static_cast<std::size_t>(b)].support())].push_back(b);
   }
 
   // resolve() and element lists for every element, so the exact test can run on the current mesh.
