@@ -9,53 +9,26 @@
 #include <cstdio>
 #include <vector>
 
-#include "trivar/lr/refinement.hpp"
-#include "trivar/lr/selection.hpp"
+#include "lr_diagonal.hpp"
 
 using namespace trivar;
+using trivar::bench::refine_diagonal;
+using trivar::bench::unit_lr;
 
 namespace {
-
-// The identity map on [0,1]^D as a cubic spline (Greville control points), as an LR spline.
-template <int D>
-LRSpline<D> unit_lr(int n) {
-  std::array<KnotVector, D> kv;
-  for (auto& k : kv) k = KnotVector::open_uniform(3, n);
-  const int m = kv[0].size();
-  const auto g = kv[0].greville();
-  std::vector<double> coef;
-  int total = 1;
-  for (int k = 0; k < D; ++k) total *= m;
-  for (int i = 0; i < total; ++i) {
-    int r = i;
-    for (int k = 0; k < D; ++k) {
-      coef.push_back(g[static_cast<std::size_t>(r % m)]);
-      r /= m;
-    }
-  }
-  return LRSpline<D>(TensorSpline<D>(kv, D, false, coef));
-}
 
 template <int D>
 void run_levels(benchmark::State& state, int n, int levels, Strategy strategy) {
   for (auto _ : state) {
     auto lr = unit_lr<D>(n);
-    Param<D> p0{}, p1{};
-    p1.fill(1.0);
-    const RefineOptions opts{strategy, 1, 0.0};
     double total = 0.0;
     std::printf("%dD n=%d %s\n", D, n, to_string(strategy));
     for (int level = 1; level <= levels; ++level) {
       const auto t0 = std::chrono::steady_clock::now();
-      const bool on_elements = strategy != Strategy::structured;
-      const auto ids = on_elements ? elements_on_segment(lr, p0, p1) : functions_on_segment(lr, p0, p1);
-      if (on_elements)
-        refine_elements(lr, std::span<const int>(ids), opts);
-      else
-        refine_functions(lr, std::span<const int>(ids), opts);
+      const std::size_t refined = refine_diagonal(lr, strategy);
       const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       total += secs;
-      std::printf("level %d: refined %zu, basis %d, elements %d, meshrects %zu, seconds %.4f\n", level, ids.size(),
+      std::printf("level %d: refined %zu, basis %d, elements %d, meshrects %zu, seconds %.4f\n", level, refined,
                   lr.num_basis(), lr.num_elements(), lr.mesh().size(), secs);
     }
     std::printf("total seconds %.4f\n", total);

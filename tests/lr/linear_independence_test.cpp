@@ -387,3 +387,32 @@ TEST(LinearIndependence, BezierExtractionOfRefinedCollectionReproducesTheSpline)
     }
   EXPECT_LE(worst, 1e-13);
 }
+
+// The LRSpline overloads run on the spline's own support lists and must agree with the search-based tests.
+TEST(LinearIndependence, SplineOverloadsAgreeWithCollectionTests) {
+  const auto check = [](const LR2& src, int expect_nullity) {
+    const LRSpline<2> lr(src.p, 3, false, src.functions(), src.rects);
+    const auto basis = lr.basis_functions();
+    const auto elements = lr.elements();
+    const auto a = peeling_test<2>(src.p, basis, elements);
+    const auto b = peeling_test(lr);
+    EXPECT_EQ(a.status, b.status);
+    EXPECT_EQ(a.overloaded_elements, b.overloaded_elements);
+    EXPECT_EQ(a.overloaded_basis, b.overloaded_basis);
+    EXPECT_EQ(a.unresolved, b.unresolved);
+    const auto x = exact_test<2>(src.p, basis, elements);
+    const auto y = exact_test(lr);
+    EXPECT_EQ(x.status, y.status);
+    EXPECT_EQ(x.tested, y.tested);
+    EXPECT_EQ(x.rank, y.rank);
+    EXPECT_EQ(y.nullity(), expect_nullity);
+  };
+  check(SeedExample{}.lr, 1);
+  std::vector<double> t{0, 0, 0, 0, 1, 2, 3, 4, 5, 6, 6, 6, 6};
+  LR2 refined{{3, 3}, {t, t}};
+  ASSERT_TRUE(refined.insert(line(0, 2.5, 0, 5)));
+  ASSERT_TRUE(refined.insert(line(1, 2.5, 0, 5)));
+  ASSERT_TRUE(refined.insert(line(0, 3.5, 1, 6)));
+  ASSERT_TRUE(refined.insert(line(1, 3.5, 1, 6)));
+  check(refined, 0);
+}

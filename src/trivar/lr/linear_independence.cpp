@@ -130,13 +130,14 @@ PeelingResult peeling_test(const Ints<D>& degrees, std::span<const LRBSpline<D>>
   return peel(polynomial_dimension<D>(degrees), be.transposed(static_cast<int>(elements.size())), be);
 }
 
+namespace {
+
+// The exact test on given incidence lists (be: elements of each support, eb: its transpose).
 template <int D>
-ExactResult exact_test(const Ints<D>& degrees, std::span<const LRBSpline<D>> basis, std::span<const Box<D>> elements,
-                       double rank_tolerance, int threads) {
+ExactResult exact_on(const Ints<D>& degrees, std::span<const LRBSpline<D>> basis, std::span<const Box<D>> elements,
+                     const Incidence& be, const Incidence& eb, double rank_tolerance) {
   require(rank_tolerance > 0.0 && rank_tolerance < 1.0, "exact linear independence test: tolerance outside (0, 1)");
   const int P = polynomial_dimension<D>(degrees);
-  const Incidence be = support_elements<D>(basis, elements, threads);
-  const Incidence eb = be.transposed(static_cast<int>(elements.size()));
   const PeelingResult peeled = peel(P, eb, be);
   ExactResult res;
   res.tested = static_cast<int>(peeled.unresolved.size());
@@ -209,12 +210,55 @@ ExactResult exact_test(const Ints<D>& degrees, std::span<const LRBSpline<D>> bas
   return res;
 }
 
+// Incidence lists in CSR form from an LR spline's own per-id lists.
+template <class Lists>
+Incidence incidence_of(int n, Lists&& list) {
+  Incidence out;
+  out.offsets.reserve(static_cast<std::size_t>(n) + 1);
+  for (int i = 0; i < n; ++i) {
+    const auto l = list(i);
+    out.ids.insert(out.ids.end(), l.begin(), l.end());
+    out.offsets.push_back(static_cast<int>(out.ids.size()));
+  }
+  return out;
+}
+
+}  // namespace
+
+template <int D>
+ExactResult exact_test(const Ints<D>& degrees, std::span<const LRBSpline<D>> basis, std::span<const Box<D>> elements,
+                       double rank_tolerance, int threads) {
+  const Incidence be = support_elements<D>(basis, elements, threads);
+  return exact_on<D>(degrees, basis, elements, be, be.transposed(static_cast<int>(elements.size())), rank_tolerance);
+}
+
+template <int D>
+PeelingResult peeling_test(const LRSpline<D>& lr) {
+  return peel(polynomial_dimension<D>(lr.degrees()),
+              incidence_of(lr.num_elements(), [&](int e) { return lr.element_support(e); }),
+              incidence_of(lr.num_basis(), [&](int b) { return lr.basis_elements(b); }));
+}
+
+template <int D>
+ExactResult exact_test(const LRSpline<D>& lr, double rank_tolerance) {
+  return exact_on<D>(lr.degrees(), lr.basis_functions(), lr.elements(),
+                     incidence_of(lr.num_basis(), [&](int b) { return lr.basis_elements(b); }),
+                     incidence_of(lr.num_elements(), [&](int e) { return lr.element_support(e); }), rank_tolerance);
+}
+
 #define TRIVAR_INSTANTIATE(D)                                                                                  \
   template PeelingResult peeling_test<D>(const Ints<D>&, std::span<const LRBSpline<D>>, std::span<const Box<D>>, \
                                          int);                                                                 \
   template ExactResult exact_test<D>(const Ints<D>&, std::span<const LRBSpline<D>>, std::span<const Box<D>>,    \
                                      double, int);
 TRIVAR_INSTANTIATE(1)
+TRIVAR_INSTANTIATE(2)
+TRIVAR_INSTANTIATE(3)
+#undef TRIVAR_INSTANTIATE
+
+#define TRIVAR_INSTANTIATE(D)                                \
+  template PeelingResult peeling_test<D>(const LRSpline<D>&); \
+  template ExactResult exact_test<D>(const LRSpline<D>&, double);
 TRIVAR_INSTANTIATE(2)
 TRIVAR_INSTANTIATE(3)
 #undef TRIVAR_INSTANTIATE

@@ -26,6 +26,7 @@
 #include "trivar/core/box.hpp"
 #include "trivar/lr/lr_bezier_extraction.hpp"
 #include "trivar/lr/lr_bspline.hpp"
+#include "trivar/lr/lr_spline.hpp"
 
 namespace trivar {
 
@@ -50,6 +51,10 @@ template <int D>
 PeelingResult peeling_test(const Ints<D>& degrees, std::span<const LRBSpline<D>> basis,
                            std::span<const Box<D>> elements, int threads = 0);
 
+// Peeling of an LR spline, on the support lists it keeps (no search for the elements of each support).
+template <int D>
+PeelingResult peeling_test(const LRSpline<D>& lr);
+
 struct ExactResult {
   Independence status = Independence::not_tested;  // independent or not_independent
   int tested = 0;   // B-splines left by peeling, the rows of the rank problem
@@ -66,5 +71,9 @@ inline constexpr double kRankTolerance = 1e-9;
 template <int D>
 ExactResult exact_test(const Ints<D>& degrees, std::span<const LRBSpline<D>> basis, std::span<const Box<D>> elements,
                        double rank_tolerance = kRankTolerance, int threads = 0);
+
+// The exact test of an LR spline, on the support lists it keeps.
+template <int D>
+ExactResult exact_test(const LRSpline<D>& lr, double rank_tolerance = kRankTolerance);
 
 }  // namespace trivar

@@ -11,11 +11,14 @@
 // off by a refinement appended (the lower part of a split element keeps its id). Ids, spans and references are
 // valid until the next modification.
 //
-// Refinement cost. An insertion finds the elements a rectangle touches through a bucket grid, the B-splines it
-// traverses through those elements' support lists, splits B-splines until every support is minimal (a split
-// candidate is found from the elements of the support alone: a mesh line crosses a support completely exactly
-// when no element of the support straddles it), merges identical B-splines through a hash of their knots, and
-// keeps the element <-> B-spline lists up to date incrementally. So its cost is local to the rectangle.
+// Refinement cost. A batch of rectangles enters the mesh one rectangle at a time (so the mesh, the elements and
+// the decision to skip a rectangle are those of one-by-one insertion): a bucket grid finds the elements a
+// rectangle touches, which are cut. The B-splines are split afterwards, once for the whole batch: the LR
+// B-splines of a mesh do not depend on the order of insertion, so every B-spline on a touched element is tested
+// against the final mesh, largest support first, and split by all the lines that cross it in one direction at
+// once (a line crosses a support completely exactly when no element of the support straddles it); identical
+// B-splines merge through a hash of their knots. Only when the cheap test that a rectangle splits some support
+// fails are the pending splits done before it, to test it exactly. So the cost is local to the rectangles.
 #include <array>
 #include <atomic>
 #include <memory>
