@@ -57,6 +57,7 @@ void write_model(const std::vector<TensorSpline<3>>& cells, const MaterialArgs& 
 void add_invert_command(CLI::App& app, Context& ctx);
 void add_export_command(CLI::App& app, Context& ctx);
 void add_demo_command(CLI::App& app, Context& ctx);
+void add_solve_command(CLI::App& app, Context& ctx);
 
 // All objects of a spline file (.json, .g2); throws trivar::Error naming the file on any problem.
 std::vector<AnySpline> read_objects(const std::string& path);

@@ -1,0 +1,82 @@
+#include "trivar/iga/benchmark_problems.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "trivar/core/error.hpp"
+
+namespace trivar {
+
+template <int D>
+PoissonBenchmark<D> sine_box(int degree, int elements) {
+  constexpr double pi = std::numbers::pi;
+  Param<D> lo, hi;
+  lo.fill(0.0);
+  hi.fill(1.0);
+  PoissonBenchmark<D> b{{box_geometry<D>(lo, hi, degree, elements)}, {}, {}};
+  b.problem.source = [](const double* x) {
+    double u = D * pi * pi;
+    for (int k = 0; k < D; ++k) u *= std::sin(pi * x[k]);
+    return u;
+  };
+  b.problem.dirichlet.push_back({all_faces<D>(), {}, nullptr});
+  b.exact = [](const double* x, double* u, double* g) {
+    double s[D], c[D];
+    for (int k = 0; k < D; ++k) {
+      s[k] = std::sin(pi * x[k]);
+      c[k] = std::cos(pi * x[k]);
+    }
+    u[0] = 1.0;
+    for (int k = 0; k < D; ++k) {
+      u[0] *= s[k];
+      g[k] = pi;
+      for (int l = 0; l < D; ++l) g[k] *= (l == k ? c[l] : s[l]);
+    }
+  };
+  return b;
+}
+
+std::vector<double> unit_box_laplace_eigenvalues(int dim, int count) {
+  require(dim == 2 || dim == 3, "iga: box eigenvalues for 2 or 3 dimensions");
+  require(count >= 1, "iga: at least one eigenvalue");
+  // Every eigenvalue below (count + dim)^2 pi^2 has all indices below count + dim, so enumerating them is enough.
+  const int m = count + dim;
+  std::vector<double> v;
+  for (int i = 1; i <= m; ++i)
+    for (int j = 1; j <= m; ++j)
+      for (int k = 1; k <= (dim == 3 ? m : 1); ++k) v.push_back(i * i + j * j + (dim == 3 ? k * k : 0));
+  std::sort(v.begin(), v.end());
+  v.resize(static_cast<std::size_t>(count));
+  for (double& x : v) x *= std::numbers::pi * std::numbers::pi;
+  return v;
+}
+
+template <int D>
+TensorSpline<D> quarter_annulus(double r_in, double r_out, double height) {
+  require(0 < r_in && r_in < r_out && height > 0, "iga: quarter annulus needs 0 < r_in < r_out and height > 0");
+  std::array<KnotVector, D> knots;
+  knots[0] = KnotVector::open_uniform(1, 1);
+  knots[1] = KnotVector::open_uniform(2, 1);
+  if constexpr (D == 3) knots[2] = KnotVector::open_uniform(1, 1);
+  const double s = std::sqrt(0.5);
+  const double arc[3][3] = {{1, 0, 1}, {1, 1, s}, {0, 1, 1}};  // unit arc: x, y, weight
+  std::vector<double> pts, w;
+  for (int k = 0; k < (D == 3 ? 2 : 1); ++k)
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 2; ++i) {
+        const double r = i == 0 ? r_in : r_out;
+        pts.push_back(r * arc[j][0]);
+        pts.push_back(r * arc[j][1]);
+        if constexpr (D == 3) pts.push_back(k * height);
+        w.push_back(arc[j][2]);
+      }
+  return TensorSpline<D>::from_cartesian(knots, D, pts, w);
+}
+
+template PoissonBenchmark<2> sine_box(int, int);
+template PoissonBenchmark<3> sine_box(int, int);
+template TensorSpline<2> quarter_annulus(double, double, double);
+template TensorSpline<3> quarter_annulus(double, double, double);
+
+}  // namespace trivar

@@ -1,0 +1,43 @@
+#include <gtest/gtest.h>
+
+#include "cli/cli_fixture.hpp"
+
+using cli_test::Cli;
+
+TEST_F(Cli, SolvePoissonPrintsSummaryAndWritesFields) {
+  const auto r = ok("solve poisson --problem sine-cube --degree 2 --refine 4 --study --out result");
+  const auto v = cli_test::numbers_after(r.out, "dofs");
+  ASSERT_FALSE(v.empty());
+  EXPECT_NE(r.out.find("L2 error"), std::string::npos);
+  EXPECT_NE(r.out.find("H1 error"), std::string::npos);
+  EXPECT_NE(r.out.find("assembly"), std::string::npos);
+  EXPECT_TRUE(exists("result/solution.vtu"));
+  EXPECT_TRUE(exists("result/convergence.csv"));
+  EXPECT_TRUE(exists("result/convergence.png"));
+  const auto csv = cli_test::lines(cli_test::slurp(work_ / "result/convergence.csv"));
+  EXPECT_EQ(csv.size(), 3u);  // header, 2 and 4 elements per direction
+}
+
+TEST_F(Cli, SolveModesOfTheCube) {
+  const auto r = ok("solve modes --problem cube-modes --degree 2 --refine 4 --modes 4");
+  const auto m1 = cli_test::numbers_after(r.out, "mode 1: lambda");
+  ASSERT_FALSE(m1.empty());
+  EXPECT_NEAR(m1[0], 3 * M_PI * M_PI, 0.01 * 3 * M_PI * M_PI);
+}
+
+TEST_F(Cli, SolveOnASplineFile) {
+  write("cube.json", cli_test::unit_cube_json(false));
+  const auto r = ok("solve poisson cube.json --degree 2 --refine 3 --out res");
+  EXPECT_NE(r.out.find("dofs 27,"), std::string::npos) << r.out;
+  EXPECT_TRUE(exists("res/solution.vtu"));
+}
+
+TEST_F(Cli, SolveRejectsBadInput) {
+  fails("solve poisson --problem nope --out x");
+  fails("solve poisson --problem sine-cube --degree 0 --out x");
+  fails("solve poisson --problem sine-cube --refine 0 --out x");
+  fails("solve modes --problem sine-cube --out x");
+  fails("solve poisson missing.json --out x");
+  fails("solve poisson");
+  fails("solve poisson --problem sine-cube --solver lu --out x");
+}
