@@ -121,6 +121,58 @@ std::vector<int> active_pairs(const BilinearForm<D>& form, bool rational) {
   return pairs;
 }
 
+// Adds the element matrix E (layout of ElementMatrixKernel::compute, scaled by the NURBS weights w_I w_J) to
+// the rows: rows[I] points at the entry of row I for the first column of the block, off[k][i + n j] is the
+// column offset in direction k of local column j in the row of local row i, wid[k][i] that row's width.
+// The innermost loop runs along u, where both the columns of a row and E's entries are evenly spaced.
+template <int D>
+void scatter(const double* E, bool symmetric, const Ints<D>& n, const std::array<std::vector<int>, D>& off,
+             const std::array<std::vector<int>, D>& wid, const double* weights, double* const* rows) {
+  const int n0 = n[0], S1 = n0 * n0;
+  auto add_run = [&](double* r, const double* e, int e_stride, double wI, const double* wj) {
+    for (int j0 = 0; j0 < n0; ++j0) r[j0] += e[j0 * e_stride] * wI * wj[j0];
+  };
+  if constexpr (D == 2) {
+    const int n1 = n[1];
+    for (int i1 = 0, I = 0; i1 < n1; ++i1)
+      for (int i0 = 0; i0 < n0; ++i0, ++I) {
+        double* row = rows[I] + off[0][static_cast<std::size_t>(i0)];
+        const int w0 = wid[0][static_cast<std::size_t>(i0)];
+        for (int j1 = 0; j1 < n1; ++j1) {
+          const bool tr = symmetric && i1 > j1;
+          const int e1 = (tr ? j1 + n1 * i1 : i1 + n1 * j1) * S1;
+          double* r = row + off[1][static_cast<std::size_t>(i1 + n1 * j1)] * w0;
+          if (tr)
+            add_run(r, E + e1 + n0 * i0, 1, weights[I], weights + n0 * j1);
+          else
+            add_run(r, E + e1 + i0, n0, weights[I], weights + n0 * j1);
+        }
+      }
+  } else {
+    const int n1 = n[1], n2 = n[2], S2 = S1 * n1 * n1;
+    for (int i2 = 0, I = 0; i2 < n2; ++i2)
+      for (int i1 = 0; i1 < n1; ++i1)
+        for (int i0 = 0; i0 < n0; ++i0, ++I) {
+          double* row = rows[I] + off[0][static_cast<std::size_t>(i0)];
+          const int w0 = wid[0][static_cast<std::size_t>(i0)], w01 = w0 * wid[1][static_cast<std::size_t>(i1)];
+          for (int j2 = 0; j2 < n2; ++j2) {
+            const bool tr = symmetric && i2 > j2;
+            const int e2 = (tr ? j2 + n2 * i2 : i2 + n2 * j2) * S2;
+            double* r2 = row + off[2][static_cast<std::size_t>(i2 + n2 * j2)] * w01;
+            for (int j1 = 0; j1 < n1; ++j1) {
+              const int e1 = e2 + (tr ? j1 + n1 * i1 : i1 + n1 * j1) * S1;
+              double* r = r2 + off[1][static_cast<std::size_t>(i1 + n1 * j1)] * w0;
+              const double* wj = weights + n0 * (j1 + n1 * j2);
+              if (tr)
+                add_run(r, E + e1 + n0 * i0, 1, weights[I], wj);
+              else
+                add_run(r, E + e1 + i0, n0, weights[I], wj);
+            }
+          }
+        }
+  }
+}
+
 }  // namespace
 
 template <int D>
@@ -152,7 +204,8 @@ SparseMatrix assemble_matrix(const TensorSpace<D>& space, const BilinearForm<D>&
     thread_local GridGeometry<D> g;
     thread_local ElementMatrixKernel<D> kernel;
     thread_local std::vector<double> coef, P, weights;
-    thread_local std::vector<int> ids, row_base;
+    thread_local std::vector<int> ids;
+    thread_local std::vector<double*> rows;
     const Ints<D> e = quad.element_index(el);
     grid_geometry(space, quad, e, scratch, g);
     coef.resize(static_cast<std::size_t>(m * m * np * Q));
@@ -201,8 +254,8 @@ SparseMatrix assemble_matrix(const TensorSpace<D>& space, const BilinearForm<D>&
       weights[static_cast<std::size_t>(l)] = geo.weight(ids[static_cast<std::size_t>(l)]);
     }
     // Column offsets inside a row: (first + j - lo(first + i)) per direction, and the row's widths.
-    std::array<std::vector<int>, D> off;
-    std::array<std::vector<int>, D> wid;
+    thread_local std::array<std::vector<int>, D> off;
+    thread_local std::array<std::vector<int>, D> wid;
     for (int k = 0; k < D; ++k) {
       const int f = quad.dir[k].first[static_cast<std::size_t>(e[k])];
       off[k].resize(static_cast<std::size_t>(n[k] * n[k]));
@@ -213,30 +266,20 @@ SparseMatrix assemble_matrix(const TensorSpace<D>& space, const BilinearForm<D>&
           off[k][static_cast<std::size_t>(i + n[k] * j)] = f + j - pat.dir[k].lo[static_cast<std::size_t>(f + i)];
       }
     }
+    rows.resize(static_cast<std::size_t>(nloc));
     for (int c = 0; c < m; ++c)
       for (int d = 0; d < m; ++d) {
-        const double* E = kernel.compute(val, der, n, nq, pairs, coef.data() + static_cast<std::size_t>((c * m + d) * np * Q));
+        // Diagonal blocks of a symmetric form are symmetric: the kernel computes half of them.
+        const bool symmetric = c == d;
+        const double* E = kernel.compute(val, der, n, nq, pairs,
+                                         coef.data() + static_cast<std::size_t>((c * m + d) * np * Q), symmetric);
         for (int I = 0; I < nloc; ++I) {
-          Ints<D> iv;
           int row_width = 1;
-          for (int k = 0, r = I; k < D; r /= n[k], ++k) {
-            iv[k] = r % n[k];
-            row_width *= wid[k][static_cast<std::size_t>(iv[k])];
-          }
-          double* row = values + outer[c * N + ids[static_cast<std::size_t>(I)]] + static_cast<std::ptrdiff_t>(d) * row_width;
-          const double wI = weights[static_cast<std::size_t>(I)];
-          for (int J = 0; J < nloc; ++J) {
-            int pos = 0, stride = 1, eidx = 0, estride = 1;
-            for (int k = 0, r = J; k < D; r /= n[k], ++k) {
-              const int ij = iv[k] + n[k] * (r % n[k]);
-              pos += off[k][static_cast<std::size_t>(ij)] * stride;
-              stride *= wid[k][static_cast<std::size_t>(iv[k])];
-              eidx += ij * estride;
-              estride *= n[k] * n[k];
-            }
-            row[pos] += E[eidx] * wI * weights[static_cast<std::size_t>(J)];
-          }
+          for (int k = 0, r = I; k < D; r /= n[k], ++k) row_width *= wid[k][static_cast<std::size_t>(r % n[k])];
+          rows[static_cast<std::size_t>(I)] =
+              values + outer[c * N + ids[static_cast<std::size_t>(I)]] + static_cast<std::ptrdiff_t>(d) * row_width;
         }
+        scatter<D>(E, symmetric, n, off, wid, weights.data(), rows.data());
       }
   });
   return A;

@@ -6,6 +6,21 @@ namespace trivar {
 
 void contract(const double* in, int inner, int cols, int outer, const double* m, int rows, int row_stride,
               int col_stride, double* out) {
+  if (inner == 1) {
+    // Small matrix times vectors: the first direction of a grid, where the generic loop would run length-1
+    // inner loops.
+    for (int o = 0; o < outer; ++o) {
+      const double* src = in + static_cast<std::ptrdiff_t>(o) * cols;
+      double* dst = out + static_cast<std::ptrdiff_t>(o) * rows;
+      for (int r = 0; r < rows; ++r) {
+        const double* mr = m + r * row_stride;
+        double acc = 0;
+        for (int s = 0; s < cols; ++s) acc += mr[s * col_stride] * src[s];
+        dst[r] = acc;
+      }
+    }
+    return;
+  }
   for (int o = 0; o < outer; ++o) {
     const double* src = in + static_cast<std::ptrdiff_t>(o) * cols * inner;
     double* dst = out + static_cast<std::ptrdiff_t>(o) * rows * inner;
@@ -24,7 +39,8 @@ void contract(const double* in, int inner, int cols, int outer, const double* m,
 template <int D>
 const double* ElementMatrixKernel<D>::compute(const std::array<const double*, D>& val,
                                               const std::array<const double*, D>& der, const Ints<D>& n,
-                                              const Ints<D>& nq, const std::vector<int>& pairs, const double* coef) {
+                                              const Ints<D>& nq, const std::vector<int>& pairs, const double* coef,
+                                              bool symmetric) {
   constexpr int K = D + 1;
   int from = 0;
   // Level 0 reads the coefficient arrays in place; later levels read the buffers written before.
@@ -58,10 +74,11 @@ const double* ElementMatrixKernel<D>::compute(const std::array<const double*, D>
         live_[to][static_cast<std::size_t>(okey)] = true;
       }
       const double* in = input[static_cast<std::size_t>(key)];
-      for (int r = 0; r < R; ++r)
-        for (int j = 0; j < nk; ++j)
-          for (int i = 0; i < nk; ++i) {
-            for (int q = 0; q < qk; ++q) w[q] = Fa[i * qk + q] * Fb[j * qk + q];
+      const bool last = k == D - 1;
+      for (int j = 0; j < nk; ++j)
+        for (int i = 0; i < (symmetric && last ? j + 1 : nk); ++i) {
+          for (int q = 0; q < qk; ++q) w[q] = Fa[i * qk + q] * Fb[j * qk + q];
+          for (int r = 0; r < R; ++r) {
             double* o = out.data() + static_cast<std::ptrdiff_t>(P) * ((i + nk * j) + nk * nk * r);
             for (int q = 0; q < qk; ++q) {
               const double* src = in + static_cast<std::ptrdiff_t>(P) * (q + qk * r);
@@ -69,6 +86,7 @@ const double* ElementMatrixKernel<D>::compute(const std::array<const double*, D>
               for (int p = 0; p < P; ++p) o[p] += wq * src[p];
             }
           }
+        }
     }
     for (int key = 0; key < kPairs; ++key) {
       in_live[static_cast<std::size_t>(key)] = live_[to][static_cast<std::size_t>(key)];

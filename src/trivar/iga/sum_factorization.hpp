@@ -28,9 +28,12 @@ public:
   // val[k], der[k]: (n[k] x nq[k]) tables, entry [i * nq[k] + q]. pairs: indices a * (D + 1) + b of the
   // coefficient arrays given, coef: pairs.size() arrays of prod(nq) values (q_0 fastest), one per pair.
   // Returns the matrix in the layout [ij_0][ij_1]...[ij_{D-1}] with ij_k = i_k + n[k] * j_k (row index
-  // i_k, column index j_k in direction k); valid until the next call.
+  // i_k, column index j_k in direction k); valid until the next call. symmetric (C_ab = C_ba for every pair,
+  // so A is symmetric): only the entries with i_{D-1} <= j_{D-1} are computed, the others are left zero and
+  // must be read as A(J, I).
   const double* compute(const std::array<const double*, D>& val, const std::array<const double*, D>& der,
-                        const Ints<D>& n, const Ints<D>& nq, const std::vector<int>& pairs, const double* coef);
+                        const Ints<D>& n, const Ints<D>& nq, const std::vector<int>& pairs, const double* coef,
+                        bool symmetric);
 
 private:
   std::array<std::vector<double>, kPairs> buf_[2];
