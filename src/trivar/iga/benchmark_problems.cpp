@@ -74,6 +74,36 @@ TensorSpline<D> quarter_annulus(double r_in, double r_out, double height) {
   return TensorSpline<D>::from_cartesian(knots, D, pts, w);
 }
 
+template <int D>
+ElasticityBenchmark<D> lame_cylinder(int degree, int elements) {
+  const double a = 1, b = 2, p = 1;
+  ElasticityBenchmark<D> bm{make_tensor_space(quarter_annulus<D>(a, b, 0.5), degree, elements), {}, {}};
+  bm.problem.material = {1000.0, 0.3};
+  const ElasticMaterial m = bm.problem.material;
+  bm.problem.displacement.push_back({{{1, 0}}, {1}, nullptr});
+  bm.problem.displacement.push_back({{{1, 1}}, {0}, nullptr});
+  if constexpr (D == 3) bm.problem.displacement.push_back({{{2, 0}, {2, 1}}, {2}, nullptr});
+  bm.problem.traction_faces = {{0, 0}};
+  bm.problem.traction = [p](const double*, const double* n, double* t) {
+    for (int k = 0; k < D; ++k) t[k] = -p * n[k];
+  };
+  const double A = p * a * a / (b * b - a * a), B = p * a * a * b * b / (b * b - a * a);
+  bm.exact = [m, A, B](const double* x, double* u, double* g) {
+    const double c = (1 + m.poisson_ratio) / m.youngs_modulus;
+    const double r2 = x[0] * x[0] + x[1] * x[1], r = std::sqrt(r2);
+    const double ur = c * ((1 - 2 * m.poisson_ratio) * A * r + B / r);
+    const double dur = c * ((1 - 2 * m.poisson_ratio) * A - B / r2);
+    for (int i = 0; i < D; ++i) {
+      u[i] = i < 2 ? ur * x[i] / r : 0.0;
+      for (int j = 0; j < D; ++j)
+        g[i * D + j] = (i < 2 && j < 2) ? (i == j ? ur / r : 0.0) + (dur - ur / r) * x[i] * x[j] / r2 : 0.0;
+    }
+  };
+  return bm;
+}
+
+template ElasticityBenchmark<2> lame_cylinder(int, int);
+template ElasticityBenchmark<3> lame_cylinder(int, int);
 template PoissonBenchmark<2> sine_box(int, int);
 template PoissonBenchmark<3> sine_box(int, int);
 template TensorSpline<2> quarter_annulus(double, double, double);

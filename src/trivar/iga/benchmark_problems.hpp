@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "trivar/iga/elasticity.hpp"
 #include "trivar/iga/error_norms.hpp"
 #include "trivar/iga/poisson.hpp"
 #include "trivar/iga/tensor_space.hpp"
@@ -24,6 +25,20 @@ PoissonBenchmark<D> sine_box(int degree, int elements);
 // The smallest `count` Dirichlet eigenvalues of -Laplace on the unit box: pi^2 (i^2 + j^2 [+ k^2]), i, j, k >= 1,
 // ascending with multiplicity (cube: 3 pi^2, then 6 pi^2 three times, ...).
 std::vector<double> unit_box_laplace_eigenvalues(int dim, int count);
+
+template <int D>
+struct ElasticityBenchmark {
+  TensorSpace<D> space;
+  ElasticityProblem<D> problem;
+  ExactSolution<D> exact;  // displacement (D components)
+};
+
+// lame-cylinder: thick-walled cylinder a = 1 <= r <= b = 2 under internal pressure p = 1 (E = 1000, nu = 0.3),
+// a quarter by symmetry (u_y = 0 on y = 0, u_x = 0 on x = 0), plane strain (D = 3: slab 0 <= z <= 0.5 with
+// u_z = 0 on both ends). Exact Lame solution u_r = (1 + nu)/E ((1 - 2 nu) A r + B / r), A = p a^2/(b^2 - a^2),
+// B = p a^2 b^2/(b^2 - a^2). Degree p, n elements per direction.
+template <int D>
+ElasticityBenchmark<D> lame_cylinder(int degree, int elements);
 
 // Quarter annulus r_in <= r <= r_out, 0 <= theta <= pi/2, exact NURBS (u radial degree 1, v angular
 // rational quadratic); D = 3 extrudes it to 0 <= z <= height (w degree 1).

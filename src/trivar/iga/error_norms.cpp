@@ -34,7 +34,7 @@ ErrorNorms error_norms(const TensorSpace<D>& space, const Eigen::VectorXd& coefs
       const double W = g.W[static_cast<std::size_t>(q)];
       exact(&g.x[static_cast<std::size_t>(q * D)], u.data(), grad.data());
       for (int c = 0; c < m; ++c) {
-        auto at = [&](int a) { return f[static_cast<std::size_t>((c * (D + 1) + a) * Q + q)]; };
+        auto at = [&](int a) { return f[static_cast<std::size_t>((a * Q + q) * m + c)]; };
         const double uh = at(0) / W;
         double du[D];
         for (int a = 0; a < D; ++a) du[a] = (at(a + 1) - uh * g.dW[static_cast<std::size_t>(q * D + a)]) / W;

@@ -63,6 +63,35 @@ int global_basis(const TensorSpace<D>& space, const PatchQuadrature<D>& quad, co
   return index;
 }
 
+namespace {
+
+// Depth-first over the directions: at direction k contract with the values, recurse, then (if no derivative
+// was taken yet) with the derivatives and recurse, so each partial result is computed once and shared by
+// all derivatives below it: 2 + 3 + 4 contractions in 3-D instead of 4 x 3. Components ride along as the
+// innermost index.
+template <int D>
+void grid_tree(const PatchQuadrature<D>& quad, const Ints<D>& e, const double* in, int k, int deriv, int inner,
+               int outer, GridScratch& s, double* out, int points, int components) {
+  const DirectionTable& t = quad.dir[k];
+  outer /= t.functions();
+  for (int branch = 0; branch < (deriv < 0 ? 2 : 1); ++branch) {
+    const int d = branch == 0 ? deriv : k;
+    const double* F = branch == 0 ? t.values(e[k]) : t.derivatives(e[k]);
+    double* dst;
+    if (k == D - 1) {
+      dst = out + static_cast<std::ptrdiff_t>(d + 1) * points * components;
+    } else {
+      std::vector<double>& buf = s.level[static_cast<std::size_t>(k)];
+      buf.resize(static_cast<std::size_t>(inner) * t.points * outer);
+      dst = buf.data();
+    }
+    contract(in, inner, t.functions(), outer, F, t.points, 1, t.points, dst);
+    if (k < D - 1) grid_tree(quad, e, dst, k + 1, d, inner * t.points, outer, s, out, points, components);
+  }
+}
+
+}  // namespace
+
 template <int D>
 void grid_fields(const TensorSpace<D>& space, const PatchQuadrature<D>& quad, const Ints<D>& e, const double* coefs,
                  int stride, int components, GridScratch& s, std::vector<double>& out) {
@@ -74,26 +103,10 @@ void grid_fields(const TensorSpace<D>& space, const PatchQuadrature<D>& quad, co
   s.block.resize(static_cast<std::size_t>(nloc) * components);
   for (int l = 0; l < nloc; ++l) {
     const double* c = coefs + static_cast<std::size_t>(global_basis(space, quad, e, l)) * stride;
-    for (int m = 0; m < components; ++m) s.block[static_cast<std::size_t>(m * nloc + l)] = c[m];
+    for (int m = 0; m < components; ++m) s.block[static_cast<std::size_t>(l * components + m)] = c[m];
   }
   out.resize(static_cast<std::size_t>(components) * (D + 1) * points);
-  for (int m = 0; m < components; ++m)
-    for (int a = 0; a <= D; ++a) {
-      const double* in = s.block.data() + static_cast<std::size_t>(m) * nloc;
-      int inner = 1, outer = nloc;
-      for (int k = 0; k < D; ++k) {
-        const DirectionTable& t = quad.dir[k];
-        const double* F = (a == k + 1 ? t.derivatives(e[k]) : t.values(e[k]));
-        outer /= t.functions();
-        std::vector<double>& dst = k == D - 1 ? s.grid : (k % 2 == 0 ? s.a : s.b);
-        dst.resize(static_cast<std::size_t>(inner) * t.points * outer);
-        contract(in, inner, t.functions(), outer, F, t.points, 1, t.points, dst.data());
-        in = dst.data();
-        inner *= t.points;
-      }
-      std::copy(s.grid.begin(), s.grid.begin() + points,
-                out.begin() + static_cast<std::ptrdiff_t>((m * (D + 1) + a) * points));
-    }
+  grid_tree(quad, e, s.block.data(), 0, -1, components, nloc, s, out.data(), points, components);
 }
 
 template <int D>
@@ -112,7 +125,7 @@ void grid_geometry(const TensorSpace<D>& space, const PatchQuadrature<D>& quad, 
   g.dW.resize(static_cast<std::size_t>(Q) * D);
   // Quadrature weight of point q: product of the 1-D weights.
   for (int q = 0; q < Q; ++q) {
-    auto at = [&](int comp, int a) { return f[static_cast<std::size_t>((comp * (D + 1) + a) * Q + q)]; };
+    auto at = [&](int comp, int a) { return f[static_cast<std::size_t>((a * Q + q) * comps + comp)]; };
     const double W = rational ? at(D, 0) : 1.0;
     double dW[D], J[D][D];
     for (int a = 0; a < D; ++a) dW[a] = rational ? at(D, a + 1) : 0.0;

@@ -43,12 +43,13 @@ struct GridGeometry {
 
 // Reusable per-thread buffers of the grid evaluations.
 struct GridScratch {
-  std::vector<double> block, a, b, grid, fields;
+  std::vector<double> block, a, b, fields;
+  std::array<std::vector<double>, 3> level;
 };
 
 // Values and parametric first derivatives, on element e's grid, of the spline sums sum_I v_I B_I for
 // `components` fields whose coefficients are coefs[I * stride + c] (B-splines, not divided by W):
-// out[(c * (D + 1) + a) * points + q], a = 0 value, a = 1 + k derivative in direction k.
+// out[(a * points + q) * components + c], a = 0 value, a = 1 + k derivative in direction k.
 template <int D>
 void grid_fields(const TensorSpace<D>& space, const PatchQuadrature<D>& quad, const Ints<D>& e, const double* coefs,
                  int stride, int components, GridScratch& scratch, std::vector<double>& out);
