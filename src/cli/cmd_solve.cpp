@@ -1,7 +1,12 @@
-// trivar solve poisson|modes [MODEL_OR_SPLINE] [--problem NAME] [--degree p] [--refine N] [--study] [--out DIR]:
+// trivar solve poisson|elasticity|modes [MODEL_OR_SPLINE] [--problem NAME] [--degree p] [--refine N] [--study]
+// [--out DIR]:
 // isogeometric analysis on a spline volume (or planar surface) or on a built-in benchmark problem.
 #include <cstdio>
 #include <filesystem>
+#include <functional>
+#include <optional>
+
+#include <Eigen/Dense>
 #include <string>
 #include <variant>
 
@@ -9,6 +14,7 @@
 #include "trivar/core/error.hpp"
 #include "trivar/iga/benchmark_problems.hpp"
 #include "trivar/iga/convergence_table.hpp"
+#include "trivar/iga/elasticity.hpp"
 #include "trivar/iga/eigen_modes.hpp"
 #include "trivar/iga/error_norms.hpp"
 #include "trivar/iga/poisson.hpp"
@@ -26,6 +32,8 @@ struct SolveArgs {
   int degree = 2;
   int refine = 8;
   int modes = 4;
+  double youngs = 1000.0;
+  double poisson = 0.3;
   bool study = false;
   std::string solver = "cg";
   std::string out;
@@ -90,55 +98,100 @@ void write_fields(const std::filesystem::path& path, const TensorSpace<D>& space
   io::write_vtu(path.string(), AnySpline(space.geometry), {}, vtk);
 }
 
+// One discretisation of a static problem: its space, how to solve it, the exact solution when known.
 template <int D>
-void run_poisson(const SolveArgs& a, const TensorSpace<D>& space, const PoissonProblem<D>& problem,
-                 const ExactSolution<D>* exact, ConvergenceRow& row, Eigen::VectorXd& coefs) {
-  auto solver = make_solver(a.solver);
-  const SolveResult r = solve_poisson(space, problem, *solver, a.threads);
-  coefs = r.coefs;
-  row.dofs = r.dofs;
-  row.assembly_seconds = r.assembly_seconds;
-  row.solve_seconds = r.solve_seconds;
-  row.elements = 1;
-  for (int k = 0; k < D; ++k) row.elements *= space.geometry.knots(k).num_elements();
-  std::string line = "dofs " + std::to_string(r.dofs);
-  if (exact) {
-    const ErrorNorms e = error_norms<D>(space, r.coefs, 1, *exact, a.threads);
-    row.l2 = e.l2;
-    row.h1 = e.h1;
-    line += ", L2 error " + sci(e.l2) + ", H1 error " + sci(e.h1);
-  } else {
-    row.l2 = row.h1 = -1;
-  }
-  line += ", assembly " + secs(r.assembly_seconds) + " s, solve " + secs(r.solve_seconds) + " s";
-  if (r.stats.iterations > 0) line += " (" + std::to_string(r.stats.iterations) + " " + a.solver + " iterations)";
-  std::printf("%s\n", line.c_str());
+struct Discretisation {
+  TensorSpace<D> space;
+  int components = 1;
+  std::function<SolveResult(LinearSolver&, int threads)> solve;
+  ExactSolution<D> exact;                    // null when unknown
+  std::optional<ElasticMaterial> material;   // elasticity: von Mises output
+};
+
+// Von Mises stress of a displacement field at a parameter: displacement gradient from the parametric
+// derivatives of field and geometry, grad_x u = (du/du) J^{-1}.
+template <int D>
+double von_mises_at(const TensorSpline<D>& geometry, const TensorSpline<D>& field, const ElasticMaterial& m,
+                    const Param<D>& u) {
+  double gd[(D + 1) * D], fd[(D + 1) * D];
+  geometry.eval_derivs(u, 1, gd);
+  field.eval_derivs(u, 1, fd);
+  Eigen::Matrix<double, D, D> J, G;
+  for (int c = 0; c < D; ++c)
+    for (int a = 0; a < D; ++a) {
+      J(c, a) = gd[(a + 1) * D + c];
+      G(c, a) = fd[(a + 1) * D + c];
+    }
+  const Eigen::Matrix<double, D, D> grad = G * J.inverse();
+  double g[D * D], sigma[D * D];
+  for (int i = 0; i < D; ++i)
+    for (int j = 0; j < D; ++j) g[i * D + j] = grad(i, j);
+  stress<D>(m, g, sigma);
+  return von_mises<D>(m, sigma);
 }
 
 template <int D>
-void poisson_builtin(const SolveArgs& a) {
+void write_solution(const std::filesystem::path& path, const Discretisation<D>& d, const Eigen::VectorXd& coefs) {
+  const TensorSpline<D> field = solution_field(d.space, coefs, d.components);
+  std::vector<io::VtkPointField> vtk;
+  auto param = [](std::span<const double> u) {
+    Param<D> p;
+    for (int k = 0; k < D; ++k) p[k] = u[static_cast<std::size_t>(k)];
+    return p;
+  };
+  vtk.push_back({d.components == 1 ? "u" : "displacement", d.components,
+                 [&](int, std::span<const double> u, std::span<double> out) { field.eval(param(u), out.data()); }});
+  if (d.material)
+    vtk.push_back({"von_mises", 1, [&](int, std::span<const double> u, std::span<double> out) {
+                     out[0] = von_mises_at<D>(d.space.geometry, field, *d.material, param(u));
+                   }});
+  io::write_vtu(path.string(), AnySpline(d.space.geometry), {}, vtk);
+}
+
+// Solves on `refine` elements per direction (with --study also on 2, 4, 8, ... below it), prints the summary
+// line per solve and the observed rates, then writes the outputs.
+template <int D>
+void run_static(const SolveArgs& a, const std::function<Discretisation<D>(int)>& make) {
   std::vector<int> sizes;
-  if (a.study) {
+  if (a.study)
     for (int n = 2; n < a.refine; n *= 2) sizes.push_back(n);
-  }
   sizes.push_back(a.refine);
   std::vector<ConvergenceRow> rows;
   Eigen::VectorXd coefs;
-  PoissonBenchmark<D> last = sine_box<D>(a.degree, sizes.back());
+  std::optional<Discretisation<D>> last;
   for (std::size_t i = 0; i < sizes.size(); ++i) {
-    const PoissonBenchmark<D> b = sine_box<D>(a.degree, sizes[i]);
+    last = make(sizes[i]);
+    const Discretisation<D>& d = *last;
+    auto solver = make_solver(a.solver);
+    const SolveResult r = d.solve(*solver, a.threads);
+    coefs = r.coefs;
     ConvergenceRow row;
     row.step = static_cast<int>(i);
-    run_poisson(a, b.space, b.problem, &b.exact, row, coefs);
+    row.dofs = r.dofs;
+    row.assembly_seconds = r.assembly_seconds;
+    row.solve_seconds = r.solve_seconds;
+    row.elements = 1;
+    for (int k = 0; k < D; ++k) row.elements *= d.space.geometry.knots(k).num_elements();
+    std::string line = "dofs " + std::to_string(r.dofs);
+    if (d.exact) {
+      const ErrorNorms e = error_norms<D>(d.space, r.coefs, d.components, d.exact, a.threads);
+      row.l2 = e.l2;
+      row.h1 = e.h1;
+      line += ", L2 error " + sci(e.l2) + ", H1 error " + sci(e.h1);
+    } else {
+      row.l2 = row.h1 = -1;
+    }
+    line += ", assembly " + secs(r.assembly_seconds) + " s, solve " + secs(r.solve_seconds) + " s";
+    if (r.stats.iterations > 0) line += " (" + std::to_string(r.stats.iterations) + " " + a.solver + " iterations)";
+    std::printf("%s\n", line.c_str());
     rows.push_back(row);
   }
-  if (a.study)
-    for (std::size_t i = 1; i < rows.size(); ++i)
-      std::printf("elements %d: L2 rate %.2f, H1 rate %.2f\n", rows[i].elements, observed_rate(rows, i, D, false),
-                  observed_rate(rows, i, D, true));
+  for (std::size_t i = 1; i < rows.size(); ++i)
+    std::printf("elements %d: L2 rate %.2f, H1 rate %.2f\n", rows[i].elements, observed_rate(rows, i, D, false),
+                observed_rate(rows, i, D, true));
   if (!a.out.empty()) {
     const auto dir = prepare_out(a);
-    write_fields<D>(dir / "solution.vtu", last.space, {{"u", solution_field(last.space, coefs, 1)}});
+    write_solution<D>(dir / "solution.vtu", *last, coefs);
     if (a.study) {
       write_convergence_csv((dir / "convergence.csv").string(), rows, D);
       write_convergence_png((dir / "convergence.png").string(), rows);
@@ -147,17 +200,38 @@ void poisson_builtin(const SolveArgs& a) {
 }
 
 template <int D>
-void poisson_file(const SolveArgs& a) {
+Discretisation<D> poisson_discretisation(const PoissonBenchmark<D>& b) {
+  return {b.space, 1,
+          [b](LinearSolver& s, int threads) { return solve_poisson(b.space, b.problem, s, threads); }, b.exact, {}};
+}
+
+template <int D>
+Discretisation<D> elasticity_discretisation(const ElasticityBenchmark<D>& b) {
+  return {b.space, D,
+          [b](LinearSolver& s, int threads) { return solve_elasticity(b.space, b.problem, s, threads); }, b.exact,
+          b.problem.material};
+}
+
+// A file: Poisson with f = 1 and u = 0 on the whole boundary; elasticity clamped on the face u = 0 under a
+// unit body force along -z (-y in 2-D).
+template <int D>
+void run_file(const SolveArgs& a) {
   require(!a.study, "solve: --study needs a problem with an exact solution (--problem)");
   const TensorSpace<D> space = space_from_file<D>(a);
-  PoissonProblem<D> problem;
-  problem.source = [](const double*) { return 1.0; };
-  problem.dirichlet.push_back({all_faces<D>(), {}, nullptr});
-  ConvergenceRow row;
-  Eigen::VectorXd coefs;
-  run_poisson<D>(a, space, problem, nullptr, row, coefs);
-  if (!a.out.empty())
-    write_fields<D>(prepare_out(a) / "solution.vtu", space, {{"u", solution_field(space, coefs, 1)}});
+  if (a.kind == "poisson") {
+    PoissonBenchmark<D> b{space, {}, nullptr};
+    b.problem.source = [](const double*) { return 1.0; };
+    b.problem.dirichlet.push_back({all_faces<D>(), {}, nullptr});
+    run_static<D>(a, [&](int) { return poisson_discretisation(b); });
+  } else {
+    ElasticityBenchmark<D> b{space, {}, nullptr};
+    b.problem.material = {a.youngs, a.poisson};
+    b.problem.displacement.push_back({{{0, 0}}, {}, nullptr});
+    b.problem.body_force = [](const double*, double* f) {
+      for (int k = 0; k < D; ++k) f[k] = k == D - 1 ? -1.0 : 0.0;
+    };
+    run_static<D>(a, [&](int) { return elasticity_discretisation(b); });
+  }
 }
 
 template <int D>
@@ -185,32 +259,35 @@ void run(const SolveArgs& a) {
   require(a.degree >= 1, "solve: --degree must be at least 1, got " + std::to_string(a.degree));
   require(a.refine >= 1, "solve: --refine must be at least 1, got " + std::to_string(a.refine));
   require(a.problem.empty() != a.file.empty(), "solve: give either a model/spline file or --problem NAME");
-  if (a.kind == "poisson") {
-    if (a.problem.empty()) {
+  if (a.problem.empty()) {
+    if (a.kind == "modes") {
       if (file_dimension(a) == 3)
-        poisson_file<3>(a);
+        modes<3>(a, space_from_file<3>(a), {});
       else
-        poisson_file<2>(a);
-    } else if (a.problem == "sine-cube") {
-      poisson_builtin<3>(a);
-    } else if (a.problem == "sine-square") {
-      poisson_builtin<2>(a);
+        modes<2>(a, space_from_file<2>(a), {});
+    } else if (file_dimension(a) == 3) {
+      run_file<3>(a);
     } else {
-      throw Error("solve: unknown poisson problem '" + a.problem + "' (expected sine-cube or sine-square)");
+      run_file<2>(a);
     }
     return;
   }
-  require(a.modes >= 1, "solve: --modes must be at least 1, got " + std::to_string(a.modes));
-  if (a.problem.empty()) {
-    if (file_dimension(a) == 3)
-      modes<3>(a, space_from_file<3>(a), {});
-    else
-      modes<2>(a, space_from_file<2>(a), {});
-  } else if (a.problem == "cube-modes") {
+  const std::string& p = a.problem;
+  if (a.kind == "poisson" && p == "sine-cube") {
+    run_static<3>(a, [&](int n) { return poisson_discretisation(sine_box<3>(a.degree, n)); });
+  } else if (a.kind == "poisson" && p == "sine-square") {
+    run_static<2>(a, [&](int n) { return poisson_discretisation(sine_box<2>(a.degree, n)); });
+  } else if (a.kind == "elasticity" && p == "lame-cylinder") {
+    run_static<3>(a, [&](int n) { return elasticity_discretisation(lame_cylinder<3>(a.degree, n)); });
+  } else if (a.kind == "elasticity" && p == "lame-ring") {
+    run_static<2>(a, [&](int n) { return elasticity_discretisation(lame_cylinder<2>(a.degree, n)); });
+  } else if (a.kind == "modes" && p == "cube-modes") {
+    require(a.modes >= 1, "solve: --modes must be at least 1, got " + std::to_string(a.modes));
     Param<3> lo{0, 0, 0}, hi{1, 1, 1};
     modes<3>(a, {box_geometry<3>(lo, hi, a.degree, a.refine)}, unit_box_laplace_eigenvalues(3, a.modes));
   } else {
-    throw Error("solve: unknown modes problem '" + a.problem + "' (expected cube-modes)");
+    throw Error("solve: unknown " + a.kind + " problem '" + p +
+                "' (poisson: sine-cube, sine-square; elasticity: lame-cylinder, lame-ring; modes: cube-modes)");
   }
 }
 
@@ -219,12 +296,18 @@ void run(const SolveArgs& a) {
 void add_solve_command(CLI::App& app, Context& ctx) {
   auto* cmd = app.add_subcommand("solve", "Isogeometric analysis: Poisson problems and Laplace eigenmodes");
   auto a = std::make_shared<SolveArgs>();
-  cmd->add_option("KIND", a->kind, "poisson or modes")->required()->check(CLI::IsMember({"poisson", "modes"}));
+  cmd->add_option("KIND", a->kind, "poisson, elasticity or modes")
+      ->required()
+      ->check(CLI::IsMember({"poisson", "elasticity", "modes"}));
   cmd->add_option("MODEL_OR_SPLINE", a->file, "Volume, planar surface or single-cell model (.json, .g2)");
-  cmd->add_option("--problem", a->problem, "Built-in problem: sine-cube, sine-square (poisson), cube-modes (modes)");
+  cmd->add_option("--problem", a->problem,
+                  "Built-in problem: sine-cube, sine-square (poisson), lame-cylinder, lame-ring (elasticity), "
+                  "cube-modes (modes)");
   cmd->add_option("--degree", a->degree, "Spline degree (files: raised to at least this)")->default_val(2);
   cmd->add_option("--refine", a->refine, "Elements per direction (files: parts per element)")->default_val(8);
   cmd->add_option("--modes", a->modes, "Number of eigenmodes")->default_val(4);
+  cmd->add_option("--youngs", a->youngs, "Young's modulus (elasticity on a file)")->default_val(1000.0);
+  cmd->add_option("--poisson-ratio", a->poisson, "Poisson's ratio (elasticity on a file)")->default_val(0.3);
   cmd->add_flag("--study", a->study, "Also solve on 2, 4, 8, ... elements per direction and report rates");
   cmd->add_option("--solver", a->solver, "cg, cg-ichol or cholmod")->default_val("cg");
   cmd->add_option("--out", a->out, "Directory for solution.vtu / modes.vtu, convergence.csv and .png");

@@ -41,3 +41,12 @@ TEST_F(Cli, SolveRejectsBadInput) {
   fails("solve poisson");
   fails("solve poisson --problem sine-cube --solver lu --out x");
 }
+
+TEST_F(Cli, SolveElasticityWritesDisplacementAndVonMises) {
+  const auto r = ok("solve elasticity --problem lame-ring --degree 2 --refine 4 --solver cholmod --out lame");
+  EXPECT_NE(r.out.find("L2 error"), std::string::npos);
+  const std::string vtu = cli_test::slurp(work_ / "lame/solution.vtu");
+  EXPECT_NE(vtu.find("Name=\"displacement\""), std::string::npos);
+  EXPECT_NE(vtu.find("Name=\"von_mises\""), std::string::npos);
+  fails("solve elasticity --problem sine-cube --out x");
+}
