@@ -74,6 +74,33 @@ TensorSpline<D> quarter_annulus(double r_in, double r_out, double height) {
   return TensorSpline<D>::from_cartesian(knots, D, pts, w);
 }
 
+PoissonBenchmark<2> l_shape(int degree, int elements) {
+  const KnotVector ku(1, {0, 0, 0.5, 1, 1}), kv = KnotVector::open_uniform(1, 1);
+  const std::vector<double> pts = {1, 0, 0, 0, 0, -1, 1, 1, -1, 1, -1, -1};
+  const TensorSpline<2> g = TensorSpline<2>::from_cartesian({ku, kv}, 2, pts);
+  PoissonBenchmark<2> b{make_tensor_space(g, degree, elements), {}, {}};
+  b.exact = [](const double* x, double* u, double* grad) {
+    const double r = std::hypot(x[0], x[1]);
+    double theta = std::atan2(x[1], x[0]);
+    if (theta < 0) theta += 2 * std::numbers::pi;
+    const double a = 2.0 / 3.0;
+    u[0] = std::pow(r, a) * std::sin(a * theta);
+    if (r == 0) {
+      grad[0] = grad[1] = 0;
+      return;
+    }
+    const double ur = a * std::pow(r, a - 1) * std::sin(a * theta), ut = a * std::pow(r, a - 1) * std::cos(a * theta);
+    grad[0] = ur * std::cos(theta) - ut * std::sin(theta);
+    grad[1] = ur * std::sin(theta) + ut * std::cos(theta);
+  };
+  auto exact = b.exact;
+  b.problem.dirichlet.push_back({all_faces<2>(), {}, [exact](const double* x, double* u) {
+                                   double g2[2];
+                                   exact(x, u, g2);
+                                 }});
+  return b;
+}
+
 template <int D>
 ElasticityBenchmark<D> lame_cylinder(int degree, int elements) {
   const double a = 1, b = 2, p = 1;

@@ -22,6 +22,12 @@ struct PoissonBenchmark {
 template <int D>
 PoissonBenchmark<D> sine_box(int degree, int elements);
 
+// l-shape: the L-shaped domain [-1, 1]^2 minus [0, 1] x [-1, 0] as one patch (a bilinear map from the
+// inner polyline (1,0)-(0,0)-(0,-1) to the outer one (1,1)-(-1,1)-(-1,-1), with a C^0 line through the
+// diagonal), -lap u = 0 with u = r^(2/3) sin(2 theta / 3) (theta in [0, 3 pi / 2] from the +x axis) as
+// Dirichlet data: the re-entrant corner singularity limits uniform refinement to H1 rate 2/3 in h.
+PoissonBenchmark<2> l_shape(int degree, int elements);
+
 // The smallest `count` Dirichlet eigenvalues of -Laplace on the unit box: pi^2 (i^2 + j^2 [+ k^2]), i, j, k >= 1,
 // ascending with multiplicity (cube: 3 pi^2, then 6 pi^2 three times, ...).
 std::vector<double> unit_box_laplace_eigenvalues(int dim, int count);
