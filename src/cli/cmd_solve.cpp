@@ -1,5 +1,5 @@
 // trivar solve poisson|elasticity|modes [MODEL_OR_SPLINE] [--problem NAME] [--degree p] [--refine N] [--study]
-// [--out DIR]:
+// [--adaptive --steps K --beta B] [--out DIR]:
 // isogeometric analysis on a spline volume (or planar surface) or on a built-in benchmark problem.
 #include <cstdio>
 #include <filesystem>
@@ -13,13 +13,16 @@
 #include "cli.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/iga/benchmark_problems.hpp"
+#include "trivar/iga/adaptive_loop.hpp"
 #include "trivar/iga/convergence_table.hpp"
 #include "trivar/iga/elasticity.hpp"
 #include "trivar/iga/eigen_modes.hpp"
 #include "trivar/iga/error_norms.hpp"
 #include "trivar/iga/poisson.hpp"
 #include "trivar/iga/solution_field.hpp"
+#include "trivar/io/lr_vtk.hpp"
 #include "trivar/io/vtk_writer.hpp"
+#include "trivar/lr/any_lr_spline.hpp"
 
 namespace trivar::cli {
 
@@ -35,6 +38,9 @@ struct SolveArgs {
   double youngs = 1000.0;
   double poisson = 0.3;
   bool study = false;
+  bool adaptive = false;
+  int steps = 5;
+  double beta = 0.3;
   std::string solver = "cg";
   std::string out;
   int threads = 0;
@@ -212,6 +218,31 @@ Discretisation<D> elasticity_discretisation(const ElasticityBenchmark<D>& b) {
           b.problem.material};
 }
 
+// Adaptive LR refinement from the problem's tensor space: one line per step, then the table and the mesh.
+template <int D>
+void run_adaptive(const SolveArgs& a, const PoissonBenchmark<D>& b) {
+  require(!a.study, "solve: --study and --adaptive exclude each other");
+  LRSpline<D> lr(b.space.geometry);
+  AdaptiveOptions o;
+  o.steps = a.steps;
+  o.beta = a.beta;
+  o.solver = a.solver;
+  const auto rows = adaptive_poisson<D>(
+      lr, b.problem, b.exact, o,
+      [](const ConvergenceRow& r) {
+        std::printf("step %d: dofs %d, L2 error %s, H1 error %s, estimate %s, assembly %s s, solve %s s\n", r.step,
+                    r.dofs, sci(r.l2).c_str(), sci(r.h1).c_str(), sci(r.estimate).c_str(),
+                    secs(r.assembly_seconds).c_str(), secs(r.solve_seconds).c_str());
+      },
+      nullptr, a.threads);
+  if (!a.out.empty()) {
+    const auto dir = prepare_out(a);
+    write_convergence_csv((dir / "convergence.csv").string(), rows, D);
+    write_convergence_png((dir / "convergence.png").string(), rows);
+    io::write_lr_vtu((dir / "mesh.vtu").string(), AnyLRSpline(lr));
+  }
+}
+
 // A file: Poisson with f = 1 and u = 0 on the whole boundary; elasticity clamped on the face u = 0 under a
 // unit body force along -z (-y in 2-D).
 template <int D>
@@ -273,7 +304,16 @@ void run(const SolveArgs& a) {
     return;
   }
   const std::string& p = a.problem;
-  if (a.kind == "poisson" && p == "sine-cube") {
+  require(!a.adaptive || (a.kind == "poisson" && (p == "l-shape" || p == "sine-square" || p == "sine-cube")),
+          "solve: --adaptive is available for the poisson problems l-shape, sine-square and sine-cube");
+  if (a.adaptive) {
+    if (p == "sine-cube")
+      run_adaptive<3>(a, sine_box<3>(a.degree, a.refine));
+    else
+      run_adaptive<2>(a, p == "l-shape" ? l_shape(a.degree, a.refine) : sine_box<2>(a.degree, a.refine));
+  } else if (a.kind == "poisson" && p == "l-shape") {
+    run_static<2>(a, [&](int n) { return poisson_discretisation(l_shape(a.degree, n)); });
+  } else if (a.kind == "poisson" && p == "sine-cube") {
     run_static<3>(a, [&](int n) { return poisson_discretisation(sine_box<3>(a.degree, n)); });
   } else if (a.kind == "poisson" && p == "sine-square") {
     run_static<2>(a, [&](int n) { return poisson_discretisation(sine_box<2>(a.degree, n)); });
@@ -287,7 +327,7 @@ void run(const SolveArgs& a) {
     modes<3>(a, {box_geometry<3>(lo, hi, a.degree, a.refine)}, unit_box_laplace_eigenvalues(3, a.modes));
   } else {
     throw Error("solve: unknown " + a.kind + " problem '" + p +
-                "' (poisson: sine-cube, sine-square; elasticity: lame-cylinder, lame-ring; modes: cube-modes)");
+                "' (poisson: sine-cube, sine-square, l-shape; elasticity: lame-cylinder, lame-ring; modes: cube-modes)");
   }
 }
 
@@ -301,7 +341,7 @@ void add_solve_command(CLI::App& app, Context& ctx) {
       ->check(CLI::IsMember({"poisson", "elasticity", "modes"}));
   cmd->add_option("MODEL_OR_SPLINE", a->file, "Volume, planar surface or single-cell model (.json, .g2)");
   cmd->add_option("--problem", a->problem,
-                  "Built-in problem: sine-cube, sine-square (poisson), lame-cylinder, lame-ring (elasticity), "
+                  "Built-in problem: sine-cube, sine-square, l-shape (poisson), lame-cylinder, lame-ring (elasticity), "
                   "cube-modes (modes)");
   cmd->add_option("--degree", a->degree, "Spline degree (files: raised to at least this)")->default_val(2);
   cmd->add_option("--refine", a->refine, "Elements per direction (files: parts per element)")->default_val(8);
@@ -309,6 +349,9 @@ void add_solve_command(CLI::App& app, Context& ctx) {
   cmd->add_option("--youngs", a->youngs, "Young's modulus (elasticity on a file)")->default_val(1000.0);
   cmd->add_option("--poisson-ratio", a->poisson, "Poisson's ratio (elasticity on a file)")->default_val(0.3);
   cmd->add_flag("--study", a->study, "Also solve on 2, 4, 8, ... elements per direction and report rates");
+  cmd->add_flag("--adaptive", a->adaptive, "Adaptive LR refinement: solve, estimate, mark (Dorfler), refine");
+  cmd->add_option("--steps", a->steps, "Adaptive steps (solves)")->default_val(5);
+  cmd->add_option("--beta", a->beta, "Dorfler marking fraction in (0, 1]")->default_val(0.3);
   cmd->add_option("--solver", a->solver, "cg, cg-ichol or cholmod")->default_val("cg");
   cmd->add_option("--out", a->out, "Directory for solution.vtu / modes.vtu, convergence.csv and .png");
   cmd->callback([a, &ctx] {

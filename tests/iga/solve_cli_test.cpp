@@ -50,3 +50,13 @@ TEST_F(Cli, SolveElasticityWritesDisplacementAndVonMises) {
   EXPECT_NE(vtu.find("Name=\"von_mises\""), std::string::npos);
   fails("solve elasticity --problem sine-cube --out x");
 }
+
+TEST_F(Cli, SolveAdaptiveLShapeWritesTheTable) {
+  const auto r = ok("solve poisson --problem l-shape --degree 2 --refine 4 --adaptive --steps 3 --beta 0.3 --out ad");
+  EXPECT_NE(r.out.find("step 2: dofs"), std::string::npos) << r.out;
+  EXPECT_EQ(cli_test::lines(cli_test::slurp(work_ / "ad/convergence.csv")).size(), 4u);
+  EXPECT_TRUE(exists("ad/convergence.png"));
+  EXPECT_TRUE(exists("ad/mesh.vtu"));
+  fails("solve poisson --problem l-shape --adaptive --beta 0 --out x");
+  fails("solve elasticity --problem lame-ring --adaptive --out x");
+}
