@@ -55,3 +55,5 @@ BENCHMARK(BM_AssembleSineCube)
     ->UseRealTime();
 
 }  // namespace
+
+BENCHMARK_MAIN();
