@@ -47,6 +47,7 @@ int main(int argc, char** argv) {
   add_export_command(app, ctx);
   add_slice_command(app, ctx);
   add_demo_command(app, ctx);
+  add_solve_command(app, ctx);
 
   try {
     app.parse(argc, argv);

@@ -1,0 +1,118 @@
+#include "trivar/iga/eigen_modes.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <numeric>
+
+#include <Spectra/SymGEigsShiftSolver.h>
+
+#include "trivar/core/error.hpp"
+#include "trivar/iga/assembler.hpp"
+#include "trivar/iga/solver.hpp"
+
+namespace trivar {
+
+namespace {
+
+// y = (K - sigma M)^{-1} x, the operator Spectra's shift-invert mode iterates with.
+class ShiftInvert {
+public:
+  using Scalar = double;
+  ShiftInvert(const SparseMatrix& K, const SparseMatrix& M) : K_(K), M_(M) {}
+  Eigen::Index rows() const { return K_.rows(); }
+  Eigen::Index cols() const { return K_.cols(); }
+  void set_shift(double sigma) {
+    shifted_ = K_ - sigma * M_;
+    solver_ = make_solver("cholmod");
+    solver_->compute(shifted_);
+  }
+  void perform_op(const double* x, double* y) const {
+    const Eigen::Map<const Eigen::VectorXd> in(x, K_.rows());
+    Eigen::Map<Eigen::VectorXd>(y, K_.rows()) = solver_->solve(in);
+  }
+
+private:
+  const SparseMatrix& K_;
+  const SparseMatrix& M_;
+  SparseMatrix shifted_;
+  std::unique_ptr<LinearSolver> solver_;
+};
+
+// Column storage on purpose: Eigen runs row-major products on all threads, which for the many small products
+// of a Lanczos iteration costs more in synchronisation than it saves.
+class MassProduct {
+public:
+  using Scalar = double;
+  explicit MassProduct(const SparseMatrix& M) : M_(M) {}
+  Eigen::Index rows() const { return M_.rows(); }
+  Eigen::Index cols() const { return M_.cols(); }
+  void perform_op(const double* x, double* y) const {
+    Eigen::Map<Eigen::VectorXd>(y, M_.rows()) = M_ * Eigen::Map<const Eigen::VectorXd>(x, M_.rows());
+  }
+
+private:
+  Eigen::SparseMatrix<double> M_;
+};
+
+}  // namespace
+
+ModesResult lowest_modes(const SparseMatrix& K, const SparseMatrix& M, const FixedDofs& fixed, int count,
+                         double sigma) {
+  const SparseMatrix Kf = free_block(K, fixed), Mf = free_block(M, fixed);
+  const int n = static_cast<int>(Kf.rows());
+  require(count >= 1 && count < n, "modes: asked for " + std::to_string(count) + " modes of a problem with " +
+                                       std::to_string(n) + " free dofs");
+  ShiftInvert op(Kf, Mf);
+  MassProduct bop(Mf);
+  const int ncv = std::min(n, std::max(2 * count + 1, 20));
+  Spectra::SymGEigsShiftSolver<ShiftInvert, MassProduct, Spectra::GEigsMode::ShiftInvert> eigs(op, bop, count, ncv,
+                                                                                              sigma);
+  eigs.init();
+  eigs.compute(Spectra::SortRule::LargestMagn, 1000, 1e-12);
+  require(eigs.info() == Spectra::CompInfo::Successful, "modes: the Lanczos iteration did not converge");
+  const Eigen::VectorXd lambda = eigs.eigenvalues();
+  const Eigen::MatrixXd vec = eigs.eigenvectors();
+  std::vector<int> order(static_cast<std::size_t>(lambda.size()));
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return lambda[a] < lambda[b]; });
+  const std::vector<int> free = fixed.free_dofs();
+  ModesResult r;
+  r.dofs = n;
+  r.values.resize(count);
+  r.vectors = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(fixed.fixed.size()), count);
+  for (int i = 0; i < count; ++i) {
+    const int j = order[static_cast<std::size_t>(i)];
+    r.values[i] = lambda[j];
+    for (int f = 0; f < n; ++f) r.vectors(free[static_cast<std::size_t>(f)], i) = vec(f, j);
+  }
+  return r;
+}
+
+template <int D>
+ModesResult laplace_modes(const TensorSpace<D>& space, const std::vector<Face>& dirichlet, int count, int threads) {
+  const auto t0 = std::chrono::steady_clock::now();
+  BilinearForm<D> stiffness, mass;
+  stiffness.coefficients = [](const double*, double* P) {
+    for (int a = 0; a < (D + 1) * (D + 1); ++a) P[a] = 0.0;
+    for (int a = 1; a <= D; ++a) P[a * (D + 1) + a] = 1.0;
+  };
+  mass.value_terms = true;
+  mass.gradient_terms = false;
+  mass.coefficients = [](const double*, double* P) {
+    for (int a = 0; a < (D + 1) * (D + 1); ++a) P[a] = 0.0;
+    P[0] = 1.0;
+  };
+  const SparseMatrix K = assemble_matrix(space, stiffness, threads);
+  const SparseMatrix M = assemble_matrix(space, mass, threads);
+  const FixedDofs fixed = project_dirichlet<D>(space, 1, {{dirichlet, {}, nullptr}});
+  const auto t1 = std::chrono::steady_clock::now();
+  ModesResult r = lowest_modes(K, M, fixed, count);
+  r.assembly_seconds = std::chrono::duration<double>(t1 - t0).count();
+  r.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+  return r;
+}
+
+template ModesResult laplace_modes(const TensorSpace<2>&, const std::vector<Face>&, int, int);
+template ModesResult laplace_modes(const TensorSpace<3>&, const std::vector<Face>&, int, int);
+
+}  // namespace trivar

@@ -1,0 +1,32 @@
+#pragma once
+// Generalised symmetric eigenproblems K x = lambda M x (free vibration, Laplace eigenvalues): the lowest
+// modes by Spectra's Lanczos iteration in shift-invert mode, (K - sigma M)^{-1} M, with the shifted matrix
+// factorised once by CHOLMOD.
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "trivar/iga/dirichlet.hpp"
+#include "trivar/iga/sparse_matrix.hpp"
+#include "trivar/iga/tensor_space.hpp"
+
+namespace trivar {
+
+struct ModesResult {
+  Eigen::VectorXd values;   // ascending
+  Eigen::MatrixXd vectors;  // one column per mode, every dof (fixed ones zero), M-normalised
+  int dofs = 0;             // free dofs
+  double assembly_seconds = 0, solve_seconds = 0;
+};
+
+// The `count` smallest eigenpairs on the free dofs (K positive definite there, M positive definite).
+// sigma: shift below the smallest wanted eigenvalue. Throws trivar::Error for count outside
+// 1 .. free dofs - 1 or when the iteration does not converge.
+ModesResult lowest_modes(const SparseMatrix& K, const SparseMatrix& M, const FixedDofs& fixed, int count,
+                         double sigma = 0.0);
+
+// Eigenpairs of -Laplace u = lambda u with u = 0 on the given faces (natural condition elsewhere).
+template <int D>
+ModesResult laplace_modes(const TensorSpace<D>& space, const std::vector<Face>& dirichlet, int count, int threads = 0);
+
+}  // namespace trivar

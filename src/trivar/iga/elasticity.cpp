@@ -1,0 +1,87 @@
+#include "trivar/iga/elasticity.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include "trivar/core/error.hpp"
+#include "trivar/iga/assembler.hpp"
+
+namespace trivar {
+
+double ElasticMaterial::lambda() const {
+  return youngs_modulus * poisson_ratio / ((1 + poisson_ratio) * (1 - 2 * poisson_ratio));
+}
+
+double ElasticMaterial::mu() const { return youngs_modulus / (2 * (1 + poisson_ratio)); }
+
+template <int D>
+void stress(const ElasticMaterial& m, const double* grad, double* sigma) {
+  const double lambda = m.lambda(), mu = m.mu();
+  double tr = 0;
+  for (int k = 0; k < D; ++k) tr += grad[k * D + k];
+  for (int i = 0; i < D; ++i)
+    for (int j = 0; j < D; ++j) sigma[i * D + j] = mu * (grad[i * D + j] + grad[j * D + i]) + (i == j ? lambda * tr : 0.0);
+}
+
+template <int D>
+double von_mises(const ElasticMaterial& m, const double* s) {
+  if constexpr (D == 2) {
+    const double szz = m.poisson_ratio * (s[0] + s[3]);
+    const double d = (s[0] - s[3]) * (s[0] - s[3]) + (s[3] - szz) * (s[3] - szz) + (szz - s[0]) * (szz - s[0]);
+    return std::sqrt(0.5 * d + 3 * s[1] * s[1]);
+  } else {
+    const double d = (s[0] - s[4]) * (s[0] - s[4]) + (s[4] - s[8]) * (s[4] - s[8]) + (s[8] - s[0]) * (s[8] - s[0]);
+    return std::sqrt(0.5 * d + 3 * (s[1] * s[1] + s[2] * s[2] + s[5] * s[5]));
+  }
+}
+
+template <int D>
+SolveResult solve_elasticity(const TensorSpace<D>& space, const ElasticityProblem<D>& problem, LinearSolver& solver,
+                             int threads) {
+  const ElasticMaterial& mat = problem.material;
+  require(mat.youngs_modulus > 0, "elasticity: Young's modulus must be positive");
+  require(mat.poisson_ratio > -1 && mat.poisson_ratio < 0.5, "elasticity: Poisson's ratio must lie in (-1, 0.5)");
+  const auto t0 = std::chrono::steady_clock::now();
+  constexpr int K = D + 1;
+  BilinearForm<D> form;
+  form.components = D;
+  const double lambda = mat.lambda(), mu = mat.mu();
+  // a(u, v) = int lambda div u div v + 2 mu eps(u) : eps(v); for v = R_I e_c, u = R_J e_d:
+  // lambda d_c R_I d_d R_J + mu delta_cd grad R_I . grad R_J + mu d_d R_I d_c R_J.
+  form.coefficients = [=](const double*, double* P) {
+    for (int c = 0; c < D; ++c)
+      for (int d = 0; d < D; ++d) {
+        double* B = P + (c * D + d) * K * K;
+        for (int e = 0; e < K * K; ++e) B[e] = 0.0;
+        B[(c + 1) * K + (d + 1)] += lambda;
+        B[(d + 1) * K + (c + 1)] += mu;
+        if (c == d)
+          for (int a = 1; a <= D; ++a) B[a * K + a] += mu;
+      }
+  };
+  SparseMatrix A = assemble_matrix(space, form, threads);
+  Eigen::VectorXd b = problem.body_force ? assemble_load<D>(space, D, problem.body_force, threads)
+                                         : Eigen::VectorXd::Zero(static_cast<Eigen::Index>(space.num_basis()) * D);
+  if (problem.traction && !problem.traction_faces.empty())
+    add_face_load<D>(space, problem.traction_faces, D, problem.traction, b);
+  const FixedDofs fixed = project_dirichlet(space, D, problem.displacement);
+  apply_dirichlet(A, b, fixed);
+  SolveResult r;
+  r.assembly_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const auto t1 = std::chrono::steady_clock::now();
+  solver.compute(A);
+  r.coefs = solver.solve(b);
+  r.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+  r.stats = solver.stats();
+  r.dofs = fixed.num_free();
+  return r;
+}
+
+template SolveResult solve_elasticity(const TensorSpace<2>&, const ElasticityProblem<2>&, LinearSolver&, int);
+template SolveResult solve_elasticity(const TensorSpace<3>&, const ElasticityProblem<3>&, LinearSolver&, int);
+template void stress<2>(const ElasticMaterial&, const double*, double*);
+template void stress<3>(const ElasticMaterial&, const double*, double*);
+template double von_mises<2>(const ElasticMaterial&, const double*);
+template double von_mises<3>(const ElasticMaterial&, const double*);
+
+}  // namespace trivar

@@ -1,0 +1,23 @@
+#pragma once
+// Residual-based a-posteriori error indicator for the Poisson problem on LR spaces (Babuska-Rheinboldt /
+// Verfurth): per element K
+//   eta_K^2 = h_K^2 ||f + lap u_h||_K^2 + 1/2 sum over interior sides S of K of h_K ||[du_h/dn]||_S^2,
+// h_K = |K|^(1/D). The sum of eta_K^2 bounds the squared energy error from above up to a constant. On
+// C^1 spline spaces the jumps vanish except across C^0 lines (repeated knots, kinks of the geometry map).
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "trivar/iga/lr_space.hpp"
+#include "trivar/iga/poisson.hpp"
+
+namespace trivar {
+
+// One indicator eta_K per element. Throws trivar::Error when the problem has a variable conductivity (only
+// k = 1 is supported).
+template <int D>
+std::vector<double> residual_indicators(const LRSpline<D>& geometry, const std::vector<LRElementBasis<D>>& elements,
+                                        const PoissonProblem<D>& problem, const Eigen::VectorXd& coefs,
+                                        int threads = 0);
+
+}  // namespace trivar

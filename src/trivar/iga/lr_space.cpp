@@ -1,0 +1,117 @@
+#include "trivar/iga/lr_space.hpp"
+
+#include "trivar/core/error.hpp"
+#include "trivar/core/parallel.hpp"
+#include "trivar/lr/lr_bezier_extraction.hpp"
+#include "trivar/spline/basis.hpp"
+
+namespace trivar {
+
+template <int D>
+std::vector<LRElementBasis<D>> lr_element_bases(const LRSpline<D>& g, int threads) {
+  require(!g.is_rational() && g.dim() == D, "iga: LR analysis needs a polynomial geometry with " + std::to_string(D) +
+                                                " coordinates");
+  std::vector<LRElementBasis<D>> out(static_cast<std::size_t>(g.num_elements()));
+  parallel_for(g.num_elements(), threads, [&](std::ptrdiff_t e) {
+    LRElementBasis<D>& b = out[static_cast<std::size_t>(e)];
+    const auto support = g.element_support(static_cast<int>(e));
+    b.ids.assign(support.begin(), support.end());
+    b.box = g.element(static_cast<int>(e));
+    b.C = extraction_operator<D>(g.degrees(), g.basis_functions(), b.ids, b.box);
+  });
+  return out;
+}
+
+template <int D>
+void lr_point(const LRSpline<D>& g, const LRElementBasis<D>& el, const Param<D>& u, LRPoint<D>& out) {
+  // Bernstein polynomials of each direction on the element's interval: the B-splines of the knot vector
+  // with p + 1 copies of each end, and their derivatives up to order 2.
+  double B[D][3][kMaxDegree + 1];
+  Ints<D> n;
+  int nb = 1;
+  for (int k = 0; k < D; ++k) {
+    const int p = g.degree(k);
+    n[k] = p + 1;
+    nb *= n[k];
+    double t[2 * (kMaxDegree + 1)];
+    for (int i = 0; i <= p; ++i) {
+      t[i] = el.box.lo[k];
+      t[p + 1 + i] = el.box.hi[k];
+    }
+    double ders[3 * (kMaxDegree + 1)];
+    basis_derivatives(t, p, p, u[k], 2, ders);
+    for (int o = 0; o < 3; ++o)
+      for (int i = 0; i <= p; ++i) B[k][o][i] = ders[o * (p + 1) + i];
+  }
+  // Tensor Bernstein values and derivatives: orders per direction.
+  thread_local std::vector<double> tb;
+  const int nd = 1 + D + D * D;
+  tb.resize(static_cast<std::size_t>(nb * nd));
+  for (int j = 0; j < nb; ++j) {
+    int idx[D];
+    for (int k = 0, r = j; k < D; r /= n[k], ++k) idx[k] = r % n[k];
+    auto prod = [&](int a, int b) {  // derivative once along a and once along b (-1: none)
+      double v = 1;
+      for (int k = 0; k < D; ++k) v *= B[k][(a == k) + (b == k)][idx[k]];
+      return v;
+    };
+    tb[static_cast<std::size_t>(j * nd)] = prod(-1, -1);
+    for (int a = 0; a < D; ++a) {
+      tb[static_cast<std::size_t>(j * nd + 1 + a)] = prod(a, -1);
+      for (int b = 0; b < D; ++b) tb[static_cast<std::size_t>(j * nd + 1 + D + a * D + b)] = prod(a, b);
+    }
+  }
+  const int m = static_cast<int>(el.ids.size());
+  out.R.assign(static_cast<std::size_t>(m), 0.0);
+  out.dR.assign(static_cast<std::size_t>(m) * D, 0.0);
+  out.d2R.assign(static_cast<std::size_t>(m) * D * D, 0.0);
+  for (int l = 0; l < m; ++l)
+    for (int j = 0; j < nb; ++j) {
+      const double c = el.C(l, j);
+      if (c == 0.0) continue;
+      const double* t = &tb[static_cast<std::size_t>(j * nd)];
+      out.R[static_cast<std::size_t>(l)] += c * t[0];
+      for (int a = 0; a < D; ++a) {
+        out.dR[static_cast<std::size_t>(l * D + a)] += c * t[1 + a];
+        for (int b = 0; b < D; ++b) out.d2R[static_cast<std::size_t>((l * D + a) * D + b)] += c * t[1 + D + a * D + b];
+      }
+    }
+  out.x.fill(0.0);
+  for (auto& r : out.J) r.fill(0.0);
+  for (auto& h : out.H)
+    for (auto& r : h) r.fill(0.0);
+  for (int l = 0; l < m; ++l) {
+    const double* x = g.basis_function(el.ids[static_cast<std::size_t>(l)]).coef.data();
+    for (int c = 0; c < D; ++c) {
+      out.x[c] += x[c] * out.R[static_cast<std::size_t>(l)];
+      for (int a = 0; a < D; ++a) {
+        out.J[c][a] += x[c] * out.dR[static_cast<std::size_t>(l * D + a)];
+        for (int b = 0; b < D; ++b) out.H[c][a][b] += x[c] * out.d2R[static_cast<std::size_t>((l * D + a) * D + b)];
+      }
+    }
+  }
+}
+
+template <int D>
+std::vector<int> lr_face_basis(const LRSpline<D>& g, int dir, int side) {
+  const int p = g.degree(dir);
+  const double end = side == 0 ? g.domain().lo[dir] : g.domain().hi[dir];
+  std::vector<int> ids;
+  for (int i = 0; i < g.num_basis(); ++i) {
+    const auto& t = g.basis_function(i).knots[dir];
+    bool clamped = true;
+    for (int j = 0; j <= p; ++j) clamped = clamped && t[static_cast<std::size_t>(side == 0 ? j : j + 1)] == end;
+    if (clamped) ids.push_back(i);
+  }
+  return ids;
+}
+
+#define TRIVAR_INSTANTIATE(D)                                                                               \
+  template std::vector<LRElementBasis<D>> lr_element_bases(const LRSpline<D>&, int);                       \
+  template void lr_point(const LRSpline<D>&, const LRElementBasis<D>&, const Param<D>&, LRPoint<D>&);      \
+  template std::vector<int> lr_face_basis(const LRSpline<D>&, int, int);
+TRIVAR_INSTANTIATE(2)
+TRIVAR_INSTANTIATE(3)
+#undef TRIVAR_INSTANTIATE
+
+}  // namespace trivar

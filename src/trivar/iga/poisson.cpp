@@ -1,0 +1,70 @@
+#include "trivar/iga/poisson.hpp"
+
+#include <chrono>
+
+#include "trivar/iga/assembler.hpp"
+#include "trivar/iga/boundary_integral.hpp"
+
+namespace trivar {
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+template <int D>
+void add_face_load(const TensorSpace<D>& space, const std::vector<Face>& faces, int components,
+                   const std::function<void(const double* x, const double* normal, double* g)>& g, Eigen::VectorXd& b) {
+  const int N = space.num_basis();
+  std::vector<double> v(static_cast<std::size_t>(components));
+  for (const Face& f : faces)
+    integrate_face<D>(space, f, space.geometry.degree(0) + 2, [&](const FacePoint<D>& p) {
+      g(p.x.data(), p.normal.data(), v.data());
+      for (std::size_t i = 0; i < p.ids.size(); ++i)
+        for (int c = 0; c < components; ++c)
+          b[static_cast<Eigen::Index>(c) * N + p.ids[i]] += p.weight * p.values[i] * v[static_cast<std::size_t>(c)];
+    });
+}
+
+template <int D>
+SolveResult solve_poisson(const TensorSpace<D>& space, const PoissonProblem<D>& problem, LinearSolver& solver,
+                          int threads) {
+  const auto t0 = std::chrono::steady_clock::now();
+  BilinearForm<D> form;
+  form.coefficients = [&](const double* x, double* P) {
+    const double k = problem.conductivity ? problem.conductivity(x) : 1.0;
+    for (int a = 0; a < (D + 1) * (D + 1); ++a) P[a] = 0.0;
+    for (int a = 1; a <= D; ++a) P[a * (D + 1) + a] = k;
+  };
+  SparseMatrix A = assemble_matrix(space, form, threads);
+  Eigen::VectorXd b = problem.source
+                          ? assemble_load<D>(space, 1, [&](const double* x, double* f) { f[0] = problem.source(x); }, threads)
+                          : Eigen::VectorXd::Zero(space.num_basis());
+  if (problem.flux && !problem.neumann.empty())
+    add_face_load<D>(space, problem.neumann, 1,
+                     [&](const double* x, const double* n, double* g) { g[0] = problem.flux(x, n); }, b);
+  const FixedDofs fixed = project_dirichlet(space, 1, problem.dirichlet);
+  apply_dirichlet(A, b, fixed);
+  SolveResult r;
+  r.assembly_seconds = seconds_since(t0);
+  const auto t1 = std::chrono::steady_clock::now();
+  solver.compute(A);
+  r.coefs = solver.solve(b);
+  r.solve_seconds = seconds_since(t1);
+  r.stats = solver.stats();
+  r.dofs = fixed.num_free();
+  return r;
+}
+
+#define TRIVAR_INSTANTIATE(D)                                                                                        \
+  template void add_face_load(const TensorSpace<D>&, const std::vector<Face>&, int,                                  \
+                              const std::function<void(const double*, const double*, double*)>&, Eigen::VectorXd&); \
+  template SolveResult solve_poisson(const TensorSpace<D>&, const PoissonProblem<D>&, LinearSolver&, int);
+TRIVAR_INSTANTIATE(2)
+TRIVAR_INSTANTIATE(3)
+#undef TRIVAR_INSTANTIATE
+
+}  // namespace trivar

@@ -1,0 +1,40 @@
+#pragma once
+// Poisson problem -div(k grad u) = f on a tensor patch with strong Dirichlet conditions (projected, see
+// dirichlet.hpp) and Neumann conditions k du/dn = g.
+#include <functional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "trivar/iga/dirichlet.hpp"
+#include "trivar/iga/solver.hpp"
+#include "trivar/iga/tensor_space.hpp"
+
+namespace trivar {
+
+template <int D>
+struct PoissonProblem {
+  std::function<double(const double* x)> conductivity;  // k > 0 (null: 1)
+  std::function<double(const double* x)> source;       // f (null: 0)
+  std::vector<DirichletCondition<D>> dirichlet;
+  std::vector<Face> neumann;
+  std::function<double(const double* x, const double* normal)> flux;  // g = k du/dn (null: 0)
+};
+
+struct SolveResult {
+  Eigen::VectorXd coefs;  // per dof (component-major), boundary values included
+  int dofs = 0;           // unknowns solved for (free dofs)
+  double assembly_seconds = 0, solve_seconds = 0;
+  SolveStats stats;
+};
+
+// Adds integral over the faces of sum_c g_c(x, n) v_c (g writes `components` values).
+template <int D>
+void add_face_load(const TensorSpace<D>& space, const std::vector<Face>& faces, int components,
+                   const std::function<void(const double* x, const double* normal, double* g)>& g, Eigen::VectorXd& b);
+
+template <int D>
+SolveResult solve_poisson(const TensorSpace<D>& space, const PoissonProblem<D>& problem, LinearSolver& solver,
+                          int threads = 0);
+
+}  // namespace trivar

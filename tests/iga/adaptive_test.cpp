@@ -1,0 +1,78 @@
+#include "trivar/iga/adaptive_loop.hpp"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "trivar/core/error.hpp"
+#include "trivar/iga/benchmark_problems.hpp"
+#include "trivar/iga/lr_poisson.hpp"
+
+using namespace trivar;
+
+TEST(LRPoisson, MatchesTheTensorSolverOnAnUnrefinedSpace) {
+  // An LR spline converted from a tensor spline has the same basis: same dofs, same errors.
+  const PoissonBenchmark<2> b = sine_box<2>(2, 6);
+  auto solver = make_solver("cholmod");
+  const SolveResult tr = solve_poisson(b.space, b.problem, *solver);
+  const ErrorNorms te = error_norms<2>(b.space, tr.coefs, 1, b.exact);
+  const LRSpline<2> lr(b.space.geometry);
+  const auto elements = lr_element_bases(lr);
+  const SolveResult r = solve_poisson(lr, elements, b.problem, *solver);
+  EXPECT_EQ(r.dofs, tr.dofs);
+  std::vector<double> l2, h1;
+  error_norms_per_element(lr, elements, r.coefs, b.exact, l2, h1);
+  double sl2 = 0, sh1 = 0;
+  for (std::size_t e = 0; e < l2.size(); ++e) {
+    sl2 += l2[e];
+    sh1 += h1[e];
+  }
+  EXPECT_NEAR(std::sqrt(sl2), te.l2, 1e-9 * te.l2);
+  EXPECT_NEAR(std::sqrt(sh1), te.h1, 1e-9 * te.h1);
+}
+
+TEST(LRPoisson, LShapeUniformRefinementIsLimitedBySingularity) {
+  // u ~ r^(2/3): H1 error ~ h^(2/3) under uniform refinement, whatever the degree.
+  ErrorNorms prev;
+  for (int n : {4, 8, 16}) {
+    const PoissonBenchmark<2> b = l_shape(2, n);
+    auto solver = make_solver("cholmod");
+    const SolveResult r = solve_poisson(b.space, b.problem, *solver);
+    const ErrorNorms e = error_norms<2>(b.space, r.coefs, 1, b.exact);
+    if (n > 4) {
+      EXPECT_NEAR(std::log2(prev.h1 / e.h1), 2.0 / 3.0, 0.12) << n;
+    }
+    prev = e;
+  }
+}
+
+TEST(Adaptive, LShapeAdaptiveLRBeatsUniformRefinement) {
+  // Dorfler marking with the residual indicator refines towards the corner: the error falls at the optimal
+  // rate dofs^(-p/2) for p = 2 (H1) instead of dofs^(-1/3), so the adaptive error at the last step is
+  // reached by uniform refinement only with several times more dofs.
+  const PoissonBenchmark<2> b = l_shape(2, 4);
+  LRSpline<2> lr(b.space.geometry);
+  AdaptiveOptions o;
+  o.steps = 8;
+  o.beta = 0.3;
+  const auto rows = adaptive_poisson(lr, b.problem, b.exact, o);
+  ASSERT_EQ(rows.size(), 8u);
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    EXPECT_GT(rows[i].dofs, rows[i - 1].dofs);
+    EXPECT_LT(rows[i].h1, rows[i - 1].h1);
+  }
+  // Efficiency of the estimator: it tracks the true error within a fixed factor.
+  for (const auto& r : rows) {
+    EXPECT_GT(r.estimate / r.h1, 0.2);
+    EXPECT_LT(r.estimate / r.h1, 20.0);
+  }
+  // Uniform refinement: H1 error ~ C dofs^(-1/3); C from a uniform solve.
+  const PoissonBenchmark<2> u = l_shape(2, 16);
+  auto solver = make_solver("cholmod");
+  const SolveResult ur = solve_poisson(u.space, u.problem, *solver);
+  const double eu = error_norms<2>(u.space, ur.coefs, 1, u.exact).h1;
+  const double dofs_uniform = ur.dofs * std::pow(eu / rows.back().h1, 3.0);
+  EXPECT_GT(dofs_uniform, 3.0 * rows.back().dofs);
+  EXPECT_THROW(adaptive_poisson(lr, b.problem, b.exact, {0, 0.3, {}, "cholmod"}), Error);
+  EXPECT_THROW(adaptive_poisson(lr, b.problem, b.exact, {2, 1.5, {}, "cholmod"}), Error);
+}
