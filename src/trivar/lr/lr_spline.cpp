@@ -181,8 +181,10 @@ struct LRSpline<D>::Batch {
   std::vector<double> candidates;
   std::vector<const Rect*> plane_rects;
   std::vector<LRBSpline<D>> pieces, next;
-  std::vector<Param<D>> centers;   // split's centres of a support's elements
-  std::vector<int> inside;         // split's elements of one piece
+  // B-splines made since the last resolve lack support lists: each one's list is filtered, once it is final,
+  // from the list of the B-spline on a touched element it descends from (its root; extended by resolve).
+  std::vector<int> root;
+  std::vector<int> stale;
   std::vector<int> touched;
   std::size_t base = 0;            // elements whose lists element_basis_ holds
   std::vector<int> origin;         // base element of element base + i
@@ -203,6 +205,8 @@ struct LRSpline<D>::Batch {
       std::sort(v.begin(), v.end(), [](const PlaneEntry& a, const PlaneEntry& b) { return a.value < b.value; });
     for (std::size_t e = 0; e < s.elements_.size(); ++e) grid.add(static_cast<int>(e), s.elements_[e]);
     stamp.assign(s.basis_.size(), 0);
+    root.resize(s.basis_.size());
+    for (std::size_t i = 0; i < root.size(); ++i) root[i] = static_cast<int>(i);
     base = s.elements_.size();
     is_touched.assign(base, 0);
   }
@@ -362,10 +366,32 @@ struct LRSpline<D>::Batch {
     queue[volume(s.basis_[static_cast<std::size_t>(b)].support())].push_back(b);
   }
 
+  // The support lists of the B-splines made by the last resolve that survive: the elements of their root's
+  // list (ascending, so theirs are too) whose centres lie inside their support. Then every B-spline is its
+  // own root again.
+  void refresh_lists() {
+    for (int b : stale) {
+      if (dead[static_cast<std::size_t>(b)]) continue;
+      const Box<D> S = s.basis_[static_cast<std::size_t>(b)].support();
+      const auto& from = s.basis_elements_[static_cast<std::size_t>(root[static_cast<std::size_t>(b)])];
+      auto& list = s.basis_elements_[static_cast<std::size_t>(b)];
+      for (int e : from)
+        if (center_inside(s.elements_[static_cast<std::size_t>(e)], S)) list.push_back(e);
+      list.shrink_to_fit();  // the lists live on in the spline
+    }
+    for (int b : stale) {
+      const int r = root[static_cast<std::size_t>(b)];
+      if (dead[static_cast<std::size_t>(r)]) s.basis_elements_[static_cast<std::size_t>(r)] = {};
+      root[static_cast<std::size_t>(b)] = b;
+    }
+    stale.clear();
+  }
+
   // resolve() and element lists for every element, so the exact test can run on the current mesh.
   void flush() {
     if (touched_base.empty()) return;
     resolve();
+    refresh_lists();
     rebuild_element_lists(s.basis_elements_, &dead);
     base = s.elements_.size();
     origin.clear();
@@ -478,7 +504,7 @@ struct LRSpline<D>::Batch {
     pieces.clear();
     pieces.push_back(std::move(s.basis_[static_cast<std::size_t>(b)]));
     kill(b, knot_hash(pieces[0]));
-    std::vector<int> L = std::move(s.basis_elements_[static_cast<std::size_t>(b)]);
+    const int from = root[static_cast<std::size_t>(b)];
     const int p = s.degrees_[k];
     for (double z : lines) {
       next.clear();
@@ -506,17 +532,7 @@ struct LRSpline<D>::Batch {
       }
       std::swap(pieces, next);
     }
-    // Each piece keeps the elements of the parent's support whose centres lie inside its own.
-    centers.resize(L.size());
-    for (std::size_t i = 0; i < L.size(); ++i) centers[i] = s.elements_[static_cast<std::size_t>(L[i])].center();
-    for (auto& piece : pieces) {
-      const Box<D> S = piece.support();
-      inside.clear();
-      for (std::size_t i = 0; i < L.size(); ++i)
-        if (strictly_inside(centers[i], S)) inside.push_back(L[i]);
-      std::vector<int> Li(inside.begin(), inside.end());  // exact size: the lists live on in the spline
-      add(std::move(piece), std::move(Li));
-    }
+    for (auto& piece : pieces) add(std::move(piece), from);
   }
 
   static void merge_into(std::vector<LRBSpline<D>>& list, LRBSpline<D>&& b) {
@@ -541,8 +557,8 @@ struct LRSpline<D>::Batch {
     by_knots.erase(h, b);
   }
 
-  // The pieces' support lists go into element_basis_ when the batch is flushed or finished.
-  void add(LRBSpline<D>&& b, std::vector<int>&& L) {
+  // A piece descending from `from`; a merge keeps the old B-spline's list (or root: both supports contain it).
+  void add(LRBSpline<D>&& b, int from) {
     const std::uint64_t h = knot_hash(b);
     const int same = by_knots.find(h, [&](int i) { return same_knots(s.basis_[static_cast<std::size_t>(i)], b); });
     if (same >= 0) {
@@ -551,7 +567,9 @@ struct LRSpline<D>::Batch {
     }
     const int id = static_cast<int>(s.basis_.size());
     s.basis_.push_back(std::move(b));
-    s.basis_elements_.push_back(std::move(L));
+    s.basis_elements_.emplace_back();
+    root.push_back(from);
+    stale.push_back(id);
     dead.push_back(0);
     stamp.push_back(0);
     by_knots.insert(h, id);
@@ -561,6 +579,7 @@ struct LRSpline<D>::Batch {
   void finish() {
     if (!changed) return;
     resolve();
+    refresh_lists();
     std::vector<int> order;
     order.reserve(s.basis_.size());
     for (std::size_t i = 0; i < s.basis_.size(); ++i)
