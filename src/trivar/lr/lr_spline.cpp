@@ -185,6 +185,7 @@ struct LRSpline<D>::Batch {
   // from the list of the B-spline on a touched element it descends from (its root; extended by resolve).
   std::vector<int> root;
   std::vector<int> stale;
+  std::size_t sorted_count = 0;    // B-splines before the batch, in id order
   std::vector<int> touched;
   std::size_t base = 0;            // elements whose lists element_basis_ holds
   std::vector<int> origin;         // base element of element base + i
@@ -205,6 +206,7 @@ struct LRSpline<D>::Batch {
       std::sort(v.begin(), v.end(), [](const PlaneEntry& a, const PlaneEntry& b) { return a.value < b.value; });
     for (std::size_t e = 0; e < s.elements_.size(); ++e) grid.add(static_cast<int>(e), s.elements_[e]);
     stamp.assign(s.basis_.size(), 0);
+    sorted_count = s.basis_.size();
     root.resize(s.basis_.size());
     for (std::size_t i = 0; i < root.size(); ++i) root[i] = static_cast<int>(i);
     base = s.elements_.size();
@@ -584,9 +586,13 @@ struct LRSpline<D>::Batch {
     order.reserve(s.basis_.size());
     for (std::size_t i = 0; i < s.basis_.size(); ++i)
       if (!dead[i]) order.push_back(static_cast<int>(i));
-    std::sort(order.begin(), order.end(), [&](int a, int b) {
+    // The B-splines from before the batch are in id order already: sort only the new ones and merge.
+    const auto less = [&](int a, int b) {
       return knot_less(s.basis_[static_cast<std::size_t>(a)], s.basis_[static_cast<std::size_t>(b)]);
-    });
+    };
+    const auto fresh = std::lower_bound(order.begin(), order.end(), static_cast<int>(sorted_count));
+    std::sort(fresh, order.end(), less);
+    std::inplace_merge(order.begin(), fresh, order.end(), less);
     std::vector<LRBSpline<D>> basis;
     std::vector<std::vector<int>> basis_elements;
     basis.reserve(order.size());
