@@ -185,6 +185,8 @@ struct LRSpline<D>::Batch {
   // from the list of the B-spline on a touched element it descends from (its root; extended by resolve).
   std::vector<int> root;
   std::vector<int> stale;
+  std::vector<int> extended;       // B-splines whose lists resolve extended by the new elements
+  std::vector<int> inside;         // refresh_lists' elements of one support
   std::size_t sorted_count = 0;    // B-splines before the batch, in id order
   std::vector<int> touched;
   std::size_t base = 0;            // elements whose lists element_basis_ holds
@@ -348,8 +350,7 @@ struct LRSpline<D>::Batch {
         for (std::size_t j = 0; j < n; ++j)
           for (int c = head[static_cast<std::size_t>(L[j])]; c >= 0; c = chain[static_cast<std::size_t>(c)])
             L.push_back(static_cast<int>(base) + c);
-        // Ascending, so the pieces' lists (filtered from it) are too: new ids all exceed the old ones.
-        std::sort(L.begin() + static_cast<std::ptrdiff_t>(n), L.end());
+        extended.push_back(b);
         enqueue(b);
       }
     }
@@ -369,24 +370,30 @@ struct LRSpline<D>::Batch {
   }
 
   // The support lists of the B-splines made by the last resolve that survive: the elements of their root's
-  // list (ascending, so theirs are too) whose centres lie inside their support. Then every B-spline is its
+  // list whose centres lie inside their support. The lists resolve extended end in the new elements unsorted
+  // (sorting them there cost more than sorting the survivors' shorter ends here). Then every B-spline is its
   // own root again.
   void refresh_lists() {
+    const auto is_old = [this](int e) { return static_cast<std::size_t>(e) < base; };
     for (int b : stale) {
       if (dead[static_cast<std::size_t>(b)]) continue;
       const Box<D> S = s.basis_[static_cast<std::size_t>(b)].support();
-      const auto& from = s.basis_elements_[static_cast<std::size_t>(root[static_cast<std::size_t>(b)])];
-      auto& list = s.basis_elements_[static_cast<std::size_t>(b)];
-      for (int e : from)
-        if (center_inside(s.elements_[static_cast<std::size_t>(e)], S)) list.push_back(e);
-      list.shrink_to_fit();  // the lists live on in the spline
-    }
-    for (int b : stale) {
-      const int r = root[static_cast<std::size_t>(b)];
-      if (dead[static_cast<std::size_t>(r)]) s.basis_elements_[static_cast<std::size_t>(r)] = {};
+      inside.clear();
+      for (int e : s.basis_elements_[static_cast<std::size_t>(root[static_cast<std::size_t>(b)])])
+        if (center_inside(s.elements_[static_cast<std::size_t>(e)], S)) inside.push_back(e);
+      std::sort(std::partition_point(inside.begin(), inside.end(), is_old), inside.end());
+      s.basis_elements_[static_cast<std::size_t>(b)].assign(inside.begin(), inside.end());
       root[static_cast<std::size_t>(b)] = b;
     }
+    for (int b : extended) {
+      auto& L = s.basis_elements_[static_cast<std::size_t>(b)];
+      if (dead[static_cast<std::size_t>(b)])
+        L = {};
+      else
+        std::sort(std::partition_point(L.begin(), L.end(), is_old), L.end());
+    }
     stale.clear();
+    extended.clear();
   }
 
   // resolve() and element lists for every element, so the exact test can run on the current mesh.
