@@ -93,17 +93,17 @@ void print_text(const TensorSpline<D>& s) {
 }
 
 void print_lr_info(const std::string& file, const std::vector<AnyLRSpline>& objects, bool json,
-                   const std::string& check, int threads) {
+                   const std::string& check) {
   if (json) {
     nlohmann::json out{{"file", file}, {"objects", nlohmann::json::array()}};
-    for (const AnyLRSpline& o : objects) out["objects"].push_back(describe_lr(o, check, threads));
+    for (const AnyLRSpline& o : objects) out["objects"].push_back(describe_lr(o, check));
     std::printf("%s\n", out.dump(2).c_str());
     return;
   }
   std::printf("%s: %zu LR object%s\n", file.c_str(), objects.size(), objects.size() == 1 ? "" : "s");
   for (std::size_t i = 0; i < objects.size(); ++i) {
     std::printf("object %zu:\n", i);
-    print_lr_text(describe_lr(objects[i], check, threads));
+    print_lr_text(describe_lr(objects[i], check));
   }
 }
 
@@ -125,7 +125,7 @@ nlohmann::json step_origin_json(const io::step::StepObject& o) {
           {"faces", o.faces}, {"edges", o.edges}};
 }
 
-void print_step_info(const std::string& file, bool json, const std::string& check, int threads) {
+void print_step_info(const std::string& file, bool json, const std::string& check) {
   const io::step::StepContents c = io::step::read_step(file);
   // Entity kinds by decreasing count (ties by name) so the bulk of the file comes first.
   std::vector<std::pair<std::string, io::step::EntityCount>> kinds(c.entities.begin(), c.entities.end());
@@ -146,7 +146,7 @@ void print_step_info(const std::string& file, bool json, const std::string& chec
       out["objects"].push_back(std::move(d));
     }
     for (std::size_t i = 0; i < c.lr_splines.size(); ++i) {
-      nlohmann::json d = describe_lr(c.lr_splines[i], check, threads);
+      nlohmann::json d = describe_lr(c.lr_splines[i], check);
       d["step"] = step_origin_json(c.lr_info[i]);
       out["lr_objects"].push_back(std::move(d));
     }
@@ -169,13 +169,13 @@ void print_step_info(const std::string& file, bool json, const std::string& chec
   }
   for (std::size_t i = 0; i < c.lr_splines.size(); ++i) {
     std::printf("LR object %zu: %s\n", i, step_origin(c.lr_info[i]).c_str());
-    print_lr_text(describe_lr(c.lr_splines[i], check, threads));
+    print_lr_text(describe_lr(c.lr_splines[i], check));
   }
 }
 
 }  // namespace
 
-void add_info_command(CLI::App& app, Context& ctx) {
+void add_info_command(CLI::App& app, Context&) {
   auto* cmd = app.add_subcommand("info", "Describe the splines in a file (kind, degrees, counts, knots, domain) or a V-model (topology, volume, attributes)");
   auto file = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
@@ -186,9 +186,9 @@ void add_info_command(CLI::App& app, Context& ctx) {
                   "LR splines: test the linear independence of the B-splines (peeling: fast, may be inconclusive; "
                   "exact: rank of the Bezier extraction)")
       ->check(CLI::IsMember({"peeling", "exact"}));
-  cmd->callback([file, json, check, &ctx] {
+  cmd->callback([file, json, check] {
     if (is_step_file(*file)) {
-      print_step_info(*file, *json, *check, ctx.threads);
+      print_step_info(*file, *json, *check);
       return;
     }
     if (const std::optional<VModel> model = read_model_if_any(*file)) {
@@ -197,7 +197,7 @@ void add_info_command(CLI::App& app, Context& ctx) {
       return;
     }
     if (const auto lr = read_lr_if_any(*file)) {
-      print_lr_info(*file, *lr, *json, *check, ctx.threads);
+      print_lr_info(*file, *lr, *json, *check);
       return;
     }
     require(check->empty(), "info: --check-independence applies to LR splines; " + *file +

@@ -40,7 +40,7 @@ bool json_holds_lr(const nlohmann::json& doc) {
 }
 
 template <int D>
-nlohmann::json describe(const LRSpline<D>& lr, const std::string& check, int threads) {
+nlohmann::json describe(const LRSpline<D>& lr, const std::string& check) {
   nlohmann::json j;
   j["kind"] = D == 2 ? "lr_surface" : "lr_volume";
   j["parametric_dim"] = D;
@@ -60,14 +60,14 @@ nlohmann::json describe(const LRSpline<D>& lr, const std::string& check, int thr
   }
   j["gamma"] = {{"min", gmin}, {"max", gmax}};
   if (check == "peeling") {
-    const PeelingResult r = peeling_test(lr.degrees(), lr.basis_functions(), lr.elements(), threads);
+    const PeelingResult r = peeling_test(lr);
     j["independence"] = {{"method", "peeling"},
                          {"status", to_string(r.status)},
                          {"overloaded_elements", r.overloaded_elements},
                          {"overloaded_basis", r.overloaded_basis},
                          {"unresolved", r.unresolved.size()}};
   } else if (check == "exact") {
-    const ExactResult r = exact_test(lr.degrees(), lr.basis_functions(), lr.elements(), kRankTolerance, threads);
+    const ExactResult r = exact_test(lr);
     j["independence"] = {{"method", "exact"}, {"status", to_string(r.status)}, {"tested", r.tested},
                          {"rank", r.rank},    {"nullity", r.nullity()},          {"blocks", r.blocks}};
   }
@@ -138,8 +138,8 @@ void write_lr_file(const std::string& path, const std::vector<AnyLRSpline>& obje
     throw Error(command + ": cannot write LR splines to '" + path + "' (use .lr, .g2, .json or .vtu)");
 }
 
-nlohmann::json describe_lr(const AnyLRSpline& s, const std::string& check, int threads) {
-  return std::visit([&](const auto& lr) { return describe(lr, check, threads); }, s);
+nlohmann::json describe_lr(const AnyLRSpline& s, const std::string& check) {
+  return std::visit([&](const auto& lr) { return describe(lr, check); }, s);
 }
 
 void print_lr_text(const nlohmann::json& d) {

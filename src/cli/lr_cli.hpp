@@ -38,7 +38,7 @@ void write_lr_file(const std::string& path, const std::vector<AnyLRSpline>& obje
                    const io::LRVtkOptions& vtk = {});
 
 // What `info` reports about one LR spline; `check` is "" (no test), "peeling" or "exact".
-nlohmann::json describe_lr(const AnyLRSpline& s, const std::string& check, int threads);
+nlohmann::json describe_lr(const AnyLRSpline& s, const std::string& check);
 // The text form of describe_lr's document (indented lines for one object).
 void print_lr_text(const nlohmann::json& d);
 

@@ -42,6 +42,18 @@ inline void basis_values(const KnotVector& kv, int s, double u, double* N) {
   basis_values_impl<P, true>(kv.data(), kv.degree(), s, u, kv.inverse_differences(s), N);
 }
 
+// basis_values with the degree fixed at compile time for the common degrees 1 to 4, chosen at run time: the
+// generic evaluation path of mixed-degree splines (e.g. 4 x 4 x 1 sphere shells) needs it per direction.
+inline void basis_values_any(const KnotVector& kv, int s, double u, double* N) {
+  switch (kv.degree()) {
+    case 1: return basis_values<1>(kv, s, u, N);
+    case 2: return basis_values<2>(kv, s, u, N);
+    case 3: return basis_values<3>(kv, s, u, N);
+    case 4: return basis_values<4>(kv, s, u, N);
+    default: return basis_values(kv, s, u, N);
+  }
+}
+
 // Values and first derivatives: N[0..p] and dN[0..p]. The derivative of B_{i,p} is
 // p (B_{i,p-1}/(t_{i+p}-t_i) - B_{i+1,p-1}/(t_{i+p+1}-t_{i+1})), read off the degree p-1 stage of the same triangle.
 template <int P = -1>

@@ -156,6 +156,7 @@ FixedKernel<D> fixed_kernel(const std::array<KnotVector, D>& knots, int st, bool
     case 1: return pick.template operator()<1>();
     case 2: return pick.template operator()<2>();
     case 3: return pick.template operator()<3>();
+    case 4: return pick.template operator()<4>();  // exact spheres and tori (Cobb's patches, revolutions)
     default: return nullptr;
   }
 }
@@ -299,7 +300,7 @@ void TensorSpline<D>::eval(const Param<D>& u, double* out) const {
     const int p = kv.degree();
     const double uk = std::clamp(u[k], kv.start(), kv.end());
     const int s = kv.find_span(uk);
-    basis_values(kv, s, uk, N[k]);
+    basis_values_any(kv, s, uk, N[k]);
     Np[k] = N[k];
     len[k] = p + 1;
     step[k] = stride_k;
