@@ -331,7 +331,8 @@ struct LRSpline<D>::Batch {
 
   // Splits the B-splines the rectangles since the last resolve reach (those on a base element one of them
   // touched; the mesh inside every other support is unchanged) until every support is minimal in the current
-  // mesh. Their support lists gain the elements split off their base elements first, as find_split reads them.
+  // mesh. Their support lists gain the elements split off their base elements first: refresh_lists() filters
+  // the lists of the pieces that survive from them.
   void resolve() {
     if (touched_base.empty()) return;
     std::vector<int> head(base, -1), chain(origin.size(), -1);
