@@ -16,7 +16,8 @@
 // rectangle touches, which are cut. The B-splines are split afterwards, once for the whole batch: the LR
 // B-splines of a mesh do not depend on the order of insertion, so every B-spline on a touched element is tested
 // against the final mesh, largest support first, and split by all the lines that cross it in one direction at
-// once (a line crosses a support completely exactly when no element of the support straddles it); identical
+// once (a line crosses a support completely when the rectangles of its plane cover the support's cross-section,
+// so the test reads the few rectangles of the planes inside the support, not its elements); identical
 // B-splines merge through a hash of their knots. Only when the cheap test that a rectangle splits some support
 // fails are the pending splits done before it, to test it exactly. So the cost is local to the rectangles.
 #include <array>
