@@ -312,15 +312,24 @@ TEST(LinearIndependence, TensorCollectionsAreIndependentByBothTests) {
   EXPECT_EQ(exact_test<3>({2, 1, 3}, b3, e3).status, Independence::independent);
 }
 
+namespace {
+
+// Bicubic on 6 x 6 uniform elements with two crossing pairs of lines spanning B-spline supports: linearly
+// independent, with overloaded elements that peeling alone cannot clear.
+LR2 refined_bicubic() {
+  const std::vector<double> t{0, 0, 0, 0, 1, 2, 3, 4, 5, 6, 6, 6, 6};
+  LR2 lr{{3, 3}, {t, t}};
+  for (const auto& m : {line(0, 2.5, 0, 5), line(1, 2.5, 0, 5), line(0, 3.5, 1, 6), line(1, 3.5, 1, 6)})
+    EXPECT_TRUE(lr.insert(m));
+  return lr;
+}
+
+}  // namespace
+
 TEST(LinearIndependence, RefinedIndependentConfigurationPasses) {
   // Bicubic, 6 x 6 uniform elements; a few LR refinements (lines spanning B-spline supports), including a
   // crossing pair, which leaves overloaded elements for the exact test to resolve.
-  std::vector<double> t{0, 0, 0, 0, 1, 2, 3, 4, 5, 6, 6, 6, 6};
-  LR2 lr{{3, 3}, {t, t}};
-  ASSERT_TRUE(lr.insert(line(0, 2.5, 0, 5)));
-  ASSERT_TRUE(lr.insert(line(1, 2.5, 0, 5)));
-  ASSERT_TRUE(lr.insert(line(0, 3.5, 1, 6)));
-  ASSERT_TRUE(lr.insert(line(1, 3.5, 1, 6)));
+  LR2 lr = refined_bicubic();
   const auto basis = lr.functions();
   const auto elements = lr.elements();
   const auto peeled = peeling_test<2>({3, 3}, basis, elements);
@@ -408,11 +417,5 @@ TEST(LinearIndependence, SplineOverloadsAgreeWithCollectionTests) {
     EXPECT_EQ(y.nullity(), expect_nullity);
   };
   check(SeedExample{}.lr, 1);
-  std::vector<double> t{0, 0, 0, 0, 1, 2, 3, 4, 5, 6, 6, 6, 6};
-  LR2 refined{{3, 3}, {t, t}};
-  ASSERT_TRUE(refined.insert(line(0, 2.5, 0, 5)));
-  ASSERT_TRUE(refined.insert(line(1, 2.5, 0, 5)));
-  ASSERT_TRUE(refined.insert(line(0, 3.5, 1, 6)));
-  ASSERT_TRUE(refined.insert(line(1, 3.5, 1, 6)));
-  check(refined, 0);
+  check(refined_bicubic(), 0);
 }
