@@ -277,10 +277,9 @@ SliceLayer LayerSlicer::slice(int k) const {
           newton_used = true;
           return r.converged;
         };
-        next_set = false;
         if (along_row && i >= 1 && row[i - 1] == c) {
-          // Polynomial extrapolation through up to four previous pixels of the cell (cubic: error O(h^4), a
-          // few ulps of the parameters at 600 dpi, so the first evaluation usually meets the tolerance).
+          // Polynomial extrapolation through up to four previous pixels of the cell (cubic: error O(h^4), about
+          // 1e-11 of the parameter range at 600 dpi, so the first evaluation usually meets the tolerance).
           int run = 1;
           while (run < 4 && i - run - 1 >= 0 && row[i - run - 1] == c) ++run;
           static constexpr double kExtrapolation[4][4] = {{1, 0, 0, 0}, {2, -1, 0, 0}, {3, -3, 1, 0}, {4, -6, 4, -1}};
