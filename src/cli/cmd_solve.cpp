@@ -321,13 +321,15 @@ void run(const SolveArgs& a) {
     run_static<3>(a, [&](int n) { return elasticity_discretisation(lame_cylinder<3>(a.degree, n)); });
   } else if (a.kind == "elasticity" && p == "lame-ring") {
     run_static<2>(a, [&](int n) { return elasticity_discretisation(lame_cylinder<2>(a.degree, n)); });
+  } else if (a.kind == "elasticity" && p == "plate-hole") {
+    run_static<2>(a, [&](int n) { return elasticity_discretisation(plate_with_hole(a.degree, n)); });
   } else if (a.kind == "modes" && p == "cube-modes") {
     require(a.modes >= 1, "solve: --modes must be at least 1, got " + std::to_string(a.modes));
     Param<3> lo{0, 0, 0}, hi{1, 1, 1};
     modes<3>(a, {box_geometry<3>(lo, hi, a.degree, a.refine)}, unit_box_laplace_eigenvalues(3, a.modes));
   } else {
     throw Error("solve: unknown " + a.kind + " problem '" + p +
-                "' (poisson: sine-cube, sine-square, l-shape; elasticity: lame-cylinder, lame-ring; modes: cube-modes)");
+                "' (poisson: sine-cube, sine-square, l-shape; elasticity: lame-cylinder, lame-ring, plate-hole; modes: cube-modes)");
   }
 }
 
@@ -341,7 +343,7 @@ void add_solve_command(CLI::App& app, Context& ctx) {
       ->check(CLI::IsMember({"poisson", "elasticity", "modes"}));
   cmd->add_option("MODEL_OR_SPLINE", a->file, "Volume, planar surface or single-cell model (.json, .g2)");
   cmd->add_option("--problem", a->problem,
-                  "Built-in problem: sine-cube, sine-square, l-shape (poisson), lame-cylinder, lame-ring (elasticity), "
+                  "Built-in problem: sine-cube, sine-square, l-shape (poisson), lame-cylinder, lame-ring, plate-hole (elasticity), "
                   "cube-modes (modes)");
   cmd->add_option("--degree", a->degree, "Spline degree (files: raised to at least this)")->default_val(2);
   cmd->add_option("--refine", a->refine, "Elements per direction (files: parts per element)")->default_val(8);

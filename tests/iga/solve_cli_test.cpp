@@ -49,6 +49,10 @@ TEST_F(Cli, SolveElasticityWritesDisplacementAndVonMises) {
   EXPECT_NE(vtu.find("Name=\"displacement\""), std::string::npos);
   EXPECT_NE(vtu.find("Name=\"von_mises\""), std::string::npos);
   fails("solve elasticity --problem sine-cube --out x");
+  // Kirsch's plate: errors against the exact solution and the solution file.
+  const auto k = ok("solve elasticity --problem plate-hole --degree 2 --refine 8 --solver cholmod --out plate");
+  EXPECT_NE(k.out.find("H1 error"), std::string::npos) << k.out;
+  EXPECT_TRUE(exists("plate/solution.vtu"));
 }
 
 TEST_F(Cli, SolveAdaptiveLShapeWritesTheTable) {

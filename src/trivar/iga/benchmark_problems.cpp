@@ -129,6 +129,70 @@ ElasticityBenchmark<D> lame_cylinder(int degree, int elements) {
   return bm;
 }
 
+void kirsch_stress(double T, double a, const double* x, double* sigma) {
+  const double r2 = x[0] * x[0] + x[1] * x[1], t = std::atan2(x[1], x[0]);
+  const double q2 = a * a / r2, q4 = q2 * q2;
+  const double c2 = std::cos(2 * t), c4 = std::cos(4 * t), s2 = std::sin(2 * t), s4 = std::sin(4 * t);
+  sigma[0] = T * (1 - q2 * (1.5 * c2 + c4) + 1.5 * q4 * c4);
+  sigma[1] = T * (-q2 * (0.5 * c2 - c4) - 1.5 * q4 * c4);
+  sigma[2] = T * (-q2 * (0.5 * s2 + s4) + 1.5 * q4 * s4);
+}
+
+ElasticityBenchmark<2> plate_with_hole(int degree, int elements) {
+  const double a = 1, L = 4, T = 10;
+  // Control points: the hole's two 45-degree arcs (middle points at the tangent intersections, weight
+  // cos 22.5) and, with the same weights, the outer edges through the corner (a rational curve on a line
+  // stays on it), so the ruled patch between them is exact on every boundary.
+  const double tn = std::tan(std::numbers::pi / 8), c = std::cos(std::numbers::pi / 8), h = std::sqrt(0.5);
+  const double hole[5][2] = {{a, 0}, {a, a * tn}, {a * h, a * h}, {a * tn, a}, {0, a}};
+  const double edge[5][2] = {{L, 0}, {L, L * tn}, {L, L}, {L * tn, L}, {0, L}};
+  const double weight[5] = {1, c, 1, c, 1};
+  std::vector<double> pts, w;
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 5; ++i) {
+      pts.push_back(j == 0 ? hole[i][0] : edge[i][0]);
+      pts.push_back(j == 0 ? hole[i][1] : edge[i][1]);
+      w.push_back(weight[i]);
+    }
+  const TensorSpline<2> plate = TensorSpline<2>::from_cartesian(
+      {KnotVector(2, {0, 0, 0, 0.5, 0.5, 1, 1, 1}), KnotVector::open_uniform(1, 1)}, 2, pts, w);
+  ElasticityBenchmark<2> bm{make_tensor_space(plate, degree, elements), {}, {}};
+  bm.problem.material = {1e5, 0.3};
+  const ElasticMaterial m = bm.problem.material;
+  bm.problem.displacement.push_back({{{0, 0}}, {1}, nullptr});  // y = 0
+  bm.problem.displacement.push_back({{{0, 1}}, {0}, nullptr});  // x = 0
+  bm.problem.traction_faces = {{1, 1}};
+  bm.problem.traction = [T, a](const double* x, const double* n, double* tr) {
+    double s[3];
+    kirsch_stress(T, a, x, s);
+    tr[0] = s[0] * n[0] + s[2] * n[1];
+    tr[1] = s[2] * n[0] + s[1] * n[1];
+  };
+  auto displacement = [T, a, m](const double* x, double* u) {
+    const double mu = m.mu(), k = 3 - 4 * m.poisson_ratio;
+    const double r = std::hypot(x[0], x[1]), t = std::atan2(x[1], x[0]), q = a / r, f = T * a / (8 * mu);
+    u[0] = f * (r / a * (k + 1) * std::cos(t) + 2 * q * ((1 + k) * std::cos(t) + std::cos(3 * t)) -
+                2 * q * q * q * std::cos(3 * t));
+    u[1] = f * (r / a * (k - 3) * std::sin(t) + 2 * q * ((1 - k) * std::sin(t) + std::sin(3 * t)) -
+                2 * q * q * q * std::sin(3 * t));
+  };
+  // The gradient by central differences of the closed form (step 1e-5 of the plate size: truncation and
+  // rounding both near 1e-10 relative, far below the discretisation errors measured with it).
+  bm.exact = [displacement](const double* x, double* u, double* g) {
+    displacement(x, u);
+    const double step = 4e-5;
+    for (int j = 0; j < 2; ++j) {
+      double xp[2] = {x[0], x[1]}, xm[2] = {x[0], x[1]}, up[2], um[2];
+      xp[j] += step;
+      xm[j] -= step;
+      displacement(xp, up);
+      displacement(xm, um);
+      for (int i = 0; i < 2; ++i) g[i * 2 + j] = (up[i] - um[i]) / (2 * step);
+    }
+  };
+  return bm;
+}
+
 template ElasticityBenchmark<2> lame_cylinder(int, int);
 template ElasticityBenchmark<3> lame_cylinder(int, int);
 template PoissonBenchmark<2> sine_box(int, int);

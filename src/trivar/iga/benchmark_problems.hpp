@@ -46,6 +46,19 @@ struct ElasticityBenchmark {
 template <int D>
 ElasticityBenchmark<D> lame_cylinder(int degree, int elements);
 
+// plate-hole: Kirsch's infinite plate with a circular hole of radius a = 1 under remote tension T = 10 along x
+// (E = 1e5, nu = 0.3, plane strain), the quarter x, y >= 0 of the square [-4, 4]^2 by symmetry (u_y = 0 on
+// y = 0, u_x = 0 on x = 0), the exact traction sigma n on the outer edges x = 4 and y = 4, the hole free.
+// Exact NURBS geometry: u runs around the hole (two rational quadratic 45-degree arcs, C0 at the corner
+// (4, 4) of the outer edges), v from the hole to the edges (degree 1, raised). Exact displacement
+// u_x = T a / (8 mu) [(r/a)(k+1) cos t + 2 (a/r)((1+k) cos t + cos 3t) - 2 (a/r)^3 cos 3t],
+// u_y = T a / (8 mu) [(r/a)(k-3) sin t + 2 (a/r)((1-k) sin t + sin 3t) - 2 (a/r)^3 sin 3t], k = 3 - 4 nu; the
+// stress concentration is sigma_xx = 3 T at (0, a). Degree p; n elements per element of the geometry (2n
+// around the hole, n across).
+ElasticityBenchmark<2> plate_with_hole(int degree, int elements);
+// Kirsch's exact stress (sigma_xx, sigma_yy, sigma_xy) at x for remote tension T along x and hole radius a.
+void kirsch_stress(double T, double a, const double* x, double* sigma);
+
 // Quarter annulus r_in <= r <= r_out, 0 <= theta <= pi/2, exact NURBS (u radial degree 1, v angular
 // rational quadratic); D = 3 extrudes it to 0 <= z <= height (w degree 1).
 template <int D>
