@@ -65,16 +65,7 @@ SolveResult solve_elasticity(const TensorSpace<D>& space, const ElasticityProble
   if (problem.traction && !problem.traction_faces.empty())
     add_face_load<D>(space, problem.traction_faces, D, problem.traction, b);
   const FixedDofs fixed = project_dirichlet(space, D, problem.displacement);
-  apply_dirichlet(A, b, fixed);
-  SolveResult r;
-  r.assembly_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const auto t1 = std::chrono::steady_clock::now();
-  solver.compute(A);
-  r.coefs = solver.solve(b);
-  r.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
-  r.stats = solver.stats();
-  r.dofs = fixed.num_free();
-  return r;
+  return solve_constrained(A, b, fixed, solver, t0);
 }
 
 template SolveResult solve_elasticity(const TensorSpace<2>&, const ElasticityProblem<2>&, LinearSolver&, int);

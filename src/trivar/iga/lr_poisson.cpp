@@ -138,16 +138,7 @@ SolveResult solve_poisson(const LRSpline<D>& g, const std::vector<LRElementBasis
     const Eigen::VectorXd gd = ldlt.solve(mrhs);
     for (const auto& [id, l] : local) fixed.values[id] = gd[l];
   }
-  apply_dirichlet(A, rhs, fixed);
-  SolveResult r;
-  r.assembly_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const auto t1 = std::chrono::steady_clock::now();
-  solver.compute(A);
-  r.coefs = solver.solve(rhs);
-  r.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
-  r.stats = solver.stats();
-  r.dofs = fixed.num_free();
-  return r;
+  return solve_constrained(A, rhs, fixed, solver, t0);
 }
 
 template <int D>

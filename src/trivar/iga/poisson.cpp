@@ -15,6 +15,20 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 }  // namespace
 
+SolveResult solve_constrained(SparseMatrix& A, Eigen::VectorXd& b, const FixedDofs& fixed, LinearSolver& solver,
+                              std::chrono::steady_clock::time_point assembly_start) {
+  apply_dirichlet(A, b, fixed);
+  SolveResult r;
+  r.assembly_seconds = seconds_since(assembly_start);
+  const auto t1 = std::chrono::steady_clock::now();
+  solver.compute(A);
+  r.coefs = solver.solve(b);
+  r.solve_seconds = seconds_since(t1);
+  r.stats = solver.stats();
+  r.dofs = fixed.num_free();
+  return r;
+}
+
 template <int D>
 void add_face_load(const TensorSpace<D>& space, const std::vector<Face>& faces, int components,
                    const std::function<void(const double* x, const double* normal, double* g)>& g, Eigen::VectorXd& b) {
@@ -47,16 +61,7 @@ SolveResult solve_poisson(const TensorSpace<D>& space, const PoissonProblem<D>& 
     add_face_load<D>(space, problem.neumann, 1,
                      [&](const double* x, const double* n, double* g) { g[0] = problem.flux(x, n); }, b);
   const FixedDofs fixed = project_dirichlet(space, 1, problem.dirichlet);
-  apply_dirichlet(A, b, fixed);
-  SolveResult r;
-  r.assembly_seconds = seconds_since(t0);
-  const auto t1 = std::chrono::steady_clock::now();
-  solver.compute(A);
-  r.coefs = solver.solve(b);
-  r.solve_seconds = seconds_since(t1);
-  r.stats = solver.stats();
-  r.dofs = fixed.num_free();
-  return r;
+  return solve_constrained(A, b, fixed, solver, t0);
 }
 
 #define TRIVAR_INSTANTIATE(D)                                                                                        \

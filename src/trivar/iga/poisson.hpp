@@ -1,6 +1,7 @@
 #pragma once
 // Poisson problem -div(k grad u) = f on a tensor patch with strong Dirichlet conditions (projected, see
 // dirichlet.hpp) and Neumann conditions k du/dn = g.
+#include <chrono>
 #include <functional>
 #include <vector>
 
@@ -27,6 +28,11 @@ struct SolveResult {
   double assembly_seconds = 0, solve_seconds = 0;
   SolveStats stats;
 };
+
+// The common end of every static solve: eliminates the fixed dofs, factorises and solves, and reports the
+// assembly time (from `assembly_start` to the elimination) and the solve time separately.
+SolveResult solve_constrained(SparseMatrix& A, Eigen::VectorXd& b, const FixedDofs& fixed, LinearSolver& solver,
+                              std::chrono::steady_clock::time_point assembly_start);
 
 // Adds integral over the faces of sum_c g_c(x, n) v_c (g writes `components` values).
 template <int D>
