@@ -23,9 +23,9 @@ std::vector<int> FixedDofs::free_dofs() const {
 }
 
 template <int D>
-FixedDofs project_dirichlet(const TensorSpace<D>& space, int components,
+FixedDofs project_dirichlet(const MultipatchSpace<D>& space, int components,
                             const std::vector<DirichletCondition<D>>& conditions) {
-  const int N = space.num_basis();
+  const int N = space.num_basis;
   FixedDofs out;
   out.fixed.assign(static_cast<std::size_t>(N) * components, 0);
   out.values = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(N) * components);
@@ -44,8 +44,12 @@ FixedDofs project_dirichlet(const TensorSpace<D>& space, int components,
       }
       if (!applies) continue;
       for (const Face& f : cond.faces) {
-        require(f.dir >= 0 && f.dir < D && (f.side == 0 || f.side == 1), "iga: no such face of the patch");
-        for (int id : face_basis(space, f)) local.emplace(id, 0);
+        require(f.dir >= 0 && f.dir < D && (f.side == 0 || f.side == 1) && f.patch >= 0 &&
+                    f.patch < space.num_patches(),
+                "iga: no such face of the patch");
+        const std::vector<int>& g = space.global[static_cast<std::size_t>(f.patch)];
+        for (int id : face_basis(space.patches[static_cast<std::size_t>(f.patch)], f))
+          local.emplace(g[static_cast<std::size_t>(id)], 0);
         faces.push_back(f);
         acting.push_back(&cond);
       }
@@ -62,15 +66,17 @@ FixedDofs project_dirichlet(const TensorSpace<D>& space, int components,
     std::vector<double> u(static_cast<std::size_t>(components));
     for (std::size_t fi = 0; fi < faces.size(); ++fi) {
       const DirichletCondition<D>& cond = *acting[fi];
-      integrate_face<D>(space, faces[fi], space.geometry.degree(0) + 2, [&](const FacePoint<D>& p) {
+      const TensorSpace<D>& patch = space.patches[static_cast<std::size_t>(faces[fi].patch)];
+      const std::vector<int>& g = space.global[static_cast<std::size_t>(faces[fi].patch)];
+      integrate_face<D>(patch, faces[fi], patch.geometry.degree(0) + 2, [&](const FacePoint<D>& p) {
         std::fill(u.begin(), u.end(), 0.0);
         if (cond.value) cond.value(p.x.data(), u.data());
         for (std::size_t i = 0; i < p.ids.size(); ++i) {
-          const auto it = local.find(p.ids[i]);
+          const auto it = local.find(g[static_cast<std::size_t>(p.ids[i])]);
           if (it == local.end() || p.values[i] == 0.0) continue;
           rhs[it->second] += p.weight * p.values[i] * u[static_cast<std::size_t>(c)];
           for (std::size_t j = 0; j < p.ids.size(); ++j) {
-            const auto jt = local.find(p.ids[j]);
+            const auto jt = local.find(g[static_cast<std::size_t>(p.ids[j])]);
             if (jt != local.end() && p.values[j] != 0.0)
               trip.emplace_back(it->second, jt->second, p.weight * p.values[i] * p.values[j]);
           }
@@ -115,7 +121,17 @@ SparseMatrix free_block(const SparseMatrix& A, const FixedDofs& fixed) {
   return B;
 }
 
-template FixedDofs project_dirichlet(const TensorSpace<2>&, int, const std::vector<DirichletCondition<2>>&);
-template FixedDofs project_dirichlet(const TensorSpace<3>&, int, const std::vector<DirichletCondition<3>>&);
+template <int D>
+FixedDofs project_dirichlet(const TensorSpace<D>& space, int components,
+                            const std::vector<DirichletCondition<D>>& conditions) {
+  return project_dirichlet(single_patch_space(space), components, conditions);
+}
+
+#define TRIVAR_INSTANTIATE(D)                                                                                \
+  template FixedDofs project_dirichlet(const MultipatchSpace<D>&, int, const std::vector<DirichletCondition<D>>&); \
+  template FixedDofs project_dirichlet(const TensorSpace<D>&, int, const std::vector<DirichletCondition<D>>&);
+TRIVAR_INSTANTIATE(2)
+TRIVAR_INSTANTIATE(3)
+#undef TRIVAR_INSTANTIATE
 
 }  // namespace trivar

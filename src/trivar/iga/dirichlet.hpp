@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include "trivar/iga/multipatch_space.hpp"
 #include "trivar/iga/sparse_matrix.hpp"
 #include "trivar/iga/tensor_space.hpp"
 
@@ -29,6 +30,11 @@ struct FixedDofs {
   std::vector<int> free_dofs() const;
 };
 
+// Dofs per global basis function (component-major). Throws trivar::Error for a face that is not one of the
+// space's (dir, side or patch out of range) or a component out of range.
+template <int D>
+FixedDofs project_dirichlet(const MultipatchSpace<D>& space, int components,
+                            const std::vector<DirichletCondition<D>>& conditions);
 template <int D>
 FixedDofs project_dirichlet(const TensorSpace<D>& space, int components,
                             const std::vector<DirichletCondition<D>>& conditions);

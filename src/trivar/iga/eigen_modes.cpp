@@ -7,7 +7,8 @@
 #include <Spectra/SymGEigsShiftSolver.h>
 
 #include "trivar/core/error.hpp"
-#include "trivar/iga/assembler.hpp"
+#include "trivar/iga/elasticity.hpp"
+#include "trivar/iga/multipatch_assembly.hpp"
 #include "trivar/iga/solver.hpp"
 
 namespace trivar {
@@ -88,8 +89,23 @@ ModesResult lowest_modes(const SparseMatrix& K, const SparseMatrix& M, const Fix
   return r;
 }
 
+namespace {
+
 template <int D>
-ModesResult laplace_modes(const TensorSpace<D>& space, const std::vector<Face>& dirichlet, int count, int threads) {
+ModesResult timed_modes(std::chrono::steady_clock::time_point t0, const SparseMatrix& K, const SparseMatrix& M,
+                        const FixedDofs& fixed, int count, double sigma) {
+  const auto t1 = std::chrono::steady_clock::now();
+  ModesResult r = lowest_modes(K, M, fixed, count, sigma);
+  r.assembly_seconds = std::chrono::duration<double>(t1 - t0).count();
+  r.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+  return r;
+}
+
+}  // namespace
+
+template <int D>
+ModesResult laplace_modes(const MultipatchSpace<D>& space, const std::vector<Face>& dirichlet, int count,
+                          int threads) {
   const auto t0 = std::chrono::steady_clock::now();
   BilinearForm<D> stiffness, mass;
   stiffness.coefficients = [](const double*, double* P) {
@@ -102,17 +118,37 @@ ModesResult laplace_modes(const TensorSpace<D>& space, const std::vector<Face>& 
     for (int a = 0; a < (D + 1) * (D + 1); ++a) P[a] = 0.0;
     P[0] = 1.0;
   };
-  const SparseMatrix K = assemble_matrix(space, stiffness, threads);
-  const SparseMatrix M = assemble_matrix(space, mass, threads);
+  const SparseMatrix K = assemble_matrix<D>(space, [&](int) { return stiffness; }, threads);
+  const SparseMatrix M = assemble_matrix<D>(space, [&](int) { return mass; }, threads);
   const FixedDofs fixed = project_dirichlet<D>(space, 1, {{dirichlet, {}, nullptr}});
-  const auto t1 = std::chrono::steady_clock::now();
-  ModesResult r = lowest_modes(K, M, fixed, count);
-  r.assembly_seconds = std::chrono::duration<double>(t1 - t0).count();
-  r.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
-  return r;
+  return timed_modes<D>(t0, K, M, fixed, count, 0.0);
 }
 
-template ModesResult laplace_modes(const TensorSpace<2>&, const std::vector<Face>&, int, int);
-template ModesResult laplace_modes(const TensorSpace<3>&, const std::vector<Face>&, int, int);
+template <int D>
+ModesResult laplace_modes(const TensorSpace<D>& space, const std::vector<Face>& dirichlet, int count, int threads) {
+  return laplace_modes(single_patch_space(space), dirichlet, count, threads);
+}
+
+template <int D>
+ModesResult elastic_modes(const MultipatchSpace<D>& space, const ElasticityProblem<D>& problem, int count,
+                          int threads) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const SparseMatrix K = elastic_stiffness(space, problem, threads);
+  const SparseMatrix M = elastic_mass(space, problem, threads);
+  const FixedDofs fixed = project_dirichlet(space, D, problem.displacement);
+  // A body held by too few conditions has rigid-body modes (lambda = 0, K singular): a shift below zero keeps
+  // K - sigma M positive definite. Its size, a millionth of the mean diagonal ratio, is far below the lowest
+  // elastic eigenvalue of any mesh and large enough for a well-conditioned factorisation.
+  const double sigma = -1e-6 * K.diagonal().sum() / M.diagonal().sum();
+  return timed_modes<D>(t0, K, M, fixed, count, sigma);
+}
+
+#define TRIVAR_INSTANTIATE(D)                                                                                 \
+  template ModesResult laplace_modes(const MultipatchSpace<D>&, const std::vector<Face>&, int, int);         \
+  template ModesResult laplace_modes(const TensorSpace<D>&, const std::vector<Face>&, int, int);             \
+  template ModesResult elastic_modes(const MultipatchSpace<D>&, const ElasticityProblem<D>&, int, int);
+TRIVAR_INSTANTIATE(2)
+TRIVAR_INSTANTIATE(3)
+#undef TRIVAR_INSTANTIATE
 
 }  // namespace trivar

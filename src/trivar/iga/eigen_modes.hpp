@@ -7,6 +7,8 @@
 #include <Eigen/Core>
 
 #include "trivar/iga/dirichlet.hpp"
+#include "trivar/iga/elasticity.hpp"
+#include "trivar/iga/multipatch_space.hpp"
 #include "trivar/iga/sparse_matrix.hpp"
 #include "trivar/iga/tensor_space.hpp"
 
@@ -27,6 +29,17 @@ ModesResult lowest_modes(const SparseMatrix& K, const SparseMatrix& M, const Fix
 
 // Eigenpairs of -Laplace u = lambda u with u = 0 on the given faces (natural condition elsewhere).
 template <int D>
+ModesResult laplace_modes(const MultipatchSpace<D>& space, const std::vector<Face>& dirichlet, int count,
+                          int threads = 0);
+template <int D>
 ModesResult laplace_modes(const TensorSpace<D>& space, const std::vector<Face>& dirichlet, int count, int threads = 0);
+
+// Free vibration: K x = omega^2 M x with the elastic stiffness and the density-weighted mass of the problem's
+// materials, under its displacement conditions (values ignored: they fix components to zero); tractions and
+// body forces play no part. Eigenvalues are omega^2 (angular frequency squared). Without enough conditions
+// the rigid-body modes come first, with eigenvalues ~0.
+template <int D>
+ModesResult elastic_modes(const MultipatchSpace<D>& space, const ElasticityProblem<D>& problem, int count,
+                          int threads = 0);
 
 }  // namespace trivar

@@ -1,10 +1,11 @@
 #include "trivar/iga/elasticity.hpp"
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 
 #include "trivar/core/error.hpp"
-#include "trivar/iga/assembler.hpp"
+#include "trivar/iga/multipatch_assembly.hpp"
 
 namespace trivar {
 
@@ -13,6 +14,10 @@ double ElasticMaterial::lambda() const {
 }
 
 double ElasticMaterial::mu() const { return youngs_modulus / (2 * (1 + poisson_ratio)); }
+
+bool ElasticMaterial::valid() const {
+  return youngs_modulus > 0 && poisson_ratio > -1 && poisson_ratio < 0.5 && density > 0;
+}
 
 template <int D>
 void stress(const ElasticMaterial& m, const double* grad, double* sigma) {
@@ -35,44 +40,113 @@ double von_mises(const ElasticMaterial& m, const double* s) {
   }
 }
 
+namespace {
+
+// Invalid materials met inside the threaded assembly are recorded (an exception must not leave an OpenMP
+// region) and reported after it.
+class MaterialCheck {
+public:
+  ElasticMaterial operator()(const ElasticMaterial& m, int patch) {
+    if (!m.valid()) {
+      int none = -1;
+      bad_patch_.compare_exchange_strong(none, patch);
+    }
+    return m;
+  }
+  void report() const {
+    const int p = bad_patch_.load();
+    require(p < 0, "elasticity: invalid material on patch " + std::to_string(p) +
+                       " (Young's modulus and density must be positive, Poisson's ratio in (-1, 0.5))");
+  }
+
+private:
+  std::atomic<int> bad_patch_{-1};
+};
+
+}  // namespace
+
 template <int D>
-SolveResult solve_elasticity(const TensorSpace<D>& space, const ElasticityProblem<D>& problem, LinearSolver& solver,
-                             int threads) {
-  const ElasticMaterial& mat = problem.material;
-  require(mat.youngs_modulus > 0, "elasticity: Young's modulus must be positive");
-  require(mat.poisson_ratio > -1 && mat.poisson_ratio < 0.5, "elasticity: Poisson's ratio must lie in (-1, 0.5)");
-  const auto t0 = std::chrono::steady_clock::now();
+SparseMatrix elastic_stiffness(const MultipatchSpace<D>& space, const ElasticityProblem<D>& problem, int threads) {
   constexpr int K = D + 1;
-  BilinearForm<D> form;
-  form.components = D;
-  const double lambda = mat.lambda(), mu = mat.mu();
+  MaterialCheck check;
   // a(u, v) = int lambda div u div v + 2 mu eps(u) : eps(v); for v = R_I e_c, u = R_J e_d:
   // lambda d_c R_I d_d R_J + mu delta_cd grad R_I . grad R_J + mu d_d R_I d_c R_J.
-  form.coefficients = [=](const double*, double* P) {
-    for (int c = 0; c < D; ++c)
-      for (int d = 0; d < D; ++d) {
-        double* B = P + (c * D + d) * K * K;
-        for (int e = 0; e < K * K; ++e) B[e] = 0.0;
-        B[(c + 1) * K + (d + 1)] += lambda;
-        B[(d + 1) * K + (c + 1)] += mu;
-        if (c == d)
-          for (int a = 1; a <= D; ++a) B[a * K + a] += mu;
-      }
-  };
-  SparseMatrix A = assemble_matrix(space, form, threads);
+  SparseMatrix A = assemble_matrix<D>(
+      space,
+      [&](int patch) {
+        BilinearForm<D> form;
+        form.components = D;
+        form.coefficients = [&, patch](const double* x, double* P) {
+          const ElasticMaterial m = check(problem.material_of(patch, x), patch);
+          const double lambda = m.lambda(), mu = m.mu();
+          for (int c = 0; c < D; ++c)
+            for (int d = 0; d < D; ++d) {
+              double* B = P + (c * D + d) * K * K;
+              for (int e = 0; e < K * K; ++e) B[e] = 0.0;
+              B[(c + 1) * K + (d + 1)] += lambda;
+              B[(d + 1) * K + (c + 1)] += mu;
+              if (c == d)
+                for (int a = 1; a <= D; ++a) B[a * K + a] += mu;
+            }
+        };
+        return form;
+      },
+      threads);
+  check.report();
+  return A;
+}
+
+template <int D>
+SparseMatrix elastic_mass(const MultipatchSpace<D>& space, const ElasticityProblem<D>& problem, int threads) {
+  constexpr int K = D + 1;
+  MaterialCheck check;
+  SparseMatrix M = assemble_matrix<D>(
+      space,
+      [&](int patch) {
+        BilinearForm<D> form;
+        form.components = D;
+        form.value_terms = true;
+        form.gradient_terms = false;
+        form.coefficients = [&, patch](const double* x, double* P) {
+          const double rho = check(problem.material_of(patch, x), patch).density;
+          for (int e = 0; e < D * D * K * K; ++e) P[e] = 0.0;
+          for (int c = 0; c < D; ++c) P[(c * D + c) * K * K] = rho;
+        };
+        return form;
+      },
+      threads);
+  check.report();
+  return M;
+}
+
+template <int D>
+SolveResult solve_elasticity(const MultipatchSpace<D>& space, const ElasticityProblem<D>& problem,
+                             LinearSolver& solver, int threads) {
+  const auto t0 = std::chrono::steady_clock::now();
+  SparseMatrix A = elastic_stiffness(space, problem, threads);
   Eigen::VectorXd b = problem.body_force ? assemble_load<D>(space, D, problem.body_force, threads)
-                                         : Eigen::VectorXd::Zero(static_cast<Eigen::Index>(space.num_basis()) * D);
+                                         : Eigen::VectorXd::Zero(static_cast<Eigen::Index>(space.num_basis) * D);
   if (problem.traction && !problem.traction_faces.empty())
     add_face_load<D>(space, problem.traction_faces, D, problem.traction, b);
   const FixedDofs fixed = project_dirichlet(space, D, problem.displacement);
   return solve_constrained(A, b, fixed, solver, t0);
 }
 
-template SolveResult solve_elasticity(const TensorSpace<2>&, const ElasticityProblem<2>&, LinearSolver&, int);
-template SolveResult solve_elasticity(const TensorSpace<3>&, const ElasticityProblem<3>&, LinearSolver&, int);
-template void stress<2>(const ElasticMaterial&, const double*, double*);
-template void stress<3>(const ElasticMaterial&, const double*, double*);
-template double von_mises<2>(const ElasticMaterial&, const double*);
-template double von_mises<3>(const ElasticMaterial&, const double*);
+template <int D>
+SolveResult solve_elasticity(const TensorSpace<D>& space, const ElasticityProblem<D>& problem, LinearSolver& solver,
+                             int threads) {
+  return solve_elasticity(single_patch_space(space), problem, solver, threads);
+}
+
+#define TRIVAR_INSTANTIATE(D)                                                                                      \
+  template SparseMatrix elastic_stiffness(const MultipatchSpace<D>&, const ElasticityProblem<D>&, int);            \
+  template SparseMatrix elastic_mass(const MultipatchSpace<D>&, const ElasticityProblem<D>&, int);                 \
+  template SolveResult solve_elasticity(const MultipatchSpace<D>&, const ElasticityProblem<D>&, LinearSolver&, int); \
+  template SolveResult solve_elasticity(const TensorSpace<D>&, const ElasticityProblem<D>&, LinearSolver&, int);   \
+  template void stress<D>(const ElasticMaterial&, const double*, double*);                                         \
+  template double von_mises<D>(const ElasticMaterial&, const double*);
+TRIVAR_INSTANTIATE(2)
+TRIVAR_INSTANTIATE(3)
+#undef TRIVAR_INSTANTIATE
 
 }  // namespace trivar

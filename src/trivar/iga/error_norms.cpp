@@ -61,7 +61,24 @@ ErrorNorms error_norms(const TensorSpace<D>& space, const Eigen::VectorXd& coefs
   return r;
 }
 
-template ErrorNorms error_norms(const TensorSpace<2>&, const Eigen::VectorXd&, int, const ExactSolution<2>&, int);
-template ErrorNorms error_norms(const TensorSpace<3>&, const Eigen::VectorXd&, int, const ExactSolution<3>&, int);
+template <int D>
+ErrorNorms error_norms(const MultipatchSpace<D>& space, const Eigen::VectorXd& coefs, int components,
+                       const ExactSolution<D>& exact, int threads) {
+  double l2 = 0, h1 = 0;
+  for (int p = 0; p < space.num_patches(); ++p) {
+    const ErrorNorms e = error_norms(space.patches[static_cast<std::size_t>(p)],
+                                     patch_coefs(space, p, coefs, components), components, exact, threads);
+    l2 += e.l2 * e.l2;
+    h1 += e.h1 * e.h1;
+  }
+  return {std::sqrt(l2), std::sqrt(h1)};
+}
+
+#define TRIVAR_INSTANTIATE(D)                                                                                   \
+  template ErrorNorms error_norms(const TensorSpace<D>&, const Eigen::VectorXd&, int, const ExactSolution<D>&, int); \
+  template ErrorNorms error_norms(const MultipatchSpace<D>&, const Eigen::VectorXd&, int, const ExactSolution<D>&, int);
+TRIVAR_INSTANTIATE(2)
+TRIVAR_INSTANTIATE(3)
+#undef TRIVAR_INSTANTIATE
 
 }  // namespace trivar

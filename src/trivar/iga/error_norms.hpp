@@ -1,11 +1,12 @@
 #pragma once
-// L2 and H1-seminorm errors of a discrete field on a tensor patch against an exact solution, by Gauss
-// quadrature with p + 2 points per direction (the solution and geometry are evaluated on each element's grid
-// by sum factorisation).
+// L2 and H1-seminorm errors of a discrete field on a tensor patch or a multipatch space against an exact
+// solution, by Gauss quadrature with p + 2 points per direction (the solution and geometry are evaluated on
+// each element's grid by sum factorisation).
 #include <functional>
 
 #include <Eigen/Core>
 
+#include "trivar/iga/multipatch_space.hpp"
 #include "trivar/iga/tensor_space.hpp"
 
 namespace trivar {
@@ -22,6 +23,10 @@ using ExactSolution = std::function<void(const double* x, double* u, double* gra
 // coefs: per dof, component-major. Deterministic for any thread count (per-element sums added in order).
 template <int D>
 ErrorNorms error_norms(const TensorSpace<D>& space, const Eigen::VectorXd& coefs, int components,
+                       const ExactSolution<D>& exact, int threads = 0);
+// Over all patches of a multipatch space (coefs on its global dofs).
+template <int D>
+ErrorNorms error_norms(const MultipatchSpace<D>& space, const Eigen::VectorXd& coefs, int components,
                        const ExactSolution<D>& exact, int threads = 0);
 
 }  // namespace trivar

@@ -2,8 +2,9 @@
 
 #include <chrono>
 
-#include "trivar/iga/assembler.hpp"
+#include "trivar/core/error.hpp"
 #include "trivar/iga/boundary_integral.hpp"
+#include "trivar/iga/multipatch_assembly.hpp"
 
 namespace trivar {
 
@@ -30,21 +31,26 @@ SolveResult solve_constrained(SparseMatrix& A, Eigen::VectorXd& b, const FixedDo
 }
 
 template <int D>
-void add_face_load(const TensorSpace<D>& space, const std::vector<Face>& faces, int components,
+void add_face_load(const MultipatchSpace<D>& space, const std::vector<Face>& faces, int components,
                    const std::function<void(const double* x, const double* normal, double* g)>& g, Eigen::VectorXd& b) {
-  const int N = space.num_basis();
+  const int N = space.num_basis;
   std::vector<double> v(static_cast<std::size_t>(components));
-  for (const Face& f : faces)
-    integrate_face<D>(space, f, space.geometry.degree(0) + 2, [&](const FacePoint<D>& p) {
+  for (const Face& f : faces) {
+    require(f.patch >= 0 && f.patch < space.num_patches(), "iga: no patch " + std::to_string(f.patch));
+    const TensorSpace<D>& patch = space.patches[static_cast<std::size_t>(f.patch)];
+    const std::vector<int>& ids = space.global[static_cast<std::size_t>(f.patch)];
+    integrate_face<D>(patch, f, patch.geometry.degree(0) + 2, [&](const FacePoint<D>& p) {
       g(p.x.data(), p.normal.data(), v.data());
       for (std::size_t i = 0; i < p.ids.size(); ++i)
         for (int c = 0; c < components; ++c)
-          b[static_cast<Eigen::Index>(c) * N + p.ids[i]] += p.weight * p.values[i] * v[static_cast<std::size_t>(c)];
+          b[static_cast<Eigen::Index>(c) * N + ids[static_cast<std::size_t>(p.ids[i])]] +=
+              p.weight * p.values[i] * v[static_cast<std::size_t>(c)];
     });
+  }
 }
 
 template <int D>
-SolveResult solve_poisson(const TensorSpace<D>& space, const PoissonProblem<D>& problem, LinearSolver& solver,
+SolveResult solve_poisson(const MultipatchSpace<D>& space, const PoissonProblem<D>& problem, LinearSolver& solver,
                           int threads) {
   const auto t0 = std::chrono::steady_clock::now();
   BilinearForm<D> form;
@@ -53,10 +59,10 @@ SolveResult solve_poisson(const TensorSpace<D>& space, const PoissonProblem<D>& 
     for (int a = 0; a < (D + 1) * (D + 1); ++a) P[a] = 0.0;
     for (int a = 1; a <= D; ++a) P[a * (D + 1) + a] = k;
   };
-  SparseMatrix A = assemble_matrix(space, form, threads);
+  SparseMatrix A = assemble_matrix<D>(space, [&](int) { return form; }, threads);
   Eigen::VectorXd b = problem.source
                           ? assemble_load<D>(space, 1, [&](const double* x, double* f) { f[0] = problem.source(x); }, threads)
-                          : Eigen::VectorXd::Zero(space.num_basis());
+                          : Eigen::VectorXd::Zero(space.num_basis);
   if (problem.flux && !problem.neumann.empty())
     add_face_load<D>(space, problem.neumann, 1,
                      [&](const double* x, const double* n, double* g) { g[0] = problem.flux(x, n); }, b);
@@ -64,9 +70,16 @@ SolveResult solve_poisson(const TensorSpace<D>& space, const PoissonProblem<D>& 
   return solve_constrained(A, b, fixed, solver, t0);
 }
 
+template <int D>
+SolveResult solve_poisson(const TensorSpace<D>& space, const PoissonProblem<D>& problem, LinearSolver& solver,
+                          int threads) {
+  return solve_poisson(single_patch_space(space), problem, solver, threads);
+}
+
 #define TRIVAR_INSTANTIATE(D)                                                                                        \
-  template void add_face_load(const TensorSpace<D>&, const std::vector<Face>&, int,                                  \
+  template void add_face_load(const MultipatchSpace<D>&, const std::vector<Face>&, int,                              \
                               const std::function<void(const double*, const double*, double*)>&, Eigen::VectorXd&); \
+  template SolveResult solve_poisson(const MultipatchSpace<D>&, const PoissonProblem<D>&, LinearSolver&, int);       \
   template SolveResult solve_poisson(const TensorSpace<D>&, const PoissonProblem<D>&, LinearSolver&, int);
 TRIVAR_INSTANTIATE(2)
 TRIVAR_INSTANTIATE(3)

@@ -1,6 +1,6 @@
 #pragma once
-// Poisson problem -div(k grad u) = f on a tensor patch with strong Dirichlet conditions (projected, see
-// dirichlet.hpp) and Neumann conditions k du/dn = g.
+// Poisson problem -div(k grad u) = f on a tensor patch or a multipatch space with strong Dirichlet conditions
+// (projected, see dirichlet.hpp) and Neumann conditions k du/dn = g.
 #include <chrono>
 #include <functional>
 #include <vector>
@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 
 #include "trivar/iga/dirichlet.hpp"
+#include "trivar/iga/multipatch_space.hpp"
 #include "trivar/iga/solver.hpp"
 #include "trivar/iga/tensor_space.hpp"
 
@@ -34,11 +35,14 @@ struct SolveResult {
 SolveResult solve_constrained(SparseMatrix& A, Eigen::VectorXd& b, const FixedDofs& fixed, LinearSolver& solver,
                               std::chrono::steady_clock::time_point assembly_start);
 
-// Adds integral over the faces of sum_c g_c(x, n) v_c (g writes `components` values).
+// Adds integral over the faces of sum_c g_c(x, n) v_c (g writes `components` values) to b (global dofs).
 template <int D>
-void add_face_load(const TensorSpace<D>& space, const std::vector<Face>& faces, int components,
+void add_face_load(const MultipatchSpace<D>& space, const std::vector<Face>& faces, int components,
                    const std::function<void(const double* x, const double* normal, double* g)>& g, Eigen::VectorXd& b);
 
+template <int D>
+SolveResult solve_poisson(const MultipatchSpace<D>& space, const PoissonProblem<D>& problem, LinearSolver& solver,
+                          int threads = 0);
 template <int D>
 SolveResult solve_poisson(const TensorSpace<D>& space, const PoissonProblem<D>& problem, LinearSolver& solver,
                           int threads = 0);

@@ -11,10 +11,12 @@
 
 namespace trivar {
 
-// A side of the parameter domain: direction dir (0 = u, 1 = v, 2 = w) at its start (side 0) or end (side 1).
+// A side of the parameter domain: direction dir (0 = u, 1 = v, 2 = w) at its start (side 0) or end (side 1),
+// of patch `patch` in a multipatch space (multipatch_space.hpp; 0 for a single patch).
 struct Face {
   int dir = 0;
   int side = 0;
+  int patch = 0;
   bool operator==(const Face&) const = default;
 };
 
