@@ -14,6 +14,8 @@
 #include "trivar/core/error.hpp"
 #include "trivar/iga/benchmark_problems.hpp"
 #include "trivar/iga/adaptive_loop.hpp"
+#include "trivar/iga/cell_materials.hpp"
+#include "trivar/iga/multipatch_space.hpp"
 #include "trivar/iga/convergence_table.hpp"
 #include "trivar/iga/elasticity.hpp"
 #include "trivar/iga/eigen_modes.hpp"
@@ -37,6 +39,9 @@ struct SolveArgs {
   int modes = 4;
   double youngs = 1000.0;
   double poisson = 0.3;
+  double density = 1.0;
+  std::string clamp = "x-";
+  std::string physics = "elastic";
   bool study = false;
   bool adaptive = false;
   int steps = 5;
@@ -58,20 +63,65 @@ std::string secs(double x) {
   return buf;
 }
 
-// The geometry of the input file as a D-dimensional patch, refined to the requested space.
+// The analysis space of an input file: a model's cells as a multipatch space (with their material
+// attributes), or a volume / planar surface as one patch, refined to the requested space.
 template <int D>
-TensorSpace<D> space_from_file(const SolveArgs& a) {
+struct FileSpace {
+  MultipatchSpace<D> space;
+  std::optional<VModel> model;  // kept alive for the material function
+  std::function<ElasticMaterial(int, const double*)> material_at;
+};
+
+template <int D>
+FileSpace<D> space_from_file(const SolveArgs& a) {
+  FileSpace<D> f;
   if (auto model = read_model_if_any(a.file)) {
-    require(D == 3 && model->num_cells() == 1,
-            "solve: " + a.file + " is a model with " + std::to_string(model->num_cells()) +
-                " cells; analysis runs on single-cell models");
-    if constexpr (D == 3) return make_tensor_space(model->cell(0).geometry(), a.degree, a.refine);
+    require(D == 3, "solve: " + a.file + " is a model; models are 3-D");
+    if constexpr (D == 3) {
+      if (!model->is_glued()) model->glue();
+      f.model = std::move(model);
+      f.space = multipatch_space(*f.model, a.degree, a.refine);
+      f.material_at = cell_materials(*f.model, {a.youngs, a.poisson, a.density});
+    }
+    return f;
   }
   const AnySpline s = read_single(a.file, "solve");
   const auto* g = std::get_if<TensorSpline<D>>(&s);
   require(g != nullptr, "solve: " + a.file + " holds a " + kind_name(parametric_dimension(s)) +
                             "; analysis needs a volume or a planar surface");
-  return make_tensor_space(*g, a.degree, a.refine);
+  f.space = single_patch_space(make_tensor_space(*g, a.degree, a.refine));
+  return f;
+}
+
+// The boundary faces lying in the plane of one side of the bounding box of the control points ("x-" is
+// x = min x, "z+" is z = max z): the supports of --clamp.
+template <int D>
+std::vector<Face> faces_on_side(const MultipatchSpace<D>& space, const std::string& side) {
+  const std::string axes = D == 3 ? "xyz" : "xy";
+  require(side.size() == 2 && axes.find(side[0]) != std::string::npos && (side[1] == '-' || side[1] == '+'),
+          "solve: --clamp must be none or one of " + std::string(D == 3 ? "x- x+ y- y+ z- z+" : "x- x+ y- y+") +
+              ", got '" + side + "'");
+  const int axis = static_cast<int>(axes.find(side[0]));
+  double lo = 1e300, hi = -1e300, x[D];
+  for (const auto& p : space.patches)
+    for (int i = 0; i < p.num_basis(); ++i) {
+      p.geometry.control_point(i, x);
+      lo = std::min(lo, x[axis]);
+      hi = std::max(hi, x[axis]);
+    }
+  const double plane = side[1] == '-' ? lo : hi, tol = 1e-9 * std::max(1.0, hi - lo);
+  std::vector<Face> faces;
+  for (const Face& f : space.boundary) {
+    const TensorSpace<D>& p = space.patches[static_cast<std::size_t>(f.patch)];
+    bool in_plane = true;
+    for (int i : face_basis(p, f)) {
+      p.geometry.control_point(i, x);
+      in_plane = in_plane && std::abs(x[axis] - plane) <= tol;
+    }
+    if (in_plane) faces.push_back(f);
+  }
+  require(!faces.empty(), "solve: no boundary face lies in the plane of --clamp " + side);
+  return faces;
 }
 
 // Dimension of the analysis for a file: 3 for volumes and models, 2 for surfaces.
@@ -91,31 +141,53 @@ std::filesystem::path prepare_out(const SolveArgs& a) {
   return dir;
 }
 
+// Pieces of a VTU file, one per patch.
 template <int D>
-void write_fields(const std::filesystem::path& path, const TensorSpace<D>& space,
-                  const std::vector<std::pair<std::string, TensorSpline<D>>>& fields) {
-  std::vector<io::VtkPointField> vtk;
-  for (const auto& [name, field] : fields)
-    vtk.push_back({name, field.dim(), [&f = field](int, std::span<const double> u, std::span<double> out) {
-                     Param<D> p;
-                     for (int k = 0; k < D; ++k) p[k] = u[static_cast<std::size_t>(k)];
-                     f.eval(p, out.data());
-                   }});
-  io::write_vtu(path.string(), AnySpline(space.geometry), {}, vtk);
+std::vector<AnySpline> patch_pieces(const MultipatchSpace<D>& space) {
+  std::vector<AnySpline> pieces;
+  for (const auto& p : space.patches) pieces.emplace_back(p.geometry);
+  return pieces;
+}
+
+template <int D>
+Param<D> param_of(std::span<const double> u) {
+  Param<D> p;
+  for (int k = 0; k < D; ++k) p[k] = u[static_cast<std::size_t>(k)];
+  return p;
+}
+
+// A field given per patch as a spline over the patch's parameters.
+template <int D>
+io::VtkPointField spline_field(const std::string& name, const std::vector<TensorSpline<D>>& per_patch) {
+  return {name, per_patch.front().dim(), [&per_patch](int piece, std::span<const double> u, std::span<double> out) {
+            per_patch[static_cast<std::size_t>(piece)].eval(param_of<D>(u), out.data());
+          }};
+}
+
+// The solution on every patch as a spline field (solution_field.hpp).
+template <int D>
+std::vector<TensorSpline<D>> patch_fields(const MultipatchSpace<D>& space, const Eigen::VectorXd& coefs,
+                                          int components) {
+  std::vector<TensorSpline<D>> fields;
+  for (int p = 0; p < space.num_patches(); ++p)
+    fields.push_back(solution_field(space.patches[static_cast<std::size_t>(p)],
+                                    patch_coefs(space, p, coefs, components), components));
+  return fields;
 }
 
 // One discretisation of a static problem: its space, how to solve it, the exact solution when known.
 template <int D>
 struct Discretisation {
-  TensorSpace<D> space;
+  MultipatchSpace<D> space;
   int components = 1;
   std::function<SolveResult(LinearSolver&, int threads)> solve;
-  ExactSolution<D> exact;                    // null when unknown
-  std::optional<ElasticMaterial> material;   // elasticity: von Mises output
+  ExactSolution<D> exact;  // null when unknown
+  // Elasticity: the material of a patch at a point, for the von Mises output.
+  std::function<ElasticMaterial(int patch, const double* x)> material;
 };
 
-// Von Mises stress of a displacement field at a parameter: displacement gradient from the parametric
-// derivatives of field and geometry, grad_x u = (du/du) J^{-1}.
+// Von Mises stress of a displacement field at a parameter of a patch: displacement gradient from the
+// parametric derivatives of field and geometry, grad_x u = (du/du) J^{-1}.
 template <int D>
 double von_mises_at(const TensorSpline<D>& geometry, const TensorSpline<D>& field, const ElasticMaterial& m,
                     const Param<D>& u) {
@@ -138,20 +210,17 @@ double von_mises_at(const TensorSpline<D>& geometry, const TensorSpline<D>& fiel
 
 template <int D>
 void write_solution(const std::filesystem::path& path, const Discretisation<D>& d, const Eigen::VectorXd& coefs) {
-  const TensorSpline<D> field = solution_field(d.space, coefs, d.components);
-  std::vector<io::VtkPointField> vtk;
-  auto param = [](std::span<const double> u) {
-    Param<D> p;
-    for (int k = 0; k < D; ++k) p[k] = u[static_cast<std::size_t>(k)];
-    return p;
-  };
-  vtk.push_back({d.components == 1 ? "u" : "displacement", d.components,
-                 [&](int, std::span<const double> u, std::span<double> out) { field.eval(param(u), out.data()); }});
+  const std::vector<TensorSpline<D>> fields = patch_fields(d.space, coefs, d.components);
+  std::vector<io::VtkPointField> vtk{spline_field<D>(d.components == 1 ? "u" : "displacement", fields)};
   if (d.material)
-    vtk.push_back({"von_mises", 1, [&](int, std::span<const double> u, std::span<double> out) {
-                     out[0] = von_mises_at<D>(d.space.geometry, field, *d.material, param(u));
+    vtk.push_back({"von_mises", 1, [&](int piece, std::span<const double> u, std::span<double> out) {
+                     const TensorSpline<D>& g = d.space.patches[static_cast<std::size_t>(piece)].geometry;
+                     double x[D];
+                     g.eval(param_of<D>(u), x);
+                     out[0] = von_mises_at<D>(g, fields[static_cast<std::size_t>(piece)], d.material(piece, x),
+                                              param_of<D>(u));
                    }});
-  io::write_vtu(path.string(), AnySpline(d.space.geometry), {}, vtk);
+  io::write_vtu(path.string(), patch_pieces(d.space), {}, vtk);
 }
 
 // Solves on `refine` elements per direction (with --study also on 2, 4, 8, ... below it), prints the summary
@@ -176,11 +245,15 @@ void run_static(const SolveArgs& a, const std::function<Discretisation<D>(int)>&
     row.dofs = r.dofs;
     row.assembly_seconds = r.assembly_seconds;
     row.solve_seconds = r.solve_seconds;
-    row.elements = 1;
-    for (int k = 0; k < D; ++k) row.elements *= d.space.geometry.knots(k).num_elements();
+    row.elements = 0;
+    for (const auto& p : d.space.patches) {
+      int e = 1;
+      for (int k = 0; k < D; ++k) e *= p.geometry.knots(k).num_elements();
+      row.elements += e;
+    }
     std::string line = "dofs " + std::to_string(r.dofs);
     if (d.exact) {
-      const ErrorNorms e = error_norms<D>(d.space, r.coefs, d.components, d.exact, a.threads);
+      const ErrorNorms e = error_norms(d.space, r.coefs, d.components, d.exact, a.threads);
       row.l2 = e.l2;
       row.h1 = e.h1;
       line += ", L2 error " + sci(e.l2) + ", H1 error " + sci(e.h1);
@@ -206,16 +279,27 @@ void run_static(const SolveArgs& a, const std::function<Discretisation<D>(int)>&
 }
 
 template <int D>
+Discretisation<D> poisson_discretisation(const MultipatchSpace<D>& space, const PoissonProblem<D>& problem,
+                                         const ExactSolution<D>& exact) {
+  return {space, 1, [space, problem](LinearSolver& s, int threads) { return solve_poisson(space, problem, s, threads); },
+          exact, nullptr};
+}
+
+template <int D>
 Discretisation<D> poisson_discretisation(const PoissonBenchmark<D>& b) {
-  return {b.space, 1,
-          [b](LinearSolver& s, int threads) { return solve_poisson(b.space, b.problem, s, threads); }, b.exact, {}};
+  return poisson_discretisation(single_patch_space(b.space), b.problem, b.exact);
+}
+
+template <int D>
+Discretisation<D> elasticity_discretisation(const MultipatchSpace<D>& space, const ElasticityProblem<D>& problem,
+                                            const ExactSolution<D>& exact) {
+  return {space, D, [space, problem](LinearSolver& s, int threads) { return solve_elasticity(space, problem, s, threads); },
+          exact, [problem](int patch, const double* x) { return problem.material_of(patch, x); }};
 }
 
 template <int D>
 Discretisation<D> elasticity_discretisation(const ElasticityBenchmark<D>& b) {
-  return {b.space, D,
-          [b](LinearSolver& s, int threads) { return solve_elasticity(b.space, b.problem, s, threads); }, b.exact,
-          b.problem.material};
+  return elasticity_discretisation(single_patch_space(b.space), b.problem, b.exact);
 }
 
 // Adaptive LR refinement from the problem's tensor space: one line per step, then the table and the mesh.
@@ -243,33 +327,49 @@ void run_adaptive(const SolveArgs& a, const PoissonBenchmark<D>& b) {
   }
 }
 
-// A file: Poisson with f = 1 and u = 0 on the whole boundary; elasticity clamped on the face u = 0 under a
-// unit body force along -z (-y in 2-D).
+// The material and supports of elasticity and free vibration on a file: cell attributes over the options,
+// clamped on --clamp.
+template <int D>
+ElasticityProblem<D> file_elasticity(const SolveArgs& a, const FileSpace<D>& f) {
+  ElasticityProblem<D> pb;
+  pb.material = {a.youngs, a.poisson, a.density};
+  require(pb.material.valid(), "solve: --youngs and --density must be positive, --poisson-ratio in (-1, 0.5)");
+  pb.material_at = f.material_at;
+  if (a.clamp != "none") pb.displacement.push_back({faces_on_side(f.space, a.clamp), {}, nullptr});
+  return pb;
+}
+
+// A file: Poisson with f = 1 and u = 0 on the whole boundary; elasticity clamped on --clamp under a unit body
+// force along -z (-y in 2-D).
 template <int D>
 void run_file(const SolveArgs& a) {
   require(!a.study, "solve: --study needs a problem with an exact solution (--problem)");
-  const TensorSpace<D> space = space_from_file<D>(a);
+  const FileSpace<D> f = space_from_file<D>(a);
   if (a.kind == "poisson") {
-    PoissonBenchmark<D> b{space, {}, nullptr};
-    b.problem.source = [](const double*) { return 1.0; };
-    b.problem.dirichlet.push_back({all_faces<D>(), {}, nullptr});
-    run_static<D>(a, [&](int) { return poisson_discretisation(b); });
+    PoissonProblem<D> pb;
+    pb.source = [](const double*) { return 1.0; };
+    pb.dirichlet.push_back({f.space.boundary, {}, nullptr});
+    run_static<D>(a, [&](int) { return poisson_discretisation<D>(f.space, pb, nullptr); });
   } else {
-    ElasticityBenchmark<D> b{space, {}, nullptr};
-    b.problem.material = {a.youngs, a.poisson};
-    b.problem.displacement.push_back({{{0, 0}}, {}, nullptr});
-    b.problem.body_force = [](const double*, double* f) {
-      for (int k = 0; k < D; ++k) f[k] = k == D - 1 ? -1.0 : 0.0;
+    ElasticityProblem<D> pb = file_elasticity(a, f);
+    require(a.clamp != "none", "solve: static elasticity needs supports (--clamp)");
+    pb.body_force = [](const double*, double* b) {
+      for (int k = 0; k < D; ++k) b[k] = k == D - 1 ? -1.0 : 0.0;
     };
-    run_static<D>(a, [&](int) { return elasticity_discretisation(b); });
+    run_static<D>(a, [&](int) { return elasticity_discretisation<D>(f.space, pb, nullptr); });
   }
 }
 
+// Laplace eigenvalues (u = 0 on `dirichlet`) or, with an elasticity problem, free vibration: prints every mode
+// (against `exact` when given) and writes modes.vtu.
 template <int D>
-void modes(const SolveArgs& a, const TensorSpace<D>& space, const std::vector<double>& exact) {
-  const ModesResult r = laplace_modes(space, all_faces<D>(), a.modes, a.threads);
+void modes(const SolveArgs& a, const MultipatchSpace<D>& space, const ElasticityProblem<D>* elastic,
+           const std::vector<double>& exact) {
+  const ModesResult r =
+      elastic ? elastic_modes(space, *elastic, a.modes, a.threads) : laplace_modes(space, space.boundary, a.modes, a.threads);
   for (int i = 0; i < a.modes; ++i) {
-    std::string line = "mode " + std::to_string(i + 1) + ": lambda " + sci(r.values[i]);
+    std::string line = "mode " + std::to_string(i + 1) + ": " + (elastic ? "omega^2 " : "lambda ") + sci(r.values[i]);
+    if (elastic) line += ", frequency " + sci(std::sqrt(std::max(0.0, r.values[i])) / (2 * M_PI));
     if (!exact.empty()) {
       const double ex = exact[static_cast<std::size_t>(i)];
       line += " (exact " + sci(ex) + ", relative error " + sci(std::abs(r.values[i] - ex) / ex) + ")";
@@ -279,23 +379,44 @@ void modes(const SolveArgs& a, const TensorSpace<D>& space, const std::vector<do
   std::printf("dofs %d, assembly %s s, solve %s s\n", r.dofs, secs(r.assembly_seconds).c_str(),
               secs(r.solve_seconds).c_str());
   if (!a.out.empty()) {
-    std::vector<std::pair<std::string, TensorSpline<D>>> fields;
+    const int components = elastic ? D : 1;
+    std::vector<std::vector<TensorSpline<D>>> fields;
+    for (int i = 0; i < a.modes; ++i) fields.push_back(patch_fields(space, r.vectors.col(i), components));
+    std::vector<io::VtkPointField> vtk;
     for (int i = 0; i < a.modes; ++i)
-      fields.emplace_back("mode_" + std::to_string(i + 1), solution_field(space, r.vectors.col(i), 1));
-    write_fields<D>(prepare_out(a) / "modes.vtu", space, fields);
+      vtk.push_back(spline_field<D>("mode_" + std::to_string(i + 1), fields[static_cast<std::size_t>(i)]));
+    io::write_vtu((prepare_out(a) / "modes.vtu").string(), patch_pieces(space), {}, vtk);
   }
+}
+
+template <int D>
+void file_modes(const SolveArgs& a) {
+  const FileSpace<D> f = space_from_file<D>(a);
+  if (a.physics == "laplace") {
+    modes<D>(a, f.space, nullptr, {});
+  } else {
+    const ElasticityProblem<D> pb = file_elasticity(a, f);
+    modes<D>(a, f.space, &pb, {});
+  }
+}
+
+// The unit cube, the domain of cube-modes and elastic-cube-modes.
+MultipatchSpace<3> unit_cube(int degree, int elements) {
+  const Param<3> lo{0, 0, 0}, hi{1, 1, 1};
+  return single_patch_space(TensorSpace<3>{box_geometry<3>(lo, hi, degree, elements)});
 }
 
 void run(const SolveArgs& a) {
   require(a.degree >= 1, "solve: --degree must be at least 1, got " + std::to_string(a.degree));
   require(a.refine >= 1, "solve: --refine must be at least 1, got " + std::to_string(a.refine));
   require(a.problem.empty() != a.file.empty(), "solve: give either a model/spline file or --problem NAME");
+  require(a.modes >= 1, "solve: --modes must be at least 1, got " + std::to_string(a.modes));
   if (a.problem.empty()) {
     if (a.kind == "modes") {
       if (file_dimension(a) == 3)
-        modes<3>(a, space_from_file<3>(a), {});
+        file_modes<3>(a);
       else
-        modes<2>(a, space_from_file<2>(a), {});
+        file_modes<2>(a);
     } else if (file_dimension(a) == 3) {
       run_file<3>(a);
     } else {
@@ -324,32 +445,45 @@ void run(const SolveArgs& a) {
   } else if (a.kind == "elasticity" && p == "plate-hole") {
     run_static<2>(a, [&](int n) { return elasticity_discretisation(plate_with_hole(a.degree, n)); });
   } else if (a.kind == "modes" && p == "cube-modes") {
-    require(a.modes >= 1, "solve: --modes must be at least 1, got " + std::to_string(a.modes));
-    Param<3> lo{0, 0, 0}, hi{1, 1, 1};
-    modes<3>(a, {box_geometry<3>(lo, hi, a.degree, a.refine)}, unit_box_laplace_eigenvalues(3, a.modes));
+    modes<3>(a, unit_cube(a.degree, a.refine), nullptr, unit_box_laplace_eigenvalues(3, a.modes));
+  } else if (a.kind == "modes" && p == "elastic-cube-modes") {
+    const ElasticMaterial m{a.youngs, a.poisson, a.density};
+    require(m.valid(), "solve: --youngs and --density must be positive, --poisson-ratio in (-1, 0.5)");
+    const MultipatchSpace<3> space = unit_cube(a.degree, a.refine);
+    ElasticityProblem<3> pb;
+    pb.material = m;
+    for (const Face& f : space.boundary) pb.displacement.push_back({{f}, {f.dir}, nullptr});
+    modes<3>(a, space, &pb, roller_cube_eigenvalues(m, a.modes));
   } else {
     throw Error("solve: unknown " + a.kind + " problem '" + p +
-                "' (poisson: sine-cube, sine-square, l-shape; elasticity: lame-cylinder, lame-ring, plate-hole; modes: cube-modes)");
+                "' (poisson: sine-cube, sine-square, l-shape; elasticity: lame-cylinder, lame-ring, plate-hole; modes: "
+                "cube-modes, elastic-cube-modes)");
   }
 }
 
 }  // namespace
 
 void add_solve_command(CLI::App& app, Context& ctx) {
-  auto* cmd = app.add_subcommand("solve", "Isogeometric analysis: Poisson problems and Laplace eigenmodes");
+  auto* cmd = app.add_subcommand("solve", "Isogeometric analysis: Poisson, linear elasticity, free vibration and Laplace eigenmodes");
   auto a = std::make_shared<SolveArgs>();
   cmd->add_option("KIND", a->kind, "poisson, elasticity or modes")
       ->required()
       ->check(CLI::IsMember({"poisson", "elasticity", "modes"}));
-  cmd->add_option("MODEL_OR_SPLINE", a->file, "Volume, planar surface or single-cell model (.json, .g2)");
+  cmd->add_option("MODEL_OR_SPLINE", a->file, "Volume, planar surface or V-model (.json, .g2)");
   cmd->add_option("--problem", a->problem,
                   "Built-in problem: sine-cube, sine-square, l-shape (poisson), lame-cylinder, lame-ring, plate-hole (elasticity), "
-                  "cube-modes (modes)");
+                  "cube-modes, elastic-cube-modes (modes)");
   cmd->add_option("--degree", a->degree, "Spline degree (files: raised to at least this)")->default_val(2);
   cmd->add_option("--refine", a->refine, "Elements per direction (files: parts per element)")->default_val(8);
   cmd->add_option("--modes", a->modes, "Number of eigenmodes")->default_val(4);
   cmd->add_option("--youngs", a->youngs, "Young's modulus (elasticity on a file)")->default_val(1000.0);
   cmd->add_option("--poisson-ratio", a->poisson, "Poisson's ratio (elasticity on a file)")->default_val(0.3);
+  cmd->add_option("--density", a->density, "Density (free vibration)")->default_val(1.0);
+  cmd->add_option("--clamp", a->clamp, "Supports of elasticity on a file: the boundary faces in the plane x-, x+, y-, y+, z- or z+ of the bounding box, or none")
+      ->default_val("x-");
+  cmd->add_option("--physics", a->physics, "modes on a file: elastic (free vibration) or laplace")
+      ->default_val("elastic")
+      ->check(CLI::IsMember({"elastic", "laplace"}));
   cmd->add_flag("--study", a->study, "Also solve on 2, 4, 8, ... elements per direction and report rates");
   cmd->add_flag("--adaptive", a->adaptive, "Adaptive LR refinement: solve, estimate, mark (Dorfler), refine");
   cmd->add_option("--steps", a->steps, "Adaptive steps (solves)")->default_val(5);

@@ -1,5 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+
+#include <nlohmann/json.hpp>
+
 #include "cli/cli_fixture.hpp"
 
 using cli_test::Cli;
@@ -63,4 +67,75 @@ TEST_F(Cli, SolveAdaptiveLShapeWritesTheTable) {
   EXPECT_TRUE(exists("ad/mesh.vtu"));
   fails("solve poisson --problem l-shape --adaptive --beta 0 --out x");
   fails("solve elasticity --problem lame-ring --adaptive --out x");
+}
+
+namespace {
+
+// The cylinder's torsional mode of a shaft clamped at one end: omega^2 = (pi / (2 L))^2 G / rho, exact in 3-D
+// elasticity for a circular section (plane sections rotate rigidly).
+double torsion_omega2(double E, double nu, double rho, double L) {
+  const double G = E / (2 * (1 + nu));
+  return std::pow(M_PI / (2 * L), 2) * G / rho;
+}
+
+// The number after `label` on every line that has it (mode tables: one value per mode).
+std::vector<double> values_after(const std::string& text, const std::string& label) {
+  std::vector<double> v;
+  for (const std::string& l : cli_test::lines(text)) {
+    const std::size_t at = l.find(label);
+    if (at != std::string::npos) v.push_back(std::stod(l.substr(at + label.size())));
+  }
+  return v;
+}
+
+// The printed omega^2 closest to `value`.
+double closest(const std::vector<double>& values, double value) {
+  double best = values.front();
+  for (double v : values)
+    if (std::abs(v - value) < std::abs(best - value)) best = v;
+  return best;
+}
+
+}  // namespace
+
+TEST_F(Cli, SolveOnAMultiCellModelWithCellMaterials) {
+  ok("make cylinder --radius 0.5 --height 4 -o cyl.json");
+  // Poisson on all five cells: one VTU piece per cell.
+  ok("solve poisson cyl.json --degree 2 --refine 2 --out p");
+  const std::string vtu = cli_test::slurp(work_ / "p/solution.vtu");
+  std::size_t pieces = 0;
+  for (std::size_t at = vtu.find("<Piece"); at != std::string::npos; at = vtu.find("<Piece", at + 1)) ++pieces;
+  EXPECT_EQ(pieces, 5u);
+  // Free vibration clamped at z = 0 (E and rho from the options); values are printed to 4 digits.
+  const double exact = torsion_omega2(1000, 0.3, 1, 4);
+  auto torsion = [&](const std::string& file, double expected) {
+    const auto r = ok("solve modes " + file + " --degree 3 --refine 2 --modes 6 --clamp z- --youngs 1000");
+    return closest(values_after(r.out, "omega^2 "), expected);
+  };
+  const auto r = ok("solve modes cyl.json --degree 3 --refine 2 --modes 6 --clamp z- --youngs 1000 --out m");
+  EXPECT_NEAR(closest(values_after(r.out, "omega^2 "), exact), exact, 5e-4 * exact) << r.out;
+  EXPECT_TRUE(exists("m/modes.vtu"));
+  // Cell attributes override the options: E = 4000 (constant) quadruples omega^2, a density expression of 4
+  // brings it back.
+  nlohmann::json model = nlohmann::json::parse(cli_test::slurp(work_ / "cyl.json"));
+  for (auto& cell : model["cells"]) cell["attributes"]["youngs_modulus"] = {{"kind", "constant"}, {"values", {4000}}};
+  write("stiff.json", model.dump());
+  EXPECT_NEAR(torsion("stiff.json", 4 * exact), 4 * exact, 5e-4 * 4 * exact);
+  for (auto& cell : model["cells"])
+    cell["attributes"]["density"] = {{"kind", "expression"}, {"space", "model"}, {"components", {"4 + 0 * z"}}};
+  write("graded.json", model.dump());
+  EXPECT_NEAR(torsion("graded.json", exact), exact, 5e-4 * exact);
+  model["cells"][2]["attributes"]["poisson_ratio"] = {{"kind", "constant"}, {"values", {0.5}}};
+  write("bad.json", model.dump());
+  fails("solve elasticity bad.json --clamp z- --out x");
+  EXPECT_FALSE(exists("x"));
+  fails("solve elasticity cyl.json --clamp q- --out x");
+  fails("solve elasticity cyl.json --clamp none --out x");
+}
+
+TEST_F(Cli, SolveElasticModesOfTheRollerCube) {
+  const auto r = ok("solve modes --problem elastic-cube-modes --degree 3 --refine 4 --modes 8 --youngs 200 --density 7.8");
+  const auto errors = values_after(r.out, "relative error ");
+  ASSERT_EQ(errors.size(), 8u) << r.out;
+  for (double e : errors) EXPECT_LT(e, 1e-4);
 }

@@ -52,6 +52,31 @@ std::vector<double> unit_box_laplace_eigenvalues(int dim, int count) {
   return v;
 }
 
+std::vector<double> roller_cube_eigenvalues(const ElasticMaterial& m, int count) {
+  require(count >= 1, "iga: at least one eigenvalue");
+  const double pi2 = std::numbers::pi * std::numbers::pi, shear = m.mu() / m.density,
+               pressure = (m.lambda() + 2 * m.mu()) / m.density;
+  // Wave numbers l with every l_k <= L; any other has |l|^2 >= (L + 1)^2, so once the count-th value is below
+  // shear pi^2 (L + 1)^2 the list is complete.
+  for (int L = 1;; ++L) {
+    std::vector<double> v;
+    for (int i = 0; i <= L; ++i)
+      for (int j = 0; j <= L; ++j)
+        for (int k = 0; k <= L; ++k) {
+          const int nonzero = (i > 0) + (j > 0) + (k > 0);
+          if (nonzero == 0) continue;
+          const double l2 = i * i + j * j + k * k;
+          v.push_back(pressure * pi2 * l2);
+          for (int s = 1; s < nonzero; ++s) v.push_back(shear * pi2 * l2);
+        }
+    std::sort(v.begin(), v.end());
+    if (static_cast<int>(v.size()) >= count && v[static_cast<std::size_t>(count) - 1] <= shear * pi2 * (L + 1) * (L + 1)) {
+      v.resize(static_cast<std::size_t>(count));
+      return v;
+    }
+  }
+}
+
 template <int D>
 TensorSpline<D> quarter_annulus(double r_in, double r_out, double height) {
   require(0 < r_in && r_in < r_out && height > 0, "iga: quarter annulus needs 0 < r_in < r_out and height > 0");

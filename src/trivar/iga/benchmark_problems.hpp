@@ -59,6 +59,13 @@ ElasticityBenchmark<2> plate_with_hole(int degree, int elements);
 // Kirsch's exact stress (sigma_xx, sigma_yy, sigma_xy) at x for remote tension T along x and hole radius a.
 void kirsch_stress(double T, double a, const double* x, double* sigma);
 
+// elastic-cube-modes: free vibration omega^2 of the unit cube with rollers on every face (normal displacement
+// zero, tangential traction zero), the smallest `count` with multiplicity. For a wave number l in N^3 \ {0},
+// u_k = a_k prod_j (j == k ? sin : cos)(pi l_j x_j) solves Navier's equation; a must vanish where l_k = 0, a
+// parallel to l gives one dilatational mode (lambda + 2 mu) pi^2 |l|^2 / rho and a perpendicular to l, inside
+// that subspace, (nonzero entries of l) - 1 shear modes mu pi^2 |l|^2 / rho.
+std::vector<double> roller_cube_eigenvalues(const ElasticMaterial& m, int count);
+
 // Quarter annulus r_in <= r <= r_out, 0 <= theta <= pi/2, exact NURBS (u radial degree 1, v angular
 // rational quadratic); D = 3 extrudes it to 0 <= z <= height (w degree 1).
 template <int D>
