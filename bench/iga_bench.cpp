@@ -90,10 +90,14 @@ void BM_AssembleSineCubeEightCells(benchmark::State& state) {
   }
   state.counters["threads"] = threads;
   state.counters["dofs"] = space.num_basis;
-  state.counters["elements/s"] = benchmark::Counter(static_cast<double>(n) * n * n * static_cast<double>(state.iterations()),
-                                                    benchmark::Counter::kIsRate);
+  state.counters["elements/s"] = benchmark::Counter(
+      static_cast<double>(n) * n * n * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_AssembleSineCubeEightCells)->Args({3, 16, 0})->Args({3, 32, 0})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_AssembleSineCubeEightCells)
+    ->Args({3, 16, 0})
+    ->Args({3, 32, 0})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 // The 8 lowest free-vibration modes of the roller cube (elastic-cube-modes): assembly of K and M, CHOLMOD
 // factorisation of the shifted matrix and the Lanczos iteration. range(0): degree, range(1): elements.

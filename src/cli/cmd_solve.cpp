@@ -68,8 +68,7 @@ std::string secs(double x) {
 template <int D>
 struct FileSpace {
   MultipatchSpace<D> space;
-  std::optional<VModel> model;  // kept alive for the material function
-  std::function<ElasticMaterial(int, const double*)> material_at;
+  std::function<ElasticMaterial(int, const double*)> material_at;  // null for a spline file
 };
 
 template <int D>
@@ -79,9 +78,8 @@ FileSpace<D> space_from_file(const SolveArgs& a) {
     require(D == 3, "solve: " + a.file + " is a model; models are 3-D");
     if constexpr (D == 3) {
       if (!model->is_glued()) model->glue();
-      f.model = std::move(model);
-      f.space = multipatch_space(*f.model, a.degree, a.refine);
-      f.material_at = cell_materials(*f.model, {a.youngs, a.poisson, a.density});
+      f.space = multipatch_space(*model, a.degree, a.refine);
+      f.material_at = cell_materials(*model, {a.youngs, a.poisson, a.density});
     }
     return f;
   }
@@ -281,8 +279,9 @@ void run_static(const SolveArgs& a, const std::function<Discretisation<D>(int)>&
 template <int D>
 Discretisation<D> poisson_discretisation(const MultipatchSpace<D>& space, const PoissonProblem<D>& problem,
                                          const ExactSolution<D>& exact) {
-  return {space, 1, [space, problem](LinearSolver& s, int threads) { return solve_poisson(space, problem, s, threads); },
-          exact, nullptr};
+  return {space, 1,
+          [space, problem](LinearSolver& s, int threads) { return solve_poisson(space, problem, s, threads); }, exact,
+          nullptr};
 }
 
 template <int D>
@@ -293,7 +292,8 @@ Discretisation<D> poisson_discretisation(const PoissonBenchmark<D>& b) {
 template <int D>
 Discretisation<D> elasticity_discretisation(const MultipatchSpace<D>& space, const ElasticityProblem<D>& problem,
                                             const ExactSolution<D>& exact) {
-  return {space, D, [space, problem](LinearSolver& s, int threads) { return solve_elasticity(space, problem, s, threads); },
+  return {space, D,
+          [space, problem](LinearSolver& s, int threads) { return solve_elasticity(space, problem, s, threads); },
           exact, [problem](int patch, const double* x) { return problem.material_of(patch, x); }};
 }
 
@@ -366,7 +366,8 @@ template <int D>
 void modes(const SolveArgs& a, const MultipatchSpace<D>& space, const ElasticityProblem<D>* elastic,
            const std::vector<double>& exact) {
   const ModesResult r =
-      elastic ? elastic_modes(space, *elastic, a.modes, a.threads) : laplace_modes(space, space.boundary, a.modes, a.threads);
+      elastic ? elastic_modes(space, *elastic, a.modes, a.threads)
+              : laplace_modes(space, space.boundary, a.modes, a.threads);
   for (int i = 0; i < a.modes; ++i) {
     std::string line = "mode " + std::to_string(i + 1) + ": " + (elastic ? "omega^2 " : "lambda ") + sci(r.values[i]);
     if (elastic) line += ", frequency " + sci(std::sqrt(std::max(0.0, r.values[i])) / (2 * M_PI));
@@ -464,22 +465,26 @@ void run(const SolveArgs& a) {
 }  // namespace
 
 void add_solve_command(CLI::App& app, Context& ctx) {
-  auto* cmd = app.add_subcommand("solve", "Isogeometric analysis: Poisson, linear elasticity, free vibration and Laplace eigenmodes");
+  auto* cmd = app.add_subcommand(
+      "solve", "Isogeometric analysis: Poisson, linear elasticity, free vibration and Laplace eigenmodes");
   auto a = std::make_shared<SolveArgs>();
   cmd->add_option("KIND", a->kind, "poisson, elasticity or modes")
       ->required()
       ->check(CLI::IsMember({"poisson", "elasticity", "modes"}));
   cmd->add_option("MODEL_OR_SPLINE", a->file, "Volume, planar surface or V-model (.json, .g2)");
-  cmd->add_option("--problem", a->problem,
-                  "Built-in problem: sine-cube, sine-square, l-shape (poisson), lame-cylinder, lame-ring, plate-hole (elasticity), "
-                  "cube-modes, elastic-cube-modes (modes)");
+  cmd->add_option(
+      "--problem", a->problem,
+      "Built-in problem: sine-cube, sine-square, l-shape (poisson), lame-cylinder, lame-ring, plate-hole (elasticity), "
+      "cube-modes, elastic-cube-modes (modes)");
   cmd->add_option("--degree", a->degree, "Spline degree (files: raised to at least this)")->default_val(2);
   cmd->add_option("--refine", a->refine, "Elements per direction (files: parts per element)")->default_val(8);
   cmd->add_option("--modes", a->modes, "Number of eigenmodes")->default_val(4);
   cmd->add_option("--youngs", a->youngs, "Young's modulus (elasticity on a file)")->default_val(1000.0);
   cmd->add_option("--poisson-ratio", a->poisson, "Poisson's ratio (elasticity on a file)")->default_val(0.3);
   cmd->add_option("--density", a->density, "Density (free vibration)")->default_val(1.0);
-  cmd->add_option("--clamp", a->clamp, "Supports of elasticity on a file: the boundary faces in the plane x-, x+, y-, y+, z- or z+ of the bounding box, or none")
+  cmd->add_option("--clamp", a->clamp,
+                  "Supports of elasticity on a file: the boundary faces in the side plane x-, x+, y-, y+, z- or z+ "
+                  "of the bounding box, or none")
       ->default_val("x-");
   cmd->add_option("--physics", a->physics, "modes on a file: elastic (free vibration) or laplace")
       ->default_val("elastic")

@@ -228,7 +228,8 @@ TEST(Multipatch, ElasticModesOfTheRollerCube) {
   const ElasticMaterial mat{200, 0.3, 7.8};
   const std::vector<double> exact = roller_cube_lowest(mat);
   const std::vector<double> listed = roller_cube_eigenvalues(mat, 8);
-  for (int i = 0; i < 8; ++i) EXPECT_NEAR(listed[static_cast<std::size_t>(i)], exact[static_cast<std::size_t>(i)], 1e-12 * exact[7]);
+  for (int i = 0; i < 8; ++i)
+    EXPECT_NEAR(listed[static_cast<std::size_t>(i)], exact[static_cast<std::size_t>(i)], 1e-12 * exact[7]);
   // One patch and eight differently oriented cells give the same spectrum.
   const Param<3> lo{0, 0, 0}, hi{1, 1, 1};
   const MultipatchSpace<3> one = single_patch_space(TensorSpace<3>{box_geometry<3>(lo, hi, 3, 6)});

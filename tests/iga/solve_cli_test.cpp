@@ -134,7 +134,8 @@ TEST_F(Cli, SolveOnAMultiCellModelWithCellMaterials) {
 }
 
 TEST_F(Cli, SolveElasticModesOfTheRollerCube) {
-  const auto r = ok("solve modes --problem elastic-cube-modes --degree 3 --refine 4 --modes 8 --youngs 200 --density 7.8");
+  const auto r =
+      ok("solve modes --problem elastic-cube-modes --degree 3 --refine 4 --modes 8 --youngs 200 --density 7.8");
   const auto errors = values_after(r.out, "relative error ");
   ASSERT_EQ(errors.size(), 8u) << r.out;
   for (double e : errors) EXPECT_LT(e, 1e-4);

@@ -1,6 +1,7 @@
 #include "trivar/iga/cell_materials.hpp"
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -11,24 +12,24 @@ namespace trivar {
 
 namespace {
 
-// One property of one cell: a constant (expression null) or a model-space expression.
+// One property of one cell: a constant or a model-space expression (a copy: expressions are small values).
 struct Property {
   double value = 0;
-  const Expression* expression = nullptr;
+  std::optional<Expression> expression;
   double at(const double* x) const { return expression ? expression->eval(std::span<const double>(x, 3)) : value; }
 };
 
 Property property(const VModel& model, int cell, const std::string& name, double fallback) {
   const VCell& c = model.cell(cell);
-  if (!c.has_attribute(name)) return {fallback, nullptr};
+  if (!c.has_attribute(name)) return {fallback, std::nullopt};
   const Attribute& a = c.attribute(name);
   const std::string where = "cell " + std::to_string(cell) + " attribute '" + name + "'";
   require(a.components() == 1, "elasticity: " + where + " must be a scalar, it has " +
                                    std::to_string(a.components()) + " components");
-  if (a.kind() == Attribute::Kind::constant) return {a.values().front(), nullptr};
+  if (a.kind() == Attribute::Kind::constant) return {a.values().front(), std::nullopt};
   require(a.kind() == Attribute::Kind::expression && a.space() == Attribute::Space::model,
           "elasticity: " + where + " must be a constant or an expression in x, y, z");
-  return {0, &a.expressions().front()};
+  return {0, a.expressions().front()};
 }
 
 }  // namespace

@@ -11,10 +11,10 @@ namespace trivar {
 
 class VModel;
 
-// The material of patch (cell) p at model point x, for ElasticityProblem::material_at. The model must outlive
-// the function. Throws trivar::Error naming the cell and attribute for an attribute that is not scalar or is
-// a spline field or a parametric expression (their values depend on the cell parameter, which the assembly
-// does not know), or when a constant material is not valid().
+// The material of patch (cell) p at model point x, for ElasticityProblem::material_at. Throws trivar::Error
+// naming the cell and attribute for an attribute that is not scalar or is a spline field or a parametric
+// expression (their values depend on the cell parameter, which the assembly does not know), or when a
+// constant material is not valid().
 std::function<ElasticMaterial(int patch, const double* x)> cell_materials(const VModel& model,
                                                                           const ElasticMaterial& defaults);
 

@@ -33,7 +33,9 @@ struct ElasticityProblem {
   std::vector<Face> traction_faces;
   std::function<void(const double* x, const double* normal, double* t)> traction;  // D values (null: free)
 
-  ElasticMaterial material_of(int patch, const double* x) const { return material_at ? material_at(patch, x) : material; }
+  ElasticMaterial material_of(int patch, const double* x) const {
+    return material_at ? material_at(patch, x) : material;
+  }
 };
 
 // The stiffness matrix a(u, v) = int sigma(u) : eps(v) and the mass matrix int rho u . v on the global dofs

@@ -125,7 +125,8 @@ MultipatchSpace<3> multipatch_space(const VModel& model, int degree, int subdivi
   }
   std::vector<int> number(static_cast<std::size_t>(offset.back()), -1);
   for (int c = 0; c < model.num_cells(); ++c) {
-    std::vector<int>& g = m.global.emplace_back(static_cast<std::size_t>(m.patches[static_cast<std::size_t>(c)].num_basis()));
+    std::vector<int>& g =
+        m.global.emplace_back(static_cast<std::size_t>(m.patches[static_cast<std::size_t>(c)].num_basis()));
     for (std::size_t i = 0; i < g.size(); ++i) {
       int& n = number[static_cast<std::size_t>(same.find(offset[c] + static_cast<int>(i)))];
       if (n < 0) n = m.num_basis++;
