@@ -63,6 +63,25 @@ std::string secs(double x) {
   return buf;
 }
 
+// The input file, read (and a model glued) once: a V-model or a single spline.
+struct FileInput {
+  std::optional<VModel> model;
+  std::optional<AnySpline> spline;
+  int dimension() const { return model ? 3 : parametric_dimension(*spline); }
+};
+
+FileInput read_input(const SolveArgs& a) {
+  FileInput in;
+  in.model = read_model_if_any(a.file);
+  if (in.model) {
+    if (!in.model->is_glued()) in.model->glue();
+  } else {
+    in.spline = read_single(a.file, "solve");
+    require(in.dimension() >= 2, "solve: " + a.file + " holds a curve; analysis needs a volume or a planar surface");
+  }
+  return in;
+}
+
 // The analysis space of an input file: a model's cells as a multipatch space (with their material
 // attributes), or a volume / planar surface as one patch, refined to the requested space.
 template <int D>
@@ -72,20 +91,17 @@ struct FileSpace {
 };
 
 template <int D>
-FileSpace<D> space_from_file(const SolveArgs& a) {
+FileSpace<D> space_from_file(const SolveArgs& a, const FileInput& in) {
   FileSpace<D> f;
-  if (auto model = read_model_if_any(a.file)) {
-    require(D == 3, "solve: " + a.file + " is a model; models are 3-D");
-    if constexpr (D == 3) {
-      if (!model->is_glued()) model->glue();
-      f.space = multipatch_space(*model, a.degree, a.refine);
-      f.material_at = cell_materials(*model, {a.youngs, a.poisson, a.density});
+  if constexpr (D == 3) {
+    if (in.model) {
+      f.space = multipatch_space(*in.model, a.degree, a.refine);
+      f.material_at = cell_materials(*in.model, {a.youngs, a.poisson, a.density});
+      return f;
     }
-    return f;
   }
-  const AnySpline s = read_single(a.file, "solve");
-  const auto* g = std::get_if<TensorSpline<D>>(&s);
-  require(g != nullptr, "solve: " + a.file + " holds a " + kind_name(parametric_dimension(s)) +
+  const auto* g = std::get_if<TensorSpline<D>>(&*in.spline);
+  require(g != nullptr, "solve: " + a.file + " holds a " + kind_name(in.dimension()) +
                             "; analysis needs a volume or a planar surface");
   f.space = single_patch_space(make_tensor_space(*g, a.degree, a.refine));
   return f;
@@ -95,11 +111,8 @@ FileSpace<D> space_from_file(const SolveArgs& a) {
 // x = min x, "z+" is z = max z): the supports of --clamp.
 template <int D>
 std::vector<Face> faces_on_side(const MultipatchSpace<D>& space, const std::string& side) {
-  const std::string axes = D == 3 ? "xyz" : "xy";
-  require(side.size() == 2 && axes.find(side[0]) != std::string::npos && (side[1] == '-' || side[1] == '+'),
-          "solve: --clamp must be none or one of " + std::string(D == 3 ? "x- x+ y- y+ z- z+" : "x- x+ y- y+") +
-              ", got '" + side + "'");
-  const int axis = static_cast<int>(axes.find(side[0]));
+  const int axis = side[0] - 'x';
+  require(axis < D, "solve: --clamp " + side + " on a 2-D domain (x or y only)");
   double lo = 1e300, hi = -1e300, x[D];
   for (const auto& p : space.patches)
     for (int i = 0; i < p.num_basis(); ++i) {
@@ -120,15 +133,6 @@ std::vector<Face> faces_on_side(const MultipatchSpace<D>& space, const std::stri
   }
   require(!faces.empty(), "solve: no boundary face lies in the plane of --clamp " + side);
   return faces;
-}
-
-// Dimension of the analysis for a file: 3 for volumes and models, 2 for surfaces.
-int file_dimension(const SolveArgs& a) {
-  if (read_model_if_any(a.file)) return 3;
-  const AnySpline s = read_single(a.file, "solve");
-  const int d = parametric_dimension(s);
-  require(d >= 2, "solve: " + a.file + " holds a curve; analysis needs a volume or a planar surface");
-  return d;
 }
 
 std::filesystem::path prepare_out(const SolveArgs& a) {
@@ -342,9 +346,8 @@ ElasticityProblem<D> file_elasticity(const SolveArgs& a, const FileSpace<D>& f) 
 // A file: Poisson with f = 1 and u = 0 on the whole boundary; elasticity clamped on --clamp under a unit body
 // force along -z (-y in 2-D).
 template <int D>
-void run_file(const SolveArgs& a) {
-  require(!a.study, "solve: --study needs a problem with an exact solution (--problem)");
-  const FileSpace<D> f = space_from_file<D>(a);
+void run_file(const SolveArgs& a, const FileInput& in) {
+  const FileSpace<D> f = space_from_file<D>(a, in);
   if (a.kind == "poisson") {
     PoissonProblem<D> pb;
     pb.source = [](const double*) { return 1.0; };
@@ -352,7 +355,6 @@ void run_file(const SolveArgs& a) {
     run_static<D>(a, [&](int) { return poisson_discretisation<D>(f.space, pb, nullptr); });
   } else {
     ElasticityProblem<D> pb = file_elasticity(a, f);
-    require(a.clamp != "none", "solve: static elasticity needs supports (--clamp)");
     pb.body_force = [](const double*, double* b) {
       for (int k = 0; k < D; ++k) b[k] = k == D - 1 ? -1.0 : 0.0;
     };
@@ -391,8 +393,8 @@ void modes(const SolveArgs& a, const MultipatchSpace<D>& space, const Elasticity
 }
 
 template <int D>
-void file_modes(const SolveArgs& a) {
-  const FileSpace<D> f = space_from_file<D>(a);
+void file_modes(const SolveArgs& a, const FileInput& in) {
+  const FileSpace<D> f = space_from_file<D>(a, in);
   if (a.physics == "laplace") {
     modes<D>(a, f.space, nullptr, {});
   } else {
@@ -413,16 +415,17 @@ void run(const SolveArgs& a) {
   require(a.problem.empty() != a.file.empty(), "solve: give either a model/spline file or --problem NAME");
   require(a.modes >= 1, "solve: --modes must be at least 1, got " + std::to_string(a.modes));
   if (a.problem.empty()) {
-    if (a.kind == "modes") {
-      if (file_dimension(a) == 3)
-        file_modes<3>(a);
-      else
-        file_modes<2>(a);
-    } else if (file_dimension(a) == 3) {
-      run_file<3>(a);
-    } else {
-      run_file<2>(a);
-    }
+    require(!a.study, "solve: --study needs a problem with an exact solution (--problem)");
+    require(a.kind != "elasticity" || a.clamp != "none", "solve: static elasticity needs supports (--clamp)");
+    const FileInput in = read_input(a);
+    if (a.kind == "modes" && in.dimension() == 3)
+      file_modes<3>(a, in);
+    else if (a.kind == "modes")
+      file_modes<2>(a, in);
+    else if (in.dimension() == 3)
+      run_file<3>(a, in);
+    else
+      run_file<2>(a, in);
     return;
   }
   const std::string& p = a.problem;
@@ -485,7 +488,8 @@ void add_solve_command(CLI::App& app, Context& ctx) {
   cmd->add_option("--clamp", a->clamp,
                   "Supports of elasticity on a file: the boundary faces in the side plane x-, x+, y-, y+, z- or z+ "
                   "of the bounding box, or none")
-      ->default_val("x-");
+      ->default_val("x-")
+      ->check(CLI::IsMember({"none", "x-", "x+", "y-", "y+", "z-", "z+"}));
   cmd->add_option("--physics", a->physics, "modes on a file: elastic (free vibration) or laplace")
       ->default_val("elastic")
       ->check(CLI::IsMember({"elastic", "laplace"}));
