@@ -1,45 +1,15 @@
 #pragma once
 // Support for the io tests: a temporary directory per test, random object lists and exact comparison.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
-#include <filesystem>
 #include <string>
 #include <vector>
 
 #include "support/spline_fixtures.hpp"
+#include "support/temp_dir.hpp"
 #include "trivar/spline/any_spline.hpp"
 
 namespace trivar::test {
-
-// A fresh directory per test (tests may run in parallel), removed with everything in it at the end.
-class TempDir {
-public:
-  TempDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = std::filesystem::temp_directory_path() / ("trivar_io_" + std::string(info->test_suite_name()) + "_" +
-                                                     info->name() + "_" + std::to_string(::getpid()));
-    std::filesystem::remove_all(dir_);
-    std::filesystem::create_directories(dir_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(dir_, ec);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-
-  std::string file(const std::string& name) const { return (dir_ / name).string(); }
-  // Number of entries in the directory: a failed write must leave none behind.
-  int entries() const {
-    int n = 0;
-    for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir_)) ++n;
-    return n;
-  }
-
-private:
-  std::filesystem::path dir_;
-};
 
 // Curves, surfaces and volumes of several degrees and control dimensions, clamped and unclamped.
 inline std::vector<AnySpline> random_objects(bool rational, unsigned seed) {

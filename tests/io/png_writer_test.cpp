@@ -3,58 +3,18 @@
 #include <gtest/gtest.h>
 #include <png.h>
 
-#include <cstdio>
 #include <random>
 
 #include "io/io_test_support.hpp"
+#include "support/png_reader.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/io/png_writer.hpp"
 
 using namespace trivar;
 using namespace trivar::am;
+using trivar::test::read_png;
 
 namespace {
-
-struct PngFile {
-  png_uint_32 width = 0, height = 0;
-  int bit_depth = 0, colour_type = 0;
-  std::vector<Rgba> palette;
-  bool has_trns = false;
-  std::vector<std::vector<png_byte>> rows;  // top row first, as stored
-};
-
-PngFile read_png(const std::string& path) {
-  PngFile f;
-  FILE* fp = std::fopen(path.c_str(), "rb");
-  if (!fp) throw std::runtime_error("cannot open " + path);
-  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
-  png_infop info = png_create_info_struct(png);
-  if (setjmp(png_jmpbuf(png))) {
-    png_destroy_read_struct(&png, &info, nullptr);
-    std::fclose(fp);
-    throw std::runtime_error("libpng failed reading " + path);
-  }
-  png_init_io(png, fp);
-  png_read_info(png, info);
-  png_get_IHDR(png, info, &f.width, &f.height, &f.bit_depth, &f.colour_type, nullptr, nullptr, nullptr);
-  png_colorp plte = nullptr;
-  int n = 0;
-  if (png_get_PLTE(png, info, &plte, &n) & PNG_INFO_PLTE)
-    for (int i = 0; i < n; ++i) f.palette.push_back(Rgba{plte[i].red, plte[i].green, plte[i].blue, 255});
-  png_bytep trans = nullptr;
-  int nt = 0;
-  if (png_get_tRNS(png, info, &trans, &nt, nullptr) & PNG_INFO_tRNS) {
-    f.has_trns = true;
-    for (int i = 0; i < nt; ++i) f.palette.at(static_cast<std::size_t>(i)).a = trans[i];
-  }
-  const std::size_t row_bytes = png_get_rowbytes(png, info);
-  f.rows.assign(f.height, std::vector<png_byte>(row_bytes));
-  for (auto& r : f.rows) png_read_row(png, r.data(), nullptr);
-  png_read_end(png, nullptr);
-  png_destroy_read_struct(&png, &info, nullptr);
-  std::fclose(fp);
-  return f;
-}
 
 MaterialTable three_materials() {
   return MaterialTable({{"rigid", {200, 30, 40, 255}}, {"flexible", {10, 220, 30, 255}}, {"support", {0, 0, 250, 128}}});

@@ -44,14 +44,19 @@ void write_convergence_csv(const std::string& path, const std::vector<Convergenc
 }
 
 void write_convergence_png(const std::string& path, const std::vector<ConvergenceRow>& rows) {
-  PlotSeries l2{{}, {}, {30, 80, 220}}, h1{{}, {}, {220, 40, 40}};
+  // Unknown errors and missing estimates are negative, so the plot skips them; a study without estimates
+  // shows two series and no legend entry for the third.
+  std::vector<PlotSeries> series{{{}, {}, {30, 80, 220}, "L2 error"},
+                                 {{}, {}, {220, 40, 40}, "H1 error"},
+                                 {{}, {}, {40, 150, 60}, "estimate"}};
   for (const auto& r : rows) {
-    l2.x.push_back(r.dofs);
-    l2.y.push_back(r.l2);
-    h1.x.push_back(r.dofs);
-    h1.y.push_back(r.h1);
+    const double values[] = {r.l2, r.h1, r.estimate};
+    for (std::size_t k = 0; k < series.size(); ++k) {
+      series[k].x.push_back(r.dofs);
+      series[k].y.push_back(values[k]);
+    }
   }
-  write_loglog_plot(path, {l2, h1});
+  write_loglog_plot(path, series, {.x_label = "degrees of freedom", .y_label = "error"});
 }
 
 }  // namespace trivar

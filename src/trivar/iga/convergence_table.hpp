@@ -23,7 +23,8 @@ double observed_rate(const std::vector<ConvergenceRow>& rows, std::size_t i, int
 // Header step,elements,dofs,l2_error,h1_error,l2_rate,h1_rate,estimate,assembly_s,solve_s; written atomically.
 void write_convergence_csv(const std::string& path, const std::vector<ConvergenceRow>& rows, int dim);
 
-// L2 (blue) and H1 (red) error against dofs on log-log axes with decade grid lines.
+// L2 (blue) and H1 (red) error and, where computed, the estimate (green) against dofs on log-log axes with
+// decade grid lines, tick values, axis labels and a legend.
 void write_convergence_png(const std::string& path, const std::vector<ConvergenceRow>& rows);
 
 }  // namespace trivar

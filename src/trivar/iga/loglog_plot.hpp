@@ -1,6 +1,6 @@
 #pragma once
-// A minimal log-log line plot rendered to PNG (no text: axes, decade grid lines, polylines with markers), for
-// convergence figures without a plotting dependency.
+// A log-log line plot rendered to PNG without a plotting dependency: decade grid lines, axes with the powers of
+// ten written at the decades, axis labels, an optional title, and polylines with markers named in a legend.
 #include <array>
 #include <cstdint>
 #include <string>
@@ -9,12 +9,19 @@
 namespace trivar {
 
 struct PlotSeries {
-  std::vector<double> x, y;  // positive values; others are skipped
+  std::vector<double> x, y;  // pairs of positive finite values are plotted; others are skipped
   std::array<std::uint8_t, 3> rgb{0, 0, 0};
+  std::string label{};  // legend entry; a series without a label or without a plotted point has none
 };
 
-// Throws trivar::Error when no series has a positive point or the file cannot be written.
-void write_loglog_plot(const std::string& path, const std::vector<PlotSeries>& series, int width = 640,
-                       int height = 480);
+struct PlotOptions {
+  std::string x_label{}, y_label{}, title{};  // each drawn only when non-empty
+  int width = 640, height = 480;              // pixels
+};
+
+// Throws trivar::Error when no series has a plotted point, the image leaves no room for the plot box beside
+// the labels, or the file cannot be written.
+void write_loglog_plot(const std::string& path, const std::vector<PlotSeries>& series,
+                       const PlotOptions& options = {});
 
 }  // namespace trivar
