@@ -19,7 +19,10 @@
 #include "trivar/iga/convergence_table.hpp"
 #include "trivar/iga/elasticity.hpp"
 #include "trivar/iga/eigen_modes.hpp"
+#include "trivar/iga/error_indicator.hpp"
 #include "trivar/iga/error_norms.hpp"
+#include "trivar/iga/lr_poisson.hpp"
+#include "trivar/iga/lr_solution_field.hpp"
 #include "trivar/iga/poisson.hpp"
 #include "trivar/iga/solution_field.hpp"
 #include "trivar/io/lr_vtk.hpp"
@@ -306,7 +309,33 @@ Discretisation<D> elasticity_discretisation(const ElasticityBenchmark<D>& b) {
   return elasticity_discretisation(single_patch_space(b.space), b.problem, b.exact);
 }
 
-// Adaptive LR refinement from the problem's tensor space: one line per step, then the table and the mesh.
+// The LR solution as point field "u" on the final mesh, with the per-element indicator and errors as cell data
+// (so ParaView shows where the estimator and the true error disagree).
+template <int D>
+void write_lr_solution(const std::filesystem::path& path, const LRSpline<D>& lr, const PoissonBenchmark<D>& b,
+                       const Eigen::VectorXd& coefs, int threads) {
+  const LRSpline<D> field = lr_solution_field(lr, coefs);
+  const auto elements = lr_element_bases(lr, threads);
+  const std::vector<double> eta = residual_indicators(lr, elements, b.problem, coefs, threads);
+  std::vector<double> l2, h1;
+  error_norms_per_element(lr, elements, coefs, b.exact, l2, h1, threads);
+  auto cell = [](const std::vector<double>& v, bool root) {
+    return [&v, root](int, int e, std::span<double> out) {
+      out[0] = root ? std::sqrt(v[static_cast<std::size_t>(e)]) : v[static_cast<std::size_t>(e)];
+    };
+  };
+  io::write_lr_vtu(path.string(), AnyLRSpline(lr), {},
+                   {{"u", 1,
+                     [&](int, std::span<const double> u, std::span<double> out) {
+                       Param<D> p;
+                       for (int k = 0; k < D; ++k) p[k] = u[static_cast<std::size_t>(k)];
+                       field.eval(p, out.data());
+                     }}},
+                   {{"estimate", 1, cell(eta, false)}, {"error_l2", 1, cell(l2, true)}, {"error_h1", 1, cell(h1, true)}});
+}
+
+// Adaptive LR refinement from the problem's tensor space: one line per step, then the table, the mesh and the
+// solution.
 template <int D>
 void run_adaptive(const SolveArgs& a, const PoissonBenchmark<D>& b) {
   require(!a.study, "solve: --study and --adaptive exclude each other");
@@ -315,6 +344,7 @@ void run_adaptive(const SolveArgs& a, const PoissonBenchmark<D>& b) {
   o.steps = a.steps;
   o.beta = a.beta;
   o.solver = a.solver;
+  Eigen::VectorXd coefs;
   const auto rows = adaptive_poisson<D>(
       lr, b.problem, b.exact, o,
       [](const ConvergenceRow& r) {
@@ -322,12 +352,13 @@ void run_adaptive(const SolveArgs& a, const PoissonBenchmark<D>& b) {
                     r.dofs, sci(r.l2).c_str(), sci(r.h1).c_str(), sci(r.estimate).c_str(),
                     secs(r.assembly_seconds).c_str(), secs(r.solve_seconds).c_str());
       },
-      nullptr, a.threads);
+      &coefs, a.threads);
   if (!a.out.empty()) {
     const auto dir = prepare_out(a);
     write_convergence_csv((dir / "convergence.csv").string(), rows, D);
     write_convergence_png((dir / "convergence.png").string(), rows);
     io::write_lr_vtu((dir / "mesh.vtu").string(), AnyLRSpline(lr));
+    write_lr_solution<D>(dir / "solution.vtu", lr, b, coefs, a.threads);
   }
 }
 

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "io_test_support.hpp"
+#include "support/vtu_arrays.hpp"
 #include "trivar/core/error.hpp"
 
 using namespace trivar;
@@ -31,18 +32,6 @@ std::string slurp(const std::string& path) {
   return ss.str();
 }
 
-// The values of the DataArray named `name` ("" for the points), parsed as doubles.
-std::vector<double> array_of(const std::string& xml, const std::string& name) {
-  const std::string tag = name.empty() ? "<Points>" : "Name=\"" + name + "\"";
-  std::size_t at = xml.find(tag);
-  EXPECT_NE(at, std::string::npos) << name;
-  at = xml.find('>', name.empty() ? xml.find("<DataArray", at) : at) + 1;
-  std::istringstream in(xml.substr(at, xml.find("</DataArray>", at) - at));
-  std::vector<double> v;
-  for (double x; in >> x;) v.push_back(x);
-  return v;
-}
-
 }  // namespace
 
 TEST(LrVtk, SampledElementsOfTheIdentityMapLieAtTheirParameters) {
@@ -52,18 +41,18 @@ TEST(LrVtk, SampledElementsOfTheIdentityMapLieAtTheirParameters) {
   io::write_lr_vtu(dir.file("s.vtu"), AnyLRSpline(s), {.samples_per_element = 3});
   const std::string xml = slurp(dir.file("s.vtu"));
   EXPECT_NE(xml.find("NumberOfPoints=\"48\" NumberOfCells=\"27\""), std::string::npos);
-  const auto points = array_of(xml, ""), params = array_of(xml, "param");
+  const auto points = test::vtu_array(xml, ""), params = test::vtu_array(xml, "param");
   ASSERT_EQ(points.size(), 48u * 3);
   ASSERT_EQ(params.size(), points.size());
   for (std::size_t i = 0; i < points.size(); ++i) EXPECT_NEAR(points[i], params[i], 1e-14) << i;
-  const auto element = array_of(xml, "element"), support = array_of(xml, "support");
+  const auto element = test::vtu_array(xml, "element"), support = test::vtu_array(xml, "support");
   ASSERT_EQ(element.size(), 27u);
   for (std::size_t c = 0; c < element.size(); ++c) {
     EXPECT_EQ(element[c], static_cast<double>(c / 9));
     EXPECT_EQ(support[c], static_cast<double>(s.element_support(static_cast<int>(c / 9)).size()));
   }
   // Every cell is a VTK_QUAD with 4 distinct corners of its own element.
-  const auto types = array_of(xml, "types"), conn = array_of(xml, "connectivity");
+  const auto types = test::vtu_array(xml, "types"), conn = test::vtu_array(xml, "connectivity");
   for (double t : types) EXPECT_EQ(t, 9.0);
   ASSERT_EQ(conn.size(), 27u * 4);
   for (std::size_t c = 0; c < 27; ++c)
@@ -80,7 +69,7 @@ TEST(LrVtk, ParametricMeshOfAVolume) {
   const std::string xml = slurp(dir.file("m.vtu"));
   EXPECT_NE(xml.find("NumberOfPoints=\"16\" NumberOfCells=\"2\""), std::string::npos);
   EXPECT_NE(xml.find("NumberOfPoints=\"12\" NumberOfCells=\"3\""), std::string::npos);
-  const auto points = array_of(xml, ""), params = array_of(xml, "param");
+  const auto points = test::vtu_array(xml, ""), params = test::vtu_array(xml, "param");
   ASSERT_EQ(points.size(), 16u * 3);
   for (std::size_t i = 0; i < points.size(); ++i) EXPECT_EQ(points[i], params[i]);
   // Hexahedra: the second element's bottom corners lie on w = 0.5 (VTK order: bottom face first).
@@ -92,6 +81,37 @@ TEST(LrVtk, ParametricMeshOfAVolume) {
   EXPECT_DOUBLE_EQ(volume, 1.0);
   EXPECT_NE(xml.find("<DataArray type=\"UInt8\" Name=\"types\" NumberOfComponents=\"1\" format=\"ascii\">\n          12 12\n"),
             std::string::npos);
+}
+
+TEST(LrVtk, PointAndCellFieldsOfTheCaller) {
+  // A point field is evaluated at the point's own parameter (one ulp inside the element on interior upper
+  // faces), a cell field once per element and repeated on the element's cells.
+  test::TempDir dir;
+  const LRSpline<2> s = identity_surface();
+  const io::VtkPointField uv{"uv", 2, [](int piece, std::span<const double> u, std::span<double> out) {
+                               out[0] = u[0] + piece;
+                               out[1] = u[1];
+                             }};
+  const io::LRVtkCellField twice{"twice", 1, [](int, int e, std::span<double> out) { out[0] = 2.0 * e; }};
+  io::write_lr_vtu(dir.file("f.vtu"), AnyLRSpline(s), {.samples_per_element = 2}, {uv}, {twice});
+  const std::string xml = slurp(dir.file("f.vtu"));
+  const auto params = test::vtu_array(xml, "param"), values = test::vtu_array(xml, "uv");
+  ASSERT_EQ(values.size(), 27u * 2);
+  for (std::size_t q = 0; q < 27; ++q)
+    for (int k = 0; k < 2; ++k) EXPECT_NEAR(values[2 * q + k], params[3 * q + k], 1e-15) << q;
+  const auto element = test::vtu_array(xml, "element"), doubled = test::vtu_array(xml, "twice");
+  ASSERT_EQ(doubled.size(), 12u);
+  for (std::size_t c = 0; c < doubled.size(); ++c) EXPECT_EQ(doubled[c], 2 * element[c]);
+  // Reserved, duplicate, nameless and valueless fields write nothing.
+  const std::string bad = dir.file("bad.vtu");
+  const AnyLRSpline any(s);
+  EXPECT_THROW(io::write_lr_vtu(bad, any, {}, {{"param", 1, uv.value}}), Error);
+  EXPECT_THROW(io::write_lr_vtu(bad, any, {}, {uv, uv}), Error);
+  EXPECT_THROW(io::write_lr_vtu(bad, any, {}, {{"", 1, uv.value}}), Error);
+  EXPECT_THROW(io::write_lr_vtu(bad, any, {}, {{"v", 1, nullptr}}), Error);
+  EXPECT_THROW(io::write_lr_vtu(bad, any, {}, {}, {{"support", 1, twice.value}}), Error);
+  EXPECT_THROW(io::write_lr_vtu(bad, any, {}, {}, {{"e", 0, twice.value}}), Error);
+  EXPECT_EQ(dir.entries(), 1);
 }
 
 TEST(LrVtk, InvalidOptionsWriteNothing) {

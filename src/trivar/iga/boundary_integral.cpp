@@ -1,13 +1,26 @@
 #include "trivar/iga/boundary_integral.hpp"
 
-#include <cmath>
-
 #include <Eigen/Dense>
 
 #include "trivar/core/gauss_legendre.hpp"
 #include "trivar/iga/point_basis.hpp"
 
 namespace trivar {
+
+template <int D>
+void side_measure(const std::array<std::array<double, D>, D>& Jarr, int dir, int side, double& weight,
+                  std::array<double, D>& normal) {
+  Eigen::Matrix<double, D, D> J;
+  for (int r = 0; r < D; ++r)
+    for (int s = 0; s < D; ++s) J(r, s) = Jarr[r][s];
+  const double det = J.determinant();
+  // det(J) J^{-T} e_dir is the cofactor column: the area-weighted normal of the face u_dir = const.
+  // J^{-T} e_dir is the gradient of u_dir, which points out of the domain at the end side.
+  const Eigen::Matrix<double, D, 1> m = det * J.inverse().transpose().col(dir);
+  weight = m.norm();
+  const double sign = (side == 1 ? 1.0 : -1.0) * (det > 0 ? 1.0 : -1.0);
+  for (int k = 0; k < D; ++k) normal[k] = sign * m[k] / weight;
+}
 
 template <int D>
 void integrate_face(const TensorSpace<D>& space, const Face& face, int points,
@@ -44,19 +57,9 @@ void integrate_face(const TensorSpace<D>& space, const Face& face, int points,
         w *= (b - a) * rule.weights[static_cast<std::size_t>(i)];
       }
       point_basis(space, u, pb);
-      Eigen::Matrix<double, D, D> J;
-      for (int r = 0; r < D; ++r)
-        for (int s = 0; s < D; ++s) J(r, s) = pb.J[r][s];
-      const double det = J.determinant();
-      // det(J) J^{-T} e_dir is the cofactor column: the area-weighted normal of the face u_dir = const.
-      // J^{-T} e_dir is the gradient of u_dir, which points out of the domain at the end side.
-      const Eigen::Matrix<double, D, 1> m = det * J.inverse().transpose().col(face.dir);
-      const double len = m.norm();
-      const double sign = (face.side == 1 ? 1.0 : -1.0) * (det > 0 ? 1.0 : -1.0);
-      for (int k = 0; k < D; ++k) {
-        fp.x[k] = pb.x[k];
-        fp.normal[k] = sign * m[k] / len;
-      }
+      double len;
+      side_measure<D>(pb.J, face.dir, face.side, len, fp.normal);
+      fp.x = pb.x;
       fp.weight = len * w;
       fp.ids = pb.ids;
       fp.values = pb.R;
@@ -64,6 +67,8 @@ void integrate_face(const TensorSpace<D>& space, const Face& face, int points,
     }
 }
 
+template void side_measure<2>(const std::array<std::array<double, 2>, 2>&, int, int, double&, std::array<double, 2>&);
+template void side_measure<3>(const std::array<std::array<double, 3>, 3>&, int, int, double&, std::array<double, 3>&);
 template void integrate_face(const TensorSpace<2>&, const Face&, int, const std::function<void(const FacePoint<2>&)>&);
 template void integrate_face(const TensorSpace<3>&, const Face&, int, const std::function<void(const FacePoint<3>&)>&);
 

@@ -19,6 +19,13 @@ struct FacePoint {
   std::span<const double> values;  // their values
 };
 
+// Surface measure and outward unit normal at a point of the parametric side (dir, side) from the Jacobian
+// J[c][a] = dx_c/du_a there: weight = |det J| |J^{-T} e_dir|, per unit parametric (D-1)-measure. Shared by
+// the tensor and the LR face integrals, so both use one orientation convention.
+template <int D>
+void side_measure(const std::array<std::array<double, D>, D>& J, int dir, int side, double& weight,
+                  std::array<double, D>& normal);
+
 // Calls body at each of `points`^(D-1) Gauss points of every element of the face (serially).
 template <int D>
 void integrate_face(const TensorSpace<D>& space, const Face& face, int points,

@@ -1,12 +1,13 @@
 #include "trivar/iga/error_indicator.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <Eigen/Dense>
 
 #include "trivar/core/error.hpp"
 #include "trivar/core/parallel.hpp"
-#include "trivar/iga/lr_poisson.hpp"
+#include "trivar/iga/lr_quadrature.hpp"
 
 namespace trivar {
 
@@ -47,6 +48,11 @@ std::vector<double> residual_indicators(const LRSpline<D>& g, const std::vector<
   const Box<D>& dom = g.domain();
   const ElementEvaluator<D>& locate = g.evaluator();
   std::vector<double> eta(static_cast<std::size_t>(E));
+  auto is_dirichlet = [&](const Face& f) {
+    for (const auto& cond : problem.dirichlet)
+      if (std::find(cond.faces.begin(), cond.faces.end(), f) != cond.faces.end()) return true;
+    return false;
+  };
   parallel_for(E, threads, [&](std::ptrdiff_t e) {
     const LRElementBasis<D>& el = elements[static_cast<std::size_t>(e)];
     const int nq = g.degree(0) + 1;
@@ -65,29 +71,40 @@ std::vector<double> residual_indicators(const LRSpline<D>& g, const std::vector<
       volume += dV;
     });
     const double h = std::pow(volume, 1.0 / D);
-    double jumps = 0;
+    double jumps = 0, neumann = 0;
     for (int k = 0; k < D; ++k)
       for (int side = 0; side < 2; ++side) {
-        const double at = side == 0 ? el.box.lo[k] : el.box.hi[k];
-        if (at == (side == 0 ? dom.lo[k] : dom.hi[k])) continue;  // boundary side: Dirichlet data, no jump
-        for_each_gauss_point<D>(el.box, nq, k, side, [&](const Param<D>& u, double w) {
-          // The neighbour is the element just across the side at this point.
-          Param<D> across = u;
-          across[k] += (side == 0 ? -1.0 : 1.0) * 1e-9 * dom.extent(k);
-          const LRElementBasis<D>& nb = elements[static_cast<std::size_t>(locate.find_element(across))];
-          lr_point(g, el, u, p);
-          lr_point(g, nb, u, pn);
-          gradient_and_laplacian<D>(p, el.ids, coefs, grad, lap);
-          gradient_and_laplacian<D>(pn, nb.ids, coefs, gn, lapn);
-          double sw;
-          std::array<double, D> n;
-          side_measure<D>(p.J, k, side, sw, n);
-          double jump = 0;
-          for (int c = 0; c < D; ++c) jump += (grad[c] - gn[c]) * n[c];
-          jumps += jump * jump * sw * w;
+        const Face face{k, side};
+        if (!on_domain_face(dom, el.box, face)) {
+          for_each_side_point<D>(g, el, k, side, nq,
+                                 [&](const Param<D>& u, const LRPoint<D>& q, double w, const std::array<double, D>& n) {
+            // The neighbour is the element just across the side at this point.
+            Param<D> across = u;
+            across[k] += (side == 0 ? -1.0 : 1.0) * 1e-9 * dom.extent(k);
+            const LRElementBasis<D>& nb = elements[static_cast<std::size_t>(locate.find_element(across))];
+            lr_point(g, nb, u, pn);
+            gradient_and_laplacian<D>(q, el.ids, coefs, grad, lap);
+            gradient_and_laplacian<D>(pn, nb.ids, coefs, gn, lapn);
+            double jump = 0;
+            for (int c = 0; c < D; ++c) jump += (grad[c] - gn[c]) * n[c];
+            jumps += jump * jump * w;
+          });
+          continue;
+        }
+        if (is_dirichlet(face)) continue;  // exact boundary values: no residual
+        // Neumann side, given or natural (g = 0): the solve imposes k du/dn = g only weakly, so the flux
+        // mismatch is a residual like an interior jump, owned by this element alone.
+        const bool given = problem.flux && std::find(problem.neumann.begin(), problem.neumann.end(), face) !=
+                                               problem.neumann.end();
+        for_each_side_point<D>(g, el, k, side, nq,
+                               [&](const Param<D>&, const LRPoint<D>& q, double w, const std::array<double, D>& n) {
+          gradient_and_laplacian<D>(q, el.ids, coefs, grad, lap);
+          double mismatch = given ? problem.flux(q.x.data(), n.data()) : 0.0;
+          for (int c = 0; c < D; ++c) mismatch -= grad[c] * n[c];
+          neumann += mismatch * mismatch * w;
         });
       }
-    eta[static_cast<std::size_t>(e)] = std::sqrt(h * h * interior + 0.5 * h * jumps);
+    eta[static_cast<std::size_t>(e)] = std::sqrt(h * h * interior + h * (0.5 * jumps + neumann));
   });
   return eta;
 }

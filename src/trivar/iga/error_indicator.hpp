@@ -1,9 +1,13 @@
 #pragma once
 // Residual-based a-posteriori error indicator for the Poisson problem on LR spaces (Babuska-Rheinboldt /
 // Verfurth): per element K
-//   eta_K^2 = h_K^2 ||f + lap u_h||_K^2 + 1/2 sum over interior sides S of K of h_K ||[du_h/dn]||_S^2,
-// h_K = |K|^(1/D). The sum of eta_K^2 bounds the squared energy error from above up to a constant. On
-// C^1 spline spaces the jumps vanish except across C^0 lines (repeated knots, kinks of the geometry map).
+//   eta_K^2 = h_K^2 ||f + lap u_h||_K^2 + 1/2 sum over interior sides S of K of h_K ||[du_h/dn]||_S^2
+//             + sum over Neumann sides S of K of h_K ||g - du_h/dn||_S^2,
+// h_K = |K|^(1/D). Neumann sides are the element sides on boundary faces that are not Dirichlet: g is the
+// problem's flux on its Neumann faces and 0 on the others (the natural condition the solve imposes there);
+// Dirichlet sides contribute nothing. The sum of eta_K^2 bounds the squared energy error from above up to a
+// constant. On C^1 spline spaces the jumps vanish except across C^0 lines (repeated knots, kinks of the
+// geometry map).
 #include <vector>
 
 #include <Eigen/Core>

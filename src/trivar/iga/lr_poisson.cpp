@@ -9,21 +9,9 @@
 
 #include "trivar/core/error.hpp"
 #include "trivar/core/parallel.hpp"
+#include "trivar/iga/lr_quadrature.hpp"
 
 namespace trivar {
-
-template <int D>
-void side_measure(const std::array<std::array<double, D>, D>& Jarr, int dir, int side, double& weight,
-                  std::array<double, D>& normal) {
-  Eigen::Matrix<double, D, D> J;
-  for (int r = 0; r < D; ++r)
-    for (int s = 0; s < D; ++s) J(r, s) = Jarr[r][s];
-  const double det = J.determinant();
-  const Eigen::Matrix<double, D, 1> m = det * J.inverse().transpose().col(dir);
-  weight = m.norm();
-  const double sign = (side == 1 ? 1.0 : -1.0) * (det > 0 ? 1.0 : -1.0);
-  for (int k = 0; k < D; ++k) normal[k] = sign * m[k] / weight;
-}
 
 namespace {
 
@@ -49,7 +37,6 @@ double physical_gradients(const LRPoint<D>& p, std::vector<double>& grad) {
 template <int D>
 SolveResult solve_poisson(const LRSpline<D>& g, const std::vector<LRElementBasis<D>>& elements,
                           const PoissonProblem<D>& problem, LinearSolver& solver, int threads) {
-  require(problem.neumann.empty() || !problem.flux, "iga: Neumann conditions on LR spaces are not supported");
   const auto t0 = std::chrono::steady_clock::now();
   const int N = g.num_basis(), E = g.num_elements();
   std::vector<Eigen::MatrixXd> Ke(static_cast<std::size_t>(E));
@@ -72,6 +59,17 @@ SolveResult solve_poisson(const LRSpline<D>& g, const std::vector<LRElementBasis
       K.noalias() += (k * dV) * G * G.transpose();
       b += (f * dV) * Eigen::Map<const Eigen::VectorXd>(p.R.data(), m);
     });
+    // Neumann load: integral of g v over the element's sides on the Neumann faces (p + 2 points per direction,
+    // as add_face_load).
+    if (problem.flux)
+      for (const Face& f : problem.neumann) {
+        if (!on_domain_face(g.domain(), el.box, f)) continue;
+        for_each_side_point<D>(g, el, f.dir, f.side, g.degree(0) + 2,
+                               [&](const Param<D>&, const LRPoint<D>& q, double w, const std::array<double, D>& n) {
+                                 b += (w * problem.flux(q.x.data(), n.data())) *
+                                      Eigen::Map<const Eigen::VectorXd>(q.R.data(), m);
+                               });
+      }
   });
   std::vector<Eigen::Triplet<double>> trip;
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(N);
@@ -102,33 +100,27 @@ SolveResult solve_poisson(const LRSpline<D>& g, const std::vector<LRElementBasis
   std::vector<Eigen::Triplet<double>> mtrip;
   Eigen::VectorXd mrhs = Eigen::VectorXd::Zero(nb);
   bool nonzero = false;
-  LRPoint<D> p;
   for (const auto& cond : problem.dirichlet) {
     if (!cond.value) continue;
     nonzero = true;
-    for (const Face& f : cond.faces) {
-      const double end = f.side == 0 ? g.domain().lo[f.dir] : g.domain().hi[f.dir];
+    for (const Face& f : cond.faces)
       for (const auto& el : elements) {
-        if ((f.side == 0 ? el.box.lo[f.dir] : el.box.hi[f.dir]) != end) continue;
-        for_each_gauss_point<D>(el.box, g.degree(0) + 2, f.dir, f.side, [&](const Param<D>& u, double w) {
-          lr_point(g, el, u, p);
-          double sw;
-          std::array<double, D> normal;
-          side_measure<D>(p.J, f.dir, f.side, sw, normal);
+        if (!on_domain_face(g.domain(), el.box, f)) continue;
+        for_each_side_point<D>(g, el, f.dir, f.side, g.degree(0) + 2,
+                               [&](const Param<D>&, const LRPoint<D>& p, double w, const std::array<double, D>&) {
           double val = 0;
           cond.value(p.x.data(), &val);
           for (std::size_t i = 0; i < el.ids.size(); ++i) {
             const auto it = local.find(el.ids[i]);
             if (it == local.end() || p.R[i] == 0.0) continue;
-            mrhs[it->second] += sw * w * p.R[i] * val;
+            mrhs[it->second] += w * p.R[i] * val;
             for (std::size_t j = 0; j < el.ids.size(); ++j) {
               const auto jt = local.find(el.ids[j]);
-              if (jt != local.end() && p.R[j] != 0.0) mtrip.emplace_back(it->second, jt->second, sw * w * p.R[i] * p.R[j]);
+              if (jt != local.end() && p.R[j] != 0.0) mtrip.emplace_back(it->second, jt->second, w * p.R[i] * p.R[j]);
             }
           }
         });
       }
-    }
   }
   if (nonzero && nb > 0) {
     Eigen::SparseMatrix<double> M(nb, nb);
@@ -177,8 +169,7 @@ void error_norms_per_element(const LRSpline<D>& g, const std::vector<LRElementBa
                                      const PoissonProblem<D>&, LinearSolver&, int);                                   \
   template void error_norms_per_element(const LRSpline<D>&, const std::vector<LRElementBasis<D>>&,                     \
                                         const Eigen::VectorXd&, const ExactSolution<D>&, std::vector<double>&,          \
-                                        std::vector<double>&, int);                                                   \
-  template void side_measure<D>(const std::array<std::array<double, D>, D>&, int, int, double&, std::array<double, D>&);
+                                        std::vector<double>&, int);
 TRIVAR_INSTANTIATE(2)
 TRIVAR_INSTANTIATE(3)
 #undef TRIVAR_INSTANTIATE

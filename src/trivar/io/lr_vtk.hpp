@@ -10,9 +10,15 @@
 // Cell data: "element" (the element id) and "support" (the number of B-splines whose support contains the
 // element, which shows overloading). Point data: "param" (u, v, w; w = 0 for surfaces). Points take the first
 // three control components (zeros when dim < 3); further components go to point data "higher_components".
+// Callers add point fields (VtkPointField, vtk_writer.hpp: value(piece, u, out) is called at the parameter
+// the point is evaluated at, so one ulp inside the element as above) and cell fields (one value per element,
+// repeated on the element's VTK cells), e.g. a solution on the mesh and per-element error indicators.
+#include <functional>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "trivar/io/vtk_writer.hpp"
 #include "trivar/lr/any_lr_spline.hpp"
 
 namespace trivar::io {
@@ -22,8 +28,21 @@ struct LRVtkOptions {
   bool parametric_mesh = false;
 };
 
-// Throws trivar::Error (nothing written) for samples_per_element < 1, an empty list or a write failure.
-void write_lr_vtu(const std::string& path, const AnyLRSpline& s, const LRVtkOptions& opts = {});
-void write_lr_vtu(const std::string& path, const std::vector<AnyLRSpline>& objects, const LRVtkOptions& opts = {});
+// An extra cell-data array: value(piece, element, out) writes `components` values for element `element` (the
+// LR element id) of object number `piece`. Called serially.
+struct LRVtkCellField {
+  std::string name;
+  int components = 1;
+  std::function<void(int piece, int element, std::span<double> out)> value;
+};
+
+// Throws trivar::Error (nothing written) for samples_per_element < 1, an empty list, a field without name or
+// value function, with a duplicate or reserved name, or a write failure.
+void write_lr_vtu(const std::string& path, const AnyLRSpline& s, const LRVtkOptions& opts = {},
+                  const std::vector<VtkPointField>& point_fields = {},
+                  const std::vector<LRVtkCellField>& cell_fields = {});
+void write_lr_vtu(const std::string& path, const std::vector<AnyLRSpline>& objects, const LRVtkOptions& opts = {},
+                  const std::vector<VtkPointField>& point_fields = {},
+                  const std::vector<LRVtkCellField>& cell_fields = {});
 
 }  // namespace trivar::io

@@ -12,6 +12,7 @@
 #include "trivar/core/error.hpp"
 #include "trivar/core/number_format.hpp"
 #include "trivar/io/vtu_data_array.hpp"
+#include "trivar/io/vtu_fields.hpp"
 #include "trivar/spline/bezier_extraction.hpp"
 
 namespace trivar::io {
@@ -289,16 +290,7 @@ void write_piece(std::ostream& os, const Piece& p, Mode mode, const std::vector<
 void validate(const std::string& path, Mode mode, int samples, const std::vector<VtkPointField>& fields) {
   require(mode != Mode::sampled || samples >= 1,
           path + ": samples_per_element must be >= 1, got " + std::to_string(samples));
-  for (std::size_t f = 0; f < fields.size(); ++f) {
-    const VtkPointField& field = fields[f];
-    require(!field.name.empty(), path + ": point field " + std::to_string(f) + " has no name");
-    require(field.components >= 1, path + ": point field '" + field.name + "' needs >= 1 components");
-    require(static_cast<bool>(field.value), path + ": point field '" + field.name + "' has no value function");
-    require(std::find(kReservedNames.begin(), kReservedNames.end(), field.name) == kReservedNames.end(),
-            path + ": point field name '" + field.name + "' is reserved");
-    for (std::size_t g = 0; g < f; ++g)
-      require(fields[g].name != field.name, path + ": duplicate point field name '" + field.name + "'");
-  }
+  validate_fields(path, "point field", fields, kReservedNames);
 }
 
 }  // namespace

@@ -1,0 +1,62 @@
+#pragma once
+// Gauss quadrature on the elements of an LR mesh: points of an element box or of one of its sides, and the
+// sides that lie on the boundary of the domain. Face integrals (Neumann loads, Dirichlet projection, the
+// boundary terms of the error indicator) are sums over the element sides on a domain face; the surface
+// measure and normal come from side_measure (boundary_integral.hpp), as for tensor patches.
+#include <array>
+#include <utility>
+
+#include "trivar/core/gauss_legendre.hpp"
+#include "trivar/iga/boundary_integral.hpp"
+#include "trivar/iga/lr_space.hpp"
+
+namespace trivar {
+
+// Gauss points (n per direction) of a box, or of one side of it (dir >= 0: u_dir fixed at the side): calls
+// body(u, weight) with the parametric weight.
+template <int D, class Body>
+void for_each_gauss_point(const Box<D>& box, int n, int dir, int side, Body&& body) {
+  const QuadratureRule rule = gauss_legendre(n);
+  int count = 1;
+  for (int k = 0; k < D; ++k)
+    if (k != dir) count *= n;
+  for (int q = 0; q < count; ++q) {
+    Param<D> u;
+    double w = 1;
+    for (int k = 0, r = q; k < D; ++k) {
+      if (k == dir) {
+        u[k] = side == 0 ? box.lo[k] : box.hi[k];
+        continue;
+      }
+      const int i = r % n;
+      r /= n;
+      u[k] = box.lo[k] + box.extent(k) * rule.nodes[static_cast<std::size_t>(i)];
+      w *= box.extent(k) * rule.weights[static_cast<std::size_t>(i)];
+    }
+    body(u, w);
+  }
+}
+
+// True when the side (face.dir, face.side) of an element box lies on that face of the domain.
+template <int D>
+bool on_domain_face(const Box<D>& domain, const Box<D>& box, const Face& face) {
+  return face.side == 0 ? box.lo[face.dir] == domain.lo[face.dir] : box.hi[face.dir] == domain.hi[face.dir];
+}
+
+// Gauss points (n^(D-1)) on the side (dir, side) of one element: calls body(u, p, weight, normal) with the
+// element evaluated at u, weight = surface measure times Gauss weight and the unit normal pointing out of the
+// element box.
+template <int D, class Body>
+void for_each_side_point(const LRSpline<D>& geometry, const LRElementBasis<D>& element, int dir, int side, int n,
+                         Body&& body) {
+  LRPoint<D> p;
+  std::array<double, D> normal;
+  for_each_gauss_point<D>(element.box, n, dir, side, [&](const Param<D>& u, double w) {
+    lr_point(geometry, element, u, p);
+    double measure;
+    side_measure<D>(p.J, dir, side, measure, normal);
+    body(u, std::as_const(p), measure * w, std::as_const(normal));
+  });
+}
+
+}  // namespace trivar
