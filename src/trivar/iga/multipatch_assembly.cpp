@@ -1,33 +1,102 @@
 #include "trivar/iga/multipatch_assembly.hpp"
 
+#include <algorithm>
+#include <limits>
+#include <string>
 #include <vector>
 
 #include "trivar/core/error.hpp"
+#include "trivar/core/parallel.hpp"
 
 namespace trivar {
+
+namespace {
+
+// The global compressed rows: the scalar pattern of global function G is the union over the patches of the
+// renumbered columns of its rows (sorted), repeated for every component block, so an entry is found by a
+// binary search in one short list instead of sorting triplets of every entry.
+struct GlobalPattern {
+  std::vector<std::vector<int>> columns;  // per global function, ascending
+};
+
+GlobalPattern global_pattern(const std::vector<SparseMatrix>& local, const std::vector<std::vector<int>>& global,
+                             int num_basis, int threads) {
+  GlobalPattern pat;
+  pat.columns.resize(static_cast<std::size_t>(num_basis));
+  for (std::size_t p = 0; p < local.size(); ++p) {
+    const std::vector<int>& g = global[p];
+    const int n = static_cast<int>(g.size());
+    for (int I = 0; I < n; ++I) {
+      std::vector<int>& cols = pat.columns[static_cast<std::size_t>(g[static_cast<std::size_t>(I)])];
+      for (SparseMatrix::InnerIterator it(local[p], I); it && it.col() < n; ++it)
+        cols.push_back(g[static_cast<std::size_t>(it.col())]);
+    }
+  }
+  parallel_for(num_basis, threads, [&](std::ptrdiff_t G) {
+    std::vector<int>& cols = pat.columns[static_cast<std::size_t>(G)];
+    std::sort(cols.begin(), cols.end());
+    cols.erase(std::unique(cols.begin(), cols.end()), cols.end());
+  });
+  return pat;
+}
+
+bool injective(const std::vector<int>& g, int num_basis) {
+  std::vector<char> seen(static_cast<std::size_t>(num_basis), 0);
+  for (int G : g) {
+    if (seen[static_cast<std::size_t>(G)]) return false;
+    seen[static_cast<std::size_t>(G)] = 1;
+  }
+  return true;
+}
+
+}  // namespace
 
 template <int D>
 SparseMatrix assemble_matrix(const MultipatchSpace<D>& space, const std::function<BilinearForm<D>(int patch)>& form,
                              int threads) {
   if (space.num_patches() == 1) return assemble_matrix(space.patches[0], form(0), threads);
   const int N = space.num_basis;
-  std::vector<Eigen::Triplet<double, int>> entries;
-  int components = 0;
+  std::vector<SparseMatrix> local;
+  int m = 0;
   for (int p = 0; p < space.num_patches(); ++p) {
     const BilinearForm<D> f = form(p);
-    require(p == 0 || f.components == components, "iga: the forms of a multipatch problem differ in components");
-    components = f.components;
-    const SparseMatrix A = assemble_matrix(space.patches[static_cast<std::size_t>(p)], f, threads);
+    require(p == 0 || f.components == m, "iga: the forms of a multipatch problem differ in components");
+    m = f.components;
+    local.push_back(assemble_matrix(space.patches[static_cast<std::size_t>(p)], f, threads));
+  }
+  const GlobalPattern pat = global_pattern(local, space.global, N, threads);
+  const auto width = [&](int G) { return static_cast<long>(pat.columns[static_cast<std::size_t>(G)].size()); };
+  std::vector<long> outer(static_cast<std::size_t>(N) * m + 1, 0);
+  for (int r = 0; r < N * m; ++r) outer[static_cast<std::size_t>(r) + 1] = outer[static_cast<std::size_t>(r)] + m * width(r % N);
+  require(outer.back() <= std::numeric_limits<int>::max(),
+          "iga: the system has too many non-zeros (" + std::to_string(outer.back()) + ") for 32-bit indices");
+  SparseMatrix A(static_cast<Eigen::Index>(N) * m, static_cast<Eigen::Index>(N) * m);
+  A.resizeNonZeros(static_cast<Eigen::Index>(outer.back()));
+  for (std::size_t r = 0; r < outer.size(); ++r) A.outerIndexPtr()[r] = static_cast<int>(outer[r]);
+  parallel_for(N * m, threads, [&](std::ptrdiff_t r) {
+    const std::vector<int>& cols = pat.columns[static_cast<std::size_t>(r % N)];
+    int* out = A.innerIndexPtr() + outer[static_cast<std::size_t>(r)];
+    for (int d = 0; d < m; ++d)
+      for (int c : cols) *out++ = d * N + c;
+  });
+  std::fill(A.valuePtr(), A.valuePtr() + outer.back(), 0.0);
+  for (int p = 0; p < space.num_patches(); ++p) {
     const std::vector<int>& g = space.global[static_cast<std::size_t>(p)];
     const int n = static_cast<int>(g.size());
-    auto global = [&](int local) { return (local / n) * N + g[static_cast<std::size_t>(local % n)]; };
-    entries.reserve(entries.size() + static_cast<std::size_t>(A.nonZeros()));
-    for (int r = 0; r < A.outerSize(); ++r)
-      for (SparseMatrix::InnerIterator it(A, r); it; ++it)
-        entries.emplace_back(global(r), global(static_cast<int>(it.col())), it.value());
+    const SparseMatrix& L = local[static_cast<std::size_t>(p)];
+    // Rows of one patch are distinct global rows unless the patch meets itself (a closed ring, a collapsed face).
+    parallel_for(L.rows(), injective(g, N) ? threads : 1, [&](std::ptrdiff_t r) {
+      const int G = g[static_cast<std::size_t>(r % n)];
+      const std::vector<int>& cols = pat.columns[static_cast<std::size_t>(G)];
+      double* row = A.valuePtr() + outer[static_cast<std::size_t>((r / n) * N + G)];
+      for (SparseMatrix::InnerIterator it(L, r); it; ++it) {
+        const int d = static_cast<int>(it.col()) / n, J = g[static_cast<std::size_t>(it.col() % n)];
+        row[d * static_cast<long>(cols.size()) + (std::lower_bound(cols.begin(), cols.end(), J) - cols.begin())] +=
+            it.value();
+      }
+    });
+    local[static_cast<std::size_t>(p)] = SparseMatrix();
   }
-  SparseMatrix A(static_cast<Eigen::Index>(N) * components, static_cast<Eigen::Index>(N) * components);
-  A.setFromTriplets(entries.begin(), entries.end());
   return A;
 }
 

@@ -2,7 +2,8 @@
 // MultipatchSpace<D>: the isogeometric space of a conforming multipatch domain, e.g. the cells of a glued
 // V-model. Every patch keeps its own TensorSpace (and so its own Bezier-element loop); basis functions on a
 // shared face are identified with their twins on the neighbour face, which makes the space C^0 across the
-// interfaces. Global scalar unknowns are numbered patch by patch in first-appearance order (a single patch
+// interfaces; a cell that meets itself (a closed ring, as in a torus) is identified across its own faces.
+// Global scalar unknowns are numbered patch by patch in first-appearance order (a single patch
 // keeps its own numbering); an unknown with m components is numbered component-major over the global basis.
 //
 // A collapsed (degenerate) cell face, as at the axis of a polar parametrisation, carries several basis
