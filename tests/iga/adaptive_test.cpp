@@ -10,6 +10,34 @@
 
 using namespace trivar;
 
+namespace {
+
+// Every step adds dofs and lowers the H1 error, and the estimator tracks the true error within a fixed factor.
+void expect_monotone_and_efficient(const std::vector<ConvergenceRow>& rows) {
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    EXPECT_GT(rows[i].dofs, rows[i - 1].dofs);
+    EXPECT_LT(rows[i].h1, rows[i - 1].h1);
+  }
+  for (const auto& r : rows) {
+    EXPECT_GT(r.estimate / r.h1, 0.2);
+    EXPECT_LT(r.estimate / r.h1, 20.0);
+  }
+}
+
+// `steps` adaptive solves (Dorfler fraction 0.3) from the benchmark's space, checked as above.
+std::vector<ConvergenceRow> adapt(const PoissonBenchmark<2>& b, int steps) {
+  LRSpline<2> lr(b.space.geometry);
+  AdaptiveOptions o;
+  o.steps = steps;
+  o.beta = 0.3;
+  const auto rows = adaptive_poisson(lr, b.problem, b.exact, o);
+  EXPECT_EQ(rows.size(), static_cast<std::size_t>(steps));
+  expect_monotone_and_efficient(rows);
+  return rows;
+}
+
+}  // namespace
+
 TEST(LRPoisson, MatchesTheTensorSolverOnAnUnrefinedSpace) {
   // An LR spline converted from a tensor spline has the same basis: same dofs, same errors.
   const PoissonBenchmark<2> b = sine_box<2>(2, 6);
@@ -51,21 +79,7 @@ TEST(Adaptive, LShapeAdaptiveLRBeatsUniformRefinement) {
   // rate dofs^(-p/2) for p = 2 (H1) instead of dofs^(-1/3), so the adaptive error at the last step is
   // reached by uniform refinement only with several times more dofs.
   const PoissonBenchmark<2> b = l_shape(2, 4);
-  LRSpline<2> lr(b.space.geometry);
-  AdaptiveOptions o;
-  o.steps = 8;
-  o.beta = 0.3;
-  const auto rows = adaptive_poisson(lr, b.problem, b.exact, o);
-  ASSERT_EQ(rows.size(), 8u);
-  for (std::size_t i = 1; i < rows.size(); ++i) {
-    EXPECT_GT(rows[i].dofs, rows[i - 1].dofs);
-    EXPECT_LT(rows[i].h1, rows[i - 1].h1);
-  }
-  // Efficiency of the estimator: it tracks the true error within a fixed factor.
-  for (const auto& r : rows) {
-    EXPECT_GT(r.estimate / r.h1, 0.2);
-    EXPECT_LT(r.estimate / r.h1, 20.0);
-  }
+  const auto rows = adapt(b, 8);
   // Uniform refinement: H1 error ~ C dofs^(-1/3); C from a uniform solve.
   const PoissonBenchmark<2> u = l_shape(2, 16);
   auto solver = make_solver("cholmod");
@@ -73,6 +87,7 @@ TEST(Adaptive, LShapeAdaptiveLRBeatsUniformRefinement) {
   const double eu = error_norms<2>(u.space, ur.coefs, 1, u.exact).h1;
   const double dofs_uniform = ur.dofs * std::pow(eu / rows.back().h1, 3.0);
   EXPECT_GT(dofs_uniform, 3.0 * rows.back().dofs);
+  LRSpline<2> lr(b.space.geometry);
   EXPECT_THROW(adaptive_poisson(lr, b.problem, b.exact, {0, 0.3, {}, "cholmod"}), Error);
   EXPECT_THROW(adaptive_poisson(lr, b.problem, b.exact, {2, 1.5, {}, "cholmod"}), Error);
 }
@@ -91,20 +106,7 @@ TEST(Adaptive, LShapeWithNeumannDataOnTheOuterBoundary) {
     exact(x, &u, g);
     return g[0] * n[0] + g[1] * n[1];
   };
-  LRSpline<2> lr(b.space.geometry);
-  AdaptiveOptions o;
-  o.steps = 9;
-  o.beta = 0.3;
-  const auto rows = adaptive_poisson(lr, b.problem, b.exact, o);
-  ASSERT_EQ(rows.size(), 9u);
-  for (std::size_t i = 1; i < rows.size(); ++i) {
-    EXPECT_GT(rows[i].dofs, rows[i - 1].dofs);
-    EXPECT_LT(rows[i].h1, rows[i - 1].h1);
-  }
-  for (const auto& r : rows) {
-    EXPECT_GT(r.estimate / r.h1, 0.2);
-    EXPECT_LT(r.estimate / r.h1, 20.0);
-  }
+  const auto rows = adapt(b, 9);
   const auto& first = rows[rows.size() - 4];
   const auto& last = rows.back();
   const double rate = std::log(first.h1 / last.h1) / std::log(static_cast<double>(last.dofs) / first.dofs);

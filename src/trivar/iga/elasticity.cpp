@@ -63,31 +63,17 @@ private:
   std::atomic<int> bad_patch_{-1};
 };
 
-}  // namespace
-
-template <int D>
-SparseMatrix elastic_stiffness(const MultipatchSpace<D>& space, const ElasticityProblem<D>& problem, int threads) {
-  constexpr int K = D + 1;
+// A form whose coefficients depend on the material at the point only: fill(material, P).
+template <int D, class Fill>
+SparseMatrix assemble_material_form(const MultipatchSpace<D>& space, const ElasticityProblem<D>& problem,
+                                    const BilinearForm<D>& shape, Fill fill, int threads) {
   MaterialCheck check;
-  // a(u, v) = int lambda div u div v + 2 mu eps(u) : eps(v); for v = R_I e_c, u = R_J e_d:
-  // lambda d_c R_I d_d R_J + mu delta_cd grad R_I . grad R_J + mu d_d R_I d_c R_J.
   SparseMatrix A = assemble_matrix<D>(
       space,
       [&](int patch) {
-        BilinearForm<D> form;
-        form.components = D;
+        BilinearForm<D> form = shape;
         form.coefficients = [&, patch](const double* x, double* P) {
-          const ElasticMaterial m = check(problem.material_of(patch, x), patch);
-          const double lambda = m.lambda(), mu = m.mu();
-          for (int c = 0; c < D; ++c)
-            for (int d = 0; d < D; ++d) {
-              double* B = P + (c * D + d) * K * K;
-              for (int e = 0; e < K * K; ++e) B[e] = 0.0;
-              B[(c + 1) * K + (d + 1)] += lambda;
-              B[(d + 1) * K + (c + 1)] += mu;
-              if (c == d)
-                for (int a = 1; a <= D; ++a) B[a * K + a] += mu;
-            }
+          fill(check(problem.material_of(patch, x), patch), P);
         };
         return form;
       },
@@ -96,27 +82,46 @@ SparseMatrix elastic_stiffness(const MultipatchSpace<D>& space, const Elasticity
   return A;
 }
 
+}  // namespace
+
+template <int D>
+SparseMatrix elastic_stiffness(const MultipatchSpace<D>& space, const ElasticityProblem<D>& problem, int threads) {
+  constexpr int K = D + 1;
+  BilinearForm<D> shape;
+  shape.components = D;
+  // a(u, v) = int lambda div u div v + 2 mu eps(u) : eps(v); for v = R_I e_c, u = R_J e_d:
+  // lambda d_c R_I d_d R_J + mu delta_cd grad R_I . grad R_J + mu d_d R_I d_c R_J.
+  return assemble_material_form<D>(
+      space, problem, shape,
+      [](const ElasticMaterial& m, double* P) {
+        const double lambda = m.lambda(), mu = m.mu();
+        for (int c = 0; c < D; ++c)
+          for (int d = 0; d < D; ++d) {
+            double* B = P + (c * D + d) * K * K;
+            for (int e = 0; e < K * K; ++e) B[e] = 0.0;
+            B[(c + 1) * K + (d + 1)] += lambda;
+            B[(d + 1) * K + (c + 1)] += mu;
+            if (c == d)
+              for (int a = 1; a <= D; ++a) B[a * K + a] += mu;
+          }
+      },
+      threads);
+}
+
 template <int D>
 SparseMatrix elastic_mass(const MultipatchSpace<D>& space, const ElasticityProblem<D>& problem, int threads) {
   constexpr int K = D + 1;
-  MaterialCheck check;
-  SparseMatrix M = assemble_matrix<D>(
-      space,
-      [&](int patch) {
-        BilinearForm<D> form;
-        form.components = D;
-        form.value_terms = true;
-        form.gradient_terms = false;
-        form.coefficients = [&, patch](const double* x, double* P) {
-          const double rho = check(problem.material_of(patch, x), patch).density;
-          for (int e = 0; e < D * D * K * K; ++e) P[e] = 0.0;
-          for (int c = 0; c < D; ++c) P[(c * D + c) * K * K] = rho;
-        };
-        return form;
+  BilinearForm<D> shape;
+  shape.components = D;
+  shape.value_terms = true;
+  shape.gradient_terms = false;
+  return assemble_material_form<D>(
+      space, problem, shape,
+      [](const ElasticMaterial& m, double* P) {
+        for (int e = 0; e < D * D * K * K; ++e) P[e] = 0.0;
+        for (int c = 0; c < D; ++c) P[(c * D + c) * K * K] = m.density;
       },
       threads);
-  check.report();
-  return M;
 }
 
 template <int D>
