@@ -318,7 +318,7 @@ void write_lr_solution(const std::filesystem::path& path, const LRSpline<D>& lr,
   const auto elements = lr_element_bases(lr, threads);
   const std::vector<double> eta = residual_indicators(lr, elements, b.problem, coefs, threads);
   std::vector<double> l2, h1;
-  error_norms_per_element(lr, elements, coefs, b.exact, l2, h1, threads);
+  error_norms_per_element(lr, elements, coefs, 1, b.exact, l2, h1, threads);
   auto cell = [](const std::vector<double>& v, bool root) {
     return [&v, root](int, int e, std::span<double> out) {
       out[0] = root ? std::sqrt(v[static_cast<std::size_t>(e)]) : v[static_cast<std::size_t>(e)];

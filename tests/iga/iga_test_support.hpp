@@ -1,10 +1,17 @@
 #pragma once
 // Shared geometry for the analysis tests: a box whose control points and weights are perturbed, so the map is
 // a genuinely curved NURBS with a valid Jacobian, and the identity on its boundary faces' planes is kept; and
-// a local refinement of an LR space near a corner, so LR tests run on spaces that are not tensor spaces.
+// a local refinement of an LR space near a corner, so LR tests run on spaces that are not tensor spaces; the
+// the reproduction and convergence-rate checks of the LR tests.
+#include <cmath>
 #include <random>
+#include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
+
+#include "trivar/iga/error_norms.hpp"
+#include "trivar/iga/lr_poisson.hpp"
 #include "trivar/iga/tensor_space.hpp"
 #include "trivar/lr/refinement.hpp"
 
@@ -55,6 +62,59 @@ bool has_t_junction(const trivar::LRSpline<D>& lr) {
     for (int k = 0; k < D; ++k)
       if (k != r.dir && (r.extent.lo[k] > lr.domain().lo[k] || r.extent.hi[k] < lr.domain().hi[k])) return true;
   return false;
+}
+
+// The D faces of the unit box at u_k = side.
+template <int D>
+std::vector<trivar::Face> faces_on_side(int side) {
+  std::vector<trivar::Face> f;
+  for (int k = 0; k < D; ++k) f.push_back({k, side});
+  return f;
+}
+
+// On a locally refined space (with T-junctions) that holds the exact solution, the solution returned by
+// solve(elements, solver) is that solution up to rounding.
+template <int D, class Solve>
+void expect_reproduced(const trivar::LRSpline<D>& lr, int components, const trivar::ExactSolution<D>& exact,
+                       Solve&& solve) {
+  ASSERT_TRUE(has_t_junction(lr));
+  const auto elements = trivar::lr_element_bases(lr);
+  auto solver = trivar::make_solver("cholmod");
+  const trivar::ErrorNorms e = trivar::error_norms<D>(lr, elements, solve(elements, *solver).coefs, components, exact);
+  EXPECT_LE(e.l2, 1e-10) << D;
+  EXPECT_LE(e.h1, 1e-10) << D;
+}
+
+// The convergence study of the LR tests: the map (2 elements per direction) at degree p with n = 4, 8, 16, 32
+// elements per direction, then the elements in [0, 1/4]^D refined once more (T-junctions; the largest
+// elements keep h = 1/n). solve(lr, elements, solver) on each space, errors against a smooth exact solution,
+// and a-priori rates between successive spaces: L2 ~ h^(p+1), H1 ~ h^p within [-0.15, +0.6] (pre-asymptotic meshes converge
+// faster), within 0.2 on the finest pair. Returns the errors per space.
+template <int D, class Solve>
+std::vector<trivar::ErrorNorms> expect_optimal_convergence(const trivar::TensorSpline<D>& map, int p, int components,
+                                                           const trivar::ExactSolution<D>& exact, Solve&& solve) {
+  std::vector<trivar::ErrorNorms> errors;
+  for (int n : {4, 8, 16, 32}) {
+    trivar::LRSpline<D> lr(trivar::make_tensor_space(map, p, n / 2).geometry);
+    refine_corner(lr, 0.25);
+    EXPECT_TRUE(has_t_junction(lr));
+    const auto elements = trivar::lr_element_bases(lr);
+    auto solver = trivar::make_solver("cholmod");
+    errors.push_back(trivar::error_norms<D>(lr, elements, solve(lr, elements, *solver).coefs, components, exact));
+    if (n == 4) continue;
+    const trivar::ErrorNorms &coarse = errors[errors.size() - 2], &fine = errors.back();
+    const double rl2 = std::log2(coarse.l2 / fine.l2), rh1 = std::log2(coarse.h1 / fine.h1);
+    const std::string what = "p " + std::to_string(p) + " n " + std::to_string(n);
+    EXPECT_GE(rl2, p + 1 - 0.15) << what;
+    EXPECT_LE(rl2, p + 1 + 0.6) << what;
+    EXPECT_GE(rh1, p - 0.15) << what;
+    EXPECT_LE(rh1, p + 0.6) << what;
+    if (n == 32) {
+      EXPECT_NEAR(rl2, p + 1, 0.2) << what;
+      EXPECT_NEAR(rh1, p, 0.2) << what;
+    }
+  }
+  return errors;
 }
 
 }  // namespace iga_test

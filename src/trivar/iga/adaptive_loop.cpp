@@ -30,7 +30,7 @@ std::vector<ConvergenceRow> adaptive_poisson(LRSpline<D>& g, const PoissonProble
     row.l2 = row.h1 = -1;
     if (exact) {
       std::vector<double> l2, h1;
-      error_norms_per_element(g, elements, r.coefs, exact, l2, h1, threads);
+      error_norms_per_element(g, elements, r.coefs, 1, exact, l2, h1, threads);
       row.l2 = row.h1 = 0;
       for (std::size_t e = 0; e < l2.size(); ++e) {
         row.l2 += l2[e];

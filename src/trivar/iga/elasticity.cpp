@@ -1,10 +1,10 @@
 #include "trivar/iga/elasticity.hpp"
 
-#include <atomic>
 #include <chrono>
 #include <cmath>
 
 #include "trivar/core/error.hpp"
+#include "trivar/iga/material_check.hpp"
 #include "trivar/iga/multipatch_assembly.hpp"
 
 namespace trivar {
@@ -41,27 +41,6 @@ double von_mises(const ElasticMaterial& m, const double* s) {
 }
 
 namespace {
-
-// Invalid materials met inside the threaded assembly are recorded (an exception must not leave an OpenMP
-// region) and reported after it.
-class MaterialCheck {
-public:
-  ElasticMaterial operator()(const ElasticMaterial& m, int patch) {
-    if (!m.valid()) {
-      int none = -1;
-      bad_patch_.compare_exchange_strong(none, patch);
-    }
-    return m;
-  }
-  void report() const {
-    const int p = bad_patch_.load();
-    require(p < 0, "elasticity: invalid material on patch " + std::to_string(p) +
-                       " (Young's modulus and density must be positive, Poisson's ratio in (-1, 0.5))");
-  }
-
-private:
-  std::atomic<int> bad_patch_{-1};
-};
 
 // A form whose coefficients depend on the material at the point only: fill(material, P).
 template <int D, class Fill>

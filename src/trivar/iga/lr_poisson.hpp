@@ -1,8 +1,8 @@
 #pragma once
 // The Poisson problem (poisson.hpp) on an LR B-spline space: element loop over the LR mesh with the element
 // extraction operators, dense element matrices, Neumann loads on the element sides along the Neumann faces,
-// strong Dirichlet conditions by L2 projection onto the functions clamped at the Dirichlet sides, L2 / H1
-// errors per element.
+// strong Dirichlet conditions by L2 projection onto the functions clamped at the Dirichlet sides (both in
+// lr_boundary.hpp), L2 / H1 errors per element of scalar and vector fields.
 #include <vector>
 
 #include <Eigen/Core>
@@ -19,10 +19,15 @@ template <int D>
 SolveResult solve_poisson(const LRSpline<D>& geometry, const std::vector<LRElementBasis<D>>& elements,
                           const PoissonProblem<D>& problem, LinearSolver& solver, int threads = 0);
 
-// Squared L2 and H1-seminorm errors per element (sums give the squares of the global errors).
+// Squared L2 and H1-seminorm errors per element (sums give the squares of the global errors) of a field with
+// `components` components (coefs component-major, exact as in error_norms.hpp).
 template <int D>
 void error_norms_per_element(const LRSpline<D>& geometry, const std::vector<LRElementBasis<D>>& elements,
-                             const Eigen::VectorXd& coefs, const ExactSolution<D>& exact, std::vector<double>& l2,
-                             std::vector<double>& h1, int threads = 0);
+                             const Eigen::VectorXd& coefs, int components, const ExactSolution<D>& exact,
+                             std::vector<double>& l2, std::vector<double>& h1, int threads = 0);
+// The global errors (per-element squares summed in element order).
+template <int D>
+ErrorNorms error_norms(const LRSpline<D>& geometry, const std::vector<LRElementBasis<D>>& elements,
+                       const Eigen::VectorXd& coefs, int components, const ExactSolution<D>& exact, int threads = 0);
 
 }  // namespace trivar

@@ -1,5 +1,9 @@
 #include "trivar/iga/lr_space.hpp"
 
+#include <cmath>
+
+#include <Eigen/Dense>
+
 #include "trivar/core/error.hpp"
 #include "trivar/core/parallel.hpp"
 #include "trivar/lr/lr_bezier_extraction.hpp"
@@ -93,6 +97,22 @@ void lr_point(const LRSpline<D>& g, const LRElementBasis<D>& el, const Param<D>&
 }
 
 template <int D>
+double physical_gradients(const LRPoint<D>& p, std::vector<double>& grad) {
+  Eigen::Matrix<double, D, D> J;
+  for (int r = 0; r < D; ++r)
+    for (int s = 0; s < D; ++s) J(r, s) = p.J[r][s];
+  const Eigen::Matrix<double, D, D> JinvT = J.inverse().transpose();
+  const int m = static_cast<int>(p.R.size());
+  grad.resize(static_cast<std::size_t>(m) * D);
+  for (int l = 0; l < m; ++l) {
+    const Eigen::Matrix<double, D, 1> g =
+        JinvT * Eigen::Map<const Eigen::Matrix<double, D, 1>>(&p.dR[static_cast<std::size_t>(l * D)]);
+    for (int c = 0; c < D; ++c) grad[static_cast<std::size_t>(l * D + c)] = g[c];
+  }
+  return std::abs(J.determinant());
+}
+
+template <int D>
 std::vector<int> lr_face_basis(const LRSpline<D>& g, int dir, int side) {
   const int p = g.degree(dir);
   const double end = side == 0 ? g.domain().lo[dir] : g.domain().hi[dir];
@@ -109,6 +129,7 @@ std::vector<int> lr_face_basis(const LRSpline<D>& g, int dir, int side) {
 #define TRIVAR_INSTANTIATE(D)                                                                               \
   template std::vector<LRElementBasis<D>> lr_element_bases(const LRSpline<D>&, int);                       \
   template void lr_point(const LRSpline<D>&, const LRElementBasis<D>&, const Param<D>&, LRPoint<D>&);      \
+  template double physical_gradients(const LRPoint<D>&, std::vector<double>&);                             \
   template std::vector<int> lr_face_basis(const LRSpline<D>&, int, int);
 TRIVAR_INSTANTIATE(2)
 TRIVAR_INSTANTIATE(3)

@@ -39,6 +39,10 @@ struct LRPoint {
 template <int D>
 void lr_point(const LRSpline<D>& geometry, const LRElementBasis<D>& element, const Param<D>& u, LRPoint<D>& out);
 
+// Physical gradients grad[l * D + k] = dR_l/dx_k of the active functions at p; returns |det J|.
+template <int D>
+double physical_gradients(const LRPoint<D>& p, std::vector<double>& grad);
+
 // Functions non-zero on the side (dir, side) of the domain: local knots clamped (p + 1 equal) at that side.
 template <int D>
 std::vector<int> lr_face_basis(const LRSpline<D>& geometry, int dir, int side);
