@@ -285,6 +285,26 @@ TEST(Multipatch, FreeFreeBodyHasSixRigidModes) {
   EXPECT_GT(r.values[6], 1.0);
 }
 
+TEST(Multipatch, FreeBallVibratesAtLambsTorsionalFrequency) {
+  // A free elastic sphere (Lamb 1882): six rigid-body modes, then the torsional modes of degree 2 (5-fold)
+  // at omega a / c_s = xi, the first root of j_2(xi) = xi j_2'(xi), below the 5-fold spheroidal ones
+  // (xi = 2.640 for nu = 1/4). With E = 1000, nu = 1/4, rho = 1 and a = 20, c_s = 20, so omega^2 = xi^2.
+  auto j2 = [](double x) { return (3 / (x * x * x) - 1 / x) * std::sin(x) - 3 * std::cos(x) / (x * x); };
+  auto torsional = [&](double x) { return j2(x) - x * (j2(x + 1e-6) - j2(x - 1e-6)) / 2e-6; };
+  double lo = 2, hi = 3;
+  for (int i = 0; i < 60; ++i) (torsional(lo) * torsional(0.5 * (lo + hi)) <= 0 ? hi : lo) = 0.5 * (lo + hi);
+  const double exact = lo * lo;  // 6.2557
+  BallSpec spec;
+  spec.radius = 20;
+  const MultipatchSpace<3> s = multipatch_space(model_of(make_ball(spec)), 3, 1);
+  ElasticityProblem<3> pb;
+  pb.material = {1000, 0.25, 1};
+  const ModesResult r = elastic_modes(s, pb, 12);
+  for (int i = 0; i < 6; ++i) EXPECT_LT(std::abs(r.values[i]), 1e-9 * exact) << i;
+  for (int i = 6; i < 11; ++i) EXPECT_NEAR(r.values[i], exact, 5e-3 * exact) << i;  // measured 3e-3
+  EXPECT_NEAR(r.values[11], 2.640 * 2.640, 1e-2 * 2.640 * 2.640);
+}
+
 TEST(Multipatch, LaplaceModesOnEightCells) {
   const MultipatchSpace<3> s = multipatch_space(eight_cell_cube(), 3, 3);
   const ModesResult r = laplace_modes(s, s.boundary, 4);
