@@ -108,12 +108,8 @@ SolveResult solve_elasticity(const MultipatchSpace<D>& space, const ElasticityPr
                              LinearSolver& solver, int threads) {
   const auto t0 = std::chrono::steady_clock::now();
   SparseMatrix A = elastic_stiffness(space, problem, threads);
-  Eigen::VectorXd b = problem.body_force ? assemble_load<D>(space, D, problem.body_force, threads)
-                                         : Eigen::VectorXd::Zero(static_cast<Eigen::Index>(space.num_basis) * D);
-  if (problem.traction && !problem.traction_faces.empty())
-    add_face_load<D>(space, problem.traction_faces, D, problem.traction, b);
-  const FixedDofs fixed = project_dirichlet(space, D, problem.displacement);
-  return solve_constrained(A, b, fixed, solver, t0);
+  return solve_loaded(space, A, D, problem.body_force, problem.traction_faces, problem.traction,
+                      problem.displacement, solver, t0, threads);
 }
 
 template <int D>

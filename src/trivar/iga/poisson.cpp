@@ -50,6 +50,19 @@ void add_face_load(const MultipatchSpace<D>& space, const std::vector<Face>& fac
 }
 
 template <int D>
+SolveResult solve_loaded(const MultipatchSpace<D>& space, SparseMatrix& A, int components,
+                         const std::function<void(const double* x, double* f)>& f, const std::vector<Face>& faces,
+                         const std::function<void(const double* x, const double* normal, double* g)>& g,
+                         const std::vector<DirichletCondition<D>>& conditions, LinearSolver& solver,
+                         std::chrono::steady_clock::time_point assembly_start, int threads) {
+  Eigen::VectorXd b = f ? assemble_load<D>(space, components, f, threads)
+                        : Eigen::VectorXd::Zero(static_cast<Eigen::Index>(space.num_basis) * components);
+  if (g && !faces.empty()) add_face_load<D>(space, faces, components, g, b);
+  const FixedDofs fixed = project_dirichlet(space, components, conditions);
+  return solve_constrained(A, b, fixed, solver, assembly_start);
+}
+
+template <int D>
 SolveResult solve_poisson(const MultipatchSpace<D>& space, const PoissonProblem<D>& problem, LinearSolver& solver,
                           int threads) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -60,14 +73,11 @@ SolveResult solve_poisson(const MultipatchSpace<D>& space, const PoissonProblem<
     for (int a = 1; a <= D; ++a) P[a * (D + 1) + a] = k;
   };
   SparseMatrix A = assemble_matrix<D>(space, [&](int) { return form; }, threads);
-  Eigen::VectorXd b = problem.source
-                          ? assemble_load<D>(space, 1, [&](const double* x, double* f) { f[0] = problem.source(x); }, threads)
-                          : Eigen::VectorXd::Zero(space.num_basis);
-  if (problem.flux && !problem.neumann.empty())
-    add_face_load<D>(space, problem.neumann, 1,
-                     [&](const double* x, const double* n, double* g) { g[0] = problem.flux(x, n); }, b);
-  const FixedDofs fixed = project_dirichlet(space, 1, problem.dirichlet);
-  return solve_constrained(A, b, fixed, solver, t0);
+  std::function<void(const double*, double*)> f;
+  if (problem.source) f = [&](const double* x, double* out) { out[0] = problem.source(x); };
+  std::function<void(const double*, const double*, double*)> g;
+  if (problem.flux) g = [&](const double* x, const double* n, double* out) { out[0] = problem.flux(x, n); };
+  return solve_loaded(space, A, 1, f, problem.neumann, g, problem.dirichlet, solver, t0, threads);
 }
 
 template <int D>
@@ -79,6 +89,11 @@ SolveResult solve_poisson(const TensorSpace<D>& space, const PoissonProblem<D>& 
 #define TRIVAR_INSTANTIATE(D)                                                                                        \
   template void add_face_load(const MultipatchSpace<D>&, const std::vector<Face>&, int,                              \
                               const std::function<void(const double*, const double*, double*)>&, Eigen::VectorXd&); \
+  template SolveResult solve_loaded(const MultipatchSpace<D>&, SparseMatrix&, int,                                   \
+                                    const std::function<void(const double*, double*)>&, const std::vector<Face>&,      \
+                                    const std::function<void(const double*, const double*, double*)>&,                \
+                                    const std::vector<DirichletCondition<D>>&, LinearSolver&,                           \
+                                    std::chrono::steady_clock::time_point, int);                                       \
   template SolveResult solve_poisson(const MultipatchSpace<D>&, const PoissonProblem<D>&, LinearSolver&, int);       \
   template SolveResult solve_poisson(const TensorSpace<D>&, const PoissonProblem<D>&, LinearSolver&, int);
 TRIVAR_INSTANTIATE(2)

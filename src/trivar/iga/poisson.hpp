@@ -40,6 +40,16 @@ template <int D>
 void add_face_load(const MultipatchSpace<D>& space, const std::vector<Face>& faces, int components,
                    const std::function<void(const double* x, const double* normal, double* g)>& g, Eigen::VectorXd& b);
 
+// The static loads and the solve shared by the problems on a multipatch space: b = integral of f . v (f null:
+// none) plus the face loads g on `faces` (g null: none), Dirichlet conditions projected, then
+// solve_constrained. f and g write `components` values.
+template <int D>
+SolveResult solve_loaded(const MultipatchSpace<D>& space, SparseMatrix& A, int components,
+                         const std::function<void(const double* x, double* f)>& f, const std::vector<Face>& faces,
+                         const std::function<void(const double* x, const double* normal, double* g)>& g,
+                         const std::vector<DirichletCondition<D>>& conditions, LinearSolver& solver,
+                         std::chrono::steady_clock::time_point assembly_start, int threads);
+
 template <int D>
 SolveResult solve_poisson(const MultipatchSpace<D>& space, const PoissonProblem<D>& problem, LinearSolver& solver,
                           int threads = 0);
