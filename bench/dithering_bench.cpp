@@ -17,9 +17,9 @@ namespace {
 
 constexpr int width = 2944, height = 1466;
 
-const am::FractionImage& layer() {
-  static const am::FractionImage img = [] {
-    am::FractionImage f(width, height, 3);
+const FractionImage& layer() {
+  static const FractionImage img = [] {
+    FractionImage f(width, height, 3);
     for (int y = 0; y < height; ++y)
       for (int x = 0; x < width; ++x) {
         const double u = (x - width / 2.0) / (0.48 * width), v = (y - height / 2.0) / (0.48 * height);
@@ -36,7 +36,7 @@ const am::FractionImage& layer() {
 
 void run(benchmark::State& state, am::DitherMethod method) {
   const auto& in = layer();
-  am::LabelImage out;
+  LabelImage out;
   for (auto _ : state) {
     am::dither(in, out, {method, 16});
     benchmark::DoNotOptimize(out.data().data());

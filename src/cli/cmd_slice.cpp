@@ -84,7 +84,7 @@ am::SliceSummary slice_to_directory(const VModel& model, const am::SliceOptions&
             return "slice: the cells' material attribute has " + std::to_string(layer.fractions.channels()) +
                    " fractions but the model lists " + std::to_string(materials.size()) + " materials";
           });
-          const am::LabelImage labels = am::dither(layer.fractions, dither);
+          const LabelImage labels = am::dither(layer.fractions, dither);
           std::vector<long long> local(counts.size(), 0);
           for (std::size_t p = 0; p < labels.pixel_count(); ++p)
             if (const int l = labels.data()[p]; l > 0) ++local[static_cast<std::size_t>(l - 1)];

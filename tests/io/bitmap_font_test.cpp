@@ -11,7 +11,7 @@
 #include "trivar/io/bitmap_font.hpp"
 
 using namespace trivar;
-using Image = am::LayerImage<std::uint8_t>;
+using Image = LayerImage<std::uint8_t>;
 
 namespace {
 

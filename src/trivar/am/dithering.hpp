@@ -6,7 +6,7 @@
 //
 // Input pixels: the fractions of a pixel are clamped to [0, 1] and divided by their sum; a pixel whose clamped
 // sum is 0 is outside the part and gets empty_label. A NaN fraction is an error.
-#include "trivar/am/layer_image.hpp"
+#include "trivar/core/layer_image.hpp"
 
 namespace trivar::am {
 

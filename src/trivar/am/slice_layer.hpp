@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "trivar/am/layer_image.hpp"
+#include "trivar/core/layer_image.hpp"
 
 namespace trivar::am {
 

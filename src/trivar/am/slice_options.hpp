@@ -5,7 +5,7 @@
 //   layer k (0-based) is sampled at  z_k = z0 + (k + 0.5) * layer_thickness,
 //   pixel (i, j) of a layer has its centre at  x_i = x0 + (i + 0.5) * dx,  y_j = y0 + (j + 0.5) * dy,
 // with dx = 25.4 / dpi_x and dy = 25.4 / dpi_y (mm), i the column (x fastest in memory) and j the row, row 0
-// at the LOWEST y (the convention of am::LayerImage). A pixel is inside the part when its centre is.
+// at the LOWEST y (the convention of LayerImage). A pixel is inside the part when its centre is.
 #include <array>
 #include <cmath>
 #include <optional>

@@ -13,7 +13,7 @@ namespace trivar {
 
 namespace {
 
-using Image = am::LayerImage<std::uint8_t>;
+using Image = LayerImage<std::uint8_t>;
 using io::Rgb;
 
 constexpr Rgb background{255, 255, 255}, grid{220, 220, 220}, ink{0, 0, 0};

@@ -115,7 +115,7 @@ const std::array<std::uint8_t, glyph_height>& glyph(char c) {
 
 int text_width(std::string_view text, int scale) { return static_cast<int>(text.size()) * glyph_advance * scale; }
 
-void draw_text(am::LayerImage<std::uint8_t>& image, int x, int y, std::string_view text, const Rgb& colour,
+void draw_text(LayerImage<std::uint8_t>& image, int x, int y, std::string_view text, const Rgb& colour,
                int scale, TextDirection direction) {
   require(scale >= 1, [&] { return "draw_text: scale " + std::to_string(scale) + " is below 1"; });
   for (std::size_t i = 0; i < text.size(); ++i) {

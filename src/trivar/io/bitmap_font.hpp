@@ -26,7 +26,7 @@ enum class TextDirection { right, up };
 // Draws `text` in the box whose lower-left corner is (x, y) (the image's y axis points up, see layer_image.hpp):
 // text_width wide and glyph_height * scale high, or the transpose for `up`. Ink outside the image is dropped.
 // Throws trivar::Error for a scale below 1; the image must be RGB (see fill_rect).
-void draw_text(am::LayerImage<std::uint8_t>& image, int x, int y, std::string_view text, const Rgb& colour,
+void draw_text(LayerImage<std::uint8_t>& image, int x, int y, std::string_view text, const Rgb& colour,
                int scale = 1, TextDirection direction = TextDirection::right);
 
 }  // namespace trivar::io

@@ -6,7 +6,7 @@
 #include <array>
 #include <cstdint>
 
-#include "trivar/am/layer_image.hpp"
+#include "trivar/core/layer_image.hpp"
 #include "trivar/core/error.hpp"
 
 namespace trivar::io {
@@ -15,7 +15,7 @@ using Rgb = std::array<std::uint8_t, 3>;
 
 // Paints the pixels [x, x + w) x [y, y + h) of an RGB image (3 channels) that lie inside it; throws
 // trivar::Error for another channel count.
-inline void fill_rect(am::LayerImage<std::uint8_t>& image, int x, int y, int w, int h, const Rgb& colour) {
+inline void fill_rect(LayerImage<std::uint8_t>& image, int x, int y, int w, int h, const Rgb& colour) {
   require(image.channels() == 3,
           [&] { return "fill_rect: image has " + std::to_string(image.channels()) + " channels, not RGB"; });
   const int x0 = std::max(x, 0), x1 = std::min(x + w, image.width());

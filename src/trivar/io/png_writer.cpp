@@ -90,7 +90,7 @@ std::vector<Rgba> material_palette(const MaterialTable& materials, Rgba backgrou
   return palette;
 }
 
-void write_palette_png(const std::string& path, const am::LabelImage& labels, const std::vector<Rgba>& palette,
+void write_palette_png(const std::string& path, const LabelImage& labels, const std::vector<Rgba>& palette,
                        int compression_level) {
   require_size(labels.width(), labels.height(), path);
   require_level(compression_level, path);
@@ -114,7 +114,7 @@ void write_palette_png(const std::string& path, const am::LabelImage& labels, co
   write_file_atomically(path, [&](std::ostream& os) { encode(os, layout, pixels, &palette, compression_level, path); }, true);
 }
 
-void write_bitmap_png(const std::string& path, const am::LabelImage& labels, int label, int compression_level) {
+void write_bitmap_png(const std::string& path, const LabelImage& labels, int label, int compression_level) {
   require_size(labels.width(), labels.height(), path);
   require_level(compression_level, path);
   require(labels.channels() == 1, "write_bitmap_png: label image has " + std::to_string(labels.channels()) + " channels");
@@ -132,7 +132,7 @@ void write_bitmap_png(const std::string& path, const am::LabelImage& labels, int
   write_file_atomically(path, [&](std::ostream& os) { encode(os, layout, pixels, nullptr, compression_level, path); }, true);
 }
 
-void write_png(const std::string& path, const am::LayerImage<std::uint8_t>& image) {
+void write_png(const std::string& path, const LayerImage<std::uint8_t>& image) {
   require_size(image.width(), image.height(), path);
   static constexpr int types[] = {PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA, PNG_COLOR_TYPE_RGB,
                                   PNG_COLOR_TYPE_RGB_ALPHA};

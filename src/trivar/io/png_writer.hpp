@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "trivar/am/layer_image.hpp"
+#include "trivar/core/layer_image.hpp"
 #include "trivar/model/material_table.hpp"
 
 namespace trivar::io {
@@ -15,7 +15,7 @@ namespace trivar::io {
 // outside 1..256 entries, a label beyond the palette, a compression level outside 0..9 or a write failure;
 // nothing is written then. Slices default to zlib level 1: on a dithered 2944 x 1466 layer it encodes about 7x
 // faster than level 6 (34 ms against 240 ms) for a file about 30 % larger.
-void write_palette_png(const std::string& path, const am::LabelImage& labels, const std::vector<Rgba>& palette,
+void write_palette_png(const std::string& path, const LabelImage& labels, const std::vector<Rgba>& palette,
                        int compression_level = 1);
 
 // The palette of a slice: index 0 = `background` (empty pixels), index k + 1 = colour of material k.
@@ -23,9 +23,9 @@ std::vector<Rgba> material_palette(const MaterialTable& materials, Rgba backgrou
 
 // 1-bit greyscale PNG of one material: 1 (white) where labels == `label`, 0 (black) elsewhere; one such bitmap
 // per material (label = k + 1) is the per-material output mode. Throws as above.
-void write_bitmap_png(const std::string& path, const am::LabelImage& labels, int label, int compression_level = 1);
+void write_bitmap_png(const std::string& path, const LabelImage& labels, int label, int compression_level = 1);
 
 // 8-bit preview (zlib's default level): 1 channel = grey, 2 = grey + alpha, 3 = RGB, 4 = RGBA. Throws as above.
-void write_png(const std::string& path, const am::LayerImage<std::uint8_t>& image);
+void write_png(const std::string& path, const LayerImage<std::uint8_t>& image);
 
 }  // namespace trivar::io

@@ -16,7 +16,7 @@
 
 #include "trivar/core/error.hpp"
 
-namespace trivar::am {
+namespace trivar {
 
 template <class T>
 class LayerImage {
@@ -60,4 +60,4 @@ using LabelImage = LayerImage<std::uint8_t>;
 // Label of an empty (outside) pixel; material k has label k + 1.
 inline constexpr std::uint8_t empty_label = 0;
 
-}  // namespace trivar::am
+}  // namespace trivar
