@@ -23,7 +23,9 @@ constexpr int kFrac = 20;
 constexpr Coord kStep = Coord{1} << kFrac;
 // Breaks closer than this (in unit parameters) are one break.
 constexpr double kSnap = 1e-12;
-// Estimated memory per output triangle: the triangle, half a vertex with its origin, and the cell work lists.
+// Estimated memory per output triangle: the triangle (12 bytes), half a vertex with its origins here and in
+// the model tessellation (about 40), a quarter cell and its corners in the point lists (about 40), with room
+// for vector growth.
 constexpr double kBytesPerTriangle = 120;
 
 Vec sub(const Vec& a, const Vec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
@@ -286,6 +288,7 @@ private:
     std::ostringstream what;
     what << "tessellating with chordal tolerance " << tol_ << " (about " << std::llround(triangles) << " triangles)";
     require_memory(triangles * kBytesPerTriangle, what.str());
+    // Vertex ids are int.
     require(triangles < 1e9, [&] { return what.str() + " exceeds the limit of 1e9 triangles"; });
 
     lines_.resize(nf);
