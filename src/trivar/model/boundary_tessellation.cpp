@@ -2,26 +2,44 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <numeric>
+#include <sstream>
 #include <string>
 
 #include "trivar/core/error.hpp"
+#include "trivar/core/memory_budget.hpp"
 
 namespace trivar {
 
 namespace {
 
 using Vec = std::array<double, 3>;
+using Coord = std::int64_t;
+
+// Cell corners are lattice indices in fixed point: kFrac bits below one lattice step leave room for that
+// many halvings where a lattice cell is still too coarse.
+constexpr int kFrac = 20;
+constexpr Coord kStep = Coord{1} << kFrac;
+// Breaks closer than this (in unit parameters) are one break.
+constexpr double kSnap = 1e-12;
+// Estimated memory per output triangle: the triangle (12 bytes), half a vertex with its origins here and in
+// the model tessellation (about 40), a quarter cell and its corners in the point lists (about 40), with room
+// for vector growth.
+constexpr double kBytesPerTriangle = 120;
+
+Vec sub(const Vec& a, const Vec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+double dot(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+double norm(const double* a) { return std::sqrt(dot(a, a)); }
+Vec cross(const double* a, const double* b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+double distance(const Vec& a, const Vec& b) { return norm(sub(a, b).data()); }
 
 Vec at(const TensorSpline<2>& s, const Param<2>& u) {
   Vec x;
   s.eval(u, x.data());
   return x;
-}
-
-double distance(const Vec& a, const Vec& b) { return std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]); }
-
-Vec lerp(const Vec& a, const Vec& b, double t) {
-  return {a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])};
 }
 
 // Breakpoints of direction k mapped to [0, 1]: the places where the geometry may bend abruptly.
@@ -37,47 +55,103 @@ std::vector<double> unit_breaks(const TensorSpline<2>& s, int k) {
 std::vector<double> merged(std::vector<double> a, const std::vector<double>& b) {
   a.insert(a.end(), b.begin(), b.end());
   std::sort(a.begin(), a.end());
-  a.erase(std::unique(a.begin(), a.end()), a.end());
+  a.erase(std::unique(a.begin(), a.end(), [](double x, double y) { return y - x <= kSnap; }), a.end());
   return a;
 }
 
-// Splits every interval [t_i, t_{i+1}] of `samples` flagged by too_coarse(a, b) at its midpoint, repeatedly,
-// until none is flagged or `max_samples` is reached.
-template <class TooCoarse>
-std::vector<double> refine_samples(std::vector<double> samples, int max_samples, const TooCoarse& too_coarse) {
-  for (bool changed = true; changed && static_cast<int>(samples.size()) < max_samples;) {
-    changed = false;
-    std::vector<double> next{samples.front()};
-    for (std::size_t i = 0; i + 1 < samples.size(); ++i) {
-      if (static_cast<int>(next.size() + samples.size() - i) < max_samples && too_coarse(samples[i], samples[i + 1])) {
-        next.push_back(0.5 * (samples[i] + samples[i + 1]));
-        changed = true;
-      }
-      next.push_back(samples[i + 1]);
-    }
-    samples = std::move(next);
-  }
-  return samples;
+std::vector<double> flipped(std::vector<double> a) {
+  for (double& x : a) x = 1.0 - x;
+  std::reverse(a.begin(), a.end());
+  return a;
 }
 
-// Distance of the curve points at the quarter points of [a, b] from the chord between its ends.
-template <class Point>
-double chord_error(const Point& point, double a, double b) {
-  const Vec pa = point(a), pb = point(b);
-  double e = 0;
-  for (double f : {0.25, 0.5, 0.75}) e = std::max(e, distance(point(a + f * (b - a)), lerp(pa, pb, f)));
-  return e;
+// What the refinement needs to know of a parameter rectangle, from the surface and its first and second
+// derivatives on a 3 x 3 grid of points.
+struct CellMeasure {
+  // Squared lengths of the rectangle's sides in coordinates in which the normal part of the second
+  // derivative is bounded by the identity: the linear interpolant on a triangle inside the rectangle with
+  // longest scaled edge e deviates from the surface by at most (1/2) (e^2 / 3) (see chord_bound).
+  double wu = 0, wv = 0;
+  double lu = 0, lv = 0;  // lengths in space of the longest row in u and column in v
+};
+
+CellMeasure measure(const TensorSpline<2>& s, const Param<2>& lo, const Param<2>& hi) {
+  // Per point: x, x_u, x_v, x_uu, x_uv, x_vv (derivative_index.hpp ordering).
+  std::array<std::array<double, 18>, 9> d;
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i)
+      s.eval_derivs({lo[0] + 0.5 * i * (hi[0] - lo[0]), lo[1] + 0.5 * j * (hi[1] - lo[1])}, 2,
+                    d[i + 3 * j].data());
+  CellMeasure m;
+  for (int j = 0; j < 3; ++j) {
+    double row = 0, col = 0;
+    for (int i = 0; i < 2; ++i) {
+      row += distance({d[i + 3 * j][0], d[i + 3 * j][1], d[i + 3 * j][2]},
+                      {d[i + 1 + 3 * j][0], d[i + 1 + 3 * j][1], d[i + 1 + 3 * j][2]});
+      col += distance({d[j + 3 * i][0], d[j + 3 * i][1], d[j + 3 * i][2]},
+                      {d[j + 3 * (i + 1)][0], d[j + 3 * (i + 1)][1], d[j + 3 * (i + 1)][2]});
+    }
+    m.lu = std::max(m.lu, row);
+    m.lv = std::max(m.lv, col);
+  }
+  // Distance from the surface is measured along the normal, so only the normal part of the second derivative
+  // bends the triangles away from it (a flat face in any parametrisation needs no refinement). The normal
+  // turns over the cell: the projection on the centre normal is widened by the largest turning angle times
+  // the whole second derivative.
+  const Vec nc = cross(d[4].data() + 3, d[4].data() + 6);
+  const double ncl = norm(nc.data());
+  double turn = ncl > 0 ? 0.0 : 1.0;
+  for (const auto& p : d) {
+    const Vec n = cross(p.data() + 3, p.data() + 6);
+    const double nl = norm(n.data());
+    if (ncl > 0 && nl > 0) turn = std::max(turn, norm(cross(n.data(), nc.data()).data()) / (nl * ncl));
+  }
+  std::array<double, 3> q{};  // bounds of |n . x_uu|, |n . x_uv|, |n . x_vv|
+  for (const auto& p : d)
+    for (int k = 0; k < 3; ++k) {
+      const double* x2 = p.data() + 9 + 3 * k;
+      const double normal = ncl > 0 ? std::abs(dot(x2, nc.data())) / ncl : 0.0;
+      q[k] = std::max(q[k], normal + turn * norm(x2));
+    }
+  // a du^2 + 2 b du dv + c dv^2 <= (a + b) du^2 + (b + c) dv^2.
+  const double du = hi[0] - lo[0], dv = hi[1] - lo[1];
+  m.wu = (q[0] + q[1]) * du * du;
+  m.wv = (q[1] + q[2]) * dv * dv;
+  return m;
 }
+
+// Every triangle of a cell's fan (its centre to two consecutive points of its boundary, corners and at most
+// one point inside each side) has scaled edges no longer than the larger of the scaled sides and the scaled
+// half diagonal. For a point p of a triangle with vertices p_i and barycentric weights l_i, the linear
+// interpolant deviates by (1/2) sum l_i (p_i - p)^T H (p_i - p), and sum l_i |p_i - p|^2 <= e^2 / 3 for the
+// longest edge e (the circumradius of an acute triangle is at most e / sqrt(3); for an obtuse one the maximum
+// is (e / 2)^2).
+double chord_bound(const CellMeasure& m) { return std::max({m.wu, m.wv, 0.25 * (m.wu + m.wv)}) / 6.0; }
 
 struct Use {
   int face, side;
   bool reversed;
 };
 
+struct Cell {
+  std::array<Coord, 2> lo, hi;
+};
+
+// Disjoint sets over root intervals, so that intervals that meet along a curve get one lattice count.
+struct DisjointSets {
+  std::vector<int> parent;
+  explicit DisjointSets(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  int find(int x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  }
+  void unite(int a, int b) { parent[find(a)] = find(b); }
+};
+
 class Tessellator {
 public:
-  Tessellator(const Brep& brep, const TessellationOptions& opts) : brep_(brep), opts_(opts) {
-    require(opts.chordal_tolerance > 0, "tessellate: the chordal tolerance must be positive");
+  Tessellator(const Brep& brep, const TessellationOptions& opts) : brep_(brep), tol_(opts.chordal_tolerance) {
+    require(tol_ > 0 && std::isfinite(tol_), "tessellate: the chordal tolerance must be positive");
     uses_.resize(brep.curves.size());
     for (std::size_t f = 0; f < brep.faces.size(); ++f) {
       const BrepFace& face = brep.faces[f];
@@ -98,18 +172,293 @@ public:
   }
 
   BrepTessellation run() {
-    out_.mesh.vertices.assign(static_cast<std::size_t>(brep_.num_vertices), Vec{});
-    out_.origins.assign(static_cast<std::size_t>(brep_.num_vertices), VertexOrigin{});
-    sample_curves();
-    for (std::size_t f = 0; f < brep_.faces.size(); ++f) tessellate_face(static_cast<int>(f));
+    find_collapsed();
+    build_lattices();
+    leaves_.resize(brep_.faces.size());
+    for (std::size_t f = 0; f < brep_.faces.size(); ++f) {
+      const auto& b = breaks_[f];
+      for (std::size_t j = 0; j + 1 < b[1].size(); ++j)
+        for (std::size_t i = 0; i + 1 < b[0].size(); ++i)
+          refine(static_cast<int>(f), Cell{{b[0][i] * kStep, b[1][j] * kStep}, {b[0][i + 1] * kStep, b[1][j + 1] * kStep}});
+    }
+    balance();
+    triangulate();
     return std::move(out_);
   }
 
 private:
+  // ---- lattices -------------------------------------------------------------------------------------------
+
   Vec use_point(const Use& u, double t) const {
     const TensorSpline<2>& s = brep_.faces[u.face].surface;
     return at(s, side_parameters(s, u.side, u.reversed ? 1.0 - t : t));
   }
+
+  // A side shrunk to a point (a pole) is one vertex: its closed curve stays within the tolerance of its start.
+  void find_collapsed() {
+    collapsed_.assign(brep_.curves.size(), false);
+    for (std::size_t c = 0; c < brep_.curves.size(); ++c) {
+      if (uses_[c].empty() || brep_.curves[c].vertices[0] != brep_.curves[c].vertices[1]) continue;
+      bool collapsed = true;
+      for (double x : {0.25, 0.5, 0.75})
+        collapsed = collapsed && distance(use_point(uses_[c][0], x), use_point(uses_[c][0], 0)) <= tol_;
+      collapsed_[c] = collapsed;
+    }
+  }
+
+  // Every face direction is cut into root intervals at its knots and at every break of the faces across its
+  // sides (repeated until nothing changes, so that faces meeting along a curve cut it at the same places);
+  // each root interval is then cut into equal lattice steps, the same number for all intervals that meet along
+  // curves, enough for the most curved face among them. Shared curves therefore carry the same lattice on
+  // both faces, and cells refined within it put their vertices at the same places on both.
+  void build_lattices() {
+    const std::size_t nf = brep_.faces.size(), nc = brep_.curves.size();
+    std::vector<std::array<std::vector<double>, 2>> fb(nf);
+    std::vector<std::vector<double>> cb(nc, std::vector<double>{0.0, 1.0});
+    for (std::size_t f = 0; f < nf; ++f) fb[f] = {unit_breaks(brep_.faces[f].surface, 0), unit_breaks(brep_.faces[f].surface, 1)};
+    // A closed curve needs three vertices to be a polygon.
+    for (std::size_t c = 0; c < nc; ++c)
+      if (brep_.curves[c].vertices[0] == brep_.curves[c].vertices[1] && !collapsed_[c]) cb[c] = {0.0, 1.0 / 3, 2.0 / 3, 1.0};
+    for (bool changed = true; changed;) {
+      changed = false;
+      const auto absorb = [&](std::vector<double>& into, const std::vector<double>& from) {
+        std::vector<double> m = merged(into, from);
+        if (m.size() != into.size()) changed = true;
+        into = std::move(m);
+      };
+      for (std::size_t f = 0; f < nf; ++f)
+        for (int s = 0; s < 4; ++s) {
+          const FaceSide& fs = brep_.faces[f].sides[s];
+          std::vector<double>& face_lines = fb[f][1 - s / 2];
+          absorb(cb[fs.curve], fs.reversed ? flipped(face_lines) : face_lines);
+          absorb(face_lines, fs.reversed ? flipped(cb[fs.curve]) : cb[fs.curve]);
+        }
+    }
+
+    // Node ids: (face, direction, interval) then (curve, interval).
+    std::vector<std::array<int, 2>> face_node(nf);
+    std::vector<int> curve_node(nc);
+    int nodes = 0;
+    for (std::size_t f = 0; f < nf; ++f)
+      for (int k = 0; k < 2; ++k) {
+        face_node[f][k] = nodes;
+        nodes += static_cast<int>(fb[f][k].size()) - 1;
+      }
+    for (std::size_t c = 0; c < nc; ++c) {
+      curve_node[c] = nodes;
+      nodes += static_cast<int>(cb[c].size()) - 1;
+    }
+    DisjointSets sets(static_cast<std::size_t>(nodes));
+    for (std::size_t f = 0; f < nf; ++f)
+      for (int s = 0; s < 4; ++s) {
+        const FaceSide& fs = brep_.faces[f].sides[s];
+        const int m = static_cast<int>(fb[f][1 - s / 2].size()) - 1;
+        require(m == static_cast<int>(cb[fs.curve].size()) - 1, [&] {
+          return "tessellate: face " + std::to_string(f) + " side " + std::to_string(s) + " does not follow curve " +
+                 std::to_string(fs.curve);
+        });
+        for (int i = 0; i < m; ++i) sets.unite(face_node[f][1 - s / 2] + i, curve_node[fs.curve] + (fs.reversed ? m - 1 - i : i));
+      }
+
+    // Lattice steps each root cell needs: enough for the chordal bound at the cell's curvature, and cells
+    // about as long in space as they are wide. Kept in double until the memory they need is accepted.
+    std::vector<double> count(static_cast<std::size_t>(nodes), 1.0);
+    double cells = 0;
+    for (std::size_t f = 0; f < nf; ++f) {
+      const TensorSpline<2>& s = brep_.faces[f].surface;
+      for (std::size_t j = 0; j + 1 < fb[f][1].size(); ++j)
+        for (std::size_t i = 0; i + 1 < fb[f][0].size(); ++i) {
+          const CellMeasure m = measure(s, param(s, fb[f][0][i], fb[f][1][j]), param(s, fb[f][0][i + 1], fb[f][1][j + 1]));
+          const double cu = std::max(1.0, std::ceil(std::sqrt(m.wu / (6 * tol_)))),
+                       cv = std::max(1.0, std::ceil(std::sqrt(m.wv / (6 * tol_))));
+          const double h = std::min(m.lu / cu, m.lv / cv);
+          const double nu = h > 0 ? std::max(cu, std::round(m.lu / h)) : cu, nv = h > 0 ? std::max(cv, std::round(m.lv / h)) : cv;
+          double& a = count[sets.find(face_node[f][0] + static_cast<int>(i))];
+          double& b = count[sets.find(face_node[f][1] + static_cast<int>(j))];
+          a = std::max(a, nu);
+          b = std::max(b, nv);
+          cells += nu * nv;
+        }
+    }
+    double lattice = 0;
+    for (std::size_t c = 0; c < nc; ++c)
+      for (std::size_t j = 0; j + 1 < cb[c].size(); ++j) lattice += count[sets.find(curve_node[c] + static_cast<int>(j))];
+    // Four triangles per cell, and the cells that grade the flat faces down from their finely cut edges.
+    const double triangles = 4 * (cells + 4 * lattice);
+    std::ostringstream what;
+    what << "tessellating with chordal tolerance " << tol_ << " (about " << std::llround(triangles) << " triangles)";
+    require_memory(triangles * kBytesPerTriangle, what.str());
+    // Vertex ids are int.
+    require(triangles < 1e9, [&] { return what.str() + " exceeds the limit of 1e9 triangles"; });
+
+    lines_.resize(nf);
+    breaks_.resize(nf);
+    for (std::size_t f = 0; f < nf; ++f)
+      for (int k = 0; k < 2; ++k) {
+        const std::vector<double>& b = fb[f][k];
+        std::vector<double>& lines = lines_[f][k];
+        std::vector<Coord>& breaks = breaks_[f][k];
+        breaks = {0};
+        for (std::size_t i = 0; i + 1 < b.size(); ++i) {
+          const auto n = static_cast<Coord>(count[sets.find(face_node[f][k] + static_cast<int>(i))]);
+          for (Coord q = 0; q < n; ++q) lines.push_back(b[i] + (b[i + 1] - b[i]) * static_cast<double>(q) / static_cast<double>(n));
+          breaks.push_back(breaks.back() + n);
+        }
+        lines.push_back(1.0);
+      }
+  }
+
+  static Param<2> param(const TensorSpline<2>& s, double a, double b) {
+    const Box<2> d = s.domain();
+    return {d.lo[0] + a * (d.hi[0] - d.lo[0]), d.lo[1] + b * (d.hi[1] - d.lo[1])};
+  }
+
+  // Unit parameter of a fixed-point lattice coordinate.
+  double unit(int f, int k, Coord x) const {
+    const std::vector<double>& l = lines_[f][k];
+    const auto i = static_cast<std::size_t>(x >> kFrac);
+    if (i + 1 >= l.size()) return l.back();
+    return l[i] + static_cast<double>(x & (kStep - 1)) / static_cast<double>(kStep) * (l[i + 1] - l[i]);
+  }
+
+  Param<2> param(int f, Coord x, Coord y) const { return param(brep_.faces[f].surface, unit(f, 0, x), unit(f, 1, y)); }
+
+  Coord extent(int f, int k) const { return static_cast<Coord>(lines_[f][k].size() - 1) * kStep; }
+
+  // ---- refinement -----------------------------------------------------------------------------------------
+
+  // Where a cell splits in direction k: at the lattice line nearest its middle, or halfway below one step;
+  // none when it is one fixed-point unit wide.
+  static Coord split_point(const Cell& c, int k) {
+    const Coord w = c.hi[k] - c.lo[k];
+    if (w > kStep) return c.lo[k] + (w / kStep / 2) * kStep;
+    return w >= 2 ? c.lo[k] + w / 2 : -1;
+  }
+
+  // Splits c in the directions marked and refines the parts.
+  void split(int f, const Cell& c, std::array<bool, 2> dir) {
+    std::array<std::vector<std::pair<Coord, Coord>>, 2> ranges;
+    for (int k = 0; k < 2; ++k) {
+      const Coord m = dir[k] ? split_point(c, k) : -1;
+      if (m < 0)
+        ranges[k] = {{c.lo[k], c.hi[k]}};
+      else
+        ranges[k] = {{c.lo[k], m}, {m, c.hi[k]}};
+    }
+    for (const auto& [v0, v1] : ranges[1])
+      for (const auto& [u0, u1] : ranges[0]) refine(f, Cell{{u0, v0}, {u1, v1}});
+  }
+
+  // Splits a cell until the chordal bound holds and it is at most twice as long in space as it is wide.
+  void refine(int f, const Cell& c) {
+    const CellMeasure m = measure(brep_.faces[f].surface, param(f, c.lo[0], c.lo[1]), param(f, c.hi[0], c.hi[1]));
+    std::array<bool, 2> dir{m.lu > 2 * m.lv, m.lv > 2 * m.lu};
+    if (chord_bound(m) > tol_) {
+      dir[0] = dir[0] || m.wu >= 0.25 * m.wv;
+      dir[1] = dir[1] || m.wv >= 0.25 * m.wu;
+    }
+    for (int k = 0; k < 2; ++k) dir[k] = dir[k] && split_point(c, k) >= 0;
+    if (dir[0] || dir[1])
+      split(f, c, dir);
+    else
+      leaves_[f].push_back(c);
+  }
+
+  // Lattice points of every face's cell corners, by line: for direction k, (position across k, position along
+  // k) pairs sorted, so that the points on a cell side are one binary search away. Face sides take the points
+  // of their curve, which holds the corners of all faces along it.
+  void collect_points() {
+    const std::size_t nf = brep_.faces.size();
+    points_.assign(nf, {});
+    curve_points_.assign(brep_.curves.size(), {});
+    for (std::size_t f = 0; f < nf; ++f) {
+      auto& p = points_[f];
+      for (const Cell& c : leaves_[f])
+        for (Coord y : {c.lo[1], c.hi[1]})
+          for (Coord x : {c.lo[0], c.hi[0]}) {
+            p[0].push_back({y, x});
+            p[1].push_back({x, y});
+          }
+      for (auto& v : p) {
+        std::sort(v.begin(), v.end());
+        v.erase(std::unique(v.begin(), v.end()), v.end());
+      }
+      for (int s = 0; s < 4; ++s) {
+        const FaceSide& fs = brep_.faces[f].sides[s];
+        const int run = 1 - s / 2;
+        const Coord across = s % 2 ? extent(static_cast<int>(f), s / 2) : 0;
+        const auto& line = p[run];
+        for (auto it = std::lower_bound(line.begin(), line.end(), std::pair<Coord, Coord>{across, 0});
+             it != line.end() && it->first == across; ++it)
+          curve_points_[fs.curve].push_back(to_curve(static_cast<int>(f), s, it->second));
+      }
+    }
+    for (auto& v : curve_points_) {
+      std::sort(v.begin(), v.end());
+      v.erase(std::unique(v.begin(), v.end()), v.end());
+    }
+  }
+
+  // A position along face side s in the face's coordinate, as a position along its curve, and back.
+  Coord to_curve(int f, int s, Coord x) const {
+    return brep_.faces[f].sides[s].reversed ? extent(f, 1 - s / 2) - x : x;
+  }
+
+  // Points strictly inside the segment from `from` to `to` (either order) along direction k of face f at
+  // `across` in the other direction, in the order from `from` to `to`.
+  void side_points(int f, int k, Coord across, Coord from, Coord to, std::vector<Coord>& out) const {
+    out.clear();
+    const Coord lo = std::min(from, to), hi = std::max(from, to);
+    const int fixed = 1 - k;
+    if (across == 0 || across == extent(f, fixed)) {
+      const int s = 2 * fixed + (across == 0 ? 0 : 1);
+      const std::vector<Coord>& c = curve_points_[brep_.faces[f].sides[s].curve];
+      const Coord a = to_curve(f, s, lo), b = to_curve(f, s, hi);
+      for (auto it = std::upper_bound(c.begin(), c.end(), std::min(a, b)); it != c.end() && *it < std::max(a, b); ++it)
+        out.push_back(to_curve(f, s, *it));
+      std::sort(out.begin(), out.end());
+    } else {
+      const auto& line = points_[f][k];
+      for (auto it = std::upper_bound(line.begin(), line.end(), std::pair<Coord, Coord>{across, lo});
+           it != line.end() && it->first == across && it->second < hi; ++it)
+        out.push_back(it->second);
+    }
+    if (from > to) std::reverse(out.begin(), out.end());
+  }
+
+  // Neighbouring cells (on the same face or across a curve) may be finer along a shared side; a side that
+  // meets more than one of their corners, or one outside its middle half, is split, until every cell's fan of
+  // triangles stays well shaped.
+  void balance() {
+    std::vector<Coord> pts;
+    for (bool changed = true; changed;) {
+      changed = false;
+      collect_points();
+      for (std::size_t f = 0; f < brep_.faces.size(); ++f) {
+        std::vector<Cell> cells = std::move(leaves_[f]);
+        leaves_[f].clear();
+        for (const Cell& c : cells) {
+          std::array<bool, 2> dir{false, false};
+          for (int k = 0; k < 2; ++k)
+            for (Coord across : {c.lo[1 - k], c.hi[1 - k]}) {
+              side_points(static_cast<int>(f), k, across, c.lo[k], c.hi[k], pts);
+              const double w = static_cast<double>(c.hi[k] - c.lo[k]);
+              const bool central = pts.size() == 1 && std::abs(static_cast<double>(pts[0] - c.lo[k]) / w - 0.5) <= 0.25;
+              dir[k] = dir[k] || (!pts.empty() && !central);
+            }
+          for (int k = 0; k < 2; ++k) dir[k] = dir[k] && split_point(c, k) >= 0;
+          if (dir[0] || dir[1]) {
+            split(static_cast<int>(f), c, dir);
+            changed = true;
+          } else {
+            leaves_[f].push_back(c);
+          }
+        }
+      }
+    }
+  }
+
+  // ---- triangles ------------------------------------------------------------------------------------------
 
   int add_vertex(const Vec& x, int face, const Param<2>& uv) {
     out_.mesh.vertices.push_back(x);
@@ -117,192 +466,112 @@ private:
     return static_cast<int>(out_.mesh.vertices.size()) - 1;
   }
 
-  // Every curve: samples in [0, 1] fine enough on all faces that use it, and the mesh vertex of each sample.
-  void sample_curves() {
-    const double tol = opts_.chordal_tolerance;
-    samples_.resize(brep_.curves.size());
-    ids_.resize(brep_.curves.size());
+  // One vertex per curve point, evaluated on the first face along the curve; the curve's end points are the
+  // Brep's vertices and a collapsed curve is its vertex.
+  void curve_vertices() {
+    curve_ids_.assign(brep_.curves.size(), {});
     for (std::size_t c = 0; c < brep_.curves.size(); ++c) {
-      const std::vector<Use>& uses = uses_[c];
-      if (uses.empty()) continue;
-      std::vector<double> t{0.0, 1.0};
-      for (const Use& u : uses) {
-        std::vector<double> b = unit_breaks(brep_.faces[u.face].surface, 1 - u.side / 2);
-        if (u.reversed)
-          for (double& x : b) x = 1.0 - x;
-        t = merged(std::move(t), b);
-      }
-      const bool closed = brep_.curves[c].vertices[0] == brep_.curves[c].vertices[1];
-      bool collapsed = closed;
-      for (double x : {0.25, 0.5, 0.75}) collapsed = collapsed && distance(use_point(uses[0], x), use_point(uses[0], 0)) <= tol;
-      // A collapsed side (a pole) is one vertex; a closed curve would otherwise be a single chord.
-      if (collapsed) t = {0.0, 1.0};
-      if (closed && !collapsed && t.size() == 2) t = {0.0, 0.5, 1.0};
-      if (!collapsed) t = refine_samples(std::move(t), opts_.max_samples, [&](double a, double b) {
-        return std::any_of(uses.begin(), uses.end(), [&](const Use& u) {
-          return chord_error([&](double x) { return use_point(u, x); }, a, b) > tol;
-        });
-      });
-      const Use& first = uses.front();
-      const TensorSpline<2>& s = brep_.faces[first.face].surface;
-      for (const Use& u : uses)
-        for (double x : t)
-          require(distance(use_point(u, x), use_point(first, x)) <= 100 * tol, [&] {
+      const std::vector<Coord>& t = curve_points_[c];
+      if (uses_[c].empty()) continue;
+      const Use& first = uses_[c].front();
+      const auto side_param = [&](const Use& u, Coord x) {
+        const Coord y = to_curve(u.face, u.side, x);
+        const int run = 1 - u.side / 2;
+        const Coord across = u.side % 2 ? extent(u.face, u.side / 2) : 0;
+        return run == 0 ? param(u.face, y, across) : param(u.face, across, y);
+      };
+      std::vector<int>& ids = curve_ids_[c];
+      ids.resize(t.size());
+      for (std::size_t i = 0; i < t.size(); ++i) {
+        const Param<2> uv = side_param(first, t[i]);
+        const Vec x = at(brep_.faces[first.face].surface, uv);
+        for (const Use& u : uses_[c])
+          require(distance(at(brep_.faces[u.face].surface, side_param(u, t[i])), x) <= 100 * tol_, [&] {
             return "tessellate: faces " + std::to_string(first.face) + " and " + std::to_string(u.face) +
                    " do not meet along curve " + std::to_string(c);
           });
-      std::vector<int>& ids = ids_[c];
-      ids.resize(t.size());
-      for (std::size_t i = 0; i < t.size(); ++i) {
-        const Param<2> uv = side_parameters(s, first.side, first.reversed ? 1.0 - t[i] : t[i]);
         const bool end = i == 0 || i + 1 == t.size();
-        if (end) {
-          const int v = brep_.curves[c].vertices[i == 0 ? 0 : 1];
+        if (end || collapsed_[c]) {
+          const int v = brep_.curves[c].vertices[i + 1 == t.size() && !collapsed_[c] ? 1 : 0];
           if (out_.origins[v].face < 0) {
-            out_.mesh.vertices[v] = at(s, uv);
+            out_.mesh.vertices[v] = x;
             out_.origins[v] = {first.face, uv};
           }
           ids[i] = v;
         } else {
-          ids[i] = add_vertex(at(s, uv), first.face, uv);
+          ids[i] = add_vertex(x, first.face, uv);
         }
       }
-      samples_[c] = std::move(t);
     }
   }
 
-  // The vertices and unit positions along one face side, in the side's increasing parameter.
-  void side_samples(int face, int side, std::vector<int>& ids, std::vector<double>& pos) const {
-    const FaceSide& fs = brep_.faces[face].sides[side];
-    const std::vector<double>& t = samples_[fs.curve];
-    const std::vector<int>& v = ids_[fs.curve];
-    ids.clear();
-    pos.clear();
-    for (std::size_t i = 0; i < t.size(); ++i) {
-      const std::size_t j = fs.reversed ? t.size() - 1 - i : i;
-      ids.push_back(v[j]);
-      pos.push_back(fs.reversed ? 1.0 - t[j] : t[j]);
-    }
-  }
-
-  // Interior grid lines of direction k (unit positions, including 0 and 1), at least three so that an
-  // interior ring exists.
-  std::vector<double> grid_lines(const TensorSpline<2>& s, int k, std::vector<double> lines,
-                                 const std::vector<double>& across) const {
-    const Box<2> d = s.domain();
-    const auto param = [&](double a, double b) {
-      Param<2> p;
-      p[k] = d.lo[k] + a * (d.hi[k] - d.lo[k]);
-      p[1 - k] = d.lo[1 - k] + b * (d.hi[1 - k] - d.lo[1 - k]);
-      return p;
-    };
-    if (lines.size() == 2) lines = {0.0, 0.5, 1.0};
-    const double tol = opts_.chordal_tolerance;
-    return refine_samples(std::move(lines), opts_.max_samples, [&](double a, double b) {
-      for (std::size_t j = 0; j < across.size(); ++j) {
-        if (chord_error([&](double x) { return at(s, param(x, across[j])); }, a, b) > tol) return true;
-        // The quad centre against the mean of its corners catches twist that no grid line shows.
-        if (j + 1 < across.size()) {
-          const double c = 0.5 * (across[j] + across[j + 1]);
-          const Vec m = lerp(lerp(at(s, param(a, across[j])), at(s, param(b, across[j])), 0.5),
-                             lerp(at(s, param(a, across[j + 1])), at(s, param(b, across[j + 1])), 0.5), 0.5);
-          if (distance(at(s, param(0.5 * (a + b), c)), m) > tol) return true;
+  void triangulate() {
+    out_.mesh.vertices.assign(static_cast<std::size_t>(brep_.num_vertices), Vec{});
+    out_.origins.assign(static_cast<std::size_t>(brep_.num_vertices), VertexOrigin{});
+    collect_points();
+    curve_vertices();
+    std::vector<Coord> pts;
+    std::vector<std::pair<Coord, Coord>> loop;
+    for (std::size_t fi = 0; fi < brep_.faces.size(); ++fi) {
+      const int f = static_cast<int>(fi);
+      const BrepFace& face = brep_.faces[f];
+      const TensorSpline<2>& s = face.surface;
+      const std::array<Coord, 2> ext{extent(f, 0), extent(f, 1)};
+      // Vertices of the face's interior points, in the order of points_[f][1] (sorted (u, v)).
+      const auto& inner = points_[f][1];
+      std::vector<int> inner_ids(inner.size(), -1);
+      for (std::size_t i = 0; i < inner.size(); ++i) {
+        const auto [x, y] = inner[i];
+        if (x > 0 && x < ext[0] && y > 0 && y < ext[1]) {
+          const Param<2> uv = param(f, x, y);
+          inner_ids[i] = add_vertex(at(s, uv), f, uv);
         }
       }
-      return false;
-    });
-  }
-
-  void tessellate_face(int f) {
-    const BrepFace& face = brep_.faces[f];
-    const TensorSpline<2>& s = face.surface;
-    const Box<2> d = s.domain();
-    // Grid lines start from the knots and the samples of the sides along them, so the strip between the
-    // boundary and the first interior ring is made of triangles no wider than the grid cells. Lines in u are
-    // checked along v lines and vice versa; two rounds let each see the other's refinement.
-    std::vector<int> ids;
-    std::vector<double> pos;
-    std::array<std::vector<double>, 2> start{unit_breaks(s, 0), unit_breaks(s, 1)};
-    for (int side = 0; side < 4; ++side) {
-      side_samples(f, side, ids, pos);
-      start[1 - side / 2] = merged(std::move(start[1 - side / 2]), pos);
-    }
-    std::vector<double> gu = start[0], gv = start[1];
-    for (int round = 0; round < 2; ++round) {
-      gu = grid_lines(s, 0, merged(gu, start[0]), merged(gv, {0.5}));
-      gv = grid_lines(s, 1, merged(gv, start[1]), merged(gu, {0.5}));
-    }
-    const int nu = static_cast<int>(gu.size()), nv = static_cast<int>(gv.size());
-    const auto uv = [&](double a, double b) {
-      return Param<2>{d.lo[0] + a * (d.hi[0] - d.lo[0]), d.lo[1] + b * (d.hi[1] - d.lo[1])};
-    };
-    // Interior vertices (i, j) for 1 <= i <= nu-2, 1 <= j <= nv-2.
-    std::vector<int> grid(static_cast<std::size_t>(nu * nv), -1);
-    for (int j = 1; j + 1 < nv; ++j)
-      for (int i = 1; i + 1 < nu; ++i) {
-        const Param<2> p = uv(gu[i], gv[j]);
-        grid[i + nu * j] = add_vertex(at(s, p), f, p);
-      }
-    const auto tri = [&](int a, int b, int c) {
-      if (face.flip) std::swap(b, c);
-      out_.mesh.triangles.push_back({a, b, c});
-    };
-    for (int j = 1; j + 2 < nv; ++j)
-      for (int i = 1; i + 2 < nu; ++i) {
-        const int a = grid[i + nu * j], b = grid[i + 1 + nu * j], c = grid[i + 1 + nu * (j + 1)],
-                  e = grid[i + nu * (j + 1)];
-        tri(a, b, c);
-        tri(a, c, e);
-      }
-
-    // Outer and inner loops, counter-clockwise in (u, v), each vertex with a perimeter coordinate in [0, 4):
-    // side v = lo on [0, 1), u = hi on [1, 2), v = hi on [2, 3), u = lo on [3, 4).
-    struct LoopVertex {
-      int id;
-      double s;
-    };
-    std::vector<LoopVertex> outer, inner;
-    const std::array<int, 4> order{2, 1, 3, 0};  // face sides in loop order
-    for (int q = 0; q < 4; ++q) {
-      side_samples(f, order[q], ids, pos);
-      const bool backwards = q >= 2;  // v = hi and u = lo run against their parameter
-      for (std::size_t i = 0; i + 1 < ids.size(); ++i) {
-        const std::size_t j = backwards ? ids.size() - 1 - i : i;
-        outer.push_back({ids[j], q + (backwards ? 1.0 - pos[j] : pos[j])});
-      }
-    }
-    // The inner loop starts at corner (1, 1); every side then lists its interior vertices and its end corner.
-    // Positions use the outer loop's coordinates (unit parameters), so each inner vertex meets the boundary
-    // samples facing it; a corner takes the position of the side it ends, which makes the outer corner
-    // region fan to it.
-    inner.push_back({grid[1 + nu], -gv[1]});
-    for (int i = 2; i <= nu - 2; ++i) inner.push_back({grid[i + nu], gu[i]});
-    for (int j = 2; j <= nv - 2; ++j) inner.push_back({grid[nu - 2 + nu * j], 1 + gv[j]});
-    for (int i = nu - 3; i >= 1; --i) inner.push_back({grid[i + nu * (nv - 2)], 3 - gu[i]});
-    for (int j = nv - 3; j >= 2; --j) inner.push_back({grid[1 + nu * j], 4 - gv[j]});
-
-    // Steps between two entries of one vertex (a degenerate side) add no triangle.
-    const std::size_t no = outer.size(), ni = inner.size();
-    std::size_t io = 0, ii = 0;
-    while (io < no || ii < ni) {
-      const double so = io < no ? (io + 1 < no ? outer[io + 1].s : 4.0 + outer[0].s) : 6.0;
-      const double si = ii < ni ? (ii + 1 < ni ? inner[ii + 1].s : 4.0 + inner[0].s) : 6.0;
-      const int o = outer[io % no].id, in = inner[ii % ni].id;
-      if (so <= si) {
-        if (const int next = outer[(io + 1) % no].id; next != o) tri(o, next, in);
-        ++io;
-      } else {
-        if (const int next = inner[(ii + 1) % ni].id; next != in) tri(o, next, in);
-        ++ii;
+      const auto vertex = [&](Coord x, Coord y) {
+        if (x > 0 && x < ext[0] && y > 0 && y < ext[1])
+          return inner_ids[std::lower_bound(inner.begin(), inner.end(), std::pair<Coord, Coord>{x, y}) - inner.begin()];
+        const int side = x == 0 ? 0 : x == ext[0] ? 1 : y == 0 ? 2 : 3;
+        const int curve = face.sides[side].curve;
+        const std::vector<Coord>& t = curve_points_[curve];
+        const Coord along = to_curve(f, side, side < 2 ? y : x);
+        return curve_ids_[curve][std::lower_bound(t.begin(), t.end(), along) - t.begin()];
+      };
+      for (const Cell& c : leaves_[f]) {
+        // The cell's boundary counter-clockwise in (u, v): v = lo, u = hi, v = hi, u = lo.
+        loop.clear();
+        const std::array<std::array<Coord, 2>, 4> corner{{{c.lo[0], c.lo[1]}, {c.hi[0], c.lo[1]}, {c.hi[0], c.hi[1]}, {c.lo[0], c.hi[1]}}};
+        for (int q = 0; q < 4; ++q) {
+          const auto& a = corner[q];
+          const auto& b = corner[(q + 1) % 4];
+          loop.push_back({a[0], a[1]});
+          const int k = a[0] == b[0] ? 1 : 0;  // direction the side runs in
+          side_points(f, k, a[1 - k], a[k], b[k], pts);
+          for (Coord p : pts) loop.push_back(k == 0 ? std::pair{p, a[1]} : std::pair{a[0], p});
+        }
+        const Param<2> uv = param(f, (c.lo[0] + c.hi[0]) / 2, (c.lo[1] + c.hi[1]) / 2);
+        const int centre = add_vertex(at(s, uv), f, uv);
+        for (std::size_t i = 0; i < loop.size(); ++i) {
+          const auto& [x0, y0] = loop[i];
+          const auto& [x1, y1] = loop[(i + 1) % loop.size()];
+          int a = vertex(x0, y0), b = vertex(x1, y1);
+          if (a == b) continue;  // along a collapsed side
+          if (face.flip) std::swap(a, b);
+          out_.mesh.triangles.push_back({centre, a, b});
+        }
       }
     }
   }
 
   const Brep& brep_;
-  const TessellationOptions& opts_;
+  double tol_;
   std::vector<std::vector<Use>> uses_;
-  std::vector<std::vector<double>> samples_;
-  std::vector<std::vector<int>> ids_;
+  std::vector<bool> collapsed_;
+  std::vector<std::array<std::vector<double>, 2>> lines_;  // per face and direction: unit parameter of each lattice line
+  std::vector<std::array<std::vector<Coord>, 2>> breaks_;  // per face and direction: lattice indices of root breaks
+  std::vector<std::vector<Cell>> leaves_;
+  std::vector<std::array<std::vector<std::pair<Coord, Coord>>, 2>> points_;
+  std::vector<std::vector<Coord>> curve_points_;
+  std::vector<std::vector<int>> curve_ids_;
   BrepTessellation out_;
 };
 

@@ -11,10 +11,8 @@
 namespace trivar {
 
 struct TessellationOptions {
-  // Largest distance between the surface and the chord / triangle midpoints that is accepted, in model units.
+  // Largest distance between a point of the mesh and the surface, in model units.
   double chordal_tolerance = 1e-3;
-  // Upper bound of samples per curve and of grid lines per face direction, a guard against degenerate input.
-  int max_samples = 4096;
 };
 
 // Where a mesh vertex came from: the face it was evaluated on and its parameters there (the first face that
@@ -29,12 +27,15 @@ struct BrepTessellation {
   std::vector<VertexOrigin> origins;  // one per mesh vertex
 };
 
-// Tessellates every face: each curve is sampled adaptively (starting from the knots of the sides on it)
-// until the chordal error is below the tolerance on every face that uses it; each face gets a tensor grid of
-// interior parameters refined the same way (chords along both grid directions and quad centres) and a
-// strip that zips its boundary samples to the first interior grid ring. Vertices of shared curves and
-// corners are shared. Throws trivar::Error on an inconsistent Brep (bad ids, a curve used by sides that are more
-// than 100 chordal tolerances apart at its samples, a surface that is not 3-dimensional).
+// Tessellates every face by cells in its parameter domain, split where a bound on the distance between the
+// surface and the cell's triangles (from the normal part of the second derivatives) exceeds the tolerance or
+// where a cell is more than twice as long in space as it is wide, and graded so that no cell side meets more
+// than one corner of its neighbours (on the same face or across a curve). Each cell is a fan of triangles
+// from its centre, so triangles stay well shaped; a flat face keeps cells as large as its neighbours allow.
+// Faces meeting along a curve cut it on a common lattice, so their vertices there are shared. Throws
+// trivar::Error on an inconsistent Brep (bad ids, a curve used by sides that are more than 100 chordal
+// tolerances apart at its samples, a surface that is not 3-dimensional) and, before tessellating, when the
+// triangles the tolerance calls for would not fit into the available memory.
 BrepTessellation tessellate(const Brep& brep, const TessellationOptions& opts = {});
 
 }  // namespace trivar
