@@ -4,6 +4,7 @@
 #include <regex>
 
 #include "cli/cli_fixture.hpp"
+#include "support/vtu_arrays.hpp"
 
 using namespace cli_test;
 
@@ -24,6 +25,36 @@ std::vector<ReportLine> report_lines(const std::string& out) {
     r.push_back({std::stoi(m[1]), std::stoi(m[2]), std::stoi(m[3]), std::stoi(m[4]), std::stoi(m[5])});
   }
   return r;
+}
+
+// The element lines of a .lr file ("k [D] : (lo..) x (hi..)    {ids}"), as (lo, hi) number lists, in file order.
+std::vector<std::pair<std::vector<double>, std::vector<double>>> lr_elements(const std::string& text) {
+  static const std::regex re(R"(^\d+ \[\d\] : \(([^)]*)\) x \(([^)]*)\).*)");
+  const auto numbers = [](std::string t) {
+    std::replace(t.begin(), t.end(), ',', ' ');
+    std::istringstream in(t);
+    std::vector<double> v;
+    for (double x; in >> x;) v.push_back(x);
+    return v;
+  };
+  std::vector<std::pair<std::vector<double>, std::vector<double>>> out;
+  const std::string elements = text.substr(text.find("# Elements:"));
+  for (const std::string& l : lines(elements)) {
+    std::smatch m;
+    if (std::regex_match(l, m, re)) out.emplace_back(numbers(m[1]), numbers(m[2]));
+  }
+  return out;
+}
+
+// The distinct values of the full-length mesh lines u = const of a 2D .lr file ("x x [0, 1] (m)"), as written.
+std::vector<std::string> u_lines(const std::string& text) {
+  static const std::regex re(R"(^([-0-9.e]+) x \[0, 1\] \(\d\)$)");
+  std::vector<std::string> out;
+  for (const std::string& l : lines(text)) {
+    std::smatch m;
+    if (std::regex_match(l, m, re)) out.push_back(m[1]);
+  }
+  return out;
 }
 
 }  // namespace
@@ -219,4 +250,93 @@ TEST_F(LRCli, BadInputFailsWithOneLine) {
   // The tensor options are unchanged.
   ok("refine t.json --uniform 2 -o t2.json");
   EXPECT_EQ(info("t2.json").at("num_elements"), 16);
+}
+
+// One element numbering: refine --elements k refines the element listed k-th in the .lr file trivar wrote,
+// which is also the k-th cell of the VTK parametric mesh.
+TEST_F(LRCli, ElementIdsAreTheOrderOfTheWrittenFile) {
+  ok("make box --lr --degree 2 --elements 3 3 -o box.lr");
+  ok("refine box.lr -o r.lr --strategy fullspan --elements 4");  // the centre: ids of split parts are appended
+  const auto listed = lr_elements(slurp(work_ / "r.lr"));
+  ASSERT_EQ(listed.size(), static_cast<std::size_t>(info("r.lr").at("num_elements").get<int>()));
+  ok("convert r.lr mesh.vtu --parametric-mesh");
+  const std::string vtu = slurp(work_ / "mesh.vtu");
+  const std::vector<double> points = trivar::test::vtu_array(vtu, ""),
+                            conn = trivar::test::vtu_array(vtu, "connectivity"),
+                            offsets = trivar::test::vtu_array(vtu, "offsets");
+  ASSERT_EQ(offsets.size(), listed.size());
+  for (int k : {0, static_cast<int>(listed.size()) / 2, static_cast<int>(listed.size()) - 1}) {
+    SCOPED_TRACE(k);
+    const auto& [lo, hi] = listed[static_cast<std::size_t>(k)];
+    ASSERT_EQ(lo.size(), 2u);
+    // Cell k of the parametric mesh spans the k-th listed element.
+    double ulo = 1e9, uhi = -1e9, vlo = 1e9, vhi = -1e9;
+    for (std::size_t c = k ? static_cast<std::size_t>(offsets[static_cast<std::size_t>(k) - 1]) : 0;
+         c < static_cast<std::size_t>(offsets[static_cast<std::size_t>(k)]); ++c) {
+      const auto p = static_cast<std::size_t>(conn[c]) * 3;
+      ulo = std::min(ulo, points[p]), uhi = std::max(uhi, points[p]);
+      vlo = std::min(vlo, points[p + 1]), vhi = std::max(vhi, points[p + 1]);
+    }
+    EXPECT_EQ(ulo, lo[0]);
+    EXPECT_EQ(uhi, hi[0]);
+    EXPECT_EQ(vlo, lo[1]);
+    EXPECT_EQ(vhi, hi[1]);
+    // FULLSPAN on element k halves it in both directions: its lower-left quarter becomes an element.
+    ok("refine r.lr -o k.lr --strategy fullspan --elements " + std::to_string(k));
+    const auto after = lr_elements(slurp(work_ / "k.lr"));
+    const std::vector<double> qlo = lo, qhi = {(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2};
+    EXPECT_TRUE(std::find(after.begin(), after.end(), std::make_pair(qlo, qhi)) != after.end());
+  }
+}
+
+// The literature's cross (LRsplines' regression cases cross_1_5_m1 / _m2): a cubic mesh of 7 x 7 elements
+// (10 x 10 B-splines), the lines v = 3.5 and u = 3.5 (in element units) over [1, 5], multiplicity 1 or 2.
+// LRsplines gives 103 (m = 1) and 108 (m = 2) B-splines, 18 mesh lines and 58 elements (49 + 4 cut by the first
+// line + 5 by the second, which crosses the first's halves), and the dimension formula must agree.
+TEST_F(LRCli, RectanglesOfTheLiteraturesCross) {
+  ok("make box --lr --degree 3 --elements 7 7 -o box.lr");
+  const std::vector<std::string> t = u_lines(slurp(work_ / "box.lr"));
+  ASSERT_EQ(t.size(), 8u);
+  for (int m : {1, 2}) {
+    SCOPED_TRACE(m);
+    const std::string ms = std::to_string(m);
+    ok("refine box.lr -o cross.lr --rectangle v 0.5 " + t[1] + " " + t[5] + " " + ms + " --rectangle u 0.5 " + t[1] +
+       " " + t[5] + " " + ms);
+    const nlohmann::json d = info("cross.lr --check-independence peeling");
+    EXPECT_EQ(d.at("num_basis"), m == 1 ? 103 : 108);
+    EXPECT_EQ(d.at("num_elements"), 58);
+    EXPECT_EQ(d.at("num_meshrects"), 18);
+    EXPECT_EQ(d.at("dimension_formula").at("dimension"), d.at("num_basis"));
+    // The same rectangles from a file, with comments.
+    write("cross.txt", "# dir value start stop mult\nv 0.5 " + t[1] + " " + t[5] + " " + ms + "\n\n0 0.5 " + t[1] +
+                           " " + t[5] + " " + ms + "  # the vertical line\n");
+    ok("refine box.lr -o file.lr --rectangles cross.txt");
+    EXPECT_TRUE(slurp(work_ / "file.lr") == slurp(work_ / "cross.lr"));
+  }
+  // A volume: the plane piece w = 0.25 over u in [0, 1], v in [0, 0.5] cuts the 2 elements below it.
+  ok("make box --lr --degree 2 --elements 2 2 2 -o vol.lr");
+  ok("refine vol.lr -o v2.lr --rectangle w 0.25 0 1 0 0.5 1");
+  EXPECT_EQ(info("v2.lr").at("num_elements"), 10);
+  const std::vector<double> want = eval("vol.lr", "0.3 0.2 0.1"), got = eval("v2.lr", "0.3 0.2 0.1");
+  ASSERT_EQ(got.size(), 3u);
+  for (int d = 0; d < 3; ++d) EXPECT_NEAR(got[d], want[d], 1e-14);
+  fails("refine vol.lr -o o.lr --rectangle w 0.25 0 1 0.5 1");         // 5 values for a volume
+  fails("refine box.lr -o o.lr --rectangle x 0.5 0 1 1");              // no such direction
+  fails("refine box.lr -o o.lr --rectangle u 0.5 0.3 0.6 1");          // ends inside elements
+  fails("refine box.lr -o o.lr --rectangle u " + t[1] + " 0 1 1");     // already in the mesh
+  fails("refine box.lr -o o.lr --rectangle u 0.5 0 1 1 --strategy fullspan");
+  fails("refine box.lr -o o.lr --rectangles missing.txt");
+}
+
+// A request that would exhaust the memory is refused before it runs, naming the request.
+TEST_F(LRCli, LevelsBeyondTheMemoryAreRefused) {
+  ok("make box --lr --degree 2 --elements 2 2 -o box.lr");
+  const Result r = run("refine box.lr -o o.lr --strategy fullspan --levels 1000");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("refine --levels 1000: level 1000 (more elements than a double can count, 4 times as many "
+                       "per level)"), std::string::npos) << r.err;
+  EXPECT_NE(run("refine box.lr -o o.lr --strategy fullspan --levels 30").err.find(
+                "level 30 (about 4.61e+18 elements and "), std::string::npos);
+  EXPECT_NE(r.err.find("would need"), std::string::npos) << r.err;
+  EXPECT_FALSE(exists("o.lr"));
 }

@@ -8,7 +8,9 @@
 #include <sstream>
 
 #include "support/spline_fixtures.hpp"
+#include "support/temp_dir.hpp"
 #include "trivar/core/error.hpp"
+#include "trivar/io/step/step_file.hpp"
 
 using namespace trivar;
 
@@ -194,7 +196,8 @@ TEST(LrFormat, TensorSplineThroughTheFormatEvaluatesAsTheTensorSpline) {
 TEST(LrFormat, MalformedInputFailsWithLineAndReason) {
   const std::string cube = kCube;
   expect_error("", "no LR spline");
-  expect_error("# LRSPLINE CURVE\n", "expected '# LRSPLINE SURFACE'");
+  expect_error("# LRSPLINE CURVE\n", "unsupported LR spline kind 'CURVE'");
+  expect_error("# comment\n1 2 3\n", "7 values for a surface, 8 for a volume");
   expect_error(cube.substr(0, cube.size() / 2), "expected");
   expect_error(replaced(cube, "\t3\t0\n", "\t3\t2\n"), "rational flag");
   expect_error(replaced(cube, "\t2\t2\t2\t8", "\t0\t2\t2\t8"), "order");
@@ -210,4 +213,95 @@ TEST(LrFormat, MalformedInputFailsWithLineAndReason) {
   // Semantic errors come from the LRSpline constructor, with the file position in front.
   expect_error(replaced(cube, "0 0 0 (1)", "0 0 0 (0)"), "bad.lr:");
   expect_error(replaced(cube, "0: [0 0 1 ]", "0: [0 0 2 ]"), "bad.lr:");
+}
+
+// An LR volume written by the LRsplines library (degrees 2 3 2, 2684 B-splines, 2478 elements, 73 mesh
+// rectangles) through STEP, which stores no mesh: the mesh rebuilt from the B-splines' knot lines has planes
+// that are unions of several rectangles, and must give back the same B-splines, elements and geometry.
+TEST(LrFormat, LRsplinesVolumeSurvivesStep) {
+  const auto in = io::read_lr(std::string(TRIVAR_TEST_DATA) + "/io/lr_volume_lrsplines.lr");
+  ASSERT_EQ(in.size(), 1u);
+  const LRSpline<3>& a = as<3>(in[0]);
+  ASSERT_EQ(a.num_basis(), 2684);
+  ASSERT_EQ(a.num_elements(), 2478);
+  ASSERT_EQ(a.mesh().size(), 73u);
+  const test::TempDir dir;
+  io::step::write_step(dir.file("v.stp"), {}, in, {}, "2026-01-01T00:00:00");
+  const auto back = io::step::read_step(dir.file("v.stp"));
+  ASSERT_EQ(back.lr_splines.size(), 1u);
+  const LRSpline<3>& b = as<3>(back.lr_splines[0]);
+  ASSERT_EQ(b.num_basis(), a.num_basis());
+  for (int i = 0; i < a.num_basis(); ++i) {
+    EXPECT_EQ(a.basis_function(i).knots, b.basis_function(i).knots);
+    EXPECT_EQ(a.basis_function(i).gamma, b.basis_function(i).gamma);
+  }
+  const auto boxes = [](const LRSpline<3>& s) {
+    std::vector<std::pair<Param<3>, Param<3>>> e;
+    for (const Box<3>& x : s.elements()) e.emplace_back(x.lo, x.hi);
+    std::sort(e.begin(), e.end());
+    return e;
+  };
+  EXPECT_EQ(boxes(a), boxes(b));
+  std::vector<double> x(3), y(3);
+  for (const Param<3>& u : grid_params<3>(5000)) {
+    a.eval(u, x.data());
+    b.eval(u, y.data());
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(x[static_cast<std::size_t>(i)], y[static_cast<std::size_t>(i)], 1e-12);
+  }
+}
+
+// Older LRsplines versions start a block with a bare "# LRSPLINE" (LRsplines' reader skips every comment line):
+// the header line's value count tells a surface (7) from a volume (8).
+TEST(LrFormat, ReadsTheOlderBareHeader) {
+  const auto s = io::parse_lr(replaced(kSplitSquare, "# LRSPLINE SURFACE", "# LRSPLINE"), "old.lr");
+  ASSERT_EQ(s.size(), 1u);
+  EXPECT_EQ(as<2>(s[0]).num_elements(), 2);
+  const auto v = io::parse_lr(replaced(kCube, "# LRSPLINE VOLUME", "# LRSPLINE\n# written by hand"), "old.lr");
+  ASSERT_EQ(v.size(), 1u);
+  EXPECT_EQ(as<3>(v[0]).num_basis(), 8);
+  // Two blocks, the second with the old header.
+  const auto two = io::parse_lr(std::string(kCube) + replaced(kSplitSquare, "# LRSPLINE SURFACE", "# LRSPLINE"), "two.lr");
+  ASSERT_EQ(two.size(), 2u);
+  EXPECT_EQ(parametric_dimension(two[1]), 2);
+}
+
+// Element ids are the positions in the file's element block, and the writer lists elements in id order.
+TEST(LrFormat, ElementIdsAreTheBlockOrder) {
+  const std::string swapped =
+      replaced(replaced(kSplitSquare, "0 [2] : (0, 0) x (0.5, 1)    {10, 11, 13, 14}\n", ""),
+               "1 [2] : (0.5, 0) x (1, 1)    {11, 12, 14, 15}\n",
+               "1 [2] : (0.5, 0) x (1, 1)    {11, 12, 14, 15}\n0 [2] : (0, 0) x (0.5, 1)    {10, 11, 13, 14}\n");
+  const auto s = io::parse_lr(swapped, "swapped.lr");
+  const LRSpline<2>& lr = as<2>(s[0]);
+  EXPECT_EQ(lr.element(0).lo, (Param<2>{0.5, 0}));
+  EXPECT_EQ(lr.element(1).lo, (Param<2>{0, 0}));
+  const std::string text = text_of(s[0]);
+  EXPECT_LT(text.find("0 [2] : (0.5, 0) x (1, 1)"), text.find("1 [2] : (0, 0) x (0.5, 1)")) << text;
+  EXPECT_EQ(text_of(io::parse_lr(text, "again.lr")[0]), text);
+}
+
+// The literature's cross (cubic, 10 x 10 B-splines, lines u = 3.5 and v = 3.5 over [1, 5]): a block that lists
+// the mesh's 58 elements is read; one that lists the 49 elements of the mesh without the cross names the first
+// listed element the cross cuts.
+TEST(LrFormat, ElementBlockMustListTheMeshElements) {
+  const auto kv = KnotVector::open_uniform(3, 7, 0.0, 7.0);
+  LRSpline<2> cross(TensorSpline<2>({kv, kv}, 1, false, std::vector<double>(100, 1.0)));
+  const std::string tensor = text_of(cross);
+  cross.insert(MeshRectangle<2>::make(0, 3.5, {0, 1}, {0, 5}));
+  cross.insert(MeshRectangle<2>::make(1, 3.5, {1, 0}, {5, 0}));
+  const std::string text = text_of(cross);
+  const LRSpline<2>& back = as<2>(io::parse_lr(text, "cross.lr")[0]);
+  EXPECT_EQ(back.num_basis(), 103);
+  EXPECT_EQ(back.num_elements(), 58);
+  // The cross's mesh and B-splines with the tensor mesh's element block.
+  const std::string stale = text.substr(0, text.find("# Elements:")) + tensor.substr(tensor.find("# Elements:"));
+  expect_error(replaced(stale, "\t103\t18\t58\t", "\t103\t18\t49\t"),
+               "of the block, (3, 1) x (4, 2), is not an element of the mesh (the mesh has 58 elements, the block "
+               "lists 49");
+}
+
+TEST(LrFormat, DeletedBasisFunctionIsRefused) {
+  std::string text = replaced(kSplitSquare, "14: [0 0.5 1 ] x [0 1 1 ] 1 1 (1)\n", "");
+  text = replaced(replaced(text, "{10, 11, 13, 14}", "{10, 11, 13}"), "{11, 12, 14, 15}", "{11, 12, 15}");
+  expect_error(replaced(text, "\t6\t5\t2", "\t5\t5\t2"), "do not sum to one on element [0, 0.5] x [0, 1]");
 }

@@ -160,6 +160,10 @@ TEST(LrJson, ErrorsNameTheJsonPath) {
   j = good;
   j["basis"][0]["gamma"] = 0.0;  // rejected by the LRSpline constructor, after the file name
   expect_error(j, "f.json: ");
+  // One B-spline deleted: the rest no longer sums to one on the elements of its support.
+  j = good;
+  j["basis"].erase(7);
+  expect_error(j, "do not sum to one on element [");
 }
 
 TEST(LrJson, DocumentLevelErrors) {

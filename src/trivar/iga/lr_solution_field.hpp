@@ -1,8 +1,8 @@
 #pragma once
 // A discrete solution on an LR space as an LR spline: sum_i c_i gamma_i B_i over the geometry's own B-splines
 // and mesh, so it is evaluated, written or refined like any LR spline (the LR counterpart of
-// solution_field.hpp). Its element ids need not be the geometry's (they follow the mesh, not the refinement
-// history): look elements up by parameter.
+// solution_field.hpp). Its element ids are the geometry's when the geometry has the mesh's own element order
+// (LRSpline.hpp; not when a reader renumbered them): look elements up by parameter otherwise.
 #include <Eigen/Core>
 
 #include "trivar/lr/lr_spline.hpp"

@@ -5,7 +5,6 @@
 #include <cctype>
 #include <cmath>
 #include <fstream>
-#include <numeric>
 #include <optional>
 #include <sstream>
 #include <unordered_set>
@@ -13,6 +12,7 @@
 #include "trivar/core/atomic_file.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/core/number_format.hpp"
+#include "trivar/lr/lr_mesh.hpp"
 
 namespace trivar::io {
 
@@ -24,9 +24,11 @@ class Cursor {
 public:
   Cursor(std::string_view text, const std::string& name) : text_(text), name_(name) {}
 
-  [[noreturn]] void fail(const std::string& what) const {
-    throw Error(name_ + ":" + std::to_string(line_) + ": " + what);
+  [[noreturn]] void fail(const std::string& what) const { fail_at(line_, what); }
+  [[noreturn]] void fail_at(int line, const std::string& what) const {
+    throw Error(name_ + ":" + std::to_string(line) + ": " + what);
   }
+  int line() const { return line_; }
 
   void skip_space() {
     while (pos_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[pos_])))
@@ -44,6 +46,12 @@ public:
   bool starts_with(std::string_view s) {
     skip_space();
     return text_.substr(pos_).starts_with(s);
+  }
+  // The rest of the current line after leading whitespace, not consumed.
+  std::string_view peek_line() {
+    skip_space();
+    const std::size_t end = std::min(text_.find('\n', pos_), text_.size());
+    return text_.substr(pos_, end - pos_);
   }
   std::string_view line_text() {
     skip_space();
@@ -115,6 +123,58 @@ constexpr long kMaxOrder = 64;
 constexpr long kMaxCount = 100'000'000;
 
 template <int D>
+std::string box_text(const Box<D>& b) {
+  std::string t;
+  for (int corner = 0; corner < 2; ++corner) {
+    t += corner ? " x (" : "(";
+    for (int k = 0; k < D; ++k) t += (k ? ", " : "") + format_number(corner ? b.hi[k] : b.lo[k]);
+    t += ')';
+  }
+  return t;
+}
+
+// Numbers s's elements as the block lists them, so element ids are the file's positions. The corners must
+// agree with the mesh's elements up to rounding in the last digits (writers that print 16 significant digits
+// round their mesh lines and element corners alike, but not necessarily to the same double as trivar's).
+template <int D>
+void adopt_element_order(const Cursor& in, LRSpline<D>& s, const std::vector<Box<D>>& listed,
+                         const std::vector<int>& lines) {
+  const Box<D>& dom = s.domain();
+  ElementGrid<D> grid(dom, static_cast<std::size_t>(s.num_elements()));
+  for (int e = 0; e < s.num_elements(); ++e) grid.add(e, s.element(e));
+  const auto same = [&](const Box<D>& a, const Box<D>& b) {
+    for (int k = 0; k < D; ++k) {
+      const double tol = 1e-13 * dom.extent(k);
+      if (std::abs(a.lo[k] - b.lo[k]) > tol || std::abs(a.hi[k] - b.hi[k]) > tol) return false;
+    }
+    return true;
+  };
+  const std::string counts = "the mesh has " + std::to_string(s.num_elements()) + " elements, the block lists " +
+                             std::to_string(listed.size());
+  std::vector<int> order, listed_as(static_cast<std::size_t>(s.num_elements()), -1);
+  order.reserve(listed.size());
+  for (std::size_t i = 0; i < listed.size(); ++i) {
+    const Param<D> c = listed[i].center();
+    int found = -1;
+    grid.query(Box<D>{c, c}, [&](int e) {
+      if (found < 0 && same(s.element(e), listed[i])) found = e;
+    });
+    const auto where = "element " + std::to_string(i) + " of the block, " + box_text(listed[i]);
+    if (found < 0)
+      in.fail_at(lines[i], where + ", is not an element of the mesh (" + counts +
+                               "; elements are the boxes the mesh rectangles cut the domain into)");
+    if (listed_as[static_cast<std::size_t>(found)] >= 0)
+      in.fail_at(lines[i], where + ", repeats element " + std::to_string(listed_as[static_cast<std::size_t>(found)]));
+    listed_as[static_cast<std::size_t>(found)] = static_cast<int>(i);
+    order.push_back(found);
+  }
+  for (int e = 0; e < s.num_elements(); ++e)
+    if (listed_as[static_cast<std::size_t>(e)] < 0)
+      in.fail(counts + ": the mesh element " + box_text(s.element(e)) + " is missing from the block");
+  s.reorder_elements(order);
+}
+
+template <int D>
 LRSpline<D> parse_block(Cursor& in) {
   Ints<D> degrees{};
   for (int k = 0; k < D; ++k) degrees[k] = in.count("order", kMaxOrder) - 1;
@@ -182,9 +242,13 @@ LRSpline<D> parse_block(Cursor& in) {
     in.expect(')', "after the mesh multiplicity");
   }
 
-  // Elements are implied by the mesh; the file's list is checked for syntax, known ids and its count.
+  // Elements are implied by the mesh; the file's list must name exactly the mesh's elements (any order, which
+  // becomes the element numbering) and known basis function ids.
+  std::vector<Box<D>> listed(static_cast<std::size_t>(nel));
+  std::vector<int> lines(static_cast<std::size_t>(nel));
   for (int e = 0; e < nel; ++e) {
     in.skip_comments();
+    lines[static_cast<std::size_t>(e)] = in.line();
     in.integer("element id");
     in.expect('[', "before the element dimension");
     if (in.integer("element dimension") != D) in.fail("element dimension must be " + std::to_string(D));
@@ -195,7 +259,8 @@ LRSpline<D> parse_block(Cursor& in) {
       in.expect('(', "before an element corner");
       for (int k = 0; k < D; ++k) {
         if (k > 0) in.expect(',', "in an element corner");
-        in.number("element corner coordinate");
+        (corner == 0 ? listed[static_cast<std::size_t>(e)].lo : listed[static_cast<std::size_t>(e)].hi)[k] =
+            in.number("element corner coordinate");
       }
       in.expect(')', "after an element corner");
     }
@@ -216,9 +281,7 @@ LRSpline<D> parse_block(Cursor& in) {
   } catch (const Error& e) {
     in.fail(e.what());
   }
-  if (s->num_elements() != nel)
-    in.fail("the mesh has " + std::to_string(s->num_elements()) + " elements but the block lists " +
-            std::to_string(nel));
+  adopt_element_order(in, *s, listed, lines);
   return std::move(*s);
 }
 
@@ -266,20 +329,12 @@ void write_block(std::ostream& os, const LRSpline<D>& s) {
     }
     os << " (" << r.multiplicity << ")\n";
   }
-  // Elements in a canonical order (lower corners lexicographic, the last direction most significant), not in
-  // id order: ids depend on the refinement history, so this keeps write(read(write(s))) == write(s).
-  std::vector<int> order(static_cast<std::size_t>(s.num_elements()));
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](int a, int b) {
-    for (int k = D - 1; k >= 0; --k)
-      if (s.element(a).lo[k] != s.element(b).lo[k]) return s.element(a).lo[k] < s.element(b).lo[k];
-    return false;
-  });
+  // Elements in id order, so the n-th element listed is element n everywhere (refine --elements, VTK cells);
+  // the reader keeps the listed order, so write(read(write(s))) == write(s).
   os << "# Elements:\n";
-  for (std::size_t n = 0; n < order.size(); ++n) {
-    const int e = order[n];
+  for (int e = 0; e < s.num_elements(); ++e) {
     const Box<D>& el = s.element(e);
-    os << n << " [" << D << "] : (";
+    os << e << " [" << D << "] : (";
     for (int k = 0; k < D; ++k) {
       if (k > 0) os << ", ";
       write_number(os, el.lo[k]);
@@ -299,23 +354,45 @@ void write_block(std::ostream& os, const LRSpline<D>& s) {
   }
 }
 
+// The parametric dimension of the next block, after its comment lines: from a "# LRSPLINE SURFACE" or
+// "# LRSPLINE VOLUME" comment when there is one. Older LRsplines versions wrote a bare "# LRSPLINE" (surfaces),
+// and LRsplines' reader skips every comment line, so otherwise the header line decides by its number of values:
+// 7 for a surface (p1 p2 Nbasis Nline Nel dim rat), 8 for a volume (p3 after p2).
+int block_dimension(Cursor& in) {
+  int dimension = 0;
+  while (in.starts_with("#")) {
+    const int at = in.line();
+    const std::string_view line = in.line_text();
+    if (!line.starts_with("# LRSPLINE") || dimension != 0) continue;
+    std::string_view kind = line.substr(10);
+    while (!kind.empty() && std::isspace(static_cast<unsigned char>(kind.front()))) kind.remove_prefix(1);
+    while (!kind.empty() && std::isspace(static_cast<unsigned char>(kind.back()))) kind.remove_suffix(1);
+    if (kind == "SURFACE") dimension = 2;
+    else if (kind == "VOLUME") dimension = 3;
+    else if (!kind.empty())
+      in.fail_at(at, "unsupported LR spline kind '" + std::string(kind.substr(0, 20)) +
+                         "' (expected '# LRSPLINE SURFACE' or '# LRSPLINE VOLUME')");
+  }
+  if (dimension != 0) return dimension;
+  std::istringstream header{std::string(in.peek_line())};
+  int values = 0;
+  for (std::string token; header >> token;) ++values;
+  if (values == 7) return 2;
+  if (values == 8) return 3;
+  in.fail("expected a header line 'p1 p2 [p3] Nbasis Nline Nel dim rat' (7 values for a surface, 8 for a "
+          "volume), found " + std::to_string(values) + " values");
+}
+
 }  // namespace
 
 std::vector<AnyLRSpline> parse_lr(std::string_view text, const std::string& name) {
   Cursor in(text, name);
   std::vector<AnyLRSpline> out;
   while (!in.at_end()) {
-    const std::string_view header = in.line_text();
-    if (header.starts_with("# LRSPLINE SURFACE")) {
-      in.skip_comments();
+    if (block_dimension(in) == 2)
       out.emplace_back(parse_block<2>(in));
-    } else if (header.starts_with("# LRSPLINE VOLUME")) {
-      in.skip_comments();
+    else
       out.emplace_back(parse_block<3>(in));
-    } else {
-      in.fail("expected '# LRSPLINE SURFACE' or '# LRSPLINE VOLUME', found '" +
-              std::string(header.substr(0, 40)) + "'");
-    }
   }
   if (out.empty()) throw Error(name + ":1: no LR spline found (empty file)");
   return out;

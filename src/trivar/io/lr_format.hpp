@@ -11,8 +11,11 @@
 //   [0.5, 0.5] x [0, 1] x [0, 1] (1)          volumes: the constant direction has a degenerate interval
 //   # Elements:
 //   0 [2] : (0, 0) x (0.5, 0.5)    {0, 1, 4, 5}
-// Lines starting with '#' are comments. Basis ids are arbitrary integers (element support lists refer to
-// them); elements are recomputed from the mesh and must agree in number with the file. Rational control
+// Lines starting with '#' are comments; a block whose comments do not name SURFACE or VOLUME (older LRsplines
+// versions wrote a bare "# LRSPLINE") is told by its header line: 7 values for a surface, 8 for a volume. Basis
+// ids are arbitrary integers (element support lists refer to them). Elements are recomputed from the mesh; the
+// block must list exactly those (up to rounding of the corners), in any order, which becomes the element
+// numbering (LRSpline::reorder_elements); the writer lists them in id order. Rational control
 // values are homogeneous (w x, w y, w z, w), LRsplines' own convention and trivar's. Reals are written in
 // shortest round-trip form.
 #include <iosfwd>
@@ -25,7 +28,8 @@
 namespace trivar::io {
 
 // Throws trivar::Error "name:line: ..." on any syntax error, a wrong count, an invalid basis function or mesh
-// rectangle (through the LRSpline constructor), an unknown basis id in an element, or an empty input.
+// rectangle (through the LRSpline constructor), an element block that does not list the mesh's elements, an
+// unknown basis id in an element, or an empty input.
 std::vector<AnyLRSpline> parse_lr(std::string_view text, const std::string& name);
 std::vector<AnyLRSpline> read_lr(const std::string& path);
 

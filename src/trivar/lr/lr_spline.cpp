@@ -10,6 +10,7 @@
 #include <unordered_map>
 
 #include "trivar/core/error.hpp"
+#include "trivar/core/number_format.hpp"
 #include "trivar/core/parallel.hpp"
 #include "trivar/lr/lr_mesh.hpp"
 #include "trivar/spline/basis.hpp"
@@ -139,6 +140,24 @@ bool strictly_inside(const Param<D>& c, const Box<D>& s) {
 template <int D>
 bool center_inside(const Box<D>& e, const Box<D>& s) {
   return strictly_inside(e.center(), s);
+}
+
+// The element id order: lower corners lexicographic, the last direction most significant.
+template <int D>
+bool corner_less(const Box<D>& a, const Box<D>& b) {
+  for (int k = D - 1; k >= 0; --k)
+    if (a.lo[k] != b.lo[k]) return a.lo[k] < b.lo[k];
+  return false;
+}
+
+template <int D>
+std::vector<int> corner_order(std::span<const Box<D>> elements) {
+  std::vector<int> order(elements.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    return corner_less(elements[static_cast<std::size_t>(a)], elements[static_cast<std::size_t>(b)]);
+  });
+  return order;
 }
 
 }  // namespace
@@ -612,6 +631,7 @@ struct LRSpline<D>::Batch {
     s.basis_ = std::move(basis);
     s.basis_elements_ = std::move(basis_elements);
     rebuild_element_lists(s.basis_elements_, nullptr);
+    s.reorder_elements(corner_order<D>(s.elements_));
     std::erase_if(s.mesh_, [](const Rect& r) { return r.multiplicity == 0; });
     s.evaluator_.reset();
   }
@@ -733,16 +753,21 @@ LRSpline<D>::LRSpline(const Ints<D>& degrees, int dim, bool rational, std::vecto
     });
     return out;
   };
-  // A rectangle cuts an element only where it crosses it completely: a T-junction rectangle listed before the
-  // line it ends on must not cut beyond that line. Repeat until no cut is left; the final elements do not depend
-  // on the order of the rectangles.
+  std::unordered_map<PlaneKey, std::vector<const MeshRectangle<D>*>, PlaneHash> planes;
+  for (const auto& r : mesh_) planes[{r.dir, r.value}].push_back(&r);
+  // A plane cuts an element only where its rectangles together cross it completely: a T-junction rectangle
+  // listed before the line it ends on must not cut beyond that line, and a plane given as several pieces (a
+  // mesh rebuilt from knot lines, a file listing a cross as four half lines) cuts where their union crosses.
+  // Repeat until no cut is left; the final elements do not depend on the order of the rectangles.
   for (bool changed = true; changed;) {
     changed = false;
     for (const auto& r : mesh_) {
       const int k = r.dir;
+      const auto& plane = planes[{k, r.value}];
       for (int e : touched(r)) {
         auto& el = elements_[static_cast<std::size_t>(e)];
-        if (!(el.lo[k] < r.value && r.value < el.hi[k]) || !r.contains_across(el)) continue;
+        if (!(el.lo[k] < r.value && r.value < el.hi[k])) continue;
+        if (!r.contains_across(el) && !mesh_covers<D>(plane, k, r.value, el, 1)) continue;
         Box<D> upper = el;
         upper.lo[k] = r.value;
         el.hi[k] = r.value;
@@ -752,8 +777,6 @@ LRSpline<D>::LRSpline(const Ints<D>& degrees, int dim, bool rational, std::vecto
       }
     }
   }
-  std::unordered_map<PlaneKey, std::vector<const MeshRectangle<D>*>, PlaneHash> planes;
-  for (const auto& r : mesh_) planes[{r.dir, r.value}].push_back(&r);
   for (std::size_t i = 0; i < mesh_.size(); ++i) {
     const auto& r = mesh_[i];
     const auto& plane = planes[{r.dir, r.value}];
@@ -767,6 +790,7 @@ LRSpline<D>::LRSpline(const Ints<D>& degrees, int dim, bool rational, std::vecto
       });
     }
   }
+  std::sort(elements_.begin(), elements_.end(), corner_less<D>);
   sort_basis();
   for (std::size_t i = 1; i < basis_.size(); ++i)
     require(!same_knots(basis_[i - 1], basis_[i]), "LRSpline: two B-splines with the same knots");
@@ -785,6 +809,75 @@ LRSpline<D>::LRSpline(const Ints<D>& degrees, int dim, bool rational, std::vecto
             "LRSpline: the support of a B-spline (knots starting at " + std::to_string(S.lo[0]) +
                 ") is not a union of elements");
   }
+  check_partition_of_unity();
+}
+
+// On an element, sum gamma_i B_i is a tensor polynomial; it is 1 exactly when all its Bernstein coefficients
+// are 1 (the Bernstein polynomials are a basis summing to one). The coefficients are the gamma-weighted sums of
+// outer products of the B-splines' univariate Bernstein rows, so the test is exact up to rounding and needs no
+// sample points. A deleted B-spline, a wrong scaling factor or an element no support covers fails it.
+template <int D>
+void LRSpline<D>::check_partition_of_unity() const {
+  std::size_t n = 1;
+  for (int k = 0; k < D; ++k) n *= static_cast<std::size_t>(degrees_[k] + 1);
+  std::vector<double> sum(n), term(n);
+  std::array<std::vector<double>, D> rows;
+  for (int k = 0; k < D; ++k) rows[k].resize(static_cast<std::size_t>(degrees_[k] + 1));
+  for (std::size_t e = 0; e < elements_.size(); ++e) {
+    const Box<D>& el = elements_[e];
+    std::fill(sum.begin(), sum.end(), 0.0);
+    for (int b : element_basis_[e]) {
+      const LRBSpline<D>& fn = basis_[static_cast<std::size_t>(b)];
+      for (int k = 0; k < D; ++k)
+        bspline_bernstein_row(fn.knots[k].data(), degrees_[k], el.lo[k], el.hi[k], rows[k].data());
+      // Outer product, direction 0 fastest.
+      term[0] = fn.gamma;
+      std::size_t len = 1;
+      for (int k = 0; k < D; ++k) {
+        const std::size_t m = rows[k].size();
+        for (std::size_t j = m; j-- > 0;)
+          for (std::size_t i = 0; i < len; ++i) term[j * len + i] = term[i] * rows[k][j];
+        len *= m;
+      }
+      for (std::size_t i = 0; i < n; ++i) sum[i] += term[i];
+    }
+    for (std::size_t i = 0; i < n; ++i)
+      require(std::abs(sum[i] - 1.0) <= 1e-9, [&] {
+        std::string box;
+        for (int k = 0; k < D; ++k)
+          box += (k ? " x [" : "[") + format_number(el.lo[k]) + ", " + format_number(el.hi[k]) + "]";
+        return "LRSpline: the scaled B-splines do not sum to one on element " + box + " (" +
+               std::to_string(element_basis_[e].size()) + " B-splines there, Bernstein coefficient " +
+               format_number(sum[i]) + "): a B-spline is missing or a scaling factor is wrong";
+      });
+  }
+}
+
+template <int D>
+void LRSpline<D>::reorder_elements(std::span<const int> order) {
+  const std::size_t n = elements_.size();
+  require(order.size() == n, "LRSpline::reorder_elements: " + std::to_string(order.size()) + " ids for " +
+                                 std::to_string(n) + " elements");
+  std::vector<int> new_id(n, -1);
+  for (std::size_t i = 0; i < n; ++i) {
+    const int e = order[i];
+    require(e >= 0 && static_cast<std::size_t>(e) < n && new_id[static_cast<std::size_t>(e)] < 0,
+            "LRSpline::reorder_elements: not a permutation of the element ids (entry " + std::to_string(i) + ")");
+    new_id[static_cast<std::size_t>(e)] = static_cast<int>(i);
+  }
+  std::vector<Box<D>> elements(n);
+  std::vector<std::vector<int>> element_basis(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    elements[i] = elements_[static_cast<std::size_t>(order[i])];
+    element_basis[i] = std::move(element_basis_[static_cast<std::size_t>(order[i])]);
+  }
+  elements_ = std::move(elements);
+  element_basis_ = std::move(element_basis);
+  for (auto& list : basis_elements_) {
+    for (int& e : list) e = new_id[static_cast<std::size_t>(e)];
+    std::sort(list.begin(), list.end());
+  }
+  evaluator_.reset();
 }
 
 template <int D>

@@ -7,9 +7,10 @@
 //
 // Ids. B-splines have dense ids 0..num_basis()-1 in a deterministic order: lexicographic in the local knot
 // vectors, the last direction most significant (so a converted tensor spline keeps its multi-index order, u
-// fastest). Elements have dense ids 0..num_elements()-1: those of the source in order, then every element split
-// off by a refinement appended (the lower part of a split element keeps its id). Ids, spans and references are
-// valid until the next modification.
+// fastest). Elements have dense ids 0..num_elements()-1 in the order of their lower corners, lexicographic with
+// the last direction most significant (so they depend on the mesh only, not on the refinement history or the
+// file format), unless reorder_elements renumbered them (a reader keeping a file's numbering); every
+// refinement restores that order. Ids, spans and references are valid until the next modification.
 //
 // Refinement cost. A batch of rectangles enters the mesh one rectangle at a time (so the mesh, the elements and
 // the decision to skip a rectangle are those of one-by-one insertion): a bucket grid finds the elements a
@@ -48,9 +49,11 @@ public:
   // the boundary). Validates: degrees 1..kMaxDegree, dim >= 1, p_k + 2 non-decreasing knots per direction
   // spanning a non-empty interval, gamma in (0, 1], stride() coefficients, every support inside the domain,
   // every rectangle well formed (direction, multiplicity 1..p+1, extent non-empty and inside the domain), no
-  // rectangle ending inside an element or an element face, and every support a union of elements; throws
-  // trivar::Error naming the offending B-spline or rectangle. Builds the elements and the support lists; the
-  // B-splines are reordered into the id order above.
+  // rectangle ending inside an element or an element face (a plane given as several rectangles cuts an element
+  // where their union crosses it), every support a union of elements, and the scaled B-splines summing to one
+  // on every element (exactly, through their Bernstein coefficients; so no B-spline is missing and no element
+  // uncovered); throws trivar::Error naming the offending B-spline, rectangle or element. Builds the elements
+  // and the support lists; the B-splines are reordered into the id order above.
   LRSpline(const Ints<D>& degrees, int dim, bool rational, std::vector<LRBSpline<D>> basis,
            std::vector<MeshRectangle<D>> mesh);
 
@@ -74,6 +77,10 @@ public:
   std::span<const int> element_support(int e) const { return element_basis_[static_cast<std::size_t>(e)]; }
 
   const std::vector<MeshRectangle<D>>& mesh() const { return mesh_; }
+
+  // Renumbers the elements: element order[i] becomes element i (order is a permutation of the ids), so a reader
+  // keeps the numbering of a file that lists its elements. Throws trivar::Error for anything else.
+  void reorder_elements(std::span<const int> order);
 
   // Refines by the mesh rectangle r: adds it to the mesh (merged with collinear rectangles of the same
   // multiplicity where the union is a box; where rectangles of different multiplicity overlap, the mesh
@@ -147,6 +154,7 @@ private:
   LazyEvaluator evaluator_;
 
   void validate_rectangle(const MeshRectangle<D>& r, const char* who) const;
+  void check_partition_of_unity() const;
   void build_support_lists();
   void sort_basis();
 };

@@ -104,7 +104,21 @@ std::vector<MeshRectangle<D>> element_rectangles(const LRSpline<D>& lr, std::spa
         }
         span = bs;
       }
-      out.push_back(MeshRectangle<D>::make(k, 0.5 * (el.lo[k] + el.hi[k]), span.lo, span.hi, opts.multiplicity));
+      const double mid = 0.5 * (el.lo[k] + el.hi[k]);
+      if (D == 2 || opts.strategy != Strategy::fullspan) {
+        out.push_back(MeshRectangle<D>::make(k, mid, span.lo, span.hi, opts.multiplicity));
+        continue;
+      }
+      // In 3D the supports' cross-sections need not fill their bounding box, whose corners can then end inside
+      // elements: one rectangle per distinct cross-section, together covering their union.
+      const std::size_t first = out.size();
+      for (int b : support) {
+        const auto r = MeshRectangle<D>::make(k, mid, lr.basis_function(b).support().lo,
+                                              lr.basis_function(b).support().hi, opts.multiplicity);
+        if (std::none_of(out.begin() + static_cast<std::ptrdiff_t>(first), out.end(),
+                         [&](const MeshRectangle<D>& o) { return o.extent.lo == r.extent.lo && o.extent.hi == r.extent.hi; }))
+          out.push_back(r);
+      }
     }
   }
   return out;

@@ -2,8 +2,9 @@
 // Refinement strategies for LR splines, with the definitions of the literature (Johannessen, Kvamsdal, Dokken
 // 2014) so results compare with other tools:
 //   FULLSPAN on element e: in each direction k, the mesh rectangle perpendicular to k through the midpoint of
-//     e, spanning in the other directions the bounding box of the supports of all B-splines whose support
-//     contains e.
+//     e, spanning in the other directions the union of the supports of all B-splines whose support contains e
+//     (a surface: their bounding box; a volume: one rectangle per distinct support cross-section, since the
+//     union need not be a box and its bounding box can end inside elements).
 //   MINSPAN on element e: as FULLSPAN but spanning the support of one B-spline with the smallest support among
 //     those whose support contains e. Tie-break: smallest support volume, then smallest (D-1)-measure across
 //     k, then lowest id.

@@ -17,12 +17,7 @@
 //
 // LR splines. The B-splines' local knot indices may be 0- or 1-based (the published text is inconsistent): an
 // index 0 anywhere in the entity means 0-based, otherwise 1-based. STEP stores no box mesh; it is rebuilt as the
-// union of the B-splines' knot lines (per B-spline and direction, one rectangle per distinct local knot across
-// its support, multiplicity = that knot's local multiplicity), which is the mesh of every LR spline whose mesh
-// lines all carry some B-spline's knot line (so a spline evaluates identically; the element partition can be
-// coarser than the writer's where the writer's mesh had lines no B-spline uses). Per plane the knot-line pieces
-// are merged into maximal rectangles per multiplicity level, because LRSpline cuts elements with single
-// rectangles only.
+// union of the B-splines' knot lines (knot_line_mesh, trivar/lr/knot_line_mesh.hpp).
 //
 // Every rule of the standard is checked (knot sums, multiplicities, strictly increasing knots, weights > 0,
 // grid shapes, local multiplicities summing to degree + 2, scaling factors in (0, 1], domain) and every failure
