@@ -278,7 +278,7 @@ void run_static(const SolveArgs& a, const std::function<Discretisation<D>(int)>&
     write_solution<D>(dir / "solution.vtu", *last, coefs);
     if (a.study) {
       write_convergence_csv((dir / "convergence.csv").string(), rows, D);
-      write_convergence_png((dir / "convergence.png").string(), rows);
+      write_convergence_svg((dir / "convergence.svg").string(), rows);
     }
   }
 }
@@ -356,7 +356,7 @@ void run_adaptive(const SolveArgs& a, const PoissonBenchmark<D>& b) {
   if (!a.out.empty()) {
     const auto dir = prepare_out(a);
     write_convergence_csv((dir / "convergence.csv").string(), rows, D);
-    write_convergence_png((dir / "convergence.png").string(), rows);
+    write_convergence_svg((dir / "convergence.svg").string(), rows);
     io::write_lr_vtu((dir / "mesh.vtu").string(), AnyLRSpline(lr));
     write_lr_solution<D>(dir / "solution.vtu", lr, b, coefs, a.threads);
   }
