@@ -1,7 +1,7 @@
 #pragma once
 // VTK XML UnstructuredGrid (.vtu) output of splines for ParaView (binary, zlib-compressed: vtu_file.hpp), in
 // three modes:
-//  - bezier_cells (default): one VTK_BEZIER_CURVE / _QUADRILATERAL / _HEXAHEDRON (types 75 / 77 / 79) per
+//  - bezier (default): one VTK_BEZIER_CURVE / _QUADRILATERAL / _HEXAHEDRON (types 75 / 77 / 79) per
 //    element, exact up to rounding: its Bezier control points (Cartesian) in VTK's higher-order point order
 //    (corners, edges, faces, interior), cell data "HigherOrderDegrees" and, when some object is rational,
 //    point data "RationalWeights". Elements share the Bezier points of common boundaries where the spline is
