@@ -529,7 +529,7 @@ void add_solve_command(CLI::App& app, Context& ctx) {
   cmd->add_option("--steps", a->steps, "Adaptive steps (solves)")->default_val(5);
   cmd->add_option("--beta", a->beta, "Dorfler marking fraction in (0, 1]")->default_val(0.3);
   cmd->add_option("--solver", a->solver, "cg, cg-ichol or cholmod")->default_val("cg");
-  cmd->add_option("--out", a->out, "Directory for solution.vtu / modes.vtu, convergence.csv and .png");
+  cmd->add_option("--out", a->out, "Directory for solution.vtu / modes.vtu, convergence.csv and .svg");
   cmd->callback([a, &ctx] {
     a->threads = ctx.threads;
     run(*a);
