@@ -338,6 +338,15 @@ TEST(VtkWriter, InvalidRequestsWriteNothing) {
   EXPECT_THROW(io::write_vtu(dir.file("a.vtu"), s, {}, {{"param", 1, f}}), Error);
   EXPECT_THROW(io::write_vtu(dir.file("a.vtu"), s, {}, {{"a", 1, f}, {"a", 1, f}}), Error);
   EXPECT_THROW(io::write_vtu(dir.file("a.vtu"), AnySpline{}), Error);
+  // 1201^3 samples fit VTK's 32-bit point ids but not this machine's memory (about 125 GB): refused by name
+  // before anything is allocated.
+  const auto cube = test::random_spline<3>({1, 1, 1}, {1, 1, 1}, 3, false, 60);
+  try {
+    io::write_vtu(dir.file("a.vtu"), cube, {.cells = io::VtkCells::sampled, .samples_per_element = 1200});
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("VTU output of 1732323601 points would need"), std::string::npos) << e.what();
+  }
   EXPECT_EQ(dir.entries(), 0);
   // Degree 0 is fine when sampled: every element boundary is a discontinuity.
   io::write_vtu(dir.file("ok.vtu"), s, {.cells = io::VtkCells::sampled, .samples_per_element = 1});

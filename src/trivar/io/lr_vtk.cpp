@@ -1,11 +1,14 @@
 #include "trivar/io/lr_vtk.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <cstdint>
 #include <type_traits>
 
 #include "trivar/core/error.hpp"
+#include "trivar/core/memory_budget.hpp"
+#include "trivar/core/number_format.hpp"
 #include "trivar/io/vtk_cell_order.hpp"
 #include "trivar/io/vtu_fields.hpp"
 #include "trivar/io/vtu_file.hpp"
@@ -95,6 +98,12 @@ Piece build_piece(const LRSpline<D>& s, int piece, const LRVtkOptions& opts,
   if (bezier) interpolation.emplace(n);
   std::int32_t nodes = 1;
   for (int k = 0; k < D; ++k) nodes *= n[k] + 1;
+  // Elements do not share points: per point coordinates, parameters, weight and fields, per cell its corners.
+  int field_values = 0;
+  for (const VtkPointField& f : point_fields) field_values += f.components;
+  const double points = static_cast<double>(s.num_elements()) * nodes;
+  require_memory(8.0 * points * (7 + std::max(dim - 3, 0) + field_values + 2),
+                 where + ": VTU output of " + format_number(points) + " points");
   std::vector<std::int64_t> conn(static_cast<std::size_t>(nodes));
   std::vector<double> x(static_cast<std::size_t>(dim)), element_weights;
   for (int e = 0; e < s.num_elements(); ++e) {

@@ -9,6 +9,7 @@
 #include <type_traits>
 
 #include "trivar/core/error.hpp"
+#include "trivar/core/memory_budget.hpp"
 #include "trivar/io/vtk_cell_order.hpp"
 #include "trivar/io/vtu_fields.hpp"
 #include "trivar/io/vtu_file.hpp"
@@ -86,17 +87,21 @@ int linear(const std::array<int, D>& i, const std::array<int, D>& n) {
   return l;
 }
 
+// Refuses a piece of more points than VTK's 32-bit point ids of a piece allow, or than memory holds: per point
+// coordinates, parameters, weight, higher components and the caller's fields, per cell its connectivity.
 template <int D>
-void check_size(const std::array<int, D>& n, const std::string& path) {
+void check_size(const std::array<int, D>& n, const std::string& path, int per_point, double cells, int per_cell) {
   long long total = 1;
   for (int k = 0; k < D; ++k) {
     total *= n[k];
     require(total <= INT_MAX, path + ": too many points for one VTU piece");
   }
+  require_memory(8.0 * (static_cast<double>(total) * per_point + cells * (per_cell + 3)),
+                 path + ": VTU output of " + std::to_string(total) + " points");
 }
 
 template <int D>
-void add_sampled(Piece& piece, const TensorSpline<D>& s, int n, int extra, const std::string& path) {
+void add_sampled(Piece& piece, const TensorSpline<D>& s, int n, int extra, int field_values, const std::string& path) {
   // Per direction: sample parameters and, per element, the index of its first sample.
   std::array<std::vector<double>, D> u;
   std::array<std::vector<int>, D> first;
@@ -113,7 +118,9 @@ void add_sampled(Piece& piece, const TensorSpline<D>& s, int n, int extra, const
     }
     nu[k] = static_cast<int>(u[k].size());
   }
-  check_size<D>(nu, path);
+  double num_cells = 1;
+  for (int k = 0; k < D; ++k) num_cells *= static_cast<double>(ne[k]) * n;
+  check_size<D>(nu, path, s.dim() + 6 + extra + field_values, num_cells, 1 << D);
   std::vector<double> x(static_cast<std::size_t>(product<D>(nu)) * s.dim());
   s.eval_grid(u, x);
   const long long base = piece.num_points();
@@ -143,7 +150,7 @@ void add_sampled(Piece& piece, const TensorSpline<D>& s, int n, int extra, const
 }
 
 template <int D>
-void add_bezier(Piece& piece, const TensorSpline<D>& s, int extra, const std::string& path) {
+void add_bezier(Piece& piece, const TensorSpline<D>& s, int extra, int field_values, const std::string& path) {
   // Per direction: global Bezier node index of each element's first node; shared across continuous joins.
   std::array<std::vector<int>, D> first;
   std::array<std::vector<double>, D> bp;
@@ -162,7 +169,14 @@ void add_bezier(Piece& piece, const TensorSpline<D>& s, int extra, const std::st
     }
     nn[k] = next + 1;
   }
-  check_size<D>(nn, path);
+  double num_cells = 1, nodes = 1;
+  for (int k = 0; k < D; ++k) {
+    num_cells *= ne[k];
+    nodes *= p[k] + 1;
+  }
+  // Bezier nets of all elements (homogeneous), then per point coordinates, parameters, weight and fields.
+  check_size<D>(nn, path, s.dim() + D + 7 + extra + 2 * field_values, num_cells,
+                static_cast<int>(nodes * (2 + s.dim() + 1)));
   const std::int64_t base = piece.num_points();
   const std::size_t total = static_cast<std::size_t>(product<D>(nn));
   std::vector<double> x(total * s.dim()), w(total), param(total * D);
@@ -288,7 +302,8 @@ void write_vtu(const std::string& path, const std::vector<AnySpline>& objects, c
   require(!objects.empty(), path + ": nothing to write (no objects)");
   const VtkCells mode = opts.cells;
   validate(path, mode, opts.samples_per_element, fields);
-  int extra = 0;
+  int extra = 0, field_values = 0;
+  for (const VtkPointField& f : fields) field_values += f.components;
   for (const auto& o : objects) extra = std::max(extra, std::visit([](const auto& s) { return s.dim(); }, o) - 3);
 
   std::vector<Piece> pieces(objects.size());
@@ -301,10 +316,10 @@ void write_vtu(const std::string& path, const std::vector<AnySpline>& objects, c
           Piece& piece = pieces[i];
           switch (mode) {
             case VtkCells::sampled:
-              add_sampled(piece, s, opts.samples_per_element, extra, where);
+              add_sampled(piece, s, opts.samples_per_element, extra, field_values, where);
               break;
             case VtkCells::bezier:
-              add_bezier(piece, s, extra, where);
+              add_bezier(piece, s, extra, field_values, where);
               break;
             case VtkCells::control_net:
               add_control_net(piece, s, extra);
