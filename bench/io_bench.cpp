@@ -66,7 +66,7 @@ void BM_WriteVtu(benchmark::State& state) {
   const AnySpline v = bench::perturbed_cube(3, 16, 0.05, true);
   const std::string path = temp_file(".vtu");
   io::VtkOptions opts;
-  opts.bezier_cells = state.range(0) == 1;
+  opts.cells = state.range(0) == 1 ? io::VtkCells::bezier : io::VtkCells::sampled;
   for (auto _ : state) io::write_vtu(path, v, opts);
   state.SetBytesProcessed(static_cast<int64_t>(state.iterations()) *
                           static_cast<int64_t>(std::filesystem::file_size(path)));

@@ -24,16 +24,28 @@ void add_convert_command(CLI::App& app, Context&) {
   auto* cmd = app.add_subcommand("convert", "Convert a spline file; the format follows the extension (.json .g2 .vtu; every object is one VTU piece)");
   struct Args {
     std::string in, out;
-    io::VtkOptions vtk;
-    bool lr = false, parametric_mesh = false;
+    int samples = 4;
+    bool lr = false, bezier = false, sampled = false, control_net = false, parametric_mesh = false;
+    // The VTK cells the flags ask for (Bezier unless --samples, --control-net or --parametric-mesh).
+    io::VtkOptions tensor_vtk() const {
+      return {control_net ? io::VtkCells::control_net : sampled ? io::VtkCells::sampled : io::VtkCells::bezier,
+              samples};
+    }
+    io::LRVtkOptions lr_vtk() const {
+      return {parametric_mesh ? io::LRVtkCells::parametric_mesh : sampled ? io::LRVtkCells::sampled : io::LRVtkCells::bezier,
+              samples};
+    }
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("IN", a->in, "Input spline file (.json, .g2, .lr), STEP file (.stp, .step) or V-model (.json)")->required();
   cmd->add_option("OUT", a->out, "Output file (.json, .g2, .lr, .vtu, .stp, .step)")->required();
-  cmd->add_option("--samples", a->vtk.samples_per_element, "VTK: samples per element and direction")
-      ->check(at_least(1));
-  cmd->add_flag("--bezier", a->vtk.bezier_cells, "VTK: write exact rational Bezier cells instead of sampled ones");
-  cmd->add_flag("--control-net", a->vtk.control_net, "VTK: write the control net (points and polygon lines) instead of the geometry");
+  auto* samples = cmd->add_option("--samples", a->samples,
+                                  "VTK: linear cells sampling every element at N points per direction instead of "
+                                  "one exact Bezier cell per element")
+                      ->check(at_least(1))
+                      ->each([a](const std::string&) { a->sampled = true; });
+  cmd->add_flag("--bezier", a->bezier, "VTK: one exact rational Bezier cell per element (the default)")->excludes(samples);
+  cmd->add_flag("--control-net", a->control_net, "VTK: write the control net (points and polygon lines) instead of the geometry");
   cmd->add_flag("--lr", a->lr, "Convert tensor surfaces and volumes to LR splines (implied by an .lr output)");
   cmd->add_flag("--parametric-mesh", a->parametric_mesh, "VTK of LR splines: the mesh in parameter space instead of the geometry");
   cmd->callback([a] {
@@ -60,7 +72,7 @@ void add_convert_command(CLI::App& app, Context&) {
       require(!c.splines.empty() || !c.lr_splines.empty(), "convert: " + a->in + " holds no B-spline or locally refined geometry");
       if (c.lr_splines.empty() && !a->lr && !is_lr_extension(a->out)) {
         if (std::filesystem::path(a->out).extension() == ".vtu")
-          io::write_vtu(a->out, c.splines, a->vtk);
+          io::write_vtu(a->out, c.splines, a->tensor_vtk());
         else
           io::write_spline_file(a->out, c.splines);
         return;
@@ -78,7 +90,7 @@ void add_convert_command(CLI::App& app, Context&) {
             },
             s);
       }
-      write_lr_file(a->out, c.lr_splines, "convert", {a->vtk.samples_per_element, a->parametric_mesh});
+      write_lr_file(a->out, c.lr_splines, "convert", a->lr_vtk());
       return;
     }
     if (const std::optional<VModel> model = read_model_if_any(a->in)) {
@@ -86,22 +98,22 @@ void add_convert_command(CLI::App& app, Context&) {
       require(ext == ".vtu" || ext == ".json",
               "convert: a V-model converts to .vtu (cells with attributes) or .json, not '" + ext + "'");
       if (ext == ".vtu")
-        io::write_vmodel_vtu(a->out, *model, a->vtk);
+        io::write_vmodel_vtu(a->out, *model, a->tensor_vtk());
       else
         io::write_vmodel(a->out, *model);
       return;
     }
     std::optional<std::vector<AnyLRSpline>> lr = read_lr_if_any(a->in);
     if (lr || a->lr || is_lr_extension(a->out)) {
-      require(!a->vtk.bezier_cells && !a->vtk.control_net, "convert: --bezier and --control-net apply to tensor splines, not LR splines");
+      require(!a->control_net, "convert: --control-net applies to tensor splines, not LR splines");
       if (!lr) lr = read_as_lr(a->in, "convert");
-      write_lr_file(a->out, *lr, "convert", {a->vtk.samples_per_element, a->parametric_mesh});
+      write_lr_file(a->out, *lr, "convert", a->lr_vtk());
       return;
     }
     require(!a->parametric_mesh, "convert: --parametric-mesh applies to LR splines; give --lr to convert " + a->in);
     const std::vector<AnySpline> objects = read_objects(a->in);
     if (std::filesystem::path(a->out).extension() == ".vtu") {
-      io::write_vtu(a->out, objects, a->vtk);
+      io::write_vtu(a->out, objects, a->tensor_vtk());
       return;
     }
     io::write_spline_file(a->out, objects);

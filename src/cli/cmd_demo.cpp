@@ -139,9 +139,9 @@ void add_demo_command(CLI::App& app, Context& ctx) {
                                     model.eval_derivs({u[0], u[1], u[2]}, 1, d);
                                     v[0] = jacobian_determinant(d + 3);
                                   }};
-    io::write_vtu(vtu, model, io::VtkOptions{4, false, false}, {det_j});
-    io::write_vtu(bezier, model, io::VtkOptions{1, true, false});
-    io::write_vtu(net, model, io::VtkOptions{1, false, true});
+    io::write_vtu(vtu, model, io::VtkOptions{io::VtkCells::sampled, 4}, {det_j});
+    io::write_vtu(bezier, model, io::VtkOptions{io::VtkCells::bezier});
+    io::write_vtu(net, model, io::VtkOptions{io::VtkCells::control_net});
 
     std::printf("trivar demo: exact NURBS volume of revolution\n");
     std::printf("  profile      rectangle r in [%s, %s], z in [0, %s], degree 2 x 2, swept %s degrees about z\n",

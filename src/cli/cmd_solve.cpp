@@ -278,7 +278,7 @@ void run_static(const SolveArgs& a, const std::function<Discretisation<D>(int)>&
     write_solution<D>(dir / "solution.vtu", *last, coefs);
     if (a.study) {
       write_convergence_csv((dir / "convergence.csv").string(), rows, D);
-      write_convergence_png((dir / "convergence.png").string(), rows);
+      write_convergence_svg((dir / "convergence.svg").string(), rows);
     }
   }
 }
@@ -356,7 +356,7 @@ void run_adaptive(const SolveArgs& a, const PoissonBenchmark<D>& b) {
   if (!a.out.empty()) {
     const auto dir = prepare_out(a);
     write_convergence_csv((dir / "convergence.csv").string(), rows, D);
-    write_convergence_png((dir / "convergence.png").string(), rows);
+    write_convergence_svg((dir / "convergence.svg").string(), rows);
     io::write_lr_vtu((dir / "mesh.vtu").string(), AnyLRSpline(lr));
     write_lr_solution<D>(dir / "solution.vtu", lr, b, coefs, a.threads);
   }
@@ -529,7 +529,7 @@ void add_solve_command(CLI::App& app, Context& ctx) {
   cmd->add_option("--steps", a->steps, "Adaptive steps (solves)")->default_val(5);
   cmd->add_option("--beta", a->beta, "Dorfler marking fraction in (0, 1]")->default_val(0.3);
   cmd->add_option("--solver", a->solver, "cg, cg-ichol or cholmod")->default_val("cg");
-  cmd->add_option("--out", a->out, "Directory for solution.vtu / modes.vtu, convergence.csv and .png");
+  cmd->add_option("--out", a->out, "Directory for solution.vtu / modes.vtu, convergence.csv and .svg");
   cmd->callback([a, &ctx] {
     a->threads = ctx.threads;
     run(*a);

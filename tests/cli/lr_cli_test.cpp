@@ -239,7 +239,8 @@ TEST_F(LRCli, BadInputFailsWithOneLine) {
   fails("refine t.json -o o.json --uniform 2 --levels 2");
   fails("info t.json --check-independence peeling");
   fails("info box.lr --check-independence maybe", 2);
-  fails("convert box.lr o.vtu --bezier");
+  fails("convert box.lr o.vtu --control-net");
+  fails("convert box.lr o.vtu --bezier --samples 2", 2);
   fails("convert line.json o.lr");
   fails("make box --lr --model -o m.json");
   // A g2 file mixing LR and tensor objects is rejected (the first object decides the reader).

@@ -18,7 +18,7 @@ TEST_F(Cli, SolvePoissonPrintsSummaryAndWritesFields) {
   EXPECT_NE(r.out.find("assembly"), std::string::npos);
   EXPECT_TRUE(exists("result/solution.vtu"));
   EXPECT_TRUE(exists("result/convergence.csv"));
-  EXPECT_TRUE(exists("result/convergence.png"));
+  EXPECT_TRUE(exists("result/convergence.svg"));
   const auto csv = cli_test::lines(cli_test::slurp(work_ / "result/convergence.csv"));
   EXPECT_EQ(csv.size(), 3u);  // header, 2 and 4 elements per direction
 }
@@ -64,46 +64,65 @@ TEST_F(Cli, SolveAdaptiveLShapeWritesTheTable) {
   const auto r = ok("solve poisson --problem l-shape --degree 2 --refine 4 --adaptive --steps 3 --beta 0.3 --out ad");
   EXPECT_NE(r.out.find("step 2: dofs"), std::string::npos) << r.out;
   EXPECT_EQ(cli_test::lines(cli_test::slurp(work_ / "ad/convergence.csv")).size(), 4u);
-  EXPECT_TRUE(exists("ad/convergence.png"));
+  EXPECT_TRUE(exists("ad/convergence.svg"));
   EXPECT_TRUE(exists("ad/mesh.vtu"));
-  // The solution on the final LR mesh against the exact r^(2/3) sin(2 theta / 3): the L2 error by the
-  // trapezoidal rule on the sample quads (area by the shoelace formula, squared error averaged over the
-  // corners) agrees with the reported one to the rule's accuracy, and the quads tile the L-shape (area 3).
-  // Then the per-element errors and indicators: their squares (each repeated on the 4 x 4 sample cells of its
-  // element) add up to the reported final values.
+  // The solution on the final LR mesh against the exact r^(2/3) sin(2 theta / 3): one Bezier quadrilateral
+  // per element, evaluated here from VTK's point order (corners, edges, interior); the L2 error by 4 x 4 Gauss
+  // points per cell agrees with the reported one to the rule's accuracy, and the cells tile the L-shape (area
+  // 3, exact for the biquadratic map). Then the per-element errors and indicators (one value per cell): their
+  // squares add up to the reported final values.
   const std::string line = cli_test::lines(r.out).back();
   ASSERT_EQ(line.rfind("step 2:", 0), 0u) << line;
   auto reported = [&line](const std::string& label) { return std::stod(line.substr(line.find(label) + label.size())); };
-  const std::string vtu = cli_test::slurp(work_ / "ad/solution.vtu");
-  const auto x = trivar::test::vtu_array(vtu, ""), u = trivar::test::vtu_array(vtu, "u");
-  const auto quads = trivar::test::vtu_array(vtu, "connectivity");
+  const trivar::test::VtuPiece vtu = trivar::test::read_vtu((work_ / "ad/solution.vtu").string());
+  const auto& x = vtu.arrays.at("Points");
+  const auto& u = vtu.arrays.at("u");
+  const auto& conn = vtu.arrays.at("connectivity");
   ASSERT_EQ(x.size(), 3 * u.size());
-  ASSERT_FALSE(u.empty());
-  auto error = [&](std::size_t i) {
-    double theta = std::atan2(x[3 * i + 1], x[3 * i]);
-    if (theta < 0) theta += 2 * M_PI;
-    return u[i] - std::pow(std::hypot(x[3 * i], x[3 * i + 1]), 2.0 / 3) * std::sin(2 * theta / 3);
-  };
+  ASSERT_EQ(conn.size(), 9u * static_cast<std::size_t>(vtu.cells));
+  EXPECT_EQ(vtu.arrays.count("RationalWeights"), 0u);
+  // VTK's biquadratic order: node (i, j) of the 3 x 3 Bernstein net at position order[j][i].
+  const int order[3][3] = {{0, 4, 1}, {7, 8, 5}, {3, 6, 2}};
+  auto b2 = [](int i, double t) { return i == 0 ? (1 - t) * (1 - t) : i == 1 ? 2 * t * (1 - t) : t * t; };
+  auto db2 = [](int i, double t) { return i == 0 ? -2 * (1 - t) : i == 1 ? 2 - 4 * t : 2 * t; };
+  const double gauss[4] = {0.0694318442029737, 0.3300094782075719, 0.6699905217924281, 0.9305681557970263};
+  const double weight[4] = {0.1739274225687269, 0.3260725774312731, 0.3260725774312731, 0.1739274225687269};
   double area = 0, l2 = 0;
-  for (std::size_t c = 0; c + 4 <= quads.size(); c += 4) {
-    double a = 0, e2 = 0;
-    for (std::size_t k = 0; k < 4; ++k) {
-      const auto i = static_cast<std::size_t>(quads[c + k]), j = static_cast<std::size_t>(quads[c + (k + 1) % 4]);
-      a += 0.5 * (x[3 * i] * x[3 * j + 1] - x[3 * j] * x[3 * i + 1]);
-      e2 += 0.25 * error(i) * error(i);
-    }
-    area += std::abs(a);  // the l-shape map reverses orientation
-    l2 += std::abs(a) * e2;
+  for (long long c = 0; c < vtu.cells; ++c) {
+    EXPECT_EQ(vtu.arrays.at("types")[static_cast<std::size_t>(c)], 77);
+    for (int a = 0; a < 4; ++a)
+      for (int b = 0; b < 4; ++b) {
+        double px = 0, py = 0, pu = 0, xs = 0, xt = 0, ys = 0, yt = 0;
+        for (int j = 0; j < 3; ++j)
+          for (int i = 0; i < 3; ++i) {
+            const auto q = static_cast<std::size_t>(conn[static_cast<std::size_t>(9 * c + order[j][i])]);
+            const double B = b2(i, gauss[a]) * b2(j, gauss[b]);
+            const double Bs = db2(i, gauss[a]) * b2(j, gauss[b]), Bt = b2(i, gauss[a]) * db2(j, gauss[b]);
+            px += B * x[3 * q];
+            py += B * x[3 * q + 1];
+            pu += B * u[q];
+            xs += Bs * x[3 * q];
+            xt += Bt * x[3 * q];
+            ys += Bs * x[3 * q + 1];
+            yt += Bt * x[3 * q + 1];
+          }
+        double theta = std::atan2(py, px);
+        if (theta < 0) theta += 2 * M_PI;
+        const double e = pu - std::pow(std::hypot(px, py), 2.0 / 3) * std::sin(2 * theta / 3);
+        const double dA = std::abs(xs * yt - xt * ys) * weight[a] * weight[b];  // the map reverses orientation
+        area += dA;
+        l2 += dA * e * e;
+      }
   }
   EXPECT_NEAR(area, 3.0, 1e-12);
   EXPECT_NEAR(std::sqrt(l2), reported("L2 error"), 0.1 * reported("L2 error"));
   for (const auto& [name, label] : {std::pair{"error_l2", "L2 error"}, std::pair{"error_h1", "H1 error"},
                                     std::pair{"estimate", "estimate"}}) {
-    const auto cells = trivar::test::vtu_array(vtu, name);
-    EXPECT_EQ(cells.size(), u.size() / 25 * 16) << name;
+    const auto& cells = vtu.arrays.at(name);
+    EXPECT_EQ(cells.size(), static_cast<std::size_t>(vtu.cells)) << name;
     double sum = 0;
     for (double e : cells) sum += e * e;
-    EXPECT_NEAR(std::sqrt(sum / 16), reported(label), 1e-3 * reported(label)) << name;
+    EXPECT_NEAR(std::sqrt(sum), reported(label), 1e-3 * reported(label)) << name;
   }
   fails("solve poisson --problem l-shape --adaptive --beta 0 --out x");
   fails("solve elasticity --problem lame-ring --adaptive --out x");
@@ -142,10 +161,7 @@ TEST_F(Cli, SolveOnAMultiCellModelWithCellMaterials) {
   ok("make cylinder --radius 0.5 --height 4 -o cyl.json");
   // Poisson on all five cells: one VTU piece per cell.
   ok("solve poisson cyl.json --degree 2 --refine 2 --out p");
-  const std::string vtu = cli_test::slurp(work_ / "p/solution.vtu");
-  std::size_t pieces = 0;
-  for (std::size_t at = vtu.find("<Piece"); at != std::string::npos; at = vtu.find("<Piece", at + 1)) ++pieces;
-  EXPECT_EQ(pieces, 5u);
+  EXPECT_EQ(trivar::test::read_vtu_pieces((work_ / "p/solution.vtu").string()).size(), 5u);
   // Free vibration clamped at z = 0 (E and rho from the options); values are printed to 4 digits.
   const double exact = torsion_omega2(1000, 0.3, 1, 4);
   auto torsion = [&](const std::string& file, double expected) {

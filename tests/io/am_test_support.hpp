@@ -1,11 +1,10 @@
 #pragma once
-// Support for the AM output tests (3MF, AMF): an independent ZIP reader (central directory + zlib inflate),
-// a minimal XML scanner (well-formedness of the tag structure, elements by name with attributes and text) and
-// a closed test mesh.
+// Support for the AM output tests (3MF, AMF): ZIP archives read and XML checked by independent readers
+// (Python's zipfile and xml.etree), elements picked by name from a checked document, and a closed test mesh.
 #include <gtest/gtest.h>
-#include <zlib.h>
 
 #include <cstdint>
+#include <cstdio>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -13,6 +12,8 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "trivar/model/triangle_mesh.hpp"
 
@@ -23,48 +24,22 @@ inline std::string read_binary(const std::string& path) {
   return {std::istreambuf_iterator<char>(in), {}};
 }
 
-// Entries of a ZIP archive by name, read through the central directory; checks each CRC.
-inline std::map<std::string, std::string> read_zip(const std::string& bytes) {
-  auto u16 = [&](std::size_t at) {
-    return static_cast<std::uint32_t>(static_cast<unsigned char>(bytes.at(at)) |
-                                      static_cast<unsigned char>(bytes.at(at + 1)) << 8);
-  };
-  auto u32 = [&](std::size_t at) { return u16(at) | u16(at + 2) << 16; };
-  const std::size_t eocd = bytes.rfind(std::string("PK\x05\x06", 4));
-  if (eocd == std::string::npos) throw std::runtime_error("zip: no end of central directory");
-  const std::uint32_t count = u16(eocd + 10);
-  std::size_t at = u32(eocd + 16);
-  std::map<std::string, std::string> out;
-  for (std::uint32_t i = 0; i < count; ++i) {
-    if (u32(at) != 0x02014b50) throw std::runtime_error("zip: bad central directory entry");
-    const std::uint32_t method = u16(at + 10), crc = u32(at + 16), csize = u32(at + 20), size = u32(at + 24);
-    const std::uint32_t name_len = u16(at + 28), extra = u16(at + 30), comment = u16(at + 32), offset = u32(at + 42);
-    const std::string name = bytes.substr(at + 46, name_len);
-    at += 46 + name_len + extra + comment;
-    if (u32(offset) != 0x04034b50 || u32(offset + 14) != crc) throw std::runtime_error("zip: bad local header " + name);
-    const std::size_t data = offset + 30 + u16(offset + 26) + u16(offset + 28);
-    std::string content;
-    if (method == 0) {
-      content = bytes.substr(data, csize);
-    } else if (method == 8) {
-      content.resize(size);
-      z_stream zs{};
-      inflateInit2(&zs, -15);
-      zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(bytes.data() + data));
-      zs.avail_in = csize;
-      zs.next_out = reinterpret_cast<Bytef*>(content.data());
-      zs.avail_out = size;
-      const int rc = inflate(&zs, Z_FINISH);
-      inflateEnd(&zs);
-      if (rc != Z_STREAM_END || zs.total_out != size) throw std::runtime_error("zip: inflate failed for " + name);
-    } else {
-      throw std::runtime_error("zip: unknown method for " + name);
-    }
-    if (crc32(0L, reinterpret_cast<const Bytef*>(content.data()), static_cast<uInt>(content.size())) != crc)
-      throw std::runtime_error("zip: CRC mismatch for " + name);
-    out[name] = content;
-  }
-  return out;
+// The standard output of `command`; fails the test when the command exits with a non-zero status.
+inline std::string command_output(const std::string& command) {
+  FILE* pipe = popen(command.c_str(), "r");
+  std::string out;
+  char buffer[1 << 16];
+  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;) out.append(buffer, n);
+  const int status = pclose(pipe);
+  EXPECT_EQ(status, 0) << command;
+  return status == 0 ? out : std::string();
+}
+
+// Entries of a ZIP archive by name, read by Python's zipfile (tests/support/read_zip.py), which checks each CRC.
+inline std::map<std::string, std::string> read_zip(const std::string& path) {
+  const std::string out = command_output("python3 " TRIVAR_TEST_DATA "/../support/read_zip.py '" + path + "'");
+  if (out.empty()) return {};
+  return nlohmann::json::parse(out).get<std::map<std::string, std::string>>();
 }
 
 struct XmlElement {
@@ -72,24 +47,11 @@ struct XmlElement {
   std::string text;  // raw content up to the matching end tag (empty for <x/>)
 };
 
-// True when every start tag has its end tag in order (declarations, comments and <x/> aside).
+// True when Python's XML parser (xml.etree) accepts the document.
 inline bool well_formed(const std::string& xml) {
-  std::vector<std::string> open;
-  for (std::size_t at = xml.find('<'); at != std::string::npos; at = xml.find('<', at + 1)) {
-    const std::size_t end = xml.find('>', at);
-    if (end == std::string::npos) return false;
-    const std::string tag = xml.substr(at + 1, end - at - 1);
-    if (tag.empty() || tag[0] == '?' || tag[0] == '!') continue;
-    if (tag.back() == '/') continue;
-    const std::string name = tag.substr(tag[0] == '/' ? 1 : 0, tag.find_first_of(" \t\n/", 1) - (tag[0] == '/' ? 1 : 0));
-    if (tag[0] == '/') {
-      if (open.empty() || open.back() != name) return false;
-      open.pop_back();
-    } else {
-      open.push_back(name);
-    }
-  }
-  return open.empty();
+  FILE* pipe = popen("python3 -c 'import sys, xml.etree.ElementTree as E; E.parse(sys.stdin.buffer)'", "w");
+  std::fwrite(xml.data(), 1, xml.size(), pipe);
+  return pclose(pipe) == 0;
 }
 
 // All elements named `name` in document order; names do not nest within themselves in the tested formats.

@@ -4,7 +4,7 @@
 
 #include <cmath>
 #include <fstream>
-#include <sstream>
+#include <random>
 
 #include "io_test_support.hpp"
 #include "support/vtu_arrays.hpp"
@@ -25,11 +25,10 @@ LRSpline<2> identity_surface() {
   return s;
 }
 
-std::string slurp(const std::string& path) {
-  std::ifstream f(path);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
+double bernstein(int p, int i, double t) {
+  double c = 1;
+  for (int k = 1; k <= i; ++k) c = c * (p - i + k) / k;
+  return c * std::pow(t, i) * std::pow(1 - t, p - i);
 }
 
 }  // namespace
@@ -38,21 +37,22 @@ TEST(LrVtk, SampledElementsOfTheIdentityMapLieAtTheirParameters) {
   test::TempDir dir;
   const LRSpline<2> s = identity_surface();
   ASSERT_EQ(s.num_elements(), 3);
-  io::write_lr_vtu(dir.file("s.vtu"), AnyLRSpline(s), {.samples_per_element = 3});
-  const std::string xml = slurp(dir.file("s.vtu"));
-  EXPECT_NE(xml.find("NumberOfPoints=\"48\" NumberOfCells=\"27\""), std::string::npos);
-  const auto points = test::vtu_array(xml, ""), params = test::vtu_array(xml, "param");
+  io::write_lr_vtu(dir.file("s.vtu"), AnyLRSpline(s), {.cells = io::LRVtkCells::sampled, .samples_per_element = 3});
+  const test::VtuPiece xml = test::read_vtu(dir.file("s.vtu"));
+  EXPECT_EQ(xml.points, 48);
+  EXPECT_EQ(xml.cells, 27);
+  const auto points = xml.arrays.at("Points"), params = xml.arrays.at("param");
   ASSERT_EQ(points.size(), 48u * 3);
   ASSERT_EQ(params.size(), points.size());
   for (std::size_t i = 0; i < points.size(); ++i) EXPECT_NEAR(points[i], params[i], 1e-14) << i;
-  const auto element = test::vtu_array(xml, "element"), support = test::vtu_array(xml, "support");
+  const auto element = xml.arrays.at("element"), support = xml.arrays.at("support");
   ASSERT_EQ(element.size(), 27u);
   for (std::size_t c = 0; c < element.size(); ++c) {
     EXPECT_EQ(element[c], static_cast<double>(c / 9));
     EXPECT_EQ(support[c], static_cast<double>(s.element_support(static_cast<int>(c / 9)).size()));
   }
   // Every cell is a VTK_QUAD with 4 distinct corners of its own element.
-  const auto types = test::vtu_array(xml, "types"), conn = test::vtu_array(xml, "connectivity");
+  const auto types = xml.arrays.at("types"), conn = xml.arrays.at("connectivity");
   for (double t : types) EXPECT_EQ(t, 9.0);
   ASSERT_EQ(conn.size(), 27u * 4);
   for (std::size_t c = 0; c < 27; ++c)
@@ -65,11 +65,14 @@ TEST(LrVtk, ParametricMeshOfAVolume) {
   std::vector<double> pts(8 * 4, 0.0);
   LRSpline<3> v(TensorSpline<3>::from_cartesian({k, k, k}, 4, pts, std::vector<double>{}));
   v.insert(MeshRectangle<3>::make(2, 0.5, {0, 0, 0}, {1, 1, 0}));
-  io::write_lr_vtu(dir.file("m.vtu"), {AnyLRSpline(v), AnyLRSpline(identity_surface())}, {.parametric_mesh = true});
-  const std::string xml = slurp(dir.file("m.vtu"));
-  EXPECT_NE(xml.find("NumberOfPoints=\"16\" NumberOfCells=\"2\""), std::string::npos);
-  EXPECT_NE(xml.find("NumberOfPoints=\"12\" NumberOfCells=\"3\""), std::string::npos);
-  const auto points = test::vtu_array(xml, ""), params = test::vtu_array(xml, "param");
+  io::write_lr_vtu(dir.file("m.vtu"), {AnyLRSpline(v), AnyLRSpline(identity_surface())}, {.cells = io::LRVtkCells::parametric_mesh});
+  const std::vector<test::VtuPiece> pieces = test::read_vtu_pieces(dir.file("m.vtu"));
+  ASSERT_EQ(pieces.size(), 2u);
+  EXPECT_EQ(pieces[0].points, 16);
+  EXPECT_EQ(pieces[0].cells, 2);
+  EXPECT_EQ(pieces[1].points, 12);
+  EXPECT_EQ(pieces[1].cells, 3);
+  const auto points = pieces[0].arrays.at("Points"), params = pieces[0].arrays.at("param");
   ASSERT_EQ(points.size(), 16u * 3);
   for (std::size_t i = 0; i < points.size(); ++i) EXPECT_EQ(points[i], params[i]);
   // Hexahedra: the second element's bottom corners lie on w = 0.5 (VTK order: bottom face first).
@@ -79,8 +82,8 @@ TEST(LrVtk, ParametricMeshOfAVolume) {
     volume += b.extent(0) * b.extent(1) * b.extent(2);
   }
   EXPECT_DOUBLE_EQ(volume, 1.0);
-  EXPECT_NE(xml.find("<DataArray type=\"UInt8\" Name=\"types\" NumberOfComponents=\"1\" format=\"ascii\">\n          12 12\n"),
-            std::string::npos);
+  EXPECT_EQ(pieces[0].arrays.at("types"), (std::vector<double>{12, 12}));
+  EXPECT_EQ(pieces[1].arrays.at("types"), (std::vector<double>{9, 9, 9}));
 }
 
 TEST(LrVtk, PointAndCellFieldsOfTheCaller) {
@@ -93,13 +96,13 @@ TEST(LrVtk, PointAndCellFieldsOfTheCaller) {
                                out[1] = u[1];
                              }};
   const io::LRVtkCellField twice{"twice", 1, [](int, int e, std::span<double> out) { out[0] = 2.0 * e; }};
-  io::write_lr_vtu(dir.file("f.vtu"), AnyLRSpline(s), {.samples_per_element = 2}, {uv}, {twice});
-  const std::string xml = slurp(dir.file("f.vtu"));
-  const auto params = test::vtu_array(xml, "param"), values = test::vtu_array(xml, "uv");
+  io::write_lr_vtu(dir.file("f.vtu"), AnyLRSpline(s), {.cells = io::LRVtkCells::sampled, .samples_per_element = 2}, {uv}, {twice});
+  const test::VtuPiece xml = test::read_vtu(dir.file("f.vtu"));
+  const auto params = xml.arrays.at("param"), values = xml.arrays.at("uv");
   ASSERT_EQ(values.size(), 27u * 2);
   for (std::size_t q = 0; q < 27; ++q)
     for (int k = 0; k < 2; ++k) EXPECT_NEAR(values[2 * q + k], params[3 * q + k], 1e-15) << q;
-  const auto element = test::vtu_array(xml, "element"), doubled = test::vtu_array(xml, "twice");
+  const auto element = xml.arrays.at("element"), doubled = xml.arrays.at("twice");
   ASSERT_EQ(doubled.size(), 12u);
   for (std::size_t c = 0; c < doubled.size(); ++c) EXPECT_EQ(doubled[c], 2 * element[c]);
   // Reserved, duplicate, nameless and valueless fields write nothing.
@@ -116,7 +119,69 @@ TEST(LrVtk, PointAndCellFieldsOfTheCaller) {
 
 TEST(LrVtk, InvalidOptionsWriteNothing) {
   test::TempDir dir;
-  EXPECT_THROW(io::write_lr_vtu(dir.file("a.vtu"), AnyLRSpline(identity_surface()), {.samples_per_element = 0}), Error);
+  EXPECT_THROW(io::write_lr_vtu(dir.file("a.vtu"), AnyLRSpline(identity_surface()), {.cells = io::LRVtkCells::sampled, .samples_per_element = 0}), Error);
   EXPECT_THROW(io::write_lr_vtu(dir.file("b.vtu"), std::vector<AnyLRSpline>{}), Error);
   EXPECT_EQ(dir.entries(), 0);
+}
+
+// Bezier cells (the default): one VTK_BEZIER_HEXAHEDRON per LR element whose rational Bezier form, evaluated
+// here from VTK's point order, is the LR volume; a point field that is itself a spline on the volume's
+// B-splines (here its own x coordinate) is reproduced inside the cells, not only at the nodes.
+TEST(LrVtk, BezierCellsReproduceTheVolumeAndSplineFields) {
+  test::TempDir dir;
+  const KnotVector ku(2, {0, 0, 0, 0.5, 1, 1, 1}), kv(3, {0, 0, 0, 0, 0.5, 1, 1, 1, 1}), kw(1, {0, 0, 0.5, 1, 1});
+  std::mt19937 rng(62);
+  std::uniform_real_distribution<double> unit(0, 1);
+  std::vector<double> points(4 * 5 * 3 * 3);
+  for (double& c : points) c = unit(rng);
+  LRSpline<3> s(TensorSpline<3>::from_cartesian({ku, kv, kw}, 3, points, std::vector<double>{}));
+  s.insert(MeshRectangle<3>::make(0, 0.25, {0, 0, 0}, {0, 0.5, 1}));
+  s.insert(MeshRectangle<3>::make(2, 0.75, {0, 0, 0}, {0.5, 1, 0}));
+  const io::VtkPointField x{"x", 1, [&](int, std::span<const double> u, std::span<double> out) {
+                              double p[3];
+                              s.eval({u[0], u[1], u[2]}, p);
+                              out[0] = p[0];
+                            }};
+  io::write_lr_vtu(dir.file("b.vtu"), AnyLRSpline(s), {}, {x});
+  const test::VtuPiece v = test::read_vtu(dir.file("b.vtu"));
+  ASSERT_EQ(v.cells, s.num_elements());
+  EXPECT_EQ(v.points, s.num_elements() * 3 * 4 * 2);
+  EXPECT_NE(v.cell_data_tag.find("HigherOrderDegrees=HigherOrderDegrees"), std::string::npos);
+  const auto& conn = v.arrays.at("connectivity");
+  const auto& P = v.arrays.at("Points");
+  const auto& U = v.arrays.at("param");
+  const auto& X = v.arrays.at("x");
+  const int p[3] = {2, 3, 1};
+  for (long long c = 0; c < v.cells; ++c) {
+    EXPECT_EQ(v.arrays.at("types")[c], 79);
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(v.arrays.at("HigherOrderDegrees")[3 * c + k], p[k]);
+    const Box<3>& b = s.element(static_cast<int>(v.arrays.at("element")[c]));
+    const long long begin = c ? static_cast<long long>(v.arrays.at("offsets")[c - 1]) : 0;
+    ASSERT_EQ(v.arrays.at("offsets")[c], static_cast<double>(begin + 24));
+    // The local node of each point from its parameter.
+    std::vector<std::array<int, 3>> node(24);
+    for (int q = 0; q < 24; ++q) {
+      const auto pt = static_cast<std::size_t>(conn[begin + q]);
+      for (int k = 0; k < 3; ++k)
+        node[static_cast<std::size_t>(q)][k] = static_cast<int>(std::lround((U[3 * pt + k] - b.lo[k]) / b.extent(k) * p[k]));
+    }
+    EXPECT_EQ(node[1], (std::array<int, 3>{2, 0, 0}));  // VTK corner order
+    EXPECT_EQ(node[2], (std::array<int, 3>{2, 3, 0}));
+    EXPECT_EQ(node[6], (std::array<int, 3>{2, 3, 1}));
+    for (int r = 0; r < 4; ++r) {
+      const double tt[3] = {unit(rng), unit(rng), unit(rng)};
+      double sum[4] = {0, 0, 0, 0};
+      for (int q = 0; q < 24; ++q) {
+        double B = 1;
+        for (int k = 0; k < 3; ++k) B *= bernstein(p[k], node[static_cast<std::size_t>(q)][k], tt[k]);
+        const auto pt = static_cast<std::size_t>(conn[begin + q]);
+        for (int d = 0; d < 3; ++d) sum[d] += B * P[3 * pt + d];
+        sum[3] += B * X[pt];
+      }
+      double want[3];
+      s.eval({b.lo[0] + tt[0] * b.extent(0), b.lo[1] + tt[1] * b.extent(1), b.lo[2] + tt[2] * b.extent(2)}, want);
+      for (int d = 0; d < 3; ++d) EXPECT_NEAR(sum[d], want[d], 1e-12);
+      EXPECT_NEAR(sum[3], want[0], 1e-12);
+    }
+  }
 }

@@ -46,7 +46,7 @@ TEST(ThreeMfWriter, PackageHasTheOpcParts) {
   test::TempDir dir;
   const auto mesh = test::octahedron();
   io::write_3mf(dir.file("part.3mf"), mesh, two_materials(), z_gradient(mesh, 1));
-  const auto zip = test::read_zip(test::read_binary(dir.file("part.3mf")));
+  const auto zip = test::read_zip(dir.file("part.3mf"));
   ASSERT_EQ(zip.size(), 3u);
   const auto& types = zip.at("[Content_Types].xml");
   EXPECT_TRUE(test::well_formed(types));
@@ -68,7 +68,7 @@ TEST(ThreeMfWriter, ModelCarriesMaterialsCompositesAndExactGeometry) {
   const auto fractions = z_gradient(mesh, s);
   const auto materials = two_materials();
   io::write_3mf(dir.file("part.3mf"), mesh, materials, fractions);
-  const std::string xml = test::read_zip(test::read_binary(dir.file("part.3mf"))).at("3D/3dmodel.model");
+  const std::string xml = test::read_zip(dir.file("part.3mf")).at("3D/3dmodel.model");
   ASSERT_TRUE(test::well_formed(xml));
 
   const auto model = test::elements(xml, "model").at(0);
@@ -141,7 +141,7 @@ TEST(ThreeMfWriter, FractionsAreClampedAndNormalised) {
   std::vector<double> f;
   for (std::size_t v = 0; v < mesh.vertices.size(); ++v) f.insert(f.end(), {3.0, 1.0, -2.0});  // -> (1, 1, 0) / 2
   io::write_3mf(dir.file("p.3mf"), mesh, MaterialTable({{"a", {}}, {"b", {}}, {"c", {}}}), f);
-  const std::string xml = test::read_zip(test::read_binary(dir.file("p.3mf"))).at("3D/3dmodel.model");
+  const std::string xml = test::read_zip(dir.file("p.3mf")).at("3D/3dmodel.model");
   const auto composites = test::elements(xml, "m:composite");
   ASSERT_EQ(composites.size(), 1u);
   EXPECT_EQ(numbers(composites[0].attributes.at("values")), (std::vector<double>{0.5, 0.5, 0}));

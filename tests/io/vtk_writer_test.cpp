@@ -3,72 +3,21 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
 #include <map>
-#include <regex>
+#include <random>
 #include <set>
-#include <sstream>
 
 #include "io/io_test_support.hpp"
+#include "support/vtu_arrays.hpp"
 #include "trivar/core/error.hpp"
 
 using namespace trivar;
 
 namespace {
 
-// The parts of a one-piece .vtu the tests look at, read with a minimal XML scanner.
-struct Vtu {
-  long long points = 0, cells = 0;
-  std::map<std::string, std::vector<double>> arrays;  // by Name; the coordinates under "Points"
-  std::map<std::string, int> components;
-  std::string point_data_tag, cell_data_tag;
-};
+using Vtu = test::VtuPiece;
 
-Vtu parse_vtu(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  const std::string text = ss.str();
-  Vtu v;
-  // Well-formed: every opening tag is closed in order, one root <VTKFile>.
-  std::vector<std::string> stack;
-  std::string root;
-  const std::regex tag(R"(<(/?)([A-Za-z?][^\s/>]*)([^>]*)>)");
-  const std::regex attr(R"re(([A-Za-z]+)="([^"]*)")re");
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), tag); it != std::sregex_iterator(); ++it) {
-    const auto& m = *it;
-    const std::string name = m[2], attrs = m[3];
-    if (name[0] == '?') continue;
-    if (m[1] == "/") {
-      EXPECT_FALSE(stack.empty());
-      if (stack.empty()) break;
-      EXPECT_EQ(stack.back(), name);
-      stack.pop_back();
-      continue;
-    }
-    if (stack.empty()) root = name;
-    std::map<std::string, std::string> a;
-    for (auto j = std::sregex_iterator(attrs.begin(), attrs.end(), attr); j != std::sregex_iterator(); ++j)
-      a[(*j)[1]] = (*j)[2];
-    if (name == "Piece") {
-      v.points = std::stoll(a["NumberOfPoints"]);
-      v.cells = std::stoll(a["NumberOfCells"]);
-    }
-    if (name == "PointData") v.point_data_tag = m.str();
-    if (name == "CellData") v.cell_data_tag = m.str();
-    if (name == "DataArray") {
-      const std::string key = a.count("Name") ? a["Name"] : stack.back();
-      const auto begin = static_cast<std::size_t>(m.position() + m.length());
-      std::istringstream values(text.substr(begin, text.find("</DataArray>", begin) - begin));
-      for (double x; values >> x;) v.arrays[key].push_back(x);
-      v.components[key] = std::stoi(a["NumberOfComponents"]);
-    }
-    if (attrs.empty() || attrs.back() != '/') stack.push_back(name);
-  }
-  EXPECT_TRUE(stack.empty());
-  EXPECT_EQ(root, "VTKFile");
-  return v;
-}
+Vtu parse_vtu(const std::string& path) { return test::read_vtu(path); }
 
 double bernstein(int p, int i, double t) {
   double c = 1;
@@ -96,7 +45,9 @@ std::vector<std::vector<std::array<int, D>>> check_bezier_cells(const TensorSpli
   const auto& offsets = v.arrays.at("offsets");
   const auto& param = v.arrays.at("param");
   const auto& pts = v.arrays.at("Points");
-  const auto& w = v.arrays.at("RationalWeights");
+  // Without RationalWeights the cells are polynomial (weights 1).
+  const std::vector<double> w = v.arrays.count("RationalWeights") ? v.arrays.at("RationalWeights")
+                                                                   : std::vector<double>(pts.size() / 3, 1.0);
   std::array<std::vector<double>, D> bp;
   int npts = 1;
   for (int k = 0; k < D; ++k) {
@@ -151,7 +102,7 @@ TEST(VtkWriter, SampledVolumePointsAreSplineValues) {
   test::TempDir dir;
   const auto s = test::random_spline<3>({2, 3, 1}, {2, 3, 2}, 3, true, 51);
   const int n = 3;
-  io::write_vtu(dir.file("v.vtu"), s, {.samples_per_element = n});
+  io::write_vtu(dir.file("v.vtu"), s, {.cells = io::VtkCells::sampled, .samples_per_element = n});
   const Vtu v = parse_vtu(dir.file("v.vtu"));
   EXPECT_EQ(v.points, (2 * n + 1) * (3 * n + 1) * (2 * n + 1));
   EXPECT_EQ(v.cells, 2 * n * 3 * n * 2 * n);
@@ -194,7 +145,7 @@ TEST(VtkWriter, SampledVolumePointsAreSplineValues) {
 TEST(VtkWriter, ControlDimensionsOtherThanThree) {
   test::TempDir dir;
   const auto planar = test::random_spline<2>({2, 2}, {2, 3}, 2, false, 52);
-  io::write_vtu(dir.file("p.vtu"), planar, {.samples_per_element = 2});
+  io::write_vtu(dir.file("p.vtu"), planar, {.cells = io::VtkCells::sampled, .samples_per_element = 2});
   const Vtu p = parse_vtu(dir.file("p.vtu"));
   EXPECT_EQ(p.points, 5 * 7);
   EXPECT_EQ(p.cells, 4 * 6);
@@ -205,7 +156,7 @@ TEST(VtkWriter, ControlDimensionsOtherThanThree) {
   for (double t : p.arrays.at("types")) EXPECT_EQ(t, 9);
 
   const auto curve5 = test::random_spline<1>({3}, {4}, 5, true, 53);
-  io::write_vtu(dir.file("c.vtu"), curve5, {.samples_per_element = 5});
+  io::write_vtu(dir.file("c.vtu"), curve5, {.cells = io::VtkCells::sampled, .samples_per_element = 5});
   const Vtu c = parse_vtu(dir.file("c.vtu"));
   EXPECT_EQ(c.points, 21);
   EXPECT_EQ(c.components.at("higher_components"), 2);
@@ -222,7 +173,7 @@ TEST(VtkWriter, DiscontinuityGetsPointsOnBothSides) {
   test::TempDir dir;
   const SplineCurve c =
       SplineCurve::from_cartesian({KnotVector(1, {0, 0, 1, 1, 2, 2})}, 2, std::vector<double>{0, 0, 1, 0, 5, 5, 6, 5});
-  io::write_vtu(dir.file("d.vtu"), c, {.samples_per_element = 2});
+  io::write_vtu(dir.file("d.vtu"), c, {.cells = io::VtkCells::sampled, .samples_per_element = 2});
   const Vtu v = parse_vtu(dir.file("d.vtu"));
   ASSERT_EQ(v.points, 6);
   EXPECT_EQ(v.cells, 4);
@@ -237,12 +188,12 @@ TEST(VtkWriter, DiscontinuityGetsPointsOnBothSides) {
 TEST(VtkWriter, BezierVolumeReproducesTheSpline) {
   test::TempDir dir;
   const auto s = test::random_spline<3>({1, 2, 3}, {2, 3, 2}, 3, true, 54);
-  io::write_vtu(dir.file("b.vtu"), s, {.bezier_cells = true});
+  io::write_vtu(dir.file("b.vtu"), s, {.cells = io::VtkCells::bezier});
   const Vtu v = parse_vtu(dir.file("b.vtu"));
   EXPECT_EQ(v.cells, 2 * 3 * 2);
   EXPECT_EQ(v.points, (2 * 1 + 1) * (3 * 2 + 1) * (2 * 3 + 1));  // continuous: shared Bezier points
-  EXPECT_NE(v.point_data_tag.find("RationalWeights=\"RationalWeights\""), std::string::npos);
-  EXPECT_NE(v.cell_data_tag.find("HigherOrderDegrees=\"HigherOrderDegrees\""), std::string::npos);
+  EXPECT_NE(v.point_data_tag.find("RationalWeights=RationalWeights"), std::string::npos);
+  EXPECT_NE(v.cell_data_tag.find("HigherOrderDegrees=HigherOrderDegrees"), std::string::npos);
   for (long long c = 0; c < v.cells; ++c) {
     EXPECT_EQ(v.arrays.at("types")[c], 79);
     for (int k = 0; k < 3; ++k) EXPECT_EQ(v.arrays.at("HigherOrderDegrees")[3 * c + k], k + 1);
@@ -261,7 +212,7 @@ TEST(VtkWriter, BezierVolumeReproducesTheSpline) {
 TEST(VtkWriter, BezierPointOrderFollowsVtk) {
   test::TempDir dir;
   const auto hex = test::random_spline<3>({2, 2, 2}, {1, 1, 1}, 3, true, 55);
-  io::write_vtu(dir.file("h.vtu"), hex, {.bezier_cells = true});
+  io::write_vtu(dir.file("h.vtu"), hex, {.cells = io::VtkCells::bezier});
   const auto h = check_bezier_cells(hex, parse_vtu(dir.file("h.vtu")));
   const std::vector<std::array<int, 3>> hex_order = {
       {0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}, {0, 0, 2}, {2, 0, 2}, {2, 2, 2}, {0, 2, 2},  // corners
@@ -273,7 +224,7 @@ TEST(VtkWriter, BezierPointOrderFollowsVtk) {
   EXPECT_EQ(h[0], hex_order);
 
   const auto quad = test::random_spline<2>({3, 2}, {1, 1}, 3, false, 56);
-  io::write_vtu(dir.file("q.vtu"), quad, {.bezier_cells = true});
+  io::write_vtu(dir.file("q.vtu"), quad, {.cells = io::VtkCells::bezier});
   const auto q = check_bezier_cells(quad, parse_vtu(dir.file("q.vtu")));
   const std::vector<std::array<int, 2>> quad_order = {{0, 0}, {3, 0}, {3, 2}, {0, 2}, {1, 0}, {2, 0},
                                                       {3, 1}, {1, 2}, {2, 2}, {0, 1}, {1, 1}, {2, 1}};
@@ -282,17 +233,70 @@ TEST(VtkWriter, BezierPointOrderFollowsVtk) {
 
   const auto curve = SplineCurve::from_cartesian({KnotVector(3, {0, 0, 0, 0, 1, 1, 1, 1})}, 2,
                                                  std::vector<double>{0, 0, 1, 2, 2, 2, 3, 0});
-  io::write_vtu(dir.file("c.vtu"), curve, {.bezier_cells = true});
+  io::write_vtu(dir.file("c.vtu"), curve, {.cells = io::VtkCells::bezier});
   const Vtu cv = parse_vtu(dir.file("c.vtu"));
   const auto c = check_bezier_cells(curve, cv);
   EXPECT_EQ(c[0], (std::vector<std::array<int, 1>>{{0}, {3}, {1}, {2}}));
   EXPECT_EQ(cv.arrays.at("types")[0], 75);
 }
 
+// A field that is a spline on the object's knots and weights (as a solution is) is written as the Bezier
+// coefficients of that field, so the cells show it exactly between the nodes; a polynomial object has no
+// RationalWeights array.
+TEST(VtkWriter, BezierCellsCarrySplineFieldsExactly) {
+  test::TempDir dir;
+  for (bool rational : {true, false}) {
+    const auto s = test::random_spline<3>({2, 3, 2}, {3, 2, 2}, 3, rational, 63);
+    // The field's homogeneous coefficients share the geometry's weights: f = sum c_I w_I N_I / sum w_I N_I.
+    std::vector<double> coefs;
+    std::mt19937 rng(64);
+    std::uniform_real_distribution<double> unit(-1, 1);
+    for (int I = 0; I < s.num_coefs(); ++I) {
+      const double w = s.weight(I);
+      coefs.push_back(w * unit(rng));
+      if (rational) coefs.push_back(w);
+    }
+    const TensorSpline<3> f(s.knot_vectors(), 1, rational, coefs);
+    const io::VtkPointField field{"f", 1, [&](int, std::span<const double> u, std::span<double> out) {
+                                    f.eval({u[0], u[1], u[2]}, out.data());
+                                  }};
+    io::write_vtu(dir.file("f.vtu"), s, {}, {field});
+    const Vtu v = parse_vtu(dir.file("f.vtu"));
+    EXPECT_EQ(v.arrays.count("RationalWeights"), rational ? 1u : 0u);
+    const auto nodes = check_bezier_cells(s, v);
+    const auto& conn = v.arrays.at("connectivity");
+    const auto& F = v.arrays.at("f");
+    const std::vector<double> w = rational ? v.arrays.at("RationalWeights") : std::vector<double>(F.size(), 1.0);
+    for (long long c = 0; c < v.cells; ++c) {
+      const auto e = element_index(s, static_cast<int>(v.arrays.at("element")[c]));
+      const long long begin = c ? static_cast<long long>(v.arrays.at("offsets")[c - 1]) : 0;
+      for (int r = 0; r < 3; ++r) {
+        const double t[3] = {unit(rng) * 0.5 + 0.5, unit(rng) * 0.5 + 0.5, unit(rng) * 0.5 + 0.5};
+        Param<3> u;
+        double num = 0, den = 0;
+        for (int k = 0; k < 3; ++k) {
+          const auto bp = s.knots(k).breakpoints();
+          u[k] = bp[e[k]] + t[k] * (bp[e[k] + 1] - bp[e[k]]);
+        }
+        for (std::size_t q = 0; q < nodes[c].size(); ++q) {
+          const auto pt = static_cast<std::size_t>(conn[begin + static_cast<long long>(q)]);
+          double b = w[pt];
+          for (int k = 0; k < 3; ++k) b *= bernstein(s.degree(k), nodes[c][q][k], t[k]);
+          num += b * F[pt];
+          den += b;
+        }
+        double exact;
+        f.eval(u, &exact);
+        EXPECT_NEAR(num / den, exact, 1e-12);
+      }
+    }
+  }
+}
+
 TEST(VtkWriter, ControlNet) {
   test::TempDir dir;
   const auto s = test::random_spline<3>({2, 1, 2}, {2, 3, 1}, 3, true, 57);
-  io::write_vtu(dir.file("n.vtu"), s, {.control_net = true});
+  io::write_vtu(dir.file("n.vtu"), s, {.cells = io::VtkCells::control_net});
   const Vtu v = parse_vtu(dir.file("n.vtu"));
   const auto n = s.counts();
   EXPECT_EQ(v.points, s.num_coefs());
@@ -316,7 +320,7 @@ TEST(VtkWriter, ExtraPointFields) {
          out[1] = 1;
          out[2] = 2;
        }}};
-  io::write_vtu(dir.file("f.vtu"), s, {.samples_per_element = 2}, fields);
+  io::write_vtu(dir.file("f.vtu"), s, {.cells = io::VtkCells::sampled, .samples_per_element = 2}, fields);
   const Vtu v = parse_vtu(dir.file("f.vtu"));
   EXPECT_EQ(v.components.at("normal"), 3);
   for (long long q = 0; q < v.points; ++q) {
@@ -328,15 +332,24 @@ TEST(VtkWriter, ExtraPointFields) {
 TEST(VtkWriter, InvalidRequestsWriteNothing) {
   test::TempDir dir;
   const auto s = test::random_spline<2>({2, 0}, {2, 2}, 3, false, 59);
-  EXPECT_THROW(io::write_vtu(dir.file("a.vtu"), s, {.samples_per_element = 0}), Error);
-  EXPECT_THROW(io::write_vtu(dir.file("a.vtu"), s, {.bezier_cells = true}), Error);  // degree 0 in v
+  EXPECT_THROW(io::write_vtu(dir.file("a.vtu"), s, {.cells = io::VtkCells::sampled, .samples_per_element = 0}), Error);
+  EXPECT_THROW(io::write_vtu(dir.file("a.vtu"), s, {.cells = io::VtkCells::bezier}), Error);  // degree 0 in v
   const auto f = [](int, std::span<const double>, std::span<double> out) { out[0] = 0; };
   EXPECT_THROW(io::write_vtu(dir.file("a.vtu"), s, {}, {{"param", 1, f}}), Error);
   EXPECT_THROW(io::write_vtu(dir.file("a.vtu"), s, {}, {{"a", 1, f}, {"a", 1, f}}), Error);
   EXPECT_THROW(io::write_vtu(dir.file("a.vtu"), AnySpline{}), Error);
+  // 1201^3 samples fit VTK's 32-bit point ids but not this machine's memory (about 125 GB): refused by name
+  // before anything is allocated.
+  const auto cube = test::random_spline<3>({1, 1, 1}, {1, 1, 1}, 3, false, 60);
+  try {
+    io::write_vtu(dir.file("a.vtu"), cube, {.cells = io::VtkCells::sampled, .samples_per_element = 1200});
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("VTU output of 1732323601 points would need"), std::string::npos) << e.what();
+  }
   EXPECT_EQ(dir.entries(), 0);
   // Degree 0 is fine when sampled: every element boundary is a discontinuity.
-  io::write_vtu(dir.file("ok.vtu"), s, {.samples_per_element = 1});
+  io::write_vtu(dir.file("ok.vtu"), s, {.cells = io::VtkCells::sampled, .samples_per_element = 1});
   const Vtu v = parse_vtu(dir.file("ok.vtu"));
   EXPECT_EQ(v.points, 3 * 4);
   EXPECT_EQ(v.cells, 2 * 2);

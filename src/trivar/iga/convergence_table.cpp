@@ -43,7 +43,7 @@ void write_convergence_csv(const std::string& path, const std::vector<Convergenc
   });
 }
 
-void write_convergence_png(const std::string& path, const std::vector<ConvergenceRow>& rows) {
+void write_convergence_svg(const std::string& path, const std::vector<ConvergenceRow>& rows) {
   // Unknown errors and missing estimates are negative, so the plot skips them; a study without estimates
   // shows two series and no legend entry for the third.
   std::vector<PlotSeries> series{{{}, {}, {30, 80, 220}, "L2 error"},

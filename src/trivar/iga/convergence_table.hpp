@@ -1,6 +1,6 @@
 #pragma once
 // Convergence studies: one row per discretisation (uniform refinement level or adaptive step), written as CSV
-// and as a log-log PNG plot of the errors against the number of dofs.
+// and as a log-log SVG plot of the errors against the number of dofs.
 #include <string>
 #include <vector>
 
@@ -25,6 +25,6 @@ void write_convergence_csv(const std::string& path, const std::vector<Convergenc
 
 // L2 (blue) and H1 (red) error and, where computed, the estimate (green) against dofs on log-log axes with
 // decade grid lines, tick values, axis labels and a legend.
-void write_convergence_png(const std::string& path, const std::vector<ConvergenceRow>& rows);
+void write_convergence_svg(const std::string& path, const std::vector<ConvergenceRow>& rows);
 
 }  // namespace trivar

@@ -1,6 +1,8 @@
 #pragma once
-// A log-log line plot rendered to PNG without a plotting dependency: decade grid lines, axes with the powers of
-// ten written at the decades, axis labels, an optional title, and polylines with markers named in a legend.
+// A log-log line plot written as SVG (text is the viewer's, so no font is needed): decade grid lines, axes
+// with a tick and the power of ten at every decade, axis labels, an optional title, and polylines with
+// markers named in a legend. Each series is a <g> whose <title> is its label, holding its <polyline> (and a
+// <circle> per point), so the data can be read back from the file.
 #include <array>
 #include <cstdint>
 #include <string>
@@ -16,11 +18,11 @@ struct PlotSeries {
 
 struct PlotOptions {
   std::string x_label{}, y_label{}, title{};  // each drawn only when non-empty
-  int width = 640, height = 480;              // pixels
+  int width = 640, height = 480;              // SVG user units (pixels at 100 %)
 };
 
-// Throws trivar::Error when no series has a plotted point, the image leaves no room for the plot box beside
-// the labels, or the file cannot be written.
+// Throws trivar::Error when no series has a plotted point, the size leaves no room for the plot box beside
+// the labels, or the file cannot be written (nothing is written then).
 void write_loglog_plot(const std::string& path, const std::vector<PlotSeries>& series,
                        const PlotOptions& options = {});
 

@@ -1,18 +1,24 @@
 #pragma once
-// VTK XML UnstructuredGrid (.vtu, ASCII) output of LR splines for ParaView, one <Piece> per object:
-//  - sampled (default): every element of the LR mesh is sampled on its own (n+1)^D grid of parameters
-//    (n = samples_per_element) and cut into n^D VTK_QUAD / VTK_HEXAHEDRON cells. Elements do not share points
-//    (LR meshes have T-junctions, so neighbours' samples need not match). A sample on an element's upper face
-//    inside the domain is evaluated one ulp below it, so it takes the element's own polynomial piece (also
-//    where the spline is discontinuous); its "param" is the exact face parameter.
+// VTK XML UnstructuredGrid (.vtu, binary and zlib-compressed: vtu_file.hpp) output of LR splines for
+// ParaView, one <Piece> per object:
+//  - bezier (default): one VTK_BEZIER_QUADRILATERAL / _HEXAHEDRON (types 77 / 79) per element of the LR mesh,
+//    exact up to rounding: the element's Bezier control points (lr_bezier_extraction.hpp) in VTK's point order,
+//    cell data "HigherOrderDegrees" and, for rational splines, point data "RationalWeights". Elements do not
+//    share points (LR meshes have T-junctions). Needs degree >= 1 in every direction.
+//  - sampled: every element of the LR mesh is sampled on its own (n+1)^D grid of parameters
+//    (n = samples_per_element) and cut into n^D VTK_QUAD / VTK_HEXAHEDRON cells, points not shared.
 //  - parametric_mesh: the mesh itself, one VTK_QUAD / VTK_HEXAHEDRON per element with its corners at the
 //    parameters (u, v, 0) / (u, v, w).
+// A node on an element's upper face inside the domain is evaluated one ulp below it, so it takes the element's
+// own polynomial piece (also where the spline is discontinuous); its "param" is the exact face parameter.
 // Cell data: "element" (the element id) and "support" (the number of B-splines whose support contains the
 // element, which shows overloading). Point data: "param" (u, v, w; w = 0 for surfaces). Points take the first
 // three control components (zeros when dim < 3); further components go to point data "higher_components".
 // Callers add point fields (VtkPointField, vtk_writer.hpp: value(piece, u, out) is called at the parameter
-// the point is evaluated at, so one ulp inside the element as above) and cell fields (one value per element,
-// repeated on the element's VTK cells), e.g. a solution on the mesh and per-element error indicators.
+// the point is evaluated at, so one ulp inside the element as above; in Bezier mode the file holds the Bezier
+// coefficients interpolating those values, exact for a spline field on the geometry's B-splines) and cell
+// fields (one value per element, repeated on the element's VTK cells), e.g. a solution on the mesh and
+// per-element error indicators.
 #include <functional>
 #include <span>
 #include <string>
@@ -23,9 +29,11 @@
 
 namespace trivar::io {
 
+enum class LRVtkCells { bezier, sampled, parametric_mesh };
+
 struct LRVtkOptions {
+  LRVtkCells cells = LRVtkCells::bezier;
   int samples_per_element = 4;  // n >= 1, sampled mode
-  bool parametric_mesh = false;
 };
 
 // An extra cell-data array: value(piece, element, out) writes `components` values for element `element` (the
@@ -36,7 +44,7 @@ struct LRVtkCellField {
   std::function<void(int piece, int element, std::span<double> out)> value;
 };
 
-// Throws trivar::Error (nothing written) for samples_per_element < 1, an empty list, a field without name or
+// Throws trivar::Error (nothing written) for samples_per_element < 1 when sampled, degree 0 in Bezier mode, an empty list, a field without name or
 // value function, with a duplicate or reserved name, or a write failure.
 void write_lr_vtu(const std::string& path, const AnyLRSpline& s, const LRVtkOptions& opts = {},
                   const std::vector<VtkPointField>& point_fields = {},

@@ -5,14 +5,15 @@
 #include <climits>
 #include <cmath>
 #include <limits>
-#include <ostream>
+#include <cstdint>
 #include <type_traits>
 
-#include "trivar/core/atomic_file.hpp"
 #include "trivar/core/error.hpp"
-#include "trivar/core/number_format.hpp"
-#include "trivar/io/vtu_data_array.hpp"
+#include "trivar/core/memory_budget.hpp"
+#include "trivar/io/vtk_cell_order.hpp"
 #include "trivar/io/vtu_fields.hpp"
+#include "trivar/io/vtu_file.hpp"
+#include "trivar/spline/bernstein_interpolation.hpp"
 #include "trivar/spline/bezier_extraction.hpp"
 
 namespace trivar::io {
@@ -33,8 +34,14 @@ struct Piece {
   std::vector<double> weights;  // 1 per point, Bezier mode only
   std::vector<double> higher;   // `extra` per point
   std::vector<std::vector<double>> fields;
-  std::vector<long long> connectivity, offsets;
-  std::vector<int> types, element, degrees;  // element: or direction (control net); degrees: Bezier mode only
+  std::vector<std::int64_t> connectivity, offsets;
+  std::vector<std::uint8_t> types;
+  std::vector<std::int32_t> element, degrees;  // element: or direction (control net); degrees: Bezier mode only
+  bool rational = false;                       // Bezier mode: some element has weights other than 1
+  // Bezier mode: the points of every element in its own node order (first direction fastest), for turning
+  // field values at the nodes into Bezier coefficients.
+  std::vector<std::int64_t> element_nodes;
+  std::vector<int> element_degrees;  // Bezier mode: the same for every element of a tensor spline
 
   void add_point(const double* x, int dim, int extra, const double* u, int D) {
     for (int d = 0; d < 3; ++d) points.push_back(d < dim ? x[d] : 0.0);
@@ -43,11 +50,11 @@ struct Piece {
   }
   // Called after the cell's points were appended to `connectivity` (VTK offsets mark cell ends).
   void end_cell(int type, int elem) {
-    types.push_back(type);
+    types.push_back(static_cast<std::uint8_t>(type));
     element.push_back(elem);
-    offsets.push_back(static_cast<long long>(connectivity.size()));
+    offsets.push_back(static_cast<std::int64_t>(connectivity.size()));
   }
-  long long num_points() const { return static_cast<long long>(points.size() / 3); }
+  std::int64_t num_points() const { return static_cast<std::int64_t>(points.size() / 3); }
 };
 
 // Discontinuous across an interior breakpoint: knot multiplicity p + 1 (C^-1).
@@ -80,58 +87,21 @@ int linear(const std::array<int, D>& i, const std::array<int, D>& n) {
   return l;
 }
 
-// Position of Bezier node i (0 <= i_k <= p_k) in VTK's higher-order cell point order: corners, then edge
-// interiors, then face interiors, then the body, with VTK's edge and face numbering (vtkHigherOrder*
-// ::PointIndexFromIJK; hexahedra in the VTK >= 9 edge order, i.e. XML file version >= 2.1).
+// Refuses a piece of more points than VTK's 32-bit point ids of a piece allow, or than memory holds: per point
+// coordinates, parameters, weight, higher components and the caller's fields, per cell its connectivity.
 template <int D>
-int vtk_node_index(const std::array<int, D>& i, const std::array<int, D>& p) {
-  if constexpr (D == 1) {
-    return i[0] == 0 ? 0 : i[0] == p[0] ? 1 : i[0] + 1;
-  } else {
-    std::array<bool, D> bdy;
-    int nbdy = 0;
-    for (int k = 0; k < D; ++k) nbdy += (bdy[k] = (i[k] == 0 || i[k] == p[k])) ? 1 : 0;
-    const bool hi0 = i[0] == p[0], hi1 = i[1] == p[1];
-    const int corner = hi0 ? (hi1 ? 2 : 1) : (hi1 ? 3 : 0);  // counter-clockwise in the (u, v) plane
-    const int a = p[0] - 1, b = p[1] - 1;                    // interior nodes per edge along u, v
-    if constexpr (D == 2) {
-      if (nbdy == 2) return corner;
-      if (nbdy == 1) return 4 + (bdy[1] ? (i[0] - 1) + (hi1 ? a + b : 0) : (i[1] - 1) + (hi0 ? a : 2 * a + b));
-      return 4 + 2 * (a + b) + (i[0] - 1) + a * (i[1] - 1);
-    } else {
-      const bool hi2 = i[2] == p[2];
-      const int c = p[2] - 1;
-      if (nbdy == 3) return corner + (hi2 ? 4 : 0);
-      if (nbdy == 2) {
-        if (!bdy[0]) return 8 + (i[0] - 1) + (hi1 ? a + b : 0) + (hi2 ? 2 * (a + b) : 0);
-        if (!bdy[1]) return 8 + (i[1] - 1) + (hi0 ? a : 2 * a + b) + (hi2 ? 2 * (a + b) : 0);
-        return 8 + 4 * (a + b) + (i[2] - 1) + c * corner;
-      }
-      int offset = 8 + 4 * (a + b + c);
-      if (nbdy == 1) {
-        if (bdy[0]) return offset + (i[1] - 1) + b * (i[2] - 1) + (hi0 ? b * c : 0);
-        offset += 2 * b * c;
-        if (bdy[1]) return offset + (i[0] - 1) + a * (i[2] - 1) + (hi1 ? c * a : 0);
-        offset += 2 * c * a;
-        return offset + (i[0] - 1) + a * (i[1] - 1) + (hi2 ? a * b : 0);
-      }
-      offset += 2 * (b * c + c * a + a * b);
-      return offset + (i[0] - 1) + a * ((i[1] - 1) + b * (i[2] - 1));
-    }
-  }
-}
-
-template <int D>
-void check_size(const std::array<int, D>& n, const std::string& path) {
+void check_size(const std::array<int, D>& n, const std::string& path, int per_point, double cells, int per_cell) {
   long long total = 1;
   for (int k = 0; k < D; ++k) {
     total *= n[k];
     require(total <= INT_MAX, path + ": too many points for one VTU piece");
   }
+  require_memory(8.0 * (static_cast<double>(total) * per_point + cells * (per_cell + 3)),
+                 path + ": VTU output of " + std::to_string(total) + " points");
 }
 
 template <int D>
-void add_sampled(Piece& piece, const TensorSpline<D>& s, int n, int extra, const std::string& path) {
+void add_sampled(Piece& piece, const TensorSpline<D>& s, int n, int extra, int field_values, const std::string& path) {
   // Per direction: sample parameters and, per element, the index of its first sample.
   std::array<std::vector<double>, D> u;
   std::array<std::vector<int>, D> first;
@@ -148,7 +118,9 @@ void add_sampled(Piece& piece, const TensorSpline<D>& s, int n, int extra, const
     }
     nu[k] = static_cast<int>(u[k].size());
   }
-  check_size<D>(nu, path);
+  double num_cells = 1;
+  for (int k = 0; k < D; ++k) num_cells *= static_cast<double>(ne[k]) * n;
+  check_size<D>(nu, path, s.dim() + 6 + extra + field_values, num_cells, 1 << D);
   std::vector<double> x(static_cast<std::size_t>(product<D>(nu)) * s.dim());
   s.eval_grid(u, x);
   const long long base = piece.num_points();
@@ -178,7 +150,7 @@ void add_sampled(Piece& piece, const TensorSpline<D>& s, int n, int extra, const
 }
 
 template <int D>
-void add_bezier(Piece& piece, const TensorSpline<D>& s, int extra, const std::string& path) {
+void add_bezier(Piece& piece, const TensorSpline<D>& s, int extra, int field_values, const std::string& path) {
   // Per direction: global Bezier node index of each element's first node; shared across continuous joins.
   std::array<std::vector<int>, D> first;
   std::array<std::vector<double>, D> bp;
@@ -197,8 +169,15 @@ void add_bezier(Piece& piece, const TensorSpline<D>& s, int extra, const std::st
     }
     nn[k] = next + 1;
   }
-  check_size<D>(nn, path);
-  const long long base = piece.num_points();
+  double num_cells = 1, nodes = 1;
+  for (int k = 0; k < D; ++k) {
+    num_cells *= ne[k];
+    nodes *= p[k] + 1;
+  }
+  // Bezier nets of all elements (homogeneous), then per point coordinates, parameters, weight and fields.
+  check_size<D>(nn, path, s.dim() + D + 7 + extra + 2 * field_values, num_cells,
+                static_cast<int>(nodes * (2 + s.dim() + 1)));
+  const std::int64_t base = piece.num_points();
   const std::size_t total = static_cast<std::size_t>(product<D>(nn));
   std::vector<double> x(total * s.dim()), w(total), param(total * D);
 
@@ -206,7 +185,7 @@ void add_bezier(Piece& piece, const TensorSpline<D>& s, int extra, const std::st
   std::array<int, D> local;
   for (int k = 0; k < D; ++k) local[k] = p[k] + 1;
   const int npe = static_cast<int>(product<D>(local));
-  std::vector<long long> conn(npe);
+  std::vector<std::int64_t> conn(npe);
   const int dim = s.dim();
   for (int l = 0; l < static_cast<int>(elements.size()); ++l) {
     const BezierElement<D>& el = elements[l];
@@ -223,13 +202,16 @@ void add_bezier(Piece& piece, const TensorSpline<D>& s, int extra, const std::st
       const double wt = el.rational ? c[dim] : 1.0;
       for (int d = 0; d < dim; ++d) x[G * dim + d] = c[d] / wt;
       w[G] = wt;
+      piece.rational = piece.rational || wt != 1.0;
+      piece.element_nodes.push_back(base + static_cast<std::int64_t>(G));
       for (int k = 0; k < D; ++k)
         param[G * D + k] = el.domain.lo[k] + (el.domain.hi[k] - el.domain.lo[k]) * i[k] / p[k];
-      conn[vtk_node_index<D>(i, p)] = base + static_cast<long long>(G);
+      conn[vtk_node_index<D>(i, p)] = base + static_cast<std::int64_t>(G);
     });
     piece.connectivity.insert(piece.connectivity.end(), conn.begin(), conn.end());
     piece.end_cell(kBezierCell[D - 1], linear<D>(e, ne));
     for (int k = 0; k < 3; ++k) piece.degrees.push_back(k < D ? p[k] : 0);
+    if (l == 0) piece.element_degrees.assign(p.begin(), p.end());
   }
   for (std::size_t G = 0; G < total; ++G) piece.add_point(x.data() + G * dim, dim, extra, param.data() + G * D, D);
   piece.weights.insert(piece.weights.end(), w.begin(), w.end());
@@ -237,7 +219,7 @@ void add_bezier(Piece& piece, const TensorSpline<D>& s, int extra, const std::st
 
 template <int D>
 void add_control_net(Piece& piece, const TensorSpline<D>& s, int extra) {
-  const long long base = piece.num_points();
+  const std::int64_t base = piece.num_points();
   std::array<std::vector<double>, D> greville;
   for (int k = 0; k < D; ++k) greville[k] = s.knots(k).greville();
   const auto n = s.counts();
@@ -259,36 +241,56 @@ void add_control_net(Piece& piece, const TensorSpline<D>& s, int extra) {
   });
 }
 
-enum class Mode { sampled, bezier, net };
-
-void write_piece(std::ostream& os, const Piece& p, Mode mode, const std::vector<VtkPointField>& fields, int extra) {
-  const bool bezier = mode == Mode::bezier;
-  const std::size_t ncells = p.types.size();
-  os << "    <Piece NumberOfPoints=\"" << p.num_points() << "\" NumberOfCells=\"" << ncells << "\">\n";
-  os << "      <PointData";
-  if (bezier) os << " RationalWeights=\"RationalWeights\"";
-  os << ">\n";
-  write_data_array(os, "Float64", "param", 3, p.params);
-  if (bezier) write_data_array(os, "Float64", "RationalWeights", 1, p.weights);
-  if (extra > 0) write_data_array(os, "Float64", "higher_components", extra, p.higher);
-  for (std::size_t f = 0; f < fields.size(); ++f)
-    write_data_array(os, "Float64", fields[f].name, fields[f].components, p.fields[f]);
-  os << "      </PointData>\n      <CellData";
-  if (bezier) os << " HigherOrderDegrees=\"HigherOrderDegrees\"";
-  os << ">\n";
-  write_data_array(os, "Int32", mode == Mode::net ? "direction" : "element", 1, p.element);
-  if (bezier) write_data_array(os, "Int32", "HigherOrderDegrees", 3, p.degrees);
-  os << "      </CellData>\n      <Points>\n";
-  write_data_array(os, "Float64", "", 3, p.points);
-  os << "      </Points>\n      <Cells>\n";
-  write_data_array(os, "Int64", "connectivity", 1, p.connectivity);
-  write_data_array(os, "Int64", "offsets", 1, p.offsets);
-  write_data_array(os, "UInt8", "types", 1, p.types);
-  os << "      </Cells>\n    </Piece>\n";
+// Bezier mode: the field values sampled at the nodes become the elements' Bezier coefficients. Shared points
+// get the same coefficients from every element holding them, since a face's coefficients depend only on the
+// values and weights on that face.
+template <int D>
+std::vector<double> bezier_coefficients(const Piece& piece, const std::vector<double>& at_nodes, int components) {
+  Ints<D> p;
+  for (int k = 0; k < D; ++k) p[k] = piece.element_degrees[static_cast<std::size_t>(k)];
+  BernsteinInterpolation<D> interpolation(p);
+  int npe = 1;
+  for (int k = 0; k < D; ++k) npe *= p[k] + 1;
+  std::vector<double> out(at_nodes.size()), values(static_cast<std::size_t>(npe) * components), w;
+  for (std::size_t first = 0; first < piece.element_nodes.size(); first += static_cast<std::size_t>(npe)) {
+    const std::int64_t* nodes = piece.element_nodes.data() + first;
+    for (int n = 0; n < npe; ++n)
+      for (int c = 0; c < components; ++c)
+        values[static_cast<std::size_t>(n * components + c)] = at_nodes[static_cast<std::size_t>(nodes[n] * components + c)];
+    w.clear();
+    if (piece.rational)
+      for (int n = 0; n < npe; ++n) w.push_back(piece.weights[static_cast<std::size_t>(nodes[n])]);
+    interpolation.apply(values, components, w);
+    for (int n = 0; n < npe; ++n)
+      for (int c = 0; c < components; ++c)
+        out[static_cast<std::size_t>(nodes[n] * components + c)] = values[static_cast<std::size_t>(n * components + c)];
+  }
+  return out;
 }
 
-void validate(const std::string& path, Mode mode, int samples, const std::vector<VtkPointField>& fields) {
-  require(mode != Mode::sampled || samples >= 1,
+VtuPiece vtu_piece(const Piece& p, VtkCells mode, bool rational, const std::vector<VtkPointField>& fields, int extra) {
+  const bool bezier = mode == VtkCells::bezier;
+  VtuPiece v;
+  v.num_points = p.num_points();
+  v.num_cells = static_cast<std::int64_t>(p.types.size());
+  if (bezier && rational) v.point_data_attributes = " RationalWeights=\"RationalWeights\"";
+  v.point_data.push_back(VtuDataArray::make("param", 3, p.params));
+  if (bezier && rational) v.point_data.push_back(VtuDataArray::make("RationalWeights", 1, p.weights));
+  if (extra > 0) v.point_data.push_back(VtuDataArray::make("higher_components", extra, p.higher));
+  for (std::size_t f = 0; f < fields.size(); ++f)
+    v.point_data.push_back(VtuDataArray::make(fields[f].name, fields[f].components, p.fields[f]));
+  if (bezier) v.cell_data_attributes = " HigherOrderDegrees=\"HigherOrderDegrees\"";
+  v.cell_data.push_back(VtuDataArray::make(mode == VtkCells::control_net ? "direction" : "element", 1, p.element));
+  if (bezier) v.cell_data.push_back(VtuDataArray::make("HigherOrderDegrees", 3, p.degrees));
+  v.points = VtuDataArray::make("", 3, p.points);
+  v.connectivity = VtuDataArray::make("connectivity", 1, p.connectivity);
+  v.offsets = VtuDataArray::make("offsets", 1, p.offsets);
+  v.types = VtuDataArray::make("types", 1, p.types);
+  return v;
+}
+
+void validate(const std::string& path, VtkCells mode, int samples, const std::vector<VtkPointField>& fields) {
+  require(mode != VtkCells::sampled || samples >= 1,
           path + ": samples_per_element must be >= 1, got " + std::to_string(samples));
   validate_fields(path, "point field", fields, kReservedNames);
 }
@@ -298,9 +300,10 @@ void validate(const std::string& path, Mode mode, int samples, const std::vector
 void write_vtu(const std::string& path, const std::vector<AnySpline>& objects, const VtkOptions& opts,
                const std::vector<VtkPointField>& fields) {
   require(!objects.empty(), path + ": nothing to write (no objects)");
-  const Mode mode = opts.control_net ? Mode::net : opts.bezier_cells ? Mode::bezier : Mode::sampled;
+  const VtkCells mode = opts.cells;
   validate(path, mode, opts.samples_per_element, fields);
-  int extra = 0;
+  int extra = 0, field_values = 0;
+  for (const VtkPointField& f : fields) field_values += f.components;
   for (const auto& o : objects) extra = std::max(extra, std::visit([](const auto& s) { return s.dim(); }, o) - 3);
 
   std::vector<Piece> pieces(objects.size());
@@ -312,34 +315,37 @@ void write_vtu(const std::string& path, const std::vector<AnySpline>& objects, c
           require(s.dim() >= 1, where + ": cannot write an empty spline (no control points)");
           Piece& piece = pieces[i];
           switch (mode) {
-            case Mode::sampled:
-              add_sampled(piece, s, opts.samples_per_element, extra, where);
+            case VtkCells::sampled:
+              add_sampled(piece, s, opts.samples_per_element, extra, field_values, where);
               break;
-            case Mode::bezier:
-              add_bezier(piece, s, extra, where);
+            case VtkCells::bezier:
+              add_bezier(piece, s, extra, field_values, where);
               break;
-            case Mode::net:
+            case VtkCells::control_net:
               add_control_net(piece, s, extra);
               break;
           }
           for (const VtkPointField& field : fields) {
             std::vector<double>& values = piece.fields.emplace_back(static_cast<std::size_t>(piece.num_points()) *
                                                                     static_cast<std::size_t>(field.components));
-            for (long long q = 0; q < piece.num_points(); ++q)
+            for (std::int64_t q = 0; q < piece.num_points(); ++q)
               field.value(static_cast<int>(i), std::span<const double>(piece.params.data() + 3 * q, D),
                           std::span<double>(values.data() + q * field.components, field.components));
+            if (mode == VtkCells::bezier) values = bezier_coefficients<D>(piece, values, field.components);
           }
         },
         objects[i]);
   }
 
-  write_file_atomically(path, [&](std::ostream& os) {
-    os << "<?xml version=\"1.0\"?>\n"
-          "<VTKFile type=\"UnstructuredGrid\" version=\"2.1\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
-          "  <UnstructuredGrid>\n";
-    for (const Piece& p : pieces) write_piece(os, p, mode, fields, extra);
-    os << "  </UnstructuredGrid>\n</VTKFile>\n";
-  });
+  // RationalWeights in every piece or none, so ParaView merges the pieces into one data set.
+  bool rational = false;
+  for (const Piece& p : pieces) rational = rational || p.rational;
+  std::vector<VtuPiece> out;
+  for (Piece& p : pieces) {
+    out.push_back(vtu_piece(p, mode, rational, fields, extra));
+    p = Piece{};  // the compressed copy is all that is needed from here on
+  }
+  write_vtu_file(path, out);
 }
 
 void write_vtu(const std::string& path, const AnySpline& s, const VtkOptions& opts,

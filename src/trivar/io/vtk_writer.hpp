@@ -1,13 +1,15 @@
 #pragma once
-// VTK XML UnstructuredGrid (.vtu, ASCII) output of splines for ParaView, in three modes:
-//  - sampled (default): every element is sampled on an (n+1)^D grid of parameters (n = samples_per_element)
+// VTK XML UnstructuredGrid (.vtu) output of splines for ParaView (binary, zlib-compressed: vtu_file.hpp), in
+// three modes:
+//  - bezier (default): one VTK_BEZIER_CURVE / _QUADRILATERAL / _HEXAHEDRON (types 75 / 77 / 79) per
+//    element, exact up to rounding: its Bezier control points (Cartesian) in VTK's higher-order point order
+//    (corners, edges, faces, interior), cell data "HigherOrderDegrees" and, when some object is rational,
+//    point data "RationalWeights". Elements share the Bezier points of common boundaries where the spline is
+//    continuous. Needs degree >= 1 in every direction.
+//  - sampled: every element is sampled on an (n+1)^D grid of parameters (n = samples_per_element)
 //    and cut into VTK_LINE / VTK_QUAD / VTK_HEXAHEDRON cells. Neighbouring elements share their boundary
 //    samples unless the spline is discontinuous there (interior knot of multiplicity degree + 1), in which
 //    case each side gets its own points, the left one evaluated at the largest double below the knot.
-//  - bezier_cells: one VTK_BEZIER_CURVE / _QUADRILATERAL / _HEXAHEDRON (types 75 / 77 / 79) per element,
-//    exact up to rounding: its Bezier control points (Cartesian) in VTK's higher-order point order
-//    (corners, edges, faces, interior), cell data "HigherOrderDegrees" and point data "RationalWeights".
-//    Elements share the Bezier points of common boundaries where the spline is continuous.
 //  - control_net: the control net instead of the geometry: Cartesian control points joined by VTK_LINE cells
 //    along every direction ("param" = Greville abscissae, cell data "direction" = 0, 1, 2 for u, v, w).
 // Point data "param" holds the parameter (u, v, w) of every point, padded with zeros for curves and surfaces
@@ -25,18 +27,21 @@ namespace trivar::io {
 
 // An extra point-data array: value(piece, u, out) writes `components` values at parameter u (one value per
 // parametric direction) of object number `piece` (0 for write_vtu of a single spline). Called serially.
-// In Bezier mode it is sampled at the Bezier node parameters and ParaView interpolates those values with the
-// Bernstein basis, so there it is a visual approximation unless the field is affine on each element.
+// In Bezier mode it is called at the element's equally spaced node parameters and the file holds the Bezier
+// coefficients interpolating those values in the element's (rational) Bernstein basis
+// (spline/bernstein_interpolation.hpp): a spline field on the object's knots and weights, such as a solution,
+// is shown exactly, any other field is interpolated at the nodes.
 struct VtkPointField {
   std::string name;
   int components = 1;
   std::function<void(int piece, std::span<const double> u, std::span<double> out)> value;
 };
 
+enum class VtkCells { bezier, sampled, control_net };
+
 struct VtkOptions {
+  VtkCells cells = VtkCells::bezier;
   int samples_per_element = 4;  // n >= 1, sampled mode
-  bool bezier_cells = false;
-  bool control_net = false;  // takes precedence over bezier_cells
 };
 
 // Throws trivar::Error (nothing written) for an empty spline, samples_per_element < 1, a degree-0 direction
