@@ -61,7 +61,7 @@ std::string layer_stem(int k, int layers) {
 // Bytes one layer holds while it is sliced, dithered and encoded: the cell index (int) and material fractions
 // (float per material) of every pixel, its label, and the PNG's raw rows and compressed data.
 double layer_bytes(const am::SliceGrid& g, int materials) {
-  const double per_pixel = sizeof(int) + sizeof(float) * materials + 3 * sizeof(std::uint8_t);
+  const double per_pixel = static_cast<double>(sizeof(int) + sizeof(float) * static_cast<std::size_t>(materials) + 3);
   return static_cast<double>(g.width) * g.height * per_pixel;
 }
 

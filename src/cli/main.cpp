@@ -12,12 +12,17 @@
 #include "cli.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/core/interrupt_cleanup.hpp"
+#include "trivar/core/out_of_memory_reserve.hpp"
 
 namespace {
 
 // More threads than any machine trivar runs on has cores, and far below where the OpenMP runtime fails to
 // create them.
 constexpr int kMaxThreads = 1024;
+
+// Room for destructors that allocate while a std::bad_alloc unwinds (out_of_memory_reserve.hpp): enough for
+// nlohmann::json to destroy an array of 16 million control points.
+constexpr std::size_t kOutOfMemoryReserve = std::size_t{256} << 20;
 
 // Messages are one line by contract; foreign exceptions (parsers, the standard library) are folded to one.
 void print_error(std::string message) {
@@ -62,11 +67,12 @@ int main(int argc, char** argv) {
   add_solve_command(app, ctx);
 
   trivar::install_interrupt_cleanup();
+  trivar::install_out_of_memory_reserve(kOutOfMemoryReserve);
   // The subcommand being run, for messages that have no other context.
   const auto command = [&app] {
-    std::string name = "trivar";
+    std::string name;
     for (const CLI::App* node = &app; !node->get_subcommands().empty(); node = node->get_subcommands().front())
-      name += " " + node->get_subcommands().front()->get_name();
+      name += (name.empty() ? "" : " ") + node->get_subcommands().front()->get_name();
     return name;
   };
   try {

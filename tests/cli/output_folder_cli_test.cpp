@@ -55,7 +55,8 @@ class OutputFolderCli : public Cli {
  protected:
   void SetUp() override {
     Cli::SetUp();
-    ok("make ball --radius 2 --materials 2 -o ball.json");
+    // A 1 x 2 x 3 box: z in [0, 3] exactly, so the layer counts below follow from the layer thickness.
+    ok("make box --elements 1 --size 1 2 3 --model --materials 2 -o box.json");
     write("notes.txt", "the user's own file\n");
   }
   // A failing run that must leave the whole temporary root (work folder and its parent) as it was.
@@ -70,15 +71,15 @@ class OutputFolderCli : public Cli {
 };
 
 TEST_F(OutputFolderCli, TheCurrentFolderTheInputsFolderAndTheirParentsAreRefused) {
-  refused("slice ball.json --out .", "is the current folder or contains it");
-  refused("slice ball.json --out . --force", "is the current folder or contains it");
-  refused("slice ball.json --out ..", "is the current folder or contains it");
-  refused("slice ball.json --out '" + work_.string() + "/'", "is the current folder or contains it");
+  refused("slice box.json --out .", "is the current folder or contains it");
+  refused("slice box.json --out . --force", "is the current folder or contains it");
+  refused("slice box.json --out ..", "is the current folder or contains it");
+  refused("slice box.json --out '" + work_.string() + "/'", "is the current folder or contains it");
   fs::create_directories(work_ / "models" / "deep");
-  fs::copy_file(work_ / "ball.json", work_ / "models" / "deep" / "ball.json");
-  refused("slice models/deep/ball.json --out models/deep --force", "is the folder of the input models/deep/ball.json");
-  refused("slice models/deep/ball.json --out models --force", "is the folder of the input models/deep/ball.json");
-  refused("solve poisson ball.json --out . --force", "is the current folder or contains it");
+  fs::copy_file(work_ / "box.json", work_ / "models" / "deep" / "box.json");
+  refused("slice models/deep/box.json --out models/deep --force", "is the folder of the input models/deep/box.json");
+  refused("slice models/deep/box.json --out models --force", "is the folder of the input models/deep/box.json");
+  refused("solve poisson box.json --out . --force", "is the current folder or contains it");
   // The parent of the work folder holds the captured outputs: nothing else may have appeared there.
   std::set<std::string> parent;
   for (const auto& e : fs::directory_iterator(root_)) parent.insert(e.path().filename().string());
@@ -87,24 +88,23 @@ TEST_F(OutputFolderCli, TheCurrentFolderTheInputsFolderAndTheirParentsAreRefused
 
 TEST_F(OutputFolderCli, AFileOrAForeignFolderIsNeverReplaced) {
   write("slices", "a file named like the output folder\n");
-  refused("slice ball.json --out slices --layer 1 --dpi 50", "exists and is not a folder");
-  refused("slice ball.json --out slices --layer 1 --dpi 50 --force", "exists and is not a folder");
+  refused("slice box.json --out slices --layer 1 --dpi 50", "exists and is not a folder");
+  refused("slice box.json --out slices --layer 1 --dpi 50 --force", "exists and is not a folder");
   fs::create_directory(work_ / "mine");
   write("mine/keep.txt", "keep me\n");
   write("mine/layer_00000.png", "not an image, but the user's\n");
-  refused("slice ball.json --out mine --layer 1 --dpi 50", "not empty and was not written by trivar");
+  refused("slice box.json --out mine --layer 1 --dpi 50", "not empty and was not written by trivar");
   refused("demo --out mine", "not empty and was not written by trivar");
 
   // --force adds trivar's files: its own names are replaced, everything else stays byte for byte.
-  ok("slice ball.json --out mine --layer 1 --dpi 50 --force");
+  ok("slice box.json --out mine --layer 1 --dpi 50 --force");
   EXPECT_EQ(slurp(work_ / "mine" / "keep.txt"), "keep me\n");
   EXPECT_NE(slurp(work_ / "mine" / "layer_00000.png").substr(1, 3), "not");  // replaced by a PNG
   EXPECT_EQ(slurp(work_ / "mine" / "layer_00000.png").substr(1, 3), "PNG");
-  // The radius-2 ball from z = -2 to 2 in 1 mm layers: 4 layers; the list names exactly what was written.
+  // z from 0 to 3 in 1 mm layers: 3 layers; the list names exactly what was written.
   const auto m = nlohmann::json::parse(slurp(work_ / "mine" / "manifest.json"));
-  ASSERT_EQ(m.at("layers").get<int>(), 4);
-  const std::set<std::string> written{"layer_00000.png", "layer_00001.png", "layer_00002.png", "layer_00003.png",
-                                      "manifest.json"};
+  ASSERT_EQ(m.at("layers").get<int>(), 3);
+  const std::set<std::string> written{"layer_00000.png", "layer_00001.png", "layer_00002.png", "manifest.json"};
   EXPECT_EQ(lines_of(work_ / "mine" / ".trivar-files"), written);
   std::set<std::string> all = written;
   all.insert({".trivar-files", "keep.txt"});
@@ -113,11 +113,11 @@ TEST_F(OutputFolderCli, AFileOrAForeignFolderIsNeverReplaced) {
 }
 
 TEST_F(OutputFolderCli, ARerunReplacesOnlyTrivarsOwnFiles) {
-  ok("slice ball.json --out s --layer 0.5 --dpi 50");
-  EXPECT_EQ(nlohmann::json::parse(slurp(work_ / "s" / "manifest.json")).at("layers").get<int>(), 8);
+  ok("slice box.json --out s --layer 0.5 --dpi 50");
+  EXPECT_EQ(nlohmann::json::parse(slurp(work_ / "s" / "manifest.json")).at("layers").get<int>(), 6);
   write("s/annotations.txt", "added by the user\n");
   // Fewer layers: the stale layer files trivar wrote go, the user's file stays.
-  ok("slice ball.json --out s --layer 2 --dpi 50");
+  ok("slice box.json --out s --layer 1.5 --dpi 50");
   EXPECT_EQ(nlohmann::json::parse(slurp(work_ / "s" / "manifest.json")).at("layers").get<int>(), 2);
   EXPECT_EQ(files_in(work_ / "s"), (std::set<std::string>{".trivar-files", "annotations.txt", "layer_00000.png",
                                                           "layer_00001.png", "manifest.json"}));
@@ -137,8 +137,8 @@ TEST_F(OutputFolderCli, ARerunReplacesOnlyTrivarsOwnFiles) {
 // Starts `trivar args` in the work folder, waits until its staging folder exists, sends `sig` and checks
 // that the process died of that signal and left nothing behind.
 void interrupt_slice(const fs::path& work, int sig) {
-  const std::vector<std::string> args{TRIVAR_CLI_PATH, "--threads", "2", "slice", "ball.json", "--out", "big",
-                                      "--layer", "0.01", "--dpi", "1200"};
+  const std::vector<std::string> args{TRIVAR_CLI_PATH, "--threads", "2", "slice", "box.json", "--out", "big",
+                                      "--layer", "0.01", "--dpi", "4000"};
   std::vector<char*> argv;
   for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);

@@ -4,6 +4,7 @@
 #include <cerrno>
 #include <csignal>
 #include <cstring>
+#include <ctime>
 #include <mutex>
 
 #include <dirent.h>
@@ -21,13 +22,16 @@ namespace {
 // 4096 slots leave room for one temporary file per thread at any thread count trivar accepts.
 constexpr std::size_t kSlots = 4096;
 std::array<std::atomic<const char*>, kSlots> g_slots{};
+// Set by the handler: threads still running create no new temporaries while it removes the old ones.
+std::atomic<bool> g_interrupted{false};
 
 // Removes everything under the open directory `dir` (then closes it), using system calls only: getdents64 into
 // a stack buffer instead of readdir, which may allocate. Depth is bounded because trivar's temporary folders are
 // at most two levels deep.
 void remove_contents(int dir, int depth) {
   alignas(8) char buf[4096];
-  for (;;) {
+  for (bool removed = true; removed;) {
+    removed = false;
     const long n = ::syscall(SYS_getdents64, dir, buf, sizeof buf);
     if (n <= 0) break;
     for (long off = 0; off < n;) {
@@ -46,12 +50,12 @@ void remove_contents(int dir, int depth) {
           const int sub = ::openat(dir, e->name, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
           if (sub >= 0) remove_contents(sub, depth - 1);
         }
-        ::unlinkat(dir, e->name, AT_REMOVEDIR);
+        removed |= ::unlinkat(dir, e->name, AT_REMOVEDIR) == 0;
       } else {
-        ::unlinkat(dir, e->name, 0);
+        removed |= ::unlinkat(dir, e->name, 0) == 0;
       }
     }
-    // Entries were removed while reading: start again from the beginning until the folder reads empty.
+    // Entries were removed while reading: read again from the beginning until nothing more can be removed.
     ::lseek(dir, 0, SEEK_SET);
   }
   ::close(dir);
@@ -59,14 +63,20 @@ void remove_contents(int dir, int depth) {
 
 void remove_path(const char* path) {
   if (::unlink(path) == 0) return;
-  const int dir = ::open(path, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
-  if (dir < 0) return;
-  remove_contents(dir, 4);
-  ::rmdir(path);
+  // Other threads may still finish a file they had started in the folder: empty it until it can go.
+  for (int attempt = 0; attempt < 200; ++attempt) {
+    const int dir = ::open(path, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+    if (dir < 0) return;
+    remove_contents(dir, 4);
+    if (::rmdir(path) == 0 || errno != ENOTEMPTY) return;
+    const timespec pause{0, 5'000'000};
+    ::nanosleep(&pause, nullptr);
+  }
 }
 
 extern "C" void on_interrupt(int sig) {
   const int saved = errno;
+  g_interrupted.store(true);
   for (auto& slot : g_slots)
     if (const char* p = slot.exchange(nullptr)) remove_path(p);
   errno = saved;
@@ -94,6 +104,8 @@ void install_interrupt_cleanup() {
 }
 
 TemporaryPath::TemporaryPath(std::string path) : path_(std::move(path)) {
+  if (g_interrupted.load())
+    for (;;) ::pause();  // the process ends as soon as the handler has removed the temporaries
   for (auto& slot : g_slots) {
     const char* expected = nullptr;
     if (slot.compare_exchange_strong(expected, path_.c_str())) {
