@@ -123,14 +123,6 @@ TEST_F(OutputFolderCli, ARerunReplacesOnlyTrivarsOwnFiles) {
                                                           "layer_00001.png", "manifest.json"}));
   EXPECT_EQ(slurp(work_ / "s" / "annotations.txt"), "added by the user\n");
 
-  // The demo reruns into its own folder, and its slices folder merges the same way.
-  ok("demo --out d");
-  write("d/slices/mine.txt", "x\n");
-  write("d/readme.txt", "y\n");
-  ok("demo --out d");
-  EXPECT_EQ(slurp(work_ / "d" / "slices" / "mine.txt"), "x\n");
-  EXPECT_EQ(slurp(work_ / "d" / "readme.txt"), "y\n");
-  EXPECT_TRUE(exists("d/ball.stl"));
   EXPECT_TRUE(leftovers(work_).empty());
 }
 

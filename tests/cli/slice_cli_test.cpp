@@ -35,8 +35,9 @@ TEST_F(SliceCli, GradedBallSlicesToPalettePngsWithAManifest) {
   EXPECT_EQ(numbers_after(r.out, "output: slices (").at(0), m.at("layers").get<double>());
   const int layers = m.at("layers").get<int>();
   const auto names = files_in(work_ / "slices");
-  ASSERT_EQ(names.size(), static_cast<std::size_t>(layers) + 1);  // the layers and the manifest
-  EXPECT_EQ(names.front(), "layer_00000.png");
+  ASSERT_EQ(names.size(), static_cast<std::size_t>(layers) + 2);  // the layers, the manifest and the file list
+  EXPECT_EQ(names.front(), ".trivar-files");
+  EXPECT_EQ(names[1], "layer_00000.png");
   EXPECT_EQ(m.at("materials").size(), 2u);
   EXPECT_EQ(m.at("materials")[1].at("palette_index"), 2);
   // 127 dpi: 0.2 mm pixels; inside pixels times the voxel volume approximate the ball.

@@ -35,7 +35,9 @@ std::set<std::string> owned_names(const fs::path& dir) {
   return names;
 }
 
-void write_owned_names(const fs::path& dir, const std::vector<std::string>& names) {
+// Sorted, so the list does not depend on the order in which threads finished their files.
+void write_owned_names(const fs::path& dir, std::vector<std::string> names) {
+  std::sort(names.begin(), names.end());
   std::ofstream out(dir / kOwnedFilesList);
   for (const std::string& n : names) out << n << '\n';
   require(static_cast<bool>(out), "cannot write " + (dir / kOwnedFilesList).string());
