@@ -86,7 +86,10 @@ void add_export_command(CLI::App& app, Context&) {
       return;
     }
     const ModelTessellation t = tessellate_boundary(m, {.chordal_tolerance = a->tolerance});
-    // Watertight is what the format promises a printer; an open mesh is written only when asked for.
+    // Watertight is what the format promises a printer; an open mesh is written only when asked for. An empty
+    // mesh is trivially closed but bounds nothing, so it is never written.
+    require(!t.mesh.triangles.empty(), "export: the boundary mesh of " + a->in +
+                                           " has no triangles (its cells enclose no volume); nothing written");
     const bool watertight = is_watertight(t.mesh);
     require(watertight || a->allow_open, "export: the boundary mesh of " + a->in + " is not watertight (" +
                                              std::to_string(t.mesh.triangles.size()) +

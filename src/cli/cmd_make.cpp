@@ -36,12 +36,14 @@ AnySpline box(const std::vector<int>& degrees, const std::vector<int>& elements,
   // Control points (D coordinates each) and knots, in double so huge counts cannot overflow; the spline is
   // built once more while it is written, so twice that.
   double points = 1, knots = 0;
-  std::string request = "make box: --elements";
+  std::string degree_list, counts;
   for (int k = 0; k < D; ++k) {
     points *= static_cast<double>(n[k]) + p[k];
     knots += static_cast<double>(n[k]) + 2.0 * p[k] + 1;
-    request += " " + std::to_string(n[k]);
+    degree_list += " " + std::to_string(p[k]);
+    counts += " " + std::to_string(n[k]);
   }
+  const std::string request = "make box: --degree" + degree_list + " --elements" + counts;
   require_memory(2 * (points * D + knots) * sizeof(double),
                  request + " (" + fmt(points) + " control points)");
   return make_block<D>(p, n, per_direction<double, D>(size, "--size"));

@@ -33,7 +33,12 @@ TEST_F(GuardsCli, AHugeBoxIsRefusedBeforeAllocating) {
   const Result r = run("make box --elements 2000 2000 2000 -o box.json");
   EXPECT_EQ(r.code, 1);
   const std::string e = error_of(r);
-  EXPECT_EQ(e.rfind("make box: --elements 2000 2000 2000 (8012006001 control points) would need ", 0), 0u) << e;
+  EXPECT_EQ(e.rfind("make box: --degree 1 1 1 --elements 2000 2000 2000 (8012006001 control points) would need ", 0), 0u)
+      << e;
+  // A huge degree is as huge a request: (1 + 1e9)^3 control points.
+  EXPECT_EQ(error_of(run("make box --degree 1000000000 -o box.json"))
+                .rfind("make box: --degree 1000000000 1000000000 1000000000 --elements 1 1 1 (1.000000003e+27 control points) would need ", 0),
+            0u);
   EXPECT_FALSE(exists("box.json"));
   fails("make box --elements 2000 2000 2000 -o box.json");
 }

@@ -110,6 +110,11 @@ TEST_F(OutputFolderCli, AFileOrAForeignFolderIsNeverReplaced) {
   all.insert({".trivar-files", "keep.txt"});
   EXPECT_EQ(files_in(work_ / "mine"), all);
   EXPECT_EQ(slurp(work_ / "notes.txt"), "the user's own file\n");
+
+  // An empty folder is as good as a new one.
+  fs::create_directory(work_ / "empty");
+  ok("slice box.json --out empty --layer 1 --dpi 50");
+  EXPECT_EQ(lines_of(work_ / "empty" / ".trivar-files"), written);
 }
 
 TEST_F(OutputFolderCli, ARerunReplacesOnlyTrivarsOwnFiles) {
