@@ -141,10 +141,14 @@ std::vector<Face> faces_on_side(const MultipatchSpace<D>& space, const std::stri
 }
 
 // The --out folder, under the rules of trivar/core/output_folder.hpp; files are staged until commit().
-std::unique_ptr<OutputFolder> prepare_out(const SolveArgs& a) {
+OutputFolderOptions out_options(const SolveArgs& a) {
   std::vector<std::string> inputs;
   if (!a.file.empty()) inputs.push_back(a.file);
-  return std::make_unique<OutputFolder>(a.out, OutputFolderOptions{"solve", inputs, a.force});
+  return {"solve", inputs, a.force};
+}
+
+std::unique_ptr<OutputFolder> prepare_out(const SolveArgs& a) {
+  return std::make_unique<OutputFolder>(a.out, out_options(a));
 }
 
 // Pieces of a VTU file, one per patch.
@@ -450,6 +454,7 @@ void run(const SolveArgs& a) {
   require(a.refine >= 1, "solve: --refine must be at least 1, got " + std::to_string(a.refine));
   require(a.problem.empty() != a.file.empty(), "solve: give either a model/spline file or --problem NAME");
   require(a.modes >= 1, "solve: --modes must be at least 1, got " + std::to_string(a.modes));
+  if (!a.out.empty()) check_output_folder(a.out, out_options(a));
   if (a.problem.empty()) {
     require(!a.study, "solve: --study needs a problem with an exact solution (--problem)");
     require(a.kind != "elasticity" || a.clamp != "none", "solve: static elasticity needs supports (--clamp)");

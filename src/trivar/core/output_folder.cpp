@@ -83,25 +83,30 @@ void merge(const fs::path& from, const fs::path& to, const std::vector<std::stri
 
 }  // namespace
 
-OutputFolder::OutputFolder(const std::string& target, OutputFolderOptions o) {
+fs::path check_output_folder(const std::string& target, const OutputFolderOptions& o) {
   const std::string what = o.command + ": output folder " + target;
   require(!target.empty(), o.command + ": the output folder name is empty");
-  target_ = fs::weakly_canonical(fs::absolute(target));
-  if (target_.filename().empty()) target_ = target_.parent_path();
+  fs::path folder = fs::weakly_canonical(fs::absolute(target));
+  if (folder.filename().empty()) folder = folder.parent_path();
   const fs::path cwd = fs::canonical(fs::current_path());
-  require(!contains(target_, cwd), what + " is the current folder or contains it; give a new folder");
+  require(!contains(folder, cwd), what + " is the current folder or contains it; give a new folder");
   for (const std::string& in : o.inputs) {
-    const fs::path folder = fs::weakly_canonical(fs::absolute(in)).parent_path();
-    require(!contains(target_, folder), what + " is the folder of the input " + in + " or contains it; give a new folder");
+    const fs::path input_folder = fs::weakly_canonical(fs::absolute(in)).parent_path();
+    require(!contains(folder, input_folder), what + " is the folder of the input " + in + " or contains it; give a new folder");
   }
-  const fs::file_status st = fs::status(target_);
+  const fs::file_status st = fs::status(folder);
   if (fs::exists(st)) {
     require(fs::is_directory(st), what + " exists and is not a folder");
-    const bool empty = fs::is_empty(target_), owned = fs::exists(target_ / kOwnedFilesList);
+    const bool empty = fs::is_empty(folder), owned = fs::exists(folder / kOwnedFilesList);
     require(empty || owned || o.force,
             what + " is not empty and was not written by trivar; give --force to add trivar's files to it "
                    "(nothing else in it is touched) or choose a new folder");
   }
+  return folder;
+}
+
+OutputFolder::OutputFolder(const std::string& target, const OutputFolderOptions& o)
+    : target_(check_output_folder(target, o)) {
   fs::create_directories(target_.parent_path());
   staging_ = target_.parent_path() / (target_.filename().string() + ".partial-" + std::to_string(::getpid()));
   std::error_code ec;

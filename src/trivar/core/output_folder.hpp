@@ -28,10 +28,14 @@ struct OutputFolderOptions {
   bool force = false;               // write into a non-empty folder that trivar did not write
 };
 
+// The rules above checked without creating anything, so that a long computation can refuse a bad output folder
+// before it starts; returns the target's absolute path. Throws trivar::Error naming the folder.
+std::filesystem::path check_output_folder(const std::string& target, const OutputFolderOptions& options);
+
 class OutputFolder {
  public:
   // Checks the rules above and creates the staging folder; throws trivar::Error naming the folder otherwise.
-  OutputFolder(const std::string& target, OutputFolderOptions options);
+  OutputFolder(const std::string& target, const OutputFolderOptions& options);
   // Without commit(), removes the staging folder and everything in it.
   ~OutputFolder();
   OutputFolder(const OutputFolder&) = delete;
