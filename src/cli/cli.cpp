@@ -12,11 +12,7 @@
 
 namespace trivar::cli {
 
-bool is_step_file(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext == ".stp" || ext == ".step" || ext == ".p21";
-}
+bool is_step_file(const std::string& path) { return io::format_of(path) == io::FileFormat::step; }
 
 std::vector<AnySpline> read_objects(const std::string& path) { return io::read_spline_file(path); }
 

@@ -11,6 +11,7 @@
 
 #include "trivar/am/dithering.hpp"
 #include "trivar/am/slicer.hpp"
+#include "trivar/core/output_folder.hpp"
 #include "trivar/model/vmodel.hpp"
 #include "trivar/spline/any_spline.hpp"
 
@@ -79,11 +80,14 @@ std::optional<VModel> read_model_if_any(const std::string& path);
 VModel read_model(const std::string& path, const std::string& command);
 // The model's materials, or one neutral material "part" when it has none.
 MaterialTable materials_or_default(const VModel& m);
-// Slices a model with materials into DIR (replaced; written through a temporary directory): per layer a palette
-// PNG (or one 1-bit PNG per material) of the dithered materials, and manifest.json. `source` names the model
-// in messages and the manifest. Throws trivar::Error for a model without materials or bad options.
+// Slices a model with materials into the output folder DIR (trivar/core/output_folder.hpp: a fresh folder, one
+// trivar wrote before, or with `folder.force` any folder; only trivar's file names are ever replaced): per layer
+// a palette PNG (or one 1-bit PNG per material) of the dithered materials, and manifest.json. `source` names the
+// model in the manifest. Throws trivar::Error "<folder.command>: ..." for a model without materials, a z range
+// outside the model, more memory than available, or bad options.
 am::SliceSummary slice_to_directory(const VModel& model, const am::SliceOptions& opts, const std::string& dir,
-                                    bool per_material, am::DitherMethod method, const std::string& source);
+                                    bool per_material, am::DitherMethod method, const std::string& source,
+                                    const OutputFolderOptions& folder);
 // Prints a V-model's description (text, or one JSON document).
 void print_model_info(const std::string& path, const VModel& model, bool json);
 

@@ -1,4 +1,4 @@
-// trivar demo [--out DIR]: the library end to end. Part 1 builds an exact NURBS volume of revolution, refines
+// trivar demo [--out DIR] [--force] [--allow-open]: the library end to end. Part 1 builds an exact NURBS volume of revolution, refines
 // it, certifies its Jacobian, verifies its volume and radii against closed forms and writes files for
 // ParaView. Part 2 is the additive-manufacturing job: a graded 7-cell ball whose two materials blend from the
 // centre to the surface is built, certified, sliced into printer bitmaps and exported as 3MF and STL.
@@ -54,7 +54,8 @@ double max_radius_error(const SplineVolume& s, double r0, double r1, int samples
 }
 
 // Part 2: a graded ball of radius 5 mm, material M1 at the centre blending linearly into M2 at the surface.
-void graded_ball_demo(const std::filesystem::path& dir, Context& ctx) {
+// `out` stages the files; `dir` is where they end up, as the messages name them.
+void graded_ball_demo(OutputFolder& out, const std::filesystem::path& dir, bool allow_open, Context& ctx) {
   const double radius = 5.0;
   VModel ball;
   for (const auto& cell : make_ball({.radius = radius})) ball.add_cell(VCell(cell));
@@ -74,21 +75,26 @@ void graded_ball_demo(const std::filesystem::path& dir, Context& ctx) {
 
   const std::string model_file = (dir / "ball.json").string(), mf3 = (dir / "ball.3mf").string(),
                     stl = (dir / "ball.stl").string(), slices = (dir / "slices").string();
-  io::write_vmodel(model_file, ball);
+  io::write_vmodel(out.path("ball.json").string(), ball);
   const ModelTessellation mesh = tessellate_boundary(ball, {.chordal_tolerance = 0.01});
+  const bool watertight = is_watertight(mesh.mesh);
+  require(watertight || allow_open, "demo: the boundary mesh of the graded ball is not watertight; no files "
+                                    "written (--allow-open keeps them)");
   std::vector<double> fractions;
   for (std::size_t v = 0; v < mesh.cell.size(); ++v) {
     double f[2];
     ball.eval_attribute(mesh.cell[v], "material", mesh.param[v], f);
     fractions.insert(fractions.end(), f, f + 2);
   }
-  io::write_3mf(mf3, mesh.mesh, ball.materials(), fractions);
-  io::write_stl(stl, mesh.mesh);
+  io::write_3mf(out.path("ball.3mf").string(), mesh.mesh, ball.materials(), fractions);
+  io::write_stl(out.path("ball.stl").string(), mesh.mesh);
   am::SliceOptions opts;
   opts.layer_thickness = 0.1;
   opts.threads = ctx.threads;
   const am::SliceSummary s =
-      slice_to_directory(ball, opts, slices, false, am::DitherMethod::error_diffusion, model_file);
+      slice_to_directory(ball, opts, out.path("slices").string(), false, am::DitherMethod::error_diffusion,
+                         model_file, {"demo", {}, false});
+  out.commit();
   char middle[32];
   std::snprintf(middle, sizeof middle, "layer_%05d.png", s.layers / 2);
 
@@ -99,7 +105,7 @@ void graded_ball_demo(const std::filesystem::path& dir, Context& ctx) {
   std::printf("  Jacobian     %s for every cell: min det J >= %.6g\n", valid ? "valid" : "NOT certified", min_det);
   std::printf("  volume       %.15g, exact %.15g (relative error %.1e)\n", volume, exact, std::abs(volume - exact) / exact);
   std::printf("  boundary     %zu triangles, watertight %s, chordal tolerance 0.01 mm\n", mesh.mesh.triangles.size(),
-              is_watertight(mesh.mesh) ? "yes" : "NO");
+              watertight ? "yes" : "NO");
   std::printf("  slices       %s\n", am::format_summary(s).c_str());
   std::printf("outputs:\n");
   std::printf("  %s  the V-model (try: trivar info %s)\n", model_file.c_str(), model_file.c_str());
@@ -114,9 +120,16 @@ void graded_ball_demo(const std::filesystem::path& dir, Context& ctx) {
 
 void add_demo_command(CLI::App& app, Context& ctx) {
   auto* cmd = app.add_subcommand("demo", "Build, refine, check and export a NURBS volume of revolution; build, slice and export a graded ball");
-  auto out = std::make_shared<std::string>("out/demo");
-  cmd->add_option("--out", *out, "Output directory")->capture_default_str();
-  cmd->callback([out, &ctx] {
+  struct Args {
+    std::string out = "out/demo";
+    bool force = false, allow_open = false;
+  };
+  auto a = std::make_shared<Args>();
+  cmd->add_option("--out", a->out, "Output folder: new, empty, or written by trivar before (see --force)")
+      ->capture_default_str();
+  cmd->add_flag("--force", a->force, "Write into a non-empty folder trivar did not write (only trivar's file names are replaced)");
+  cmd->add_flag("--allow-open", a->allow_open, "Keep the outputs when the boundary mesh is not watertight");
+  cmd->callback([a, &ctx] {
     const double r0 = 1.0, r1 = 2.0, height = 1.0, degrees = 270.0;
     const int parts = 2;
     const double angle = degrees / 180.0 * kPi;
@@ -129,19 +142,19 @@ void add_demo_command(CLI::App& app, Context& ctx) {
     const double exact = angle / 2 * (r1 * r1 - r0 * r0) * height;
     const double radius_error = max_radius_error(model, r0, r1, 21, ctx.threads);
 
-    const std::filesystem::path dir(*out);
-    std::filesystem::create_directories(dir);
+    const std::filesystem::path dir(a->out);
+    OutputFolder out(a->out, {"demo", {}, a->force});
     const std::string json = (dir / "ring.json").string(), vtu = (dir / "ring.vtu").string(),
                       bezier = (dir / "ring_bezier.vtu").string(), net = (dir / "ring_net.vtu").string();
-    io::write_spline_file(json, {AnySpline(model)});
+    io::write_spline_file(out.path("ring.json").string(), {AnySpline(model)});
     const io::VtkPointField det_j{"detJ", 1, [&model](int, std::span<const double> u, std::span<double> v) {
                                     double d[derivative_count(3, 1) * 3];
                                     model.eval_derivs({u[0], u[1], u[2]}, 1, d);
                                     v[0] = jacobian_determinant(d + 3);
                                   }};
-    io::write_vtu(vtu, model, io::VtkOptions{io::VtkCells::sampled, 4}, {det_j});
-    io::write_vtu(bezier, model, io::VtkOptions{io::VtkCells::bezier});
-    io::write_vtu(net, model, io::VtkOptions{io::VtkCells::control_net});
+    io::write_vtu(out.path("ring.vtu").string(), model, io::VtkOptions{io::VtkCells::sampled, 4}, {det_j});
+    io::write_vtu(out.path("ring_bezier.vtu").string(), model, io::VtkOptions{io::VtkCells::bezier});
+    io::write_vtu(out.path("ring_net.vtu").string(), model, io::VtkOptions{io::VtkCells::control_net});
 
     std::printf("trivar demo: exact NURBS volume of revolution\n");
     std::printf("  profile      rectangle r in [%s, %s], z in [0, %s], degree 2 x 2, swept %s degrees about z\n",
@@ -163,7 +176,7 @@ void add_demo_command(CLI::App& app, Context& ctx) {
     std::printf("  %s  exact rational Bezier cells, for ParaView\n", bezier.c_str());
     std::printf("  %s  control net, for ParaView\n", net.c_str());
     if (!jac.valid) ctx.exit_code = jac.invalid ? kInvalid : kUndecided;
-    graded_ball_demo(dir, ctx);
+    graded_ball_demo(out, dir, a->allow_open, ctx);
   });
 }
 

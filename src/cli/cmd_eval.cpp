@@ -1,5 +1,7 @@
-// trivar eval FILE u [v [w]] [--derivs K]: value and partial derivatives at one parameter (LR splines: K <= 1).
+// trivar eval FILE u [v [w]] [--derivs K] [--object N]: value and partial derivatives at one parameter (LR
+// splines: K <= 1) of the file's single object, or of object N (0-based, as `info` numbers them).
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <variant>
@@ -56,6 +58,21 @@ void evaluate(const Spline<D>& s, const std::vector<double>& params, int order) 
   }
 }
 
+// Object `index` of `objects` (0-based), or the only one when no index is given.
+template <class T>
+const T& pick(const std::vector<T>& objects, const std::optional<int>& index, const std::string& file) {
+  const std::string count = std::to_string(objects.size()) + " object" + (objects.size() == 1 ? "" : "s");
+  if (!index) {
+    require(objects.size() == 1, "eval: " + file + " holds " + count + "; choose one with --object N (0 to " +
+                                     std::to_string(static_cast<long>(objects.size()) - 1) + ")");
+    return objects.front();
+  }
+  require(*index >= 0 && static_cast<std::size_t>(*index) < objects.size(),
+          "eval: --object " + std::to_string(*index) + " is out of range: " + file + " holds " + count +
+              (objects.empty() ? "" : ", numbered 0 to " + std::to_string(objects.size() - 1)));
+  return objects[static_cast<std::size_t>(*index)];
+}
+
 }  // namespace
 
 void add_eval_command(CLI::App& app, Context&) {
@@ -64,21 +81,21 @@ void add_eval_command(CLI::App& app, Context&) {
     std::string file;
     std::vector<double> params;
     int derivs = 0;
+    std::optional<int> object;
   };
   auto a = std::make_shared<Args>();
-  cmd->add_option("FILE", a->file, "Spline file with one object (.json, .g2, or LR: .lr, .g2, .json)")->required();
+  cmd->add_option("FILE", a->file, "Spline file (.json, .g2, or LR: .lr, .g2, .json)")->required();
   cmd->add_option("PARAMS", a->params, "Parameters u [v [w]], one per parametric direction")->required()->expected(1, 3);
   cmd->add_option("--derivs", a->derivs, "Also print all partial derivatives up to this total order")
       ->check(CLI::Range(0, kMaxDerivativeOrder));
+  cmd->add_option("--object", a->object, "Object to evaluate, 0-based as numbered by `info` (default: the only one)");
   cmd->callback([a] {
+    const auto eval = [&](const auto& spline) { evaluate(spline, a->params, a->derivs); };
     if (const auto lr = read_lr_if_any(a->file)) {
-      require(lr->size() == 1, "eval: " + a->file + " holds " + std::to_string(lr->size()) +
-                                   " objects; this command takes a file with exactly one");
-      std::visit([&](const auto& spline) { evaluate(spline, a->params, a->derivs); }, lr->front());
+      std::visit(eval, pick(*lr, a->object, a->file));
       return;
     }
-    const AnySpline s = read_single(a->file, "eval");
-    std::visit([&](const auto& spline) { evaluate(spline, a->params, a->derivs); }, s);
+    std::visit(eval, pick(read_objects(a->file), a->object, a->file));
   });
 }
 

@@ -1,4 +1,4 @@
-// trivar export MODEL OUT [--tolerance t]: the boundary of a V-model (or of volumes) for manufacturing as
+// trivar export MODEL OUT [--tolerance t] [--allow-open]: the boundary of a V-model (or of volumes) for manufacturing as
 // binary STL, watertight by construction, as 3MF or AMF with the material grading, or the cells with their
 // attributes as VTK.
 #include <algorithm>
@@ -67,6 +67,7 @@ void add_export_command(CLI::App& app, Context&) {
   struct Args {
     std::string in, out;
     double tolerance = 0.01;
+    bool allow_open = false;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("MODEL", a->in, "V-model (.json) or spline file with volumes (.json, .g2)")->required();
@@ -74,6 +75,7 @@ void add_export_command(CLI::App& app, Context&) {
   cmd->add_option("--tolerance", a->tolerance, "Chordal tolerance in model units")
       ->check(positive())
       ->capture_default_str();
+  cmd->add_flag("--allow-open", a->allow_open, "Write the mesh even when it is not watertight (otherwise an error)");
   cmd->callback([a] {
     const std::string ext = std::filesystem::path(a->out).extension().string();
     require(ext == ".stl" || ext == ".vtu" || ext == ".3mf" || ext == ".amf",
@@ -84,6 +86,14 @@ void add_export_command(CLI::App& app, Context&) {
       return;
     }
     const ModelTessellation t = tessellate_boundary(m, {.chordal_tolerance = a->tolerance});
+    // Watertight is what the format promises a printer; an open mesh is written only when asked for. An empty
+    // mesh is trivially closed but bounds nothing, so it is never written.
+    require(!t.mesh.triangles.empty(), "export: the boundary mesh of " + a->in +
+                                           " has no triangles (its cells enclose no volume); nothing written");
+    const bool watertight = is_watertight(t.mesh);
+    require(watertight || a->allow_open, "export: the boundary mesh of " + a->in + " is not watertight (" +
+                                             std::to_string(t.mesh.triangles.size()) +
+                                             " triangles); nothing written (--allow-open writes it anyway)");
     if (ext == ".stl") {
       io::write_stl(a->out, t.mesh);
     } else {
@@ -95,7 +105,7 @@ void add_export_command(CLI::App& app, Context&) {
         io::write_amf(a->out, t.mesh, mats, amf_grading(m, mats.size()), f);
     }
     std::printf("%s: %zu triangles, %zu vertices, watertight %s, enclosed volume %s\n", a->out.c_str(),
-                t.mesh.triangles.size(), t.mesh.vertices.size(), is_watertight(t.mesh) ? "yes" : "no",
+                t.mesh.triangles.size(), t.mesh.vertices.size(), watertight ? "yes" : "no",
                 fmt(enclosed_volume(t.mesh)).c_str());
   });
 }

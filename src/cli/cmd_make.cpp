@@ -8,6 +8,7 @@
 #include "cli.hpp"
 #include "lr_cli.hpp"
 #include "trivar/core/error.hpp"
+#include "trivar/core/memory_budget.hpp"
 #include "trivar/io/spline_file.hpp"
 #include "trivar/model/block.hpp"
 #include "trivar/model/revolve.hpp"
@@ -30,8 +31,22 @@ std::array<T, D> per_direction(const std::vector<T>& v, const char* option) {
 
 template <int D>
 AnySpline box(const std::vector<int>& degrees, const std::vector<int>& elements, const std::vector<double>& size) {
-  return make_block<D>(per_direction<int, D>(degrees, "--degree"), per_direction<int, D>(elements, "--elements"),
-                       per_direction<double, D>(size, "--size"));
+  const auto p = per_direction<int, D>(degrees, "--degree");
+  const auto n = per_direction<int, D>(elements, "--elements");
+  // Control points (D coordinates each) and knots, in double so huge counts cannot overflow; the spline is
+  // built once more while it is written, so twice that.
+  double points = 1, knots = 0;
+  std::string degree_list, counts;
+  for (int k = 0; k < D; ++k) {
+    points *= static_cast<double>(n[k]) + p[k];
+    knots += static_cast<double>(n[k]) + 2.0 * p[k] + 1;
+    degree_list += " " + std::to_string(p[k]);
+    counts += " " + std::to_string(n[k]);
+  }
+  const std::string request = "make box: --degree" + degree_list + " --elements" + counts;
+  require_memory(2 * (points * D + knots) * sizeof(double),
+                 request + " (" + fmt(points) + " control points)");
+  return make_block<D>(p, n, per_direction<double, D>(size, "--size"));
 }
 
 void add_box(CLI::App& make) {

@@ -2,6 +2,7 @@
 // [--adaptive --steps K --beta B] [--out DIR]:
 // isogeometric analysis on a spline volume (or planar surface) or on a built-in benchmark problem.
 #include <cstdio>
+#include <memory>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -51,6 +52,7 @@ struct SolveArgs {
   double beta = 0.3;
   std::string solver = "cg";
   std::string out;
+  bool force = false;
   int threads = 0;
 };
 
@@ -138,12 +140,15 @@ std::vector<Face> faces_on_side(const MultipatchSpace<D>& space, const std::stri
   return faces;
 }
 
-std::filesystem::path prepare_out(const SolveArgs& a) {
-  std::filesystem::path dir(a.out);
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  require(!ec, "solve: cannot create output directory " + a.out + ": " + ec.message());
-  return dir;
+// The --out folder, under the rules of trivar/core/output_folder.hpp; files are staged until commit().
+OutputFolderOptions out_options(const SolveArgs& a) {
+  std::vector<std::string> inputs;
+  if (!a.file.empty()) inputs.push_back(a.file);
+  return {"solve", inputs, a.force};
+}
+
+std::unique_ptr<OutputFolder> prepare_out(const SolveArgs& a) {
+  return std::make_unique<OutputFolder>(a.out, out_options(a));
 }
 
 // Pieces of a VTU file, one per patch.
@@ -274,12 +279,13 @@ void run_static(const SolveArgs& a, const std::function<Discretisation<D>(int)>&
     std::printf("elements %d: L2 rate %.2f, H1 rate %.2f\n", rows[i].elements, observed_rate(rows, i, D, false),
                 observed_rate(rows, i, D, true));
   if (!a.out.empty()) {
-    const auto dir = prepare_out(a);
-    write_solution<D>(dir / "solution.vtu", *last, coefs);
+    const auto out = prepare_out(a);
+    write_solution<D>(out->path("solution.vtu"), *last, coefs);
     if (a.study) {
-      write_convergence_csv((dir / "convergence.csv").string(), rows, D);
-      write_convergence_svg((dir / "convergence.svg").string(), rows);
+      write_convergence_csv(out->path("convergence.csv").string(), rows, D);
+      write_convergence_svg(out->path("convergence.svg").string(), rows);
     }
+    out->commit();
   }
 }
 
@@ -354,11 +360,12 @@ void run_adaptive(const SolveArgs& a, const PoissonBenchmark<D>& b) {
       },
       &coefs, a.threads);
   if (!a.out.empty()) {
-    const auto dir = prepare_out(a);
-    write_convergence_csv((dir / "convergence.csv").string(), rows, D);
-    write_convergence_svg((dir / "convergence.svg").string(), rows);
-    io::write_lr_vtu((dir / "mesh.vtu").string(), AnyLRSpline(lr));
-    write_lr_solution<D>(dir / "solution.vtu", lr, b, coefs, a.threads);
+    const auto out = prepare_out(a);
+    write_convergence_csv(out->path("convergence.csv").string(), rows, D);
+    write_convergence_svg(out->path("convergence.svg").string(), rows);
+    io::write_lr_vtu(out->path("mesh.vtu").string(), AnyLRSpline(lr));
+    write_lr_solution<D>(out->path("solution.vtu"), lr, b, coefs, a.threads);
+    out->commit();
   }
 }
 
@@ -419,7 +426,9 @@ void modes(const SolveArgs& a, const MultipatchSpace<D>& space, const Elasticity
     std::vector<io::VtkPointField> vtk;
     for (int i = 0; i < a.modes; ++i)
       vtk.push_back(spline_field<D>("mode_" + std::to_string(i + 1), fields[static_cast<std::size_t>(i)]));
-    io::write_vtu((prepare_out(a) / "modes.vtu").string(), patch_pieces(space), {}, vtk);
+    const auto out = prepare_out(a);
+    io::write_vtu(out->path("modes.vtu").string(), patch_pieces(space), {}, vtk);
+    out->commit();
   }
 }
 
@@ -445,6 +454,7 @@ void run(const SolveArgs& a) {
   require(a.refine >= 1, "solve: --refine must be at least 1, got " + std::to_string(a.refine));
   require(a.problem.empty() != a.file.empty(), "solve: give either a model/spline file or --problem NAME");
   require(a.modes >= 1, "solve: --modes must be at least 1, got " + std::to_string(a.modes));
+  if (!a.out.empty()) check_output_folder(a.out, out_options(a));
   if (a.problem.empty()) {
     require(!a.study, "solve: --study needs a problem with an exact solution (--problem)");
     require(a.kind != "elasticity" || a.clamp != "none", "solve: static elasticity needs supports (--clamp)");
@@ -529,7 +539,9 @@ void add_solve_command(CLI::App& app, Context& ctx) {
   cmd->add_option("--steps", a->steps, "Adaptive steps (solves)")->default_val(5);
   cmd->add_option("--beta", a->beta, "Dorfler marking fraction in (0, 1]")->default_val(0.3);
   cmd->add_option("--solver", a->solver, "cg, cg-ichol or cholmod")->default_val("cg");
-  cmd->add_option("--out", a->out, "Directory for solution.vtu / modes.vtu, convergence.csv and .svg");
+  cmd->add_option("--out", a->out, "Folder for solution.vtu / modes.vtu, convergence.csv and .svg: new, empty, "
+                                   "or written by trivar before (see --force)");
+  cmd->add_flag("--force", a->force, "Write into a non-empty folder trivar did not write (only trivar's file names are replaced)");
   cmd->callback([a, &ctx] {
     a->threads = ctx.threads;
     run(*a);

@@ -2,6 +2,7 @@
 // "trivar: error: ..." on stderr and a non-zero exit code (see ExitCode in cli.hpp).
 #include <cstdio>
 #include <exception>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -10,8 +11,18 @@
 
 #include "cli.hpp"
 #include "trivar/core/error.hpp"
+#include "trivar/core/interrupt_cleanup.hpp"
+#include "trivar/core/out_of_memory_reserve.hpp"
 
 namespace {
+
+// More threads than any machine trivar runs on has cores, and far below where the OpenMP runtime fails to
+// create them.
+constexpr int kMaxThreads = 1024;
+
+// Room for destructors that allocate while a std::bad_alloc unwinds (out_of_memory_reserve.hpp): enough for
+// nlohmann::json to destroy an array of 16 million control points.
+constexpr std::size_t kOutOfMemoryReserve = std::size_t{256} << 20;
 
 // Messages are one line by contract; foreign exceptions (parsers, the standard library) are folded to one.
 void print_error(std::string message) {
@@ -29,8 +40,14 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("trivar ") + TRIVAR_VERSION);
   app.require_subcommand(1);
   app.fallthrough();
-  app.add_option("--threads", ctx.threads, "Threads for batch work (0: all available)")
+  app.add_option("--threads", ctx.threads, "Threads for batch work (0: all available, at most 1024)")
       ->check(at_least(0))
+      ->check(CLI::Validator(
+          [](std::string& n) {
+            return std::stod(n) <= kMaxThreads ? std::string()
+                                               : "must be at most " + std::to_string(kMaxThreads) + ", got " + n;
+          },
+          "<= 1024"))
       ->each([](const std::string& n) {
         // Batch loops use OpenMP's default thread count when not told otherwise.
         if (const int t = std::stoi(n); t > 0) omp_set_num_threads(t);
@@ -49,6 +66,15 @@ int main(int argc, char** argv) {
   add_demo_command(app, ctx);
   add_solve_command(app, ctx);
 
+  trivar::install_interrupt_cleanup();
+  trivar::install_out_of_memory_reserve(kOutOfMemoryReserve);
+  // The subcommand being run, for messages that have no other context.
+  const auto command = [&app] {
+    std::string name;
+    for (const CLI::App* node = &app; !node->get_subcommands().empty(); node = node->get_subcommands().front())
+      name += (name.empty() ? "" : " ") + node->get_subcommands().front()->get_name();
+    return name;
+  };
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -66,6 +92,9 @@ int main(int argc, char** argv) {
     return kUsage;
   } catch (const trivar::Error& e) {
     print_error(e.what());
+    return kBadInput;
+  } catch (const std::bad_alloc&) {
+    print_error(command() + ": out of memory (the request is larger than the memory available)");
     return kBadInput;
   } catch (const std::exception& e) {
     print_error(e.what());

@@ -65,8 +65,10 @@ protected:
 
   // Runs `trivar args` in the work directory; stdout and stderr are captured outside it so that the work
   // directory holds only what the tool wrote.
-  Result run(const std::string& args) const {
-    const std::string cmd = "cd '" + work_.string() + "' && '" TRIVAR_CLI_PATH "' " + args + " > '" +
+  Result run(const std::string& args) const { return run_after("", args); }
+  // As run(), after the shell commands `setup` (e.g. "ulimit -v 100000; ") in the same shell.
+  Result run_after(const std::string& setup, const std::string& args) const {
+    const std::string cmd = "cd '" + work_.string() + "' && " + setup + "'" TRIVAR_CLI_PATH "' " + args + " > '" +
                             (root_ / "stdout").string() + "' 2> '" + (root_ / "stderr").string() + "'";
     const int status = std::system(cmd.c_str());
     Result r;

@@ -1,5 +1,7 @@
 // Runs the built `trivar` binary in a temporary directory and checks its outputs, exit codes and error
 // messages. Reference values come from the models' closed forms (box: x = size * u; revolution: exact radii).
+#include <numbers>
+
 #include "cli/cli_fixture.hpp"
 
 using namespace cli_test;
@@ -157,7 +159,21 @@ TEST_F(Cli, BadInputGivesOneErrorLineAndNoOutput) {
 
 TEST_F(Cli, DemoWritesItsOutputs) {
   const Result r = ok("demo --out demo_out");
-  EXPECT_NE(r.out.find("valid"), std::string::npos) << r.out;
+  // Ring r in [1, 2], height 1, swept 270 degrees: volume 3 pi / 4 * (2^2 - 1^2) = 9 pi / 4.
+  const std::vector<double> volume = numbers_after(r.out, "  volume");
+  ASSERT_GE(volume.size(), 1u);
+  EXPECT_NEAR(volume[0], 9 * std::numbers::pi / 4, 1e-12);
+  // Graded ball of radius 5 (the second "volume" line): 4/3 pi 5^3, exact up to quadrature rounding.
+  const auto out_lines = lines(r.out);
+  const auto ball = std::find_if(out_lines.rbegin(), out_lines.rend(),
+                                 [](const std::string& l) { return l.rfind("  volume", 0) == 0; });
+  ASSERT_NE(ball, out_lines.rend());
+  // Gauss quadrature of a rational integrand is not exact, but a wrong model would be off by far more.
+  EXPECT_NEAR(numbers_after(*ball, "  volume").at(0), 500 * std::numbers::pi / 3, 1e-10 * 500 * std::numbers::pi / 3);
+  // The demo's files list exactly what it wrote, sorted.
+  EXPECT_EQ(lines(slurp(work_ / "demo_out" / ".trivar-files")),
+            (std::vector<std::string>{"ball.3mf", "ball.json", "ball.stl", "ring.json", "ring.vtu", "ring_bezier.vtu",
+                                      "ring_net.vtu", "slices"}));
   for (const char* f : {"demo_out/ring.json", "demo_out/ring.vtu", "demo_out/ring_bezier.vtu", "demo_out/ring_net.vtu",
                         "demo_out/ball.json", "demo_out/ball.3mf", "demo_out/ball.stl", "demo_out/slices/manifest.json",
                         "demo_out/slices/layer_00000.png"})
@@ -165,12 +181,20 @@ TEST_F(Cli, DemoWritesItsOutputs) {
   EXPECT_EQ(lines(ok("check demo_out/ring.json").out).at(0), "valid");
   EXPECT_NE(r.out.find("Jacobian     valid for every cell"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("watertight yes"), std::string::npos) << r.out;
+  // A rerun into its own folder replaces its files and keeps the user's, in the slices folder too.
+  write("demo_out/notes.txt", "mine\n");
+  write("demo_out/slices/mine.txt", "also mine\n");
+  const std::string one = ok("--threads 1 demo --out demo_out").out;
+  EXPECT_EQ(slurp(work_ / "demo_out" / "notes.txt"), "mine\n");
+  EXPECT_EQ(slurp(work_ / "demo_out" / "slices" / "mine.txt"), "also mine\n");
   // Same results whatever the thread count (timings aside): the ring report and every slice file.
-  const std::string one = ok("--threads 1 demo --out one").out, two = ok("--threads 2 demo --out two").out;
+  const std::string two = ok("--threads 2 demo --out two").out;
   EXPECT_EQ(one.substr(0, one.find("outputs:")), two.substr(0, two.find("outputs:")));
-  for (const auto& e : fs::directory_iterator(work_ / "one" / "slices"))
-    if (e.path().filename() != "manifest.json")
-      EXPECT_EQ(slurp(e.path()), slurp(work_ / "two" / "slices" / e.path().filename())) << e.path();
+  for (const auto& e : fs::directory_iterator(work_ / "two" / "slices")) {
+    if (e.path().filename() != "manifest.json") {
+      EXPECT_EQ(slurp(e.path()), slurp(work_ / "demo_out" / "slices" / e.path().filename())) << e.path();
+    }
+  }
 }
 
 TEST_F(Cli, ExamplesBehaveAsDocumented) {
@@ -186,4 +210,44 @@ TEST_F(Cli, ExamplesBehaveAsDocumented) {
   EXPECT_NEAR(x[0], 1.5 * std::sqrt(0.5), 1e-15);
   EXPECT_NEAR(x[1], 1.5 * std::sqrt(0.5), 1e-15);
   EXPECT_NEAR(x[2], 0.25, 1e-15);
+}
+
+TEST_F(Cli, EvalPicksAnObjectOfAMultiObjectFile) {
+  // Object 1 is the unit cube moved by (10, 0, 0): S(u, v, w) = (10 + u, v, w).
+  nlohmann::json a = nlohmann::json::parse(unit_cube_json(false)), b = a;
+  a.erase("trivar");
+  b.erase("trivar");
+  for (auto& p : b["control_points"]) p[0] = p[0].get<double>() + 10;
+  write("two.json", nlohmann::json{{"trivar", 1}, {"objects", {a, b}}}.dump());
+  EXPECT_EQ(numbers_after(ok("eval two.json 0.25 0.5 0.75 --object 0").out, "S"),
+            (std::vector<double>{0.25, 0.5, 0.75}));
+  EXPECT_EQ(numbers_after(ok("eval two.json 0.25 0.5 0.75 --object 1").out, "S"),
+            (std::vector<double>{10.25, 0.5, 0.75}));
+  EXPECT_EQ(lines(run("eval two.json 0.25 0.5 0.75 --object 2").err).at(0),
+            "trivar: error: eval: --object 2 is out of range: two.json holds 2 objects, numbered 0 to 1");
+  EXPECT_EQ(lines(run("eval two.json 0.25 0.5 0.75").err).at(0),
+            "trivar: error: eval: two.json holds 2 objects; choose one with --object N (0 to 1)");
+  fails("eval two.json 0.25 0.5 0.75 --object -1");
+}
+
+TEST_F(Cli, EveryExtensionTheErrorNamesIsAccepted) {
+  write("cube.json", unit_cube_json(false));
+  const std::string err = lines(run("eval cube.xyz 0.5 0.5 0.5").err).at(0);
+  const std::string head = "trivar: error: cube.xyz: unknown spline file extension '.xyz' (expected ";
+  ASSERT_EQ(err.rfind(head, 0), 0u) << err;
+  // ".json, .g2, .lr, .stp, .step or .p21)": every name starting with a dot.
+  std::vector<std::string> extensions;
+  std::string rest = err.substr(head.size());
+  for (std::size_t p = rest.find('.'); p != std::string::npos; p = rest.find('.', p + 1)) {
+    const std::size_t end = rest.find_first_of(",) ", p);
+    extensions.push_back(rest.substr(p, end - p));
+    p = end;
+  }
+  EXPECT_EQ(extensions, (std::vector<std::string>{".json", ".g2", ".lr", ".stp", ".step", ".p21"}));
+  for (const std::string& ext : extensions) {
+    if (ext != ".json") ok("convert cube.json cube" + ext);
+    // The identity cube: S(u, v, w) = (u, v, w) whatever the format.
+    EXPECT_EQ(numbers_after(ok("eval cube" + ext + " 0.25 0.5 0.75").out, "S"), (std::vector<double>{0.25, 0.5, 0.75}))
+        << ext;
+  }
 }

@@ -138,6 +138,18 @@ TEST_F(ModelCli, BadModelInputFailsCleanly) {
   fails("make ball --materials 2 --blend spiral -o b.json", 2);
   fails("export ball.json ball.obj");
   fails("export plate.json plate.stl");
+  // A cell flattened into the plane z = 0: its boundary faces pair up, leaving no triangles to print.
+  nlohmann::json flat{{"trivar", 1}, {"kind", "volume"}, {"dim", 3}, {"rational", false}, {"degrees", {1, 1, 1}}};
+  flat["knots"] = {{0, 0, 1, 1}, {0, 0, 1, 1}, {0, 0, 1, 1}};
+  for (int k = 0; k < 2; ++k)
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 2; ++i) flat["control_points"].push_back({i, j, 0});
+  write("flat.json", flat.dump());
+  fails("export flat.json flat.stl");
+  fails("export flat.json flat.stl --allow-open");
+  EXPECT_EQ(lines(run("export flat.json flat.3mf").err).at(0),
+            "trivar: error: export: the boundary mesh of flat.json has no triangles (its cells enclose no volume); "
+            "nothing written");
   fails("convert ball.json ball.g2");
   write("broken.json", R"({"trivar": 1, "kind": "vmodel", "cells": []})");
   fails("info broken.json");

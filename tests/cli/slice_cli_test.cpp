@@ -22,14 +22,22 @@ class SliceCli : public Cli {};
 TEST_F(SliceCli, GradedBallSlicesToPalettePngsWithAManifest) {
   ok("make ball --radius 2 --materials 2 -o ball.json");
   const Result r = ok("slice ball.json --out slices --layer 0.25 --dpi 127");
-  for (const char* word : {"layers ", "pixels ", "inside pixels ", "full-solve ", "max residual ", "seconds ",
-                           "inside pixels/s "})
-    EXPECT_NE(r.out.find(word), std::string::npos) << word << "\n" << r.out;
   const auto m = nlohmann::json::parse(slurp(work_ / "slices" / "manifest.json"));
+  // The summary line reports the manifest's counts: "layers L, pixels P, inside pixels I, ...".
+  const auto summary = [&](const std::string& label) {
+    const std::size_t at = r.out.find(", " + label + " ");
+    EXPECT_NE(at, std::string::npos) << label << "\n" << r.out;
+    return at == std::string::npos ? -1.0 : std::stod(r.out.substr(at + label.size() + 3));
+  };
+  EXPECT_EQ(numbers_after(r.out, "layers").at(0), m.at("layers").get<double>());
+  EXPECT_EQ(summary("pixels"), m.at("statistics").at("pixels").get<double>());
+  EXPECT_EQ(summary("inside pixels"), m.at("statistics").at("inside_pixels").get<double>());
+  EXPECT_EQ(numbers_after(r.out, "output: slices (").at(0), m.at("layers").get<double>());
   const int layers = m.at("layers").get<int>();
   const auto names = files_in(work_ / "slices");
-  ASSERT_EQ(names.size(), static_cast<std::size_t>(layers) + 1);  // the layers and the manifest
-  EXPECT_EQ(names.front(), "layer_00000.png");
+  ASSERT_EQ(names.size(), static_cast<std::size_t>(layers) + 2);  // the layers, the manifest and the file list
+  EXPECT_EQ(names.front(), ".trivar-files");
+  EXPECT_EQ(names[1], "layer_00000.png");
   EXPECT_EQ(m.at("materials").size(), 2u);
   EXPECT_EQ(m.at("materials")[1].at("palette_index"), 2);
   // 127 dpi: 0.2 mm pixels; inside pixels times the voxel volume approximate the ball.
@@ -63,6 +71,7 @@ TEST_F(SliceCli, BadParametersFailCleanly) {
   fails("slice ball.json --out s --dpi 0");
   fails("slice ball.json --out s --dpi 600x");
   fails("slice ball.json --out s --z-range 1 1");
+  fails("slice ball.json --out s --z-range 5 6");
   fails("slice plain.json --out s");
   fails("slice ball.json --out s --layer 0", 2);
   fails("slice ball.json --out s --mode stripes", 2);

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include "trivar/core/error.hpp"
+#include "trivar/core/interrupt_cleanup.hpp"
 
 namespace trivar {
 
@@ -13,6 +14,11 @@ void write_file_atomically(const std::string& path, const std::function<void(std
   const fs::path target(path);
   fs::path tmp = target;
   tmp += ".tmp" + std::to_string(::getpid());
+  std::error_code ec;
+  // The temporary name is trivar's own only while nothing else carries it.
+  require(!fs::exists(fs::symlink_status(tmp, ec)), "cannot write output file " + path + ": " + tmp.string() +
+                                                        " exists and is not trivar's");
+  TemporaryPath guard(tmp.string());
   try {
     {
       std::ofstream out(tmp, binary ? std::ios::binary | std::ios::out : std::ios::out);
@@ -21,11 +27,9 @@ void write_file_atomically(const std::string& path, const std::function<void(std
       out.flush();
       require(static_cast<bool>(out), "write failed for output file " + path);
     }
-    std::error_code ec;
     fs::rename(tmp, target, ec);
     require(!ec, "cannot write output file " + path + ": " + ec.message());
   } catch (...) {
-    std::error_code ec;
     fs::remove(tmp, ec);
     throw;
   }
