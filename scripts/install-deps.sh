@@ -7,7 +7,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libcli11-dev nlohmann-json3-dev libpng-dev zlib1g-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libsuitesparse-dev libspectra-dev
+  libsuitesparse-dev libspectra-dev libgmp-dev
   clang-14 libclang-rt-14-dev
 )
 
