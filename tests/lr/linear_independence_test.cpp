@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <random>
 
@@ -355,6 +356,30 @@ TEST(LinearIndependence, DuplicatedBSplineIsDependentAndPeelingCannotClearIt) {
   const auto exact = exact_test<2>({2, 2}, basis, elements);
   EXPECT_EQ(exact.status, Independence::not_independent);
   EXPECT_EQ(exact.nullity(), 1);
+}
+
+// Exactly independent, numerically nearly dependent: the biquadratic tensor basis plus the B-spline
+// B[1, 2 + d, 3, 4] x B[0, 0, 0, 1], d = 2^-40, next to the tensor B-spline B[1, 2, 3, 4] x B[0, 0, 0, 1]. The
+// extra B-spline has a breakpoint at 2 + d that no tensor B-spline has, so it is not in their span: the
+// collection is independent (nullity 0) although the two rows differ by about d. A floating-point rank with a
+// relative threshold above d calls it dependent; the exact rank must not. With d = 0 it is a duplicate.
+TEST(LinearIndependence, NearlyDependentButIndependentCollection) {
+  for (const double d : {std::ldexp(1.0, -40), std::ldexp(1.0, -50), 0.0}) {
+    const std::array<std::vector<double>, 2> t = {std::vector<double>{0, 0, 0, 1, 2, 3, 4, 4, 4},
+                                                  std::vector<double>{0, 0, 0, 1, 1, 1}};
+    auto basis = tensor_basis<2>({2, 2}, t);
+    LRBSpline<2> extra;
+    extra.knots[0] = {1, 2 + d, 3, 4};
+    extra.knots[1] = {0, 0, 0, 1};
+    basis.push_back(extra);
+    auto cut = t;
+    if (d > 0) cut[0].insert(cut[0].begin() + 5, 2 + d);
+    const auto elements = tensor_elements<2>(cut);
+    EXPECT_EQ(peeling_test<2>({2, 2}, basis, elements).status, Independence::not_tested);
+    const auto exact = exact_test<2>({2, 2}, basis, elements);
+    EXPECT_EQ(exact.status, d > 0 ? Independence::independent : Independence::not_independent) << d;
+    EXPECT_EQ(exact.nullity(), d > 0 ? 0 : 1) << d;
+  }
 }
 
 TEST(LinearIndependence, CollectionNotSpanningPolynomialsIsRejected) {
