@@ -296,6 +296,34 @@ TEST(LinearIndependence, SeedDependentConfigurationIsFound) {
   EXPECT_EQ(h.status, Independence::not_independent);
 }
 
+// The seed's relation times each univariate B-spline of a third direction: a trivariate collection with one
+// relation per B-spline in w (quadratic on 0 0 0 1 2 2 2: 4 of them), so nullity 4 (the rank of a tensor
+// product of collections is the product of the ranks). Peeling leaves at least the 8 x 4 B-splines of the
+// relations.
+TEST(LinearIndependence, SeedRelationExtrudedIsDependentInThreeDimensions) {
+  const SeedExample ex;
+  const std::vector<double> tw{0, 0, 0, 1, 2, 2, 2};
+  std::vector<LRBSpline<3>> basis;
+  for (const auto& b : ex.lr.functions())
+    for (std::size_t j = 0; j + 3 < tw.size(); ++j) {
+      LRBSpline<3> c;
+      c.knots[0] = b.knots[0];
+      c.knots[1] = b.knots[1];
+      c.knots[2].assign(tw.begin() + static_cast<std::ptrdiff_t>(j), tw.begin() + static_cast<std::ptrdiff_t>(j) + 4);
+      basis.push_back(c);
+    }
+  std::vector<Box<3>> elements;
+  for (const auto& e : ex.lr.elements())
+    for (double w : {0.0, 1.0}) elements.push_back(Box<3>{{e.lo[0], e.lo[1], w}, {e.hi[0], e.hi[1], w + 1}});
+  const auto peeled = peeling_test<3>({2, 2, 2}, basis, elements);
+  EXPECT_EQ(peeled.status, Independence::not_tested);
+  EXPECT_GE(peeled.unresolved.size(), 32u);
+  const auto exact = exact_test<3>({2, 2, 2}, basis, elements);
+  EXPECT_EQ(exact.status, Independence::not_independent);
+  EXPECT_EQ(exact.tested, static_cast<int>(peeled.unresolved.size()));
+  EXPECT_EQ(exact.nullity(), 4);
+}
+
 TEST(LinearIndependence, TensorCollectionsAreIndependentByBothTests) {
   const std::array<std::vector<double>, 2> t2 = {std::vector<double>{0, 0, 0, 0, 1, 2, 2, 3, 4, 4, 4, 4},
                                                  std::vector<double>{0, 0, 0, 0.5, 1, 1.5, 2, 2, 2}};
