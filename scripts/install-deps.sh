@@ -8,7 +8,7 @@ packages=(
   libeigen3-dev libcli11-dev nlohmann-json3-dev libpng-dev zlib1g-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3  # tests read output files back with its standard library (xml, zlib, struct, zipfile)
-  libsuitesparse-dev libspectra-dev
+  libsuitesparse-dev libspectra-dev libgmp-dev
   clang-14 libclang-rt-14-dev
 )
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <random>
 
@@ -295,6 +296,34 @@ TEST(LinearIndependence, SeedDependentConfigurationIsFound) {
   EXPECT_EQ(h.status, Independence::not_independent);
 }
 
+// The seed's relation times each univariate B-spline of a third direction: a trivariate collection with one
+// relation per B-spline in w (quadratic on 0 0 0 1 2 2 2: 4 of them), so nullity 4 (the rank of a tensor
+// product of collections is the product of the ranks). Peeling leaves at least the 8 x 4 B-splines of the
+// relations.
+TEST(LinearIndependence, SeedRelationExtrudedIsDependentInThreeDimensions) {
+  const SeedExample ex;
+  const std::vector<double> tw{0, 0, 0, 1, 2, 2, 2};
+  std::vector<LRBSpline<3>> basis;
+  for (const auto& b : ex.lr.functions())
+    for (std::size_t j = 0; j + 3 < tw.size(); ++j) {
+      LRBSpline<3> c;
+      c.knots[0] = b.knots[0];
+      c.knots[1] = b.knots[1];
+      c.knots[2].assign(tw.begin() + static_cast<std::ptrdiff_t>(j), tw.begin() + static_cast<std::ptrdiff_t>(j) + 4);
+      basis.push_back(c);
+    }
+  std::vector<Box<3>> elements;
+  for (const auto& e : ex.lr.elements())
+    for (double w : {0.0, 1.0}) elements.push_back(Box<3>{{e.lo[0], e.lo[1], w}, {e.hi[0], e.hi[1], w + 1}});
+  const auto peeled = peeling_test<3>({2, 2, 2}, basis, elements);
+  EXPECT_EQ(peeled.status, Independence::not_tested);
+  EXPECT_GE(peeled.unresolved.size(), 32u);
+  const auto exact = exact_test<3>({2, 2, 2}, basis, elements);
+  EXPECT_EQ(exact.status, Independence::not_independent);
+  EXPECT_EQ(exact.tested, static_cast<int>(peeled.unresolved.size()));
+  EXPECT_EQ(exact.nullity(), 4);
+}
+
 TEST(LinearIndependence, TensorCollectionsAreIndependentByBothTests) {
   const std::array<std::vector<double>, 2> t2 = {std::vector<double>{0, 0, 0, 0, 1, 2, 2, 3, 4, 4, 4, 4},
                                                  std::vector<double>{0, 0, 0, 0.5, 1, 1.5, 2, 2, 2}};
@@ -355,6 +384,30 @@ TEST(LinearIndependence, DuplicatedBSplineIsDependentAndPeelingCannotClearIt) {
   const auto exact = exact_test<2>({2, 2}, basis, elements);
   EXPECT_EQ(exact.status, Independence::not_independent);
   EXPECT_EQ(exact.nullity(), 1);
+}
+
+// Exactly independent, numerically nearly dependent: the biquadratic tensor basis plus the B-spline
+// B[1, 2 + d, 3, 4] x B[0, 0, 0, 1], d = 2^-40, next to the tensor B-spline B[1, 2, 3, 4] x B[0, 0, 0, 1]. The
+// extra B-spline has a breakpoint at 2 + d that no tensor B-spline has, so it is not in their span: the
+// collection is independent (nullity 0) although the two rows differ by about d. A floating-point rank with a
+// relative threshold above d calls it dependent; the exact rank must not. With d = 0 it is a duplicate.
+TEST(LinearIndependence, NearlyDependentButIndependentCollection) {
+  for (const double d : {std::ldexp(1.0, -40), std::ldexp(1.0, -50), 0.0}) {
+    const std::array<std::vector<double>, 2> t = {std::vector<double>{0, 0, 0, 1, 2, 3, 4, 4, 4},
+                                                  std::vector<double>{0, 0, 0, 1, 1, 1}};
+    auto basis = tensor_basis<2>({2, 2}, t);
+    LRBSpline<2> extra;
+    extra.knots[0] = {1, 2 + d, 3, 4};
+    extra.knots[1] = {0, 0, 0, 1};
+    basis.push_back(extra);
+    auto cut = t;
+    if (d > 0) cut[0].insert(cut[0].begin() + 5, 2 + d);
+    const auto elements = tensor_elements<2>(cut);
+    EXPECT_EQ(peeling_test<2>({2, 2}, basis, elements).status, Independence::not_tested);
+    const auto exact = exact_test<2>({2, 2}, basis, elements);
+    EXPECT_EQ(exact.status, d > 0 ? Independence::independent : Independence::not_independent) << d;
+    EXPECT_EQ(exact.nullity(), d > 0 ? 0 : 1) << d;
+  }
 }
 
 TEST(LinearIndependence, CollectionNotSpanningPolynomialsIsRejected) {

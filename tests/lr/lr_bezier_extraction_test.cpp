@@ -110,35 +110,6 @@ void check_tensor(const Ints<D>& degrees, const Ints<D>& elements, bool rational
 
 }  // namespace
 
-TEST(LRBezierExtraction, LocalRowIsTheBernsteinFormOfTheBSpline) {
-  // Each piece of B-splines with simple, repeated and boundary knots, through its Bernstein sum, against
-  // Cox-de Boor.
-  std::mt19937 rng(5);
-  const std::vector<std::vector<double>> knots = {{0, 1, 3, 4}, {0, 0, 0, 2}, {0, 2, 2, 2}, {0, 1, 1, 2, 5}, {1, 2},
-                                                  {0, 0.5, 1.5, 2, 3.5, 4}};
-  for (const auto& t : knots) {
-    const int p = static_cast<int>(t.size()) - 2;
-    std::vector<double> bp(t);
-    bp.erase(std::unique(bp.begin(), bp.end()), bp.end());
-    for (std::size_t i = 0; i + 1 < bp.size(); ++i) {
-      const double a = bp[i], b = bp[i + 1];
-      std::vector<double> row(static_cast<std::size_t>(p + 1));
-      local_extraction_row(t, a, b, row.data());
-      for (int q = 0; q < 7; ++q) {
-        const double u = std::uniform_real_distribution<double>(a, b)(rng), x = (u - a) / (b - a);
-        double bern = 0.0;
-        for (int j = 0; j <= p; ++j)
-          bern += row[static_cast<std::size_t>(j)] * std::tgamma(p + 1) / (std::tgamma(j + 1) * std::tgamma(p - j + 1)) *
-                  std::pow(x, j) * std::pow(1 - x, p - j);
-        EXPECT_NEAR(bern, test::cox_de_boor(t, 0, p, u, t.back()), 1e-14);
-      }
-    }
-  }
-  double row[3];
-  EXPECT_THROW(local_extraction_row(std::vector<double>{0, 1, 2, 3}, 2.5, 3.5, row), Error);
-  EXPECT_THROW(local_extraction_row(std::vector<double>{0, 1, 2, 3}, 1.0, 1.0, row), Error);
-}
-
 TEST(LRBezierExtraction, TensorCollectionMatchesTensorExtraction) {
   for (bool rational : {false, true}) {
     check_tensor<2>({3, 2}, {4, 3}, rational, 31);

@@ -104,8 +104,9 @@ TEST(LRRefinement, StrategiesKeepGeometryAndPartitionOfUnity) {
 }
 
 // Bicubic on [0,7]^2 with unit elements: the B-splines whose support contains element [3,4]x[3,4] have
-// supports [i, i+4] x [j, j+4] for i, j in 0..3, whose bounding box is [0,7]^2 (FULLSPAN), and the smallest
-// support (all equal 16, tie to lowest id: knots ascending, last direction most significant) is [0,4]x[0,4].
+// supports [i, i+4] x [j, j+4] for i, j in 0..3, whose bounding box is [0,7]^2 (FULLSPAN); all are equally
+// short in both directions, and MINSPAN takes the most centred: [2,6] x [2,6], the element in the second knot
+// interval of each direction.
 TEST(LRRefinement, RectangleShapesOnAUniformMesh) {
   const auto kv = uniform(3, 7);
   LRSpline<2> lr(TensorSpline<2>({kv, kv}, 1, false, std::vector<double>(100, 1.0)));
@@ -122,10 +123,10 @@ TEST(LRRefinement, RectangleShapesOnAUniformMesh) {
   EXPECT_EQ(full[1].extent.hi[0], 7.0);
   auto min = element_rectangles(lr, std::span<const int>(ids), RefineOptions{Strategy::minspan, 2, 0.0});
   ASSERT_EQ(min.size(), 2u);
-  EXPECT_EQ(min[0].extent.lo[1], 0.0);
-  EXPECT_EQ(min[0].extent.hi[1], 4.0);
-  EXPECT_EQ(min[1].extent.lo[0], 0.0);
-  EXPECT_EQ(min[1].extent.hi[0], 4.0);
+  EXPECT_EQ(min[0].extent.lo[1], 2.0);
+  EXPECT_EQ(min[0].extent.hi[1], 6.0);
+  EXPECT_EQ(min[1].extent.lo[0], 2.0);
+  EXPECT_EQ(min[1].extent.hi[0], 6.0);
   EXPECT_EQ(min[0].multiplicity, 2);
   // STRUCTURED on the B-spline with knots [1..5] x [2..6]: 4 intervals per direction.
   int id = -1;
@@ -188,6 +189,45 @@ TEST(LRRefinement, FullSpanHandCount) {
   EXPECT_EQ(refine_elements(lr, std::span<const int>(ids), RefineOptions{}), 2);
   EXPECT_EQ(lr.num_basis(), 64);
   EXPECT_EQ(lr.num_elements(), 25);
+}
+
+// LRsplines' diagonal regression (its Diagonal program with -p 3 -n 6 -m 1 -scheme 1): one bicubic element on
+// [0,1]^2, six times MINSPAN on every element whose lower-left corner lies on the diagonal (umin == vmin). The
+// counts are LRsplines' output for this case; they depend on which of several equally short supports MINSPAN
+// picks, so they pin the tie-break rule (an earlier rule, smallest support volume, gave 389 B-splines).
+TEST(LRRefinement, MinSpanDiagonalMatchesLRsplines) {
+  const auto kv = KnotVector::open_uniform(3, 1, 0.0, 1.0);
+  LRSpline<2> lr(TensorSpline<2>({kv, kv}, 1, false, std::vector<double>(16, 1.0)));
+  for (int level = 0; level < 6; ++level) {
+    std::vector<int> ids;
+    for (int e = 0; e < lr.num_elements(); ++e)
+      if (lr.element(e).lo[0] == lr.element(e).lo[1]) ids.push_back(e);
+    refine_elements(lr, std::span<const int>(ids), RefineOptions{Strategy::minspan, 1, 0.0});
+  }
+  EXPECT_EQ(lr.num_basis(), 366);
+  EXPECT_EQ(lr.num_elements(), 515);
+  EXPECT_EQ(lr.mesh().size(), 130u);
+}
+
+// MINSPAN's line across u spans the support shortest in v, its line across v the support shortest in u, which
+// here are different B-splines; among equally short supports the most centred wins: the cubic B-spline with
+// the element in its second knot interval.
+TEST(LRRefinement, MinSpanShortestThenMostCentred) {
+  // u knots 0 1 2 3 4 6 7 8 (element [3,4]): u-supports [0,4] [1,6] [2,7] [3,8], lengths 4 5 5 5: shortest [0,4].
+  // v knots 0 1 2 3 4 5 6 7 (element [3,4]): all lengths 4; centred (element in the 2nd interval): [2,6].
+  const KnotVector ku(3, {0, 0, 0, 0, 1, 2, 3, 4, 6, 7, 8, 8, 8, 8});
+  const auto kv = uniform(3, 7);
+  LRSpline<2> lr(TensorSpline<2>({ku, kv}, 1, false, std::vector<double>(100, 1.0)));
+  const auto ids = elements_in_box(lr, Box<2>{{3.5, 3.5}, {3.5, 3.5}});
+  ASSERT_EQ(ids.size(), 1u);
+  const auto r = element_rectangles(lr, std::span<const int>(ids), RefineOptions{Strategy::minspan, 1, 0.0});
+  ASSERT_EQ(r.size(), 2u);
+  EXPECT_EQ(r[0].dir, 0);
+  EXPECT_EQ(r[0].extent.lo[1], 2.0);
+  EXPECT_EQ(r[0].extent.hi[1], 6.0);
+  EXPECT_EQ(r[1].dir, 1);
+  EXPECT_EQ(r[1].extent.lo[0], 0.0);
+  EXPECT_EQ(r[1].extent.hi[0], 4.0);
 }
 
 TEST(LRRefinement, InvalidOptionsAndIds) {

@@ -1,15 +1,15 @@
 #include "trivar/lr/linear_independence.hpp"
 
 #include <algorithm>
+#include <array>
 #include <numeric>
 #include <string>
 
-#include <Eigen/OrderingMethods>
-#include <Eigen/QR>
-#include <Eigen/SparseCore>
-#include <Eigen/SparseQR>
+#include <gmpxx.h>
 
 #include "trivar/core/error.hpp"
+#include "trivar/lr/exact_rank.hpp"
+#include "trivar/spline/knot_refinement.hpp"
 
 namespace trivar {
 
@@ -93,32 +93,45 @@ int find_root(std::vector<int>& parent, int i) {
   return i;
 }
 
-// Blocks with at most this many matrix entries are factorised densely.
-constexpr long long kDenseEntries = 4'000'000;
-
-// Rank of the rows (B-splines) of a block given as triplets (row, column, value) of a rows x cols matrix whose
-// rows are normalised to max-norm 1; factorises the transpose so that column pivoting ranks the B-splines.
-int block_rank(int rows, int cols, const std::vector<Eigen::Triplet<double>>& entries, double tol) {
-  if (static_cast<long long>(rows) * cols <= kDenseEntries) {
-    Eigen::MatrixXd At = Eigen::MatrixXd::Zero(cols, rows);
-    for (const auto& t : entries) At(t.col(), t.row()) = t.value();
-    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(At);
-    qr.setThreshold(tol);
-    return static_cast<int>(qr.rank());
-  }
-  std::vector<Eigen::Triplet<double>> tr;
-  tr.reserve(entries.size());
-  for (const auto& t : entries) tr.emplace_back(t.col(), t.row(), t.value());
-  Eigen::SparseMatrix<double> At(cols, rows);
-  At.setFromTriplets(tr.begin(), tr.end());
-  At.makeCompressed();
-  double max_norm = 0.0;
-  for (int c = 0; c < rows; ++c) max_norm = std::max(max_norm, At.col(c).norm());
-  Eigen::SparseQR<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> qr;
-  qr.setPivotThreshold(tol * max_norm);
-  qr.compute(At);
-  require(qr.info() == Eigen::Success, "exact linear independence test: sparse QR failed");
-  return static_cast<int>(qr.rank());
+// The rows of one block in the field F: per element of the block (in the order met), its prod (p_k + 1)
+// Bernstein columns; row r of B-spline rows[r] holds B's Bernstein coefficients there (the scaling factor gamma,
+// a rounded product, is left out: it scales a row and does not change the rank). Columns ascend in each row.
+template <class F, int D>
+std::vector<SparseRow<F>> block_rows(const Ints<D>& degrees, std::span<const LRBSpline<D>> basis,
+                                     std::span<const Box<D>> elements, const std::vector<int>& rows,
+                                     const Incidence& be, const Incidence& eb, const std::vector<char>& open,
+                                     const std::vector<int>& row_of, std::vector<int>& seen, int stamp,
+                                     int& cols) {
+  const int P = polynomial_dimension<D>(degrees);
+  std::vector<SparseRow<F>> out(rows.size());
+  const F zero(0);
+  F uni[D][kMaxDegree + 1];
+  cols = 0;
+  for (int b : rows)
+    for (int e : be[b]) {
+      if (seen[static_cast<std::size_t>(e)] == stamp) continue;
+      seen[static_cast<std::size_t>(e)] = stamp;
+      const Box<D>& el = elements[static_cast<std::size_t>(e)];
+      for (int c : eb[e]) {
+        if (!open[static_cast<std::size_t>(c)]) continue;
+        const auto& bs = basis[static_cast<std::size_t>(c)];
+        for (int k = 0; k < D; ++k)
+          bernstein_coefficients<F>(bs.knots[static_cast<std::size_t>(k)], el.lo[k], el.hi[k], uni[k]);
+        auto& row = out[static_cast<std::size_t>(row_of[static_cast<std::size_t>(c)])];
+        std::array<int, D> j{};
+        for (int col = 0; col < P; ++col) {
+          F v = uni[0][j[0]];
+          for (int k = 1; k < D; ++k) v = v * uni[k][j[static_cast<std::size_t>(k)]];
+          if (!(v == zero)) row.emplace_back(cols + col, std::move(v));
+          for (int k = 0; k < D; ++k) {
+            if (++j[static_cast<std::size_t>(k)] <= degrees[static_cast<std::size_t>(k)]) break;
+            j[static_cast<std::size_t>(k)] = 0;
+          }
+        }
+      }
+      cols += P;
+    }
+  return out;
 }
 
 }  // namespace
@@ -135,8 +148,7 @@ namespace {
 // The exact test on given incidence lists (be: elements of each support, eb: its transpose).
 template <int D>
 ExactResult exact_on(const Ints<D>& degrees, std::span<const LRBSpline<D>> basis, std::span<const Box<D>> elements,
-                     const Incidence& be, const Incidence& eb, double rank_tolerance) {
-  require(rank_tolerance > 0.0 && rank_tolerance < 1.0, "exact linear independence test: tolerance outside (0, 1)");
+                     const Incidence& be, const Incidence& eb) {
   const int P = polynomial_dimension<D>(degrees);
   const PeelingResult peeled = peel(P, eb, be);
   ExactResult res;
@@ -173,38 +185,24 @@ ExactResult exact_on(const Ints<D>& degrees, std::span<const LRBSpline<D>> basis
   }
   res.blocks = static_cast<int>(blocks.size());
   std::vector<int> row_of(static_cast<std::size_t>(nb), -1);
-  std::vector<int> seen(elements.size(), -1);
-  for (std::size_t k = 0; k < blocks.size(); ++k) {
-    const auto& rows = blocks[k];
+  std::vector<int> seen(elements.size(), -1);  // element stamps: one per block_rows call
+  int stamp = 0;
+  for (const auto& rows : blocks) {
     for (std::size_t r = 0; r < rows.size(); ++r) row_of[static_cast<std::size_t>(rows[r])] = static_cast<int>(r);
-    std::vector<Eigen::Triplet<double>> entries;
-    std::vector<double> row_max(rows.size(), 0.0);
-    int cols = 0;
-    std::vector<int> ids;
-    for (int b : rows)
-      for (int e : be[b]) {
-        if (seen[static_cast<std::size_t>(e)] == static_cast<int>(k)) continue;
-        seen[static_cast<std::size_t>(e)] = static_cast<int>(k);
-        ids.clear();
-        for (int c : eb[e])
-          if (open[static_cast<std::size_t>(c)]) ids.push_back(c);
-        const Eigen::MatrixXd C = extraction_operator<D>(degrees, basis, ids, elements[static_cast<std::size_t>(e)]);
-        for (std::size_t i = 0; i < ids.size(); ++i) {
-          const int r = row_of[static_cast<std::size_t>(ids[i])];
-          for (Eigen::Index j = 0; j < C.cols(); ++j) {
-            const double v = C(static_cast<Eigen::Index>(i), j);
-            if (v == 0.0) continue;
-            entries.emplace_back(r, cols + static_cast<int>(j), v);
-            row_max[static_cast<std::size_t>(r)] = std::max(row_max[static_cast<std::size_t>(r)], std::abs(v));
-          }
-        }
-        cols += P;
-      }
-    // Rows scaled to max-norm 1, so the rank tolerance is relative per B-spline.
-    std::vector<Eigen::Triplet<double>> scaled;
-    scaled.reserve(entries.size());
-    for (const auto& t : entries) scaled.emplace_back(t.row(), t.col(), t.value() / row_max[static_cast<std::size_t>(t.row())]);
-    res.rank += block_rank(static_cast<int>(rows.size()), cols, scaled, rank_tolerance);
+    int cols = 0, rank = -1;
+    try {
+      auto m = block_rows<ModP, D>(degrees, basis, elements, rows, be, eb, open, row_of, seen, stamp++, cols);
+      rank = echelon_rank(std::move(m), cols);
+    } catch (const UnluckyPrime&) {
+      rank = -1;  // p divides a knot difference: only rational arithmetic can decide this block
+    }
+    // Full rank modulo p proves full rank; otherwise the rank over Q decides (exact_rank.hpp).
+    if (rank < static_cast<int>(rows.size())) {
+      auto m = block_rows<mpq_class, D>(degrees, basis, elements, rows, be, eb, open, row_of, seen, stamp++, cols);
+      rank = echelon_rank(std::move(m), cols);
+      ++res.rational_blocks;
+    }
+    res.rank += rank;
   }
   res.status = res.rank == res.tested ? Independence::independent : Independence::not_independent;
   return res;
@@ -227,9 +225,9 @@ Incidence incidence_of(int n, Lists&& list) {
 
 template <int D>
 ExactResult exact_test(const Ints<D>& degrees, std::span<const LRBSpline<D>> basis, std::span<const Box<D>> elements,
-                       double rank_tolerance, int threads) {
+                       int threads) {
   const Incidence be = support_elements<D>(basis, elements, threads);
-  return exact_on<D>(degrees, basis, elements, be, be.transposed(static_cast<int>(elements.size())), rank_tolerance);
+  return exact_on<D>(degrees, basis, elements, be, be.transposed(static_cast<int>(elements.size())));
 }
 
 template <int D>
@@ -240,17 +238,17 @@ PeelingResult peeling_test(const LRSpline<D>& lr) {
 }
 
 template <int D>
-ExactResult exact_test(const LRSpline<D>& lr, double rank_tolerance) {
+ExactResult exact_test(const LRSpline<D>& lr) {
   return exact_on<D>(lr.degrees(), lr.basis_functions(), lr.elements(),
                      incidence_of(lr.num_basis(), [&](int b) { return lr.basis_elements(b); }),
-                     incidence_of(lr.num_elements(), [&](int e) { return lr.element_support(e); }), rank_tolerance);
+                     incidence_of(lr.num_elements(), [&](int e) { return lr.element_support(e); }));
 }
 
 #define TRIVAR_INSTANTIATE(D)                                                                                  \
   template PeelingResult peeling_test<D>(const Ints<D>&, std::span<const LRBSpline<D>>, std::span<const Box<D>>, \
                                          int);                                                                 \
   template ExactResult exact_test<D>(const Ints<D>&, std::span<const LRBSpline<D>>, std::span<const Box<D>>,    \
-                                     double, int);
+                                     int);
 TRIVAR_INSTANTIATE(1)
 TRIVAR_INSTANTIATE(2)
 TRIVAR_INSTANTIATE(3)
@@ -258,7 +256,7 @@ TRIVAR_INSTANTIATE(3)
 
 #define TRIVAR_INSTANTIATE(D)                                \
   template PeelingResult peeling_test<D>(const LRSpline<D>&); \
-  template ExactResult exact_test<D>(const LRSpline<D>&, double);
+  template ExactResult exact_test<D>(const LRSpline<D>&);
 TRIVAR_INSTANTIATE(2)
 TRIVAR_INSTANTIATE(3)
 #undef TRIVAR_INSTANTIATE

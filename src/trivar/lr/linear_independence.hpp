@@ -14,9 +14,11 @@
 //
 // Exact test: after peeling, the rank of the Bezier extraction rows of the B-splines that are left (their
 // per-element Bernstein coefficients stacked; the peeled B-splines have coefficient 0 in any relation, so they
-// need no columns), computed per connected block (B-splines linked through shared elements) by a column-pivoting
-// QR of the row-normalised block: dense for small blocks, Eigen::SparseQR for large ones.
-//
+// need no columns), per connected block (B-splines linked through shared elements), in exact arithmetic: the
+// knots are exact dyadic rationals and the Bernstein coefficients rational functions of them
+// (bernstein_coefficients), so the rank is computed modulo the prime 2^61 - 1 and, where that shows a
+// deficiency, confirmed over Q with GMP rationals (core/exact_rank.hpp: full rank modulo p implies full rank
+// over Q). No tolerance: the answer is the rank of the B-splines as given by their double knots.
 // Precondition of both: the restrictions of the collection to every element span the polynomials of degree p
 // (true for LR B-splines refined from a tensor-product basis); the tests throw trivar::Error when an element has
 // fewer than P B-splines, which shows that the precondition fails.
@@ -59,21 +61,17 @@ struct ExactResult {
   Independence status = Independence::not_tested;  // independent or not_independent
   int tested = 0;   // B-splines left by peeling, the rows of the rank problem
   int rank = 0;     // their rank
-  int blocks = 0;   // connected blocks factorised
+  int blocks = 0;   // connected blocks
+  int rational_blocks = 0;  // blocks whose rank was computed over Q (deficient modulo p)
   int nullity() const { return tested - rank; }  // number of independent linear relations
 };
 
-// Default relative rank tolerance: a pivot below tol times the largest pivot of its block counts as zero. Rows
-// are normalised to max-norm 1 first; genuine relations leave pivots at rounding level (~1e-15), while the
-// smallest legitimate pivots of refined meshes (element-size ratios up to ~1e3, cubic) stay far above 1e-9.
-inline constexpr double kRankTolerance = 1e-9;
-
 template <int D>
 ExactResult exact_test(const Ints<D>& degrees, std::span<const LRBSpline<D>> basis, std::span<const Box<D>> elements,
-                       double rank_tolerance = kRankTolerance, int threads = 0);
+                       int threads = 0);
 
 // The exact test of an LR spline, on the support lists it keeps.
 template <int D>
-ExactResult exact_test(const LRSpline<D>& lr, double rank_tolerance = kRankTolerance);
+ExactResult exact_test(const LRSpline<D>& lr);
 
 }  // namespace trivar

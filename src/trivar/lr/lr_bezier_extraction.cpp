@@ -6,6 +6,7 @@
 #include "trivar/core/error.hpp"
 #include "trivar/core/parallel.hpp"
 #include "trivar/spline/basis.hpp"
+#include "trivar/spline/knot_refinement.hpp"
 
 namespace trivar {
 
@@ -107,47 +108,6 @@ Incidence element_supports(std::span<const LRBSpline<D>> basis, std::span<const 
   return support_elements<D>(basis, elements, threads).transposed(static_cast<int>(elements.size()));
 }
 
-void local_extraction_row(std::span<const double> knots, double a, double b, double* row) {
-  const int p = static_cast<int>(knots.size()) - 2;
-  require(p >= 0 && p <= kMaxDegree, [&] {
-    return "local_extraction_row: " + std::to_string(knots.size()) + " local knots, expected p + 2 with p in 0.." +
-           std::to_string(kMaxDegree);
-  });
-  require(knots.front() <= a && a < b && b <= knots.back(), [&] {
-    return "local_extraction_row: interval [" + std::to_string(a) + ", " + std::to_string(b) +
-           "] is not a non-empty part of the support [" + std::to_string(knots.front()) + ", " +
-           std::to_string(knots.back()) + "]";
-  });
-  // The B-spline embedded in a knot vector padded by p + 1 knots on each side (coefficient 1, the padding
-  // B-splines 0), so inserting at the ends of the support is ordinary interior knot insertion.
-  constexpr int kCap = 5 * kMaxDegree + 8;
-  double T[kCap], P[kCap];
-  const double w = knots.back() - knots.front();
-  int n = 0;
-  for (int i = p + 1; i >= 1; --i) T[n++] = knots.front() - i * w;
-  for (double t : knots) T[n++] = t;
-  for (int i = 1; i <= p + 1; ++i) T[n++] = knots.back() + i * w;
-  int nc = n - p - 1;
-  std::fill(P, P + nc, 0.0);
-  P[p + 1] = 1.0;
-  for (double z : {a, b}) {
-    for (int m = static_cast<int>(std::count(T, T + n, z)); m < p + 1; ++m) {
-      const int k = static_cast<int>(std::upper_bound(T, T + n, z) - T) - 1;
-      for (int i = nc; i >= k + 1; --i) P[i] = P[i - 1];
-      for (int i = k; i >= k - p + 1; --i) {
-        const double alpha = (z - T[i]) / (T[i + p] - T[i]);
-        P[i] = alpha * P[i] + (1.0 - alpha) * P[i - 1];
-      }
-      for (int i = n; i > k + 1; --i) T[i] = T[i - 1];
-      T[k + 1] = z;
-      ++n;
-      ++nc;
-    }
-  }
-  const int r = static_cast<int>(std::lower_bound(T, T + n, a) - T);
-  std::copy(P + r, P + r + p + 1, row);
-}
-
 template <int D>
 Eigen::MatrixXd extraction_operator(const Ints<D>& degrees, std::span<const LRBSpline<D>> basis,
                                     std::span<const int> ids, const Box<D>& element) {
@@ -164,7 +124,7 @@ Eigen::MatrixXd extraction_operator(const Ints<D>& degrees, std::span<const LRBS
                " knots in direction " + std::to_string(k) + ", expected p + 2 = " +
                std::to_string(degrees[static_cast<std::size_t>(k)] + 2);
       });
-      local_extraction_row(t, element.lo[k], element.hi[k], rows[k]);
+      bernstein_coefficients<double>(t, element.lo[k], element.hi[k], rows[k]);
     }
     std::array<int, D> j{};
     for (int c = 0; c < cols; ++c) {

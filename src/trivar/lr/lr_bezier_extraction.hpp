@@ -41,14 +41,10 @@ Incidence support_elements(std::span<const LRBSpline<D>> basis, std::span<const 
 template <int D>
 Incidence element_supports(std::span<const LRBSpline<D>> basis, std::span<const Box<D>> elements, int threads = 0);
 
-// Univariate extraction row: the Bernstein coefficients on [a, b] (inside the support) of the B-spline of degree
-// p = knots.size() - 2 with the given local knots, by inserting a and b up to multiplicity p + 1 (Boehm).
-// row holds p + 1 values. Throws trivar::Error when [a, b] is not a non-empty interval of the support.
-void local_extraction_row(std::span<const double> knots, double a, double b, double* row);
-
 // Extraction operator of one element: row r belongs to B-spline ids[r], column j to the tensor Bernstein
 // polynomial j of the element (prod (p_k + 1) columns, u fastest), and
-//   gamma_i B_i restricted to the element = sum_j C(r, j) Bernstein_j.
+//   gamma_i B_i restricted to the element = sum_j C(r, j) Bernstein_j
+// (per direction the Bernstein coefficients of bernstein_coefficients, knot_refinement.hpp).
 // Rows of a collection that is a partition of unity sum to the all-ones row.
 template <int D>
 Eigen::MatrixXd extraction_operator(const Ints<D>& degrees, std::span<const LRBSpline<D>> basis,

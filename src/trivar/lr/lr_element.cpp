@@ -6,36 +6,9 @@
 
 #include "trivar/core/error.hpp"
 #include "trivar/spline/basis.hpp"
+#include "trivar/spline/knot_refinement.hpp"
 
 namespace trivar {
-
-void bspline_bernstein_row(const double* y, int p, double a, double b, double* row) {
-  // Pad the local knots with p copies of each end: then the B-spline is number p of the padded vector t and
-  // de Boor's algorithm on the span of the element applies unchanged (Ramshaw's blossom by de Boor).
-  double t[3 * kMaxDegree + 2];
-  for (int i = 0; i < p; ++i) {
-    t[i] = y[0];
-    t[2 * p + 2 + i] = y[p + 1];
-  }
-  std::copy(y, y + p + 2, t + p);
-  const double m = 0.5 * (a + b);
-  int s = 0;
-  while (s < p && y[s + 1] <= m) ++s;
-  const int span = s + p;
-  for (int i = 0; i <= p; ++i) {
-    double d[kMaxDegree + 1];
-    for (int q = 0; q <= p; ++q) d[q] = (span - p + q == p) ? 1.0 : 0.0;
-    for (int r = 1; r <= p; ++r) {
-      const double x = r <= p - i ? a : b;
-      for (int q = p; q >= r; --q) {
-        const int j = span - p + q;
-        const double alpha = (x - t[j]) / (t[j + p + 1 - r] - t[j]);
-        d[q] = (1.0 - alpha) * d[q - 1] + alpha * d[q];
-      }
-    }
-    row[i] = d[p];
-  }
-}
 
 namespace {
 
@@ -129,7 +102,7 @@ ElementEvaluator<D>::ElementEvaluator(const Ints<D>& degrees, int dim, bool rati
       row_count_[e * D + static_cast<std::size_t>(k)] = static_cast<std::uint8_t>(dk.size());
       for (const auto* y : dk) {
         rows_.resize(rows_.size() + static_cast<std::size_t>(p + 1));
-        bspline_bernstein_row(y->data(), p, el.lo[k], el.hi[k], rows_.data() + rows_.size() - (p + 1));
+        bernstein_coefficients<double>(*y, el.lo[k], el.hi[k], rows_.data() + rows_.size() - (p + 1));
       }
     }
   }

@@ -6,7 +6,7 @@
 // both sides), built once, O(log E) per point.
 // Per element and direction, the distinct univariate B-splines among the element's B-splines (an element of a
 // tensor-like region has p + 1 per direction, not (p + 1)^D) are stored as their Bernstein coefficients on the
-// element (by blossoming, precomputed); a point then costs one Bernstein evaluation per direction, a few dot
+// element (bernstein_coefficients, precomputed); a point then costs one Bernstein evaluation per direction, a few dot
 // products, and one product per B-spline with its gamma * control value.
 #include <array>
 #include <cstdint>
@@ -17,10 +17,6 @@
 #include "trivar/lr/lr_bspline.hpp"
 
 namespace trivar {
-
-// Bernstein coefficients on [a, b] (a < b, no knot strictly inside, inside the support) of the B-spline of
-// degree p on local knots y[0..p+1]: row[i] = blossom(a, .., a, b, .., b) with i copies of b. row: p + 1 values.
-void bspline_bernstein_row(const double* y, int p, double a, double b, double* row);
 
 template <int D>
 class ElementEvaluator {

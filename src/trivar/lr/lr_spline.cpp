@@ -14,6 +14,7 @@
 #include "trivar/core/parallel.hpp"
 #include "trivar/lr/lr_mesh.hpp"
 #include "trivar/spline/basis.hpp"
+#include "trivar/spline/knot_refinement.hpp"
 
 namespace trivar {
 
@@ -199,7 +200,7 @@ struct LRSpline<D>::Batch {
   int epoch = 0;
   std::vector<double> candidates;
   std::vector<const Rect*> plane_rects;
-  std::vector<LRBSpline<D>> pieces, next;
+  std::vector<double> fine, coefs;  // split(): the finer local knots and the coefficients on them
   // B-splines made since the last resolve lack support lists: each one's list is filtered, once it is final,
   // from the list of the B-spline on a touched element it descends from (its root; extended by resolve).
   std::vector<int> root;
@@ -524,53 +525,27 @@ struct LRSpline<D>::Batch {
     return false;
   }
 
-  // Splits b by the lines zs (ascending) of direction k, each crossing b's support completely: by two-term
-  // splits B[y] = a1 B[y'_0..y'_{p+1}] + a2 B[y'_1..y'_{p+2}] (y' = y with z inserted) of every piece whose
-  // support z is inside, merging equal pieces locally; then the pieces join the collection. Called right after
-  // find_split(b) chose the lines.
+  // Splits b by the lines zs (ascending) of direction k, each crossing b's support completely: b's knots in k
+  // with the lines inserted are a finer local knot sequence, and express_in writes B[y] exactly in its B-splines
+  // (pieces of distinct knots, all with positive coefficients); then the pieces join the collection. Called
+  // right after find_split(b) chose the lines.
   void split(int b, int k, std::span<const double> zs) {
-    std::vector<double> lines(zs.begin(), zs.end());
-    pieces.clear();
-    pieces.push_back(std::move(s.basis_[static_cast<std::size_t>(b)]));
-    kill(b, knot_hash(pieces[0]));
+    LRBSpline<D> fn = std::move(s.basis_[static_cast<std::size_t>(b)]);
+    kill(b, knot_hash(fn));
     const int from = root[static_cast<std::size_t>(b)];
     const int p = s.degrees_[k];
-    for (double z : lines) {
-      next.clear();
-      for (auto& piece : pieces) {
-        const auto& y = piece.knots[k];
-        if (!(y.front() < z && z < y.back())) {
-          next.push_back(std::move(piece));
-          continue;
-        }
-        const double a1 = (y[p] <= z && z < y[p + 1]) ? 1.0 : (z - y[0]) / (y[p] - y[0]);
-        const double a2 = (y[0] < z && z <= y[1]) ? 1.0 : (y[p + 1] - z) / (y[p + 1] - y[1]);
-        double yz[kMaxDegree + 3];
-        const auto n = static_cast<std::ptrdiff_t>(y.size());
-        const auto at = std::upper_bound(y.begin(), y.end(), z) - y.begin();
-        std::copy(y.begin(), y.begin() + at, yz);
-        yz[at] = z;
-        std::copy(y.begin() + at, y.end(), yz + at + 1);
-        LRBSpline<D> b1 = piece;
-        b1.knots[k].assign(yz, yz + n);
-        b1.gamma *= a1;
-        piece.knots[k].assign(yz + 1, yz + n + 1);
-        piece.gamma *= a2;
-        merge_into(next, std::move(b1));
-        merge_into(next, std::move(piece));
-      }
-      std::swap(pieces, next);
+    const auto& y = fn.knots[k];
+    fine.resize(y.size() + zs.size());
+    std::merge(y.begin(), y.end(), zs.begin(), zs.end(), fine.begin());
+    coefs.resize(fine.size() - static_cast<std::size_t>(p) - 1);
+    express_in<double>(y, fine, coefs.data());
+    for (std::size_t j = 0; j < coefs.size(); ++j) {
+      LRBSpline<D> piece = j + 1 < coefs.size() ? fn : std::move(fn);
+      piece.knots[k].assign(fine.begin() + static_cast<std::ptrdiff_t>(j),
+                            fine.begin() + static_cast<std::ptrdiff_t>(j) + p + 2);
+      piece.gamma *= coefs[j];
+      add(std::move(piece), from);
     }
-    for (auto& piece : pieces) add(std::move(piece), from);
-  }
-
-  static void merge_into(std::vector<LRBSpline<D>>& list, LRBSpline<D>&& b) {
-    for (auto& old : list)
-      if (same_knots(old, b)) {
-        combine(old, b);
-        return;
-      }
-    list.push_back(std::move(b));
   }
 
   // gamma c is what the function sees: keep sum gamma_i c_i for the merged B-spline.

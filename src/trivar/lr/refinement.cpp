@@ -1,6 +1,8 @@
 #include "trivar/lr/refinement.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cstdlib>
 #include <string>
 
 #include "trivar/core/error.hpp"
@@ -42,18 +44,52 @@ bool cuts(const Box<D>& b, int k, double R) {
 }
 
 template <int D>
-double volume(const Box<D>& b) {
-  double v = 1.0;
-  for (int k = 0; k < D; ++k) v *= b.extent(k);
-  return v;
-}
-
-template <int D>
 double across(const Box<D>& b, int k) {
   double v = 1.0;
   for (int j = 0; j < D; ++j)
     if (j != k) v *= b.extent(j);
   return v;
+}
+
+// MINSPAN's rectangle across direction k on element `el` spans the support of one B-spline on the element: the
+// one of smallest extent across k (the product of its other sides; in 2D its length along the rectangle). Among
+// equally small ones the one most centred on the element wins: per direction j != k, the numbers of its knots
+// up to the element's start and before the element's end each closest to (p_j + 2) / 2 (for cubics: the element
+// in its second knot interval); a later candidate, in id order, wins when it is at least as centred in every
+// such direction on both sides. In 2D this is LRsplines' rule (getMinspanLines), so both tools refine the
+// same meshes alike. (Choosing the extent of each direction from a different B-spline, as LRsplines does for
+// volumes, can end a rectangle inside an element in 3D.)
+template <int D>
+Box<D> minimal_support(const LRSpline<D>& lr, std::span<const int> support, const Box<D>& el, int k) {
+  Box<D> best{};
+  double best_measure = 0.0;
+  std::array<int, 2 * D> best_offcentre{};
+  bool first = true;
+  for (int b : support) {
+    const auto& fn = lr.basis_function(b);
+    const Box<D> s = fn.support();
+    const double measure = across(s, k);
+    if (!first && measure > best_measure) continue;
+    std::array<int, 2 * D> offcentre{};
+    bool centred = true;
+    for (int j = 0; j < D; ++j) {
+      if (j == k) continue;
+      const auto& y = fn.knots[static_cast<std::size_t>(j)];
+      const int centre = (lr.degree(j) + 2) / 2;
+      const auto at = [&](auto it) { return std::abs(static_cast<int>(it - y.begin()) - centre); };
+      offcentre[static_cast<std::size_t>(2 * j)] = at(std::upper_bound(y.begin(), y.end(), el.lo[j]));
+      offcentre[static_cast<std::size_t>(2 * j + 1)] = at(std::lower_bound(y.begin(), y.end(), el.hi[j]));
+      for (std::size_t side = 2 * static_cast<std::size_t>(j); side <= 2 * static_cast<std::size_t>(j) + 1; ++side)
+        centred = centred && offcentre[side] <= best_offcentre[side];
+    }
+    if (first || measure < best_measure || centred) {
+      first = false;
+      best = s;
+      best_measure = measure;
+      best_offcentre = offcentre;
+    }
+  }
+  return best;
 }
 
 template <int D>
@@ -91,19 +127,7 @@ std::vector<MeshRectangle<D>> element_rectangles(const LRSpline<D>& lr, std::spa
       }
     for (int k = 0; k < D; ++k) {
       if (!cuts(el, k, opts.max_aspect_ratio)) continue;
-      if (opts.strategy == Strategy::minspan) {
-        int best = support[0];
-        Box<D> bs = lr.basis_function(best).support();
-        for (int b : support) {
-          const Box<D> s = lr.basis_function(b).support();
-          const double v = volume(s), vb = volume(bs);
-          if (v < vb || (v == vb && across(s, k) < across(bs, k))) {
-            best = b;
-            bs = s;
-          }
-        }
-        span = bs;
-      }
+      if (opts.strategy == Strategy::minspan) span = minimal_support(lr, support, el, k);
       const double mid = 0.5 * (el.lo[k] + el.hi[k]);
       if (D == 2 || opts.strategy != Strategy::fullspan) {
         out.push_back(MeshRectangle<D>::make(k, mid, span.lo, span.hi, opts.multiplicity));

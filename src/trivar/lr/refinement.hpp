@@ -5,9 +5,11 @@
 //     e, spanning in the other directions the union of the supports of all B-splines whose support contains e
 //     (a surface: their bounding box; a volume: one rectangle per distinct support cross-section, since the
 //     union need not be a box and its bounding box can end inside elements).
-//   MINSPAN on element e: as FULLSPAN but spanning the support of one B-spline with the smallest support among
-//     those whose support contains e. Tie-break: smallest support volume, then smallest (D-1)-measure across
-//     k, then lowest id.
+//   MINSPAN on element e: as FULLSPAN but, for the rectangle across k, spanning the support of one B-spline
+//     whose support contains e: the smallest across k (product of its sides j != k; in 2D its length along the
+//     line). Tie-break as LRsplines (so surfaces refine exactly as there): the one most centred on e, i.e. per
+//     direction j != k whose numbers of knots up to e's start and before e's end are closest to (p_j + 2) / 2;
+//     a later id wins when it is at least as centred in every such direction on both sides.
 //   STRUCTURED on B-spline b: for every non-empty knot interval of b in every direction, the mesh rectangle
 //     through its midpoint spanning b's support in the other directions.
 // All rectangles of one call are computed from the mesh before the call, then inserted as one batch

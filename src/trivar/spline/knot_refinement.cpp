@@ -7,32 +7,9 @@
 
 namespace trivar {
 
-namespace {
-
-// Boehm's rule on the local knot vector K (coefficients c of the B-splines on K): insert z, K[0] < z < K.back().
-void boehm_insert(std::vector<double>& K, std::vector<double>& c, int p, double z) {
-  const int n = static_cast<int>(K.size()) - p - 1;  // B-splines on K
-  const int k = static_cast<int>(std::upper_bound(K.begin(), K.end(), z) - K.begin()) - 1;  // K[k] <= z < K[k+1]
-  std::vector<double> q(n + 1);
-  for (int j = 0; j <= n; ++j) {
-    const double prev = j - 1 >= 0 && j - 1 < n ? c[j - 1] : 0.0;
-    const double cur = j < n ? c[j] : 0.0;
-    if (j <= k - p) {
-      q[j] = cur;
-    } else if (j >= k + 1) {
-      q[j] = prev;
-    } else {
-      const double alpha = (z - K[j]) / (K[j + p] - K[j]);
-      q[j] = alpha * cur + (1.0 - alpha) * prev;
-    }
-  }
-  K.insert(K.begin() + k + 1, z);
-  c.swap(q);
-}
-
-}  // namespace
-
 void express_in(std::span<const double> local, int p, const KnotVector& to, int& first, std::vector<double>& coefs) {
+  require(static_cast<int>(local.size()) == p + 2 && p >= 0 && p <= kMaxDegree,
+          "knot refinement: " + std::to_string(local.size()) + " local knots for degree " + std::to_string(p));
   const double a = local.front(), b = local.back();
   const auto& t = to.knots();
   const int m_start = static_cast<int>(std::upper_bound(local.begin(), local.end(), a) - local.begin());
@@ -41,22 +18,19 @@ void express_in(std::span<const double> local, int p, const KnotVector& to, int&
   const auto hi = std::lower_bound(t.begin(), t.end(), b);
   require(lo - t.begin() >= m_start && *(lo - m_start) == a && t.end() - hi >= m_end && *(hi + (m_end - 1)) == b,
           "knot refinement: target knot vector does not contain the support ends " + format_number(a) + ", " + format_number(b));
-  first = static_cast<int>(lo - t.begin()) - m_start;
-
-  std::vector<double> K(local.begin(), local.end());
-  coefs.assign(1, 1.0);
-  // Merge the interior knots of `to` against those of `local`; each one `local` lacks is inserted.
+  // Every interior knot of `local` must be in `to` at least as often.
   auto li = local.begin() + m_start;
   const auto le = local.end() - m_end;
-  for (auto ti = lo; ti != hi; ++ti) {
-    if (li != le && *li == *ti) {
-      ++li;
-      continue;
-    }
-    require(li == le || *li > *ti, "knot refinement: target knot vector lacks knot " + format_number(*li));
-    boehm_insert(K, coefs, p, *ti);
-  }
+  for (auto ti = lo; ti != hi && li != le; ++ti)
+    if (*li == *ti) ++li;
+    else require(*li > *ti, "knot refinement: target knot vector lacks knot " + format_number(*li));
   require(li == le, "knot refinement: target knot vector lacks knot " + (li == le ? std::string() : format_number(*li)));
+  // The part of `to` from local's first knot to its last, with local's end multiplicities: an exact split.
+  first = static_cast<int>(lo - t.begin()) - m_start;
+  const auto fine = std::span<const double>(t).subspan(static_cast<std::size_t>(first),
+                                                          static_cast<std::size_t>(hi - lo + m_start + m_end));
+  coefs.resize(fine.size() - static_cast<std::size_t>(p) - 1);
+  express_in<double>(local, fine, coefs.data());
 }
 
 SparseRowMatrix refinement_matrix(const KnotVector& from, const KnotVector& to) {
