@@ -132,7 +132,7 @@ nlohmann::json step_origin_json(const io::step::StepObject& o) {
 }
 
 void print_step_info(const std::string& file, bool json, const std::string& check, bool strict) {
-  const io::step::StepContents c = read_step_warning(file, strict);
+  const io::step::StepContents c = read_step_warning(file, strict, false);
   // Entity kinds by decreasing count (ties by name) so the bulk of the file comes first.
   std::vector<std::pair<std::string, io::step::EntityCount>> kinds(c.entities.begin(), c.entities.end());
   std::stable_sort(kinds.begin(), kinds.end(), [](const auto& a, const auto& b) { return a.second.total() > b.second.total(); });

@@ -7,7 +7,8 @@
 
 namespace trivar::cli {
 
-// read_step(path, strict), then the warnings on stderr.
-io::step::StepContents read_step_warning(const std::string& path, bool strict);
+// read_step(path, strict), then the warnings on stderr; the unextracted faces too unless the caller reports
+// them itself (`info` lists them with the entities).
+io::step::StepContents read_step_warning(const std::string& path, bool strict, bool warn_unmapped_faces = true);
 
 }  // namespace trivar::cli

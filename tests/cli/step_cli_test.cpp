@@ -87,7 +87,9 @@ TEST_F(StepCli, SkippedAnalyticFacesAreReported) {
   const nlohmann::json j = nlohmann::json::parse(ok("info --json " + file).out);
   EXPECT_EQ(j.at("faces"), 3);
   EXPECT_EQ(j.at("unmapped_faces"), (nlohmann::json{{"PLANE", 1}}));
-  EXPECT_NE(ok("info " + file).out.find("\n  skipped 1 of 3 faces (surface not a spline): 1 PLANE\n"), std::string::npos);
+  const Result info = ok("info " + file);
+  EXPECT_NE(info.out.find("\n  skipped 1 of 3 faces (surface not a spline): 1 PLANE\n"), std::string::npos) << info.out;
+  EXPECT_EQ(info.err, "");
 }
 
 TEST_F(StepCli, DeparturesWarnByDefaultAndFailWithStrict) {

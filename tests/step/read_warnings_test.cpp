@@ -80,13 +80,13 @@ TEST(StepReadWarnings, DanglingReferencesOutsideTheKeptInstances) {
 }
 
 TEST(StepReadWarnings, ReferenceCycles) {
-  // Through skipped instances and a kept one (ORIENTED_EDGE, where the search starts: kept ones come first).
+  // Through skipped instances and a kept one (ORIENTED_EDGE); the search starts in file order.
   const Outcome r = read_both("#1=CARTESIAN_POINT('',(0.,0.,0.));\n#2=FACE_BOUND('',#3,.T.);\n#3=EDGE_LOOP('',(#4));\n"
                               "#4=ORIENTED_EDGE('',*,*,#2,.T.);\n");
   ASSERT_EQ(r.warnings.size(), 1u);
   EXPECT_EQ(r.warnings[0].kind, Departure::reference_cycle);
   EXPECT_EQ(r.warnings[0].first,
-            "t.stp: #4: reference cycle #4 -> #2 -> #3 -> #4 (ORIENTED_EDGE -> FACE_BOUND -> EDGE_LOOP -> ORIENTED_EDGE)");
+            "t.stp: #2: reference cycle #2 -> #3 -> #4 -> #2 (FACE_BOUND -> EDGE_LOOP -> ORIENTED_EDGE -> FACE_BOUND)");
   EXPECT_EQ(r.strict_error, r.warnings[0].first + " (strict reading)");
 }
 

@@ -51,7 +51,7 @@ public:
     if (!data) lex_.fail(tok_.line, tok_.column, "no DATA section");
     if (options_.check_references) {
       file_.check_references(lex_.name(), &warnings_);
-      if (const std::vector<std::uint64_t> cycle = find_reference_cycle(file_); !cycle.empty())
+      if (const std::vector<std::uint64_t> cycle = find_reference_cycle(file_, referring_); !cycle.empty())
         warnings_.note(Departure::reference_cycle, [&] { return cycle_message(cycle); });
     }
     file_.sort_points();
@@ -168,11 +168,13 @@ private:
     advance();
     expect(TokenKind::equals);
     Instance inst{id, {}, false, start.line, start.column};
+    refers_ = false;
     if (tok_.kind == TokenKind::keyword) {
       if (options_.keep && !options_.keep(tok_.text)) {
         skipped_references_.clear();
         lex_.skip_past_semicolon(start.line, start.column, skipped_references_);
         file_.note_skipped(id, tok_.text, start.line, start.column, skipped_references_);
+        if (!skipped_references_.empty()) referring_.push_back(id);
         lex_.set_instance(0);
         advance();
         return;
@@ -190,6 +192,7 @@ private:
     if (tok_.kind != TokenKind::semicolon) unexpected("';'");
     bool kept = !options_.keep;
     for (std::size_t k = 0; k < inst.records.size() && !kept; ++k) kept = options_.keep(inst.records[k].keyword);
+    if (refers_) referring_.push_back(id);
     if (kept) {
       if (!(options_.compact_points && insert_compact_point(inst))) file_.insert(std::move(inst));
     } else {
@@ -258,7 +261,10 @@ private:
       case TokenKind::string: p = std::move(tok_.text); break;
       case TokenKind::enumeration: p = Enumeration{std::move(tok_.text)}; break;
       case TokenKind::binary: p = Binary{std::move(tok_.text)}; break;
-      case TokenKind::instance_name: p = Reference{tok_.id}; break;
+      case TokenKind::instance_name:
+        p = Reference{tok_.id};
+        refers_ = true;
+        break;
       case TokenKind::open: {
         List l;
         parameter_list(l.items, depth + 1);
@@ -286,6 +292,10 @@ private:
   ExchangeFile file_;
   std::vector<std::vector<Parameter>> scratch_;
   std::vector<std::uint64_t> skipped_references_;
+  // Instances that refer to others, in file order: the only possible members of a reference cycle, found
+  // while parsing so the cycle search need not walk the whole store again.
+  std::vector<std::uint64_t> referring_;
+  bool refers_ = false;  // the instance being parsed holds a reference
 };
 
 }  // namespace

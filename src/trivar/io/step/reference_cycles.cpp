@@ -15,13 +15,29 @@ void collect_references(const Parameter& p, std::vector<std::uint64_t>& out) {
 
 namespace {
 
+bool has_references(const Parameter& p) {
+  if (p.get_if<Reference>()) return true;
+  if (const auto* l = p.get_if<List>())
+    return std::any_of(l->items.begin(), l->items.end(), [](const Parameter& q) { return has_references(q); });
+  if (const auto* t = p.get_if<Typed>()) return has_references(t->value());
+  return false;
+}
+
+// Most instances of a CAD file (points, directions) refer to nothing and cannot be on a cycle.
+bool has_references(const Instance& i) {
+  for (const Record& r : i.records)
+    for (const Parameter& p : r.params)
+      if (has_references(p)) return true;
+  return false;
+}
+
 // The reference graph of kept and skipped instances alike.
 class Graph {
 public:
   explicit Graph(const ExchangeFile& file) : file_(file) {
     for (std::size_t k = 0; k < file.skipped_instances().size(); ++k) skipped_.emplace(file.skipped_instances()[k].id, k);
   }
-  bool has(std::uint64_t id) const { return file_.find(id) || skipped_.contains(id); }
+  // Empty for an instance that refers to nothing and for an id that names no instance.
   std::vector<std::uint64_t> references_of(std::uint64_t id) const {
     std::vector<std::uint64_t> out;
     if (const Instance* i = file_.find(id)) {
@@ -49,7 +65,7 @@ std::vector<std::uint64_t> search(const Graph& graph, std::uint64_t root,
     std::vector<std::uint64_t> refs;
     std::size_t next = 0;
   };
-  if (marks.count(root) || !graph.has(root)) return {};
+  if (marks.count(root)) return {};
   std::vector<Frame> stack;
   stack.push_back({root, graph.references_of(root)});
   if (stack.back().refs.empty()) return {};  // a leaf (most instances: points) needs no mark
@@ -71,9 +87,8 @@ std::vector<std::uint64_t> search(const Graph& graph, std::uint64_t root,
       cycle.push_back(to);
       return cycle;
     }
-    if (!graph.has(to)) continue;  // dangling (check_references reports those)
     std::vector<std::uint64_t> refs = graph.references_of(to);
-    if (refs.empty()) continue;
+    if (refs.empty()) continue;  // a leaf, or dangling (check_references reports those)
     marks[to] = Mark::open;
     stack.push_back({to, std::move(refs)});
   }
@@ -87,14 +102,21 @@ std::vector<std::uint64_t> find_reference_cycle(const ExchangeFile& file, std::u
   return search(Graph(file), root, marks);
 }
 
-std::vector<std::uint64_t> find_reference_cycle(const ExchangeFile& file) {
+std::vector<std::uint64_t> find_reference_cycle(const ExchangeFile& file, const std::vector<std::uint64_t>& roots) {
   const Graph graph(file);
   std::unordered_map<std::uint64_t, Mark> marks;
-  for (const Instance& i : file.instances())
-    if (auto cycle = search(graph, i.id, marks); !cycle.empty()) return cycle;
-  for (const ExchangeFile::Skipped& s : file.skipped_instances())
-    if (auto cycle = search(graph, s.id, marks); !cycle.empty()) return cycle;
+  for (const std::uint64_t root : roots)
+    if (auto cycle = search(graph, root, marks); !cycle.empty()) return cycle;
   return {};
+}
+
+std::vector<std::uint64_t> find_reference_cycle(const ExchangeFile& file) {
+  std::vector<std::uint64_t> roots;
+  for (const Instance& i : file.instances())
+    if (has_references(i)) roots.push_back(i.id);
+  for (std::size_t k = 0; k < file.skipped_instances().size(); ++k)
+    if (!file.skipped_references(k).empty()) roots.push_back(file.skipped_instances()[k].id);
+  return find_reference_cycle(file, roots);
 }
 
 }  // namespace trivar::io::step
