@@ -1,7 +1,9 @@
 #include "trivar/io/step/reference_cycles.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <unordered_map>
+#include <unordered_set>
 
 namespace trivar::io::step {
 
@@ -34,12 +36,15 @@ bool has_references(const Instance& i) {
 // The reference graph of kept and skipped instances alike.
 class Graph {
 public:
-  explicit Graph(const ExchangeFile& file) : file_(file) {
+  // `referring`: when given, the only instances that hold references (the rest are skipped unlooked-at).
+  explicit Graph(const ExchangeFile& file, const std::vector<std::uint64_t>* referring = nullptr) : file_(file) {
     for (std::size_t k = 0; k < file.skipped_instances().size(); ++k) skipped_.emplace(file.skipped_instances()[k].id, k);
+    if (referring) referring_.emplace(referring->begin(), referring->end());  // points are never looked up
   }
   // Empty for an instance that refers to nothing and for an id that names no instance.
   std::vector<std::uint64_t> references_of(std::uint64_t id) const {
     std::vector<std::uint64_t> out;
+    if (referring_ && !referring_->contains(id)) return out;
     if (const Instance* i = file_.find(id)) {
       for (const Record& r : i->records)
         for (const Parameter& p : r.params) collect_references(p, out);
@@ -53,6 +58,7 @@ public:
 private:
   const ExchangeFile& file_;
   std::unordered_map<std::uint64_t, std::size_t> skipped_;
+  std::optional<std::unordered_set<std::uint64_t>> referring_;
 };
 
 enum class Mark { open, done };
@@ -103,7 +109,7 @@ std::vector<std::uint64_t> find_reference_cycle(const ExchangeFile& file, std::u
 }
 
 std::vector<std::uint64_t> find_reference_cycle(const ExchangeFile& file, const std::vector<std::uint64_t>& roots) {
-  const Graph graph(file);
+  const Graph graph(file, &roots);
   std::unordered_map<std::uint64_t, Mark> marks;
   for (const std::uint64_t root : roots)
     if (auto cycle = search(graph, root, marks); !cycle.empty()) return cycle;

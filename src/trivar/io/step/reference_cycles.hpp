@@ -16,7 +16,8 @@ void collect_references(const Parameter& p, std::vector<std::uint64_t>& out);
 // first id repeated at the end (#3 -> #5 -> #3 gives {3, 5, 3}); empty when there is none. Iterative, so
 // long reference chains do not exhaust the stack.
 std::vector<std::uint64_t> find_reference_cycle(const ExchangeFile& file, std::uint64_t root);
-// The first cycle reachable from any of `roots`, searched in that order.
+// The first cycle through `roots`, searched in that order; `roots` must hold every instance that refers to
+// another (the parser collects them), as the others are not looked at.
 std::vector<std::uint64_t> find_reference_cycle(const ExchangeFile& file, const std::vector<std::uint64_t>& roots);
 // The same over the whole file (kept instances first, in file order, then skipped ones).
 std::vector<std::uint64_t> find_reference_cycle(const ExchangeFile& file);
