@@ -11,6 +11,7 @@
 
 #include "cli.hpp"
 #include "lr_cli.hpp"
+#include "step_cli.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/io/spline_file.hpp"
 #include "trivar/io/step/step_file.hpp"
@@ -25,7 +26,7 @@ void add_convert_command(CLI::App& app, Context&) {
   struct Args {
     std::string in, out;
     int samples = 4;
-    bool lr = false, bezier = false, sampled = false, control_net = false, parametric_mesh = false;
+    bool lr = false, bezier = false, sampled = false, control_net = false, parametric_mesh = false, strict = false;
     // The VTK cells the flags ask for (Bezier unless --samples, --control-net or --parametric-mesh).
     io::VtkOptions tensor_vtk() const {
       return {control_net ? io::VtkCells::control_net : sampled ? io::VtkCells::sampled : io::VtkCells::bezier,
@@ -48,7 +49,11 @@ void add_convert_command(CLI::App& app, Context&) {
   cmd->add_flag("--control-net", a->control_net, "VTK: write the control net (points and polygon lines) instead of the geometry");
   cmd->add_flag("--lr", a->lr, "Convert tensor surfaces and volumes to LR splines (implied by an .lr output)");
   cmd->add_flag("--parametric-mesh", a->parametric_mesh, "VTK of LR splines: the mesh in parameter space instead of the geometry");
+  cmd->add_flag("--strict", a->strict,
+                "STEP input: refuse departures from ISO 10303-21 (lower-case keywords, stray bytes in strings, "
+                "dangling references, reference cycles) instead of warning");
   cmd->callback([a] {
+    require(!a->strict || is_step_file(a->in), "convert: --strict applies to STEP input, not " + a->in);
     if (is_step_file(a->out)) {
       require(!is_step_file(a->in), "convert: " + a->in + " is already a STEP file");
       std::vector<AnySpline> splines;
@@ -68,7 +73,7 @@ void add_convert_command(CLI::App& app, Context&) {
       return;
     }
     if (is_step_file(a->in)) {
-      io::step::StepContents c = io::step::read_step(a->in);
+      io::step::StepContents c = read_step_warning(a->in, a->strict);
       require(!c.splines.empty() || !c.lr_splines.empty(), "convert: " + a->in + " holds no B-spline or locally refined geometry");
       if (c.lr_splines.empty() && !a->lr && !is_lr_extension(a->out)) {
         if (std::filesystem::path(a->out).extension() == ".vtu")

@@ -11,6 +11,7 @@
 #include "cli.hpp"
 #include "lr_cli.hpp"
 #include "trivar/core/error.hpp"
+#include "step_cli.hpp"
 #include "trivar/io/step/step_file.hpp"
 
 namespace trivar::cli {
@@ -107,6 +108,11 @@ void print_lr_info(const std::string& file, const std::vector<AnyLRSpline>& obje
   }
 }
 
+std::string trimmed(const std::string& s) {
+  const auto first = s.find_first_not_of(" \t");
+  return first == std::string::npos ? std::string() : s.substr(first, s.find_last_not_of(" \t") - first + 1);
+}
+
 // Where a STEP object came from: "#id 'name' ENTITY, faces #a #b, edges #c".
 std::string step_origin(const io::step::StepObject& o) {
   std::string r = "#" + std::to_string(o.id) + (o.name.empty() ? "" : " '" + o.name + "'") + " " + o.entity;
@@ -125,8 +131,8 @@ nlohmann::json step_origin_json(const io::step::StepObject& o) {
           {"faces", o.faces}, {"edges", o.edges}};
 }
 
-void print_step_info(const std::string& file, bool json, const std::string& check) {
-  const io::step::StepContents c = io::step::read_step(file);
+void print_step_info(const std::string& file, bool json, const std::string& check, bool strict) {
+  const io::step::StepContents c = read_step_warning(file, strict, false);
   // Entity kinds by decreasing count (ties by name) so the bulk of the file comes first.
   std::vector<std::pair<std::string, io::step::EntityCount>> kinds(c.entities.begin(), c.entities.end());
   std::stable_sort(kinds.begin(), kinds.end(), [](const auto& a, const auto& b) { return a.second.total() > b.second.total(); });
@@ -136,10 +142,14 @@ void print_step_info(const std::string& file, bool json, const std::string& chec
                        {"schemas", c.header.schemas},
                        {"originating_system", c.header.originating_system},
                        {"instances", c.instance_count()},
+                       {"faces", c.faces},
+                       {"unmapped_faces", c.unmapped_faces},
+                       {"warnings", nlohmann::json::array()},
                        {"entities", nlohmann::json::object()},
                        {"objects", nlohmann::json::array()},
                        {"lr_objects", nlohmann::json::array()}};
     for (const auto& [k, n] : kinds) out["entities"][k] = {{"count", n.total()}, {"mapped", n.kept}};
+    for (const io::step::ReadWarning& w : c.warnings) out["warnings"].push_back({{"first", w.first}, {"count", w.count}});
     for (std::size_t i = 0; i < c.splines.size(); ++i) {
       nlohmann::json d = std::visit([](const auto& s) { return describe(s); }, c.splines[i]);
       d["step"] = step_origin_json(c.spline_info[i]);
@@ -155,14 +165,16 @@ void print_step_info(const std::string& file, bool json, const std::string& chec
   }
   std::string schemas;
   for (const auto& sc : c.header.schemas) schemas += (schemas.empty() ? "" : ", ") + sc;
+  const std::string from = trimmed(c.header.originating_system);
   std::printf("%s: STEP (ISO 10303-21), schema %s%s%s\n", file.c_str(), schemas.empty() ? "(none)" : schemas.c_str(),
-              c.header.originating_system.empty() ? "" : ", from ", c.header.originating_system.c_str());
+              from.empty() ? "" : ", from ", from.c_str());
   std::printf("  instances: %zu of %zu entity kinds; geometry found: %zu B-spline object%s, %zu locally refined\n",
               c.instance_count(), kinds.size(), c.splines.size(), c.splines.size() == 1 ? "" : "s", c.lr_splines.size());
   constexpr std::size_t kListed = 25;
   for (std::size_t i = 0; i < kinds.size() && i < kListed; ++i)
     std::printf("  %8zu  %s\n", kinds[i].second.total(), kinds[i].first.c_str());
   if (kinds.size() > kListed) std::printf("  ... %zu more entity kinds (--json lists all)\n", kinds.size() - kListed);
+  if (const std::string faces = c.unmapped_faces_summary(); !faces.empty()) std::printf("  %s\n", faces.c_str());
   for (std::size_t i = 0; i < c.splines.size(); ++i) {
     std::printf("object %zu: %s\n", i, step_origin(c.spline_info[i]).c_str());
     std::visit([](const auto& s) { print_text(s); }, c.splines[i]);
@@ -182,13 +194,17 @@ void add_info_command(CLI::App& app, Context&) {
   cmd->add_option("FILE", *file, "Spline file (.json, .g2, .lr), STEP file (.stp, .step) or V-model (.json)")->required();
   auto check = std::make_shared<std::string>();
   cmd->add_flag("--json", *json, "Print one JSON document instead of text");
+  auto strict = std::make_shared<bool>(false);
+  cmd->add_flag("--strict", *strict,
+                "STEP: refuse departures from ISO 10303-21 (lower-case keywords, stray bytes in strings, dangling "
+                "references, reference cycles) instead of warning");
   cmd->add_option("--check-independence", *check,
                   "LR splines: test the linear independence of the B-splines (peeling: fast, may be inconclusive; "
                   "exact: rank of the Bezier extraction)")
       ->check(CLI::IsMember({"peeling", "exact"}));
-  cmd->callback([file, json, check] {
+  cmd->callback([file, json, check, strict] {
     if (is_step_file(*file)) {
-      print_step_info(*file, *json, *check);
+      print_step_info(*file, *json, *check, *strict);
       return;
     }
     if (const std::optional<VModel> model = read_model_if_any(*file)) {

@@ -71,10 +71,48 @@ TEST_F(StepCli, LRVolumeAndVModelRoundTrips) {
 }
 
 TEST_F(StepCli, BadFilesFailWithOneLine) {
-  for (const char* f : {"truncated_instance.stp", "bad_escape.stp", "missing_semicolon.stp"})
+  for (const char* f : {"truncated_instance.stp", "bad_escape.stp"})
     fails("convert " + std::string(TRIVAR_TEST_DATA) + "/step/malformed/" + f + " out.json");
+  // Instances the geometry reader skips are not tokenised, so a missing ';' there swallows the next instance:
+  // what remains is a reference to no instance (a warning), and no geometry (the error).
+  const std::string swallowed = std::string(TRIVAR_TEST_DATA) + "/step/malformed/missing_semicolon.stp";
+  const Result r = run("convert " + swallowed + " out.json");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.err, "trivar: warning: " + swallowed + ":8:1: #1: NAME refers to undefined instance #2\n"
+                   "trivar: error: convert: " + swallowed + " holds no B-spline or locally refined geometry\n");
+  fails("convert " + swallowed + " out.json --strict");
   fails("info " + std::string(TRIVAR_TEST_DATA) + "/step/malformed/unterminated_string.stp");
   write("nothing.stp", "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\nFILE_NAME('','',(''),(''),'','','');\n"
                        "FILE_SCHEMA(('X'));\nENDSEC;\nDATA;\n#1=CARTESIAN_POINT('',(0.,0.,0.));\nENDSEC;\nEND-ISO-10303-21;\n");
   fails("convert nothing.stp out.json");
+}
+
+TEST_F(StepCli, SkippedAnalyticFacesAreReported) {
+  const std::string file = std::string(TRIVAR_TEST_DATA) + "/step/geometry/cad_part_ap214.stp";
+  const Result r = ok("convert " + file + " out.g2");
+  // The hand-written part has three faces: a B-spline patch, a rational B-spline quarter cylinder and a PLANE.
+  EXPECT_EQ(r.err, "trivar: warning: " + file + ": skipped 1 of 3 faces (surface not a spline): 1 PLANE\n");
+  const nlohmann::json j = nlohmann::json::parse(ok("info --json " + file).out);
+  EXPECT_EQ(j.at("faces"), 3);
+  EXPECT_EQ(j.at("unmapped_faces"), (nlohmann::json{{"PLANE", 1}}));
+  const Result info = ok("info " + file);
+  EXPECT_NE(info.out.find("\n  skipped 1 of 3 faces (surface not a spline): 1 PLANE\n"), std::string::npos) << info.out;
+  EXPECT_EQ(info.err, "");
+}
+
+TEST_F(StepCli, DeparturesWarnByDefaultAndFailWithStrict) {
+  write("lax.stp", "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\nFILE_NAME('','',(''),(''),'','',' ');\n"
+                   "FILE_SCHEMA(('X'));\nENDSEC;\nDATA;\n#1=CARTESIAN_POINT('',(0.,0.,0.));\n"
+                   "#2=cartesian_point('',(1.,0.,0.));\n#3=B_SPLINE_CURVE_WITH_KNOTS('',1,(#1,#2),.UNSPECIFIED.,.F.,"
+                   ".F.,(2,2),(0.,1.),.UNSPECIFIED.);\n#4=PRODUCT('p','p','',(#99));\nENDSEC;\nEND-ISO-10303-21;\n");
+  const Result r = ok("convert lax.stp out.json");
+  EXPECT_EQ(r.err,
+            "trivar: warning: lax.stp:9:4: #2: keyword 'CARTESIAN_POINT' written in lower case (ISO 10303-21 requires "
+            "upper case)\ntrivar: warning: lax.stp:11:1: #4: PRODUCT refers to undefined instance #99\n");
+  fails("convert lax.stp strict.json --strict");
+  EXPECT_FALSE(exists("strict.json"));
+  fails("info lax.stp --strict");
+  // An originating system of blanks is no origin: the first line ends after the schema.
+  const std::string text = ok("info lax.stp").out;
+  EXPECT_EQ(text.substr(0, text.find('\n')), "lax.stp: STEP (ISO 10303-21), schema X");
 }

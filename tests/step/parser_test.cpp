@@ -1,6 +1,7 @@
 // The reader on hand-written files: every grammar feature, the streaming path with tiny chunks, filters.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -8,6 +9,7 @@
 #include "step/step_test_support.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/io/step/parser.hpp"
+#include "trivar/io/step/writer.hpp"
 
 using namespace trivar;
 using namespace trivar::io::step;
@@ -178,4 +180,27 @@ TEST(StepParser, MissingFileNamesThePath) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent/x.stp"), std::string::npos);
   }
+}
+
+TEST(StepParser, CompactPointsKeepTheirCoordinatesAndCannotBeWritten) {
+  const std::string text =
+      "ISO-10303-21;\nHEADER;\nFILE_DESCRIPTION((''),'2;1');\nFILE_NAME('','',(''),(''),'','','');\n"
+      "FILE_SCHEMA(('X'));\nENDSEC;\nDATA;\n#3=CARTESIAN_POINT('',(1.5,-2.,3));\n#1=CARTESIAN_POINT('',(0.25));\n"
+      "#2=CARTESIAN_POINT('named',(1.,2.,3.));\n#4=LINE('',#3,#2);\nENDSEC;\nEND-ISO-10303-21;\n";
+  ReadOptions o;
+  o.compact_points = true;
+  const ExchangeFile f = parse_exchange_file(text, "t.stp", o);
+  EXPECT_EQ(f.point_count(), 2u);
+  ASSERT_NE(f.point(3), nullptr);
+  EXPECT_EQ(f.point(3)->dimension, 3);
+  EXPECT_EQ(f.point(3)->coordinates, (std::array<double, 3>{1.5, -2.0, 3.0}));  // the integer 3 as a number
+  ASSERT_NE(f.point(1), nullptr);  // found although read after #3
+  EXPECT_EQ(f.point(1)->dimension, 1);
+  EXPECT_EQ(f.point(1)->coordinates[0], 0.25);
+  EXPECT_EQ(f.find(3), nullptr);
+  EXPECT_EQ(f.point(2), nullptr);  // a name is kept: a generic instance
+  ASSERT_NE(f.find(2), nullptr);
+  EXPECT_EQ(f.size(), 2u);
+  std::ostringstream out;
+  EXPECT_THROW(write_exchange_file(out, f), Error);  // the points' references would dangle
 }

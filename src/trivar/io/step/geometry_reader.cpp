@@ -106,6 +106,8 @@ public:
     if (!r) fail(what + ": expected a reference to a " + keyword + ", found " + kind_name(p.kind()));
     const Instance* target = file_.find(r->id);
     if (!target) {
+      if (file_.point(r->id))  // held compactly by the reader
+        fail(what + ": #" + std::to_string(r->id) + " is a CARTESIAN_POINT, expected a " + keyword);
       if (file_.is_skipped(r->id)) fail(what + ": #" + std::to_string(r->id) + " is not a " + keyword);
       fail(what + ": reference to undefined instance #" + std::to_string(r->id));
     }
@@ -116,6 +118,15 @@ public:
   // Appends the coordinates of the CARTESIAN_POINT `p` refers to; all points of an object have `dim` coordinates
   // (set by the first one when 0).
   void point(const Parameter& p, const std::string& what, int& dim, std::vector<double>& out) const {
+    if (const auto* r = p.get_if<Reference>())
+      if (const ExchangeFile::Point* compact = file_.point(r->id)) {
+        if (dim == 0) dim = compact->dimension;
+        if (compact->dimension != dim)
+          fail(what + " (#" + std::to_string(r->id) + "): " + std::to_string(compact->dimension) +
+               " coordinates, the first control point has " + std::to_string(dim));
+        out.insert(out.end(), compact->coordinates.begin(), compact->coordinates.begin() + dim);
+        return;
+      }
     const Instance& pt = resolve(p, "CARTESIAN_POINT", what);
     const Record& r = *pt.record("CARTESIAN_POINT");
     const std::string where = what + " (#" + std::to_string(pt.id) + ")";

@@ -70,10 +70,35 @@ std::uint32_t Lexer::column() const {
   return static_cast<std::uint32_t>(std::min<std::uint64_t>(offset() - line_start_ + 1, UINT32_MAX));
 }
 
+std::string Lexer::where(std::uint32_t at_line, std::uint32_t at_column) const {
+  std::string m = name_;  // appended piecewise: GCC 12 warns falsely (-Wrestrict) on chains of operator+
+  m += ':';
+  m += std::to_string(at_line);
+  m += ':';
+  m += std::to_string(at_column);
+  m += ": ";
+  if (instance_) {
+    m += '#';
+    m += std::to_string(instance_);
+    m += ": ";
+  }
+  return m;
+}
+
 void Lexer::fail(std::uint32_t at_line, std::uint32_t at_column, const std::string& message) const {
-  std::string m = name_ + ":" + std::to_string(at_line) + ":" + std::to_string(at_column) + ": ";
-  if (instance_) m += "#" + std::to_string(instance_) + ": ";
-  throw Error(m + message);
+  throw Error(where(at_line, at_column) + message);
+}
+
+void Lexer::upper_case(std::string& word, const Token& t, const char* what) {
+  bool lower = false;
+  for (char& ch : word) {
+    lower |= ch >= 'a' && ch <= 'z';
+    ch = upper(ch);
+  }
+  if (lower && warnings_)
+    warnings_->note(Departure::lowercase_keyword, [&] {
+      return where(t.line, t.column) + what + " '" + word + "' written in lower case (ISO 10303-21 requires upper case)";
+    });
 }
 
 template <class Accept>
@@ -159,7 +184,7 @@ void Lexer::next(Token& t) {
       scan(t.text, is_word);
       if (t.text.empty() || peek() != '.') fail(t.line, t.column, "malformed enumeration (expected .NAME.)");
       ++pos_;
-      for (char& ch : t.text) ch = upper(ch);
+      upper_case(t.text, t, "enumeration");
       t.kind = TokenKind::enumeration;
       return;
     }
@@ -176,7 +201,7 @@ void Lexer::next(Token& t) {
       ++pos_;
     }
     scan(t.text, [](int ch) { return is_word(ch) || ch == '-'; });
-    for (char& ch : t.text) ch = upper(ch);
+    upper_case(t.text, t, "keyword");
     if (t.text.size() == (c == '!' ? 1u : 0u)) fail(t.line, t.column, "empty user-defined keyword");
     if (t.text.find('-') != std::string::npos && t.text != "ISO-10303-21" && t.text != "END-ISO-10303-21")
       fail(t.line, t.column, "bad keyword '" + t.text + "'");
@@ -220,11 +245,14 @@ void Lexer::lex_string(Token& t) {
       ++pos_;
     }
   }
+  StrayBytes stray;
   try {
-    t.text = decode_string(scratch_);
+    t.text = decode_string(scratch_, warnings_ && !warnings_->strict() ? &stray : nullptr);
   } catch (const Error& e) {
     fail(t.line, t.column, e.what());
   }
+  if (stray.count > 0)
+    warnings_->note(Departure::stray_bytes, [&] { return where(t.line, t.column) + stray_byte_message(stray); });
   t.kind = TokenKind::string;
 }
 
@@ -240,12 +268,12 @@ void Lexer::lex_binary(Token& t) {
   t.kind = TokenKind::binary;
 }
 
-void Lexer::skip_past_semicolon(std::uint32_t at_line, std::uint32_t at_column) {
+void Lexer::skip_past_semicolon(std::uint32_t at_line, std::uint32_t at_column, std::vector<std::uint64_t>& references) {
   while (true) {
     const char* p = pos_;
     while (p != end_) {
       const char c = *p;
-      if (c == ';' || c == '\'' || c == '/' || c == '\n') break;
+      if (c == ';' || c == '\'' || c == '/' || c == '\n' || c == '#') break;
       ++p;
     }
     pos_ = p;
@@ -253,7 +281,15 @@ void Lexer::skip_past_semicolon(std::uint32_t at_line, std::uint32_t at_column) 
     if (c < 0) fail(at_line, at_column, "unterminated instance (missing ';')");
     ++pos_;
     if (c == ';') return;
-    if (c == '\n') {
+    if (c == '#') {
+      std::uint64_t id = 0;
+      bool digits = false;
+      for (int d; is_digit(d = peek()) && id < UINT64_MAX / 10 - 1; ++pos_) {
+        id = id * 10 + static_cast<std::uint64_t>(d - '0');
+        digits = true;
+      }
+      if (digits && id > 0) references.push_back(id);  // malformed names are not checked in skipped bodies
+    } else if (c == '\n') {
       newline();
     } else if (c == '\'') {
       for (int s; (s = peek()) != '\''; ++pos_) {

@@ -5,6 +5,7 @@
 
 #include "trivar/core/error.hpp"
 #include "trivar/io/step/lexer.hpp"
+#include "trivar/io/step/reference_cycles.hpp"
 
 namespace trivar::io::step {
 
@@ -15,7 +16,10 @@ constexpr int max_nesting = 64;
 
 class Parser {
 public:
-  Parser(Lexer& lexer, const ReadOptions& options) : lex_(lexer), options_(options), scratch_(max_nesting + 2) {}
+  Parser(Lexer& lexer, const ReadOptions& options)
+      : lex_(lexer), options_(options), warnings_(options.strict), scratch_(max_nesting + 2) {
+    lex_.set_warnings(&warnings_);
+  }
 
   ExchangeFile run() {
     advance();
@@ -45,12 +49,32 @@ public:
       }
     }
     if (!data) lex_.fail(tok_.line, tok_.column, "no DATA section");
-    if (options_.check_references) file_.check_references(lex_.name());
+    if (options_.check_references) {
+      file_.check_references(lex_.name(), &warnings_);
+      if (const std::vector<std::uint64_t> cycle = find_reference_cycle(file_, referring_); !cycle.empty())
+        warnings_.note(Departure::reference_cycle, [&] { return cycle_message(cycle); });
+    }
+    file_.sort_points();
+    file_.warnings = warnings_.take();
     return std::move(file_);
   }
 
 private:
   void advance() { lex_.next(tok_); }
+
+  // "file: #3: reference cycle #3 -> #5 -> #3 (ADVANCED_FACE -> FACE_BOUND -> ADVANCED_FACE)".
+  std::string cycle_message(const std::vector<std::uint64_t>& cycle) const {
+    std::string ids, types;
+    for (const std::uint64_t id : cycle) {
+      ids += (ids.empty() ? "#" : " -> #") + std::to_string(id);
+      std::string type = "?";
+      if (const Instance* i = file_.find(id)) type = i->type_name();
+      for (const ExchangeFile::Skipped& sk : file_.skipped_instances())
+        if (sk.id == id) type = *sk.type_name;
+      types += (types.empty() ? "" : " -> ") + type;
+    }
+    return lex_.name() + ": #" + std::to_string(cycle.front()) + ": reference cycle " + ids + " (" + types + ")";
+  }
 
   [[noreturn]] void unexpected(const std::string& wanted) {
     std::string found = token_name(tok_.kind);
@@ -144,10 +168,13 @@ private:
     advance();
     expect(TokenKind::equals);
     Instance inst{id, {}, false, start.line, start.column};
+    refers_ = false;
     if (tok_.kind == TokenKind::keyword) {
       if (options_.keep && !options_.keep(tok_.text)) {
-        file_.note_skipped(id, tok_.text);
-        lex_.skip_past_semicolon(start.line, start.column);
+        skipped_references_.clear();
+        lex_.skip_past_semicolon(start.line, start.column, skipped_references_);
+        file_.note_skipped(id, tok_.text, start.line, start.column, skipped_references_);
+        if (!skipped_references_.empty()) referring_.push_back(id);
         lex_.set_instance(0);
         advance();
         return;
@@ -165,10 +192,34 @@ private:
     if (tok_.kind != TokenKind::semicolon) unexpected("';'");
     bool kept = !options_.keep;
     for (std::size_t k = 0; k < inst.records.size() && !kept; ++k) kept = options_.keep(inst.records[k].keyword);
-    if (kept) file_.insert(std::move(inst));
-    else file_.note_skipped(id, inst.type_name());
+    if (refers_) referring_.push_back(id);
+    if (kept) {
+      if (!(options_.compact_points && insert_compact_point(inst))) file_.insert(std::move(inst));
+    } else {
+      skipped_references_.clear();
+      for (const Record& r : inst.records)
+        for (const Parameter& p : r.params) collect_references(p, skipped_references_);
+      file_.note_skipped(id, inst.type_name(), start.line, start.column, skipped_references_);
+    }
     lex_.set_instance(0);
     advance();
+  }
+
+  // CARTESIAN_POINT('', (x[, y[, z]])) into the compact point table; false for any other instance.
+  bool insert_compact_point(const Instance& inst) {
+    if (inst.complex || inst.records.front().keyword != "CARTESIAN_POINT") return false;
+    const std::vector<Parameter>& params = inst.records.front().params;
+    const auto* name = params.size() == 2 ? params[0].get_if<std::string>() : nullptr;
+    const auto* coordinates = params.size() == 2 ? params[1].get_if<List>() : nullptr;
+    if (!name || !name->empty() || !coordinates || coordinates->items.empty() || coordinates->items.size() > 3) return false;
+    ExchangeFile::Point p{inst.id, {}, static_cast<int>(coordinates->items.size())};
+    for (std::size_t k = 0; k < coordinates->items.size(); ++k) {
+      const auto x = coordinates->items[k].number();
+      if (!x) return false;
+      p.coordinates[k] = *x;
+    }
+    file_.insert_point(p);
+    return true;
   }
 
   Record record() {
@@ -210,7 +261,10 @@ private:
       case TokenKind::string: p = std::move(tok_.text); break;
       case TokenKind::enumeration: p = Enumeration{std::move(tok_.text)}; break;
       case TokenKind::binary: p = Binary{std::move(tok_.text)}; break;
-      case TokenKind::instance_name: p = Reference{tok_.id}; break;
+      case TokenKind::instance_name:
+        p = Reference{tok_.id};
+        refers_ = true;
+        break;
       case TokenKind::open: {
         List l;
         parameter_list(l.items, depth + 1);
@@ -234,8 +288,14 @@ private:
   Lexer& lex_;
   const ReadOptions& options_;
   Token tok_;
+  ReadWarnings warnings_;
   ExchangeFile file_;
   std::vector<std::vector<Parameter>> scratch_;
+  std::vector<std::uint64_t> skipped_references_;
+  // Instances that refer to others, in file order: the only possible members of a reference cycle, found
+  // while parsing so the cycle search need not walk the whole store again.
+  std::vector<std::uint64_t> referring_;
+  bool refers_ = false;  // the instance being parsed holds a reference
 };
 
 }  // namespace

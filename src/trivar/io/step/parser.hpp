@@ -9,8 +9,10 @@
 // without tokenising their bodies, so syntax errors inside them go unnoticed.
 //
 // Errors are trivar::Error with one line "file:line:column: #id: message" (the id when inside an instance).
-// After reading, references are resolved: one to an instance that is neither kept nor dropped by the
-// filter is an error. Reference cycles are legal P21 and are not reported here (reference_cycles.hpp).
+// After reading, references are resolved: one from a kept instance to an instance that is neither kept nor
+// dropped by the filter is an error. Departures from the standard that real files carry (lower-case
+// keywords, stray bytes in strings, dangling references in dropped instances, reference cycles) are
+// accepted with one warning line per kind in ExchangeFile::warnings, or refused in strict mode.
 #include <functional>
 #include <istream>
 #include <string>
@@ -24,7 +26,11 @@ struct ReadOptions {
   // Decides by entity keyword (upper case) whether an instance is kept; a complex instance is kept when
   // any of its partial records is. Empty: keep everything.
   std::function<bool(std::string_view keyword)> keep;
-  bool check_references = true;
+  bool check_references = true;  // dangling references (and cycles, as warnings) after reading
+  // Hold unnamed CARTESIAN_POINTs compactly (ExchangeFile::point) instead of as generic instances.
+  bool compact_points = false;
+  // Refuse what is otherwise accepted with a warning (read_warnings.hpp), at its first occurrence.
+  bool strict = false;
   std::size_t chunk_size = 1 << 20;  // bytes read at a time from a stream
 };
 

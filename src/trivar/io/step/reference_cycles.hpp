@@ -1,7 +1,7 @@
 #pragma once
-// Reference cycles are legal in ISO 10303-21 (e.g. topology that points back at its owner), so the reader
-// accepts them. A mapper that needs acyclic data (geometry definitions: a point cannot be defined by
-// itself) checks the part it walks with these functions and reports the cycle they return.
+// Reference cycles are legal ISO 10303-21 grammar but no AP schema's data needs one (a geometric or
+// topological definition cannot depend on itself), so the reader warns about the first one (refuses it in
+// strict mode). A mapper that needs acyclic data checks the part it walks with these functions.
 #include <cstdint>
 #include <vector>
 
@@ -9,11 +9,17 @@
 
 namespace trivar::io::step {
 
-// A cycle reachable from `root` through references between kept instances, as the ids along it with the
+// The ids `p` refers to (inside lists and typed parameters too), appended to `out`.
+void collect_references(const Parameter& p, std::vector<std::uint64_t>& out);
+
+// A cycle reachable from `root` through references between instances, kept or skipped by the reader, as the ids along it with the
 // first id repeated at the end (#3 -> #5 -> #3 gives {3, 5, 3}); empty when there is none. Iterative, so
 // long reference chains do not exhaust the stack.
 std::vector<std::uint64_t> find_reference_cycle(const ExchangeFile& file, std::uint64_t root);
-// The same over the whole file.
+// The first cycle through `roots`, searched in that order; `roots` must hold every instance that refers to
+// another (the parser collects them), as the others are not looked at.
+std::vector<std::uint64_t> find_reference_cycle(const ExchangeFile& file, const std::vector<std::uint64_t>& roots);
+// The same over the whole file (kept instances first, in file order, then skipped ones).
 std::vector<std::uint64_t> find_reference_cycle(const ExchangeFile& file);
 
 }  // namespace trivar::io::step

@@ -1,5 +1,6 @@
 #include "trivar/io/step/step_file.hpp"
 
+#include <algorithm>
 #include <unordered_map>
 
 #include "trivar/io/step/parser.hpp"
@@ -27,21 +28,39 @@ std::uint64_t referenced(const Record& r, std::size_t index) {
 StepContents map(const ExchangeFile& f, const std::string& name) {
   StepContents out;
   out.header = f.header;
+  out.warnings = f.warnings;
   for (const auto& [k, n] : f.skipped()) out.entities[k].skipped += n;
+  if (f.point_count() > 0) out.entities["CARTESIAN_POINT"].kept += f.point_count();
   // Users of geometry: face -> surface, edge -> curve (through one wrapper level).
   std::unordered_map<std::uint64_t, std::vector<std::uint64_t>> faces, edges;
+  // Faces whose surface is not mapped, by surface id; the entity is named once all instances are known.
+  std::unordered_map<std::uint64_t, std::size_t> unmapped_surfaces;
   for (const Instance& in : f.instances()) {
     ++out.entities[in.type_name()].kept;
     if (in.complex) continue;
     const Record& r = in.records.front();
     if (r.keyword == "ADVANCED_FACE" || r.keyword == "FACE_SURFACE") {
-      if (const auto s = referenced(r, 2)) faces[s].push_back(in.id);
+      ++out.faces;
+      if (const auto s = referenced(r, 2)) {
+        faces[s].push_back(in.id);
+        const Instance* surface = f.find(s);
+        if (!surface || geometry_kind(*surface) == GeometryKind::none) ++unmapped_surfaces[s];
+      }
     } else if (r.keyword == "EDGE_CURVE") {
       std::uint64_t c = referenced(r, 3);
       if (const Instance* w = f.find(c); w && !w->complex && is_curve_wrapper(w->records.front().keyword))
         c = referenced(w->records.front(), 1);
       if (c) edges[c].push_back(in.id);
     }
+  }
+  for (const ExchangeFile::Skipped& sk : f.skipped_instances())
+    if (const auto it = unmapped_surfaces.find(sk.id); it != unmapped_surfaces.end()) {
+      out.unmapped_faces[*sk.type_name] += it->second;
+      unmapped_surfaces.erase(it);
+    }
+  for (const auto& [id, n] : unmapped_surfaces) {  // kept but not a spline (or not a surface at all)
+    const Instance* surface = f.find(id);
+    out.unmapped_faces[surface ? surface->type_name() : "?"] += n;
   }
   const GeometryReader reader(f, name);
   for (const Instance& in : f.instances()) {
@@ -75,15 +94,30 @@ std::size_t StepContents::instance_count() const {
   return n;
 }
 
-StepContents read_step(const std::string& path) {
+std::string StepContents::unmapped_faces_summary() const {
+  std::size_t total = 0;
+  std::vector<std::pair<std::string, std::size_t>> kinds(unmapped_faces.begin(), unmapped_faces.end());
+  for (const auto& [k, n] : kinds) total += n;
+  if (total == 0) return {};
+  std::stable_sort(kinds.begin(), kinds.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+  std::string s = "skipped " + std::to_string(total) + " of " + std::to_string(faces) + " faces (surface not a spline):";
+  for (std::size_t k = 0; k < kinds.size(); ++k) s += (k ? ", " : " ") + std::to_string(kinds[k].second) + " " + kinds[k].first;
+  return s;
+}
+
+StepContents read_step(const std::string& path, bool strict) {
   ReadOptions o;
   o.keep = keep;
+  o.compact_points = true;
+  o.strict = strict;
   return map(read_exchange_file(path, o), path);
 }
 
-StepContents parse_step(std::string_view text, const std::string& name) {
+StepContents parse_step(std::string_view text, const std::string& name, bool strict) {
   ReadOptions o;
   o.keep = keep;
+  o.compact_points = true;
+  o.strict = strict;
   return map(parse_exchange_file(text, name, o), name);
 }
 

@@ -41,12 +41,21 @@ struct StepContents {
   std::vector<AnyLRSpline> lr_splines;
   std::vector<StepObject> lr_info;      // parallel to lr_splines
   std::map<std::string, EntityCount> entities;  // per keyword (complex instances: keywords joined by '+')
+  // ADVANCED_FACE / FACE_SURFACE instances, and those whose surface is no spline (planes, cylinders, ...)
+  // per surface entity: their geometry is not extracted.
+  std::size_t faces = 0;
+  std::map<std::string, std::size_t> unmapped_faces;
+  std::vector<ReadWarning> warnings;  // what the reader accepted leniently (read_warnings.hpp)
   std::size_t instance_count() const;
+  // "skipped 1169 of 1202 faces (surface not a spline): 812 PLANE, 301 CYLINDRICAL_SURFACE, ..." by
+  // decreasing count; empty when every face's surface was extracted.
+  std::string unmapped_faces_summary() const;
 };
 
-StepContents read_step(const std::string& path);
+// `strict`: refuse the departures from ISO 10303-21 that are otherwise warnings (ReadOptions::strict).
+StepContents read_step(const std::string& path, bool strict = false);
 // From text in memory; `name` prefixes messages.
-StepContents parse_step(std::string_view text, const std::string& name = "<memory>");
+StepContents parse_step(std::string_view text, const std::string& name = "<memory>", bool strict = false);
 
 // Writes geometry_exchange_file(splines, lr_splines, options) atomically. `time_stamp` empty: now.
 void write_step(const std::string& path, const std::vector<AnySpline>& splines,

@@ -1,6 +1,11 @@
 #include "trivar/io/step/string_codec.hpp"
 
+#include <iconv.h>
+
+#include <algorithm>
 #include <cstdint>
+#include <iterator>
+#include <memory>
 
 #include "trivar/core/error.hpp"
 
@@ -8,81 +13,51 @@ namespace trivar::io::step {
 
 namespace {
 
-// Upper halves (0xA0..0xFF) of ISO 8859-2 .. -9, generated from Python's codecs; 0 marks an unassigned
-// position. Part 1 needs no table: its characters are their own code points.
-constexpr std::uint16_t iso8859_upper[8][96] = {
-    {// ISO 8859-2
-     0x00A0, 0x0104, 0x02D8, 0x0141, 0x00A4, 0x013D, 0x015A, 0x00A7, 0x00A8, 0x0160, 0x015E, 0x0164,
-     0x0179, 0x00AD, 0x017D, 0x017B, 0x00B0, 0x0105, 0x02DB, 0x0142, 0x00B4, 0x013E, 0x015B, 0x02C7,
-     0x00B8, 0x0161, 0x015F, 0x0165, 0x017A, 0x02DD, 0x017E, 0x017C, 0x0154, 0x00C1, 0x00C2, 0x0102,
-     0x00C4, 0x0139, 0x0106, 0x00C7, 0x010C, 0x00C9, 0x0118, 0x00CB, 0x011A, 0x00CD, 0x00CE, 0x010E,
-     0x0110, 0x0143, 0x0147, 0x00D3, 0x00D4, 0x0150, 0x00D6, 0x00D7, 0x0158, 0x016E, 0x00DA, 0x0170,
-     0x00DC, 0x00DD, 0x0162, 0x00DF, 0x0155, 0x00E1, 0x00E2, 0x0103, 0x00E4, 0x013A, 0x0107, 0x00E7,
-     0x010D, 0x00E9, 0x0119, 0x00EB, 0x011B, 0x00ED, 0x00EE, 0x010F, 0x0111, 0x0144, 0x0148, 0x00F3,
-     0x00F4, 0x0151, 0x00F6, 0x00F7, 0x0159, 0x016F, 0x00FA, 0x0171, 0x00FC, 0x00FD, 0x0163, 0x02D9},
-    {// ISO 8859-3
-     0x00A0, 0x0126, 0x02D8, 0x00A3, 0x00A4, 0x0000, 0x0124, 0x00A7, 0x00A8, 0x0130, 0x015E, 0x011E,
-     0x0134, 0x00AD, 0x0000, 0x017B, 0x00B0, 0x0127, 0x00B2, 0x00B3, 0x00B4, 0x00B5, 0x0125, 0x00B7,
-     0x00B8, 0x0131, 0x015F, 0x011F, 0x0135, 0x00BD, 0x0000, 0x017C, 0x00C0, 0x00C1, 0x00C2, 0x0000,
-     0x00C4, 0x010A, 0x0108, 0x00C7, 0x00C8, 0x00C9, 0x00CA, 0x00CB, 0x00CC, 0x00CD, 0x00CE, 0x00CF,
-     0x0000, 0x00D1, 0x00D2, 0x00D3, 0x00D4, 0x0120, 0x00D6, 0x00D7, 0x011C, 0x00D9, 0x00DA, 0x00DB,
-     0x00DC, 0x016C, 0x015C, 0x00DF, 0x00E0, 0x00E1, 0x00E2, 0x0000, 0x00E4, 0x010B, 0x0109, 0x00E7,
-     0x00E8, 0x00E9, 0x00EA, 0x00EB, 0x00EC, 0x00ED, 0x00EE, 0x00EF, 0x0000, 0x00F1, 0x00F2, 0x00F3,
-     0x00F4, 0x0121, 0x00F6, 0x00F7, 0x011D, 0x00F9, 0x00FA, 0x00FB, 0x00FC, 0x016D, 0x015D, 0x02D9},
-    {// ISO 8859-4
-     0x00A0, 0x0104, 0x0138, 0x0156, 0x00A4, 0x0128, 0x013B, 0x00A7, 0x00A8, 0x0160, 0x0112, 0x0122,
-     0x0166, 0x00AD, 0x017D, 0x00AF, 0x00B0, 0x0105, 0x02DB, 0x0157, 0x00B4, 0x0129, 0x013C, 0x02C7,
-     0x00B8, 0x0161, 0x0113, 0x0123, 0x0167, 0x014A, 0x017E, 0x014B, 0x0100, 0x00C1, 0x00C2, 0x00C3,
-     0x00C4, 0x00C5, 0x00C6, 0x012E, 0x010C, 0x00C9, 0x0118, 0x00CB, 0x0116, 0x00CD, 0x00CE, 0x012A,
-     0x0110, 0x0145, 0x014C, 0x0136, 0x00D4, 0x00D5, 0x00D6, 0x00D7, 0x00D8, 0x0172, 0x00DA, 0x00DB,
-     0x00DC, 0x0168, 0x016A, 0x00DF, 0x0101, 0x00E1, 0x00E2, 0x00E3, 0x00E4, 0x00E5, 0x00E6, 0x012F,
-     0x010D, 0x00E9, 0x0119, 0x00EB, 0x0117, 0x00ED, 0x00EE, 0x012B, 0x0111, 0x0146, 0x014D, 0x0137,
-     0x00F4, 0x00F5, 0x00F6, 0x00F7, 0x00F8, 0x0173, 0x00FA, 0x00FB, 0x00FC, 0x0169, 0x016B, 0x02D9},
-    {// ISO 8859-5
-     0x00A0, 0x0401, 0x0402, 0x0403, 0x0404, 0x0405, 0x0406, 0x0407, 0x0408, 0x0409, 0x040A, 0x040B,
-     0x040C, 0x00AD, 0x040E, 0x040F, 0x0410, 0x0411, 0x0412, 0x0413, 0x0414, 0x0415, 0x0416, 0x0417,
-     0x0418, 0x0419, 0x041A, 0x041B, 0x041C, 0x041D, 0x041E, 0x041F, 0x0420, 0x0421, 0x0422, 0x0423,
-     0x0424, 0x0425, 0x0426, 0x0427, 0x0428, 0x0429, 0x042A, 0x042B, 0x042C, 0x042D, 0x042E, 0x042F,
-     0x0430, 0x0431, 0x0432, 0x0433, 0x0434, 0x0435, 0x0436, 0x0437, 0x0438, 0x0439, 0x043A, 0x043B,
-     0x043C, 0x043D, 0x043E, 0x043F, 0x0440, 0x0441, 0x0442, 0x0443, 0x0444, 0x0445, 0x0446, 0x0447,
-     0x0448, 0x0449, 0x044A, 0x044B, 0x044C, 0x044D, 0x044E, 0x044F, 0x2116, 0x0451, 0x0452, 0x0453,
-     0x0454, 0x0455, 0x0456, 0x0457, 0x0458, 0x0459, 0x045A, 0x045B, 0x045C, 0x00A7, 0x045E, 0x045F},
-    {// ISO 8859-6
-     0x00A0, 0x0000, 0x0000, 0x0000, 0x00A4, 0x0000, 0x0000, 0x0000, 0x0000, 0x0000, 0x0000, 0x0000,
-     0x060C, 0x00AD, 0x0000, 0x0000, 0x0000, 0x0000, 0x0000, 0x0000, 0x0000, 0x0000, 0x0000, 0x0000,
-     0x0000, 0x0000, 0x0000, 0x061B, 0x0000, 0x0000, 0x0000, 0x061F, 0x0000, 0x0621, 0x0622, 0x0623,
-     0x0624, 0x0625, 0x0626, 0x0627, 0x0628, 0x0629, 0x062A, 0x062B, 0x062C, 0x062D, 0x062E, 0x062F,
-     0x0630, 0x0631, 0x0632, 0x0633, 0x0634, 0x0635, 0x0636, 0x0637, 0x0638, 0x0639, 0x063A, 0x0000,
-     0x0000, 0x0000, 0x0000, 0x0000, 0x0640, 0x0641, 0x0642, 0x0643, 0x0644, 0x0645, 0x0646, 0x0647,
-     0x0648, 0x0649, 0x064A, 0x064B, 0x064C, 0x064D, 0x064E, 0x064F, 0x0650, 0x0651, 0x0652, 0x0000,
-     0x0000, 0x0000, 0x0000, 0x0000, 0x0000, 0x0000, 0x0000, 0x0000, 0x0000, 0x0000, 0x0000, 0x0000},
-    {// ISO 8859-7
-     0x00A0, 0x2018, 0x2019, 0x00A3, 0x20AC, 0x20AF, 0x00A6, 0x00A7, 0x00A8, 0x00A9, 0x037A, 0x00AB,
-     0x00AC, 0x00AD, 0x0000, 0x2015, 0x00B0, 0x00B1, 0x00B2, 0x00B3, 0x0384, 0x0385, 0x0386, 0x00B7,
-     0x0388, 0x0389, 0x038A, 0x00BB, 0x038C, 0x00BD, 0x038E, 0x038F, 0x0390, 0x0391, 0x0392, 0x0393,
-     0x0394, 0x0395, 0x0396, 0x0397, 0x0398, 0x0399, 0x039A, 0x039B, 0x039C, 0x039D, 0x039E, 0x039F,
-     0x03A0, 0x03A1, 0x0000, 0x03A3, 0x03A4, 0x03A5, 0x03A6, 0x03A7, 0x03A8, 0x03A9, 0x03AA, 0x03AB,
-     0x03AC, 0x03AD, 0x03AE, 0x03AF, 0x03B0, 0x03B1, 0x03B2, 0x03B3, 0x03B4, 0x03B5, 0x03B6, 0x03B7,
-     0x03B8, 0x03B9, 0x03BA, 0x03BB, 0x03BC, 0x03BD, 0x03BE, 0x03BF, 0x03C0, 0x03C1, 0x03C2, 0x03C3,
-     0x03C4, 0x03C5, 0x03C6, 0x03C7, 0x03C8, 0x03C9, 0x03CA, 0x03CB, 0x03CC, 0x03CD, 0x03CE, 0x0000},
-    {// ISO 8859-8
-     0x00A0, 0x0000, 0x00A2, 0x00A3, 0x00A4, 0x00A5, 0x00A6, 0x00A7, 0x00A8, 0x00A9, 0x00D7, 0x00AB,
-     0x00AC, 0x00AD, 0x00AE, 0x00AF, 0x00B0, 0x00B1, 0x00B2, 0x00B3, 0x00B4, 0x00B5, 0x00B6, 0x00B7,
-     0x00B8, 0x00B9, 0x00F7, 0x00BB, 0x00BC, 0x00BD, 0x00BE, 0x0000, 0x0000, 0x0000, 0x0000, 0x0000,
-     0x0000, 0x0000, 0x0000, 0x0000, 0x0000, 0x0000, 0x0000, 0x0000, 0x0000, 0x0000, 0x0000, 0x0000,
-     0x0000, 0x0000, 0x0000, 0x0000, 0x0000, 0x0000, 0x0000, 0x0000, 0x0000, 0x0000, 0x0000, 0x0000,
-     0x0000, 0x0000, 0x0000, 0x2017, 0x05D0, 0x05D1, 0x05D2, 0x05D3, 0x05D4, 0x05D5, 0x05D6, 0x05D7,
-     0x05D8, 0x05D9, 0x05DA, 0x05DB, 0x05DC, 0x05DD, 0x05DE, 0x05DF, 0x05E0, 0x05E1, 0x05E2, 0x05E3,
-     0x05E4, 0x05E5, 0x05E6, 0x05E7, 0x05E8, 0x05E9, 0x05EA, 0x0000, 0x0000, 0x200E, 0x200F, 0x0000},
-    {// ISO 8859-9
-     0x00A0, 0x00A1, 0x00A2, 0x00A3, 0x00A4, 0x00A5, 0x00A6, 0x00A7, 0x00A8, 0x00A9, 0x00AA, 0x00AB,
-     0x00AC, 0x00AD, 0x00AE, 0x00AF, 0x00B0, 0x00B1, 0x00B2, 0x00B3, 0x00B4, 0x00B5, 0x00B6, 0x00B7,
-     0x00B8, 0x00B9, 0x00BA, 0x00BB, 0x00BC, 0x00BD, 0x00BE, 0x00BF, 0x00C0, 0x00C1, 0x00C2, 0x00C3,
-     0x00C4, 0x00C5, 0x00C6, 0x00C7, 0x00C8, 0x00C9, 0x00CA, 0x00CB, 0x00CC, 0x00CD, 0x00CE, 0x00CF,
-     0x011E, 0x00D1, 0x00D2, 0x00D3, 0x00D4, 0x00D5, 0x00D6, 0x00D7, 0x00D8, 0x00D9, 0x00DA, 0x00DB,
-     0x00DC, 0x0130, 0x015E, 0x00DF, 0x00E0, 0x00E1, 0x00E2, 0x00E3, 0x00E4, 0x00E5, 0x00E6, 0x00E7,
-     0x00E8, 0x00E9, 0x00EA, 0x00EB, 0x00EC, 0x00ED, 0x00EE, 0x00EF, 0x011F, 0x00F1, 0x00F2, 0x00F3,
-     0x00F4, 0x00F5, 0x00F6, 0x00F7, 0x00F8, 0x00F9, 0x00FA, 0x00FB, 0x00FC, 0x0131, 0x015F, 0x00FF},};
+// Character set conversion to UTF-8 by glibc's iconv; one descriptor per set and thread, opened on first use.
+class Charset {
+public:
+  explicit Charset(const char* name) : cd_(iconv_open("UTF-8", name)) {
+    require(cd_ != reinterpret_cast<iconv_t>(-1), [&] { return std::string("iconv cannot convert from ") + name; });
+  }
+  ~Charset() { iconv_close(cd_); }
+  Charset(const Charset&) = delete;
+  Charset& operator=(const Charset&) = delete;
+
+  // Appends the UTF-8 form of `in`; false (out unchanged) when `in` is not a complete sequence of characters
+  // of the set (unassigned positions, unpaired surrogates, code points beyond U+10FFFF).
+  bool append(std::string_view in, std::string& out) const {
+    iconv(cd_, nullptr, nullptr, nullptr, nullptr);  // initial shift state
+    const std::size_t old_size = out.size();
+    out.resize(old_size + 4 * in.size());  // UTF-8 needs at most 4 bytes per input byte of these sets
+    char* src = const_cast<char*>(in.data());  // iconv's signature; it does not write through src
+    std::size_t src_left = in.size();
+    char* dst = out.data() + old_size;
+    std::size_t dst_left = 4 * in.size();
+    const std::size_t r = iconv(cd_, &src, &src_left, &dst, &dst_left);
+    if (r == static_cast<std::size_t>(-1) || src_left != 0) {
+      out.resize(old_size);
+      return false;
+    }
+    out.resize(static_cast<std::size_t>(dst - out.data()));
+    return true;
+  }
+
+private:
+  iconv_t cd_;
+};
+
+// ISO 8859 part 1..9 for \PA\ .. \PI\; UTF-16BE for \X2\ (UCS-2, surrogate pairs combined leniently);
+// UTF-32BE for \X4\.
+constexpr const char* kCharsets[] = {"ISO-8859-1", "ISO-8859-2", "ISO-8859-3", "ISO-8859-4", "ISO-8859-5",
+                                     "ISO-8859-6", "ISO-8859-7", "ISO-8859-8", "ISO-8859-9", "UTF-16BE", "UTF-32BE"};
+constexpr int kUtf16 = 9, kUtf32 = 10;
+
+const Charset& charset(int index) {
+  thread_local std::unique_ptr<Charset> open[std::size(kCharsets)];
+  auto& c = open[static_cast<std::size_t>(index)];
+  if (!c) c = std::make_unique<Charset>(kCharsets[index]);
+  return *c;
+}
 
 int hex_digit(char c) {
   if (c >= '0' && c <= '9') return c - '0';
@@ -108,7 +83,32 @@ std::int64_t read_hex(std::string_view raw, std::size_t at, int n) {
   return v;
 }
 
-bool is_surrogate(std::int64_t cp) { return cp >= 0xD800 && cp <= 0xDFFF; }
+// The well-formed UTF-8 character starting at s[i]: its length (code point in cp), or 0.
+int utf8_char(std::string_view s, std::size_t i, char32_t& cp) {
+  const auto b = static_cast<unsigned char>(s[i]);
+  int len;
+  if (b < 0x80) cp = b, len = 1;
+  else if ((b & 0xE0) == 0xC0) cp = b & 0x1Fu, len = 2;
+  else if ((b & 0xF0) == 0xE0) cp = b & 0x0Fu, len = 3;
+  else if ((b & 0xF8) == 0xF0) cp = b & 0x07u, len = 4;
+  else return 0;
+  if (i + static_cast<std::size_t>(len) > s.size()) return 0;
+  for (int k = 1; k < len; ++k) {
+    const auto cb = static_cast<unsigned char>(s[i + static_cast<std::size_t>(k)]);
+    if ((cb & 0xC0) != 0x80) return 0;
+    cp = (cp << 6) | (cb & 0x3Fu);
+  }
+  static constexpr char32_t min_of_length[5] = {0, 0, 0x80, 0x800, 0x10000};
+  if (cp < min_of_length[len] || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) return 0;
+  return len;
+}
+
+bool is_printable(unsigned char c) { return c >= 0x20 && c < 0x7F; }
+
+std::string hex_byte(unsigned char c) {
+  static const char* hex = "0123456789ABCDEF";
+  return std::string("0x") + hex[c >> 4] + hex[c & 0xF];
+}
 
 }  // namespace
 
@@ -130,17 +130,36 @@ void append_utf8(std::string& out, char32_t cp) {
   }
 }
 
-std::string decode_string(std::string_view raw) {
-  if (raw.find('\\') == std::string_view::npos) return std::string(raw);
+std::string stray_byte_message(const StrayBytes& stray) {
+  std::string m = "byte " + hex_byte(stray.first) + " at character " + std::to_string(stray.first_at + 1) +
+                  " of a string is not allowed (ISO 10303-21 strings hold printable ISO 8859-1 characters and escapes)";
+  if (stray.count > 1) m += "; " + std::to_string(stray.count) + " such bytes in this string";
+  return m;
+}
+
+std::string decode_string(std::string_view raw, StrayBytes* stray) {
+  if (std::all_of(raw.begin(), raw.end(), [](char c) { return is_printable(static_cast<unsigned char>(c)) && c != '\\'; }))
+    return std::string(raw);
   std::string out;
   out.reserve(raw.size());
+  StrayBytes found;
   int page = 0;  // ISO 8859 part - 1
   std::size_t i = 0;
   while (i < raw.size()) {
-    const char c = raw[i];
+    const auto c = static_cast<unsigned char>(raw[i]);
     if (c != '\\') {
-      out += c;
-      ++i;
+      char32_t cp;
+      const int len = c >= 0x80 ? utf8_char(raw, i, cp) : 1;
+      if (len == 0 || (len == 1 && !is_printable(c))) {
+        // Control characters are kept; a byte >= 0x80 outside UTF-8 is read as the ISO 8859-1 character
+        // old writers meant by it, so the text stays valid UTF-8.
+        if (found.count++ == 0) found.first_at = i, found.first = c;
+        append_utf8(out, c);
+        ++i;
+      } else {  // printable ASCII, or a UTF-8 character written directly (edition 3)
+        out.append(raw.substr(i, static_cast<std::size_t>(len)));
+        i += static_cast<std::size_t>(len);
+      }
       continue;
     }
     const std::size_t at = i;
@@ -151,11 +170,10 @@ std::string decode_string(std::string_view raw) {
       i += 2;
     } else if (d == 'S' && i + 3 < raw.size() && raw[i + 2] == '\\') {
       const auto ch = static_cast<unsigned char>(raw[i + 3]);
-      if (ch < 0x20 || ch > 0x7E) bad_escape(raw, at, "\\S\\ must be followed by a printable ASCII character");
-      const unsigned code = ch + 128u;
-      const char32_t cp = page == 0 ? code : iso8859_upper[page - 1][code - 0xA0];
-      if (cp == 0) bad_escape(raw, at, "unassigned character in ISO 8859-" + std::to_string(page + 1));
-      append_utf8(out, cp);
+      if (!is_printable(ch)) bad_escape(raw, at, "\\S\\ must be followed by a printable ASCII character");
+      const char code = static_cast<char>(ch + 128u);
+      if (!charset(page).append(std::string_view(&code, 1), out))
+        bad_escape(raw, at, "unassigned character in ISO 8859-" + std::to_string(page + 1));
       i += 4;
     } else if (d == 'P' && i + 3 < raw.size() && raw[i + 3] == '\\') {
       if (raw[i + 2] < 'A' || raw[i + 2] > 'I') bad_escape(raw, at, "code page must be A to I");
@@ -164,35 +182,31 @@ std::string decode_string(std::string_view raw) {
     } else if (d == 'X' && i + 2 < raw.size() && raw[i + 2] == '\\') {
       const std::int64_t v = read_hex(raw, i + 3, 2);
       if (v < 0) bad_escape(raw, at, "\\X\\ needs two hex digits");
-      append_utf8(out, static_cast<char32_t>(v));
+      append_utf8(out, static_cast<char32_t>(v));  // ISO 8859-1 positions are their Unicode code points
       i += 5;
     } else if (d == 'X' && i + 3 < raw.size() && (raw[i + 2] == '2' || raw[i + 2] == '4') && raw[i + 3] == '\\') {
       const int width = raw[i + 2] == '2' ? 4 : 8;
       i += 4;
-      bool any = false;
-      while (true) {
-        if (raw.compare(i, 4, "\\X0\\") == 0) {
-          i += 4;
-          break;
+      std::string bytes;  // big-endian code units
+      while (raw.compare(i, 4, "\\X0\\") != 0) {
+        for (int k = 0; k < width; k += 2) {
+          const std::int64_t b = read_hex(raw, i, 2);
+          if (b < 0) bad_escape(raw, at, "expected " + std::to_string(width) + " hex digits or \\X0\\");
+          bytes += static_cast<char>(b);
+          i += 2;
         }
-        std::int64_t cp = read_hex(raw, i, width);
-        if (cp < 0) bad_escape(raw, at, "expected " + std::to_string(width) + " hex digits or \\X0\\");
-        i += static_cast<std::size_t>(width);
-        if (width == 4 && cp >= 0xD800 && cp <= 0xDBFF) {  // high surrogate: a low one must follow
-          const std::int64_t low = read_hex(raw, i, 4);
-          if (low < 0xDC00 || low > 0xDFFF) bad_escape(raw, at, "unpaired UTF-16 surrogate");
-          cp = 0x10000 + ((cp - 0xD800) << 10) + (low - 0xDC00);
-          i += 4;
-        } else if (is_surrogate(cp) || cp > 0x10FFFF) {
-          bad_escape(raw, at, "not a Unicode character");
-        }
-        append_utf8(out, static_cast<char32_t>(cp));
-        any = true;
       }
-      if (!any) bad_escape(raw, at, "empty \\X" + std::string(1, raw[at + 2]) + "\\ group");
+      i += 4;
+      if (bytes.empty()) bad_escape(raw, at, "empty \\X" + std::string(1, raw[at + 2]) + "\\ group");
+      if (!charset(width == 4 ? kUtf16 : kUtf32).append(bytes, out))
+        bad_escape(raw, at, "not a Unicode character (unpaired surrogate or beyond U+10FFFF)");
     } else {
       bad_escape(raw, at, "unknown escape");
     }
+  }
+  if (found.count > 0) {
+    if (!stray) throw Error(stray_byte_message(found));
+    *stray = found;
   }
   return out;
 }
@@ -218,21 +232,8 @@ std::string encode_string(std::string_view utf8) {
       continue;
     }
     char32_t cp;
-    int len;
-    if (b < 0x80) cp = b, len = 1;
-    else if ((b & 0xE0) == 0xC0) cp = b & 0x1Fu, len = 2;
-    else if ((b & 0xF0) == 0xE0) cp = b & 0x0Fu, len = 3;
-    else if ((b & 0xF8) == 0xF0) cp = b & 0x07u, len = 4;
-    else throw Error("invalid UTF-8 in string at byte " + std::to_string(i + 1));
-    if (i + static_cast<std::size_t>(len) > utf8.size()) throw Error("truncated UTF-8 in string at byte " + std::to_string(i + 1));
-    for (int k = 1; k < len; ++k) {
-      const auto cb = static_cast<unsigned char>(utf8[i + static_cast<std::size_t>(k)]);
-      if ((cb & 0xC0) != 0x80) throw Error("invalid UTF-8 in string at byte " + std::to_string(i + 1));
-      cp = (cp << 6) | (cb & 0x3Fu);
-    }
-    static constexpr char32_t min_of_length[5] = {0, 0, 0x80, 0x800, 0x10000};
-    if (cp < min_of_length[len] || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF))
-      throw Error("invalid UTF-8 in string at byte " + std::to_string(i + 1));
+    const int len = utf8_char(utf8, i, cp);
+    if (len == 0) throw Error("invalid UTF-8 in string at byte " + std::to_string(i + 1));
     i += static_cast<std::size_t>(len);
     const int need = cp > 0xFFFF ? 4 : 2;
     if (group != need) {

@@ -156,6 +156,8 @@ std::string iso8601_now() {
 void write_exchange_file(std::ostream& os, const ExchangeFile& file, const WriteOptions& options) {
   const Header& h = file.header;
   require(!h.schemas.empty(), "FILE_SCHEMA needs at least one schema name");
+  // Compact points are a reader's summary (names dropped), not instances: writing would leave references dangling.
+  require(file.point_count() == 0, "cannot write a store read with compact points (ReadOptions::compact_points)");
   std::unordered_map<std::uint64_t, std::uint64_t> ids;
   if (options.renumber) {
     ids.reserve(file.size());
