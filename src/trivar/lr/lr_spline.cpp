@@ -804,7 +804,7 @@ void LRSpline<D>::check_partition_of_unity() const {
     for (int b : element_basis_[e]) {
       const LRBSpline<D>& fn = basis_[static_cast<std::size_t>(b)];
       for (int k = 0; k < D; ++k)
-        bspline_bernstein_row(fn.knots[k].data(), degrees_[k], el.lo[k], el.hi[k], rows[k].data());
+        bernstein_coefficients<double>(fn.knots[k], el.lo[k], el.hi[k], rows[k].data());
       // Outer product, direction 0 fastest.
       term[0] = fn.gamma;
       std::size_t len = 1;
