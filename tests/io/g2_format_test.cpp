@@ -95,3 +95,17 @@ TEST(G2Format, EmptySplineCannotBeWritten) {
       io::write_g2(dir.file("e.g2"), {test::random_spline<3>({1, 1, 1}, {1, 1, 1}, 3, false, 23), AnySpline{}}), Error);
   EXPECT_EQ(dir.entries(), 0);
 }
+
+// The g2 reader goes through the same knot validation as every other reader and names line and direction.
+TEST(G2Format, SubnormalKnotSpansAreRejectedWithTheirDirection) {
+  test::TempDir dir;
+  const std::string path = dir.file("s.g2");
+  std::ofstream(path) << "100 1 0 0\n2 0\n4 3\n0 0 0 1e-320 1 1 1\n0 0\n1 0\n2 1\n3 1\n";
+  try {
+    io::read_g2(path);
+    FAIL() << "expected trivar::Error";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), path + ":4: invalid knot vector in direction u: knot vector: span [t_2, t_3] = "
+                                            "[0, 1e-320] is non-zero but shorter than 1e-12 (1e-12 of the domain length)");
+  }
+}
