@@ -6,12 +6,13 @@ using namespace cli_test;
 
 namespace {
 
-// The unit cube as a one-cell V-model whose "material" attribute is `material` (an attribute object).
+// The unit cube as a one-cell V-model of two materials whose "material" attribute is `material`.
 std::string cube_model(const nlohmann::json& material) {
   nlohmann::json cell{{"geometry", nlohmann::json::parse(unit_cube_json(false))}};
   cell["geometry"].erase("trivar");
   cell["attributes"]["material"] = material;
-  return nlohmann::json{{"trivar", 1}, {"kind", "vmodel"}, {"cells", {cell}}}.dump();
+  const nlohmann::json materials = {{{"name", "A"}, {"color", "#FF0000"}}, {{"name", "B"}, {"color", "#0000FF"}}};
+  return nlohmann::json{{"trivar", 1}, {"kind", "vmodel"}, {"materials", materials}, {"cells", {cell}}}.dump();
 }
 
 }  // namespace

@@ -25,15 +25,15 @@ TEST(G2Format, PolynomialAndRationalRoundTripsAreBitExact) {
 
 TEST(G2Format, AwkwardNumbersRoundTrip) {
   test::TempDir dir;
-  // Three homogeneous points (x, y, z, w) with weights 1.5, max and 1e-3.
+  // Three homogeneous points (x, y, z, w) with weights 1.5, 1e8 and 1e-3 (within the accepted ratio 1e12).
   const std::vector<double> h = {1.0 / 3,
                                  -0.0,
                                  0.1,
                                  1.5,
                                  1e-300,
-                                 2.0,
-                                 std::numeric_limits<double>::denorm_min(),
                                  std::numeric_limits<double>::max(),
+                                 std::numeric_limits<double>::denorm_min(),
+                                 1e8,
                                  0.5,
                                  std::nextafter(1.0, 0.0),
                                  -1e22,

@@ -285,7 +285,8 @@ TEST(Glue, DuplicatedCellsAreRejected) {
 TEST(Glue, CollapsedCellsAreRejected) {
   VModel m;
   m.add_cell(VCell(block_at(0, 0, 0)));
-  m.add_cell(VCell(block_at(1, 0, 0, {1, 1, 0})));  // flat: zero thickness in z
+  const Eigen::Matrix3d flatten = Eigen::Vector3d(1, 1, 0).asDiagonal();  // zero thickness in z
+  m.add_cell(VCell(transform(make_block<3>({1, 1, 1}, {1, 1, 1}, {1, 1, 1}), flatten, Eigen::Vector3d(1, 0, 0))));
   EXPECT_EQ(glue_error(m), "glue: cell 1 is collapsed: volume 0 is no more than the tolerance 2.449489742783178e-07 "
                            "times its extent 1 x 1");
   // A thin but solid cell (a thousandth of the model) is a cell.

@@ -43,14 +43,14 @@ TEST(MaterialFractions, ModelCheckFindsTheCornerWhereAFormulaTurnsNegative) {
   m.add_cell(VCell(make_block<3>({1, 1, 1}, {1, 1, 1}, {1, 1, 1})));
   m.add_cell(VCell(make_block<3>({1, 1, 1}, {1, 1, 1}, {1, 1, 1})));
   m.cell(0).set_attribute("material", Attribute::constant({1, 0}));
-  m.cell(1).set_attribute("material", Attribute::expression({"1 - x*y*z", "x"}, Attribute::Space::parametric));
+  m.cell(1).set_attribute("material", Attribute::expression({"1 - u*v*w", "u"}, Attribute::Space::parametric));
   EXPECT_NO_THROW(check_material_fractions(m));
-  m.cell(1).set_attribute("material", Attribute::expression({"1 - 2*x*y*z", "0"}, Attribute::Space::parametric));
+  m.cell(1).set_attribute("material", Attribute::expression({"1 - 2*u*v*w", "0"}, Attribute::Space::parametric));
   try {
     check_material_fractions(m);
     FAIL() << "expected trivar::Error";
   } catch (const Error& e) {
-    // 1 - 2xyz >= 0 except near (1, 1, 1); on the 3 x 3 x 3 grid 1 - 2*1*1*0.5 = 0 at (1, 1, 0.5) sums to 0.
+    // 1 - 2uvw < 0 near (1, 1, 1); on the 3 x 3 x 3 grid (u fastest) 1 - 2*1*1*0.5 = 0 at (1, 1, 0.5) comes first.
     EXPECT_EQ(std::string(e.what()),
               "cell 1 at parameter (1, 1, 0.5): material fractions (0, 0): sum to 0" + kRule);
   }

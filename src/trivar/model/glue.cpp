@@ -366,10 +366,9 @@ VTopology glue(std::span<const VCell> cells, const GlueOptions& options) {
         const TensorSpline<2>& A = faces[h / 6][h % 6];
         const TensorSpline<2>& B = faces[g / 6][g % 6];
         require(!(samples_on(A, B, ns, tol, false, false) && samples_on(B, A, ns, tol, false, false)), [&] {
-          const int t = topo.halves[g].twin;
           return "glue: face " + std::to_string(h % 6) + " of cell " + std::to_string(h / 6) +
                  " coincides with the face shared by cells " + std::to_string(g / 6) + " and " +
-                 std::to_string(t / 6) + ": a face of more than two cells";
+                 std::to_string(topo.halves[g].twin / 6) + ": a face of more than two cells";
         });
       }
     }
