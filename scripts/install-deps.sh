@@ -9,7 +9,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   python3  # tests read output files back with its standard library (xml, zlib, struct, zipfile)
   libsuitesparse-dev libspectra-dev libgmp-dev
-  clang-14 libclang-rt-14-dev
+  clang-14 libclang-rt-14-dev libomp-14-dev
 )
 
 missing=()

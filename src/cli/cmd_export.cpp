@@ -11,6 +11,7 @@
 #include "trivar/io/stl_writer.hpp"
 #include "trivar/io/threemf_writer.hpp"
 #include "trivar/io/vmodel_vtk.hpp"
+#include "trivar/model/material_fractions.hpp"
 #include "trivar/model/model_tessellation.hpp"
 
 namespace trivar::cli {
@@ -35,6 +36,7 @@ std::vector<double> vertex_fractions(const VModel& m, const ModelTessellation& t
       return "export: cell " + std::to_string(t.cell[v]) + " has " + std::to_string(value.size()) +
              " material fractions but the model lists " + std::to_string(materials) + " materials";
     });
+    material_fraction_sum(value, [&] { return cell_point(t.cell[v], t.param[v]); });
     std::copy(value.begin(), value.end(), out);
   }
   return f;
@@ -98,6 +100,7 @@ void add_export_command(CLI::App& app, Context&) {
       io::write_stl(a->out, t.mesh);
     } else {
       const MaterialTable mats = materials_or_default(m);
+      check_material_fractions(m);
       const std::vector<double> f = vertex_fractions(m, t, mats.size());
       if (ext == ".3mf")
         io::write_3mf(a->out, t.mesh, mats, f);

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli.hpp"
+#include "trivar/model/material_fractions.hpp"
 #include "trivar/model/model_boundary.hpp"
 #include "trivar/spline/jacobian.hpp"
 
@@ -23,6 +24,7 @@ const char* kind_word(Attribute::Kind k) {
 }
 
 nlohmann::json describe(const VModel& m) {
+  check_material_fractions(m);
   const VTopology& t = m.topology();
   const ModelBoundary b = model_boundary(m);
   const Box<3> box = m.bounding_box();

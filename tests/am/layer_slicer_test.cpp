@@ -148,9 +148,10 @@ TEST(LayerSlicer, GradedFractionsEqualTheFieldAtThePixelCentre) {
   VModel m;
   for (const auto& c : cells) {
     VCell cell(c);
-    // Two materials blending along x, and one that needs clamping and normalising.
+    // Two materials blending along x, one in proportions that need normalising, one negative where x < 0.
     cell.set_attribute("material", Attribute::expression({"0.5 + 0.2 * x", "0.5 - 0.2 * x"}, Attribute::Space::model));
-    cell.set_attribute("raw", Attribute::expression({"2 * x", "1", "z"}, Attribute::Space::model));
+    cell.set_attribute("raw", Attribute::expression({"2 * x + 5", "1", "z"}, Attribute::Space::model));
+    cell.set_attribute("negative", Attribute::expression({"x", "1"}, Attribute::Space::model));
     m.add_cell(std::move(cell));
   }
   m.glue();
@@ -161,6 +162,8 @@ TEST(LayerSlicer, GradedFractionsEqualTheFieldAtThePixelCentre) {
   o.material_attribute = "raw";
   const SliceLayer R = LayerSlicer(m, o).slice(0);
   ASSERT_EQ(R.fractions.channels(), 3);
+  o.material_attribute = "negative";
+  EXPECT_THROW(LayerSlicer(m, o), Error);
   const double dx = 25.4 / 600;
   long long checked = 0;
   for (int j = 0; j < L.height; ++j)
@@ -169,7 +172,7 @@ TEST(LayerSlicer, GradedFractionsEqualTheFieldAtThePixelCentre) {
       const double x = -2.1 + (i + 0.5) * dx;
       EXPECT_NEAR(L.fractions(i, j, 0), 0.5 + 0.2 * x, 1e-6);
       EXPECT_NEAR(L.fractions(i, j, 1), 0.5 - 0.2 * x, 1e-6);
-      const double a = std::clamp(2 * x, 0.0, 1.0), b = 1, c = 0.6, s = a + b + c;
+      const double a = 2 * x + 5, b = 1, c = 0.6, s = a + b + c;
       EXPECT_NEAR(R.fractions(i, j, 0), a / s, 1e-6);
       EXPECT_NEAR(R.fractions(i, j, 1), b / s, 1e-6);
       EXPECT_NEAR(R.fractions(i, j, 2), c / s, 1e-6);

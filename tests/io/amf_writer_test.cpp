@@ -118,6 +118,9 @@ TEST(AmfWriter, BadInputThrowsAndWritesNothing) {
   auto zero = std::vector<double>(12, 0.5);
   zero[6] = zero[7] = 0;
   EXPECT_THROW(io::write_amf(path, mesh, mats, {}, zero), Error);
+  auto negative = std::vector<double>(12, 0.5);
+  negative[7] = -0.25;  // clamping it would have hidden the error
+  EXPECT_THROW(io::write_amf(path, mesh, mats, {}, negative), Error);
   auto bad_mesh = mesh;
   bad_mesh.triangles[0][0] = -1;
   EXPECT_THROW(io::write_amf(path, bad_mesh, mats, {}), Error);

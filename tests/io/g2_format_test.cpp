@@ -25,15 +25,15 @@ TEST(G2Format, PolynomialAndRationalRoundTripsAreBitExact) {
 
 TEST(G2Format, AwkwardNumbersRoundTrip) {
   test::TempDir dir;
-  // Three homogeneous points (x, y, z, w) with weights 1.5, max and 1e-3.
+  // Three homogeneous points (x, y, z, w) with weights 1.5, 1e8 and 1e-3 (within the accepted ratio 1e12).
   const std::vector<double> h = {1.0 / 3,
                                  -0.0,
                                  0.1,
                                  1.5,
                                  1e-300,
-                                 2.0,
-                                 std::numeric_limits<double>::denorm_min(),
                                  std::numeric_limits<double>::max(),
+                                 std::numeric_limits<double>::denorm_min(),
+                                 1e8,
                                  0.5,
                                  std::nextafter(1.0, 0.0),
                                  -1e22,
@@ -94,4 +94,18 @@ TEST(G2Format, EmptySplineCannotBeWritten) {
   EXPECT_THROW(
       io::write_g2(dir.file("e.g2"), {test::random_spline<3>({1, 1, 1}, {1, 1, 1}, 3, false, 23), AnySpline{}}), Error);
   EXPECT_EQ(dir.entries(), 0);
+}
+
+// The g2 reader goes through the same knot validation as every other reader and names line and direction.
+TEST(G2Format, SubnormalKnotSpansAreRejectedWithTheirDirection) {
+  test::TempDir dir;
+  const std::string path = dir.file("s.g2");
+  std::ofstream(path) << "100 1 0 0\n2 0\n4 3\n0 0 0 1e-320 1 1 1\n0 0\n1 0\n2 1\n3 1\n";
+  try {
+    io::read_g2(path);
+    FAIL() << "expected trivar::Error";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), path + ":4: invalid knot vector in direction u: knot vector: span [t_2, t_3] = "
+                                            "[0, 1e-320] is non-zero but shorter than 1e-12 (1e-12 of the domain length)");
+  }
 }

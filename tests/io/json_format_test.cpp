@@ -144,3 +144,66 @@ TEST(JsonFormat, EmptySplineCannotBeWritten) {
   EXPECT_THROW(io::write_json(dir.file("e.json"), {}), Error);
   EXPECT_EQ(dir.entries(), 0);
 }
+
+namespace {
+
+std::string read_error(const std::string& path, const std::string& text) {
+  std::ofstream(path) << text;
+  try {
+    io::read_json(path);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+}  // namespace
+
+// Copying, comparing and destroying a parsed JSON value recurse once per level: the reader bounds the depth.
+TEST(JsonFormat, DeepNestingIsAnErrorNotAStackOverflow) {
+  test::TempDir dir;
+  const std::string path = dir.file("deep.json");
+  const std::size_t levels = 200000;
+  EXPECT_EQ(read_error(path, "{\"trivar\": 1, \"x\": " + std::string(levels, '[') + std::string(levels, ']') + "}"),
+            path + ": objects and arrays nested deeper than 64 levels");
+  // 64 levels (the top-level object and 63 arrays) parse; the document then fails on its content.
+  EXPECT_EQ(read_error(path, "{\"trivar\": 1, \"x\": " + std::string(63, '[') + std::string(63, ']') + "}"),
+            path + ": unexpected key \"x\"");
+}
+
+TEST(JsonFormat, DuplicateKeysAreRejectedWithTheirPath) {
+  test::TempDir dir;
+  const std::string path = dir.file("dup.json");
+  EXPECT_EQ(read_error(path, R"({"trivar": 1, "kind": "curve", "kind": "surface"})"),
+            path + ": duplicate key \"kind\" in the top-level object");
+  EXPECT_EQ(read_error(path, R"({"trivar": 1, "objects": [{"dim": 1}, {"a": [1, {"b": 0}], "dim": 1, "dim": 2}]})"),
+            path + ": duplicate key \"dim\" in objects[1]");
+  EXPECT_EQ(read_error(path, R"({"trivar": 1, "objects": [[1, 2, {"b": {"c": 0, "c": 1}}]]})"),
+            path + ": duplicate key \"c\" in objects[0][2].b");
+}
+
+// Every reader constructs its knot vectors and splines through the validating constructors; the JSON reader
+// adds the object, the key path and the direction.
+TEST(JsonFormat, DegenerateKnotsAndWeightsAreRejectedOnRead) {
+  json j = io::to_json(test::random_spline<3>({2, 2, 2}, {2, 2, 2}, 3, true, 16));
+  j["knots"][1] = {0, 0, 0, 1e-320, 1, 1, 1};  // still 4 B-splines, with a subnormal first span
+  EXPECT_EQ(std::string([&] {
+              try {
+                io::spline_from_json(j, "x.json");
+              } catch (const Error& e) {
+                return std::string(e.what());
+              }
+              return std::string("no error");
+            }()),
+            "x.json: knots[1]: invalid knot vector in direction v: knot vector: span [t_2, t_3] = [0, 1e-320] is "
+            "non-zero but shorter than 1e-12 (1e-12 of the domain length)");
+  json w = io::to_json(test::random_spline<3>({1, 1, 1}, {1, 1, 1}, 3, true, 17));
+  w["weights"] = std::vector<double>(8, 1e-320);
+  try {
+    io::spline_from_json(w, "w.json");
+    FAIL() << "expected trivar::Error";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("w.json: spline: the largest weight 1e-320 (control point 0)", 0), 0u)
+        << e.what();
+  }
+}

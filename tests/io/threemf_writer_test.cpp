@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <sstream>
 
 #include "io/am_test_support.hpp"
@@ -135,16 +136,27 @@ TEST(ThreeMfWriter, ModelCarriesMaterialsCompositesAndExactGeometry) {
   EXPECT_NEAR(enclosed_volume(back), 4.0 / 3.0 * s * s * s, 1e-15);
 }
 
-TEST(ThreeMfWriter, FractionsAreClampedAndNormalised) {
+// Fractions are proportions: divided by their sum, never clamped; a negative one is an error naming the vertex.
+TEST(ThreeMfWriter, FractionsAreNormalisedAndNegativesRejected) {
   test::TempDir dir;
   const auto mesh = test::octahedron();
+  const MaterialTable three({{"a", {}}, {"b", {}}, {"c", {}}});
   std::vector<double> f;
-  for (std::size_t v = 0; v < mesh.vertices.size(); ++v) f.insert(f.end(), {3.0, 1.0, -2.0});  // -> (1, 1, 0) / 2
-  io::write_3mf(dir.file("p.3mf"), mesh, MaterialTable({{"a", {}}, {"b", {}}, {"c", {}}}), f);
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v) f.insert(f.end(), {3.0, 1.0, 0.0});  // -> (3, 1, 0) / 4
+  io::write_3mf(dir.file("p.3mf"), mesh, three, f);
   const std::string xml = test::read_zip(dir.file("p.3mf")).at("3D/3dmodel.model");
   const auto composites = test::elements(xml, "m:composite");
   ASSERT_EQ(composites.size(), 1u);
-  EXPECT_EQ(numbers(composites[0].attributes.at("values")), (std::vector<double>{0.5, 0.5, 0}));
+  EXPECT_EQ(numbers(composites[0].attributes.at("values")), (std::vector<double>{0.75, 0.25, 0}));
+  f[3 * 4 + 2] = -2;
+  try {
+    io::write_3mf(dir.file("n.3mf"), mesh, three, f);
+    FAIL() << "expected trivar::Error";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), "write_3mf: vertex 4: material fractions (3, 1, -2): fraction 2 is negative; "
+                                     "fractions must be finite and >= 0 with a positive sum");
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir.file("n.3mf")));
 }
 
 TEST(ThreeMfWriter, OutputIsDeterministic) {

@@ -100,3 +100,24 @@ TEST(Expression, MalformedInputGivesOneLineMessagesWithPositions) {
   EXPECT_THROW(Expression::parse("x", {"x", "x"}), Error);
   EXPECT_THROW(Expression::parse("x", {"1x"}), Error);
 }
+
+// The parser recurses once per nesting level; a bound on the nesting keeps its stack use bounded on any input.
+TEST(Expression, NestingBeyondTheLimitIsAnErrorNotAStackOverflow) {
+  const int limit = Expression::kMaxNesting;
+  std::string signs(static_cast<std::size_t>(limit - 1), '-');
+  EXPECT_EQ(value((signs + "2").c_str()), limit % 2 == 0 ? -2.0 : 2.0);  // limit - 1 signs
+  const std::string many_signs = std::string(200000, '-') + "1";
+  EXPECT_EQ(error_of(many_signs.c_str()),
+            "expression '" + many_signs.substr(0, 80) + "...': nesting deeper than " + std::to_string(limit) +
+                " levels of signs, powers, parentheses or function arguments at position " + std::to_string(limit));
+  const std::string parens = std::string(100000, '(') + "1" + std::string(100000, ')');
+  EXPECT_EQ(error_of(parens.c_str()),
+            "expression '" + parens.substr(0, 80) + "...': nesting deeper than " + std::to_string(limit) +
+                " levels of signs, powers, parentheses or function arguments at position " + std::to_string(limit));
+  std::string calls = "x";
+  for (int k = 0; k < 300; ++k) calls = "sin(" + calls + ")";
+  EXPECT_THROW(Expression::parse(calls, {"x"}), Error);
+  std::string powers = "2";
+  for (int k = 0; k < 300; ++k) powers += "^1";
+  EXPECT_THROW(Expression::parse(powers, {}), Error);
+}

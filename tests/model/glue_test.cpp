@@ -241,3 +241,57 @@ TEST(Glue, RejectsBadOptions) {
                                 Eigen::VectorXd::Zero(2));
   EXPECT_THROW(VCell{planar}, Error);
 }
+
+namespace {
+
+std::string glue_error(VModel m, const GlueOptions& o = {}) {
+  try {
+    m.glue(o);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+}  // namespace
+
+// A tolerance near the model's size would merge every corner of a cell and leave no boundary.
+TEST(Glue, TolerancesNearTheModelSizeAreRejected) {
+  VModel m;
+  m.add_cell(VCell(block_at(0, 0, 0, {3, 4, 12})));  // diagonal 13
+  EXPECT_EQ(glue_error(m, {.relative_tolerance = 1e308}),
+            "glue: relative tolerance 1e+308 is larger than 0.001 of the model's size (bounding-box diagonal 13)");
+  EXPECT_EQ(glue_error(m, {.absolute_tolerance = 0.014}),
+            "glue: absolute tolerance 0.014 is larger than 0.001 of the model's size (bounding-box diagonal 13)");
+  EXPECT_EQ(glue_error(m, {.absolute_tolerance = 0.013}), "no error");
+}
+
+// Two copies of one cell glue face to face into a model without boundary; a third copy of a shared face makes
+// an interior face. Neither is a solid: both are errors naming the cells.
+TEST(Glue, DuplicatedCellsAreRejected) {
+  VModel twice;
+  twice.add_cell(VCell(block_at(0, 0, 0)));
+  twice.add_cell(VCell(block_at(0, 0, 0)));
+  EXPECT_EQ(glue_error(twice), "glue: cells 0 and 1 coincide (every face of one is glued to the other)");
+  VModel three;
+  three.add_cell(VCell(block_at(0, 0, 0)));
+  three.add_cell(VCell(block_at(1, 0, 0)));
+  three.add_cell(VCell(block_at(1, 0, 0)));
+  // Face 1 (u = 1) of cell 0 pairs with face 0 of cell 1; face 0 of cell 2 is the third face there.
+  EXPECT_EQ(glue_error(three),
+            "glue: face 0 of cell 2 coincides with the face shared by cells 0 and 1: a face of more than two cells");
+}
+
+TEST(Glue, CollapsedCellsAreRejected) {
+  VModel m;
+  m.add_cell(VCell(block_at(0, 0, 0)));
+  const Eigen::Matrix3d flatten = Eigen::Vector3d(1, 1, 0).asDiagonal();  // zero thickness in z
+  m.add_cell(VCell(transform(make_block<3>({1, 1, 1}, {1, 1, 1}, {1, 1, 1}), flatten, Eigen::Vector3d(1, 0, 0))));
+  EXPECT_EQ(glue_error(m), "glue: cell 1 is collapsed: volume 0 is no more than the tolerance 2.449489742783178e-07 "
+                           "times its extent 1 x 1");
+  // A thin but solid cell (a thousandth of the model) is a cell.
+  VModel thin;
+  thin.add_cell(VCell(block_at(0, 0, 0)));
+  thin.add_cell(VCell(block_at(1, 0, 0, {1, 1, 1e-3})));
+  EXPECT_EQ(glue_error(thin), "no error");
+}

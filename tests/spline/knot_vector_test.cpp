@@ -104,3 +104,37 @@ TEST(KnotVector, UniformFastSpanSearchAgreesWithBinarySearch) {
     EXPECT_EQ(kv.find_span(7.0), kv.size() - 1);
   }
 }
+
+namespace {
+
+std::string knot_error(int degree, std::vector<double> knots) {
+  try {
+    KnotVector(degree, std::move(knots));
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+}  // namespace
+
+// Basis evaluation divides by spans; a subnormal span makes 1/h infinite and the span search index NaN.
+TEST(KnotVector, RejectsSpansBelowTheKnotToleranceOfTheDomain) {
+  EXPECT_EQ(knot_error(2, {0, 0, 0, 1e-320, 2e-320, 1, 1, 1}),
+            "knot vector: span [t_2, t_3] = [0, 1e-320] is non-zero but shorter than 1e-12 (1e-12 of the domain "
+            "length)");
+  // Relative to the domain length 1000: a span of 1e-10 is below 1e-9, one of 1e-8 is accepted and found.
+  EXPECT_NE(knot_error(1, {0, 0, 500, 500 + 1e-10, 1000, 1000}).find("span [t_2, t_3]"), std::string::npos);
+  const KnotVector fine(1, {0, 0, 500, 500 + 1e-8, 1000, 1000});
+  EXPECT_EQ(fine.find_span(500 + 0.5e-8), 2);
+  EXPECT_EQ(fine.find_span(500 + 1e-8), 3);
+  // A uniform vector of the smallest accepted spans on a tiny domain still has finite reciprocal spans.
+  const KnotVector tiny = KnotVector::open_uniform(2, 4, 0.0, 1e-300);
+  EXPECT_EQ(tiny.find_span(0.6e-300), 4);
+}
+
+TEST(KnotVector, RejectsKnotsWhoseDistanceOverflows) {
+  EXPECT_EQ(knot_error(1, {-1.7e308, -1.7e308, 1.7e308, 1.7e308}),
+            "knot vector: the knots span [-1.7e+308, 1.7e+308], whose length overflows a double");
+  EXPECT_EQ(knot_error(1, {0, 0, 1, 1.7e308}).find("overflow"), std::string::npos);  // a finite length is fine
+}

@@ -7,6 +7,7 @@
 #include "support/spline_fixtures.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/spline/derivative_index.hpp"
+#include "trivar/spline/jacobian.hpp"
 
 using namespace trivar;
 
@@ -194,4 +195,55 @@ TEST(TensorSpline, SpecialisedKernelsMatchTheGeneralPath) {
           for (int d = 0; d < dim; ++d) EXPECT_NEAR(d1[d], ref[d], 1e-12);
         }
       }
+}
+
+namespace {
+
+// The unit cube as a trilinear volume with every weight equal to w (equal weights cancel: the geometry is the
+// polynomial cube whatever w is, and det J = 1 everywhere).
+SplineVolume weighted_cube(const std::vector<double>& w) {
+  const KnotVector kv(1, {0, 0, 1, 1});
+  std::vector<double> pts;
+  for (int k = 0; k < 2; ++k)
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 2; ++i) pts.insert(pts.end(), {double(i), double(j), double(k)});
+  return SplineVolume::from_cartesian({kv, kv, kv}, 3, pts, w);
+}
+
+std::string weight_error(const std::vector<double>& w) {
+  try {
+    weighted_cube(w);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+}  // namespace
+
+TEST(TensorSpline, WeightsMustKeepRationalEvaluationInRange) {
+  EXPECT_EQ(weight_error(std::vector<double>(8, 1e-320)),
+            "spline: the largest weight 1e-320 (control point 0) is outside [1e-50, 1e+50]; scale all weights by a "
+            "common factor, which leaves the geometry unchanged");
+  std::vector<double> w(8, 1.0);
+  w[5] = 1e-13;
+  EXPECT_EQ(weight_error(w), "spline: weight of control point 5 is 1e-13, less than 1e-12 times the largest weight 1 "
+                             "(control point 0)");
+  w[5] = 0;
+  EXPECT_EQ(weight_error(w), "spline: weight of control point 5 is 0; weights must be positive");
+  w[5] = INFINITY;
+  EXPECT_THROW(weighted_cube(w), Error);
+  // Inside the bounds, a common factor changes nothing: the cube with det J = 1.
+  for (double scale : {1e-40, 1.0, 1e40}) {
+    const SplineVolume v = weighted_cube(std::vector<double>(8, scale));
+    double x[3];
+    v.eval({0.25, 0.5, 0.75}, x);
+    EXPECT_NEAR(x[0], 0.25, 1e-15);
+    EXPECT_NEAR(x[1], 0.5, 1e-15);
+    EXPECT_NEAR(x[2], 0.75, 1e-15);
+    const auto rep = check_jacobian(v);
+    EXPECT_NEAR(rep.min_value, 1.0, 1e-12) << "scale " << scale;
+    EXPECT_LE(rep.min_lower_bound, 1.0 + 1e-12);
+    EXPECT_GE(rep.min_lower_bound, 1.0 - 1e-9);
+  }
 }

@@ -9,6 +9,7 @@
 #include <Eigen/Dense>
 
 #include "trivar/core/error.hpp"
+#include "trivar/model/material_fractions.hpp"
 
 namespace trivar::am {
 
@@ -184,6 +185,7 @@ LayerSlicer::LayerSlicer(const VModel& model, const SliceOptions& options)
     });
     material_[static_cast<std::size_t>(c)] = &a;
   }
+  check_material_fractions(model, name);
   require(materials_ <= MaterialTable::max_materials, "slicer: more than 255 materials");
   require(model.materials().empty() || model.materials().size() == materials_, [&] {
     return "slicer: the model names " + std::to_string(model.materials().size()) + " materials but attribute '" +
@@ -347,11 +349,9 @@ SliceLayer LayerSlicer::slice(int k) const {
         continue;
       }
       a->eval(model_.cell(c).geometry(), r.param, values);
-      double sum = 0;
-      for (int m = 0; m < materials_; ++m)
-        sum += values[m] = std::isfinite(values[m]) ? std::clamp(values[m], 0.0, 1.0) : 0.0;
-      // A field that vanishes everywhere at the pixel gives no preference: equal shares.
-      for (int m = 0; m < materials_; ++m) out[m] = static_cast<float>(sum > 0 ? values[m] / sum : 1.0 / materials_);
+      const double sum = material_fraction_sum(std::span<const double>(values, static_cast<std::size_t>(materials_)),
+                                               [&] { return cell_point(c, r.param); });
+      for (int m = 0; m < materials_; ++m) out[m] = static_cast<float>(values[m] / sum);
     }
     std::swap(cur, prev);
   }

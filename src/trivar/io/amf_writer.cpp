@@ -10,6 +10,7 @@
 #include "trivar/core/number_format.hpp"
 #include "trivar/io/xml_text.hpp"
 #include "trivar/io/zip_writer.hpp"
+#include "trivar/model/material_fractions.hpp"
 
 namespace trivar::io {
 
@@ -86,16 +87,13 @@ void write_amf(const std::string& path, const TriangleMesh& mesh, const Material
     write_number(x, p[2]);
     x << "</z></coordinates>";
     if (!vertex_fractions.empty()) {
-      double sum = 0, rgba[4] = {0, 0, 0, 0};
+      const std::span<const double> f = vertex_fractions.subspan(v * mu, mu);
+      const double sum = material_fraction_sum(f, [&] { return "write_amf: vertex " + std::to_string(v); });
+      double rgba[4] = {0, 0, 0, 0};
       for (std::size_t k = 0; k < mu; ++k) {
-        const double f = vertex_fractions[v * mu + k];
-        require(std::isfinite(f), [&] { return "write_amf: fraction " + std::to_string(k) + " of vertex " + std::to_string(v) + " is not finite"; });
-        const double w = std::clamp(f, 0.0, 1.0);
         const auto& c = materials[static_cast<int>(k)].colour;
-        sum += w;
-        rgba[0] += w * c.r, rgba[1] += w * c.g, rgba[2] += w * c.b, rgba[3] += w * c.a;
+        rgba[0] += f[k] * c.r, rgba[1] += f[k] * c.g, rgba[2] += f[k] * c.b, rgba[3] += f[k] * c.a;
       }
-      require(sum > 0, [&] { return "write_amf: vertex " + std::to_string(v) + " has no material (fractions sum to 0)"; });
       const double s = 1.0 / (255.0 * sum);
       write_colour(x, rgba[0] * s, rgba[1] * s, rgba[2] * s, rgba[3] * s);
     }

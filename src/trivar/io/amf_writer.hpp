@@ -28,11 +28,11 @@ struct AmfOptions {
   bool zip = false;
 };
 
-// vertex_fractions: empty, or materials.size() values per vertex (clamped to [0, 1], normalised) for the vertex
+// vertex_fractions: empty, or materials.size() values per vertex (divided by their sum) for the vertex
 // colours. Throws trivar::Error for an empty mesh or material table, a vertex index out of range, a non-finite
-// coordinate or fraction, a base material out of range, a formula count other than m or an empty formula, a
-// fraction count other than vertices x materials, a vertex whose fractions sum to 0, or a write failure;
-// nothing is written then.
+// coordinate, a base material out of range, a formula count other than m or an empty formula, a fraction
+// count other than vertices x materials, fractions that break the rule of material_fractions.hpp, or a write
+// failure; nothing is written then.
 void write_amf(const std::string& path, const TriangleMesh& mesh, const MaterialTable& materials,
                const AmfGrading& grading, std::span<const double> vertex_fractions = {},
                const AmfOptions& options = {});

@@ -231,7 +231,11 @@ std::vector<AnySpline> read_g2(const std::string& path) {
   require(static_cast<bool>(in), path + ": cannot open file for reading");
   std::ostringstream text;
   text << in.rdbuf();
-  return G2Reader(path, std::move(text).str()).read();
+  return parse_g2(std::move(text).str(), path);
+}
+
+std::vector<AnySpline> parse_g2(std::string text, const std::string& name) {
+  return G2Reader(name, std::move(text)).read();
 }
 
 void write_g2(const std::string& path, const std::vector<AnySpline>& objects) {

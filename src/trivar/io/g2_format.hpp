@@ -18,6 +18,8 @@ namespace trivar::io {
 // Throws trivar::Error "file:line: ..." on an unsupported class type, malformed header, invalid knot vector,
 // non-numeric or non-finite value, non-positive weight, wrong number of coefficients or truncated file.
 std::vector<AnySpline> read_g2(const std::string& path);
+// The same for the text of a file; `name` stands for the file in messages.
+std::vector<AnySpline> parse_g2(std::string text, const std::string& name);
 
 // Nothing is written when an object is empty (default-constructed) or the list is empty.
 void write_g2(const std::string& path, const std::vector<AnySpline>& objects);

@@ -6,7 +6,9 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <string_view>
+#include <utility>
 
 #include "trivar/core/atomic_file.hpp"
 #include "trivar/core/error.hpp"
@@ -16,6 +18,9 @@ namespace trivar::io {
 namespace {
 
 using nlohmann::json;
+
+// Far deeper than any trivar document (the points of a V-model's field attribute sit at depth 8).
+constexpr std::size_t kMaxJsonDepth = 64;
 
 constexpr std::array<const char*, 3> kKinds = {"curve", "surface", "volume"};
 constexpr std::array<char, 3> kDirections = {'u', 'v', 'w'};
@@ -81,11 +86,13 @@ AnySpline spline_of_kind(const json& j, const std::string& where, int dim, bool 
   const auto count = static_cast<std::size_t>(n);
 
   const json& cps = get_array(member(j, "control_points", where), where, "control_points", count);
+  // The shape is checked before anything is allocated, so a declared "dim" or knot count can never ask for
+  // more memory than the document itself holds.
+  for (std::size_t i = 0; i < count; ++i) get_array(cps[i], where, indexed("control_points", i), dim);
   std::vector<double> points(count * dim);
   for (std::size_t i = 0; i < count; ++i) {
     const std::string path = indexed("control_points", i);
-    const json& p = get_array(cps[i], where, path, dim);
-    for (int d = 0; d < dim; ++d) points[i * dim + d] = get_real(p[d], where, indexed(path, d));
+    for (int d = 0; d < dim; ++d) points[i * dim + d] = get_real(cps[i][d], where, indexed(path, d));
   }
   std::vector<double> weights;
   if (rational) {
@@ -98,7 +105,11 @@ AnySpline spline_of_kind(const json& j, const std::string& where, int dim, bool 
   } else if (j.contains("weights")) {
     fail(where, "weights", "present but \"rational\" is false");
   }
-  return TensorSpline<D>::from_cartesian(std::move(kv), dim, points, weights);
+  try {
+    return TensorSpline<D>::from_cartesian(std::move(kv), dim, points, weights);
+  } catch (const Error& e) {
+    fail(where, "", e.what());
+  }
 }
 
 // Scalars and arrays of scalars on one line, structure indented: control points come out one per line.
@@ -128,6 +139,71 @@ void print(std::ostream& os, const json& j, int indent) {
   } else {
     os << j.dump();
   }
+}
+
+// `in` is anything nlohmann::json::parse reads (a stream or a string_view); `path` names it in messages.
+template <class Input>
+json parse_document(Input&& in, const std::string& path) {
+  // Each open object or array, with the selector of its current child, so a duplicate key can be named by its
+  // path. The depth is bounded here because copying, comparing and printing a json value recurse.
+  struct Open {
+    bool object;
+    std::set<std::string> keys;
+    std::string key;
+    std::size_t index = 0;
+  };
+  std::vector<Open> open;
+  const auto location = [&] {
+    std::string at;
+    for (std::size_t i = 0; i + 1 < open.size(); ++i)
+      at += open[i].object ? (at.empty() ? "" : ".") + open[i].key : "[" + std::to_string(open[i].index) + "]";
+    return at.empty() ? std::string("the top-level object") : at;
+  };
+  const auto next_element = [&] {
+    if (!open.empty() && !open.back().object) ++open.back().index;
+  };
+  const json::parser_callback_t track = [&](int, json::parse_event_t event, json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start:
+      case json::parse_event_t::array_start:
+        require(open.size() < kMaxJsonDepth, [&] {
+          return path + ": objects and arrays nested deeper than " + std::to_string(kMaxJsonDepth) + " levels";
+        });
+        open.push_back({event == json::parse_event_t::object_start, {}, {}, 0});
+        break;
+      case json::parse_event_t::key: {
+        Open& o = open.back();
+        o.key = parsed.get<std::string>();
+        require(o.keys.insert(o.key).second,
+                [&] { return path + ": duplicate key \"" + o.key + "\" in " + location(); });
+        break;
+      }
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        open.pop_back();
+        next_element();
+        break;
+      case json::parse_event_t::value:
+        next_element();
+        break;
+    }
+    return true;
+  };
+  json doc;
+  try {
+    doc = json::parse(std::forward<Input>(in), track);
+  } catch (const json::exception& e) {
+    // Syntax errors and out-of-range numbers. nlohmann prefixes "[json.exception.<kind>.N] " and may quote
+    // input containing line breaks.
+    std::string what = e.what();
+    if (const auto p = what.find("] "); p != std::string::npos) what.erase(0, p + 2);
+    std::replace(what.begin(), what.end(), '\n', ' ');
+    throw Error(path + ": invalid JSON: " + what);
+  }
+  if (!doc.is_object()) fail(path, "", std::string("expected a JSON object, got ") + doc.type_name());
+  if (!doc.contains("trivar")) fail(path, "", "missing key \"trivar\" (not a trivar file)");
+  if (doc["trivar"] != 1) fail(path, "trivar", "unsupported format version " + doc["trivar"].dump() + " (expected 1)");
+  return doc;
 }
 
 }  // namespace
@@ -194,22 +270,10 @@ json read_json_document(const std::string& path) {
   require(!std::filesystem::is_directory(path), path + ": is a directory, expected a JSON file");
   std::ifstream in(path);
   require(static_cast<bool>(in), path + ": cannot open file for reading");
-  json doc;
-  try {
-    doc = json::parse(in);
-  } catch (const json::exception& e) {
-    // Syntax errors and out-of-range numbers. nlohmann prefixes "[json.exception.<kind>.N] " and may quote
-    // input containing line breaks.
-    std::string what = e.what();
-    if (const auto p = what.find("] "); p != std::string::npos) what.erase(0, p + 2);
-    std::replace(what.begin(), what.end(), '\n', ' ');
-    throw Error(path + ": invalid JSON: " + what);
-  }
-  if (!doc.is_object()) fail(path, "", std::string("expected a JSON object, got ") + doc.type_name());
-  if (!doc.contains("trivar")) fail(path, "", "missing key \"trivar\" (not a trivar file)");
-  if (doc["trivar"] != 1) fail(path, "trivar", "unsupported format version " + doc["trivar"].dump() + " (expected 1)");
-  return doc;
+  return parse_document(in, path);
 }
+
+json parse_json_document(std::string_view text, const std::string& name) { return parse_document(text, name); }
 
 void write_json_document(const std::string& path, const json& doc) {
   write_file_atomically(path, [&](std::ostream& os) {

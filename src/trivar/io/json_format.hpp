@@ -6,6 +6,7 @@
 // is present exactly when "rational" is true. Numbers are written so that they parse back to the same double.
 #include <nlohmann/json.hpp>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -24,6 +25,8 @@ AnySpline spline_from_json(const nlohmann::json& j, const std::string& where);
 // The parsed top-level object of a trivar JSON file, with "trivar": 1 checked; throws trivar::Error naming the
 // file on I/O and syntax errors.
 nlohmann::json read_json_document(const std::string& path);
+// The same for a document in memory; `name` stands for the file in messages.
+nlohmann::json parse_json_document(std::string_view text, const std::string& name);
 // Writes a document atomically in the project's layout (spline keys in schema order, numeric arrays on one line).
 void write_json_document(const std::string& path, const nlohmann::json& doc);
 

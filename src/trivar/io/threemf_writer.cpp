@@ -12,6 +12,7 @@
 #include "trivar/core/number_format.hpp"
 #include "trivar/io/xml_text.hpp"
 #include "trivar/io/zip_writer.hpp"
+#include "trivar/model/material_fractions.hpp"
 
 namespace trivar::io {
 
@@ -65,15 +66,9 @@ void write_3mf(const std::string& path, const TriangleMesh& mesh, const Material
   for (std::size_t v = 0; v < nv; ++v) {
     for (double x : mesh.vertices[v])
       require(std::isfinite(x), [&] { return "write_3mf: vertex " + std::to_string(v) + " is not finite"; });
-    double sum = 0;
-    for (std::size_t k = 0; k < m; ++k) {
-      const double f = vertex_fractions[v * m + k];
-      require(std::isfinite(f), [&] { return "write_3mf: fraction " + std::to_string(k) + " of vertex " + std::to_string(v) + " is not finite"; });
-      mix[k] = std::clamp(f, 0.0, 1.0);
-      sum += mix[k];
-    }
-    require(sum > 0, [&] { return "write_3mf: vertex " + std::to_string(v) + " has no material (fractions sum to 0)"; });
-    for (auto& f : mix) f /= sum;
+    const std::span<const double> f = vertex_fractions.subspan(v * m, m);
+    const double sum = material_fraction_sum(f, [&] { return "write_3mf: vertex " + std::to_string(v); });
+    for (std::size_t k = 0; k < m; ++k) mix[k] = f[k] / sum;
     const auto [it, inserted] = composite_of.emplace(mix, static_cast<int>(composites.size()));
     if (inserted) composites.push_back(&it->first);
     vertex_composite[v] = it->second;

@@ -17,10 +17,10 @@
 
 namespace trivar::io {
 
-// vertex_fractions holds materials.size() values per vertex (vertex-major); each vertex's values are clamped to
-// [0, 1] and divided by their sum. Throws trivar::Error for an empty mesh or material table, a vertex index out
-// of range, a non-finite coordinate or fraction, a fraction count that is not vertices x materials, a vertex
-// whose clamped fractions sum to 0, or a write failure; nothing is written then.
+// vertex_fractions holds materials.size() values per vertex (vertex-major); each vertex's values are divided by
+// their sum. Throws trivar::Error for an empty mesh or material table, a vertex index out of range, a non-finite
+// coordinate, a fraction count that is not vertices x materials, fractions that break the rule of
+// material_fractions.hpp, or a write failure; nothing is written then.
 void write_3mf(const std::string& path, const TriangleMesh& mesh, const MaterialTable& materials,
                std::span<const double> vertex_fractions, const std::string& object_name = "trivar part");
 

@@ -22,9 +22,9 @@ const json& member(const json& j, const char* key, const std::string& where) {
 }
 
 void only_keys(const json& j, std::initializer_list<const char*> keys, const std::string& where) {
-  for (const auto& [k, v] : j.items())
-    if (std::none_of(keys.begin(), keys.end(), [&](const char* key) { return k == key; }))
-      fail(where, "unexpected key \"" + k + "\"");
+  for (const auto& item : j.items())
+    if (std::none_of(keys.begin(), keys.end(), [&](const char* key) { return item.key() == key; }))
+      fail(where, "unexpected key \"" + item.key() + "\"");
 }
 
 const char* space_name(Attribute::Space s) { return s == Attribute::Space::model ? "model" : "parametric"; }

@@ -58,7 +58,10 @@ public:
 
 private:
   [[noreturn]] void fail(const std::string& what, std::size_t at) const {
-    throw Error("expression '" + std::string(s_) + "': " + what + " at position " + std::to_string(at) +
+    // A formula is quoted whole up to a line's worth of characters; longer ones are cut, the position says where.
+    constexpr std::size_t kQuoted = 80;
+    const std::string quoted = s_.size() <= kQuoted ? std::string(s_) : std::string(s_.substr(0, kQuoted)) + "...";
+    throw Error("expression '" + quoted + "': " + what + " at position " + std::to_string(at) +
                 (at >= s_.size() ? " (end of input)" : ""));
   }
   void skip() {
@@ -96,7 +99,17 @@ private:
       else return;
     }
   }
+  // Every recursion of the grammar (signs, powers, parentheses, arguments) passes through unary(), so
+  // bounding its depth bounds the parser's stack use on any input.
   void unary() {
+    if (++nesting_ > Expression::kMaxNesting)
+      fail("nesting deeper than " + std::to_string(Expression::kMaxNesting) +
+               " levels of signs, powers, parentheses or function arguments",
+           pos_);
+    unary_body();
+    --nesting_;
+  }
+  void unary_body() {
     if (accept('-')) {
       unary();
       emit(Expression::Op::neg);
@@ -179,6 +192,7 @@ private:
   const std::vector<std::string>& vars_;
   std::size_t pos_ = 0;
   int depth_ = 0;
+  int nesting_ = 0;
   std::vector<Expression::Instruction> code_;
 };
 

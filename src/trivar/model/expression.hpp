@@ -22,8 +22,8 @@ namespace trivar {
 
 class Expression {
 public:
-  // Deepest evaluation stack a parsed expression may need; deeper expressions are rejected at parse time.
-  static constexpr int kMaxStack = 64;
+  // Deepest evaluation stack, and deepest nesting of signs, powers, parentheses and arguments, a parse accepts.
+  static constexpr int kMaxStack = 64, kMaxNesting = 256;
 
   Expression() = default;
   // Throws trivar::Error with a one-line message naming the expression, the problem and its position (0-based

@@ -6,9 +6,11 @@
 #include <numeric>
 
 #include "trivar/core/error.hpp"
+#include "trivar/core/number_format.hpp"
 #include "trivar/core/tolerance.hpp"
 #include "trivar/spline/closest_point.hpp"
 #include "trivar/spline/iso_extraction.hpp"
+#include "trivar/spline/measure.hpp"
 #include "trivar/spline/reparametrization.hpp"
 
 namespace trivar {
@@ -30,6 +32,9 @@ std::vector<int> VTopology::cells_around_curve(int curve) const {
 namespace {
 
 using Vec3 = std::array<double, 3>;
+
+// Largest tolerance relative to the bounding-box diagonal of the model.
+constexpr double kMaxRelativeTolerance = 1e-3;
 
 double dist(const double* a, const double* b) {
   return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
@@ -160,6 +165,21 @@ bool collapsed_face(const TensorSpline<2>& f, double tol) {
   return along_s || along_t;
 }
 
+// Zero volume up to the tolerance: the cell's volume is at most tol times the area of the largest side of its
+// bounding box, so it is thinner than the tolerance somewhere across its whole extent.
+void require_solid(const TensorSpline<3>& g, int cell, double tol) {
+  Box<3> b;
+  g.control_bounds(b.lo.data(), b.hi.data());
+  std::array<double, 3> e{b.extent(0), b.extent(1), b.extent(2)};
+  std::sort(e.begin(), e.end());
+  const double volume = measure(g, 2, 1);
+  require(volume > tol * e[1] * e[2], [&] {
+    return "glue: cell " + std::to_string(cell) + " is collapsed: volume " + format_number(volume) +
+           " is no more than the tolerance " + format_number(tol) + " times its extent " + format_number(e[1]) +
+           " x " + format_number(e[2]);
+  });
+}
+
 }  // namespace
 
 VTopology glue(std::span<const VCell> cells, const GlueOptions& options) {
@@ -178,8 +198,17 @@ VTopology glue(std::span<const VCell> cells, const GlueOptions& options) {
   }
   const double tol = options.absolute_tolerance > 0 ? options.absolute_tolerance
                                                     : options.relative_tolerance * (nc ? box.diagonal() : 1.0);
+  // A tolerance near the model's size merges the corners of a cell and leaves no boundary at all.
+  require(nc == 0 || tol <= kMaxRelativeTolerance * box.diagonal(), [&] {
+    const std::string given = options.absolute_tolerance > 0
+                                  ? "absolute tolerance " + format_number(options.absolute_tolerance)
+                                  : "relative tolerance " + format_number(options.relative_tolerance);
+    return "glue: " + given + " is larger than " + format_number(kMaxRelativeTolerance) +
+           " of the model's size (bounding-box diagonal " + format_number(box.diagonal()) + ")";
+  });
   require(std::isfinite(tol) && tol > 0, "glue: the model has zero extent");
   topo.tolerance = tol;
+  for (int c = 0; c < nc; ++c) require_solid(cells[c].geometry(), c, tol);
 
   // 1. V-points.
   std::vector<Vec3> corner_pos(static_cast<std::size_t>(8 * nc));
@@ -324,6 +353,40 @@ VTopology glue(std::span<const VCell> cells, const GlueOptions& options) {
           topo.non_conforming.push_back({ha / 6, ha % 6, hb / 6, hb % 6, NonConformingFace::Reason::control_nets_differ});
       }
     }
+  }
+
+  // A face left over in a group whose other faces are paired, and that coincides with one of them, belongs to a
+  // third cell: the model overlaps itself there.
+  for (const auto& [key, list] : halves_by_points) {
+    if (list.size() < 3) continue;
+    for (int h : list) {
+      if (topo.halves[h].twin >= 0) continue;
+      for (int g : list) {
+        if (topo.halves[g].twin < 0) continue;
+        const TensorSpline<2>& A = faces[h / 6][h % 6];
+        const TensorSpline<2>& B = faces[g / 6][g % 6];
+        require(!(samples_on(A, B, ns, tol, false, false) && samples_on(B, A, ns, tol, false, false)), [&] {
+          return "glue: face " + std::to_string(h % 6) + " of cell " + std::to_string(h / 6) +
+                 " coincides with the face shared by cells " + std::to_string(g / 6) + " and " +
+                 std::to_string(topo.halves[g].twin / 6) + ": a face of more than two cells";
+        });
+      }
+    }
+  }
+  // Two cells whose faces are all glued to each other enclose the same volume twice.
+  for (int c = 0; c < nc; ++c) {
+    int other = -1;
+    bool all = true;
+    for (int f = 0; f < 6 && all; ++f) {
+      const HalfVSurface& h = topo.halves[6 * c + f];
+      if (h.degenerate) continue;
+      all = h.twin >= 0 && h.twin / 6 != c && (other < 0 || h.twin / 6 == other);
+      other = h.twin / 6;
+    }
+    require(!all || other < 0, [&] {
+      return "glue: cells " + std::to_string(std::min(c, other)) + " and " + std::to_string(std::max(c, other)) +
+             " coincide (every face of one is glued to the other)";
+    });
   }
 
   // 4. Partial overlaps between the remaining boundary faces of different cells.

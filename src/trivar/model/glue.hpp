@@ -25,13 +25,13 @@ struct GlueOptions {
   // 1e-7 accepts geometry built independently in double precision (errors ~1e-12) and data exchanged with
   // single-precision or 8-digit files, while cells a thousandth of the model apart stay distinct.
   double relative_tolerance = 1e-7;
-  // Absolute tolerance; when > 0 it replaces relative_tolerance.
+  // Absolute tolerance; when > 0 it replaces relative_tolerance. Either is at most 1e-3 of the diagonal.
   double absolute_tolerance = 0;
   // Samples per direction for the geometric comparison of edges and faces (>= 2).
   int samples = 5;
 };
 
-// Throws trivar::Error on bad options.
+// Throws trivar::Error on bad options, a collapsed (zero-volume) cell, two coincident cells or a face of three.
 VTopology glue(std::span<const VCell> cells, const GlueOptions& options = {});
 
 }  // namespace trivar

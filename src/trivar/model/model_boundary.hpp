@@ -30,6 +30,7 @@ struct ModelBoundary {
   std::vector<BoundaryFace> faces;
   std::vector<BoundaryEdge> edges;
   bool closed() const {
+    if (faces.empty()) return false;  // nothing encloses a volume
     for (const auto& e : edges)
       if (e.uses.size() != 2) return false;
     return true;

@@ -21,6 +21,7 @@ Vec cross(const Vec& a, const Vec& b) {
 bool is_watertight(const TriangleMesh& m) {
   // Directed edge (a, b) counts +1 at key(min, max) when a < b and +2^32 when a > b: a closed oriented
   // manifold has exactly one of each for every edge.
+  if (m.triangles.empty()) return false;  // nothing encloses a volume
   std::unordered_map<std::uint64_t, std::uint64_t> uses;
   uses.reserve(m.triangles.size() * 3);
   const auto n = static_cast<std::uint64_t>(m.vertices.size());

@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "trivar/core/error.hpp"
 #include "trivar/core/number_format.hpp"
+#include "trivar/core/tolerance.hpp"
 #include "trivar/spline/basis.hpp"
 
 namespace trivar {
@@ -33,6 +35,19 @@ KnotVector::KnotVector(int degree, std::vector<double> knots) : p_(degree), t_(s
   const int n = size();
   require(t_[p_] < t_[n], "knot vector: empty domain [t_" + std::to_string(p_) + ", t_" + std::to_string(n) +
                               "] = [" + format_number(t_[p_]) + ", " + format_number(t_[n]) + "]");
+  // Basis evaluation divides by knot differences and find_span by the span length: every difference must be
+  // a finite, normal double, and a span below the knot tolerance is a knot written twice with noise.
+  require(std::isfinite(t_.back() - t_.front()), [&] {
+    return "knot vector: the knots span [" + format_number(t_.front()) + ", " + format_number(t_.back()) +
+           "], whose length overflows a double";
+  });
+  const double min_span = std::max(tol::knot * (t_[n] - t_[p_]), std::numeric_limits<double>::min());
+  for (int i = 0; i + 1 < m; ++i)
+    require(t_[i + 1] == t_[i] || t_[i + 1] - t_[i] >= min_span, [&] {
+      return "knot vector: span [t_" + std::to_string(i) + ", t_" + std::to_string(i + 1) + "] = [" +
+             format_number(t_[i]) + ", " + format_number(t_[i + 1]) + "] is non-zero but shorter than " +
+             format_number(min_span) + " (" + format_number(tol::knot) + " of the domain length)";
+    });
   first_span_ = p_;
   while (t_[first_span_] == t_[first_span_ + 1]) ++first_span_;
   last_span_ = n - 1;

@@ -10,8 +10,8 @@ namespace trivar {
 class KnotVector {
 public:
   KnotVector() = default;
-  // Validates: finite values, non-decreasing, at least 2(p+1) knots, every multiplicity <= p+1 and a
-  // non-empty domain [t_p, t_n]. Throws trivar::Error naming the offending knot index.
+  // Validates: finite, non-decreasing, >= 2(p+1) knots, multiplicities <= p+1, a non-empty domain, a finite
+  // overall length, non-zero spans >= tol::knot x the domain length. Throws trivar::Error naming the knot index.
   KnotVector(int degree, std::vector<double> knots);
 
   // Clamped (open) knot vector on [a, b] with `elements` equal intervals.

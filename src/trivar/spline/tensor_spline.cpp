@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "trivar/core/error.hpp"
+#include "trivar/core/number_format.hpp"
 #include "trivar/core/parallel.hpp"
 #include "trivar/core/scratch.hpp"
 #include "trivar/spline/basis.hpp"
@@ -175,6 +176,36 @@ const std::vector<std::array<int, D>>& derivative_table() {
   return table;
 }
 
+// Rational evaluation divides by sums of weights and the Jacobian check raises them to the power D + 1, so the
+// largest weight must keep those powers normal doubles; a weight far below the largest is numerically zero. A
+// common factor of all weights leaves the geometry unchanged, so the bounds lose no model.
+constexpr double kMinLargestWeight = 1e-50;
+constexpr double kMinWeightRatio = 1e-12;
+
+template <int D>
+void validate_weights(const TensorSpline<D>& s) {
+  int largest = 0;
+  for (int i = 0; i < s.num_coefs(); ++i) {
+    require(s.weight(i) > 0.0, [&] {
+      return "spline: weight of control point " + std::to_string(i) + " is " + format_number(s.weight(i)) +
+             "; weights must be positive";
+    });
+    if (s.weight(i) > s.weight(largest)) largest = i;
+  }
+  const double w_max = s.weight(largest);
+  require(w_max >= kMinLargestWeight && w_max <= 1.0 / kMinLargestWeight, [&] {
+    return "spline: the largest weight " + format_number(w_max) + " (control point " + std::to_string(largest) +
+           ") is outside [" + format_number(kMinLargestWeight) + ", " + format_number(1.0 / kMinLargestWeight) +
+           "]; scale all weights by a common factor, which leaves the geometry unchanged";
+  });
+  for (int i = 0; i < s.num_coefs(); ++i)
+    require(s.weight(i) >= kMinWeightRatio * w_max, [&] {
+      return "spline: weight of control point " + std::to_string(i) + " is " + format_number(s.weight(i)) +
+             ", less than " + format_number(kMinWeightRatio) + " times the largest weight " + format_number(w_max) +
+             " (control point " + std::to_string(largest) + ")";
+    });
+}
+
 }  // namespace
 
 template <int D>
@@ -192,11 +223,7 @@ TensorSpline<D>::TensorSpline(std::array<KnotVector, D> knots, int dim, bool rat
     if (!std::isfinite(coefs_[i])) throw Error("spline: coefficient value " + std::to_string(i) + " is not finite");
   fixed_ = fixed_kernel<D>(knots_, stride(), false);
   fixed_d1_ = fixed_kernel<D>(knots_, stride(), true);
-  if (rational_)
-    for (int i = 0; i < num_coefs(); ++i)
-      if (!(weight(i) > 0.0))
-        throw Error("spline: weight of control point " + std::to_string(i) + " is " + std::to_string(weight(i)) +
-                    "; weights must be positive");
+  if (rational_) validate_weights(*this);
 }
 
 template <int D>

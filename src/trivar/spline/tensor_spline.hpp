@@ -21,8 +21,8 @@ public:
   static constexpr int kDim = D;
 
   TensorSpline() = default;
-  // coefs: num_coefs() * stride() values, homogeneous when rational. Throws trivar::Error on a size
-  // mismatch, a non-positive control dimension or a non-positive weight.
+  // coefs: num_coefs() * stride() values, homogeneous when rational. Throws trivar::Error on a size mismatch, a
+  // non-positive control dimension, a value not finite, or weights outside the bounds of tensor_spline.cpp.
   TensorSpline(std::array<KnotVector, D> knots, int dim, bool rational, std::vector<double> coefs);
   // From Cartesian control points (dim values each) and optional weights (empty: polynomial).
   static TensorSpline from_cartesian(std::array<KnotVector, D> knots, int dim, std::span<const double> points,
