@@ -138,7 +138,7 @@ TEST_F(ModelCli, BadModelInputFailsCleanly) {
   fails("make ball --materials 2 --blend spiral -o b.json", 2);
   fails("export ball.json ball.obj");
   fails("export plate.json plate.stl");
-  // A cell flattened into the plane z = 0: its boundary faces pair up, leaving no triangles to print.
+  // A cell flattened into the plane z = 0 encloses no volume: gluing refuses it, whatever the output.
   nlohmann::json flat{{"trivar", 1}, {"kind", "volume"}, {"dim", 3}, {"rational", false}, {"degrees", {1, 1, 1}}};
   flat["knots"] = {{0, 0, 1, 1}, {0, 0, 1, 1}, {0, 0, 1, 1}};
   for (int k = 0; k < 2; ++k)
@@ -148,8 +148,9 @@ TEST_F(ModelCli, BadModelInputFailsCleanly) {
   fails("export flat.json flat.stl");
   fails("export flat.json flat.stl --allow-open");
   EXPECT_EQ(lines(run("export flat.json flat.3mf").err).at(0),
-            "trivar: error: export: the boundary mesh of flat.json has no triangles (its cells enclose no volume); "
-            "nothing written");
+            "trivar: error: glue: cell 0 is collapsed: volume 0 is no more than the tolerance 1.4142135623730952e-07 "
+            "times its extent 1 x 1");
+  EXPECT_FALSE(std::filesystem::exists(work_ / "flat.3mf"));
   fails("convert ball.json ball.g2");
   write("broken.json", R"({"trivar": 1, "kind": "vmodel", "cells": []})");
   fails("info broken.json");

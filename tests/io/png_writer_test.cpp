@@ -11,7 +11,6 @@
 #include "trivar/io/png_writer.hpp"
 
 using namespace trivar;
-using namespace trivar::am;
 using trivar::test::read_png;
 
 namespace {
