@@ -290,7 +290,8 @@ TEST(LrFormat, ElementBlockMustListTheMeshElements) {
   cross.insert(MeshRectangle<2>::make(0, 3.5, {0, 1}, {0, 5}));
   cross.insert(MeshRectangle<2>::make(1, 3.5, {1, 0}, {5, 0}));
   const std::string text = text_of(cross);
-  const LRSpline<2>& back = as<2>(io::parse_lr(text, "cross.lr")[0]);
+  const auto objects = io::parse_lr(text, "cross.lr");
+  const LRSpline<2>& back = as<2>(objects[0]);
   EXPECT_EQ(back.num_basis(), 103);
   EXPECT_EQ(back.num_elements(), 58);
   // The cross's mesh and B-splines with the tensor mesh's element block.
