@@ -196,6 +196,16 @@ TEST(LrFormat, TensorSplineThroughTheFormatEvaluatesAsTheTensorSpline) {
 TEST(LrFormat, MalformedInputFailsWithLineAndReason) {
   const std::string cube = kCube;
   expect_error("", "no LR spline");
+  // A knot 1e121 times the domain length (found by the fuzzer): the mesh's cell lookup must not overflow int.
+  try {
+    io::read_lr(TRIVAR_TEST_DATA "/io/malformed/lr_element_far_outside.lr");
+    ADD_FAILURE() << "accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(":34: element 0 of the block, (0, 0) x (2.2222222222222223e+121, 0.25), is "
+                                         "not an element of the mesh"),
+              std::string::npos)
+        << e.what();
+  }
   expect_error("# LRSPLINE CURVE\n", "unsupported LR spline kind 'CURVE'");
   expect_error("# comment\n1 2 3\n", "7 values for a surface, 8 for a volume");
   expect_error(cube.substr(0, cube.size() / 2), "expected");

@@ -67,10 +67,13 @@ private:
 
   // Monotone in x, so the cell ranges of two closed intervals that meet always meet.
   double position(int k, double x) const { return (x - domain_.lo[k]) * scale_[k]; }
+  // Clamped before the conversion: a coordinate far outside the domain must not overflow int.
   int cell_floor(int k, double x) const {
-    return std::clamp(static_cast<int>(std::floor(position(k, x))), 0, n_[k] - 1);
+    return static_cast<int>(std::clamp(std::floor(position(k, x)), 0.0, static_cast<double>(n_[k] - 1)));
   }
-  int cell_ceil(int k, double x) const { return std::clamp(static_cast<int>(std::ceil(position(k, x))), 1, n_[k]); }
+  int cell_ceil(int k, double x) const {
+    return static_cast<int>(std::clamp(std::ceil(position(k, x)), 1.0, static_cast<double>(n_[k])));
+  }
 
   template <class F>
   void for_cells(const Ints<D>& lo, const Ints<D>& hi, F&& f) {
