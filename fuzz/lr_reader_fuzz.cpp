@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "spline_checks.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/io/lr_format.hpp"
 
@@ -26,9 +27,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
           const Box<D> dom = s.domain();
           std::vector<double> out(static_cast<std::size_t>((D + 1) * s.dim()));
           for (int corner = 0; corner <= (1 << D); ++corner) {
-            Param<D> u;
-            for (int k = 0; k < D; ++k)
-              u[k] = corner == (1 << D) ? dom.lo[k] + 0.5 * dom.extent(k) : (corner >> k) & 1 ? dom.hi[k] : dom.lo[k];
+            const Param<D> u = fuzz::corner_or_centre(dom, corner);
             s.eval(u, out.data());
             s.eval_first_derivatives(u, out.data());
           }
