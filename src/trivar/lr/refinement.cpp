@@ -118,8 +118,9 @@ std::vector<MeshRectangle<D>> element_rectangles(const LRSpline<D>& lr, std::spa
     const auto& el = lr.element(e);
     const auto support = lr.element_support(e);
     if (support.empty()) continue;
+    // A surface's FULLSPAN rectangle is the supports' bounding box; a volume's are the cross-sections below.
     Box<D> span = Box<D>::empty();
-    if (opts.strategy == Strategy::fullspan)
+    if (D == 2 && opts.strategy == Strategy::fullspan)
       for (int b : support) {
         const auto s = lr.basis_function(b).support();
         span.extend(s.lo.data());
