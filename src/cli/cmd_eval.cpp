@@ -8,6 +8,7 @@
 
 #include "cli.hpp"
 #include "lr_cli.hpp"
+#include "tspline_cli.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/spline/derivative_index.hpp"
 
@@ -90,6 +91,10 @@ void add_eval_command(CLI::App& app, Context&) {
       ->check(CLI::Range(0, kMaxDerivativeOrder));
   cmd->add_option("--object", a->object, "Object to evaluate, 0-based as numbered by `info` (default: the only one)");
   cmd->callback([a] {
+    if (is_tsm_file(a->file)) {
+      eval_tspline(a->file, a->params, a->derivs);
+      return;
+    }
     const auto eval = [&](const auto& spline) { evaluate(spline, a->params, a->derivs); };
     if (const auto lr = read_lr_if_any(a->file)) {
       std::visit(eval, pick(*lr, a->object, a->file));

@@ -12,6 +12,7 @@
 #include "lr_cli.hpp"
 #include "trivar/core/error.hpp"
 #include "step_cli.hpp"
+#include "tspline_cli.hpp"
 #include "trivar/io/step/step_file.hpp"
 
 namespace trivar::cli {
@@ -203,6 +204,10 @@ void add_info_command(CLI::App& app, Context&) {
                   "exact: rank of the Bezier extraction)")
       ->check(CLI::IsMember({"peeling", "exact"}));
   cmd->callback([file, json, check, strict] {
+    if (is_tsm_file(*file)) {
+      print_tspline_info(*file, *json);
+      return;
+    }
     if (is_step_file(*file)) {
       print_step_info(*file, *json, *check, *strict);
       return;

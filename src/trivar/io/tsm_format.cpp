@@ -1,0 +1,505 @@
+#include "trivar/io/tsm_format.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <optional>
+#include <sstream>
+#include <vector>
+
+#include "trivar/core/error.hpp"
+
+namespace trivar::io {
+
+namespace {
+
+struct Record {
+  int line = 0;
+  std::vector<std::string_view> words;  // after the kind; empty: deleted slot
+};
+
+struct RawLink {
+  int prev, next, opp, vertex, face, edge, flag;
+};
+
+class Reader {
+public:
+  Reader(std::string_view text, std::string name) : name_(std::move(name)) { split(text); }
+
+  TsmModel build();
+
+private:
+  std::string name_;
+  std::map<std::string, std::vector<Record>, std::less<>> kinds_;
+  std::vector<Record> grip_map_;  // the 0m records in order
+  int header_line_ = 0;
+
+  [[noreturn]] void fail(int line, const std::string& what) const {
+    throw Error(name_ + ":" + std::to_string(line) + ": " + what);
+  }
+  [[noreturn]] void fail(const std::string& what) const { throw Error(name_ + ": " + what); }
+
+  void split(std::string_view text) {
+    int line = 0;
+    std::size_t pos = 0;
+    while (pos <= text.size()) {
+      std::size_t end = text.find('\n', pos);
+      if (end == std::string_view::npos) end = text.size();
+      std::string_view s = text.substr(pos, end - pos);
+      pos = end + 1;
+      ++line;
+      if (line == 1 || header_line_ == 0) {
+        const std::size_t b = s.find_first_not_of(" \t\r");
+        if (b == std::string_view::npos) continue;
+        if (header_line_ == 0) {
+          if (s.substr(b, 7) != "#TS0200") fail(line, "not a T-Splines TSM file (the first line must start with #TS0200)");
+          header_line_ = line;
+          continue;
+        }
+      }
+      if (const std::size_t c = s.find('#'); c != std::string_view::npos) s = s.substr(0, c);
+      std::vector<std::string_view> w;
+      std::size_t i = 0;
+      while (i < s.size()) {
+        while (i < s.size() && (s[i] == ' ' || s[i] == '\t' || s[i] == '\r')) ++i;
+        std::size_t j = i;
+        while (j < s.size() && s[j] != ' ' && s[j] != '\t' && s[j] != '\r') ++j;
+        if (j > i) w.push_back(s.substr(i, j - i));
+        i = j;
+      }
+      if (w.empty()) continue;
+      Record r{line, {w.begin() + 1, w.end()}};
+      if (w[0] == "0m") grip_map_.push_back(r);
+      kinds_[std::string(w[0])].push_back(std::move(r));
+      if (pos > text.size()) break;
+    }
+    if (header_line_ == 0) fail(1, "empty file (no #TS0200 header)");
+  }
+
+  const std::vector<Record>& all(std::string_view kind) const {
+    static const std::vector<Record> none;
+    auto it = kinds_.find(kind);
+    return it == kinds_.end() ? none : it->second;
+  }
+
+  template <class T>
+  T number(const Record& r, std::size_t i, const char* what) const {
+    if (i >= r.words.size()) fail(r.line, std::string("missing ") + what);
+    const std::string_view w = r.words[i];
+    T v{};
+    auto [p, ec] = std::from_chars(w.data(), w.data() + w.size(), v);
+    if (ec != std::errc() || p != w.data() + w.size()) fail(r.line, std::string("bad ") + what + " '" + std::string(w) + "'");
+    return v;
+  }
+
+  std::optional<Record> setting(std::string_view kind) const {
+    const auto& v = all(kind);
+    if (v.empty()) return std::nullopt;
+    return v.front();
+  }
+};
+
+int direction_of(std::string_view w) {
+  if (w == "NORTH") return 0;
+  if (w == "WEST") return 1;
+  if (w == "SOUTH") return 2;
+  if (w == "EAST") return 3;
+  return -1;
+}
+
+TsmModel Reader::build() {
+  TsmModel out;
+  TsmReport& rep = out.report;
+  static const std::vector<std::string> geometry{"degree", "cap-type", "star-smoothness", "units",
+                                                 "force-bezier-end-conditions", "tol", "ver", "f", "e", "v",
+                                                 "l", "ec", "0g", "0m"};
+  for (const auto& [kind, recs] : kinds_)
+    if (std::find(geometry.begin(), geometry.end(), kind) == geometry.end())
+      rep.skipped_records[kind] = static_cast<int>(recs.size());
+  int degree = 3;
+  if (auto r = setting("degree")) degree = number<int>(*r, 0, "degree");
+  if (degree < 1 || degree % 2 == 0)
+    fail(setting("degree")->line, "degree " + std::to_string(degree) + ": TSM grip maps are read for odd degrees");
+  if (auto r = setting("units"))
+    for (std::size_t i = 0; i < r->words.size(); ++i) rep.units += (i ? " " : "") + std::string(r->words[i]);
+  if (auto r = setting("tol")) rep.tolerance = number<double>(*r, 0, "tolerance");
+  if (auto r = setting("ver")) rep.version = number<int>(*r, 0, "version");
+  TSpline& ts = out.spline;
+  ts.degrees = {degree, degree};
+  if (auto r = setting("force-bezier-end-conditions")) ts.force_bezier = number<int>(*r, 0, "flag") != 0;
+
+  const auto& F = all("f");
+  const auto& E = all("e");
+  const auto& V = all("v");
+  const auto& L = all("l");
+  const int nf = static_cast<int>(F.size()), ne = static_cast<int>(E.size()), nv = static_cast<int>(V.size()),
+            nl = static_cast<int>(L.size());
+  // Links.
+  std::vector<std::optional<RawLink>> links(static_cast<std::size_t>(nl));
+  for (int i = 0; i < nl; ++i) {
+    const Record& r = L[static_cast<std::size_t>(i)];
+    if (r.words.empty()) {
+      ++rep.deleted;
+      continue;
+    }
+    RawLink k{number<int>(r, 0, "prev link"), number<int>(r, 1, "next link"), number<int>(r, 2, "opposite link"),
+              number<int>(r, 3, "vertex"),    number<int>(r, 4, "face"),      number<int>(r, 5, "edge"),
+              number<int>(r, 6, "corner flag")};
+    const auto bad = [&](int id, int n) { return id < 0 || id >= n; };
+    if (bad(k.prev, nl) || bad(k.next, nl) || bad(k.opp, nl)) fail(r.line, "link " + std::to_string(i) + " names a link that does not exist");
+    if (bad(k.vertex, nv) || V[static_cast<std::size_t>(k.vertex)].words.empty())
+      fail(r.line, "link " + std::to_string(i) + " leaves vertex " + std::to_string(k.vertex) + ", which does not exist");
+    if (bad(k.edge, ne) || E[static_cast<std::size_t>(k.edge)].words.empty())
+      fail(r.line, "link " + std::to_string(i) + " runs along edge " + std::to_string(k.edge) + ", which does not exist");
+    if (k.face < -1 || k.face >= nf) fail(r.line, "link " + std::to_string(i) + " names face " + std::to_string(k.face) + ", which does not exist");
+    if (k.flag < 0 || k.flag > 2) fail(r.line, "link " + std::to_string(i) + ": corner flag " + std::to_string(k.flag) + " is not 0, 1 or 2");
+    links[static_cast<std::size_t>(i)] = k;
+  }
+  const auto link = [&](int i) -> const RawLink& {
+    if (!links[static_cast<std::size_t>(i)]) fail(L[static_cast<std::size_t>(i)].line, "link " + std::to_string(i) + " is deleted but referenced");
+    return *links[static_cast<std::size_t>(i)];
+  };
+  for (int i = 0; i < nl; ++i) {
+    if (!links[static_cast<std::size_t>(i)]) continue;
+    const RawLink& k = *links[static_cast<std::size_t>(i)];
+    const int line = L[static_cast<std::size_t>(i)].line;
+    if (link(k.opp).opp != i || link(k.opp).edge != k.edge)
+      fail(line, "inconsistent links: link " + std::to_string(i) + " and its opposite " + std::to_string(k.opp) +
+                     " are not each other's opposite on one edge");
+    if (link(k.next).prev != i || link(k.next).face != k.face)
+      fail(line, "inconsistent links: link " + std::to_string(i) + "'s next link " + std::to_string(k.next) +
+                     " does not have it as previous link in the same face");
+    if (link(k.next).vertex != link(k.opp).vertex)
+      fail(line, "inconsistent links: link " + std::to_string(i) + " does not end where its next link starts");
+  }
+  // Faces: loops of links, rectangles.
+  std::vector<std::vector<int>> loops(static_cast<std::size_t>(nf));
+  for (int f = 0; f < nf; ++f) {
+    const Record& r = F[static_cast<std::size_t>(f)];
+    if (r.words.empty()) {
+      ++rep.holes;
+      continue;
+    }
+    const int l0 = number<int>(r, 0, "link");
+    if (l0 < 0 || l0 >= nl) fail(r.line, "face " + std::to_string(f) + " names link " + std::to_string(l0) + ", which does not exist");
+    int l = l0, corners = 0;
+    do {
+      const RawLink& k = link(l);
+      if (k.face != f) fail(r.line, "inconsistent links: link " + std::to_string(l) + " in the loop of face " + std::to_string(f) + " names face " + std::to_string(k.face));
+      if (k.flag == 2) fail(r.line, "face " + std::to_string(f) + " is not rectangular (reflex corner at vertex " + std::to_string(k.vertex) + ")");
+      if (k.flag == 0) ++corners;
+      loops[static_cast<std::size_t>(f)].push_back(l);
+      if (static_cast<int>(loops[static_cast<std::size_t>(f)].size()) > nl) fail(r.line, "face " + std::to_string(f) + ": its link loop does not close");
+      l = k.next;
+    } while (l != l0);
+    if (corners != 4) fail(r.line, "face " + std::to_string(f) + " is not rectangular (" + std::to_string(corners) + " corners)");
+  }
+  // Link directions: turn left at every corner; opposite links point the other way.
+  std::vector<int> dir(static_cast<std::size_t>(nl), -1);
+  std::vector<int> stack;
+  int seed = -1;
+  for (int f = 0; f < nf && seed < 0; ++f)
+    if (!loops[static_cast<std::size_t>(f)].empty()) seed = f;
+  if (seed < 0) fail("no face");
+  const auto set_dir = [&](int l, int d, int line) {
+    if (dir[static_cast<std::size_t>(l)] == -1) {
+      dir[static_cast<std::size_t>(l)] = d;
+      return true;
+    }
+    if (dir[static_cast<std::size_t>(l)] != d) {
+      ++rep.star_points;
+      fail(line, "link " + std::to_string(l) + " gets two directions: the T-image has a star point (extraordinary vertex) near vertex " +
+                     std::to_string(link(l).vertex) + ", which has no global (s, t) parametrisation");
+    }
+    return false;
+  };
+  {
+    const auto& loop = loops[static_cast<std::size_t>(seed)];
+    auto first_corner = std::find_if(loop.begin(), loop.end(), [&](int l) { return link(l).flag == 0; });
+    set_dir(*first_corner, 3, F[static_cast<std::size_t>(seed)].line);
+    stack.push_back(seed);
+  }
+  std::vector<char> face_done(static_cast<std::size_t>(nf), 0);
+  face_done[static_cast<std::size_t>(seed)] = 1;
+  while (!stack.empty()) {
+    const int f = stack.back();
+    stack.pop_back();
+    const auto& loop = loops[static_cast<std::size_t>(f)];
+    const int line = F[static_cast<std::size_t>(f)].line;
+    std::size_t start = 0;
+    while (dir[static_cast<std::size_t>(loop[start])] < 0) ++start;
+    int d = dir[static_cast<std::size_t>(loop[start])];
+    for (std::size_t i = 1; i <= loop.size(); ++i) {
+      const int l = loop[(start + i) % loop.size()];
+      if (link(l).flag == 0) d = (d + 1) % 4;
+      set_dir(l, d, line);
+    }
+    for (int l : loop) {
+      const RawLink& k = link(l);
+      set_dir(k.opp, (dir[static_cast<std::size_t>(l)] + 2) % 4, line);
+      const int g = link(k.opp).face;
+      if (g >= 0 && !face_done[static_cast<std::size_t>(g)]) {
+        face_done[static_cast<std::size_t>(g)] = 1;
+        stack.push_back(g);
+      }
+    }
+  }
+  for (int f = 0; f < nf; ++f)
+    if (!loops[static_cast<std::size_t>(f)].empty() && !face_done[static_cast<std::size_t>(f)])
+      fail(F[static_cast<std::size_t>(f)].line, "face " + std::to_string(f) + " is not connected to face " + std::to_string(seed) + " (one T-spline per file)");
+  // Edge intervals and vertex parameters.
+  std::vector<double> interval(static_cast<std::size_t>(ne), 0.0);
+  for (int e = 0; e < ne; ++e) {
+    const Record& r = E[static_cast<std::size_t>(e)];
+    if (r.words.empty()) {
+      ++rep.deleted;
+      continue;
+    }
+    const int l = number<int>(r, 0, "link");
+    if (l < 0 || l >= nl || !links[static_cast<std::size_t>(l)] || link(l).edge != e)
+      fail(r.line, "edge " + std::to_string(e) + " names link " + std::to_string(l) + ", which is not one of its links");
+    interval[static_cast<std::size_t>(e)] = number<double>(r, 1, "knot interval");
+    if (!(interval[static_cast<std::size_t>(e)] > 0) || !std::isfinite(interval[static_cast<std::size_t>(e)]))
+      fail(r.line, "edge " + std::to_string(e) + ": knot interval " + std::string(r.words[1]) + " is not positive");
+  }
+  std::vector<std::array<double, 2>> param(static_cast<std::size_t>(nv));
+  std::vector<char> placed(static_cast<std::size_t>(nv), 0);
+  std::vector<std::vector<int>> out_links(static_cast<std::size_t>(nv));
+  for (int i = 0; i < nl; ++i)
+    if (links[static_cast<std::size_t>(i)]) out_links[static_cast<std::size_t>(link(i).vertex)].push_back(i);
+  double extent = 0;
+  for (double x : interval) extent += x;
+  const double tol = 1e-9 * std::max(extent, 1e-300);
+  const int v0 = link(loops[static_cast<std::size_t>(seed)].front()).vertex;
+  placed[static_cast<std::size_t>(v0)] = 1;
+  std::vector<int> vstack{v0};
+  while (!vstack.empty()) {
+    const int v = vstack.back();
+    vstack.pop_back();
+    for (int l : out_links[static_cast<std::size_t>(v)]) {
+      const int d = dir[static_cast<std::size_t>(l)];
+      if (d < 0) continue;  // a link of a boundary only reached through its opposite's face: set below
+      const int w = link(link(l).opp).vertex;
+      std::array<double, 2> p = param[static_cast<std::size_t>(v)];
+      p[static_cast<std::size_t>(tdir_axis(d))] += tdir_sign(d) * interval[static_cast<std::size_t>(link(l).edge)];
+      if (!placed[static_cast<std::size_t>(w)]) {
+        placed[static_cast<std::size_t>(w)] = 1;
+        param[static_cast<std::size_t>(w)] = p;
+        vstack.push_back(w);
+      } else if (std::abs(p[0] - param[static_cast<std::size_t>(w)][0]) > tol || std::abs(p[1] - param[static_cast<std::size_t>(w)][1]) > tol) {
+        fail(E[static_cast<std::size_t>(link(l).edge)].line,
+             "contradictory knot intervals: vertex " + std::to_string(w) + " gets two different (s, t) through edge " +
+                 std::to_string(link(l).edge));
+      }
+    }
+  }
+  // Merge parameter values that agree up to rounding.
+  for (int k = 0; k < 2; ++k) {
+    std::vector<std::pair<double, int>> vals;
+    for (int v = 0; v < nv; ++v)
+      if (placed[static_cast<std::size_t>(v)]) vals.push_back({param[static_cast<std::size_t>(v)][static_cast<std::size_t>(k)], v});
+    std::sort(vals.begin(), vals.end());
+    double rep_value = vals.front().first, base = vals.front().first;
+    for (auto& [x, v] : vals) {
+      if (x - rep_value > tol) rep_value = x;
+      param[static_cast<std::size_t>(v)][static_cast<std::size_t>(k)] = rep_value - base;
+    }
+  }
+  // The T-image, without deleted slots.
+  TImage& im = ts.image;
+  std::vector<int> vmap(static_cast<std::size_t>(nv), -1), emap(static_cast<std::size_t>(ne), -1), lmap(static_cast<std::size_t>(nl), -1);
+  for (int v = 0; v < nv; ++v) {
+    if (V[static_cast<std::size_t>(v)].words.empty()) {
+      ++rep.deleted;
+      continue;
+    }
+    if (!placed[static_cast<std::size_t>(v)]) fail(V[static_cast<std::size_t>(v)].line, "vertex " + std::to_string(v) + " is on no face");
+    vmap[static_cast<std::size_t>(v)] = static_cast<int>(im.vertices.size());
+    im.vertices.push_back({param[static_cast<std::size_t>(v)][0], param[static_cast<std::size_t>(v)][1], {-1, -1, -1, -1}});
+  }
+  for (int e = 0; e < ne; ++e) {
+    if (E[static_cast<std::size_t>(e)].words.empty()) continue;
+    const int l = number<int>(E[static_cast<std::size_t>(e)], 0, "link");
+    int a = vmap[static_cast<std::size_t>(link(l).vertex)], b = vmap[static_cast<std::size_t>(link(link(l).opp).vertex)];
+    const int d = dir[static_cast<std::size_t>(l)];
+    if (d == 1 || d == 2) std::swap(a, b);  // edges run in increasing parameter
+    emap[static_cast<std::size_t>(e)] = static_cast<int>(im.edges.size());
+    im.edges.push_back({a, b});
+  }
+  for (int l = 0; l < nl; ++l) {
+    if (!links[static_cast<std::size_t>(l)]) continue;
+    const int d = dir[static_cast<std::size_t>(l)];
+    lmap[static_cast<std::size_t>(l)] = static_cast<int>(im.links.size());
+    im.links.push_back({emap[static_cast<std::size_t>(link(l).edge)], d == 0 || d == 3});
+  }
+  for (int f = 0; f < nf; ++f) {
+    if (loops[static_cast<std::size_t>(f)].empty()) continue;
+    TFace face;
+    for (int l : loops[static_cast<std::size_t>(f)]) face.loop.push_back(lmap[static_cast<std::size_t>(l)]);
+    im.faces.push_back(std::move(face));
+  }
+  for (const Record& r : all("ec"))
+    if (!r.words.empty()) {
+      const int e = number<int>(r, 0, "edge");
+      if (e < 0 || e >= ne || emap[static_cast<std::size_t>(e)] < 0) fail(r.line, "edge condition names edge " + std::to_string(e) + ", which does not exist");
+      im.conditions.push_back({emap[static_cast<std::size_t>(e)], number<int>(r, 1, "condition") != 0});
+    }
+  connect_vertex_links(im);
+  try {
+    validate(im);
+  } catch (const Error& e) {
+    fail(e.what());
+  }
+  for (int v = 0; v < nv; ++v) {
+    int n = 0, straight = 0;
+    for (int l : out_links[static_cast<std::size_t>(v)]) {
+      ++n;
+      if (link(l).face >= 0 && link(l).flag == 1) ++straight;
+    }
+    if (straight > 0 && n == 3) ++rep.t_junctions;
+  }
+
+  // Grips and the grip map.
+  const auto& G = all("0g");
+  std::vector<char> deleted_grip;
+  for (const Record& r : G) {
+    deleted_grip.push_back(r.words.empty() ? 1 : 0);
+    if (r.words.empty()) {  // a deleted grip keeps its number; the grip map gives it vertex -1
+      ++rep.deleted;
+      ts.pointset.points.push_back({});
+      continue;
+    }
+    RationalPoint p{{number<double>(r, 0, "x"), number<double>(r, 1, "y"), number<double>(r, 2, "z")},
+                    r.words.size() > 3 ? number<double>(r, 3, "weight") : 1.0};
+    if (!(p.w > 0)) fail(r.line, "control point weight " + std::string(r.words[3]) + " is not positive");
+    ts.pointset.points.push_back(p);
+  }
+  const int ng = static_cast<int>(G.size());
+  std::vector<int> grip_vertex;
+  std::vector<int> primary(static_cast<std::size_t>(nv), -1);
+  struct Block {
+    int line;
+    std::array<int, 4> dims;
+    std::vector<int> grips;
+  };
+  std::map<int, Block> blocks;
+  for (const Record& r : grip_map_) {
+    if (r.words.empty()) fail(r.line, "empty grip map record");
+    const std::string_view w = r.words[0];
+    if (w == "odd-grip-map") continue;
+    if (w == "gvp" || w == "gv") {
+      const int v = number<int>(r, 1, "vertex");
+      if (v == -1 && w == "gv") {  // a deleted grip
+        grip_vertex.push_back(-1);
+        continue;
+      }
+      if (v < 0 || v >= nv || vmap[static_cast<std::size_t>(v)] < 0) fail(r.line, "grip map names vertex " + std::to_string(v) + ", which does not exist");
+      if (w == "gvp") {
+        if (primary[static_cast<std::size_t>(v)] >= 0) fail(r.line, "vertex " + std::to_string(v) + " has two primary grips");
+        primary[static_cast<std::size_t>(v)] = static_cast<int>(grip_vertex.size());
+      }
+      grip_vertex.push_back(v);
+    } else if (w == "cg") {
+      Block b{r.line, {}, {}};
+      const int v = number<int>(r, 1, "vertex");
+      if (v < 0 || v >= nv || vmap[static_cast<std::size_t>(v)] < 0) fail(r.line, "grip block names vertex " + std::to_string(v) + ", which does not exist");
+      if (number<int>(r, 2, "valence") != 4) fail(r.line, "grip block of valence other than 4 (a star point)");
+      int count = 0;
+      for (int k = 0; k < 4; ++k) b.dims[static_cast<std::size_t>(k)] = number<int>(r, 3 + static_cast<std::size_t>(k), "block size");
+      for (int k = 0; k < 4; ++k) {
+        if (b.dims[static_cast<std::size_t>(k)] < 0) fail(r.line, "negative grip block size");
+        count += b.dims[static_cast<std::size_t>(k)] * (b.dims[static_cast<std::size_t>((k + 1) % 4)] + 1);
+      }
+      if (r.words.size() != static_cast<std::size_t>(7 + count))
+        fail(r.line, "grip block of vertex " + std::to_string(v) + " lists " + std::to_string(r.words.size() - 7) +
+                         " grips, its sizes need " + std::to_string(count));
+      for (int i = 0; i < count; ++i) {
+        const int g = number<int>(r, 7 + static_cast<std::size_t>(i), "grip");
+        if (g < -1 || g >= ng) fail(r.line, "grip block names grip " + std::to_string(g) + ", which does not exist");
+        b.grips.push_back(g);
+      }
+      if (!blocks.emplace(v, std::move(b)).second) fail(r.line, "vertex " + std::to_string(v) + " has two grip blocks");
+    } else {
+      rep.skipped_records["0m " + std::string(w)]++;
+    }
+  }
+  if (static_cast<int>(grip_vertex.size()) != ng)
+    fail("the grip map lists " + std::to_string(grip_vertex.size()) + " grips, the file has " + std::to_string(ng) + " control points");
+  // Nodes: per vertex its primary grip at block position (0, 0) and the block's grips at (a, b) (a east, b north).
+  std::vector<char> used(static_cast<std::size_t>(ng), 0);
+  for (int v = 0; v < nv; ++v) {
+    if (vmap[static_cast<std::size_t>(v)] < 0 || primary[static_cast<std::size_t>(v)] < 0) continue;
+    std::map<std::array<int, 2>, int> node_at;
+    const auto add_node = [&](std::array<int, 2> pos, int g, int line) {
+      if (deleted_grip[static_cast<std::size_t>(g)]) fail(line, "grip " + std::to_string(g) + " is deleted but used");
+      if (used[static_cast<std::size_t>(g)]) fail(line, "grip " + std::to_string(g) + " is used twice");
+      if (grip_vertex[static_cast<std::size_t>(g)] != v) fail(line, "grip " + std::to_string(g) + " belongs to vertex " + std::to_string(grip_vertex[static_cast<std::size_t>(g)]) + ", not " + std::to_string(v));
+      used[static_cast<std::size_t>(g)] = 1;
+      node_at[pos] = static_cast<int>(ts.connect.nodes.size());
+      TNode n;
+      n.kind = TAnchorKind::vertex;
+      n.anchor = vmap[static_cast<std::size_t>(v)];
+      n.point = g;
+      ts.connect.nodes.push_back(n);
+    };
+    add_node({0, 0}, primary[static_cast<std::size_t>(v)], V[static_cast<std::size_t>(v)].line);
+    if (auto it = blocks.find(v); it != blocks.end()) {
+      const Block& b = it->second;
+      // The vertex frame: `v L DIR` says link L goes DIR in it; its direction here gives the rotation.
+      const Record& vr = V[static_cast<std::size_t>(v)];
+      const int l = number<int>(vr, 0, "link");
+      const int fd = vr.words.size() > 1 ? direction_of(vr.words[1]) : -1;
+      if (l < 0 || l >= nl || !links[static_cast<std::size_t>(l)] || link(l).vertex != v || fd < 0)
+        fail(vr.line, "vertex " + std::to_string(v) + " needs an outgoing link and a direction (NORTH, WEST, SOUTH, EAST)");
+      const int rot = (dir[static_cast<std::size_t>(l)] - fd + 4) % 4;
+      static constexpr std::array<std::array<int, 2>, 4> step{{{0, 1}, {-1, 0}, {0, -1}, {1, 0}}};
+      std::size_t gi = 0;
+      for (int k = 0; k < 4; ++k) {
+        const auto& a = step[static_cast<std::size_t>((k + rot) % 4)];
+        const auto& c = step[static_cast<std::size_t>((k + 1 + rot) % 4)];
+        for (int i = 1; i <= b.dims[static_cast<std::size_t>(k)]; ++i)
+          for (int j = 0; j <= b.dims[static_cast<std::size_t>((k + 1) % 4)]; ++j) {
+            const int g = b.grips[gi++];
+            if (g >= 0) {
+              add_node({i * a[0] + j * c[0], i * a[1] + j * c[1]}, g, b.line);
+              ++rep.repeated_knot_nodes;
+            }
+          }
+      }
+    }
+    for (const auto& [pos, id] : node_at)
+      for (int d = 0; d < 4; ++d) {
+        static constexpr std::array<std::array<int, 2>, 4> step{{{0, 1}, {-1, 0}, {0, -1}, {1, 0}}};
+        auto it = node_at.find({pos[0] + step[static_cast<std::size_t>(d)][0], pos[1] + step[static_cast<std::size_t>(d)][1]});
+        if (it != node_at.end()) ts.connect.nodes[static_cast<std::size_t>(id)].neighbours[static_cast<std::size_t>(d)] = it->second;
+      }
+  }
+  for (int g = 0; g < ng; ++g) {
+    if ((grip_vertex[static_cast<std::size_t>(g)] < 0) != (deleted_grip[static_cast<std::size_t>(g)] != 0))
+      fail(G[static_cast<std::size_t>(g)].line, "control point " + std::to_string(g) + (deleted_grip[static_cast<std::size_t>(g)] ? " is deleted but the grip map gives it a vertex" : " has no vertex in the grip map"));
+    if (!used[static_cast<std::size_t>(g)] && grip_vertex[static_cast<std::size_t>(g)] >= 0)
+      fail(G[static_cast<std::size_t>(g)].line, "control point " + std::to_string(g) + " (vertex " + std::to_string(grip_vertex[static_cast<std::size_t>(g)]) +
+                                                    ") is neither a primary grip nor in a grip block");
+  }
+  try {
+    validate(ts);
+  } catch (const Error& e) {
+    fail(e.what());
+  }
+  return out;
+}
+
+}  // namespace
+
+TsmModel parse_tsm(std::string_view text, const std::string& name) { return Reader(text, name).build(); }
+
+TsmModel read_tsm(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  require(f.good(), [&] { return "cannot open " + path; });
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return parse_tsm(ss.str(), path);
+}
+
+}  // namespace trivar::io

@@ -1,0 +1,55 @@
+#pragma once
+// The Rhino T-Splines text format (.tsm, header #TS0200), read into the three T-spline layers. One record per
+// line, numbered per kind from 0 in file order; a bare keyword is a deleted slot that keeps its number; '#'
+// starts a comment. Settings: degree, cap-type, star-smoothness, units <scale> <name>,
+// force-bezier-end-conditions, tol, ver. Topology as half-edges:
+//   f L flag                 face, L one of its links
+//   e L d                    edge, L one of its two links, d its knot interval
+//   v L DIR                  vertex, L an outgoing link, DIR its direction in the vertex's own frame
+//   l prev next opp v f e c  link leaving vertex v along edge e in face f (-1: outside); c = (angle of f at
+//                            v) / 90 - 1: 0 corner, 1 straight (a T-junction side), 2 reflex
+//   ec e bc                  edge condition
+// Control points (grips) `0g x y z w` with the grip map `0m gvp v` / `0m gv v` (one per grip: its vertex; gvp
+// the vertex's own node) and `0m cg v 4 dN dW dS dE grips...` (Bezier end conditions: the repeated-knot node
+// block at v, dK layers towards direction K of the vertex frame, listed as four wedges K = N, W, S, E of
+// dK x (dK+1 + 1) grips, -1: none). Other records (editor state: 100001uv, 100001uvr, 50000grip, symmetry
+// 105sym/105plane/105a) carry no geometry: they are counted and reported, as is any unknown record.
+//
+// Parametrisation: link directions follow from the corners (each face is a counter-clockwise rectangle, turning
+// left at every corner), propagated across edges; vertex parameters are sums of knot intervals along links
+// from vertex 0, with values that agree to 1e-9 of the domain size merged (interval sums are rounded).
+// Star points (extraordinary interior vertices) have no global (s, t) parametrisation: they are detected and
+// counted, and the file is refused with a message naming them.
+#include <map>
+#include <string>
+#include <string_view>
+
+#include "trivar/tspline/t_spline.hpp"
+
+namespace trivar::io {
+
+struct TsmReport {
+  std::string units;  // e.g. "0.001 millimeters"
+  double tolerance = 0;
+  int version = 0;
+  int deleted = 0;                             // deleted slots (faces, edges, vertices, links)
+  int holes = 0;                               // faces without a link (deleted)
+  int t_junctions = 0;
+  int star_points = 0;
+  int repeated_knot_nodes = 0;                 // nodes added by the Bezier end-condition blocks
+  std::map<std::string, int> skipped_records;  // record kind -> count (editor state and unknown kinds)
+};
+
+struct TsmModel {
+  TSpline spline;
+  TsmReport report;
+};
+
+// Throws trivar::Error "name:line: ..." (or "name: ..." for whole-model checks) on a missing header, a
+// malformed record, a dangling id, inconsistent links (opp not mutual, a loop that does not close, a link in
+// the wrong face), a non-rectangular face, contradictory knot intervals, star points, or grips that do not
+// match the grip map.
+TsmModel parse_tsm(std::string_view text, const std::string& name);
+TsmModel read_tsm(const std::string& path);
+
+}  // namespace trivar::io

@@ -1,0 +1,104 @@
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "trivar/core/error.hpp"
+#include "trivar/io/tsm_format.hpp"
+#include "trivar/spline/tensor_spline.hpp"
+#include "trivar/tspline/t_spline_surface.hpp"
+
+namespace trivar {
+namespace {
+
+std::string patch_text() {
+  std::ifstream f(std::string(TRIVAR_TEST_DATA) + "/tsm/bezier_patch.tsm");
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+std::string replaced(std::string s, const std::string& from, const std::string& to) {
+  const auto i = s.find(from);
+  EXPECT_NE(i, std::string::npos) << from;
+  return s.replace(i, from.size(), to);
+}
+
+// The Bezier patch the file was written from (tests/data/tsm: P_ij = (i, j, round(sin(i + 2j), 3)), weight 2 at
+// (1, 2)), built independently as a tensor NURBS.
+TensorSpline<2> reference_patch() {
+  std::vector<double> c;
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) {
+      const double w = (i == 1 && j == 2) ? 2.0 : 1.0;
+      const double z = std::round(std::sin(i + 2.0 * j) * 1000.0) / 1000.0;
+      for (double x : {double(i), double(j), z}) c.push_back(w * x);
+      c.push_back(w);
+    }
+  const KnotVector k(3, {0, 0, 0, 0, 1, 1, 1, 1});
+  return TensorSpline<2>({k, k}, 3, true, c);
+}
+
+void expect_patch(const std::string& text) {
+  const io::TsmModel m = io::parse_tsm(text, "patch.tsm");
+  EXPECT_EQ(m.spline.connect.nodes.size(), 16u);
+  EXPECT_EQ(m.report.repeated_knot_nodes, 12);
+  EXPECT_EQ(m.report.units, "1 millimeters");
+  EXPECT_EQ(m.report.skipped_records.at("100001uv"), 1);
+  const TSplineSurface surf(m.spline);
+  EXPECT_LT(surf.partition_of_unity().max_defect, 1e-14);
+  const TensorSpline<2> ref = reference_patch();
+  for (double s : {0.0, 0.13, 0.5, 0.77, 1.0})
+    for (double t : {0.0, 0.31, 0.62, 1.0}) {
+      double a[9], b[9];
+      surf.eval_first_derivatives({s, t}, a);
+      ref.eval_derivs({s, t}, 1, b);
+      for (int d = 0; d < 9; ++d) EXPECT_NEAR(a[d], b[d], 1e-13) << s << " " << t << " " << d;
+    }
+}
+
+TEST(Tsm, HandWrittenBezierPatchIsTheTensorPatch) { expect_patch(patch_text()); }
+
+TEST(Tsm, GripBlocksAreReadInTheVertexFrame) {
+  // Vertex 0's frame turned a quarter: its link 0 (east) is NORTH there, so its block lists the east layer
+  // (frame north) first.
+  std::string t = replaced(patch_text(), "v 0 EAST", "v 0 NORTH");
+  t = replaced(t, "cg 0 4 1 0 0 1 4 5 6", "cg 0 4 1 1 0 0 5 6 4");
+  expect_patch(t);
+  // Windows line ends and comments.
+  std::string crlf;
+  for (char c : patch_text()) {
+    if (c == '\n') crlf += " # comment\r";
+    crlf += c;
+  }
+  expect_patch(crlf);
+}
+
+void expect_error(const std::string& text, const std::string& fragment) {
+  try {
+    io::parse_tsm(text, "bad.tsm");
+    ADD_FAILURE() << "no error for " << fragment;
+  } catch (const Error& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find(fragment), std::string::npos) << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+    EXPECT_EQ(msg.rfind("bad.tsm:", 0), 0u) << msg;
+  }
+}
+
+TEST(Tsm, MalformedFilesGiveOneLineErrors) {
+  const std::string p = patch_text();
+  expect_error(replaced(p, "#TS0200", "#TS0100"), "#TS0200");
+  expect_error(replaced(p, "l 3 1 4 0 0 0 0", "l 3 1 44 0 0 0 0"), "does not exist");     // dangling id
+  expect_error(replaced(p, "l 3 1 4 0 0 0 0", "l 3 1 5 0 0 0 0"), "inconsistent links");  // opp not mutual
+  expect_error(replaced(p, "l 0 2 5 1 0 1 0", "l 0 2 5 1 0 1 1"), "not rectangular");     // three corners
+  expect_error(replaced(p, "l 0 2 5 1 0 1 0", "l 0 2 5 1 0 1 2"), "not rectangular");     // reflex corner
+  expect_error(replaced(p, "e 1 1", "e 1 2"), "contradictory knot intervals");
+  expect_error(replaced(p, "e 1 1", "e 1 x"), "bad knot interval");
+  expect_error(replaced(p, "0m cg 0 4 1 0 0 1 4 5 6", "0m cg 0 4 1 0 0 1 4 5"), "grip block");
+  expect_error(replaced(p, "0m gvp 3", "0m gv 3"), "neither a primary grip nor in a grip block");
+  expect_error(replaced(p, "f 0 0", "f 9 0"), "does not exist");
+}
+
+}  // namespace
+}  // namespace trivar
