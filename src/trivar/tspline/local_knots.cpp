@@ -23,6 +23,43 @@ public:
     }
     for (int k = 0; k < 2; ++k)
       for (auto& [c, spans] : by[k]) lines_[k].push_back({c, std::move(spans)});
+    // The faces on the grid of the vertices' coordinates, to tell where the domain ends.
+    for (int k = 0; k < 2; ++k) {
+      for (const TVertex& v : im.vertices) grid_[k].push_back(k == 0 ? v.s : v.t);
+      std::sort(grid_[k].begin(), grid_[k].end());
+      grid_[k].erase(std::unique(grid_[k].begin(), grid_[k].end()), grid_[k].end());
+    }
+    const std::size_t nu = grid_[0].size() - 1;
+    covered_.assign(nu * (grid_[1].size() - 1), 0);
+    for (int f = 0; f < static_cast<int>(im.faces.size()); ++f) {
+      const Box<2> b = im.face_box(f);
+      std::array<std::size_t, 4> r;
+      for (int k = 0; k < 2; ++k) {
+        r[2 * k] = index(k, b.lo[k]);
+        r[2 * k + 1] = index(k, b.hi[k]);
+      }
+      for (std::size_t j = r[2]; j < r[3]; ++j)
+        for (std::size_t i = r[0]; i < r[1]; ++i) covered_[i + nu * j] = 1;
+    }
+  }
+
+  // Whether the point lies in a face (closed: points on a face's boundary count).
+  bool inside(double s, double t) const {
+    const std::array<double, 2> u{s, t};
+    std::array<std::array<std::ptrdiff_t, 2>, 2> cells;  // per direction the cells whose closure holds u
+    for (int k = 0; k < 2; ++k) {
+      const auto& g = grid_[k];
+      if (u[k] < g.front() || u[k] > g.back()) return false;
+      const auto last = static_cast<std::ptrdiff_t>(g.size()) - 2;
+      const auto i = static_cast<std::ptrdiff_t>(std::upper_bound(g.begin(), g.end(), u[k]) - g.begin()) - 1;
+      const std::ptrdiff_t below = g[static_cast<std::size_t>(i)] == u[k] && i > 0 ? i - 1 : std::min(i, last);
+      cells[k] = {below, std::min(i, last)};
+    }
+    const std::size_t nu = grid_[0].size() - 1;
+    for (std::ptrdiff_t i : cells[0])
+      for (std::ptrdiff_t j : cells[1])
+        if (covered_[static_cast<std::size_t>(i) + nu * static_cast<std::size_t>(j)]) return true;
+    return false;
   }
 
   // The next knot line along axis k in direction sign (+1, -1) strictly beyond x, on the line y; x itself when
@@ -42,6 +79,11 @@ public:
   }
 
 private:
+  std::size_t index(int k, double x) const {
+    return static_cast<std::size_t>(std::lower_bound(grid_[k].begin(), grid_[k].end(), x) - grid_[k].begin());
+  }
+  std::array<std::vector<double>, 2> grid_;
+  std::vector<char> covered_;
   struct Line {
     double c;
     std::vector<std::array<double, 2>> spans;
@@ -52,11 +94,49 @@ private:
   std::array<std::vector<Line>, 2> lines_;
 };
 
-// The knots on one side of node n along axis k (direction d of the compass), nearest first.
-void side_knots(const TSpline& ts, const KnotRays& rays, const std::vector<Box<2>>& anchors, int n, int d, int count,
+// The T-connect facts the rays need: per node its anchor box; per vertex (odd degrees) how many repeated-knot
+// layers its node block has along each axis, counted in the row of its first node.
+struct ConnectView {
+  std::vector<Box<2>> anchors;
+  std::map<std::array<double, 2>, std::array<int, 2>> block_layers;  // vertex (s, t) -> layers along s, t
+};
+
+bool coincident(const ConnectView& cv, int a, int b, int k) {
+  return cv.anchors[static_cast<std::size_t>(a)].lo[k] == cv.anchors[static_cast<std::size_t>(b)].lo[k] &&
+         cv.anchors[static_cast<std::size_t>(a)].hi[k] == cv.anchors[static_cast<std::size_t>(b)].hi[k];
+}
+
+ConnectView connect_view(const TSpline& ts) {
+  ConnectView cv;
+  const auto& nodes = ts.connect.nodes;
+  cv.anchors.resize(nodes.size());
+  for (std::size_t i = 0; i < nodes.size(); ++i) cv.anchors[i] = anchor_box(ts, nodes[i]);
+  for (int i = 0; i < static_cast<int>(nodes.size()); ++i) {
+    const TNode& n = nodes[static_cast<std::size_t>(i)];
+    if (n.kind != TAnchorKind::vertex) continue;
+    const TVertex& v = ts.image.vertices[static_cast<std::size_t>(n.anchor)];
+    auto [it, fresh] = cv.block_layers.try_emplace({v.s, v.t}, std::array<int, 2>{0, 0});
+    if (!fresh) continue;  // the first node of the vertex defines its rows
+    for (int k = 0; k < 2; ++k)
+      for (int d : {k == 0 ? 1 : 0, k == 0 ? 3 : 2})  // both ways along axis k
+        for (int m = i;;) {
+          const int next = nodes[static_cast<std::size_t>(m)].neighbours[static_cast<std::size_t>(d)];
+          if (next < 0 || !coincident(cv, next, m, k)) break;
+          ++it->second[static_cast<std::size_t>(k)];
+          m = next;
+        }
+  }
+  return cv;
+}
+
+// The knots on one side of node n along axis k (direction d of the compass), nearest first. A ray that leaves
+// the faces (the domain's boundary, also where the domain is not convex or has holes) stops: the knot repeats.
+// A ray that meets a vertex whose node block repeats the knot (Bezier end conditions of a boundary, also an
+// inner one) takes the knot as often as the block has nodes along the ray.
+void side_knots(const TSpline& ts, const KnotRays& rays, const ConnectView& cv, int n, int d, int count,
                 std::vector<double>& out) {
   const int k = tdir_axis(d), sign = tdir_sign(d);
-  const Box<2>& a = anchors[static_cast<std::size_t>(n)];
+  const Box<2>& a = cv.anchors[static_cast<std::size_t>(n)];
   const double line = 0.5 * (a.lo[1 - k] + a.hi[1 - k]);
   double x = sign > 0 ? a.hi[k] : a.lo[k];
   int steps = count;
@@ -64,19 +144,34 @@ void side_knots(const TSpline& ts, const KnotRays& rays, const std::vector<Box<2
     out.push_back(x);
     --steps;
   }
-  int node = n;  // the T-connect is followed while neighbours repeat the anchor interval
+  int node = n;      // the T-connect is followed while neighbours repeat the anchor interval
+  int pending = 0;   // repeats owed to a node block the ray met
   for (int i = 0; i < steps; ++i) {
     if (node >= 0) {
       const int m = ts.connect.nodes[static_cast<std::size_t>(node)].neighbours[static_cast<std::size_t>(d)];
-      if (m >= 0 && anchors[static_cast<std::size_t>(m)].lo[k] == a.lo[k] &&
-          anchors[static_cast<std::size_t>(m)].hi[k] == a.hi[k]) {
+      if (m >= 0 && coincident(cv, m, node, k)) {
         out.push_back(x);
         node = m;
         continue;
       }
       node = -1;
     }
-    x = rays.next(k, sign, x, line);
+    if (pending > 0) {
+      out.push_back(x);
+      --pending;
+      continue;
+    }
+    const double next = rays.next(k, sign, x, line);
+    std::array<double, 2> mid;
+    mid[static_cast<std::size_t>(k)] = 0.5 * (x + next);
+    mid[static_cast<std::size_t>(1 - k)] = line;
+    if (next != x && rays.inside(mid[0], mid[1])) {
+      x = next;
+      std::array<double, 2> at;
+      at[static_cast<std::size_t>(k)] = x;
+      at[static_cast<std::size_t>(1 - k)] = line;
+      if (auto it = cv.block_layers.find(at); it != cv.block_layers.end()) pending = it->second[static_cast<std::size_t>(k)];
+    }
     out.push_back(x);
   }
 }
@@ -87,8 +182,7 @@ std::vector<std::array<std::vector<double>, 2>> local_knot_vectors(const TSpline
   validate(ts);
   const KnotRays rays(ts.image);
   const auto& nodes = ts.connect.nodes;
-  std::vector<Box<2>> anchors(nodes.size());
-  for (std::size_t i = 0; i < nodes.size(); ++i) anchors[i] = anchor_box(ts, nodes[i]);
+  const ConnectView cv = connect_view(ts);
   std::vector<std::array<std::vector<double>, 2>> knots(nodes.size());
   std::vector<double> lower, upper;
   for (int n = 0; n < static_cast<int>(nodes.size()); ++n)
@@ -97,11 +191,11 @@ std::vector<std::array<std::vector<double>, 2>> local_knot_vectors(const TSpline
       const int count = p % 2 == 1 ? (p + 1) / 2 : p / 2 + 1;
       lower.clear();
       upper.clear();
-      side_knots(ts, rays, anchors, n, k == 0 ? 1 : 2, count, lower);  // west / south
-      side_knots(ts, rays, anchors, n, k == 0 ? 3 : 0, count, upper);  // east / north
+      side_knots(ts, rays, cv, n, k == 0 ? 1 : 2, count, lower);  // west / south
+      side_knots(ts, rays, cv, n, k == 0 ? 3 : 0, count, upper);  // east / north
       auto& kv = knots[static_cast<std::size_t>(n)][static_cast<std::size_t>(k)];
       kv.assign(lower.rbegin(), lower.rend());
-      if (p % 2 == 1) kv.push_back(anchors[static_cast<std::size_t>(n)].lo[k]);
+      if (p % 2 == 1) kv.push_back(cv.anchors[static_cast<std::size_t>(n)].lo[k]);
       kv.insert(kv.end(), upper.begin(), upper.end());
       require(kv.back() > kv.front(), [&] {
         return "T-spline: node " + std::to_string(n) + " has an empty support in direction " + (k == 0 ? "s" : "t") +

@@ -1,0 +1,61 @@
+// T-splines: TSM load + build (parse, three layers, blending functions, Bezier extraction), evaluation in
+// points per second (one thread) on a 200 x 200 grid over the domain. The models are the directory in
+// TRIVAR_TSM_DIR (e.g. the Rhino exports published with the seed-002 prototype); the hand-written patch of the
+// tests is always measured.
+#include <benchmark/benchmark.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "trivar/io/tsm_format.hpp"
+#include "trivar/tspline/t_spline_surface.hpp"
+
+namespace {
+
+std::string slurp(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+void load_build(benchmark::State& state, const std::string& path) {
+  const std::string text = slurp(path);
+  for (auto _ : state) {
+    const trivar::TSplineSurface s(trivar::io::parse_tsm(text, path).spline, 1);
+    benchmark::DoNotOptimize(s.elements().data());
+  }
+}
+
+void evaluate(benchmark::State& state, const std::string& path) {
+  const trivar::TSplineSurface s(trivar::io::read_tsm(path).spline, 1);
+  std::vector<trivar::Param<2>> u;
+  const auto d = s.domain();
+  for (int j = 0; j < 200; ++j)
+    for (int i = 0; i < 200; ++i)
+      u.push_back({d.lo[0] + (i + 0.5) / 200 * d.extent(0), d.lo[1] + (j + 0.5) / 200 * d.extent(1)});
+  std::vector<double> out(u.size() * 3);
+  for (auto _ : state) {
+    s.eval_many(u, out, 1);
+    benchmark::DoNotOptimize(out.data());
+  }
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(u.size()));
+}
+
+int register_models() {
+  std::vector<std::string> files{std::string(TRIVAR_SOURCE_DIR) + "/tests/data/tsm/bezier_patch.tsm"};
+  if (const char* dir = std::getenv("TRIVAR_TSM_DIR"))
+    for (const auto& e : std::filesystem::directory_iterator(dir))
+      if (e.path().extension() == ".tsm") files.push_back(e.path().string());
+  for (const std::string& f : files) {
+    const std::string name = std::filesystem::path(f).stem().string();
+    benchmark::RegisterBenchmark(("tsm_load_build/" + name).c_str(), load_build, f)->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(("tsm_eval/" + name).c_str(), evaluate, f)->Unit(benchmark::kMillisecond);
+  }
+  return 0;
+}
+const int registered = register_models();
+
+}  // namespace
