@@ -9,6 +9,7 @@
 #include "cli.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/io/tsm_format.hpp"
+#include "trivar/tspline/classification.hpp"
 #include "trivar/tspline/t_spline_surface.hpp"
 
 namespace trivar::cli {
@@ -25,6 +26,8 @@ void print_tspline_info(const std::string& path, bool json) {
   const TSplineSurface surf(ts);
   const io::TsmReport& r = m.report;
   const PartitionOfUnity& pu = surf.partition_of_unity();
+  const TSplineClass cls = classify(ts, surf);
+  const std::string as = cls.analysis_suitable ? (*cls.analysis_suitable ? "yes" : "no") : "not classified (even degree)";
   const Box<2> dom = surf.domain();
   nlohmann::json j{{"file", path},
                    {"kind", "T-spline surface"},
@@ -42,7 +45,13 @@ void print_tspline_info(const std::string& path, bool json) {
                    {"deleted_faces", r.holes},
                    {"deleted_slots", r.deleted},
                    {"partition_of_unity", {{"min_sum", pu.min_sum}, {"max_sum", pu.max_sum},
-                                           {"max_defect", pu.max_defect}, {"elements_off", pu.elements_off}}},
+                                           {"max_defect", pu.max_defect}, {"elements_off", pu.elements_off},
+                                           {"sampled_min", pu.sampled_min}, {"sampled_max", pu.sampled_max}}},
+                   {"classification", {{"t_junctions", cls.t_junctions}, {"analysis_suitable", as},
+                                       {"crossing_extensions", cls.crossing_extensions}, {"standard", cls.standard},
+                                       {"semi_standard", cls.semi_standard},
+                                       {"linear_independence", to_string(cls.independence)},
+                                       {"part42_type", cls.part42_type()}}},
                    {"skipped_records", r.skipped_records}};
   if (json) {
     std::printf("%s\n", j.dump(2).c_str());
@@ -57,9 +66,14 @@ void print_tspline_info(const std::string& path, bool json) {
               ts.connect.nodes.size(), r.repeated_knot_nodes, ts.pointset.points.size());
   std::printf("  domain [%s, %s] x [%s, %s], %zu Bezier elements, star points %d\n", fmt(dom.lo[0]).c_str(),
               fmt(dom.hi[0]).c_str(), fmt(dom.lo[1]).c_str(), fmt(dom.hi[1]).c_str(), surf.elements().size(), r.star_points);
-  std::printf("  partition of unity: blending sums in [%s, %s], max defect %s on %d element%s (evaluated as sum w P B / sum w B)\n",
-              fmt(pu.min_sum).c_str(), fmt(pu.max_sum).c_str(), fmt(pu.max_defect).c_str(), pu.elements_off,
-              pu.elements_off == 1 ? "" : "s");
+  std::printf("  partition of unity: sum of blending functions from %s to %s (sampled; Bezier bound [%s, %s]), "
+              "off 1 on %d element%s (evaluated as sum w P B / sum w B)\n",
+              fmt(pu.sampled_min).c_str(), fmt(pu.sampled_max).c_str(), fmt(pu.min_sum).c_str(), fmt(pu.max_sum).c_str(),
+              pu.elements_off, pu.elements_off == 1 ? "" : "s");
+  std::printf("  classification: analysis-suitable %s (%d crossing T-junction extensions), standard %s, semi-standard %s, "
+              "blending functions %s; Part 42 type %s\n",
+              as.c_str(), cls.crossing_extensions, cls.standard ? "yes" : "no", cls.semi_standard ? "yes" : "no",
+              to_string(cls.independence), cls.part42_type().c_str());
   if (!r.skipped_records.empty()) {
     std::string s;
     for (const auto& [k, n] : r.skipped_records) s += (s.empty() ? "" : ", ") + k + " x" + std::to_string(n);

@@ -11,6 +11,29 @@
 
 namespace trivar {
 
+namespace {
+
+// Bernstein values of degree p at x in [0, 1] (b[0..p]), and with kDerivatives their derivatives with respect
+// to the element parameter (scale 1/h) in db.
+template <bool kDerivatives>
+inline void bernstein(int p, double x, double inv_h, double* b, double* db) {
+  const double y = 1.0 - x;
+  b[0] = 1.0;
+  for (int j = 1; j <= p; ++j) {
+    if (kDerivatives && j == p) {
+      db[0] = -p * b[0] * inv_h;
+      for (int i = 1; i < p; ++i) db[i] = p * (b[i - 1] - b[i]) * inv_h;
+      db[p] = p * b[p - 1] * inv_h;
+    }
+    b[j] = x * b[j - 1];
+    for (int i = j - 1; i >= 1; --i) b[i] = y * b[i] + x * b[i - 1];
+    b[0] *= y;
+  }
+  if (kDerivatives && p == 0) db[0] = 0.0;
+}
+
+}  // namespace
+
 TSplineSurface::TSplineSurface(const TSpline& ts, int threads) : degrees_(ts.degrees), basis_(blending_functions(ts)) {
   for (const LRBSpline<2>& b : basis_)
     for (int k = 0; k < 2; ++k) lines_[k].insert(lines_[k].end(), b.knots[k].begin(), b.knots[k].end());
@@ -61,8 +84,9 @@ TSplineSurface::TSplineSurface(const TSpline& ts, int threads) : degrees_(ts.deg
       return;
     }
     const Eigen::MatrixXd C = extraction_operator<2>(degrees_, basis_, ids, z.domain);
-    pu.min_sum = std::numeric_limits<double>::infinity();
-    pu.max_sum = -pu.min_sum;
+    pu.min_sum = pu.sampled_min = std::numeric_limits<double>::infinity();
+    pu.max_sum = pu.sampled_max = -pu.min_sum;
+    std::vector<double> sums(static_cast<std::size_t>(P));
     for (int j = 0; j < P; ++j) {
       double sum = 0;
       for (int r = 0; r < static_cast<int>(ids.size()); ++r) {
@@ -71,18 +95,33 @@ TSplineSurface::TSplineSurface(const TSpline& ts, int threads) : degrees_(ts.deg
         const auto& coef = basis_[static_cast<std::size_t>(ids[static_cast<std::size_t>(r)])].coef;
         for (int d = 0; d < 4; ++d) z.coefs[static_cast<std::size_t>(j) * 4 + d] += c * coef[static_cast<std::size_t>(d)];
       }
+      sums[static_cast<std::size_t>(j)] = sum;
       pu.min_sum = std::min(pu.min_sum, sum);
       pu.max_sum = std::max(pu.max_sum, sum);
       pu.max_defect = std::max(pu.max_defect, std::abs(sum - 1.0));
     }
     pu.elements_off = pu.max_defect > 1e-12 ? 1 : 0;
+    const int p = degrees_[0], q = degrees_[1];
+    double bs[kMaxDegree + 1], bt[kMaxDegree + 1];
+    for (int b = 0; b < 5; ++b)
+      for (int a = 0; a < 5; ++a) {
+        bernstein<false>(p, 0.25 * a, 1.0, bs, nullptr);
+        bernstein<false>(q, 0.25 * b, 1.0, bt, nullptr);
+        double v = 0;
+        for (int j = 0; j <= q; ++j)
+          for (int i = 0; i <= p; ++i) v += bs[i] * bt[j] * sums[static_cast<std::size_t>(i + (p + 1) * j)];
+        pu.sampled_min = std::min(pu.sampled_min, v);
+        pu.sampled_max = std::max(pu.sampled_max, v);
+      }
   });
-  pu_.min_sum = std::numeric_limits<double>::infinity();
-  pu_.max_sum = -pu_.min_sum;
+  pu_.min_sum = pu_.sampled_min = std::numeric_limits<double>::infinity();
+  pu_.max_sum = pu_.sampled_max = -pu_.min_sum;
   for (const PartitionOfUnity& p : per) {
     pu_.min_sum = std::min(pu_.min_sum, p.min_sum);
     pu_.max_sum = std::max(pu_.max_sum, p.max_sum);
     pu_.max_defect = std::max(pu_.max_defect, p.max_defect);
+    pu_.sampled_min = std::min(pu_.sampled_min, p.sampled_min);
+    pu_.sampled_max = std::max(pu_.sampled_max, p.sampled_max);
     pu_.elements_off += p.elements_off;
   }
 }
@@ -98,28 +137,6 @@ int TSplineSurface::locate(const Param<2>& u) const {
   return cell_element_[c[0] + (lines_[0].size() - 1) * c[1]];
 }
 
-namespace {
-
-// Bernstein values of degree p at x in [0, 1] (b[0..p]), and with kDerivatives their derivatives with respect
-// to the element parameter (scale 1/h) in db.
-template <bool kDerivatives>
-inline void bernstein(int p, double x, double inv_h, double* b, double* db) {
-  const double y = 1.0 - x;
-  b[0] = 1.0;
-  for (int j = 1; j <= p; ++j) {
-    if (kDerivatives && j == p) {
-      db[0] = -p * b[0] * inv_h;
-      for (int i = 1; i < p; ++i) db[i] = p * (b[i - 1] - b[i]) * inv_h;
-      db[p] = p * b[p - 1] * inv_h;
-    }
-    b[j] = x * b[j - 1];
-    for (int i = j - 1; i >= 1; --i) b[i] = y * b[i] + x * b[i - 1];
-    b[0] *= y;
-  }
-  if (kDerivatives && p == 0) db[0] = 0.0;
-}
-
-}  // namespace
 
 template <bool kDerivatives>
 void TSplineSurface::eval_impl(const Param<2>& u, double* out) const {

@@ -23,6 +23,7 @@ namespace trivar {
 struct PartitionOfUnity {
   double min_sum = 1, max_sum = 1;
   double max_defect = 0;  // max |coefficient - 1|
+  double sampled_min = 1, sampled_max = 1;  // the sum at 5 x 5 points per element (attained values)
   int elements_off = 0;   // elements with a coefficient off 1 by more than 1e-12
 };
 

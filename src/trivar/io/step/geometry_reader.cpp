@@ -43,6 +43,7 @@ struct ScaledCollection {
   int dim = 0;
   bool rational = false;
   std::vector<LRBSpline<D>> basis;
+  std::string type;  // locally_refined_spline_type
 };
 
 // Error reporting and typed access for one instance being mapped.
@@ -582,13 +583,20 @@ ScaledCollection<D> read_scaled(const Scope& s, const Instance& in) {
                 std::to_string(hull.hi[k]) + ")");
   }
 
-  return {degrees, dim, weights != nullptr, std::move(basis)};
+  return {degrees, dim, weights != nullptr, std::move(basis), type};
+}
+
+LocallyRefinedSurfaceParts GeometryReader::locally_refined_surface_parts(const Instance& in) const {
+  const Scope s(file_, file_name_, in);
+  s.check(geometry_kind(in) == GeometryKind::lr_surface, "not a locally refined surface");
+  auto c = read_scaled<2>(s, in);
+  return {c.degrees, c.dim, c.rational, std::move(c.basis), std::move(c.type)};
 }
 
 template <int D>
 LRSpline<D> GeometryReader::read_lr(const Instance& in) const {
   const Scope s(file_, file_name_, in);
-  auto [degrees, dim, rational, basis] = read_scaled<D>(s, in);
+  auto [degrees, dim, rational, basis, type] = read_scaled<D>(s, in);
   // STEP stores no box mesh: it is the union of the B-splines' knot lines.
   std::vector<MeshRectangle<D>> mesh = knot_line_mesh<D>(basis);
   try {
@@ -604,7 +612,7 @@ LRSpline<D> GeometryReader::read_lr(const Instance& in) const {
 // by knot insertion and the homogeneous coefficients are summed.
 TensorSpline<1> GeometryReader::read_lr_curve(const Instance& in) const {
   const Scope s(file_, file_name_, in);
-  const auto [degrees, dim, rational, basis] = read_scaled<1>(s, in);
+  const auto [degrees, dim, rational, basis, type] = read_scaled<1>(s, in);
   const int p = degrees[0];
   std::map<double, int> mult;
   for (const auto& b : basis)

@@ -46,6 +46,16 @@ GeometryKind geometry_kind(const Instance& instance);
 // The keywords the mapper reads (spline entities, their parts, CARTESIAN_POINT); a ReadOptions::keep filter.
 bool is_geometry_keyword(std::string_view keyword);
 
+// The parts of a locally refined surface (homogeneous control values when rational) and its
+// locally_refined_spline_type, for kinds whose B-splines need not sum to one (T-splines).
+struct LocallyRefinedSurfaceParts {
+  Ints<2> degrees{};
+  int dim = 0;
+  bool rational = false;
+  std::vector<LRBSpline<2>> basis;
+  std::string type;  // e.g. "STANDARD_T_SPLINE"
+};
+
 class GeometryReader {
 public:
   // `file_name` prefixes messages; the instances' line and column come from the parser.
@@ -55,6 +65,8 @@ public:
   // Tensor kinds and locally refined curves.
   AnySpline tensor_spline(const Instance& instance) const;
   AnyLRSpline lr_spline(const Instance& instance) const;
+  // A locally refined surface's B-splines and type, validated like lr_spline except for the partition of unity.
+  LocallyRefinedSurfaceParts locally_refined_surface_parts(const Instance& instance) const;
   // The representation_item name (first parameter of the simple instance or of REPRESENTATION_ITEM).
   std::string name(const Instance& instance) const;
 

@@ -99,10 +99,11 @@ std::uint64_t add_tensor(ExchangeFile& f, const TensorSpline<D>& s, const std::s
   return f.add_complex(std::move(records));
 }
 
+// Any collection of scaled B-splines (an LR spline, the blending functions of a T-spline) with its type.
 template <int D>
-std::uint64_t add_lr(ExchangeFile& f, const LRSpline<D>& s, const std::string& name) {
-  check_dim(s.dim());
-  const auto basis = s.basis_functions();
+std::uint64_t add_scaled(ExchangeFile& f, const Ints<D>& degrees, std::span<const LRBSpline<D>> basis,
+                         const Box<D>& box, int dim, bool rational, const char* type, const std::string& name) {
+  check_dim(dim);
   std::array<std::vector<double>, D> values;
   for (const auto& b : basis)
     for (std::size_t k = 0; k < D; ++k) values[k].insert(values[k].end(), b.knots[k].begin(), b.knots[k].end());
@@ -114,7 +115,7 @@ std::uint64_t add_lr(ExchangeFile& f, const LRSpline<D>& s, const std::string& n
   std::map<std::tuple<int, std::vector<std::int64_t>, std::vector<std::int64_t>>, std::uint64_t> locals;
   std::array<std::vector<Parameter>, D> refs;
   std::vector<Parameter> points, gammas, weights;
-  std::vector<double> x(static_cast<std::size_t>(s.dim()));
+  std::vector<double> x(static_cast<std::size_t>(dim));
   for (const auto& b : basis) {
     for (std::size_t k = 0; k < D; ++k) {
       std::vector<std::int64_t> ix, m;
@@ -126,20 +127,20 @@ std::uint64_t add_lr(ExchangeFile& f, const LRSpline<D>& s, const std::string& n
         m.push_back(static_cast<std::int64_t>(e - j));
         j = e;
       }
-      auto key = std::make_tuple(s.degree(static_cast<int>(k)), ix, m);
+      auto key = std::make_tuple(degrees[k], ix, m);
       auto it = locals.find(key);
       if (it == locals.end()) {
         std::vector<Parameter> pi(ix.begin(), ix.end()), pm(m.begin(), m.end());
-        const std::uint64_t id = f.add({"LOCAL_B_SPLINE", {std::string(), static_cast<std::int64_t>(s.degree(static_cast<int>(k))),
+        const std::uint64_t id = f.add({"LOCAL_B_SPLINE", {std::string(), static_cast<std::int64_t>(degrees[k]),
                                                            list(std::move(pi)), list(std::move(pm))}});
         it = locals.emplace(std::move(key), id).first;
       }
       refs[k].push_back(reference(it->second));
     }
-    const double w = s.is_rational() ? b.coef[static_cast<std::size_t>(s.dim())] : 1.0;
-    for (int c = 0; c < s.dim(); ++c)
-      x[static_cast<std::size_t>(c)] = s.is_rational() ? b.coef[static_cast<std::size_t>(c)] / w : b.coef[static_cast<std::size_t>(c)];
-    points.push_back(reference(add_point(f, x.data(), s.dim())));
+    const double w = rational ? b.coef[static_cast<std::size_t>(dim)] : 1.0;
+    for (int c = 0; c < dim; ++c)
+      x[static_cast<std::size_t>(c)] = rational ? b.coef[static_cast<std::size_t>(c)] / w : b.coef[static_cast<std::size_t>(c)];
+    points.push_back(reference(add_point(f, x.data(), dim)));
     gammas.emplace_back(b.gamma);
     weights.emplace_back(w);
   }
@@ -149,17 +150,22 @@ std::uint64_t add_lr(ExchangeFile& f, const LRSpline<D>& s, const std::string& n
   params.push_back(list(std::move(points)));
   params.push_back(list(std::move(gammas)));
   params.push_back(enumeration("NOT_TESTED"));
-  params.push_back(enumeration("LR_B_SPLINE"));
+  params.push_back(enumeration(type));
   if (D == 2) params.insert(params.end(), {unknown(), unknown(), unknown()});
   std::vector<Parameter> domain;
   for (int k = 0; k < D; ++k)
-    domain.push_back(list({Parameter(s.domain().lo[static_cast<std::size_t>(k)]), Parameter(s.domain().hi[static_cast<std::size_t>(k)])}));
+    domain.push_back(list({Parameter(box.lo[static_cast<std::size_t>(k)]), Parameter(box.hi[static_cast<std::size_t>(k)])}));
   params.push_back(list(std::move(domain)));
-  if (!s.is_rational())
+  if (!rational)
     return f.add({D == 2 ? "LOCALLY_REFINED_SPLINE_SURFACE" : "LOCALLY_REFINED_SPLINE_VOLUME", std::move(params)});
   params.push_back(list(std::move(weights)));
   return f.add({D == 2 ? "RATIONAL_LOCALLY_REFINED_SPLINE_SURFACE" : "RATIONAL_LOCALLY_REFINED_SPLINE_VOLUME",
                 std::move(params)});
+}
+
+template <int D>
+std::uint64_t add_lr(ExchangeFile& f, const LRSpline<D>& s, const std::string& name) {
+  return add_scaled<D>(f, s.degrees(), s.basis_functions(), s.domain(), s.dim(), s.is_rational(), "LR_B_SPLINE", name);
 }
 
 std::uint64_t add_si_unit(ExchangeFile& f, const char* unit_kind, Parameter prefix, const char* name) {
@@ -170,6 +176,12 @@ std::uint64_t add_si_unit(ExchangeFile& f, const char* unit_kind, Parameter pref
 
 std::uint64_t add_spline(ExchangeFile& file, const AnySpline& spline, const std::string& name) {
   return std::visit([&](const auto& s) { return add_tensor(file, s, name); }, spline);
+}
+
+std::uint64_t add_locally_refined_surface(ExchangeFile& file, const Ints<2>& degrees, std::span<const LRBSpline<2>> basis,
+                                          const Box<2>& domain, int dim, bool rational, const std::string& type,
+                                          const std::string& name) {
+  return add_scaled<2>(file, degrees, basis, domain, dim, rational, type.c_str(), name);
 }
 
 std::uint64_t add_lr_spline(ExchangeFile& file, const AnyLRSpline& spline, const std::string& name) {

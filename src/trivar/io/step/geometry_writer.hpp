@@ -15,6 +15,7 @@
 // Informational logicals (closed, self_intersect) are written .U.; forms .UNSPECIFIED..
 // Control dimensions 1 to 3 (CARTESIAN_POINT holds at most three coordinates); others are an error.
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,11 @@ namespace trivar::io::step {
 // Adds the object (and its points and local B-splines) to `file`; returns the id of the spline instance.
 std::uint64_t add_spline(ExchangeFile& file, const AnySpline& spline, const std::string& name = "");
 std::uint64_t add_lr_spline(ExchangeFile& file, const AnyLRSpline& spline, const std::string& name = "");
+// A LOCALLY_REFINED_SPLINE_SURFACE (RATIONAL_... when rational: homogeneous control values) of any collection
+// of scaled B-splines with the given locally_refined_spline_type (e.g. "STANDARD_T_SPLINE").
+std::uint64_t add_locally_refined_surface(ExchangeFile& file, const Ints<2>& degrees, std::span<const LRBSpline<2>> basis,
+                                          const Box<2>& domain, int dim, bool rational, const std::string& type,
+                                          const std::string& name = "");
 
 // Adds millimetre, radian and steradian SI units and the complex context
 // GEOMETRIC_REPRESENTATION_CONTEXT(dimension) + GLOBAL_UNIT_ASSIGNED_CONTEXT + REPRESENTATION_CONTEXT;

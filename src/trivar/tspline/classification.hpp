@@ -1,0 +1,47 @@
+#pragma once
+// What kind of T-spline a T-spline is, and what follows for analysis:
+//   T-junctions and their extensions (Scott, Li, Sederberg, Hughes 2012): for a T-junction whose missing edge
+//   points along s (t likewise), the face extension runs from it in the missing edge's direction until it has
+//   crossed (p_s + 1) / 2 knot lines, the edge extension the other way until (p_s - 1) / 2; the T-mesh is
+//   analysis-suitable when no s-extension meets a t-extension (odd degrees; even degrees are not classified).
+//   standard: the blending functions sum to one; semi-standard: sum w_i B_i is one (Sederberg et al. 2004);
+//   read off the Bezier coefficients of the sums, exactly up to rounding.
+//   Linear independence by lr/linear_independence (peeling, then the exact rank of the Bezier extraction).
+// The Part 42 locally_refined_spline_type written for a T-spline (part42_type): ANALYSIS_SUITABLE_T_SPLINE when
+// analysis-suitable, else SEMI_STANDARD_T_SPLINE when semi-standard, else STANDARD_T_SPLINE (the general rational
+// T-spline of Sederberg et al. 2003, whose blending functions need not sum to one).
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "trivar/lr/linear_independence.hpp"
+#include "trivar/tspline/t_spline.hpp"
+#include "trivar/tspline/t_spline_surface.hpp"
+
+namespace trivar {
+
+struct TJunctionExtension {
+  int vertex = -1;     // the T-junction
+  int direction = -1;  // of its missing edge (north, west, south, east)
+  int axis = 0;        // the extension runs along s (0) or t (1)
+  double line = 0;     // at this t (axis 0) or s (axis 1)
+  double lo = 0, hi = 0;
+};
+
+// Every T-junction (a vertex with a missing edge whose continuation lies inside a face) and its extension.
+std::vector<TJunctionExtension> t_junction_extensions(const TSpline& ts);
+
+struct TSplineClass {
+  int t_junctions = 0;
+  std::optional<bool> analysis_suitable;  // empty for even degrees
+  int crossing_extensions = 0;            // pairs of an s- and a t-extension that meet
+  bool standard = false;                  // sum B_i = 1
+  bool semi_standard = false;             // sum w_i B_i = 1
+  Independence independence = Independence::not_tested;
+  std::string part42_type() const;
+};
+
+// `exact`: the exact rank test when peeling is inconclusive (otherwise independence may stay not_tested).
+TSplineClass classify(const TSpline& ts, const TSplineSurface& surface, bool exact = true);
+
+}  // namespace trivar

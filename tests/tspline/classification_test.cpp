@@ -1,0 +1,68 @@
+#include <gtest/gtest.h>
+
+#include "trivar/spline/tensor_spline.hpp"
+#include "trivar/tspline/classification.hpp"
+#include "trivar/tspline/t_mesh_builder.hpp"
+#include "trivar/tspline/tensor_t_spline.hpp"
+
+namespace trivar {
+namespace {
+
+std::vector<KnotSegment> grid_with_stub() {  // 6 x 6 cells on [0, 6]^2, the line s = 3 stops at t = 3
+  std::vector<KnotSegment> g;
+  for (int i = 0; i <= 6; ++i) {
+    g.push_back({{0.0, double(i)}, {6.0, double(i)}});
+    g.push_back({{double(i), 0.0}, {double(i), i == 3 ? 3.0 : 6.0}});
+  }
+  return g;
+}
+
+RationalPoint plane(double s, double t, int a, int b) { return {{s + 0.01 * a, t + 0.01 * b, 0.0}, 1.0}; }
+
+TEST(Classification, OneTJunctionIsAnalysisSuitableIndependentAndStandard) {
+  const TSpline ts = t_spline_from_segments({3, 3}, grid_with_stub(), plane);
+  const auto ext = t_junction_extensions(ts);
+  ASSERT_EQ(ext.size(), 1u);
+  // Hand-derived: missing edge north at (3, 3); the face extension crosses t = 4, 5, the edge extension t = 2.
+  EXPECT_EQ(ext[0].direction, 0);
+  EXPECT_EQ(ext[0].axis, 1);
+  EXPECT_EQ(ext[0].line, 3.0);
+  EXPECT_EQ(ext[0].lo, 2.0);
+  EXPECT_EQ(ext[0].hi, 5.0);
+  const TSplineSurface surf(ts);
+  const TSplineClass c = classify(ts, surf);
+  EXPECT_TRUE(c.analysis_suitable.value());
+  EXPECT_TRUE(c.standard);       // AS T-splines form a partition of unity (Li et al. 2012)
+  EXPECT_TRUE(c.semi_standard);  // all weights 1
+  EXPECT_EQ(c.independence, Independence::independent);  // and are linearly independent
+  EXPECT_EQ(c.part42_type(), "ANALYSIS_SUITABLE_T_SPLINE");
+}
+
+TEST(Classification, CrossingExtensionsAreNotAnalysisSuitable) {
+  auto g = grid_with_stub();
+  g.push_back({{0.0, 3.5}, {2.0, 3.5}});  // a T-junction at (2, 3.5) missing east: extension s in [1, 4]
+  g.push_back({{3.5, 0.0}, {3.5, 6.0}});
+  const TSpline ts = t_spline_from_segments({3, 3}, g, plane);
+  const auto ext = t_junction_extensions(ts);
+  ASSERT_EQ(ext.size(), 2u);
+  const TSplineSurface surf(ts);
+  const TSplineClass c = classify(ts, surf);
+  EXPECT_FALSE(c.analysis_suitable.value());
+  EXPECT_EQ(c.crossing_extensions, 1);
+  EXPECT_NE(c.part42_type(), "ANALYSIS_SUITABLE_T_SPLINE");
+}
+
+TEST(Classification, TensorMeshHasNoTJunction) {
+  const KnotVector k = KnotVector::from_breakpoints(2, std::vector<double>{0, 1, 2, 3});
+  std::vector<double> c(static_cast<std::size_t>(k.size() * k.size() * 3), 0.5);
+  const TSpline ts = t_spline_from_tensor(TensorSpline<2>({k, k}, 3, false, c));
+  const TSplineSurface surf(ts);
+  const TSplineClass cl = classify(ts, surf);
+  EXPECT_EQ(cl.t_junctions, 0);
+  EXPECT_FALSE(cl.analysis_suitable.has_value());  // even degrees are not classified
+  EXPECT_TRUE(cl.standard);
+  EXPECT_EQ(cl.independence, Independence::independent);
+}
+
+}  // namespace
+}  // namespace trivar
