@@ -35,6 +35,31 @@ inline void bernstein(int p, double x, double inv_h, double* b, double* db) {
 }  // namespace
 
 TSplineSurface::TSplineSurface(const TSpline& ts, int threads) : degrees_(ts.degrees), basis_(blending_functions(ts)) {
+  std::vector<Box<2>> faces;
+  for (int f = 0; f < static_cast<int>(ts.image.faces.size()); ++f) faces.push_back(ts.image.face_box(f));
+  build(faces, threads);
+}
+
+TSplineSurface::TSplineSurface(const Ints<2>& degrees, std::vector<LRBSpline<2>> basis, int threads)
+    : degrees_(degrees), basis_(std::move(basis)) {
+  require(!basis_.empty(), "T-spline: no blending function");
+  std::vector<Box<2>> supports;
+  for (std::size_t i = 0; i < basis_.size(); ++i) {
+    const LRBSpline<2>& b = basis_[i];
+    for (int k = 0; k < 2; ++k) {
+      const auto& t = b.knots[static_cast<std::size_t>(k)];
+      require(degrees_[k] >= 1 && degrees_[k] <= kMaxDegree && static_cast<int>(t.size()) == degrees_[k] + 2 &&
+                  std::is_sorted(t.begin(), t.end()) && t.front() < t.back(),
+              [&] { return "T-spline: blending function " + std::to_string(i) + " has invalid local knots"; });
+    }
+    require(b.coef.size() == 4 && b.coef[3] > 0,
+            [&] { return "T-spline: blending function " + std::to_string(i) + " needs (w x, w y, w z, w) with w > 0"; });
+    supports.push_back(b.support());
+  }
+  build(supports, threads);
+}
+
+void TSplineSurface::build(const std::vector<Box<2>>& regions, int threads) {
   for (const LRBSpline<2>& b : basis_)
     for (int k = 0; k < 2; ++k) lines_[k].insert(lines_[k].end(), b.knots[k].begin(), b.knots[k].end());
   for (int k = 0; k < 2; ++k) {
@@ -47,8 +72,7 @@ TSplineSurface::TSplineSurface(const TSpline& ts, int threads) : degrees_(ts.deg
   const std::size_t nu = lines_[0].size() - 1, nv = lines_[1].size() - 1;
   cell_element_.assign(nu * nv, -1);
   std::vector<char> covered(nu * nv, 0);
-  for (int f = 0; f < static_cast<int>(ts.image.faces.size()); ++f) {
-    const Box<2> b = ts.image.face_box(f);
+  for (const Box<2>& b : regions) {
     std::array<std::size_t, 2> lo, hi;
     for (int k = 0; k < 2; ++k) {
       lo[k] = static_cast<std::size_t>(std::lower_bound(lines_[k].begin(), lines_[k].end(), b.lo[k]) - lines_[k].begin());
@@ -63,7 +87,7 @@ TSplineSurface::TSplineSurface(const TSpline& ts, int threads) : degrees_(ts.deg
       cell_element_[c] = static_cast<int>(elements_.size());
       elements_.push_back(Box<2>{{lines_[0][i], lines_[1][j]}, {lines_[0][i + 1], lines_[1][j + 1]}});
     }
-  require(!elements_.empty(), "T-spline: the T-image has no face");
+  require(!elements_.empty(), "T-spline: no face");
   supports_ = trivar::element_supports<2>(basis_, elements_, threads);
 
   // One extraction operator per element gives both the Bezier net and the partition-of-unity coefficients.

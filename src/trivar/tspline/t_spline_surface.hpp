@@ -30,6 +30,10 @@ struct PartitionOfUnity {
 class TSplineSurface {
 public:
   explicit TSplineSurface(const TSpline& ts, int threads = 0);
+  // From the blending functions alone (as a Part 42 locally refined surface stores a T-spline): each with
+  // p_k + 2 local knots, gamma 1 and the homogeneous value (w x, w y, w z, w); the domain is the union of the
+  // supports. Throws trivar::Error for a malformed function.
+  TSplineSurface(const Ints<2>& degrees, std::vector<LRBSpline<2>> basis, int threads = 0);
 
   const Ints<2>& degrees() const { return degrees_; }
   const Box<2>& domain() const { return domain_; }
@@ -59,6 +63,8 @@ private:
   std::vector<BezierElement<2>> bezier_;
   PartitionOfUnity pu_;
 
+  // Elements: the cells of the grid of all knot values inside one of the regions.
+  void build(const std::vector<Box<2>>& regions, int threads);
   template <bool kDerivatives>
   void eval_impl(const Param<2>& u, double* out) const;
 };

@@ -586,6 +586,17 @@ ScaledCollection<D> read_scaled(const Scope& s, const Instance& in) {
   return {degrees, dim, weights != nullptr, std::move(basis), type};
 }
 
+std::string GeometryReader::locally_refined_type(const Instance& in) const {
+  const GeometryKind kind = geometry_kind(in);
+  if (kind != GeometryKind::lr_surface && kind != GeometryKind::lr_volume) return {};
+  const std::size_t D = kind == GeometryKind::lr_surface ? 2 : 3;
+  const Record* r = in.complex ? in.record(kLR[D - 1]) : &in.records.front();
+  const std::size_t at = in.complex ? 2 * D + 3 : 2 * D + 4;  // a simple instance starts with the name
+  if (!r || r->params.size() <= at) return {};
+  const Enumeration* e = r->params[at].get_if<Enumeration>();
+  return e ? e->name : std::string();
+}
+
 LocallyRefinedSurfaceParts GeometryReader::locally_refined_surface_parts(const Instance& in) const {
   const Scope s(file_, file_name_, in);
   s.check(geometry_kind(in) == GeometryKind::lr_surface, "not a locally refined surface");

@@ -67,6 +67,9 @@ public:
   AnyLRSpline lr_spline(const Instance& instance) const;
   // A locally refined surface's B-splines and type, validated like lr_spline except for the partition of unity.
   LocallyRefinedSurfaceParts locally_refined_surface_parts(const Instance& instance) const;
+  // The locally_refined_spline_type of a locally refined surface or volume as written (empty when absent or
+  // not an enumeration; lr_spline reports that), without reading the rest.
+  std::string locally_refined_type(const Instance& instance) const;
   // The representation_item name (first parameter of the simple instance or of REPRESENTATION_ITEM).
   std::string name(const Instance& instance) const;
 

@@ -15,7 +15,7 @@ bool is_curve_wrapper(std::string_view k) {
 }
 
 bool keep(std::string_view k) {
-  return is_geometry_keyword(k) || k == "ADVANCED_FACE" || k == "FACE_SURFACE" || k == "EDGE_CURVE" ||
+  return is_geometry_keyword(k) || is_t_spline_keyword(k) || k == "ADVANCED_FACE" || k == "FACE_SURFACE" || k == "EDGE_CURVE" ||
          is_curve_wrapper(k);
 }
 
@@ -78,11 +78,25 @@ StepContents map(const ExchangeFile& f, const std::string& name) {
         out.spline_info.push_back(std::move(o));
         break;
       default:  // locally refined surfaces and volumes
+        if (kind == GeometryKind::lr_surface && is_t_spline_type(reader.locally_refined_type(in))) {
+          LocallyRefinedSurfaceParts p = reader.locally_refined_surface_parts(in);
+          StepTSpline t{in.id, o.name, o.entity, p.type, std::nullopt, p.degrees, std::move(p.basis)};
+          for (auto& b : t.basis) {  // to (w x, w y, w z, w)
+            const double w = p.rational ? b.coef.back() : 1.0;
+            b.coef.resize(static_cast<std::size_t>(p.dim));
+            b.coef.resize(3, 0.0);
+            b.coef.push_back(w);
+          }
+          out.t_splines.push_back(std::move(t));
+          break;
+        }
         out.lr_splines.push_back(reader.lr_spline(in));
         out.lr_info.push_back(std::move(o));
         break;
     }
   }
+  for (StepTSpline& t : read_t_spline_surfaces(f, name)) out.t_splines.push_back(std::move(t));
+  std::stable_sort(out.t_splines.begin(), out.t_splines.end(), [](const auto& a, const auto& b) { return a.id < b.id; });
   return out;
 }
 

@@ -16,6 +16,7 @@
 #include "trivar/io/step/exchange_file.hpp"
 #include "trivar/io/step/geometry_reader.hpp"
 #include "trivar/io/step/geometry_writer.hpp"
+#include "trivar/io/step/t_spline_step.hpp"
 
 namespace trivar::io::step {
 
@@ -40,6 +41,9 @@ struct StepContents {
   std::vector<StepObject> spline_info;  // parallel to splines
   std::vector<AnyLRSpline> lr_splines;
   std::vector<StepObject> lr_info;      // parallel to lr_splines
+  // T_SPLINE_SURFACEs (three layers) and locally refined surfaces whose type names a T-spline (blending
+  // functions; they need not sum to one, so they are no LR splines), in file order.
+  std::vector<StepTSpline> t_splines;
   std::map<std::string, EntityCount> entities;  // per keyword (complex instances: keywords joined by '+')
   // ADVANCED_FACE / FACE_SURFACE instances, and those whose surface is no spline (planes, cylinders, ...)
   // per surface entity: their geometry is not extracted.
