@@ -216,7 +216,7 @@ TEST(TSplineValidation, BrokenLayersGiveOneLineErrors) {
   bad.connect.nodes[3].point = 10000;
   EXPECT_THROW(validate(bad), Error);
   bad = ts;
-  bad.connect.nodes[3].neighbours[0] = 0;  // does not point back
+  bad.connect.nodes[3].neighbours[0] = 100000;  // no such node
   EXPECT_THROW(validate(bad), Error);
   bad = ts;
   std::swap(bad.image.faces[0].loop[0], bad.image.faces[0].loop[2]);

@@ -27,7 +27,8 @@ Box<2> anchor_box(const TSpline& ts, const TNode& n);
 // Throws trivar::Error naming the first inconsistency: the T-image (validate(TImage)), degrees outside
 // 1..kMaxDegree, a node whose anchor or point does not exist, a node whose anchor does not match the degree
 // parities (an odd direction needs an anchor of zero width, an even one a face-wide or zero-width anchor), a
-// neighbour id out of range or not pointing back, a weight that is not positive and finite.
+// neighbour id out of range or the node itself (neighbours need not point back: the seed-002 prototype links
+// the outer nodes of repeated-knot blocks one way), a weight that is not positive and finite.
 void validate(const TSpline& ts);
 
 }  // namespace trivar

@@ -119,12 +119,29 @@ std::string StepContents::unmapped_faces_summary() const {
   return s;
 }
 
+namespace {
+
+bool keep_with_t_spline_parts(std::string_view k) { return keep(k) || is_t_spline_part_keyword(k); }
+
+bool has_t_spline_surface(const ExchangeFile& f) {
+  for (const Instance& in : f.instances())
+    if (in.is("T_SPLINE_SURFACE")) return true;
+  return false;
+}
+
+}  // namespace
+
 StepContents read_step(const std::string& path, bool strict) {
   ReadOptions o;
   o.keep = keep;
   o.compact_points = true;
   o.strict = strict;
-  return map(read_exchange_file(path, o), path);
+  ExchangeFile f = read_exchange_file(path, o);
+  if (has_t_spline_surface(f)) {  // read again keeping the generic parts of the T-spline entities
+    o.keep = keep_with_t_spline_parts;
+    f = read_exchange_file(path, o);
+  }
+  return map(f, path);
 }
 
 StepContents parse_step(std::string_view text, const std::string& name, bool strict) {
@@ -132,7 +149,12 @@ StepContents parse_step(std::string_view text, const std::string& name, bool str
   o.keep = keep;
   o.compact_points = true;
   o.strict = strict;
-  return map(parse_exchange_file(text, name, o), name);
+  ExchangeFile f = parse_exchange_file(text, name, o);
+  if (has_t_spline_surface(f)) {
+    o.keep = keep_with_t_spline_parts;
+    f = parse_exchange_file(text, name, o);
+  }
+  return map(f, name);
 }
 
 void write_step(const std::string& path, const std::vector<AnySpline>& splines,

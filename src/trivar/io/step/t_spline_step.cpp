@@ -13,9 +13,10 @@ namespace trivar::io::step {
 
 namespace {
 
-constexpr std::array<std::string_view, 14> kKeywords{
-    "T_SPLINE_SURFACE", "T_IMAGE", "T_CONNECT", "T_POINTSET", "T_VERTEX", "T_EDGE",     "T_LINK",
-    "T_FACE",           "T_EDGE_CONDITION", "T_NODE_V4", "T_NODE", "RATIONAL_POINT", "EDGE_LOOP", "FACE_BOUND"};
+constexpr std::array<std::string_view, 11> kKeywords{"T_SPLINE_SURFACE", "T_IMAGE", "T_CONNECT", "T_POINTSET",
+                                                    "T_VERTEX",         "T_EDGE",  "T_LINK",    "T_FACE",
+                                                    "T_EDGE_CONDITION", "T_NODE_V4", "T_NODE"};
+constexpr std::array<std::string_view, 4> kParts{"RATIONAL_POINT", "EDGE_LOOP", "FACE_BOUND", "POINT_ON_SURFACE"};
 
 Parameter logical(bool b) { return enumeration(b ? "T" : "F"); }
 
@@ -221,9 +222,9 @@ std::uint64_t largest_id(const ExchangeFile& f) {
 
 }  // namespace
 
-bool is_t_spline_keyword(std::string_view k) {
-  return std::find(kKeywords.begin(), kKeywords.end(), k) != kKeywords.end() || k == "POINT_ON_SURFACE";
-}
+bool is_t_spline_keyword(std::string_view k) { return std::find(kKeywords.begin(), kKeywords.end(), k) != kKeywords.end(); }
+
+bool is_t_spline_part_keyword(std::string_view k) { return std::find(kParts.begin(), kParts.end(), k) != kParts.end(); }
 
 bool is_t_spline_type(std::string_view t) {
   return t == "STANDARD_T_SPLINE" || t == "SEMI_STANDARD_T_SPLINE" || t == "ANALYSIS_SUITABLE_T_SPLINE";

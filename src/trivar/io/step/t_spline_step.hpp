@@ -41,8 +41,11 @@ struct StepTSpline {
   std::vector<LRBSpline<2>> basis;
 };
 
-// The keywords of the seed-002 T-spline entities (for the reader's keep filter).
+// The keywords of the seed-002 T-spline entities (for the reader's keep filter), and the generic entities they
+// use (RATIONAL_POINT, EDGE_LOOP, FACE_BOUND, POINT_ON_SURFACE), which a reader keeps only when the file has a
+// T_SPLINE_SURFACE (in B-rep files they are many and not needed).
 bool is_t_spline_keyword(std::string_view keyword);
+bool is_t_spline_part_keyword(std::string_view keyword);
 // The locally_refined_spline_type values that name T-splines.
 bool is_t_spline_type(std::string_view type);
 
