@@ -163,8 +163,7 @@ int TSplineSurface::locate(const Param<2>& u) const {
 
 
 template <bool kDerivatives>
-void TSplineSurface::eval_impl(const Param<2>& u, double* out) const {
-  const int e = locate(u);
+void TSplineSurface::eval_element(int e, const Param<2>& u, double* out) const {
   if (e < 0) {
     std::fill(out, out + (kDerivatives ? 9 : 3), std::numeric_limits<double>::quiet_NaN());
     return;
@@ -202,6 +201,10 @@ void TSplineSurface::eval_impl(const Param<2>& u, double* out) const {
 }
 
 void TSplineSurface::eval(const Param<2>& u, double* out) const { eval_impl<false>(u, out); }
+void TSplineSurface::eval_on_element(int e, const Param<2>& u, double* out) const {
+  require(e >= 0 && e < static_cast<int>(elements_.size()), "TSplineSurface::eval_on_element: no element " + std::to_string(e));
+  eval_element<false>(e, u, out);
+}
 void TSplineSurface::eval_first_derivatives(const Param<2>& u, double* out) const { eval_impl<true>(u, out); }
 
 void TSplineSurface::eval_many(std::span<const Param<2>> u, std::span<double> out, int threads) const {

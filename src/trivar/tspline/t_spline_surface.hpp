@@ -49,6 +49,9 @@ public:
   void eval(const Param<2>& u, double* out) const;
   // Value, d/ds, d/dt: 9 values.
   void eval_first_derivatives(const Param<2>& u, double* out) const;
+  // x, y, z at u by element e's patch (u in its closed box): points on a side shared with a hole or with
+  // another element, evaluated by the element that owns them.
+  void eval_on_element(int e, const Param<2>& u, double* out) const;
   // eval at every u (out: 3 per point), threads as parallel_for (<= 0: all).
   void eval_many(std::span<const Param<2>> u, std::span<double> out, int threads = 0) const;
 
@@ -66,7 +69,9 @@ private:
   // Elements: the cells of the grid of all knot values inside one of the regions.
   void build(const std::vector<Box<2>>& regions, int threads);
   template <bool kDerivatives>
-  void eval_impl(const Param<2>& u, double* out) const;
+  void eval_impl(const Param<2>& u, double* out) const { eval_element<kDerivatives>(locate(u), u, out); }
+  template <bool kDerivatives>
+  void eval_element(int e, const Param<2>& u, double* out) const;
 };
 
 }  // namespace trivar
