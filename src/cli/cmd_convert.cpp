@@ -18,6 +18,7 @@
 #include "trivar/io/vmodel_json.hpp"
 #include "trivar/io/vmodel_vtk.hpp"
 #include "trivar/io/vtk_writer.hpp"
+#include "tspline_cli.hpp"
 
 namespace trivar::cli {
 
@@ -27,6 +28,7 @@ void add_convert_command(CLI::App& app, Context&) {
     std::string in, out;
     int samples = 4;
     bool lr = false, bezier = false, sampled = false, control_net = false, parametric_mesh = false, strict = false;
+    TSplineConvertOptions t_spline;
     // The VTK cells the flags ask for (Bezier unless --samples, --control-net or --parametric-mesh).
     io::VtkOptions tensor_vtk() const {
       return {control_net ? io::VtkCells::control_net : sampled ? io::VtkCells::sampled : io::VtkCells::bezier,
@@ -52,7 +54,19 @@ void add_convert_command(CLI::App& app, Context&) {
   cmd->add_flag("--strict", a->strict,
                 "STEP input: refuse departures from ISO 10303-21 (lower-case keywords, stray bytes in strings, "
                 "dangling references, reference cycles) instead of warning");
+  cmd->add_option("--step-form", a->t_spline.step_form,
+                  "T-spline to STEP: t-spline (the T_SPLINE_SURFACE entities of the three layers, AP238) or part42 "
+                  "(an ISO 10303-42 locally refined surface of T-spline type)")
+      ->check(CLI::IsMember({"t-spline", "part42"}));
+  cmd->add_option("--tolerance", a->t_spline.tolerance,
+                  "T-spline to .stl/.obj (and .vtu with --triangles): chordal tolerance (default 1e-3 of the size)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag("--triangles", a->t_spline.triangles, "T-spline to .vtu: the tessellation instead of exact Bezier cells");
   cmd->callback([a] {
+    if (is_t_spline_file(a->in)) {
+      convert_tspline(a->in, a->out, a->t_spline);
+      return;
+    }
     require(!a->strict || is_step_file(a->in), "convert: --strict applies to STEP input, not " + a->in);
     if (is_step_file(a->out)) {
       require(!is_step_file(a->in), "convert: " + a->in + " is already a STEP file");

@@ -91,7 +91,7 @@ void add_eval_command(CLI::App& app, Context&) {
       ->check(CLI::Range(0, kMaxDerivativeOrder));
   cmd->add_option("--object", a->object, "Object to evaluate, 0-based as numbered by `info` (default: the only one)");
   cmd->callback([a] {
-    if (is_tsm_file(a->file)) {
+    if (is_t_spline_file(a->file)) {
       eval_tspline(a->file, a->params, a->derivs);
       return;
     }

@@ -204,7 +204,8 @@ void add_info_command(CLI::App& app, Context&) {
                   "exact: rank of the Bezier extraction)")
       ->check(CLI::IsMember({"peeling", "exact"}));
   cmd->callback([file, json, check, strict] {
-    if (is_tsm_file(*file)) {
+    if (is_t_spline_file(*file)) {
+      require(check->empty(), "info: --check-independence applies to LR splines; T-splines are classified always");
       print_tspline_info(*file, *json);
       return;
     }

@@ -1,82 +1,172 @@
 #include "tspline_cli.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <memory>
+#include <optional>
 
 #include <nlohmann/json.hpp>
 
 #include "cli.hpp"
 #include "trivar/core/error.hpp"
+#include "trivar/io/lr_format.hpp"
+#include "trivar/io/step/step_file.hpp"
+#include "trivar/io/stl_writer.hpp"
+#include "trivar/io/t_spline_json.hpp"
+#include "trivar/io/t_spline_vtk.hpp"
 #include "trivar/io/tsm_format.hpp"
+#include "trivar/lr/knot_line_mesh.hpp"
+#include "trivar/model/triangle_mesh.hpp"
 #include "trivar/tspline/classification.hpp"
 #include "trivar/tspline/t_spline_surface.hpp"
+#include "trivar/tspline/t_spline_tessellation.hpp"
 
 namespace trivar::cli {
 
-bool is_tsm_file(const std::string& path) {
+namespace {
+
+std::string extension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext == ".tsm";
+  return ext;
+}
+
+bool is_t_spline_json(const std::string& path) {
+  if (extension(path) != ".json") return false;
+  std::ifstream in(path);
+  if (!in.good()) return false;
+  const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+  return j.is_object() && j.value("kind", "") == "t_spline";
+}
+
+// A T-spline as read: the three layers when the file has them, always the evaluator.
+struct Loaded {
+  std::string format;
+  std::optional<TSpline> layers;
+  std::optional<io::TsmReport> tsm;
+  std::string step_type;  // Part 42 locally_refined_spline_type when read from that form
+  std::unique_ptr<TSplineSurface> surface;
+};
+
+Loaded load(const std::string& path) {
+  Loaded l;
+  const std::string ext = extension(path);
+  if (ext == ".tsm") {
+    io::TsmModel m = io::read_tsm(path);
+    l.format = "TSM #TS0200";
+    l.layers = std::move(m.spline);
+    l.tsm = std::move(m.report);
+  } else if (is_t_spline_json(path)) {
+    l.format = "trivar T-spline JSON";
+    l.layers = io::read_t_spline_json(path);
+  } else {
+    io::step::StepContents c = io::step::read_step(path);
+    require(!c.t_splines.empty(), path + ": no T-spline in the file");
+    if (c.t_splines.size() > 1)
+      std::fprintf(stderr, "trivar: %s holds %zu T-splines; using the first\n", path.c_str(), c.t_splines.size());
+    io::step::StepTSpline& t = c.t_splines.front();
+    l.format = "STEP " + t.entity;
+    if (t.layers) {
+      l.layers = std::move(*t.layers);
+    } else {
+      l.step_type = t.type;
+      l.surface = std::make_unique<TSplineSurface>(t.degrees, std::move(t.basis));
+    }
+  }
+  if (!l.surface) l.surface = std::make_unique<TSplineSurface>(*l.layers);
+  return l;
+}
+
+}  // namespace
+
+bool is_t_spline_file(const std::string& path) {
+  const std::string ext = extension(path);
+  if (ext == ".tsm") return true;
+  if (ext == ".json") return is_t_spline_json(path);
+  if (!is_step_file(path)) return false;
+  // A scan of the text, not a parse: B-rep files stay on the STEP path at the cost of one read.
+  std::ifstream in(path, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return text.find("T_SPLINE_SURFACE(") != std::string::npos || text.find("_T_SPLINE.") != std::string::npos;
 }
 
 void print_tspline_info(const std::string& path, bool json) {
-  const io::TsmModel m = io::read_tsm(path);
-  const TSpline& ts = m.spline;
-  const TSplineSurface surf(ts);
-  const io::TsmReport& r = m.report;
+  const Loaded l = load(path);
+  const TSplineSurface& surf = *l.surface;
   const PartitionOfUnity& pu = surf.partition_of_unity();
-  const TSplineClass cls = classify(ts, surf);
-  const std::string as = cls.analysis_suitable ? (*cls.analysis_suitable ? "yes" : "no") : "not classified (even degree)";
   const Box<2> dom = surf.domain();
   nlohmann::json j{{"file", path},
                    {"kind", "T-spline surface"},
-                   {"format", "TSM #TS0200"},
-                   {"degrees", {ts.degrees[0], ts.degrees[1]}},
-                   {"units", r.units},
+                   {"format", l.format},
+                   {"degrees", {surf.degrees()[0], surf.degrees()[1]}},
                    {"domain", {{dom.lo[0], dom.hi[0]}, {dom.lo[1], dom.hi[1]}}},
-                   {"t_image", {{"vertices", ts.image.vertices.size()}, {"edges", ts.image.edges.size()},
-                                {"links", ts.image.links.size()}, {"faces", ts.image.faces.size()},
-                                {"edge_conditions", ts.image.conditions.size()}, {"t_junctions", r.t_junctions}}},
-                   {"t_connect", {{"nodes", ts.connect.nodes.size()}, {"repeated_knot_nodes", r.repeated_knot_nodes}}},
-                   {"t_pointset", {{"points", ts.pointset.points.size()}}},
+                   {"blending_functions", surf.basis().size()},
                    {"bezier_elements", surf.elements().size()},
-                   {"star_points", r.star_points},
-                   {"deleted_faces", r.holes},
-                   {"deleted_slots", r.deleted},
                    {"partition_of_unity", {{"min_sum", pu.min_sum}, {"max_sum", pu.max_sum},
                                            {"max_defect", pu.max_defect}, {"elements_off", pu.elements_off},
-                                           {"sampled_min", pu.sampled_min}, {"sampled_max", pu.sampled_max}}},
-                   {"classification", {{"t_junctions", cls.t_junctions}, {"analysis_suitable", as},
-                                       {"crossing_extensions", cls.crossing_extensions}, {"standard", cls.standard},
-                                       {"semi_standard", cls.semi_standard},
-                                       {"linear_independence", to_string(cls.independence)},
-                                       {"part42_type", cls.part42_type()}}},
-                   {"skipped_records", r.skipped_records}};
+                                           {"sampled_min", pu.sampled_min}, {"sampled_max", pu.sampled_max}}}};
+  if (!l.step_type.empty()) j["part42_type"] = l.step_type;
+  std::optional<TSplineClass> cls;
+  std::string as;
+  if (l.layers) {
+    const TSpline& ts = *l.layers;
+    cls = classify(ts, surf);
+    as = cls->analysis_suitable ? (*cls->analysis_suitable ? "yes" : "no") : "not classified (even degree)";
+    j["t_image"] = {{"vertices", ts.image.vertices.size()}, {"edges", ts.image.edges.size()},
+                    {"links", ts.image.links.size()}, {"faces", ts.image.faces.size()},
+                    {"edge_conditions", ts.image.conditions.size()}};
+    j["t_connect"] = {{"nodes", ts.connect.nodes.size()}};
+    j["t_pointset"] = {{"points", ts.pointset.points.size()}};
+    j["classification"] = {{"t_junctions", cls->t_junctions}, {"analysis_suitable", as},
+                           {"crossing_extensions", cls->crossing_extensions}, {"standard", cls->standard},
+                           {"semi_standard", cls->semi_standard},
+                           {"linear_independence", to_string(cls->independence)},
+                           {"part42_type", cls->part42_type()}};
+  }
+  if (l.tsm) {
+    const io::TsmReport& r = *l.tsm;
+    j["units"] = r.units;
+    j["star_points"] = r.star_points;
+    j["deleted_slots"] = r.deleted;
+    j["deleted_faces"] = r.holes;
+    j["repeated_knot_nodes"] = r.repeated_knot_nodes;
+    j["skipped_records"] = r.skipped_records;
+  }
   if (json) {
     std::printf("%s\n", j.dump(2).c_str());
     return;
   }
-  std::printf("%s: T-spline surface (TSM), degrees %d x %d, units %s\n", path.c_str(), ts.degrees[0], ts.degrees[1],
-              r.units.empty() ? "-" : r.units.c_str());
-  std::printf("  T-image: %zu vertices, %zu edges, %zu links, %zu faces (%d T-junctions, %d deleted faces, %zu edge conditions)\n",
-              ts.image.vertices.size(), ts.image.edges.size(), ts.image.links.size(), ts.image.faces.size(),
-              r.t_junctions, r.holes, ts.image.conditions.size());
-  std::printf("  T-connect: %zu nodes (%d repeated-knot nodes of Bezier end conditions); T-pointset: %zu points\n",
-              ts.connect.nodes.size(), r.repeated_knot_nodes, ts.pointset.points.size());
-  std::printf("  domain [%s, %s] x [%s, %s], %zu Bezier elements, star points %d\n", fmt(dom.lo[0]).c_str(),
-              fmt(dom.hi[0]).c_str(), fmt(dom.lo[1]).c_str(), fmt(dom.hi[1]).c_str(), surf.elements().size(), r.star_points);
+  std::printf("%s: T-spline surface (%s), degrees %d x %d%s\n", path.c_str(), l.format.c_str(), surf.degrees()[0],
+              surf.degrees()[1], l.tsm && !l.tsm->units.empty() ? (", units " + l.tsm->units).c_str() : "");
+  if (l.layers) {
+    const TSpline& ts = *l.layers;
+    std::printf("  T-image: %zu vertices, %zu edges, %zu links, %zu faces, %zu edge conditions\n",
+                ts.image.vertices.size(), ts.image.edges.size(), ts.image.links.size(), ts.image.faces.size(),
+                ts.image.conditions.size());
+    std::printf("  T-connect: %zu nodes; T-pointset: %zu points\n", ts.connect.nodes.size(), ts.pointset.points.size());
+  } else {
+    std::printf("  blending functions only (Part 42 type %s): %zu\n", l.step_type.c_str(), surf.basis().size());
+  }
+  if (l.tsm)
+    std::printf("  TSM: %d repeated-knot nodes (Bezier end conditions), %d deleted faces, %d deleted slots, %d star points\n",
+                l.tsm->repeated_knot_nodes, l.tsm->holes, l.tsm->deleted, l.tsm->star_points);
+  std::printf("  domain [%s, %s] x [%s, %s], %zu Bezier elements\n", fmt(dom.lo[0]).c_str(), fmt(dom.hi[0]).c_str(),
+              fmt(dom.lo[1]).c_str(), fmt(dom.hi[1]).c_str(), surf.elements().size());
   std::printf("  partition of unity: sum of blending functions from %s to %s (sampled; Bezier bound [%s, %s]), "
               "off 1 on %d element%s (evaluated as sum w P B / sum w B)\n",
               fmt(pu.sampled_min).c_str(), fmt(pu.sampled_max).c_str(), fmt(pu.min_sum).c_str(), fmt(pu.max_sum).c_str(),
               pu.elements_off, pu.elements_off == 1 ? "" : "s");
-  std::printf("  classification: analysis-suitable %s (%d crossing T-junction extensions), standard %s, semi-standard %s, "
-              "blending functions %s; Part 42 type %s\n",
-              as.c_str(), cls.crossing_extensions, cls.standard ? "yes" : "no", cls.semi_standard ? "yes" : "no",
-              to_string(cls.independence), cls.part42_type().c_str());
-  if (!r.skipped_records.empty()) {
+  if (cls)
+    std::printf("  classification: %d T-junctions, analysis-suitable %s (%d crossing extensions), standard %s, "
+                "semi-standard %s, blending functions %s; Part 42 type %s\n",
+                cls->t_junctions, as.c_str(), cls->crossing_extensions, cls->standard ? "yes" : "no",
+                cls->semi_standard ? "yes" : "no", to_string(cls->independence), cls->part42_type().c_str());
+  if (l.tsm && !l.tsm->skipped_records.empty()) {
     std::string s;
-    for (const auto& [k, n] : r.skipped_records) s += (s.empty() ? "" : ", ") + k + " x" + std::to_string(n);
+    for (const auto& [k, n] : l.tsm->skipped_records) s += (s.empty() ? "" : ", ") + k + " x" + std::to_string(n);
     std::printf("  records without geometry (skipped): %s\n", s.c_str());
   }
 }
@@ -84,9 +174,10 @@ void print_tspline_info(const std::string& path, bool json) {
 void eval_tspline(const std::string& path, const std::vector<double>& params, int order) {
   require(params.size() == 2, "eval: a T-spline surface takes 2 parameters, got " + std::to_string(params.size()));
   require(order <= 1, "eval: T-splines evaluate first derivatives at most (--derivs 0 or 1), got " + std::to_string(order));
-  const TSplineSurface surf(io::read_tsm(path).spline);
+  const Loaded l = load(path);
+  const TSplineSurface& surf = *l.surface;
   const Param<2> u{params[0], params[1]};
-  require(surf.locate(u) >= 0, "eval: (" + fmt(u[0]) + ", " + fmt(u[1]) + ") is outside the T-image's faces (domain [" +
+  require(surf.locate(u) >= 0, "eval: (" + fmt(u[0]) + ", " + fmt(u[1]) + ") is outside the T-spline's faces (domain [" +
                                    fmt(surf.domain().lo[0]) + ", " + fmt(surf.domain().hi[0]) + "] x [" +
                                    fmt(surf.domain().lo[1]) + ", " + fmt(surf.domain().hi[1]) + "])");
   double out[9];
@@ -96,6 +187,71 @@ void eval_tspline(const std::string& path, const std::vector<double>& params, in
     std::printf("S_u = %s\n", fmt(out + 3, 3).c_str());
     std::printf("S_v = %s\n", fmt(out + 6, 3).c_str());
   }
+}
+
+void convert_tspline(const std::string& in, const std::string& out, const TSplineConvertOptions& o) {
+  require(o.step_form == "t-spline" || o.step_form == "part42",
+          "convert: --step-form is t-spline or part42, not '" + o.step_form + "'");
+  const Loaded l = load(in);
+  const TSplineSurface& surf = *l.surface;
+  const std::string ext = extension(out);
+  if (is_step_file(out)) {
+    require(l.layers.has_value(), "convert: " + in + " holds the blending functions only; it converts to Part 42 STEP, .lr, .vtu, .stl or .obj");
+    const auto form = o.step_form == "part42" ? io::step::TSplineStepForm::part42 : io::step::TSplineStepForm::t_spline_entities;
+    io::step::write_t_spline_step(out, *l.layers, form);
+    std::printf("%s: T-spline as %s\n", out.c_str(),
+                o.step_form == "part42" ? "an ISO 10303-42 locally refined surface" : "T_SPLINE_SURFACE entities (AP238)");
+    return;
+  }
+  if (ext == ".lr") {
+    bool rational = false;
+    for (const auto& b : surf.basis()) rational = rational || b.coef[3] != 1.0;
+    std::vector<LRBSpline<2>> basis(surf.basis().begin(), surf.basis().end());
+    if (!rational)
+      for (auto& b : basis) b.coef.resize(3);
+    auto mesh = knot_line_mesh<2>(basis);
+    std::vector<AnyLRSpline> lr;
+    try {
+      lr.emplace_back(LRSpline<2>(surf.degrees(), 3, rational, std::move(basis), std::move(mesh)));
+    } catch (const Error& e) {
+      throw Error("convert: " + in + " is not an LR spline (" + std::string(e.what()) + ")");
+    }
+    io::write_lr(out, lr);
+    return;
+  }
+  if (ext == ".json") {
+    require(l.layers.has_value(), "convert: " + in + " holds the blending functions only; the JSON form needs the three layers");
+    io::write_t_spline_json(out, *l.layers);
+    return;
+  }
+  require(ext == ".vtu" || ext == ".stl" || ext == ".obj",
+          "convert: a T-spline converts to .stp/.step, .lr, .json, .vtu, .stl or .obj, not '" + ext + "'");
+  if (ext == ".vtu" && !o.triangles) {
+    io::write_t_spline_vtu(out, surf);
+    return;
+  }
+  double tol = o.tolerance;
+  if (tol <= 0) {
+    Box<3> b = Box<3>::empty();
+    for (const auto& e : surf.bezier_elements())
+      for (std::size_t i = 0; i < e.coefs.size(); i += 4) {
+        const double x[3] = {e.coefs[i] / e.coefs[i + 3], e.coefs[i + 1] / e.coefs[i + 3], e.coefs[i + 2] / e.coefs[i + 3]};
+        b.extend(x);
+      }
+    tol = 1e-3 * b.diagonal();
+  }
+  const TSplineTriangulation m = tessellate(surf, tol);
+  if (ext == ".vtu") {
+    io::write_triangulation_vtu(out, m);
+  } else if (ext == ".obj") {
+    io::write_triangulation_obj(out, m);
+  } else {
+    TriangleMesh t;
+    t.vertices = m.points;
+    t.triangles = m.triangles;
+    io::write_stl(out, t);
+  }
+  std::printf("%s: %zu triangles, chordal tolerance %s\n", out.c_str(), m.triangles.size(), fmt(tol).c_str());
 }
 
 }  // namespace trivar::cli

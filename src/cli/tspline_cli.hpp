@@ -1,14 +1,25 @@
 #pragma once
-// The T-spline side of `trivar info|eval|convert`: Rhino .tsm files.
+// The T-spline side of `trivar info|eval|convert`: Rhino .tsm files, STEP files holding T-splines (the
+// seed-002 T_SPLINE_SURFACE entities or a Part 42 locally refined surface of T-spline type) and trivar's
+// T-spline JSON.
 #include <string>
 #include <vector>
 
 namespace trivar::cli {
 
-// True for .tsm (case-insensitive).
-bool is_tsm_file(const std::string& path);
+// True for .tsm, for a STEP file whose text names T_SPLINE_SURFACE or a T-spline locally_refined_spline_type,
+// and for JSON of kind "t_spline".
+bool is_t_spline_file(const std::string& path);
 void print_tspline_info(const std::string& path, bool json);
 // Value (order 0) or value and first derivatives (order 1) at (s, t).
 void eval_tspline(const std::string& path, const std::vector<double>& params, int order);
+
+struct TSplineConvertOptions {
+  std::string step_form = "t-spline";  // STEP output: t-spline (seed-002 entities) or part42
+  double tolerance = 0;                // tessellations: chordal tolerance; 0: 1e-3 of the bounding box diagonal
+  bool triangles = false;              // .vtu: the tessellation instead of exact Bezier cells
+};
+// To .stp/.step, .lr (when the T-spline is an LR spline), .json, .vtu, .stl, .obj.
+void convert_tspline(const std::string& in, const std::string& out, const TSplineConvertOptions& options);
 
 }  // namespace trivar::cli
