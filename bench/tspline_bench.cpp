@@ -1,5 +1,6 @@
 // T-splines: TSM load + build (parse, three layers, blending functions, Bezier extraction), evaluation in
-// points per second (one thread) on a 200 x 200 grid over the domain. The models are the directory in
+// points per second (one thread) on a 200 x 200 grid over the domain, crack-free tessellation to 1e-3 of the
+// bounding box diagonal. The models are the directory in
 // TRIVAR_TSM_DIR (e.g. the Rhino exports published with the seed-002 prototype); the hand-written patch of the
 // tests is always measured.
 #include <benchmark/benchmark.h>
@@ -11,6 +12,7 @@
 
 #include "trivar/io/tsm_format.hpp"
 #include "trivar/tspline/t_spline_surface.hpp"
+#include "trivar/tspline/t_spline_tessellation.hpp"
 
 namespace {
 
@@ -44,6 +46,24 @@ void evaluate(benchmark::State& state, const std::string& path) {
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(u.size()));
 }
 
+// Tessellation to a chordal tolerance of 1e-3 of the bounding box diagonal (one thread).
+void tessellation(benchmark::State& state, const std::string& path) {
+  const trivar::TSplineSurface s(trivar::io::read_tsm(path).spline, 1);
+  trivar::Box<3> b = trivar::Box<3>::empty();
+  for (const auto& e : s.bezier_elements())
+    for (std::size_t i = 0; i < e.coefs.size(); i += 4) {
+      const double x[3] = {e.coefs[i] / e.coefs[i + 3], e.coefs[i + 1] / e.coefs[i + 3], e.coefs[i + 2] / e.coefs[i + 3]};
+      b.extend(x);
+    }
+  std::size_t triangles = 0;
+  for (auto _ : state) {
+    const auto m = trivar::tessellate(s, 1e-3 * b.diagonal(), 64, 1);
+    triangles = m.triangles.size();
+    benchmark::DoNotOptimize(m.points.data());
+  }
+  state.counters["triangles"] = static_cast<double>(triangles);
+}
+
 int register_models() {
   std::vector<std::string> files{std::string(TRIVAR_SOURCE_DIR) + "/tests/data/tsm/bezier_patch.tsm"};
   if (const char* dir = std::getenv("TRIVAR_TSM_DIR"))
@@ -53,9 +73,11 @@ int register_models() {
     const std::string name = std::filesystem::path(f).stem().string();
     benchmark::RegisterBenchmark(("tsm_load_build/" + name).c_str(), load_build, f)->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark(("tsm_eval/" + name).c_str(), evaluate, f)->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(("tsm_tessellate/" + name).c_str(), tessellation, f)->Unit(benchmark::kMillisecond);
   }
   return 0;
 }
 const int registered = register_models();
 
 }  // namespace
+BENCHMARK_MAIN();
