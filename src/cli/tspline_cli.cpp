@@ -121,7 +121,8 @@ void print_tspline_info(const std::string& path, bool json) {
     j["t_connect"] = {{"nodes", ts.connect.nodes.size()}};
     j["t_pointset"] = {{"points", ts.pointset.points.size()}};
     j["classification"] = {{"t_junctions", cls->t_junctions}, {"analysis_suitable", as},
-                           {"crossing_extensions", cls->crossing_extensions}, {"standard", cls->standard},
+                           {"crossing_extensions", cls->crossing_extensions},
+                           {"rectangular_domain", cls->rectangular_domain}, {"standard", cls->standard},
                            {"semi_standard", cls->semi_standard},
                            {"linear_independence", to_string(cls->independence)},
                            {"part42_type", cls->part42_type()}};
@@ -160,9 +161,10 @@ void print_tspline_info(const std::string& path, bool json) {
               fmt(pu.sampled_min).c_str(), fmt(pu.sampled_max).c_str(), fmt(pu.min_sum).c_str(), fmt(pu.max_sum).c_str(),
               pu.elements_off, pu.elements_off == 1 ? "" : "s");
   if (cls)
-    std::printf("  classification: %d T-junctions, analysis-suitable %s (%d crossing extensions), standard %s, "
+    std::printf("  classification: %d T-junctions, analysis-suitable %s (%d crossing extensions%s), standard %s, "
                 "semi-standard %s, blending functions %s; Part 42 type %s\n",
-                cls->t_junctions, as.c_str(), cls->crossing_extensions, cls->standard ? "yes" : "no",
+                cls->t_junctions, as.c_str(), cls->crossing_extensions,
+                cls->rectangular_domain ? "" : "; the domain is not a rectangle", cls->standard ? "yes" : "no",
                 cls->semi_standard ? "yes" : "no", to_string(cls->independence), cls->part42_type().c_str());
   if (l.tsm && !l.tsm->skipped_records.empty()) {
     std::string s;

@@ -55,12 +55,19 @@ TSplineClass classify(const TSpline& ts, const TSplineSurface& surface, bool exa
   TSplineClass c;
   const auto ext = t_junction_extensions(ts);
   c.t_junctions = static_cast<int>(ext.size());
+  double area = 0;
+  for (int f = 0; f < static_cast<int>(ts.image.faces.size()); ++f) {
+    const Box<2> b = ts.image.face_box(f);
+    area += b.extent(0) * b.extent(1);
+  }
+  const Box<2> dom = ts.image.domain();
+  c.rectangular_domain = std::abs(area - dom.extent(0) * dom.extent(1)) <= 1e-12 * dom.extent(0) * dom.extent(1);
   if (ts.degrees[0] % 2 == 1 && ts.degrees[1] % 2 == 1) {
     for (const auto& a : ext)
       for (const auto& b : ext)
         if (a.axis == 0 && b.axis == 1 && a.lo <= b.line && b.line <= a.hi && b.lo <= a.line && a.line <= b.hi)
           ++c.crossing_extensions;
-    c.analysis_suitable = c.crossing_extensions == 0;
+    c.analysis_suitable = c.crossing_extensions == 0 && c.rectangular_domain;
   }
   constexpr double kTol = 1e-12;
   c.standard = surface.partition_of_unity().max_defect <= kTol;

@@ -3,7 +3,10 @@
 //   T-junctions and their extensions (Scott, Li, Sederberg, Hughes 2012): for a T-junction whose missing edge
 //   points along s (t likewise), the face extension runs from it in the missing edge's direction until it has
 //   crossed (p_s + 1) / 2 knot lines, the edge extension the other way until (p_s - 1) / 2; the T-mesh is
-//   analysis-suitable when no s-extension meets a t-extension (odd degrees; even degrees are not classified).
+//   analysis-suitable when no s-extension meets a t-extension (odd degrees; even degrees are not classified) on a
+//   rectangular domain: the theory (Li, Zheng, Sederberg, Hughes, Scott 2012) is for rectangles, and at concave
+//   corners or holes with Bezier end conditions the blending functions need not sum to one (Rhino's mouse
+//   model: no crossing extensions, sums up to 1.08), so a T-mesh of another shape is not called analysis-suitable.
 //   standard: the blending functions sum to one; semi-standard: sum w_i B_i is one (Sederberg et al. 2004);
 //   read off the Bezier coefficients of the sums, exactly up to rounding.
 //   Linear independence by lr/linear_independence (peeling, then the exact rank of the Bezier extraction).
@@ -35,6 +38,7 @@ struct TSplineClass {
   int t_junctions = 0;
   std::optional<bool> analysis_suitable;  // empty for even degrees
   int crossing_extensions = 0;            // pairs of an s- and a t-extension that meet
+  bool rectangular_domain = true;         // the faces fill their bounding box
   bool standard = false;                  // sum B_i = 1
   bool semi_standard = false;             // sum w_i B_i = 1
   Independence independence = Independence::not_tested;
