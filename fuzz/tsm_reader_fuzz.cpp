@@ -1,0 +1,29 @@
+// libFuzzer target for the Rhino .tsm reader: any input must read or throw trivar::Error; every T-spline read
+// must build (blending functions, Bezier elements), evaluate with first derivatives at its domain's corners and
+// centre, classify and tessellate coarsely, throwing nothing but trivar::Error. A violation traps.
+// Build and run: see fuzz/CMakeLists.txt (seeds: fuzz/tsm).
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "spline_checks.hpp"
+#include "trivar/core/error.hpp"
+#include "trivar/io/tsm_format.hpp"
+#include "trivar/tspline/classification.hpp"
+#include "trivar/tspline/t_spline_surface.hpp"
+#include "trivar/tspline/t_spline_tessellation.hpp"
+
+using namespace trivar;
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  try {
+    const io::TsmModel m = io::parse_tsm(std::string_view(reinterpret_cast<const char*>(data), size), "fuzz.tsm");
+    const TSplineSurface s(m.spline, 1);
+    double out[9];
+    for (int corner = 0; corner <= 4; ++corner) s.eval_first_derivatives(fuzz::corner_or_centre(s.domain(), corner), out);
+    classify(m.spline, s, false);
+    if (s.elements().size() < 256) tessellate(s, 1e-2 * s.domain().diagonal() + 1e-9, 2, 1);
+  } catch (const Error&) {
+  }
+  return 0;
+}
