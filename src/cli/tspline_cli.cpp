@@ -221,13 +221,18 @@ void convert_tspline(const std::string& in, const std::string& out, const TSplin
     io::write_lr(out, lr);
     return;
   }
+  if (ext == ".tsm") {
+    require(l.layers.has_value(), "convert: " + in + " holds the blending functions only; .tsm needs the three layers");
+    io::write_tsm(out, *l.layers);
+    return;
+  }
   if (ext == ".json") {
     require(l.layers.has_value(), "convert: " + in + " holds the blending functions only; the JSON form needs the three layers");
     io::write_t_spline_json(out, *l.layers);
     return;
   }
   require(ext == ".vtu" || ext == ".stl" || ext == ".obj",
-          "convert: a T-spline converts to .stp/.step, .lr, .json, .vtu, .stl or .obj, not '" + ext + "'");
+          "convert: a T-spline converts to .stp/.step, .tsm, .lr, .json, .vtu, .stl or .obj, not '" + ext + "'");
   if (ext == ".vtu" && !o.triangles) {
     io::write_t_spline_vtu(out, surf);
     return;

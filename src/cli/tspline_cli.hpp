@@ -19,7 +19,7 @@ struct TSplineConvertOptions {
   double tolerance = 0;                // tessellations: chordal tolerance; 0: 1e-3 of the bounding box diagonal
   bool triangles = false;              // .vtu: the tessellation instead of exact Bezier cells
 };
-// To .stp/.step, .lr (when the T-spline is an LR spline), .json, .vtu, .stl, .obj.
+// To .stp/.step, .tsm, .lr (when the T-spline is an LR spline), .json, .vtu, .stl, .obj.
 void convert_tspline(const std::string& in, const std::string& out, const TSplineConvertOptions& options);
 
 }  // namespace trivar::cli

@@ -6,6 +6,7 @@
 #include "trivar/core/error.hpp"
 #include "trivar/io/tsm_format.hpp"
 #include "trivar/spline/tensor_spline.hpp"
+#include "trivar/tspline/t_mesh_builder.hpp"
 #include "trivar/tspline/t_spline_surface.hpp"
 
 namespace trivar {
@@ -98,6 +99,52 @@ TEST(Tsm, MalformedFilesGiveOneLineErrors) {
   expect_error(replaced(p, "0m cg 0 4 1 0 0 1 4 5 6", "0m cg 0 4 1 0 0 1 4 5"), "grip block");
   expect_error(replaced(p, "0m gvp 3", "0m gv 3"), "neither a primary grip nor in a grip block");
   expect_error(replaced(p, "f 0 0", "f 9 0"), "does not exist");
+}
+
+}  // namespace
+}  // namespace trivar
+
+namespace trivar {
+namespace {
+
+std::string t_junction_text() {
+  std::vector<KnotSegment> g;
+  for (int i = 0; i <= 6; ++i) {
+    g.push_back({{0.0, double(i)}, {6.0, double(i)}});
+    g.push_back({{double(i), 0.0}, {double(i), i == 3 ? 3.0 : 6.0}});
+  }
+  const TSpline ts = t_spline_from_segments({3, 3}, g, [](double s, double t, int a, int b) {
+    return RationalPoint{{s + 0.1 * a, t + 0.1 * b, std::sin(s + t)}, 1.0 + 0.01 * s};
+  });
+  std::ostringstream os;
+  io::write_tsm(os, ts);
+  return os.str();
+}
+
+TEST(Tsm, WrittenAndReadBackGivesTheSameSurface) {
+  // The hand-written patch, and a T-junction mesh written by trivar.
+  for (const std::string& text : {patch_text(), t_junction_text()}) {
+    const io::TsmModel a = io::parse_tsm(text, "a.tsm");
+    std::ostringstream out;
+    io::write_tsm(out, a.spline);
+    const io::TsmModel b = io::parse_tsm(out.str(), "b.tsm");
+    EXPECT_EQ(b.spline.connect.nodes.size(), a.spline.connect.nodes.size());
+    EXPECT_EQ(b.report.repeated_knot_nodes, a.report.repeated_knot_nodes);
+    const TSplineSurface sa(a.spline), sb(b.spline);
+    const Box<2> dom = sa.domain();
+    for (double fs : {0.0, 0.3, 0.8, 1.0})
+      for (double ft : {0.0, 0.45, 1.0}) {
+        const double s = dom.lo[0] + fs * dom.extent(0), t = dom.lo[1] + ft * dom.extent(1);
+        double x[9], y[9];
+        sa.eval_first_derivatives({s, t}, x);
+        sb.eval_first_derivatives({s, t}, y);
+        for (int d = 0; d < 9; ++d) EXPECT_EQ(x[d], y[d]);
+      }
+    // Written again, the same text.
+    std::ostringstream again;
+    io::write_tsm(again, b.spline);
+    EXPECT_EQ(again.str(), out.str());
+  }
 }
 
 }  // namespace

@@ -8,7 +8,9 @@
 #include <sstream>
 #include <vector>
 
+#include "trivar/core/atomic_file.hpp"
 #include "trivar/core/error.hpp"
+#include "trivar/core/number_format.hpp"
 
 namespace trivar::io {
 
@@ -500,6 +502,179 @@ TsmModel read_tsm(const std::string& path) {
   std::stringstream ss;
   ss << f.rdbuf();
   return parse_tsm(ss.str(), path);
+}
+
+}  // namespace trivar::io
+
+namespace trivar::io {
+
+namespace {
+
+int compass(const TImage& im, int l) {
+  const TVertex& a = im.vertices[static_cast<std::size_t>(im.link_start(l))];
+  const TVertex& b = im.vertices[static_cast<std::size_t>(im.link_end(l))];
+  return a.s == b.s ? (b.t > a.t ? 0 : 2) : (b.s > a.s ? 3 : 1);
+}
+
+}  // namespace
+
+void write_tsm(std::ostream& os, const TSpline& ts) {
+  validate(ts);
+  require(ts.degrees[0] == ts.degrees[1] && ts.degrees[0] % 2 == 1,
+          "TSM: the format holds one odd degree for both directions");
+  const TImage& im = ts.image;
+  const int nl = static_cast<int>(im.links.size());
+  // Faces of links, and for the links outside every face the next link along the boundary.
+  std::vector<int> face(static_cast<std::size_t>(nl), -1), next(static_cast<std::size_t>(nl), -1),
+      prev(static_cast<std::size_t>(nl), -1), flag(static_cast<std::size_t>(nl), 0);
+  for (int f = 0; f < static_cast<int>(im.faces.size()); ++f) {
+    const auto& loop = im.faces[static_cast<std::size_t>(f)].loop;
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const int l = loop[i], n = loop[(i + 1) % loop.size()], p = loop[(i + loop.size() - 1) % loop.size()];
+      face[static_cast<std::size_t>(l)] = f;
+      next[static_cast<std::size_t>(l)] = n;
+      prev[static_cast<std::size_t>(l)] = p;
+      flag[static_cast<std::size_t>(l)] = compass(im, p) == compass(im, l) ? 1 : 0;
+    }
+  }
+  for (int l = 0; l < nl; ++l) {
+    if (face[static_cast<std::size_t>(l)] >= 0) continue;
+    // The outside turns the other way round: at the end vertex take the outgoing boundary link turning right
+    // first (the outside region on the left of a clockwise boundary walk).
+    const int d = compass(im, l);
+    const TVertex& v = im.vertices[static_cast<std::size_t>(im.link_end(l))];
+    int n = -1;
+    for (int turn : {3, 0, 1}) {
+      const int c = v.links[static_cast<std::size_t>((d + turn) % 4)];
+      if (c >= 0 && face[static_cast<std::size_t>(c)] < 0) {
+        n = c;
+        break;
+      }
+    }
+    require(n >= 0, "TSM: the boundary is not a simple loop at vertex " + std::to_string(im.link_end(l)));
+    next[static_cast<std::size_t>(l)] = n;
+    prev[static_cast<std::size_t>(n)] = l;
+  }
+  for (int l = 0; l < nl; ++l)
+    if (face[static_cast<std::size_t>(l)] < 0) {
+      const int turn = (compass(im, l) - compass(im, prev[static_cast<std::size_t>(l)]) + 4) % 4;
+      flag[static_cast<std::size_t>(l)] = turn == 0 ? 1 : turn == 3 ? 2 : 0;  // angle of the outside at the vertex
+    }
+  // The opposite link of every link: the other link of its edge.
+  std::vector<std::array<int, 2>> edge_links(im.edges.size(), {-1, -1});
+  for (int l = 0; l < nl; ++l) edge_links[static_cast<std::size_t>(im.links[static_cast<std::size_t>(l)].edge)][im.links[static_cast<std::size_t>(l)].sense ? 0 : 1] = l;
+  for (const auto& e : edge_links) require(e[0] >= 0 && e[1] >= 0, "TSM: an edge needs both its links");
+  const auto opp = [&](int l) {
+    const auto& e = edge_links[static_cast<std::size_t>(im.links[static_cast<std::size_t>(l)].edge)];
+    return e[0] == l ? e[1] : e[0];
+  };
+  // Node blocks per vertex: positions along the coincident-neighbour chains from the vertex's first node.
+  const std::size_t nv = im.vertices.size();
+  std::vector<std::vector<int>> on(nv);
+  for (int n = 0; n < static_cast<int>(ts.connect.nodes.size()); ++n) {
+    const TNode& x = ts.connect.nodes[static_cast<std::size_t>(n)];
+    require(x.kind == TAnchorKind::vertex, "TSM: node " + std::to_string(n) + " is not on a vertex");
+    on[static_cast<std::size_t>(x.anchor)].push_back(n);
+  }
+  static constexpr std::array<std::array<int, 2>, 4> step{{{0, 1}, {-1, 0}, {0, -1}, {1, 0}}};
+  std::vector<int> grip_of(ts.connect.nodes.size(), -1);
+  std::vector<int> grip_node;  // grips in order: the primaries first (vertex order), then the blocks
+  std::vector<std::string> blocks;
+  for (std::size_t v = 0; v < nv; ++v) {
+    if (on[v].empty()) continue;
+    grip_of[static_cast<std::size_t>(on[v][0])] = static_cast<int>(grip_node.size());
+    grip_node.push_back(on[v][0]);
+  }
+  std::vector<int> grip_vertex(grip_node.size());
+  for (std::size_t g = 0; g < grip_node.size(); ++g) grip_vertex[g] = ts.connect.nodes[static_cast<std::size_t>(grip_node[g])].anchor;
+  for (std::size_t v = 0; v < nv; ++v) {
+    if (on[v].size() < 2) continue;
+    std::map<std::array<int, 2>, int> at{{{0, 0}, on[v][0]}};
+    std::map<int, std::array<int, 2>> pos{{on[v][0], {0, 0}}};
+    std::vector<int> todo{on[v][0]};
+    while (!todo.empty()) {
+      const int n = todo.back();
+      todo.pop_back();
+      for (int d = 0; d < 4; ++d) {
+        const int m = ts.connect.nodes[static_cast<std::size_t>(n)].neighbours[static_cast<std::size_t>(d)];
+        if (m < 0 || ts.connect.nodes[static_cast<std::size_t>(m)].anchor != static_cast<int>(v) || pos.count(m)) continue;
+        const std::array<int, 2> p{pos[n][0] + step[static_cast<std::size_t>(d)][0], pos[n][1] + step[static_cast<std::size_t>(d)][1]};
+        pos[m] = p;
+        at[p] = m;
+        todo.push_back(m);
+      }
+    }
+    require(pos.size() == on[v].size(), "TSM: the nodes of vertex " + std::to_string(v) + " are not one block");
+    std::array<int, 4> dims{0, 0, 0, 0};
+    for (const auto& [p, n] : at)
+      for (int d = 0; d < 4; ++d) {
+        const int along = p[0] * step[static_cast<std::size_t>(d)][0] + p[1] * step[static_cast<std::size_t>(d)][1];
+        dims[static_cast<std::size_t>(d)] = std::max(dims[static_cast<std::size_t>(d)], along);
+      }
+    std::ostringstream rec;
+    rec << "0m cg " << v << " 4";
+    for (int d : dims) rec << ' ' << d;
+    std::size_t listed = 0;
+    for (int k = 0; k < 4; ++k)
+      for (int i = 1; i <= dims[static_cast<std::size_t>(k)]; ++i)
+        for (int j = 0; j <= dims[static_cast<std::size_t>((k + 1) % 4)]; ++j) {
+          const auto& a = step[static_cast<std::size_t>(k)];
+          const auto& c = step[static_cast<std::size_t>((k + 1) % 4)];
+          auto it = at.find({i * a[0] + j * c[0], i * a[1] + j * c[1]});
+          if (it == at.end()) {
+            rec << " -1";
+            continue;
+          }
+          grip_of[static_cast<std::size_t>(it->second)] = static_cast<int>(grip_node.size());
+          grip_node.push_back(it->second);
+          grip_vertex.push_back(static_cast<int>(v));
+          rec << ' ' << grip_of[static_cast<std::size_t>(it->second)];
+          ++listed;
+        }
+    require(listed + 1 == on[v].size(), "TSM: the nodes of vertex " + std::to_string(v) + " do not fit the four wedges of a grip block");
+    blocks.push_back(rec.str());
+  }
+  os << "#TS0200\n\ndegree " << ts.degrees[0] << "\ncap-type 1\nstar-smoothness 0\nunits 1 millimeters\n"
+     << "force-bezier-end-conditions " << (ts.force_bezier ? 1 : 0) << '\n';
+  for (const TFace& f : im.faces) os << "f " << f.loop.front() << " 0\n";
+  for (std::size_t e = 0; e < im.edges.size(); ++e) {
+    const Box<2> b = im.edge_box(static_cast<int>(e));
+    os << "e " << edge_links[e][0] << ' ';
+    write_number(os, b.extent(0) + b.extent(1));
+    os << '\n';
+  }
+  for (const TVertex& x : im.vertices) {
+    int d = 0;
+    while (x.links[static_cast<std::size_t>(d)] < 0) ++d;
+    static constexpr std::array<const char*, 4> kName{"NORTH", "WEST", "SOUTH", "EAST"};
+    os << "v " << x.links[static_cast<std::size_t>(d)] << ' ' << kName[static_cast<std::size_t>(d)] << '\n';
+  }
+  for (int l = 0; l < nl; ++l)
+    os << "l " << prev[static_cast<std::size_t>(l)] << ' ' << next[static_cast<std::size_t>(l)] << ' ' << opp(l) << ' '
+       << im.link_start(l) << ' ' << face[static_cast<std::size_t>(l)] << ' ' << im.links[static_cast<std::size_t>(l)].edge
+       << ' ' << flag[static_cast<std::size_t>(l)] << '\n';
+  for (const TEdgeCondition& c : im.conditions) os << "ec " << c.edge << ' ' << (c.flag ? 1 : 0) << '\n';
+  os << "0m odd-grip-map\n";
+  for (std::size_t g = 0; g < grip_node.size(); ++g)
+    os << "0m " << (grip_of[static_cast<std::size_t>(on[static_cast<std::size_t>(grip_vertex[g])][0])] == static_cast<int>(g) ? "gvp " : "gv ")
+       << grip_vertex[g] << '\n';
+  for (const std::string& b : blocks) os << b << '\n';
+  for (int n : grip_node) {
+    const RationalPoint& p = ts.pointset.points[static_cast<std::size_t>(ts.connect.nodes[static_cast<std::size_t>(n)].point)];
+    os << "0g";
+    for (double x : {p.xyz[0], p.xyz[1], p.xyz[2], p.w}) {
+      os << ' ';
+      write_number(os, x);
+    }
+    os << '\n';
+  }
+  os << "\ntol 1e-05\nver 1\n";
+}
+
+void write_tsm(const std::string& path, const TSpline& ts) {
+  std::ostringstream text;
+  write_tsm(text, ts);
+  write_file_atomically(path, [&](std::ostream& os) { os << text.str(); });
 }
 
 }  // namespace trivar::io

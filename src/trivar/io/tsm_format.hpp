@@ -20,6 +20,7 @@
 // from vertex 0, with values that agree to 1e-9 of the domain size merged (interval sums are rounded).
 // Star points (extraordinary interior vertices) have no global (s, t) parametrisation: they are detected and
 // counted, and the file is refused with a message naming them.
+#include <iosfwd>
 #include <map>
 #include <string>
 #include <string_view>
@@ -51,5 +52,13 @@ struct TsmModel {
 // match the grip map.
 TsmModel parse_tsm(std::string_view text, const std::string& name);
 TsmModel read_tsm(const std::string& path);
+
+// Writes an odd-degree T-spline whose nodes sit on vertices in the same format (vertex frames = the T-image's
+// directions; each vertex's nodes become its primary grip, the first node on it, and a grip block at their
+// positions along the coincident-neighbour chains), so that read_tsm gives the same surface. Throws
+// trivar::Error for even degrees, nodes on links or faces, a vertex whose nodes are not one block, or a domain
+// boundary that is not a simple loop at a vertex. Written atomically; nothing is written on error.
+void write_tsm(std::ostream& os, const TSpline& ts);
+void write_tsm(const std::string& path, const TSpline& ts);
 
 }  // namespace trivar::io
