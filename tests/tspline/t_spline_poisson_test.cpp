@@ -1,0 +1,68 @@
+// Poisson on an analysis-suitable T-mesh: the unit square, n x n cells whose line s = 1/2 stops at t = 1/2 (one
+// T-junction), bicubic, geometry the identity (control points at the Greville points of the local knots, which
+// AS T-splines reproduce). The T-spline is an LR spline (its blending functions sum to one), solved by the LR
+// Poisson code; -lap u = 2 pi^2 u with u = sin(pi x) sin(pi y): optimal rates h^4 (L2) and h^3 (H1).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "trivar/iga/benchmark_problems.hpp"
+#include "trivar/iga/lr_poisson.hpp"
+#include "trivar/iga/solver.hpp"
+#include "trivar/lr/knot_line_mesh.hpp"
+#include "trivar/tspline/classification.hpp"
+#include "trivar/tspline/local_knots.hpp"
+#include "trivar/tspline/t_mesh_builder.hpp"
+
+namespace trivar {
+namespace {
+
+LRSpline<2> as_t_mesh_geometry(int n) {
+  std::vector<KnotSegment> g;
+  for (int i = 0; i <= n; ++i) {
+    const double x = double(i) / n;
+    g.push_back({{0.0, x}, {1.0, x}});
+    g.push_back({{x, 0.0}, {x, i == n / 2 ? 0.5 : 1.0}});
+  }
+  TSpline ts = t_spline_from_segments({3, 3}, g, [](double, double, int, int) { return RationalPoint{}; });
+  const auto knots = local_knot_vectors(ts);
+  for (std::size_t i = 0; i < knots.size(); ++i) {  // Greville points: the identity map
+    RationalPoint& p = ts.pointset.points[static_cast<std::size_t>(ts.connect.nodes[i].point)];
+    for (int k = 0; k < 2; ++k) {
+      const auto& t = knots[i][static_cast<std::size_t>(k)];
+      p.xyz[static_cast<std::size_t>(k)] = (t[1] + t[2] + t[3]) / 3.0;
+    }
+  }
+  const TSplineSurface surf(ts);
+  EXPECT_TRUE(classify(ts, surf).analysis_suitable.value());
+  std::vector<LRBSpline<2>> basis(surf.basis().begin(), surf.basis().end());
+  for (auto& b : basis) b.coef.resize(2);  // polynomial, (x, y)
+  auto mesh = knot_line_mesh<2>(basis);
+  return LRSpline<2>({3, 3}, 2, false, std::move(basis), std::move(mesh));
+}
+
+TEST(TSplinePoisson, AnalysisSuitableTMeshConvergesAtTheOptimalRate) {
+  const PoissonBenchmark<2> b = sine_box<2>(3, 4);  // its problem and exact solution on the unit square
+  auto solver = make_solver("cholmod");
+  double prev_l2 = 0, prev_h1 = 0;
+  for (int n : {4, 8, 16, 32}) {
+    const LRSpline<2> geo = as_t_mesh_geometry(n);
+    // The geometry is the identity: x(s, t) = (s, t).
+    double x[2];
+    geo.eval({0.3, 0.7}, x);
+    EXPECT_NEAR(x[0], 0.3, 1e-13);
+    EXPECT_NEAR(x[1], 0.7, 1e-13);
+    const auto elements = lr_element_bases(geo);
+    const SolveResult r = solve_poisson(geo, elements, b.problem, *solver);
+    const ErrorNorms e = error_norms<2>(geo, elements, r.coefs, 1, b.exact);
+    if (prev_l2 > 0) {  // measured: L2 rates 3.25, 4.21, 4.38; H1 2.69, 3.27, 3.35
+      EXPECT_GT(std::log2(prev_l2 / e.l2), n == 8 ? 3.0 : 3.6) << n;
+      EXPECT_GT(std::log2(prev_h1 / e.h1), n == 8 ? 2.5 : 2.8) << n;
+    }
+    prev_l2 = e.l2;
+    prev_h1 = e.h1;
+  }
+}
+
+}  // namespace
+}  // namespace trivar
