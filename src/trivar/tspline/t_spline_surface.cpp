@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "trivar/core/error.hpp"
+#include "trivar/core/memory_budget.hpp"
 #include "trivar/core/parallel.hpp"
 #include "trivar/spline/basis.hpp"
 #include "trivar/tspline/local_knots.hpp"
@@ -70,6 +71,10 @@ void TSplineSurface::build(const std::vector<Box<2>>& regions, int threads) {
     domain_.hi[k] = lines_[k].back();
   }
   const std::size_t nu = lines_[0].size() - 1, nv = lines_[1].size() - 1;
+  // The cell grid (and a Bezier net per covered cell) grows with the product of the distinct knot counts.
+  const int P = (degrees_[0] + 1) * (degrees_[1] + 1);
+  require_memory(static_cast<double>(nu) * static_cast<double>(nv) * (5.0 + 32.0 * P),
+                 "T-spline Bezier elements on a " + std::to_string(nu) + " x " + std::to_string(nv) + " knot grid");
   cell_element_.assign(nu * nv, -1);
   std::vector<char> covered(nu * nv, 0);
   for (const Box<2>& b : regions) {
@@ -91,7 +96,6 @@ void TSplineSurface::build(const std::vector<Box<2>>& regions, int threads) {
   supports_ = trivar::element_supports<2>(basis_, elements_, threads);
 
   // One extraction operator per element gives both the Bezier net and the partition-of-unity coefficients.
-  const int P = (degrees_[0] + 1) * (degrees_[1] + 1);
   bezier_.resize(elements_.size());
   std::vector<PartitionOfUnity> per(elements_.size());
   parallel_for(static_cast<std::ptrdiff_t>(elements_.size()), threads, [&](std::ptrdiff_t e) {

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "trivar/core/error.hpp"
+#include "trivar/core/memory_budget.hpp"
 #include "trivar/core/parallel.hpp"
 
 namespace trivar {
@@ -74,6 +75,8 @@ TSplineTriangulation tessellate(const TSplineSurface& surface, double tolerance,
     samples[k].push_back(lines[k].back());
   }
   const std::size_t ns = samples[0].size(), nt = samples[1].size();
+  require_memory(static_cast<double>(ns) * static_cast<double>(nt) * (4.0 + 2 * 24.0 + 2 * 12.0),
+                 "a T-spline tessellation on a " + std::to_string(ns) + " x " + std::to_string(nt) + " sample lattice");
   // Lattice points used by an element get an id.
   std::vector<int> id(ns * nt, -1);
   TSplineTriangulation out;
