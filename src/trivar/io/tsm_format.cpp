@@ -407,16 +407,17 @@ TsmModel Reader::build() {
       const int v = number<int>(r, 1, "vertex");
       if (v < 0 || v >= nv || vmap[static_cast<std::size_t>(v)] < 0) fail(r.line, "grip block names vertex " + std::to_string(v) + ", which does not exist");
       if (number<int>(r, 2, "valence") != 4) fail(r.line, "grip block of valence other than 4 (a star point)");
-      int count = 0;
+      long long count = 0;
       for (int k = 0; k < 4; ++k) b.dims[static_cast<std::size_t>(k)] = number<int>(r, 3 + static_cast<std::size_t>(k), "block size");
       for (int k = 0; k < 4; ++k) {
-        if (b.dims[static_cast<std::size_t>(k)] < 0) fail(r.line, "negative grip block size");
-        count += b.dims[static_cast<std::size_t>(k)] * (b.dims[static_cast<std::size_t>((k + 1) % 4)] + 1);
+        const int d = b.dims[static_cast<std::size_t>(k)];
+        if (d < 0 || static_cast<std::size_t>(d) > r.words.size()) fail(r.line, "grip block size " + std::to_string(d) + " out of range");
+        count += static_cast<long long>(d) * (b.dims[static_cast<std::size_t>((k + 1) % 4)] + 1LL);
       }
-      if (r.words.size() != static_cast<std::size_t>(7 + count))
+      if (static_cast<long long>(r.words.size()) != 7 + count)
         fail(r.line, "grip block of vertex " + std::to_string(v) + " lists " + std::to_string(r.words.size() - 7) +
                          " grips, its sizes need " + std::to_string(count));
-      for (int i = 0; i < count; ++i) {
+      for (long long i = 0; i < count; ++i) {
         const int g = number<int>(r, 7 + static_cast<std::size_t>(i), "grip");
         if (g < -1 || g >= ng) fail(r.line, "grip block names grip " + std::to_string(g) + ", which does not exist");
         b.grips.push_back(g);
