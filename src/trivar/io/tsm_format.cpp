@@ -646,7 +646,8 @@ void write_tsm(std::ostream& os, const TSpline& ts) {
   }
   for (const TVertex& x : im.vertices) {
     int d = 0;
-    while (x.links[static_cast<std::size_t>(d)] < 0) ++d;
+    while (d < 4 && x.links[static_cast<std::size_t>(d)] < 0) ++d;
+    require(d < 4, "TSM: a vertex without edges");
     static constexpr std::array<const char*, 4> kName{"NORTH", "WEST", "SOUTH", "EAST"};
     os << "v " << x.links[static_cast<std::size_t>(d)] << ' ' << kName[static_cast<std::size_t>(d)] << '\n';
   }
