@@ -1,0 +1,198 @@
+#include "trivar/hier/hierarchical_evaluator.hpp"
+
+#include <algorithm>
+
+#include "trivar/core/error.hpp"
+#include "trivar/core/parallel.hpp"
+#include "trivar/hier/local_tensor.hpp"
+#include "trivar/spline/derivative_index.hpp"
+
+namespace trivar {
+
+template <int D>
+HierarchicalEvaluator<D>::HierarchicalEvaluator(const HierarchicalSpace<D>& space, int dim, bool rational,
+                                                std::span<const double> coefs, int threads)
+    : degrees_(space.degrees()), dim_(dim), rational_(rational), local_(space.local_size()) {
+  const int st = stride();
+  require(coefs.size() == static_cast<std::size_t>(space.num_basis()) * st, "hier: coefficient count does not match the space");
+  const int E = space.num_elements();
+  nets_.resize(static_cast<std::size_t>(E) * local_ * st);
+  boxes_ = space.element_boxes();
+  parallel_for(E, threads, [&](std::ptrdiff_t e) {
+    const HierarchicalCell<D> c = space.element(static_cast<int>(e));
+    double* net = nets_.data() + e * local_ * st;
+    space.local_expansion(c.level, c.index, coefs, st, net);
+    Ints<D> n;
+    std::array<std::vector<double>, D> B;
+    std::array<const double*, D> M;
+    for (int k = 0; k < D; ++k) {
+      n[k] = degrees_[k] + 1;
+      B[k].resize(static_cast<std::size_t>(n[k] * n[k]));
+      space.hierarchy().local_bezier(c.level, k, c.index[k], B[k].data());
+      M[k] = B[k].data();
+    }
+    std::vector<double> tmp;
+    apply_kronecker<D>(n, M, st, 1, net, tmp);
+  });
+}
+
+template <int D>
+std::span<const double> HierarchicalEvaluator<D>::net(int e) const {
+  const std::size_t size = static_cast<std::size_t>(local_) * stride();
+  return {nets_.data() + static_cast<std::size_t>(e) * size, size};
+}
+
+namespace {
+
+// Bernstein values of degree p at t in [0, 1] (triangular scheme, p(p+1)/2 multiply-adds) and optionally the
+// derivatives p (b^{p-1}_{i-1} - b^{p-1}_i) / h.
+inline void bernstein(int p, double t, double inv_h, double* b, double* db) {
+  const double s = 1.0 - t;
+  b[0] = 1.0;
+  for (int j = 1; j <= p; ++j) {
+    if (db && j == p) {
+      for (int i = 0; i <= p; ++i) db[i] = p * inv_h * ((i > 0 ? b[i - 1] : 0.0) - (i < p ? b[i] : 0.0));
+    }
+    double saved = 0.0;
+    for (int r = 0; r < j; ++r) {
+      const double tmp = b[r];
+      b[r] = saved + s * tmp;
+      saved = t * tmp;
+    }
+    b[j] = saved;
+  }
+  if (db && p == 0) db[0] = 0.0;
+}
+
+}  // namespace
+
+template <int D>
+void HierarchicalEvaluator<D>::eval(const HierarchicalSpace<D>& space, const Param<D>& u, double* out) const {
+  const Box<D> dom = space.domain();
+  Param<D> x;
+  for (int k = 0; k < D; ++k) x[k] = std::clamp(u[k], dom.lo[k], dom.hi[k]);
+  const int e = space.find_element(x);
+  const Box<D>& box = boxes_[static_cast<std::size_t>(e)];
+  double b[D][kMaxDegree + 1];
+  for (int k = 0; k < D; ++k) bernstein(degrees_[k], (x[k] - box.lo[k]) / box.extent(k), 0.0, b[k], nullptr);
+  const int st = stride(), n0 = degrees_[0] + 1;
+  const double* net = nets_.data() + static_cast<std::size_t>(e) * local_ * st;
+  double acc[8] = {};
+  double* h = st <= 8 ? acc : nullptr;
+  std::vector<double> big;
+  if (!h) {
+    big.assign(static_cast<std::size_t>(st), 0.0);
+    h = big.data();
+  }
+  // Sum over the rows along u of the tensor: row weight from the other directions, then the u contraction.
+  const int rows = local_ / n0;
+  for (int r = 0; r < rows; ++r) {
+    double w = 1.0;
+    for (int k = 1, q = r; k < D; q /= degrees_[k] + 1, ++k) w *= b[k][q % (degrees_[k] + 1)];
+    const double* row = net + static_cast<std::size_t>(r) * n0 * st;
+    for (int a = 0; a < n0; ++a) {
+      const double f = w * b[0][a];
+      for (int s = 0; s < st; ++s) h[s] += f * row[a * st + s];
+    }
+  }
+  if (rational_)
+    for (int s = 0; s < dim_; ++s) out[s] = h[s] / h[dim_];
+  else
+    std::copy(h, h + dim_, out);
+}
+
+template <int D>
+void HierarchicalEvaluator<D>::eval_first_derivatives(const HierarchicalSpace<D>& space, const Param<D>& u,
+                                                      double* out) const {
+  const Box<D> dom = space.domain();
+  Param<D> x;
+  for (int k = 0; k < D; ++k) x[k] = std::clamp(u[k], dom.lo[k], dom.hi[k]);
+  const int e = space.find_element(x);
+  const Box<D>& box = boxes_[static_cast<std::size_t>(e)];
+  double b[D][kMaxDegree + 1], db[D][kMaxDegree + 1];
+  for (int k = 0; k < D; ++k)
+    bernstein(degrees_[k], (x[k] - box.lo[k]) / box.extent(k), 1.0 / box.extent(k), b[k], db[k]);
+  const int st = stride();
+  const double* net = nets_.data() + static_cast<std::size_t>(e) * local_ * st;
+  std::vector<double> hv(static_cast<std::size_t>((D + 1) * st), 0.0);
+  Ints<D> a{};
+  for (int q = 0; q < local_; ++q) {
+    double w[D + 1];
+    w[0] = 1.0;
+    for (int k = 0; k < D; ++k) w[0] *= b[k][a[k]];
+    for (int d = 0; d < D; ++d) {
+      w[d + 1] = 1.0;
+      for (int k = 0; k < D; ++k) w[d + 1] *= k == d ? db[k][a[k]] : b[k][a[k]];
+    }
+    const double* c = net + static_cast<std::size_t>(q) * st;
+    for (int d = 0; d <= D; ++d)
+      for (int s = 0; s < st; ++s) hv[static_cast<std::size_t>(d * st + s)] += w[d] * c[s];
+    for (int k = 0; k < D && ++a[k] == degrees_[k] + 1; ++k) a[k] = 0;
+  }
+  for (int d = 0; d <= D; ++d)
+    for (int s = 0; s < dim_; ++s) {
+      double v = hv[static_cast<std::size_t>(d * st + s)];
+      if (rational_) {
+        const double w0 = hv[static_cast<std::size_t>(dim_)];
+        v = d == 0 ? v / w0 : (v - hv[static_cast<std::size_t>(d * st + dim_)] * (hv[static_cast<std::size_t>(s)] / w0)) / w0;
+      }
+      out[d * dim_ + s] = v;
+    }
+}
+
+template <int D>
+void HierarchicalEvaluator<D>::eval_derivs(const HierarchicalSpace<D>& space, const Param<D>& u, int order,
+                                           double* out) const {
+  require(order >= 0 && order <= kMaxDerivativeOrder, "hier: derivative order " + std::to_string(order) + " out of range");
+  const Box<D> dom = space.domain();
+  Param<D> x;
+  for (int k = 0; k < D; ++k) x[k] = std::clamp(u[k], dom.lo[k], dom.hi[k]);
+  const int e = space.find_element(x);
+  const Box<D>& box = boxes_[static_cast<std::size_t>(e)];
+  std::array<std::vector<double>, D> B;
+  for (int k = 0; k < D; ++k) {
+    B[k].resize(static_cast<std::size_t>((order + 1) * (degrees_[k] + 1)));
+    bernstein_derivatives(degrees_[k], box.lo[k], box.hi[k], x[k], order, B[k].data());
+  }
+  const auto table = derivative_multi_indices<D>(order);
+  const int nd = static_cast<int>(table.size()), st = stride();
+  const double* net = nets_.data() + static_cast<std::size_t>(e) * local_ * st;
+  std::vector<double> h(static_cast<std::size_t>(nd * st), 0.0);
+  for (int d = 0; d < nd; ++d) {
+    Ints<D> a{};
+    for (int q = 0; q < local_; ++q) {
+      double w = 1.0;
+      for (int k = 0; k < D; ++k) w *= B[k][static_cast<std::size_t>(table[static_cast<std::size_t>(d)][k] * (degrees_[k] + 1) + a[k])];
+      for (int s = 0; s < st; ++s) h[static_cast<std::size_t>(d * st + s)] += w * net[static_cast<std::size_t>(q * st + s)];
+      for (int k = 0; k < D && ++a[k] == degrees_[k] + 1; ++k) a[k] = 0;
+    }
+  }
+  // Generalised quotient rule, as TensorSpline::eval_derivs: S^(a) = (A^(a) - sum_{0 < b <= a} C(a,b) w^(b) S^(a-b)) / w.
+  for (int d = 0; d < nd; ++d) {
+    double* s = out + static_cast<std::size_t>(d) * dim_;
+    for (int c = 0; c < dim_; ++c) s[c] = h[static_cast<std::size_t>(d * st + c)];
+    if (!rational_) continue;
+    const auto& alpha = table[static_cast<std::size_t>(d)];
+    for (int bi = 1; bi <= d; ++bi) {
+      const auto& beta = table[static_cast<std::size_t>(bi)];
+      bool le = true;
+      double f = 1.0;
+      std::array<int, D> diff;
+      for (int k = 0; k < D; ++k) {
+        le = le && beta[k] <= alpha[k];
+        diff[k] = alpha[k] - beta[k];
+        f *= static_cast<double>(binomial(alpha[k], beta[k]));
+      }
+      if (!le) continue;
+      f *= h[static_cast<std::size_t>(bi * st + dim_)];
+      const double* prev = out + static_cast<std::size_t>(derivative_position<D>(diff)) * dim_;
+      for (int c = 0; c < dim_; ++c) s[c] -= f * prev[c];
+    }
+    for (int c = 0; c < dim_; ++c) s[c] /= h[static_cast<std::size_t>(dim_)];
+  }
+}
+
+template class HierarchicalEvaluator<2>;
+template class HierarchicalEvaluator<3>;
+
+}  // namespace trivar
