@@ -9,44 +9,13 @@
 
 namespace trivar {
 
-template <int D>
-HierarchicalEvaluator<D>::HierarchicalEvaluator(const HierarchicalSpace<D>& space, int dim, bool rational,
-                                                std::span<const double> coefs, int threads)
-    : degrees_(space.degrees()), dim_(dim), rational_(rational), local_(space.local_size()) {
-  const int st = stride();
-  require(coefs.size() == static_cast<std::size_t>(space.num_basis()) * st, "hier: coefficient count does not match the space");
-  const int E = space.num_elements();
-  nets_.resize(static_cast<std::size_t>(E) * local_ * st);
-  boxes_ = space.element_boxes();
-  parallel_for(E, threads, [&](std::ptrdiff_t e) {
-    const HierarchicalCell<D> c = space.element(static_cast<int>(e));
-    double* net = nets_.data() + e * local_ * st;
-    space.local_expansion(c.level, c.index, coefs, st, net);
-    Ints<D> n;
-    std::array<std::vector<double>, D> B;
-    std::array<const double*, D> M;
-    for (int k = 0; k < D; ++k) {
-      n[k] = degrees_[k] + 1;
-      B[k].resize(static_cast<std::size_t>(n[k] * n[k]));
-      space.hierarchy().local_bezier(c.level, k, c.index[k], B[k].data());
-      M[k] = B[k].data();
-    }
-    std::vector<double> tmp;
-    apply_kronecker<D>(n, M, st, 1, net, tmp);
-  });
-}
-
-template <int D>
-std::span<const double> HierarchicalEvaluator<D>::net(int e) const {
-  const std::size_t size = static_cast<std::size_t>(local_) * stride();
-  return {nets_.data() + static_cast<std::size_t>(e) * size, size};
-}
-
 namespace {
 
 // Bernstein values of degree p at t in [0, 1] (triangular scheme, p(p+1)/2 multiply-adds) and optionally the
 // derivatives p (b^{p-1}_{i-1} - b^{p-1}_i) / h.
-inline void bernstein(int p, double t, double inv_h, double* b, double* db) {
+template <int P = -1>
+inline void bernstein(int p_runtime, double t, double inv_h, double* b, double* db) {
+  const int p = P >= 0 ? P : p_runtime;
   const double s = 1.0 - t;
   b[0] = 1.0;
   for (int j = 1; j <= p; ++j) {
@@ -67,33 +36,164 @@ inline void bernstein(int p, double t, double inv_h, double* b, double* db) {
 }  // namespace
 
 template <int D>
+HierarchicalEvaluator<D>::HierarchicalEvaluator(const HierarchicalSpace<D>& space, int dim, bool rational,
+                                                std::span<const double> coefs)
+    : degrees_(space.degrees()), dim_(dim), rational_(rational), local_(space.local_size()) {
+  const int st = stride();
+  require(coefs.size() == static_cast<std::size_t>(space.num_basis()) * st, "hier: coefficient count does not match the space");
+  const int E = space.num_elements();
+  nets_.resize(static_cast<std::size_t>(E) * local_ * st);
+  boxes_ = space.element_boxes();
+  same_degree_ = degrees_[0];
+  for (int k = 1; k < D; ++k)
+    if (degrees_[k] != same_degree_) same_degree_ = -1;
+  Ints<D> n;
+  std::array<std::vector<double>, D> B;
+  std::array<const double*, D> M;
+  std::vector<double> tmp;
+  typename HierarchicalSpace<D>::ExpansionCache cache;
+  for (int e = 0; e < E; ++e) {
+    const HierarchicalCell<D> c = space.element(e);
+    double* net = nets_.data() + static_cast<std::ptrdiff_t>(e) * local_ * st;
+    space.local_expansion(c.level, c.index, coefs, st, net, cache);
+    for (int k = 0; k < D; ++k) {
+      n[k] = degrees_[k] + 1;
+      B[k].resize(static_cast<std::size_t>(n[k] * n[k]));
+      space.hierarchy().local_bezier(c.level, k, c.index[k], B[k].data());
+      M[k] = B[k].data();
+    }
+    apply_kronecker<D>(n, M, st, 1, net, tmp);
+  }
+  Ints<D> lo{}, hi;
+  for (int k = 0; k < D; ++k) {
+    const HierarchyAxis& a = space.hierarchy().axis(0, k);
+    hi[k] = a.num_cells();
+    span_cell_[k].assign(static_cast<std::size_t>(a.knots.size()), 0);
+    for (int cell = 0; cell < a.num_cells(); ++cell) span_cell_[k][static_cast<std::size_t>(a.span[static_cast<std::size_t>(cell)])] = cell;
+  }
+  build_table(space, 0, lo, hi);
+}
+
+template <int D>
+int HierarchicalEvaluator<D>::build_table(const HierarchicalSpace<D>& space, int level, const Ints<D>& lo,
+                                          const Ints<D>& hi) {
+  int size = 1;
+  for (int k = 0; k < D; ++k) size *= hi[k] - lo[k];
+  const int start = static_cast<int>(codes_.size());
+  codes_.resize(codes_.size() + static_cast<std::size_t>(size));
+  Ints<D> c = lo;
+  for (int q = 0; q < size; ++q) {
+    int code;
+    if (space.is_refined(level, c)) {
+      Ints<D> clo, chi;
+      for (int k = 0; k < D; ++k) {
+        const auto& fc = space.hierarchy().axis(level, k).first_child;
+        clo[k] = fc[static_cast<std::size_t>(c[k])];
+        chi[k] = fc[static_cast<std::size_t>(c[k]) + 1];
+      }
+      code = -build_table(space, level + 1, clo, chi) - 1;
+    } else {
+      code = space.find_leaf(level, c);
+    }
+    codes_[static_cast<std::size_t>(start + q)] = code;
+    for (int k = 0; k < D && ++c[k] == hi[k]; ++k) c[k] = lo[k];
+  }
+  return start;
+}
+
+template <int D>
+int HierarchicalEvaluator<D>::find_element(const HierarchicalSpace<D>& space, const Param<D>& x) const {
+  const auto& h = space.hierarchy();
+  Ints<D> c;
+  int q = 0;
+  for (int k = D - 1; k >= 0; --k) {
+    const KnotVector& kv = h.knots(0, k);
+    c[k] = span_cell_[k][static_cast<std::size_t>(kv.find_span(x[k]))];
+    q = q * h.axis(0, k).num_cells() + c[k];
+  }
+  int code = codes_[static_cast<std::size_t>(q)];
+  for (int level = 0; code < 0; ++level) {
+    int offset = 0;
+    for (int k = D - 1; k >= 0; --k) {
+      const auto& fc = h.axis(level, k).first_child;
+      const auto& br = h.axis(level + 1, k).breaks;
+      const int lo = fc[static_cast<std::size_t>(c[k])], hi = fc[static_cast<std::size_t>(c[k]) + 1];
+      int e = lo;
+      while (e + 1 < hi && x[k] >= br[static_cast<std::size_t>(e) + 1]) ++e;
+      c[k] = e;
+      offset = offset * (hi - lo) + (e - lo);
+    }
+    code = codes_[static_cast<std::size_t>(-code - 1 + offset)];
+  }
+  return code;
+}
+
+template <int D>
+std::span<const double> HierarchicalEvaluator<D>::net(int e) const {
+  const std::size_t size = static_cast<std::size_t>(local_) * stride();
+  return {nets_.data() + static_cast<std::size_t>(e) * size, size};
+}
+
+
+template <int D>
+template <int N>
+void HierarchicalEvaluator<D>::eval_fixed(const Box<D>& box, const double* net, const Param<D>& x, double* h) const {
+  // N = p + 1 in every direction: the loops unroll; rows along u are contracted with the row weight of the
+  // other directions.
+  double b[D][kMaxDegree + 1];
+  for (int k = 0; k < D; ++k)
+    bernstein<N - 1>(degrees_[k], (x[k] - box.lo[k]) / box.extent(k), 0.0, b[k], nullptr);
+  const int st = stride(), n0 = (N > 0 ? N : degrees_[0] + 1);
+  const int rows = local_ / n0;
+  for (int s = 0; s < st; ++s) h[s] = 0.0;
+  for (int r = 0; r < rows; ++r) {
+    double w = 1.0;
+    for (int k = 1, q = r; k < D; ++k) {
+      const int nk = N > 0 ? N : degrees_[k] + 1;
+      w *= b[k][q % nk];
+      q /= nk;
+    }
+    const double* row = net + static_cast<std::ptrdiff_t>(r) * n0 * st;
+    if (st == 3) {
+      double a0 = 0, a1 = 0, a2 = 0;
+      for (int a = 0; a < n0; ++a) {
+        a0 += b[0][a] * row[3 * a];
+        a1 += b[0][a] * row[3 * a + 1];
+        a2 += b[0][a] * row[3 * a + 2];
+      }
+      h[0] += w * a0;
+      h[1] += w * a1;
+      h[2] += w * a2;
+    } else {
+      for (int a = 0; a < n0; ++a) {
+        const double f = w * b[0][a];
+        for (int s = 0; s < st; ++s) h[s] += f * row[a * st + s];
+      }
+    }
+  }
+}
+
+template <int D>
 void HierarchicalEvaluator<D>::eval(const HierarchicalSpace<D>& space, const Param<D>& u, double* out) const {
   const Box<D> dom = space.domain();
   Param<D> x;
   for (int k = 0; k < D; ++k) x[k] = std::clamp(u[k], dom.lo[k], dom.hi[k]);
-  const int e = space.find_element(x);
-  const Box<D>& box = boxes_[static_cast<std::size_t>(e)];
-  double b[D][kMaxDegree + 1];
-  for (int k = 0; k < D; ++k) bernstein(degrees_[k], (x[k] - box.lo[k]) / box.extent(k), 0.0, b[k], nullptr);
-  const int st = stride(), n0 = degrees_[0] + 1;
+  const int e = find_element(space, x);
+  const int st = stride();
   const double* net = nets_.data() + static_cast<std::size_t>(e) * local_ * st;
-  double acc[8] = {};
-  double* h = st <= 8 ? acc : nullptr;
+  double acc[16];
   std::vector<double> big;
-  if (!h) {
-    big.assign(static_cast<std::size_t>(st), 0.0);
+  double* h = acc;
+  if (st > 16) {
+    big.resize(static_cast<std::size_t>(st));
     h = big.data();
   }
-  // Sum over the rows along u of the tensor: row weight from the other directions, then the u contraction.
-  const int rows = local_ / n0;
-  for (int r = 0; r < rows; ++r) {
-    double w = 1.0;
-    for (int k = 1, q = r; k < D; q /= degrees_[k] + 1, ++k) w *= b[k][q % (degrees_[k] + 1)];
-    const double* row = net + static_cast<std::size_t>(r) * n0 * st;
-    for (int a = 0; a < n0; ++a) {
-      const double f = w * b[0][a];
-      for (int s = 0; s < st; ++s) h[s] += f * row[a * st + s];
-    }
+  const Box<D>& box = boxes_[static_cast<std::size_t>(e)];
+  switch (same_degree_) {
+    case 1: eval_fixed<2>(box, net, x, h); break;
+    case 2: eval_fixed<3>(box, net, x, h); break;
+    case 3: eval_fixed<4>(box, net, x, h); break;
+    default: eval_fixed<0>(box, net, x, h);
   }
   if (rational_)
     for (int s = 0; s < dim_; ++s) out[s] = h[s] / h[dim_];
@@ -107,7 +207,7 @@ void HierarchicalEvaluator<D>::eval_first_derivatives(const HierarchicalSpace<D>
   const Box<D> dom = space.domain();
   Param<D> x;
   for (int k = 0; k < D; ++k) x[k] = std::clamp(u[k], dom.lo[k], dom.hi[k]);
-  const int e = space.find_element(x);
+  const int e = find_element(space, x);
   const Box<D>& box = boxes_[static_cast<std::size_t>(e)];
   double b[D][kMaxDegree + 1], db[D][kMaxDegree + 1];
   for (int k = 0; k < D; ++k)
@@ -147,7 +247,7 @@ void HierarchicalEvaluator<D>::eval_derivs(const HierarchicalSpace<D>& space, co
   const Box<D> dom = space.domain();
   Param<D> x;
   for (int k = 0; k < D; ++k) x[k] = std::clamp(u[k], dom.lo[k], dom.hi[k]);
-  const int e = space.find_element(x);
+  const int e = find_element(space, x);
   const Box<D>& box = boxes_[static_cast<std::size_t>(e)];
   std::array<std::vector<double>, D> B;
   for (int k = 0; k < D; ++k) {

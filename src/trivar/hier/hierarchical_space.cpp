@@ -344,44 +344,41 @@ int HierarchicalSpace<D>::refine_functions(std::span<const int> ids) {
 }
 
 template <int D>
+Ints<D> HierarchicalSpace<D>::parent(int level, const Ints<D>& cell) const {
+  Ints<D> p;
+  for (int k = 0; k < D; ++k) p[k] = h_.axis(level, k).parent[static_cast<std::size_t>(cell[k])];
+  return p;
+}
+
+template <int D>
 template <class AddActive>
-void HierarchicalSpace<D>::chain(int m, const Ints<D>& cell, int stride, std::vector<double>& rows, int& count,
-                                 AddActive&& add) const {
-  std::vector<Ints<D>> anc(static_cast<std::size_t>(m) + 1);
-  anc[static_cast<std::size_t>(m)] = cell;
-  for (int j = m; j > 0; --j)
-    for (int k = 0; k < D; ++k)
-      anc[static_cast<std::size_t>(j) - 1][k] = h_.axis(j, k).parent[static_cast<std::size_t>(anc[static_cast<std::size_t>(j)][k])];
-  Ints<D> n;
-  for (int k = 0; k < D; ++k) n[k] = h_.degree(k) + 1;
-  std::array<std::vector<double>, D> R;
-  std::array<const double*, D> M;
-  std::vector<double> tmp;
+void HierarchicalSpace<D>::step(int j, const Ints<D>& c, int stride, double* rows, int count, AddActive&& add) const {
   const int P = local_size_;
-  for (int j = 0; j <= m; ++j) {
-    const Ints<D>& c = anc[static_cast<std::size_t>(j)];
-    Ints<D> first;
-    for (int k = 0; k < D; ++k) first[k] = h_.axis(j, k).span[static_cast<std::size_t>(c[k])] - h_.degree(k);
-    if (j > 0 && count > 0) {
-      for (int k = 0; k < D; ++k) {
-        R[k].resize(static_cast<std::size_t>(n[k] * n[k]));
-        h_.local_refinement(j, k, c[k], R[k].data());
-        M[k] = R[k].data();
-      }
-      apply_kronecker<D>(n, M, stride, count, rows.data(), tmp);
+  Ints<D> n, first;
+  for (int k = 0; k < D; ++k) {
+    n[k] = h_.degree(k) + 1;
+    first[k] = h_.axis(j, k).span[static_cast<std::size_t>(c[k])] - h_.degree(k);
+  }
+  if (j > 0 && count > 0) {
+    thread_local std::vector<double> tmp;
+    double R[D][(kMaxDegree + 1) * (kMaxDegree + 1)];
+    std::array<const double*, D> M;
+    for (int k = 0; k < D; ++k) {
+      h_.local_refinement(j, k, c[k], R[k]);
+      M[k] = R[k];
     }
-    const bool truncate = basis_ == HierarchicalBasis::thb && j > 0;
-    Ints<D> a{};
-    for (int q = 0; q < P; ++q) {
-      Ints<D> f;
-      for (int k = 0; k < D; ++k) f[k] = first[k] + a[k];
-      if (truncate && count > 0 && function_inside(j, f))
-        for (int r = 0; r < count; ++r)
-          std::fill_n(rows.begin() + (static_cast<std::ptrdiff_t>(r) * P + q) * stride, stride, 0.0);
-      const int id = find_function(j, f);
-      if (id >= 0) add(q, id);
-      for (int k = 0; k < D && ++a[k] == n[k]; ++k) a[k] = 0;
-    }
+    apply_kronecker<D>(n, M, stride, count, rows, tmp);
+  }
+  const bool truncate = basis_ == HierarchicalBasis::thb && j > 0 && count > 0;
+  Ints<D> a{};
+  for (int q = 0; q < P; ++q) {
+    Ints<D> f;
+    for (int k = 0; k < D; ++k) f[k] = first[k] + a[k];
+    if (truncate && function_inside(j, f))
+      for (int r = 0; r < count; ++r) std::fill_n(rows + (static_cast<std::ptrdiff_t>(r) * P + q) * stride, stride, 0.0);
+    const int id = find_function(j, f);
+    if (id >= 0) add(q, id);
+    for (int k = 0; k < D && ++a[k] == n[k]; ++k) a[k] = 0;
   }
 }
 
@@ -392,12 +389,20 @@ HierarchicalElement<D> HierarchicalSpace<D>::element_operator(int e) const {
   std::vector<double> rows;
   std::vector<int> ids;
   int count = 0;
-  chain(cell.level, cell.index, 1, rows, count, [&](int q, int id) {
-    rows.resize(static_cast<std::size_t>(count + 1) * P, 0.0);
-    rows[static_cast<std::size_t>(count) * P + q] = 1.0;
-    ids.push_back(id);
-    ++count;
-  });
+  std::vector<Ints<D>> anc(static_cast<std::size_t>(cell.level) + 1);
+  anc.back() = cell.index;
+  for (int j = cell.level; j > 0; --j) anc[static_cast<std::size_t>(j) - 1] = parent(j, anc[static_cast<std::size_t>(j)]);
+  std::vector<std::pair<int, int>> added;
+  for (int j = 0; j <= cell.level; ++j) {
+    added.clear();
+    step(j, anc[static_cast<std::size_t>(j)], 1, rows.data(), count, [&](int q, int id) { added.emplace_back(q, id); });
+    for (const auto& [q, id] : added) {
+      rows.resize(static_cast<std::size_t>(count + 1) * P, 0.0);
+      rows[static_cast<std::size_t>(count) * P + q] = 1.0;
+      ids.push_back(id);
+      ++count;
+    }
+  }
   Ints<D> n;
   std::array<std::vector<double>, D> B;
   std::array<const double*, D> M;
@@ -428,15 +433,40 @@ HierarchicalElement<D> HierarchicalSpace<D>::element_operator(int e) const {
 }
 
 template <int D>
+const std::vector<double>& HierarchicalSpace<D>::cached_expansion(int level, const Ints<D>& cell,
+                                                                  std::span<const double> coefs, int stride,
+                                                                  ExpansionCache& cache) const {
+  if (static_cast<int>(cache.levels.size()) <= level) cache.levels.resize(static_cast<std::size_t>(level) + 1);
+  auto& memo = cache.levels[static_cast<std::size_t>(level)];
+  const CellKey key = pack_key<D>(cell);
+  if (const auto it = memo.find(key); it != memo.end()) return it->second;
+  std::vector<double> v = level == 0 ? std::vector<double>(static_cast<std::size_t>(local_size_) * stride, 0.0)
+                                     : cached_expansion(level - 1, parent(level, cell), coefs, stride, cache);
+  step(level, cell, stride, v.data(), 1, [&](int q, int id) {
+    for (int s = 0; s < stride; ++s) v[static_cast<std::size_t>(q * stride + s)] += coefs[static_cast<std::size_t>(id) * stride + s];
+  });
+  // References into an unordered_map stay valid when it rehashes.
+  return memo.emplace(key, std::move(v)).first->second;
+}
+
+template <int D>
+void HierarchicalSpace<D>::local_expansion(int level, const Ints<D>& cell, std::span<const double> coefs, int stride,
+                                           double* out, ExpansionCache& cache) const {
+  const std::size_t size = static_cast<std::size_t>(local_size_) * stride;
+  if (level == 0)
+    std::fill_n(out, size, 0.0);
+  else
+    std::copy_n(cached_expansion(level - 1, parent(level, cell), coefs, stride, cache).begin(), size, out);
+  step(level, cell, stride, out, 1, [&](int q, int id) {
+    for (int s = 0; s < stride; ++s) out[q * stride + s] += coefs[static_cast<std::size_t>(id) * stride + s];
+  });
+}
+
+template <int D>
 void HierarchicalSpace<D>::local_expansion(int level, const Ints<D>& cell, std::span<const double> coefs, int stride,
                                            double* out) const {
-  std::vector<double> acc(static_cast<std::size_t>(local_size_) * stride, 0.0);
-  int count = 1;
-  chain(level, cell, stride, acc, count, [&](int q, int id) {
-    for (int s = 0; s < stride; ++s)
-      acc[static_cast<std::size_t>(q * stride + s)] += coefs[static_cast<std::size_t>(id) * stride + s];
-  });
-  std::copy(acc.begin(), acc.end(), out);
+  ExpansionCache cache;
+  local_expansion(level, cell, coefs, stride, out, cache);
 }
 
 template <int D>

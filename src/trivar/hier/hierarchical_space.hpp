@@ -20,6 +20,7 @@
 // Kronecker products of 1-D (p+1) x (p+1) blocks), truncating on the way for THB. This one chain serves the
 // Bezier extraction, the evaluation of basis functions and the exchange of coefficients under refinement.
 #include <span>
+#include <unordered_map>
 #include <vector>
 
 #include <Eigen/Core>
@@ -131,6 +132,15 @@ public:
   // level m that is not refined, the local coefficients of the spline with those coefficients (stride values
   // each, homogeneous when rational).
   void local_expansion(int level, const Ints<D>& cell, std::span<const double> coefs, int stride, double* out) const;
+  // Memo of the expansions on ancestor cells, which many queries share (every leaf below a cell starts from its
+  // expansion): per level, cell key -> expansion. Valid for one state of the space and one coefficient vector
+  // (or, for a vector filled level by level, for queries of levels whose coarser coefficients are final).
+  struct ExpansionCache {
+    std::vector<std::unordered_map<CellKey, std::vector<double>>> levels;
+  };
+  // As above, the ancestors' expansions taken from or stored into `cache` (the cell's own is not stored).
+  void local_expansion(int level, const Ints<D>& cell, std::span<const double> coefs, int stride, double* out,
+                       ExpansionCache& cache) const;
 
 private:
   TensorHierarchy<D> h_;
@@ -150,10 +160,14 @@ private:
   bool cell_in_domain(int level, const Ints<D>& cell) const;
   bool support_in(int level, const Ints<D>& f, const std::vector<CellKey>& cells) const;
   bool support_in_domain(int level, const Ints<D>& f) const;
-  // The chain behind element_operator and local_expansion: accumulates in `rows` (count x local_size() x
-  // stride) the active functions of levels <= m on the ancestors of (m, cell), refined down to level m.
+  // One level of the chain behind element_operator and local_expansion: `count` vectors (local_size() x stride
+  // each) of level j - 1 on the parent cell are refined to level j on `cell` (j > 0) and truncated (THB); then
+  // add(q, id) is called for every active level-j function on the cell (q its local index).
   template <class AddActive>
-  void chain(int m, const Ints<D>& cell, int stride, std::vector<double>& rows, int& count, AddActive&& add) const;
+  void step(int j, const Ints<D>& cell, int stride, double* rows, int count, AddActive&& add) const;
+  const std::vector<double>& cached_expansion(int level, const Ints<D>& cell, std::span<const double> coefs, int stride,
+                                              ExpansionCache& cache) const;
+  Ints<D> parent(int level, const Ints<D>& cell) const;
 };
 
 extern template class HierarchicalSpace<2>;

@@ -24,6 +24,7 @@ std::vector<double> thb_coefficients(const HierarchicalSpace<D>& target, const H
   std::vector<double> out(static_cast<std::size_t>(target.num_basis()) * stride);
   const int P = target.local_size();
   std::vector<std::unordered_map<CellKey, std::vector<double>>> cache(static_cast<std::size_t>(target.num_levels()));
+  typename HierarchicalSpace<D>::ExpansionCache ancestors;
   for (int id = 0; id < target.num_basis(); ++id) {
     double* c = out.data() + static_cast<std::size_t>(id) * stride;
     if (keep(id, c)) continue;
@@ -33,7 +34,7 @@ std::vector<double> thb_coefficients(const HierarchicalSpace<D>& target, const H
     auto& expansion = cache[static_cast<std::size_t>(f.level)][pack_key<D>(cell)];
     if (expansion.empty()) {
       expansion.resize(static_cast<std::size_t>(P) * stride);
-      source.local_expansion(f.level, cell, coefs, stride, expansion.data());
+      source.local_expansion(f.level, cell, coefs, stride, expansion.data(), ancestors);
     }
     int q = 0;
     for (int k = D - 1; k >= 0; --k) {
@@ -52,7 +53,7 @@ template <int D>
 std::vector<double> hb_from_thb(const HierarchicalSpace<D>& hb, std::span<const double> thb, int stride) {
   std::vector<double> out(thb.size(), 0.0);
   const int P = hb.local_size();
-  std::vector<double> expansion(static_cast<std::size_t>(P) * stride);
+  typename HierarchicalSpace<D>::ExpansionCache ancestors;
   for (int l = 0, id = 0; l < hb.num_levels(); ++l) {
     std::unordered_map<CellKey, std::vector<double>> cache;
     const int end = id + hb.num_basis(l);
@@ -63,7 +64,7 @@ std::vector<double> hb_from_thb(const HierarchicalSpace<D>& hb, std::span<const 
       auto& e = cache[pack_key<D>(cell)];
       if (e.empty()) {
         e.resize(static_cast<std::size_t>(P) * stride);
-        hb.local_expansion(l, cell, out, stride, e.data());  // levels >= l are still zero in out
+        hb.local_expansion(l, cell, out, stride, e.data(), ancestors);  // levels >= l are still zero in out
       }
       int q = 0;
       for (int k = D - 1; k >= 0; --k) {

@@ -57,32 +57,38 @@ template <int D>
 void TensorHierarchy<D>::add_level(const std::array<KnotVector, D>& kv) {
   const int l = num_levels();
   std::array<HierarchyAxis, D> axes;
+  // The level below gets its children table: copied first, as other hierarchies may share it.
+  if (l > 0) levels_.back() = std::make_shared<std::array<HierarchyAxis, D>>(*levels_.back());
   for (int k = 0; k < D; ++k) {
-    const std::string where = "hierarchy: level " + std::to_string(l) + ", direction " + std::to_string(k);
-    require(kv[k].is_clamped(), where + ": the knot vector must be clamped (p + 1 equal end knots)");
+    auto where = [&] { return "hierarchy: level " + std::to_string(l) + ", direction " + std::to_string(k); };
+    require(kv[k].is_clamped(), [&] { return where() + ": the knot vector must be clamped (p + 1 equal end knots)"; });
     if (l == 0) {
       degrees_[k] = kv[k].degree();
     } else {
       const KnotVector& below = knots(l - 1, k);
-      require(kv[k].degree() == degrees_[k], where + ": degree " + std::to_string(kv[k].degree()) + " differs from " +
-                                                 std::to_string(degrees_[k]) + " of level 0");
-      require(kv[k].start() == below.start() && kv[k].end() == below.end(), where + ": the domain differs from level " +
-                                                                                std::to_string(l - 1) + "'s");
+      require(kv[k].degree() == degrees_[k], [&] {
+        return where() + ": degree " + std::to_string(kv[k].degree()) + " differs from " + std::to_string(degrees_[k]) +
+               " of level 0";
+      });
+      require(kv[k].start() == below.start() && kv[k].end() == below.end(),
+              [&] { return where() + ": the domain differs from level " + std::to_string(l - 1) + "'s"; });
       // Nestedness: every knot of the level below, at least as often.
       const auto& a = below.knots();
       const auto& b = kv[k].knots();
       std::size_t j = 0;
       for (double x : a) {
         while (j < b.size() && b[j] < x) ++j;
-        require(j < b.size() && b[j] == x, where + ": knot " + std::to_string(x) + " of level " + std::to_string(l - 1) +
-                                               " is missing (the levels must be nested)");
+        require(j < b.size() && b[j] == x, [&] {
+          return where() + ": knot " + std::to_string(x) + " of level " + std::to_string(l - 1) +
+                 " is missing (the levels must be nested)";
+        });
         ++j;
       }
     }
-    require(kv[k].num_elements() <= kMaxIndex, where + ": more than " + std::to_string(kMaxIndex) + " cells");
+    require(kv[k].num_elements() <= kMaxIndex, [&] { return where() + ": more than " + std::to_string(kMaxIndex) + " cells"; });
     axes[k] = make_axis(kv[k]);
     if (l > 0) {
-      HierarchyAxis& lo = levels_.back()[k];
+      HierarchyAxis& lo = (*levels_.back())[k];
       HierarchyAxis& hi = axes[k];
       hi.parent.resize(static_cast<std::size_t>(hi.num_cells()));
       lo.first_child.assign(static_cast<std::size_t>(lo.num_cells()) + 1, 0);
@@ -97,7 +103,7 @@ void TensorHierarchy<D>::add_level(const std::array<KnotVector, D>& kv) {
       axes[k].parent.assign(static_cast<std::size_t>(axes[k].num_cells()), -1);
     }
   }
-  levels_.push_back(std::move(axes));
+  levels_.push_back(std::make_shared<std::array<HierarchyAxis, D>>(std::move(axes)));
 }
 
 template <int D>
@@ -106,15 +112,21 @@ void TensorHierarchy<D>::ensure_levels(int n) {
     std::array<KnotVector, D> next;
     double bytes = 0;
     for (int k = 0; k < D; ++k) {
-      const HierarchyAxis& a = levels_.back()[k];
-      std::vector<double> mid(a.breaks.size() - 1);
-      for (std::size_t e = 0; e + 1 < a.breaks.size(); ++e) mid[e] = 0.5 * (a.breaks[e] + a.breaks[e + 1]);
+      const HierarchyAxis& a = (*levels_.back())[k];
+      // The knots with the middle of every non-empty span inserted after its left end's copies.
+      const auto& t = a.knots.knots();
+      std::vector<double> finer;
+      finer.reserve(t.size() + a.breaks.size());
+      for (std::size_t i = 0; i < t.size(); ++i) {
+        finer.push_back(t[i]);
+        if (i + 1 < t.size() && t[i] < t[i + 1]) finer.push_back(0.5 * (t[i] + t[i + 1]));
+      }
       require(a.num_cells() * 2 <= kMaxIndex, [&] {
-        return "hierarchy: level " + std::to_string(num_levels()) + " would have " + std::to_string(2.0 * a.num_cells()) +
+        return "hierarchy: level " + std::to_string(num_levels()) + " would have " + std::to_string(2 * static_cast<long long>(a.num_cells())) +
                " cells in direction " + std::to_string(k) + ", more than " + std::to_string(kMaxIndex);
       });
-      bytes += 8.0 * 8.0 * (static_cast<double>(a.knots.knots().size()) + 2.0 * static_cast<double>(mid.size()));
-      next[k] = with_knots(a.knots, mid);
+      bytes += 8.0 * 8.0 * static_cast<double>(finer.size());
+      next[k] = KnotVector(a.knots.degree(), std::move(finer));
     }
     require_memory(bytes, "hierarchy level " + std::to_string(num_levels()));
     add_level(next);

@@ -12,6 +12,7 @@
 // p^3 operations), so deep hierarchies cost memory linear in their knots only.
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "trivar/core/box.hpp"
@@ -58,7 +59,7 @@ public:
 
   const Ints<D>& degrees() const { return degrees_; }
   int degree(int k) const { return degrees_[k]; }
-  const HierarchyAxis& axis(int level, int k) const { return levels_[static_cast<std::size_t>(level)][k]; }
+  const HierarchyAxis& axis(int level, int k) const { return (*levels_[static_cast<std::size_t>(level)])[k]; }
   const KnotVector& knots(int level, int k) const { return axis(level, k).knots; }
   Box<D> domain() const;
   Box<D> cell_box(int level, const Ints<D>& cell) const;
@@ -76,7 +77,9 @@ public:
 
 private:
   Ints<D> degrees_{};
-  std::vector<std::array<HierarchyAxis, D>> levels_;
+  // Copies of a hierarchy share its levels (refinement copies the space it refines); a level is never changed
+  // once shared: adding a level replaces the one below by a copy with its children table.
+  std::vector<std::shared_ptr<std::array<HierarchyAxis, D>>> levels_;
   int dyadic_from_ = 1;
 
   void add_level(const std::array<KnotVector, D>& kv);
