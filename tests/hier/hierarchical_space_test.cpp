@@ -27,7 +27,7 @@ std::vector<Ints<D>> corner_cells(const HierarchicalSpace<D>& s, int level, doub
   std::vector<Ints<D>> out;
   const int n = s.hierarchy().axis(level, 0).num_cells();
   int m = 0;
-  while (m < n && s.hierarchy().axis(level, 0).breaks[static_cast<std::size_t>(m) + 1] <= x) ++m;
+  while (m < n && s.hierarchy().axis(level, 0).brk(m + 1) <= x) ++m;
   Ints<D> c{};
   while (true) {
     out.push_back(c);

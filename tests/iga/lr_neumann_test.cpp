@@ -6,7 +6,7 @@
 
 #include "iga/iga_test_support.hpp"
 #include "trivar/iga/error_indicator.hpp"
-#include "trivar/iga/lr_poisson.hpp"
+#include "trivar/iga/refined_poisson.hpp"
 
 using namespace trivar;
 using iga_test::faces_on_side;
@@ -54,8 +54,7 @@ void expect_same_as_tensor(int seed) {
   auto solver = make_solver("cholmod");
   const SolveResult tr = solve_poisson(space, p, *solver);
   const LRSpline<D> lr(space.geometry);
-  const auto elements = lr_element_bases(lr);
-  const SolveResult r = solve_poisson(lr, elements, p, *solver);
+  const SolveResult r = solve_poisson(refined_space(lr), p, *solver);
   EXPECT_EQ(r.dofs, tr.dofs);
   ASSERT_EQ(r.coefs.size(), tr.coefs.size());
   // A converted tensor spline keeps its basis order, so the coefficient vectors compare entry by entry.
@@ -65,9 +64,7 @@ void expect_same_as_tensor(int seed) {
 // Solves p on lr: the solver that iga_test::expect_reproduced checks.
 template <int D>
 auto poisson_on(const LRSpline<D>& lr, const PoissonProblem<D>& p) {
-  return [&lr, &p](const std::vector<LRElementBasis<D>>& elements, LinearSolver& s) {
-    return solve_poisson(lr, elements, p, s);
-  };
+  return [&p](const RefinedSpace<D>& space, LinearSolver& s) { return solve_poisson(space, p, s); };
 }
 
 }  // namespace
@@ -131,8 +128,8 @@ TEST(LRNeumann, ConvergesAtOptimalRatesOnLocallyRefinedSpaces) {
   const TensorSpline<2> map = iga_test::distorted_box<2>(2, 2, false, 5);
   for (int deg : {2, 3})
     iga_test::expect_optimal_convergence<2>(map, deg, 1, exact,
-                                            [&](const LRSpline<2>& lr, const auto& elements, LinearSolver& s) {
-                                              return solve_poisson(lr, elements, p, s);
+                                            [&](const RefinedSpace<2>& space, LinearSolver& s) {
+                                              return solve_poisson(space, p, s);
                                             });
 }
 
@@ -151,7 +148,7 @@ double expect_neumann_indicator(const LRSpline<D>& lr) {
   p.flux = [](const double*, const double*) { return 3.0; };
   Eigen::VectorXd x(lr.num_basis());
   for (int i = 0; i < lr.num_basis(); ++i) x[i] = lr.basis_function(i).coef[0];
-  const auto eta = residual_indicators(lr, lr_element_bases(lr), p, x);
+  const auto eta = residual_indicators(refined_space(lr), p, x);
   EXPECT_EQ(static_cast<int>(eta.size()), lr.num_elements());
   double total = 0, expected_total = 0;
   for (int e = 0; e < lr.num_elements(); ++e) {

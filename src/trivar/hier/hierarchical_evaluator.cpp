@@ -65,12 +65,7 @@ HierarchicalEvaluator<D>::HierarchicalEvaluator(const HierarchicalSpace<D>& spac
     apply_kronecker<D>(n, M, st, 1, net, tmp);
   }
   Ints<D> lo{}, hi;
-  for (int k = 0; k < D; ++k) {
-    const HierarchyAxis& a = space.hierarchy().axis(0, k);
-    hi[k] = a.num_cells();
-    span_cell_[k].assign(static_cast<std::size_t>(a.knots.size()), 0);
-    for (int cell = 0; cell < a.num_cells(); ++cell) span_cell_[k][static_cast<std::size_t>(a.span[static_cast<std::size_t>(cell)])] = cell;
-  }
+  for (int k = 0; k < D; ++k) hi[k] = space.hierarchy().axis(0, k).num_cells();
   build_table(space, 0, lo, hi);
 }
 
@@ -87,9 +82,8 @@ int HierarchicalEvaluator<D>::build_table(const HierarchicalSpace<D>& space, int
     if (space.is_refined(level, c)) {
       Ints<D> clo, chi;
       for (int k = 0; k < D; ++k) {
-        const auto& fc = space.hierarchy().axis(level, k).first_child;
-        clo[k] = fc[static_cast<std::size_t>(c[k])];
-        chi[k] = fc[static_cast<std::size_t>(c[k]) + 1];
+        clo[k] = space.hierarchy().first_child(level, k, c[k]);
+        chi[k] = space.hierarchy().end_child(level, k, c[k]);
       }
       code = -build_table(space, level + 1, clo, chi) - 1;
     } else {
@@ -107,19 +101,17 @@ int HierarchicalEvaluator<D>::find_element(const HierarchicalSpace<D>& space, co
   Ints<D> c;
   int q = 0;
   for (int k = D - 1; k >= 0; --k) {
-    const KnotVector& kv = h.knots(0, k);
-    c[k] = span_cell_[k][static_cast<std::size_t>(kv.find_span(x[k]))];
+    c[k] = h.axis(0, k).cell_of(x[k]);
     q = q * h.axis(0, k).num_cells() + c[k];
   }
   int code = codes_[static_cast<std::size_t>(q)];
   for (int level = 0; code < 0; ++level) {
     int offset = 0;
     for (int k = D - 1; k >= 0; --k) {
-      const auto& fc = h.axis(level, k).first_child;
-      const auto& br = h.axis(level + 1, k).breaks;
-      const int lo = fc[static_cast<std::size_t>(c[k])], hi = fc[static_cast<std::size_t>(c[k]) + 1];
+      const HierarchyAxis& a = h.axis(level + 1, k);
+      const int lo = h.first_child(level, k, c[k]), hi = h.end_child(level, k, c[k]);
       int e = lo;
-      while (e + 1 < hi && x[k] >= br[static_cast<std::size_t>(e) + 1]) ++e;
+      while (e + 1 < hi && x[k] >= a.brk(e + 1)) ++e;
       c[k] = e;
       offset = offset * (hi - lo) + (e - lo);
     }

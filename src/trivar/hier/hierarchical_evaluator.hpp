@@ -2,7 +2,7 @@
 // HierarchicalEvaluator<D>: random-point evaluation of a hierarchical spline. Built once per spline state: the
 // Bezier net of every leaf element (the local expansion of the coefficients on the leaf, ancestors' expansions
 // shared, times the Bezier extraction: prod (p_k+1) x stride values) and a search tree of the cells: a dense
-// table of the level-0 cells (span search, O(1) on uniform knots) whose entries are leaves or dense tables of
+// table of the level-0 cells (a binary search over the level-0 breakpoints) whose entries are leaves or dense tables of
 // the refined cell's children. A point costs one span search, a few comparisons per level below level 0, one
 // Bernstein evaluation per direction and one contraction with the net (unrolled for equal degrees 1..3).
 #include <span>
@@ -41,9 +41,8 @@ private:
   std::vector<double> nets_;
   std::vector<Box<D>> boxes_;
   // Search tree: code >= 0 a leaf id, code < 0 the refined cell whose children table starts at -code - 1 in
-  // codes_. The level-0 table comes first; spans of level 0 map to cells through span_cell_.
+  // codes_. The level-0 table comes first.
   std::vector<int> codes_;
-  std::array<std::vector<int>, D> span_cell_;
   int same_degree_ = -1;  // the common degree when all directions share it
 
   int build_table(const HierarchicalSpace<D>& space, int level, const Ints<D>& lo, const Ints<D>& hi);

@@ -48,7 +48,7 @@ bool HierarchicalSpace<D>::cell_in_domain(int level, const Ints<D>& c) const {
   if (level == 0) return true;
   if (level > static_cast<int>(refined_.size())) return false;
   Ints<D> parent;
-  for (int k = 0; k < D; ++k) parent[k] = h_.axis(level, k).parent[static_cast<std::size_t>(c[k])];
+  for (int k = 0; k < D; ++k) parent[k] = h_.parent(level, k, c[k]);
   return contains(refined_[static_cast<std::size_t>(level) - 1], pack_key<D>(parent));
 }
 
@@ -56,8 +56,8 @@ template <int D>
 bool HierarchicalSpace<D>::support_in(int level, const Ints<D>& f, const std::vector<CellKey>& cells) const {
   Ints<D> lo, hi;
   for (int k = 0; k < D; ++k) {
-    lo[k] = h_.axis(level, k).first_cell[static_cast<std::size_t>(f[k])];
-    hi[k] = h_.axis(level, k).end_cell[static_cast<std::size_t>(f[k])];
+    lo[k] = h_.axis(level, k).first_cell(f[k]);
+    hi[k] = h_.axis(level, k).end_cell(f[k]);
   }
   bool all = true;
   for_each_index<D>(lo, hi, [&](const Ints<D>& c) { all = all && contains(cells, pack_key<D>(c)); });
@@ -71,8 +71,8 @@ bool HierarchicalSpace<D>::support_in_domain(int level, const Ints<D>& f) const 
   Ints<D> lo, hi;
   for (int k = 0; k < D; ++k) {
     const HierarchyAxis& a = h_.axis(level, k);
-    lo[k] = a.parent[static_cast<std::size_t>(a.first_cell[static_cast<std::size_t>(f[k])])];
-    hi[k] = a.parent[static_cast<std::size_t>(a.end_cell[static_cast<std::size_t>(f[k])] - 1)] + 1;
+    lo[k] = h_.parent(level, k, a.first_cell(f[k]));
+    hi[k] = h_.parent(level, k, a.end_cell(f[k]) - 1) + 1;
   }
   bool all = true;
   const auto& below = refined_[static_cast<std::size_t>(level) - 1];
@@ -113,9 +113,8 @@ void HierarchicalSpace<D>::rebuild() {
       const Ints<D> parent = unpack_key<D>(key);
       Ints<D> lo, hi;
       for (int k = 0; k < D; ++k) {
-        const auto& fc = h_.axis(l - 1, k).first_child;
-        lo[k] = fc[static_cast<std::size_t>(parent[k])];
-        hi[k] = fc[static_cast<std::size_t>(parent[k]) + 1];
+        lo[k] = h_.first_child(l - 1, k, parent[k]);
+        hi[k] = h_.end_child(l - 1, k, parent[k]);
       }
       for_each_index<D>(lo, hi, [&](const Ints<D>& c) { cells.push_back(pack_key<D>(c)); });
     }
@@ -125,7 +124,7 @@ void HierarchicalSpace<D>::rebuild() {
       if (!contains(refined, key)) leaves.push_back(key);
       Ints<D> lo, hi;
       for (int k = 0; k < D; ++k) {
-        hi[k] = h_.axis(l, k).span[static_cast<std::size_t>(c[k])] + 1;
+        hi[k] = h_.axis(l, k).span(c[k]) + 1;
         lo[k] = hi[k] - 1 - h_.degree(k);
       }
       for_each_index<D>(lo, hi, [&](const Ints<D>& f) { candidates.push_back(pack_key<D>(f)); });
@@ -172,9 +171,9 @@ Box<D> HierarchicalSpace<D>::function_support(int id) const {
   const HierarchicalFunction<D> f = function(id);
   Box<D> b;
   for (int k = 0; k < D; ++k) {
-    const KnotVector& kv = h_.knots(f.level, k);
-    b.lo[k] = kv[f.index[k]];
-    b.hi[k] = kv[f.index[k] + h_.degree(k) + 1];
+    const HierarchyAxis& a = h_.axis(f.level, k);
+    b.lo[k] = a.brk(a.first_cell(f.index[k]));
+    b.hi[k] = a.brk(a.end_cell(f.index[k]));
   }
   return b;
 }
@@ -219,9 +218,9 @@ int HierarchicalSpace<D>::find_element(const Param<D>& u) const {
     for (int k = 0; k < D; ++k) {
       // The child along k containing u (the children of a cell are consecutive cells of the next level).
       const HierarchyAxis& a = h_.axis(l, k);
-      const auto& fc = h_.axis(l - 1, k).first_child;
-      const int lo = fc[static_cast<std::size_t>(c[k])], hi = fc[static_cast<std::size_t>(c[k]) + 1];
-      int e = static_cast<int>(std::upper_bound(a.breaks.begin() + lo + 1, a.breaks.begin() + hi, u[k]) - a.breaks.begin()) - 1;
+      const int lo = h_.first_child(l - 1, k, c[k]), hi = h_.end_child(l - 1, k, c[k]);
+      int e = lo;
+      while (e + 1 < hi && u[k] >= a.brk(e + 1)) ++e;
       c[k] = e;
     }
   }
@@ -232,8 +231,8 @@ template <int D>
 bool HierarchicalSpace<D>::leaf_in_support(int level, const Ints<D>& f, Ints<D>& cell) const {
   Ints<D> lo, hi;
   for (int k = 0; k < D; ++k) {
-    lo[k] = h_.axis(level, k).first_cell[static_cast<std::size_t>(f[k])];
-    hi[k] = h_.axis(level, k).end_cell[static_cast<std::size_t>(f[k])];
+    lo[k] = h_.axis(level, k).first_cell(f[k]);
+    hi[k] = h_.axis(level, k).end_cell(f[k]);
   }
   bool found = false;
   for_each_index<D>(lo, hi, [&](const Ints<D>& c) {
@@ -331,8 +330,8 @@ int HierarchicalSpace<D>::refine_functions(std::span<const int> ids) {
     const HierarchicalFunction<D> f = function(id);
     Ints<D> lo, hi;
     for (int k = 0; k < D; ++k) {
-      lo[k] = h_.axis(f.level, k).first_cell[static_cast<std::size_t>(f.index[k])];
-      hi[k] = h_.axis(f.level, k).end_cell[static_cast<std::size_t>(f.index[k])];
+      lo[k] = h_.axis(f.level, k).first_cell(f.index[k]);
+      hi[k] = h_.axis(f.level, k).end_cell(f.index[k]);
     }
     for_each_index<D>(lo, hi, [&](const Ints<D>& c) { per_level[static_cast<std::size_t>(f.level)].push_back(c); });
   }
@@ -346,7 +345,7 @@ int HierarchicalSpace<D>::refine_functions(std::span<const int> ids) {
 template <int D>
 Ints<D> HierarchicalSpace<D>::parent(int level, const Ints<D>& cell) const {
   Ints<D> p;
-  for (int k = 0; k < D; ++k) p[k] = h_.axis(level, k).parent[static_cast<std::size_t>(cell[k])];
+  for (int k = 0; k < D; ++k) p[k] = h_.parent(level, k, cell[k]);
   return p;
 }
 
@@ -357,7 +356,7 @@ void HierarchicalSpace<D>::step(int j, const Ints<D>& c, int stride, double* row
   Ints<D> n, first;
   for (int k = 0; k < D; ++k) {
     n[k] = h_.degree(k) + 1;
-    first[k] = h_.axis(j, k).span[static_cast<std::size_t>(c[k])] - h_.degree(k);
+    first[k] = h_.axis(j, k).span(c[k]) - h_.degree(k);
   }
   if (j > 0 && count > 0) {
     thread_local std::vector<double> tmp;

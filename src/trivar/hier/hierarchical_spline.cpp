@@ -7,7 +7,6 @@
 
 #include "trivar/core/error.hpp"
 #include "trivar/core/parallel.hpp"
-#include "trivar/spline/knot_refinement.hpp"
 
 namespace trivar {
 
@@ -38,7 +37,7 @@ std::vector<double> thb_coefficients(const HierarchicalSpace<D>& target, const H
     }
     int q = 0;
     for (int k = D - 1; k >= 0; --k) {
-      const int first = target.hierarchy().axis(f.level, k).span[static_cast<std::size_t>(cell[k])] - target.degree(k);
+      const int first = target.hierarchy().axis(f.level, k).span(cell[k]) - target.degree(k);
       q = q * (target.degree(k) + 1) + (f.index[k] - first);
     }
     std::copy_n(expansion.begin() + static_cast<std::ptrdiff_t>(q) * stride, stride, c);
@@ -68,7 +67,7 @@ std::vector<double> hb_from_thb(const HierarchicalSpace<D>& hb, std::span<const 
       }
       int q = 0;
       for (int k = D - 1; k >= 0; --k) {
-        const int first = hb.hierarchy().axis(l, k).span[static_cast<std::size_t>(cell[k])] - hb.degree(k);
+        const int first = hb.hierarchy().axis(l, k).span(cell[k]) - hb.degree(k);
         q = q * (hb.degree(k) + 1) + (f.index[k] - first);
       }
       for (int s = 0; s < stride; ++s)
@@ -172,9 +171,7 @@ int HierarchicalSpline<D>::refine(Refine&& how) {
       for (const auto& [key, c] : pending[static_cast<std::size_t>(l)]) {
         const Ints<D> f = unpack_key<D>(key);
         for (int k = 0; k < D; ++k) {
-          const KnotVector& kv = h.knots(l, k);
-          express_in(std::span<const double>(kv.data() + f[k], static_cast<std::size_t>(h.degree(k) + 2)), h.degree(k),
-                     h.knots(l + 1, k), first[k], w[k]);
+          h.two_scale(l, k, f[k], first[k], w[k]);
         }
         Ints<D> a{}, size;
         for (int k = 0; k < D; ++k) size[k] = static_cast<int>(w[k].size());
