@@ -137,30 +137,43 @@ void HierarchicalEvaluator<D>::eval_fixed(const Box<D>& box, const double* net, 
     bernstein<N - 1>(degrees_[k], (x[k] - box.lo[k]) / box.extent(k), 0.0, b[k], nullptr);
   const int st = stride(), n0 = (N > 0 ? N : degrees_[0] + 1);
   const int rows = local_ / n0;
-  for (int s = 0; s < st; ++s) h[s] = 0.0;
-  for (int r = 0; r < rows; ++r) {
+  auto row_weight = [&](int r) {
     double w = 1.0;
     for (int k = 1, q = r; k < D; ++k) {
       const int nk = N > 0 ? N : degrees_[k] + 1;
       w *= b[k][q % nk];
       q /= nk;
     }
-    const double* row = net + static_cast<std::ptrdiff_t>(r) * n0 * st;
-    if (st == 3) {
+    return w;
+  };
+  if (st == 3) {
+    // Local accumulators: the compiler cannot keep h[] in registers (it may alias the net).
+    double h0 = 0, h1 = 0, h2 = 0;
+    for (int r = 0; r < rows; ++r) {
+      const double* row = net + static_cast<std::ptrdiff_t>(r) * n0 * 3;
       double a0 = 0, a1 = 0, a2 = 0;
       for (int a = 0; a < n0; ++a) {
         a0 += b[0][a] * row[3 * a];
         a1 += b[0][a] * row[3 * a + 1];
         a2 += b[0][a] * row[3 * a + 2];
       }
-      h[0] += w * a0;
-      h[1] += w * a1;
-      h[2] += w * a2;
-    } else {
-      for (int a = 0; a < n0; ++a) {
-        const double f = w * b[0][a];
-        for (int s = 0; s < st; ++s) h[s] += f * row[a * st + s];
-      }
+      const double w = row_weight(r);
+      h0 += w * a0;
+      h1 += w * a1;
+      h2 += w * a2;
+    }
+    h[0] = h0;
+    h[1] = h1;
+    h[2] = h2;
+    return;
+  }
+  for (int s = 0; s < st; ++s) h[s] = 0.0;
+  for (int r = 0; r < rows; ++r) {
+    const double w = row_weight(r);
+    const double* row = net + static_cast<std::ptrdiff_t>(r) * n0 * st;
+    for (int a = 0; a < n0; ++a) {
+      const double f = w * b[0][a];
+      for (int s = 0; s < st; ++s) h[s] += f * row[a * st + s];
     }
   }
 }
