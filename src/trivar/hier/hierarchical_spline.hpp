@@ -39,6 +39,7 @@ public:
   HierarchicalSpline& operator=(HierarchicalSpline&&) = default;
 
   const HierarchicalSpace<D>& space() const { return space_; }
+  Box<D> domain() const { return space_.domain(); }
   int dim() const { return dim_; }
   bool is_rational() const { return rational_; }
   int stride() const { return dim_ + (rational_ ? 1 : 0); }
