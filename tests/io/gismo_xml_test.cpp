@@ -111,6 +111,23 @@ TEST(GismoXml, HierarchicalSplinesRoundTrip) {
   EXPECT_NE(two.find("<patches type=\"id_range\">0 1</patches>"), std::string::npos);
 }
 
+TEST(GismoXml, ReadsAHandWrittenTHBIdentity) {
+  // Coefficients at the Greville points of each function's level: THB splines preserve the coefficients of
+  // the level representation, so the file is the identity map (an independent check of reading and truncation).
+  const auto g = read_gismo_xml(kData + "thb_identity_corner.xml");
+  const auto& h = std::get<HierarchicalSpline<2>>(g[0]);
+  EXPECT_EQ(h.space().num_basis(), 37);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> U(0, 1);
+  double x[2];
+  for (int i = 0; i < 200; ++i) {
+    const Param<2> u{U(rng), U(rng)};
+    h.eval(u, x);
+    EXPECT_NEAR(x[0], u[0], 1e-15);
+    EXPECT_NEAR(x[1], u[1], 1e-15);
+  }
+}
+
 TEST(GismoXml, ReadsAlignedBoxes) {
   // Bilinear, 4 x 4 level-0 cells; the level-1 box is level-1 cells [0, 4)^2 = level-0 cells [0, 2)^2: the
   // level-0 functions with support in [0, 1/2]^2 (t_{i+2} <= 1/2: 2 x 2) leave, the level-1 ones there
@@ -147,6 +164,7 @@ TEST(GismoXml, BadFilesGiveOneLineErrors) {
       {thb_text(R"(<box level="1">5 2 6 6</box>)", "0"), "cuts a cell of level 0"},
       {thb_text(R"(<box level="1">0 0 9 2</box>)", "0"), "box exceeds the 8 cells of level 1 in direction 0"},
       {thb_text(R"(<box level="1">0 0 2</box>)", "0"), "a box needs 4 indices"},
+      {thb_text(R"(<box level="14">0 0 65536 65536</box>)", "0"), "the boxes cover more than 20000000 cells"},
   };
   for (const auto& [text, expected] : cases) {
     const std::string msg = error_of(text);

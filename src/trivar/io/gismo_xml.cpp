@@ -20,6 +20,9 @@ namespace trivar::io {
 
 namespace {
 
+// Most cells the boxes of one hierarchical basis may cover (each becomes a set entry while reading).
+constexpr double kMaxBoxCells = 2e7;
+
 struct Reader {
   std::string name;
 
@@ -208,14 +211,19 @@ struct Reader {
     // level j is its own boxes plus the parents of Omega^{j+1}; Omega^j must consist of whole children sets
     // of cells of level j - 1, which are the refined cells of level j - 1.
     std::vector<std::set<CellKey>> omega(static_cast<std::size_t>(top) + 1);
+    double total_cells = 0;
     for (const Box_& b : boxes) {
       for (int k = 0; k < D; ++k)
         if (b.hi[k] > h->axis(b.level, k).num_cells())
           fail(b.node, "box exceeds the " + std::to_string(h->axis(b.level, k).num_cells()) + " cells of level " +
                            std::to_string(b.level) + " in direction " + std::to_string(k));
-      bool empty = false;
-      for (int k = 0; k < D; ++k) empty = empty || b.lo[k] == b.hi[k];
-      if (empty) continue;
+      double cells = 1;
+      for (int k = 0; k < D; ++k) cells *= b.hi[k] - b.lo[k];
+      if (cells == 0) continue;
+      total_cells += cells;
+      // Sets of cells per level are built from the boxes: refuse absurd sizes before allocating them.
+      if (total_cells > kMaxBoxCells)
+        fail(b.node, "the boxes cover more than " + std::to_string(static_cast<long>(kMaxBoxCells)) + " cells");
       Ints<D> c = b.lo;
       while (true) {
         omega[static_cast<std::size_t>(b.level)].insert(pack_key<D>(c));
