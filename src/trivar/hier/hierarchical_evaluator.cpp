@@ -219,7 +219,13 @@ void HierarchicalEvaluator<D>::eval_first_derivatives(const HierarchicalSpace<D>
     bernstein(degrees_[k], (x[k] - box.lo[k]) / box.extent(k), 1.0 / box.extent(k), b[k], db[k]);
   const int st = stride();
   const double* net = nets_.data() + static_cast<std::size_t>(e) * local_ * st;
-  std::vector<double> hv(static_cast<std::size_t>((D + 1) * st), 0.0);
+  double small[(D + 1) * 8] = {};
+  std::vector<double> big;
+  double* hv = small;
+  if (st > 8) {
+    big.assign(static_cast<std::size_t>((D + 1) * st), 0.0);
+    hv = big.data();
+  }
   Ints<D> a{};
   for (int q = 0; q < local_; ++q) {
     double w[D + 1];
