@@ -9,6 +9,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   python3  # tests read output files back with its standard library (xml, zlib, struct, zipfile)
   libsuitesparse-dev libspectra-dev libgmp-dev
+  libxml2-dev  # G+Smo XML files
   clang-14 libclang-rt-14-dev libomp-14-dev
   # OpenCASCADE: STEP B-rep import, exact NURBS conversion, trimmed-face tessellation, test solids
   libocct-data-exchange-dev libocct-modeling-algorithms-dev libocct-modeling-data-dev libocct-foundation-dev

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "cli.hpp"
+#include "hier_cli.hpp"
 #include "lr_cli.hpp"
 #include "step_cli.hpp"
 #include "trivar/core/error.hpp"
@@ -40,8 +41,8 @@ void add_convert_command(CLI::App& app, Context&) {
     }
   };
   auto a = std::make_shared<Args>();
-  cmd->add_option("IN", a->in, "Input spline file (.json, .g2, .lr), STEP file (.stp, .step) or V-model (.json)")->required();
-  cmd->add_option("OUT", a->out, "Output file (.json, .g2, .lr, .vtu, .stp, .step)")->required();
+  cmd->add_option("IN", a->in, "Input spline file (.json, .g2, .lr, .xml), STEP file (.stp, .step) or V-model (.json)")->required();
+  cmd->add_option("OUT", a->out, "Output file (.json, .g2, .lr, .xml, .vtu, .stp, .step)")->required();
   auto* samples = cmd->add_option("--samples", a->samples,
                                   "VTK: linear cells sampling every element at N points per direction instead of "
                                   "one exact Bezier cell per element")
@@ -110,6 +111,11 @@ void add_convert_command(CLI::App& app, Context&) {
             s);
       }
       write_lr_file(a->out, c.lr_splines, "convert", a->lr_vtk());
+      return;
+    }
+    if (const auto h = read_hierarchical_if_any(a->in)) {
+      require(!a->lr, "convert: --lr applies to tensor splines, not to the hierarchical splines of " + a->in);
+      write_hierarchical_file(a->out, *h, "convert");
       return;
     }
     if (const std::optional<VModel> model = read_model_if_any(a->in)) {

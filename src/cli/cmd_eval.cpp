@@ -7,6 +7,7 @@
 #include <variant>
 
 #include "cli.hpp"
+#include "hier_cli.hpp"
 #include "lr_cli.hpp"
 #include "tspline_cli.hpp"
 #include "trivar/core/error.hpp"
@@ -85,7 +86,7 @@ void add_eval_command(CLI::App& app, Context&) {
     std::optional<int> object;
   };
   auto a = std::make_shared<Args>();
-  cmd->add_option("FILE", a->file, "Spline file (.json, .g2, or LR: .lr, .g2, .json)")->required();
+  cmd->add_option("FILE", a->file, "Spline file (.json, .g2, .xml, or LR: .lr, .g2, .json)")->required();
   cmd->add_option("PARAMS", a->params, "Parameters u [v [w]], one per parametric direction")->required()->expected(1, 3);
   cmd->add_option("--derivs", a->derivs, "Also print all partial derivatives up to this total order")
       ->check(CLI::Range(0, kMaxDerivativeOrder));
@@ -98,6 +99,10 @@ void add_eval_command(CLI::App& app, Context&) {
     const auto eval = [&](const auto& spline) { evaluate(spline, a->params, a->derivs); };
     if (const auto lr = read_lr_if_any(a->file)) {
       std::visit(eval, pick(*lr, a->object, a->file));
+      return;
+    }
+    if (const auto h = read_hierarchical_if_any(a->file)) {
+      std::visit(eval, pick(*h, a->object, a->file));
       return;
     }
     std::visit(eval, pick(read_objects(a->file), a->object, a->file));

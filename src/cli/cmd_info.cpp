@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli.hpp"
+#include "hier_cli.hpp"
 #include "lr_cli.hpp"
 #include "trivar/core/error.hpp"
 #include "step_cli.hpp"
@@ -220,6 +221,12 @@ void add_info_command(CLI::App& app, Context&) {
     }
     if (const auto lr = read_lr_if_any(*file)) {
       print_lr_info(*file, *lr, *json, *check);
+      return;
+    }
+    if (const auto h = read_hierarchical_if_any(*file)) {
+      require(check->empty() && !*json, "info: --check-independence and --json apply to tensor and LR splines, not to "
+                                        "the hierarchical splines of " + *file);
+      print_hierarchical_info(*file, *h);
       return;
     }
     require(check->empty(), "info: --check-independence applies to LR splines; " + *file +

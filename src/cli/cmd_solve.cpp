@@ -22,7 +22,8 @@
 #include "trivar/iga/eigen_modes.hpp"
 #include "trivar/iga/error_indicator.hpp"
 #include "trivar/iga/error_norms.hpp"
-#include "trivar/iga/lr_poisson.hpp"
+#include "trivar/iga/refined_poisson.hpp"
+#include "trivar/iga/refined_space.hpp"
 #include "trivar/iga/lr_solution_field.hpp"
 #include "trivar/iga/poisson.hpp"
 #include "trivar/iga/solution_field.hpp"
@@ -48,6 +49,7 @@ struct SolveArgs {
   std::string physics = "elastic";
   bool study = false;
   bool adaptive = false;
+  std::string space = "lr";
   int steps = 5;
   double beta = 0.3;
   std::string solver = "cg";
@@ -321,10 +323,10 @@ template <int D>
 void write_lr_solution(const std::filesystem::path& path, const LRSpline<D>& lr, const PoissonBenchmark<D>& b,
                        const Eigen::VectorXd& coefs, int threads) {
   const LRSpline<D> field = lr_solution_field(lr, coefs);
-  const auto elements = lr_element_bases(lr, threads);
-  const std::vector<double> eta = residual_indicators(lr, elements, b.problem, coefs, threads);
+  const RefinedSpace<D> space = refined_space(lr, threads);
+  const std::vector<double> eta = residual_indicators(space, b.problem, coefs, threads);
   std::vector<double> l2, h1;
-  error_norms_per_element(lr, elements, coefs, 1, b.exact, l2, h1, threads);
+  error_norms_per_element(space, coefs, 1, b.exact, l2, h1, threads);
   auto cell = [](const std::vector<double>& v, bool root) {
     return [&v, root](int, int e, std::span<double> out) {
       out[0] = root ? std::sqrt(v[static_cast<std::size_t>(e)]) : v[static_cast<std::size_t>(e)];
@@ -340,25 +342,34 @@ void write_lr_solution(const std::filesystem::path& path, const LRSpline<D>& lr,
                    {{"estimate", 1, cell(eta, false)}, {"error_l2", 1, cell(l2, true)}, {"error_h1", 1, cell(h1, true)}});
 }
 
-// Adaptive LR refinement from the problem's tensor space: one line per step, then the table, the mesh and the
-// solution.
+// Adaptive refinement from the problem's tensor space, on an LR or a hierarchical (HB, THB) space: one line per
+// step, then the table, and for LR the mesh and the solution.
 template <int D>
 void run_adaptive(const SolveArgs& a, const PoissonBenchmark<D>& b) {
   require(!a.study, "solve: --study and --adaptive exclude each other");
-  LRSpline<D> lr(b.space.geometry);
   AdaptiveOptions o;
   o.steps = a.steps;
   o.beta = a.beta;
   o.solver = a.solver;
   Eigen::VectorXd coefs;
-  const auto rows = adaptive_poisson<D>(
-      lr, b.problem, b.exact, o,
-      [](const ConvergenceRow& r) {
-        std::printf("step %d: dofs %d, L2 error %s, H1 error %s, estimate %s, assembly %s s, solve %s s\n", r.step,
-                    r.dofs, sci(r.l2).c_str(), sci(r.h1).c_str(), sci(r.estimate).c_str(),
-                    secs(r.assembly_seconds).c_str(), secs(r.solve_seconds).c_str());
-      },
-      &coefs, a.threads);
+  const auto print = [](const ConvergenceRow& r) {
+    std::printf("step %d: dofs %d, elements %d, L2 error %s, H1 error %s, estimate %s, assembly %s s, solve %s s\n",
+                r.step, r.dofs, r.elements, sci(r.l2).c_str(), sci(r.h1).c_str(), sci(r.estimate).c_str(),
+                secs(r.assembly_seconds).c_str(), secs(r.solve_seconds).c_str());
+  };
+  if (a.space != "lr") {
+    HierarchicalSpline<D> h(b.space.geometry, a.space == "hb" ? HierarchicalBasis::hb : HierarchicalBasis::thb);
+    const auto rows = adaptive_poisson<D>(h, b.problem, b.exact, o, print, &coefs, a.threads);
+    if (!a.out.empty()) {
+      const auto out = prepare_out(a);
+      write_convergence_csv(out->path("convergence.csv").string(), rows, D);
+      write_convergence_svg(out->path("convergence.svg").string(), rows);
+      out->commit();
+    }
+    return;
+  }
+  LRSpline<D> lr(b.space.geometry);
+  const auto rows = adaptive_poisson<D>(lr, b.problem, b.exact, o, print, &coefs, a.threads);
   if (!a.out.empty()) {
     const auto out = prepare_out(a);
     write_convergence_csv(out->path("convergence.csv").string(), rows, D);
@@ -470,6 +481,7 @@ void run(const SolveArgs& a) {
     return;
   }
   const std::string& p = a.problem;
+  require(a.adaptive || a.space == "lr", "solve: --space is an option of --adaptive");
   require(!a.adaptive || (a.kind == "poisson" && (p == "l-shape" || p == "sine-square" || p == "sine-cube")),
           "solve: --adaptive is available for the poisson problems l-shape, sine-square and sine-cube");
   if (a.adaptive) {
@@ -535,7 +547,11 @@ void add_solve_command(CLI::App& app, Context& ctx) {
       ->default_val("elastic")
       ->check(CLI::IsMember({"elastic", "laplace"}));
   cmd->add_flag("--study", a->study, "Also solve on 2, 4, 8, ... elements per direction and report rates");
-  cmd->add_flag("--adaptive", a->adaptive, "Adaptive LR refinement: solve, estimate, mark (Dorfler), refine");
+  cmd->add_flag("--adaptive", a->adaptive, "Adaptive refinement: solve, estimate, mark (Dorfler), refine");
+  cmd->add_option("--space", a->space, "Locally refined space of --adaptive: lr (LR B-splines), hb or thb "
+                                       "((truncated) hierarchical B-splines)")
+      ->default_val("lr")
+      ->check(CLI::IsMember({"lr", "hb", "thb"}));
   cmd->add_option("--steps", a->steps, "Adaptive steps (solves)")->default_val(5);
   cmd->add_option("--beta", a->beta, "Dorfler marking fraction in (0, 1]")->default_val(0.3);
   cmd->add_option("--solver", a->solver, "cg, cg-ichol or cholmod")->default_val("cg");

@@ -235,7 +235,7 @@ TEST_F(Cli, EveryExtensionTheErrorNamesIsAccepted) {
   const std::string err = lines(run("eval cube.xyz 0.5 0.5 0.5").err).at(0);
   const std::string head = "trivar: error: cube.xyz: unknown spline file extension '.xyz' (expected ";
   ASSERT_EQ(err.rfind(head, 0), 0u) << err;
-  // ".json, .g2, .lr, .stp, .step or .p21)": every name starting with a dot.
+  // ".json, .g2, .lr, .stp, .step, .p21 or .xml)": every name starting with a dot.
   std::vector<std::string> extensions;
   std::string rest = err.substr(head.size());
   for (std::size_t p = rest.find('.'); p != std::string::npos; p = rest.find('.', p + 1)) {
@@ -243,7 +243,7 @@ TEST_F(Cli, EveryExtensionTheErrorNamesIsAccepted) {
     extensions.push_back(rest.substr(p, end - p));
     p = end;
   }
-  EXPECT_EQ(extensions, (std::vector<std::string>{".json", ".g2", ".lr", ".stp", ".step", ".p21"}));
+  EXPECT_EQ(extensions, (std::vector<std::string>{".json", ".g2", ".lr", ".stp", ".step", ".p21", ".xml"}));
   for (const std::string& ext : extensions) {
     if (ext != ".json") ok("convert cube.json cube" + ext);
     // The identity cube: S(u, v, w) = (u, v, w) whatever the format.

@@ -11,7 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "trivar/iga/error_norms.hpp"
-#include "trivar/iga/lr_poisson.hpp"
+#include "trivar/iga/refined_poisson.hpp"
 #include "trivar/iga/tensor_space.hpp"
 #include "trivar/lr/refinement.hpp"
 
@@ -73,21 +73,21 @@ std::vector<trivar::Face> faces_on_side(int side) {
 }
 
 // On a locally refined space (with T-junctions) that holds the exact solution, the solution returned by
-// solve(elements, solver) is that solution up to rounding.
+// solve(space, solver) is that solution up to rounding.
 template <int D, class Solve>
 void expect_reproduced(const trivar::LRSpline<D>& lr, int components, const trivar::ExactSolution<D>& exact,
                        Solve&& solve) {
   ASSERT_TRUE(has_t_junction(lr));
-  const auto elements = trivar::lr_element_bases(lr);
+  const auto space = trivar::refined_space(lr);
   auto solver = trivar::make_solver("cholmod");
-  const trivar::ErrorNorms e = trivar::error_norms<D>(lr, elements, solve(elements, *solver).coefs, components, exact);
+  const trivar::ErrorNorms e = trivar::error_norms<D>(space, solve(space, *solver).coefs, components, exact);
   EXPECT_LE(e.l2, 1e-10) << D;
   EXPECT_LE(e.h1, 1e-10) << D;
 }
 
 // The convergence study of the LR tests: the map (2 elements per direction) at degree p with n = 4, 8, 16, 32
 // elements per direction, then the elements in [0, 1/4]^D refined once more (T-junctions; the largest
-// elements keep h = 1/n). solve(lr, elements, solver) on each space, errors against a smooth exact solution,
+// elements keep h = 1/n). solve(space, solver) on each space, errors against a smooth exact solution,
 // and a-priori rates between successive spaces: L2 ~ h^(p+1), H1 ~ h^p within [-0.15, +0.6] (pre-asymptotic meshes converge
 // faster), within 0.2 on the finest pair. Returns the errors per space.
 template <int D, class Solve>
@@ -98,9 +98,9 @@ std::vector<trivar::ErrorNorms> expect_optimal_convergence(const trivar::TensorS
     trivar::LRSpline<D> lr(trivar::make_tensor_space(map, p, n / 2).geometry);
     refine_corner(lr, 0.25);
     EXPECT_TRUE(has_t_junction(lr));
-    const auto elements = trivar::lr_element_bases(lr);
+    const auto space = trivar::refined_space(lr);
     auto solver = trivar::make_solver("cholmod");
-    errors.push_back(trivar::error_norms<D>(lr, elements, solve(lr, elements, *solver).coefs, components, exact));
+    errors.push_back(trivar::error_norms<D>(space, solve(space, *solver).coefs, components, exact));
     if (n == 4) continue;
     const trivar::ErrorNorms &coarse = errors[errors.size() - 2], &fine = errors.back();
     const double rl2 = std::log2(coarse.l2 / fine.l2), rh1 = std::log2(coarse.h1 / fine.h1);

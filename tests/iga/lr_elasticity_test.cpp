@@ -1,6 +1,6 @@
 // Linear elasticity on LR spaces: agreement with the tensor solve on unrefined spaces, the patch test on
 // locally refined meshes, and a-priori convergence rates for a manufactured solution.
-#include "trivar/iga/lr_elasticity.hpp"
+#include "trivar/iga/refined_elasticity.hpp"
 
 #include <cmath>
 #include <iomanip>
@@ -11,7 +11,7 @@
 
 #include "iga/iga_test_support.hpp"
 #include "trivar/core/error.hpp"
-#include "trivar/iga/lr_poisson.hpp"
+#include "trivar/iga/refined_poisson.hpp"
 
 using namespace trivar;
 using iga_test::faces_on_side;
@@ -67,7 +67,7 @@ void expect_same_as_tensor(unsigned seed) {
   auto solver = make_solver("cholmod");
   const SolveResult tr = solve_elasticity(space, p, *solver);
   const LRSpline<D> lr(space.geometry);
-  const SolveResult r = solve_elasticity(lr, lr_element_bases(lr), p, *solver);
+  const SolveResult r = solve_elasticity(refined_space(lr), p, *solver);
   EXPECT_EQ(r.dofs, tr.dofs);
   ASSERT_EQ(r.coefs.size(), tr.coefs.size());
   // A converted tensor spline keeps its basis order, so the coefficient vectors compare entry by entry.
@@ -92,8 +92,8 @@ void expect_patch_test(const LRSpline<D>& lr) {
   const ElasticityProblem<D> p =
       mixed_problem<D>({200.0, 0.25}, linear_field<D>, faces_on_side<D>(0), faces_on_side<D>(1));
   iga_test::expect_reproduced<D>(lr, D, linear_field<D>,
-                                 [&](const std::vector<LRElementBasis<D>>& elements, LinearSolver& s) {
-                                   return solve_elasticity(lr, elements, p, s);
+                                 [&](const RefinedSpace<D>& space, LinearSolver& s) {
+                                   return solve_elasticity(space, p, s);
                                  });
 }
 
@@ -125,7 +125,7 @@ TEST(LRElasticity, InvalidMaterialThrowsAfterAssembly) {
   bad.displacement.push_back({{{0, 0}}, {}, nullptr});
   const LRSpline<2> lr(box_geometry<2>({0, 0}, {1, 1}, 2, 2));
   auto solver = make_solver("cholmod");
-  EXPECT_THROW(solve_elasticity(lr, lr_element_bases(lr), bad, *solver), Error);
+  EXPECT_THROW(solve_elasticity(refined_space(lr), bad, *solver), Error);
 }
 
 TEST(LRElasticity, ConvergesAtOptimalRatesOnLocallyRefinedSpaces) {
@@ -153,8 +153,8 @@ TEST(LRElasticity, ConvergesAtOptimalRatesOnLocallyRefinedSpaces) {
   };
   const TensorSpline<2> map = iga_test::distorted_box<2>(2, 2, false, 5);
   const std::vector<ErrorNorms> e = iga_test::expect_optimal_convergence<2>(
-      map, 2, 2, exact, [&](const LRSpline<2>& lr, const auto& elements, LinearSolver& s) {
-        return solve_elasticity(lr, elements, p, s);
+      map, 2, 2, exact, [&](const RefinedSpace<2>& space, LinearSolver& s) {
+        return solve_elasticity(space, p, s);
       });
   for (std::size_t i = 0; i < e.size(); ++i) {
     std::ostringstream errors;

@@ -6,7 +6,7 @@
 
 #include "iga/iga_test_support.hpp"
 #include "trivar/iga/error_indicator.hpp"
-#include "trivar/iga/lr_poisson.hpp"
+#include "trivar/iga/refined_poisson.hpp"
 
 using namespace trivar;
 using iga_test::faces_on_side;
@@ -54,20 +54,17 @@ void expect_same_as_tensor(int seed) {
   auto solver = make_solver("cholmod");
   const SolveResult tr = solve_poisson(space, p, *solver);
   const LRSpline<D> lr(space.geometry);
-  const auto elements = lr_element_bases(lr);
-  const SolveResult r = solve_poisson(lr, elements, p, *solver);
+  const SolveResult r = solve_poisson(refined_space(lr), p, *solver);
   EXPECT_EQ(r.dofs, tr.dofs);
   ASSERT_EQ(r.coefs.size(), tr.coefs.size());
   // A converted tensor spline keeps its basis order, so the coefficient vectors compare entry by entry.
   EXPECT_LE((r.coefs - tr.coefs).lpNorm<Eigen::Infinity>(), 1e-10 * tr.coefs.lpNorm<Eigen::Infinity>()) << D;
 }
 
-// Solves p on lr: the solver that iga_test::expect_reproduced checks.
+// Solves p on a space: the solver that iga_test::expect_reproduced checks.
 template <int D>
-auto poisson_on(const LRSpline<D>& lr, const PoissonProblem<D>& p) {
-  return [&lr, &p](const std::vector<LRElementBasis<D>>& elements, LinearSolver& s) {
-    return solve_poisson(lr, elements, p, s);
-  };
+auto poisson_on(const PoissonProblem<D>& p) {
+  return [&p](const RefinedSpace<D>& space, LinearSolver& s) { return solve_poisson(space, p, s); };
 }
 
 }  // namespace
@@ -92,7 +89,7 @@ TEST(LRNeumann, ReproducesPolynomialsInTheSpaceOnLocallyRefinedMeshes) {
     LRSpline<2> lr(box_geometry<2>({0, 0}, {1, 1}, 2, 4));
     iga_test::refine_corner(lr, 0.5);
     iga_test::refine_corner(lr, 0.25);
-    iga_test::expect_reproduced<2>(lr, 1, exact, poisson_on(lr, p));
+    iga_test::expect_reproduced<2>(lr, 1, exact, poisson_on(p));
   }
   // Linear u on a curved polynomial map (p = 1 in 3-D: the isoparametric space holds x, y, z, and with k = 1
   // the stiffness and face integrands stay within the exact degree of the rules, see the tensor patch test).
@@ -106,7 +103,7 @@ TEST(LRNeumann, ReproducesPolynomialsInTheSpaceOnLocallyRefinedMeshes) {
     const PoissonProblem<3> p = mixed_problem<3>(exact, nullptr, faces_on_side<3>(0), faces_on_side<3>(1));
     LRSpline<3> lr(iga_test::distorted_box<3>(1, 4, false, 11));
     iga_test::refine_corner(lr, 0.5);
-    iga_test::expect_reproduced<3>(lr, 1, exact, poisson_on(lr, p));
+    iga_test::expect_reproduced<3>(lr, 1, exact, poisson_on(p));
   }
 }
 
@@ -131,8 +128,8 @@ TEST(LRNeumann, ConvergesAtOptimalRatesOnLocallyRefinedSpaces) {
   const TensorSpline<2> map = iga_test::distorted_box<2>(2, 2, false, 5);
   for (int deg : {2, 3})
     iga_test::expect_optimal_convergence<2>(map, deg, 1, exact,
-                                            [&](const LRSpline<2>& lr, const auto& elements, LinearSolver& s) {
-                                              return solve_poisson(lr, elements, p, s);
+                                            [&](const RefinedSpace<2>& space, LinearSolver& s) {
+                                              return solve_poisson(space, p, s);
                                             });
 }
 
@@ -151,7 +148,7 @@ double expect_neumann_indicator(const LRSpline<D>& lr) {
   p.flux = [](const double*, const double*) { return 3.0; };
   Eigen::VectorXd x(lr.num_basis());
   for (int i = 0; i < lr.num_basis(); ++i) x[i] = lr.basis_function(i).coef[0];
-  const auto eta = residual_indicators(lr, lr_element_bases(lr), p, x);
+  const auto eta = residual_indicators(refined_space(lr), p, x);
   EXPECT_EQ(static_cast<int>(eta.size()), lr.num_elements());
   double total = 0, expected_total = 0;
   for (int e = 0; e < lr.num_elements(); ++e) {

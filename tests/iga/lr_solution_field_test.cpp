@@ -6,7 +6,7 @@
 
 #include "iga/iga_test_support.hpp"
 #include "trivar/core/error.hpp"
-#include "trivar/iga/lr_space.hpp"
+#include "trivar/iga/refined_space.hpp"
 
 using namespace trivar;
 
@@ -22,13 +22,13 @@ void expect_field_is_the_expansion(const LRSpline<D>& g, unsigned seed) {
   const LRSpline<D> field = lr_solution_field(g, c);
   EXPECT_EQ(field.dim(), 1);
   EXPECT_EQ(field.num_basis(), g.num_basis());
-  const auto elements = lr_element_bases(g);
-  LRPoint<D> p;
+  const auto space = refined_space(g);
+  RefinedPoint<D> p;
   for (int q = 0; q < 50; ++q) {
     Param<D> u;
     for (int k = 0; k < D; ++k) u[k] = g.domain().lo[k] + g.domain().extent(k) * param(rng);
-    const auto& el = elements[static_cast<std::size_t>(g.evaluator().find_element(u))];
-    lr_point(g, el, u, p);
+    const auto& el = space.elements[static_cast<std::size_t>(space.locate(u))];
+    refined_point(space, el, u, p);
     double expected = 0;
     for (std::size_t l = 0; l < el.ids.size(); ++l) expected += c[el.ids[l]] * p.R[l];
     double value;

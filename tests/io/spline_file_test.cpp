@@ -104,7 +104,7 @@ TEST(SplineFile, DispatchesByExtension) {
     io::read_spline_file(dir.file("e.vtu"));
     ADD_FAILURE() << "read a .vtu";
   } catch (const Error& e) {
-    EXPECT_EQ(std::string(e.what()), dir.file("e.vtu") + ": .vtu is an output-only format; read .json, .g2, .lr, .stp, .step or .p21");
+    EXPECT_EQ(std::string(e.what()), dir.file("e.vtu") + ": .vtu is an output-only format; read .json, .g2, .lr, .stp, .step, .p21 or .xml");
   }
   EXPECT_THROW(io::read_spline_file(dir.file("f.stl")), Error);
   EXPECT_THROW(io::write_spline_file(dir.file("f.stl"), objects), Error);

@@ -1,13 +1,13 @@
 // Poisson on an analysis-suitable T-mesh: the unit square, n x n cells whose line s = 1/2 stops at t = 1/2 (one
 // T-junction), bicubic, geometry the identity (control points at the Greville points of the local knots, which
-// AS T-splines reproduce). The T-spline is an LR spline (its blending functions sum to one), solved by the LR
-// Poisson code; -lap u = 2 pi^2 u with u = sin(pi x) sin(pi y): optimal rates h^4 (L2) and h^3 (H1).
+// AS T-splines reproduce). The T-spline is an LR spline (its blending functions sum to one), solved by the
+// locally refined Poisson code; -lap u = 2 pi^2 u with u = sin(pi x) sin(pi y): optimal rates h^4 (L2) and h^3 (H1).
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "trivar/iga/benchmark_problems.hpp"
-#include "trivar/iga/lr_poisson.hpp"
+#include "trivar/iga/refined_poisson.hpp"
 #include "trivar/iga/solver.hpp"
 #include "trivar/lr/knot_line_mesh.hpp"
 #include "trivar/tspline/classification.hpp"
@@ -52,9 +52,9 @@ TEST(TSplinePoisson, AnalysisSuitableTMeshConvergesAtTheOptimalRate) {
     geo.eval({0.3, 0.7}, x);
     EXPECT_NEAR(x[0], 0.3, 1e-13);
     EXPECT_NEAR(x[1], 0.7, 1e-13);
-    const auto elements = lr_element_bases(geo);
-    const SolveResult r = solve_poisson(geo, elements, b.problem, *solver);
-    const ErrorNorms e = error_norms<2>(geo, elements, r.coefs, 1, b.exact);
+    const RefinedSpace<2> space = refined_space(geo);
+    const SolveResult r = solve_poisson(space, b.problem, *solver);
+    const ErrorNorms e = error_norms<2>(space, r.coefs, 1, b.exact);
     if (prev_l2 > 0) {  // measured: L2 rates 3.25, 4.21, 4.38; H1 2.69, 3.27, 3.35
       EXPECT_GT(std::log2(prev_l2 / e.l2), n == 8 ? 3.0 : 3.6) << n;
       EXPECT_GT(std::log2(prev_h1 / e.h1), n == 8 ? 2.5 : 2.8) << n;

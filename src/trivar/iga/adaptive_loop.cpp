@@ -4,13 +4,26 @@
 
 #include "trivar/core/error.hpp"
 #include "trivar/iga/error_indicator.hpp"
-#include "trivar/iga/lr_poisson.hpp"
+#include "trivar/iga/refined_poisson.hpp"
+#include "trivar/iga/refined_space.hpp"
 #include "trivar/lr/dorfler.hpp"
 
 namespace trivar {
 
+namespace {
+
 template <int D>
-std::vector<ConvergenceRow> adaptive_poisson(LRSpline<D>& g, const PoissonProblem<D>& problem,
+void refine_marked(LRSpline<D>& g, std::span<const double> eta, const AdaptiveOptions& o) {
+  refine_dorfler(g, eta, o.beta, o.refine);
+}
+
+template <int D>
+void refine_marked(HierarchicalSpline<D>& g, std::span<const double> eta, const AdaptiveOptions& o) {
+  g.refine_elements(dorfler_mark(eta, o.beta));
+}
+
+template <class Geometry, int D>
+std::vector<ConvergenceRow> adaptive(Geometry& g, const PoissonProblem<D>& problem,
                                              const ExactSolution<D>& exact, const AdaptiveOptions& o,
                                              const std::function<void(const ConvergenceRow&)>& report,
                                              Eigen::VectorXd* coefs, int threads) {
@@ -18,19 +31,19 @@ std::vector<ConvergenceRow> adaptive_poisson(LRSpline<D>& g, const PoissonProble
   require(o.beta > 0 && o.beta <= 1, "adaptive: --beta must lie in (0, 1], got " + std::to_string(o.beta));
   std::vector<ConvergenceRow> rows;
   for (int step = 0; step < o.steps; ++step) {
-    const auto elements = lr_element_bases(g, threads);
+    const RefinedSpace<D> space = refined_space(g, threads);
     auto solver = make_solver(o.solver);
-    const SolveResult r = solve_poisson(g, elements, problem, *solver, threads);
+    const SolveResult r = solve_poisson(space, problem, *solver, threads);
     ConvergenceRow row;
     row.step = step;
-    row.elements = g.num_elements();
+    row.elements = space.num_elements();
     row.dofs = r.dofs;
     row.assembly_seconds = r.assembly_seconds;
     row.solve_seconds = r.solve_seconds;
     row.l2 = row.h1 = -1;
     if (exact) {
       std::vector<double> l2, h1;
-      error_norms_per_element(g, elements, r.coefs, 1, exact, l2, h1, threads);
+      error_norms_per_element(space, r.coefs, 1, exact, l2, h1, threads);
       row.l2 = row.h1 = 0;
       for (std::size_t e = 0; e < l2.size(); ++e) {
         row.l2 += l2[e];
@@ -39,7 +52,7 @@ std::vector<ConvergenceRow> adaptive_poisson(LRSpline<D>& g, const PoissonProble
       row.l2 = std::sqrt(row.l2);
       row.h1 = std::sqrt(row.h1);
     }
-    const std::vector<double> eta = residual_indicators(g, elements, problem, r.coefs, threads);
+    const std::vector<double> eta = residual_indicators(space, problem, r.coefs, threads);
     row.estimate = 0;
     for (double x : eta) row.estimate += x * x;
     row.estimate = std::sqrt(row.estimate);
@@ -49,18 +62,39 @@ std::vector<ConvergenceRow> adaptive_poisson(LRSpline<D>& g, const PoissonProble
       if (coefs) *coefs = r.coefs;
       break;
     }
-    refine_dorfler(g, eta, o.beta, o.refine);
+    refine_marked(g, eta, o);
   }
   return rows;
 }
 
-template std::vector<ConvergenceRow> adaptive_poisson(LRSpline<2>&, const PoissonProblem<2>&, const ExactSolution<2>&,
-                                                      const AdaptiveOptions&,
-                                                      const std::function<void(const ConvergenceRow&)>&,
-                                                      Eigen::VectorXd*, int);
-template std::vector<ConvergenceRow> adaptive_poisson(LRSpline<3>&, const PoissonProblem<3>&, const ExactSolution<3>&,
-                                                      const AdaptiveOptions&,
-                                                      const std::function<void(const ConvergenceRow&)>&,
-                                                      Eigen::VectorXd*, int);
+}  // namespace
+
+
+template <int D>
+std::vector<ConvergenceRow> adaptive_poisson(LRSpline<D>& g, const PoissonProblem<D>& problem, const ExactSolution<D>& exact,
+                                             const AdaptiveOptions& o,
+                                             const std::function<void(const ConvergenceRow&)>& report,
+                                             Eigen::VectorXd* coefs, int threads) {
+  return adaptive<LRSpline<D>, D>(g, problem, exact, o, report, coefs, threads);
+}
+
+template <int D>
+std::vector<ConvergenceRow> adaptive_poisson(HierarchicalSpline<D>& g, const PoissonProblem<D>& problem,
+                                             const ExactSolution<D>& exact, const AdaptiveOptions& o,
+                                             const std::function<void(const ConvergenceRow&)>& report,
+                                             Eigen::VectorXd* coefs, int threads) {
+  return adaptive<HierarchicalSpline<D>, D>(g, problem, exact, o, report, coefs, threads);
+}
+
+#define TRIVAR_INSTANTIATE(G, D)                                                                                  \
+  template std::vector<ConvergenceRow> adaptive_poisson(G<D>&, const PoissonProblem<D>&, const ExactSolution<D>&, \
+                                                        const AdaptiveOptions&,                                   \
+                                                        const std::function<void(const ConvergenceRow&)>&,        \
+                                                        Eigen::VectorXd*, int);
+TRIVAR_INSTANTIATE(LRSpline, 2)
+TRIVAR_INSTANTIATE(LRSpline, 3)
+TRIVAR_INSTANTIATE(HierarchicalSpline, 2)
+TRIVAR_INSTANTIATE(HierarchicalSpline, 3)
+#undef TRIVAR_INSTANTIATE
 
 }  // namespace trivar

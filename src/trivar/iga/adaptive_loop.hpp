@@ -1,10 +1,13 @@
 #pragma once
-// Adaptive refinement: solve on the LR space, estimate (residual_indicators), mark (Dorfler, fraction beta),
-// refine the LR mesh (refine_dorfler), repeat; one ConvergenceRow per solve.
+// Adaptive refinement on a locally refined space: solve (refined_poisson), estimate (residual_indicators), mark
+// (Dorfler, fraction beta), refine, repeat; one ConvergenceRow per solve. The geometry is an LR spline (the
+// marked elements refined by the LR strategy of options.refine) or a hierarchical spline (HB or THB: the marked
+// leaf elements are refined dyadically, the geometry kept exactly); the loop is the same code for both.
 #include <functional>
 #include <string>
 #include <vector>
 
+#include "trivar/hier/hierarchical_spline.hpp"
 #include "trivar/iga/convergence_table.hpp"
 #include "trivar/iga/error_norms.hpp"
 #include "trivar/iga/poisson.hpp"
@@ -15,15 +18,20 @@ namespace trivar {
 struct AdaptiveOptions {
   int steps = 5;       // solves (the last one is not refined after)
   double beta = 0.3;   // Dorfler fraction in (0, 1]
-  RefineOptions refine;
+  RefineOptions refine;  // LR geometries only
   std::string solver = "cholmod";
 };
 
-// geometry: the initial LR space (refined in place: on return it is the space of the last solve, whose
+// geometry: the initial space (refined in place: on return it is the space of the last solve, whose
 // coefficients go to *coefs when given). exact may be null (errors then reported as -1). Calls report(row)
 // after each solve when given. Throws trivar::Error for steps < 1 or beta outside (0, 1].
 template <int D>
 std::vector<ConvergenceRow> adaptive_poisson(LRSpline<D>& geometry, const PoissonProblem<D>& problem,
+                                             const ExactSolution<D>& exact, const AdaptiveOptions& options,
+                                             const std::function<void(const ConvergenceRow&)>& report = {},
+                                             Eigen::VectorXd* coefs = nullptr, int threads = 0);
+template <int D>
+std::vector<ConvergenceRow> adaptive_poisson(HierarchicalSpline<D>& geometry, const PoissonProblem<D>& problem,
                                              const ExactSolution<D>& exact, const AdaptiveOptions& options,
                                              const std::function<void(const ConvergenceRow&)>& report = {},
                                              Eigen::VectorXd* coefs = nullptr, int threads = 0);

@@ -7,7 +7,7 @@
 
 #include "trivar/core/error.hpp"
 #include "trivar/core/parallel.hpp"
-#include "trivar/iga/lr_quadrature.hpp"
+#include "trivar/iga/refined_quadrature.hpp"
 
 namespace trivar {
 
@@ -16,7 +16,7 @@ namespace {
 // Physical gradient and Laplacian of u_h = sum c_l R_l at an evaluated point. With g = grad_x u:
 // d2u/du_a du_b = J^T (Hess_x u) J + sum_c g_c d2x_c/du_a du_b, so Hess_x u = J^{-T} (H_u - sum_c g_c H_c) J^{-1}.
 template <int D>
-void gradient_and_laplacian(const LRPoint<D>& p, const std::vector<int>& ids, const Eigen::VectorXd& coefs,
+void gradient_and_laplacian(const RefinedPoint<D>& p, const std::vector<int>& ids, const Eigen::VectorXd& coefs,
                             Eigen::Matrix<double, D, 1>& grad, double& lap) {
   Eigen::Matrix<double, D, D> J, Hu;
   Eigen::Matrix<double, D, 1> du = Eigen::Matrix<double, D, 1>::Zero();
@@ -41,12 +41,10 @@ void gradient_and_laplacian(const LRPoint<D>& p, const std::vector<int>& ids, co
 }  // namespace
 
 template <int D>
-std::vector<double> residual_indicators(const LRSpline<D>& g, const std::vector<LRElementBasis<D>>& elements,
-                                        const PoissonProblem<D>& problem, const Eigen::VectorXd& coefs, int threads) {
+std::vector<double> residual_indicators(const RefinedSpace<D>& g, const PoissonProblem<D>& problem, const Eigen::VectorXd& coefs, int threads) {
   require(!problem.conductivity, "iga: the residual indicator supports conductivity k = 1 only");
   const int E = g.num_elements();
-  const Box<D>& dom = g.domain();
-  const ElementEvaluator<D>& locate = g.evaluator();
+  const Box<D>& dom = g.domain;
   std::vector<double> eta(static_cast<std::size_t>(E));
   auto is_dirichlet = [&](const Face& f) {
     for (const auto& cond : problem.dirichlet)
@@ -54,13 +52,13 @@ std::vector<double> residual_indicators(const LRSpline<D>& g, const std::vector<
     return false;
   };
   parallel_for(E, threads, [&](std::ptrdiff_t e) {
-    const LRElementBasis<D>& el = elements[static_cast<std::size_t>(e)];
-    const int nq = g.degree(0) + 1;
-    LRPoint<D> p, pn;
+    const RefinedElement<D>& el = g.elements[static_cast<std::size_t>(e)];
+    const int nq = g.degrees[0] + 1;
+    RefinedPoint<D> p, pn;
     Eigen::Matrix<double, D, 1> grad, gn;
     double lap, lapn, volume = 0, interior = 0;
     for_each_gauss_point<D>(el.box, nq, -1, 0, [&](const Param<D>& u, double w) {
-      lr_point(g, el, u, p);
+      refined_point(g, el, u, p);
       gradient_and_laplacian<D>(p, el.ids, coefs, grad, lap);
       Eigen::Matrix<double, D, D> J;
       for (int r = 0; r < D; ++r)
@@ -77,12 +75,12 @@ std::vector<double> residual_indicators(const LRSpline<D>& g, const std::vector<
         const Face face{k, side};
         if (!on_domain_face(dom, el.box, face)) {
           for_each_side_point<D>(g, el, k, side, nq,
-                                 [&](const Param<D>& u, const LRPoint<D>& q, double w, const std::array<double, D>& n) {
+                                 [&](const Param<D>& u, const RefinedPoint<D>& q, double w, const std::array<double, D>& n) {
             // The neighbour is the element just across the side at this point.
             Param<D> across = u;
             across[k] += (side == 0 ? -1.0 : 1.0) * 1e-9 * dom.extent(k);
-            const LRElementBasis<D>& nb = elements[static_cast<std::size_t>(locate.find_element(across))];
-            lr_point(g, nb, u, pn);
+            const RefinedElement<D>& nb = g.elements[static_cast<std::size_t>(g.locate(across))];
+            refined_point(g, nb, u, pn);
             gradient_and_laplacian<D>(q, el.ids, coefs, grad, lap);
             gradient_and_laplacian<D>(pn, nb.ids, coefs, gn, lapn);
             double jump = 0;
@@ -97,7 +95,7 @@ std::vector<double> residual_indicators(const LRSpline<D>& g, const std::vector<
         const bool given = problem.flux && std::find(problem.neumann.begin(), problem.neumann.end(), face) !=
                                                problem.neumann.end();
         for_each_side_point<D>(g, el, k, side, nq,
-                               [&](const Param<D>&, const LRPoint<D>& q, double w, const std::array<double, D>& n) {
+                               [&](const Param<D>&, const RefinedPoint<D>& q, double w, const std::array<double, D>& n) {
           gradient_and_laplacian<D>(q, el.ids, coefs, grad, lap);
           double mismatch = given ? problem.flux(q.x.data(), n.data()) : 0.0;
           for (int c = 0; c < D; ++c) mismatch -= grad[c] * n[c];
@@ -109,9 +107,7 @@ std::vector<double> residual_indicators(const LRSpline<D>& g, const std::vector<
   return eta;
 }
 
-template std::vector<double> residual_indicators(const LRSpline<2>&, const std::vector<LRElementBasis<2>>&,
-                                                 const PoissonProblem<2>&, const Eigen::VectorXd&, int);
-template std::vector<double> residual_indicators(const LRSpline<3>&, const std::vector<LRElementBasis<3>>&,
-                                                 const PoissonProblem<3>&, const Eigen::VectorXd&, int);
+template std::vector<double> residual_indicators(const RefinedSpace<2>&, const PoissonProblem<2>&, const Eigen::VectorXd&, int);
+template std::vector<double> residual_indicators(const RefinedSpace<3>&, const PoissonProblem<3>&, const Eigen::VectorXd&, int);
 
 }  // namespace trivar

@@ -1,5 +1,5 @@
 #pragma once
-// Residual-based a-posteriori error indicator for the Poisson problem on LR spaces (Babuska-Rheinboldt /
+// Residual-based a-posteriori error indicator for the Poisson problem on locally refined spaces (Babuska-Rheinboldt /
 // Verfurth): per element K
 //   eta_K^2 = h_K^2 ||f + lap u_h||_K^2 + 1/2 sum over interior sides S of K of h_K ||[du_h/dn]||_S^2
 //             + sum over Neumann sides S of K of h_K ||g - du_h/dn||_S^2,
@@ -12,7 +12,7 @@
 
 #include <Eigen/Core>
 
-#include "trivar/iga/lr_space.hpp"
+#include "trivar/iga/refined_space.hpp"
 #include "trivar/iga/poisson.hpp"
 
 namespace trivar {
@@ -20,8 +20,7 @@ namespace trivar {
 // One indicator eta_K per element. Throws trivar::Error when the problem has a variable conductivity (only
 // k = 1 is supported).
 template <int D>
-std::vector<double> residual_indicators(const LRSpline<D>& geometry, const std::vector<LRElementBasis<D>>& elements,
-                                        const PoissonProblem<D>& problem, const Eigen::VectorXd& coefs,
+std::vector<double> residual_indicators(const RefinedSpace<D>& geometry, const PoissonProblem<D>& problem, const Eigen::VectorXd& coefs,
                                         int threads = 0);
 
 }  // namespace trivar

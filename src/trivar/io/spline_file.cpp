@@ -7,6 +7,7 @@
 
 #include "trivar/core/error.hpp"
 #include "trivar/io/g2_format.hpp"
+#include "trivar/io/gismo_xml.hpp"
 #include "trivar/io/json_format.hpp"
 #include "trivar/io/step/step_file.hpp"
 #include "trivar/io/vtk_writer.hpp"
@@ -15,12 +16,13 @@ namespace trivar::io {
 
 namespace {
 
-constexpr std::array<FileFormatEntry, 7> kFormats{{{".json", FileFormat::json, true},
+constexpr std::array<FileFormatEntry, 8> kFormats{{{".json", FileFormat::json, true},
                                                    {".g2", FileFormat::g2, true},
                                                    {".lr", FileFormat::lr, true},
                                                    {".stp", FileFormat::step, true},
                                                    {".step", FileFormat::step, true},
                                                    {".p21", FileFormat::step, true},
+                                                   {".xml", FileFormat::gismo_xml, true},
                                                    {".vtu", FileFormat::vtu, false}}};
 
 std::string extension(const std::string& path) {
@@ -75,6 +77,17 @@ std::vector<AnySpline> read_spline_file(const std::string& path) {
       });
       return std::move(c.splines);
     }
+    case FileFormat::gismo_xml: {
+      std::vector<AnySpline> out;
+      for (auto& g : read_gismo_xml(path)) {
+        require(g.index() < 2, [&] {
+          return path + ": holds hierarchical splines; this command reads tensor-product splines only";
+        });
+        if (g.index() == 0) out.emplace_back(std::get<0>(std::move(g)));
+        else out.emplace_back(std::get<1>(std::move(g)));
+      }
+      return out;
+    }
     case FileFormat::lr:
     case FileFormat::vtu: break;
   }
@@ -86,10 +99,19 @@ void write_spline_file(const std::string& path, const std::vector<AnySpline>& ob
     case FileFormat::json: return write_json(path, objects);
     case FileFormat::g2: return write_g2(path, objects);
     case FileFormat::vtu: return write_vtu(path, objects);
+    case FileFormat::gismo_xml: {
+      std::vector<GismoGeometry> g;
+      for (const AnySpline& s : objects) {
+        require(s.index() > 0, path + ": G+Smo files take surfaces and volumes, not curves");
+        if (s.index() == 1) g.emplace_back(std::get<1>(s));
+        else g.emplace_back(std::get<2>(s));
+      }
+      return write_gismo_xml(path, g);
+    }
     case FileFormat::lr:
     case FileFormat::step: break;
   }
-  throw Error(path + ": " + extension(path) + " output takes LR splines or STEP conversion; write .json, .g2 or .vtu");
+  throw Error(path + ": " + extension(path) + " output takes LR splines or STEP conversion; write .json, .g2, .xml or .vtu");
 }
 
 }  // namespace trivar::io

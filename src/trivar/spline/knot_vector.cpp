@@ -18,18 +18,21 @@ KnotVector::KnotVector(int degree, std::vector<double> knots) : p_(degree), t_(s
   require(m >= 2 * (p_ + 1), "knot vector: degree " + std::to_string(p_) + " needs at least " +
                                  std::to_string(2 * (p_ + 1)) + " knots, got " + std::to_string(m));
   for (int i = 0; i < m; ++i) {
-    require(std::isfinite(t_[i]), "knot vector: knot " + std::to_string(i) + " is not finite");
+    // Messages are built only on failure: these checks run once per knot.
+    require(std::isfinite(t_[i]), [&] { return "knot vector: knot " + std::to_string(i) + " is not finite"; });
     if (i > 0)
-      require(t_[i] >= t_[i - 1], "knot vector: knot " + std::to_string(i) + " (" + format_number(t_[i]) +
-                                      ") is smaller than knot " + std::to_string(i - 1) + " (" + format_number(t_[i - 1]) +
-                                      "); knots must be non-decreasing");
+      require(t_[i] >= t_[i - 1], [&] {
+        return "knot vector: knot " + std::to_string(i) + " (" + format_number(t_[i]) + ") is smaller than knot " +
+               std::to_string(i - 1) + " (" + format_number(t_[i - 1]) + "); knots must be non-decreasing";
+      });
   }
   for (int i = 0; i < m;) {
     int j = i;
     while (j < m && t_[j] == t_[i]) ++j;
-    require(j - i <= p_ + 1, "knot vector: knot " + format_number(t_[i]) + " at index " + std::to_string(i) +
-                                 " has multiplicity " + std::to_string(j - i) + " > degree + 1 = " +
-                                 std::to_string(p_ + 1));
+    require(j - i <= p_ + 1, [&] {
+      return "knot vector: knot " + format_number(t_[i]) + " at index " + std::to_string(i) + " has multiplicity " +
+             std::to_string(j - i) + " > degree + 1 = " + std::to_string(p_ + 1);
+    });
     i = j;
   }
   const int n = size();

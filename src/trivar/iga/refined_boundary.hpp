@@ -1,13 +1,13 @@
 #pragma once
-// Boundary data on LR spaces, shared by the scalar and vector problems: loads on the element sides along
+// Boundary data on locally refined spaces (refined_space.hpp), shared by the scalar and vector problems: loads on the element sides along
 // Neumann / traction faces, and strong Dirichlet conditions by L2 projection onto the functions clamped at the
-// Dirichlet sides (the LR counterpart of project_dirichlet in dirichlet.hpp). Dofs are component-major.
+// Dirichlet sides (the locally refined counterpart of project_dirichlet in dirichlet.hpp). Dofs are component-major.
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "trivar/iga/dirichlet.hpp"
-#include "trivar/iga/lr_quadrature.hpp"
+#include "trivar/iga/refined_quadrature.hpp"
 
 namespace trivar {
 
@@ -15,14 +15,14 @@ namespace trivar {
 // (b[c * m + l] for the m active functions); load(x, n, out) writes `components` values. p + 2 points per
 // direction, as add_face_load.
 template <int D, class Load>
-void add_side_loads(const LRSpline<D>& geometry, const LRElementBasis<D>& element, const std::vector<Face>& faces,
+void add_side_loads(const RefinedSpace<D>& geometry, const RefinedElement<D>& element, const std::vector<Face>& faces,
                     int components, Load&& load, Eigen::VectorXd& b) {
   const Eigen::Index m = static_cast<Eigen::Index>(element.ids.size());
   std::vector<double> t(static_cast<std::size_t>(components));
   for (const Face& f : faces) {
-    if (!on_domain_face(geometry.domain(), element.box, f)) continue;
-    for_each_side_point<D>(geometry, element, f.dir, f.side, geometry.degree(0) + 2,
-                           [&](const Param<D>&, const LRPoint<D>& q, double w, const std::array<double, D>& n) {
+    if (!on_domain_face(geometry.domain, element.box, f)) continue;
+    for_each_side_point<D>(geometry, element, f.dir, f.side, geometry.degrees[0] + 2,
+                           [&](const Param<D>&, const RefinedPoint<D>& q, double w, const std::array<double, D>& n) {
                              load(q.x.data(), n.data(), t.data());
                              const Eigen::Map<const Eigen::VectorXd> R(q.R.data(), m);
                              for (int c = 0; c < components; ++c)
@@ -34,7 +34,6 @@ void add_side_loads(const LRSpline<D>& geometry, const LRElementBasis<D>& elemen
 // Same conventions as the tensor-patch project_dirichlet; throws trivar::Error for a face or component out of
 // range or a singular boundary mass matrix.
 template <int D>
-FixedDofs project_dirichlet(const LRSpline<D>& geometry, const std::vector<LRElementBasis<D>>& elements,
-                            int components, const std::vector<DirichletCondition<D>>& conditions);
+FixedDofs project_dirichlet(const RefinedSpace<D>& geometry, int components, const std::vector<DirichletCondition<D>>& conditions);
 
 }  // namespace trivar

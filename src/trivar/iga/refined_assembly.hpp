@@ -1,5 +1,5 @@
 #pragma once
-// The element loop of the LR problems: dense element matrices and vectors filled in parallel (one element per
+// The element loop of the problems on locally refined spaces (LR, HB, THB): dense element matrices and vectors filled in parallel (one element per
 // task, so no locking) at the Gauss points of each element, then scattered into the global system in element
 // order (deterministic for any thread count). Element dofs are component-major like the global ones: local
 // c * m + l is global c * N + ids[l].
@@ -9,12 +9,12 @@
 #include <Eigen/Core>
 
 #include "trivar/core/parallel.hpp"
-#include "trivar/iga/lr_quadrature.hpp"
+#include "trivar/iga/refined_quadrature.hpp"
 #include "trivar/iga/sparse_matrix.hpp"
 
 namespace trivar {
 
-struct LRSystem {
+struct RefinedSystem {
   SparseMatrix A;
   Eigen::VectorXd b;
 };
@@ -23,23 +23,23 @@ struct LRSystem {
 // weighted |det J|) into K (components * m square) and b; sides(element, b) then adds the element's boundary
 // loads. Both run inside a parallel region and must not throw.
 template <int D, class Point, class Sides>
-LRSystem assemble_lr_system(const LRSpline<D>& geometry, const std::vector<LRElementBasis<D>>& elements,
-                            int components, int threads, Point&& point, Sides&& sides) {
-  const int N = geometry.num_basis();
+RefinedSystem assemble_refined_system(const RefinedSpace<D>& geometry, int components, int threads, Point&& point, Sides&& sides) {
+  const int N = geometry.num_basis;
+  const auto& elements = geometry.elements;
   const std::size_t E = elements.size();
   std::vector<Eigen::MatrixXd> Ke(E);
   std::vector<Eigen::VectorXd> be(E);
   parallel_for(static_cast<std::ptrdiff_t>(E), threads, [&](std::ptrdiff_t e) {
-    const LRElementBasis<D>& el = elements[static_cast<std::size_t>(e)];
+    const RefinedElement<D>& el = elements[static_cast<std::size_t>(e)];
     const Eigen::Index n = static_cast<Eigen::Index>(el.ids.size()) * components;
     Eigen::MatrixXd& K = Ke[static_cast<std::size_t>(e)];
     Eigen::VectorXd& v = be[static_cast<std::size_t>(e)];
     K = Eigen::MatrixXd::Zero(n, n);
     v = Eigen::VectorXd::Zero(n);
-    LRPoint<D> p;
+    RefinedPoint<D> p;
     std::vector<double> grad;
-    for_each_gauss_point<D>(el.box, geometry.degree(0) + 1, -1, 0, [&](const Param<D>& u, double w) {
-      lr_point(geometry, el, u, p);
+    for_each_gauss_point<D>(el.box, geometry.degrees[0] + 1, -1, 0, [&](const Param<D>& u, double w) {
+      refined_point(geometry, el, u, p);
       const double dV = physical_gradients(p, grad) * w;
       point(std::as_const(p), std::as_const(grad), dV, K, v);
     });
@@ -47,7 +47,7 @@ LRSystem assemble_lr_system(const LRSpline<D>& geometry, const std::vector<LREle
   });
   std::vector<Eigen::Triplet<double>> trip;
   const Eigen::Index n = static_cast<Eigen::Index>(N) * components;
-  LRSystem out{SparseMatrix(n, n), Eigen::VectorXd::Zero(n)};
+  RefinedSystem out{SparseMatrix(n, n), Eigen::VectorXd::Zero(n)};
   std::vector<int> dofs;
   for (std::size_t e = 0; e < E; ++e) {
     dofs.clear();

@@ -1,21 +1,20 @@
-#include "trivar/iga/lr_elasticity.hpp"
+#include "trivar/iga/refined_elasticity.hpp"
 
 #include <chrono>
 
-#include "trivar/iga/lr_assembly.hpp"
-#include "trivar/iga/lr_boundary.hpp"
+#include "trivar/iga/refined_assembly.hpp"
+#include "trivar/iga/refined_boundary.hpp"
 #include "trivar/iga/material_check.hpp"
 
 namespace trivar {
 
 template <int D>
-SolveResult solve_elasticity(const LRSpline<D>& g, const std::vector<LRElementBasis<D>>& elements,
-                             const ElasticityProblem<D>& problem, LinearSolver& solver, int threads) {
+SolveResult solve_elasticity(const RefinedSpace<D>& g, const ElasticityProblem<D>& problem, LinearSolver& solver, int threads) {
   const auto t0 = std::chrono::steady_clock::now();
   MaterialCheck check;
-  auto [A, rhs] = assemble_lr_system<D>(
-      g, elements, D, threads,
-      [&](const LRPoint<D>& p, const std::vector<double>& grad, double dV, Eigen::MatrixXd& K, Eigen::VectorXd& b) {
+  auto [A, rhs] = assemble_refined_system<D>(
+      g, D, threads,
+      [&](const RefinedPoint<D>& p, const std::vector<double>& grad, double dV, Eigen::MatrixXd& K, Eigen::VectorXd& b) {
         const Eigen::Index m = static_cast<Eigen::Index>(p.R.size());
         const ElasticMaterial mat = check(problem.material_of(0, p.x.data()), 0);
         const double lambda = mat.lambda() * dV, mu = mat.mu() * dV;
@@ -36,16 +35,16 @@ SolveResult solve_elasticity(const LRSpline<D>& g, const std::vector<LRElementBa
           for (int c = 0; c < D; ++c) b.segment(c * m, m) += (f[c] * dV) * R;
         }
       },
-      [&](const LRElementBasis<D>& el, Eigen::VectorXd& b) {
+      [&](const RefinedElement<D>& el, Eigen::VectorXd& b) {
         if (problem.traction) add_side_loads<D>(g, el, problem.traction_faces, D, problem.traction, b);
       });
   check.report();
-  const FixedDofs fixed = project_dirichlet(g, elements, D, problem.displacement);
+  const FixedDofs fixed = project_dirichlet(g, D, problem.displacement);
   return solve_constrained(A, rhs, fixed, solver, t0);
 }
 
 #define TRIVAR_INSTANTIATE(D)                                                                                  \
-  template SolveResult solve_elasticity(const LRSpline<D>&, const std::vector<LRElementBasis<D>>&,             \
+  template SolveResult solve_elasticity(const RefinedSpace<D>&, \
                                         const ElasticityProblem<D>&, LinearSolver&, int);
 TRIVAR_INSTANTIATE(2)
 TRIVAR_INSTANTIATE(3)

@@ -1,5 +1,5 @@
 #pragma once
-// Gauss quadrature on the elements of an LR mesh: points of an element box or of one of its sides, and the
+// Gauss quadrature on the elements of a locally refined space: points of an element box or of one of its sides, and the
 // sides that lie on the boundary of the domain. Face integrals (Neumann loads, Dirichlet projection, the
 // boundary terms of the error indicator) are sums over the element sides on a domain face; the surface
 // measure and normal come from side_measure (boundary_integral.hpp), as for tensor patches.
@@ -8,7 +8,7 @@
 
 #include "trivar/core/gauss_legendre.hpp"
 #include "trivar/iga/boundary_integral.hpp"
-#include "trivar/iga/lr_space.hpp"
+#include "trivar/iga/refined_space.hpp"
 
 namespace trivar {
 
@@ -47,12 +47,12 @@ bool on_domain_face(const Box<D>& domain, const Box<D>& box, const Face& face) {
 // element evaluated at u, weight = surface measure times Gauss weight and the unit normal pointing out of the
 // element box.
 template <int D, class Body>
-void for_each_side_point(const LRSpline<D>& geometry, const LRElementBasis<D>& element, int dir, int side, int n,
+void for_each_side_point(const RefinedSpace<D>& geometry, const RefinedElement<D>& element, int dir, int side, int n,
                          Body&& body) {
-  LRPoint<D> p;
+  RefinedPoint<D> p;
   std::array<double, D> normal;
   for_each_gauss_point<D>(element.box, n, dir, side, [&](const Param<D>& u, double w) {
-    lr_point(geometry, element, u, p);
+    refined_point(geometry, element, u, p);
     double measure;
     side_measure<D>(p.J, dir, side, measure, normal);
     body(u, std::as_const(p), measure * w, std::as_const(normal));

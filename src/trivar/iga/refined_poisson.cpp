@@ -1,22 +1,21 @@
-#include "trivar/iga/lr_poisson.hpp"
+#include "trivar/iga/refined_poisson.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 
 #include "trivar/core/parallel.hpp"
-#include "trivar/iga/lr_assembly.hpp"
-#include "trivar/iga/lr_boundary.hpp"
+#include "trivar/iga/refined_assembly.hpp"
+#include "trivar/iga/refined_boundary.hpp"
 
 namespace trivar {
 
 template <int D>
-SolveResult solve_poisson(const LRSpline<D>& g, const std::vector<LRElementBasis<D>>& elements,
-                          const PoissonProblem<D>& problem, LinearSolver& solver, int threads) {
+SolveResult solve_poisson(const RefinedSpace<D>& g, const PoissonProblem<D>& problem, LinearSolver& solver, int threads) {
   const auto t0 = std::chrono::steady_clock::now();
-  auto [A, rhs] = assemble_lr_system<D>(
-      g, elements, 1, threads,
-      [&](const LRPoint<D>& p, const std::vector<double>& grad, double dV, Eigen::MatrixXd& K, Eigen::VectorXd& b) {
+  auto [A, rhs] = assemble_refined_system<D>(
+      g, 1, threads,
+      [&](const RefinedPoint<D>& p, const std::vector<double>& grad, double dV, Eigen::MatrixXd& K, Eigen::VectorXd& b) {
         const Eigen::Index m = static_cast<Eigen::Index>(p.R.size());
         const double k = problem.conductivity ? problem.conductivity(p.x.data()) : 1.0;
         const double f = problem.source ? problem.source(p.x.data()) : 0.0;
@@ -24,31 +23,30 @@ SolveResult solve_poisson(const LRSpline<D>& g, const std::vector<LRElementBasis
         K.noalias() += (k * dV) * G * G.transpose();
         b += (f * dV) * Eigen::Map<const Eigen::VectorXd>(p.R.data(), m);
       },
-      [&](const LRElementBasis<D>& el, Eigen::VectorXd& b) {
+      [&](const RefinedElement<D>& el, Eigen::VectorXd& b) {
         if (problem.flux)
           add_side_loads<D>(
               g, el, problem.neumann, 1,
               [&](const double* x, const double* n, double* t) { t[0] = problem.flux(x, n); }, b);
       });
-  const FixedDofs fixed = project_dirichlet(g, elements, 1, problem.dirichlet);
+  const FixedDofs fixed = project_dirichlet(g, 1, problem.dirichlet);
   return solve_constrained(A, rhs, fixed, solver, t0);
 }
 
 template <int D>
-void error_norms_per_element(const LRSpline<D>& g, const std::vector<LRElementBasis<D>>& elements,
-                             const Eigen::VectorXd& coefs, int components, const ExactSolution<D>& exact,
+void error_norms_per_element(const RefinedSpace<D>& g, const Eigen::VectorXd& coefs, int components, const ExactSolution<D>& exact,
                              std::vector<double>& l2, std::vector<double>& h1, int threads) {
-  const int E = g.num_elements(), N = g.num_basis();
+  const int E = g.num_elements(), N = g.num_basis;
   l2.assign(static_cast<std::size_t>(E), 0.0);
   h1.assign(static_cast<std::size_t>(E), 0.0);
   parallel_for(E, threads, [&](std::ptrdiff_t e) {
-    const LRElementBasis<D>& el = elements[static_cast<std::size_t>(e)];
+    const RefinedElement<D>& el = g.elements[static_cast<std::size_t>(e)];
     const std::size_t nc = static_cast<std::size_t>(components);
-    LRPoint<D> p;
+    RefinedPoint<D> p;
     std::vector<double> grad, uh(nc), ue(nc), guh(nc * D), ge(nc * D);
     double sl2 = 0, sh1 = 0;
-    for_each_gauss_point<D>(el.box, g.degree(0) + 2, -1, 0, [&](const Param<D>& u, double w) {
-      lr_point(g, el, u, p);
+    for_each_gauss_point<D>(el.box, g.degrees[0] + 2, -1, 0, [&](const Param<D>& u, double w) {
+      refined_point(g, el, u, p);
       const double dV = physical_gradients(p, grad) * w;
       std::fill(uh.begin(), uh.end(), 0.0);
       std::fill(guh.begin(), guh.end(), 0.0);
@@ -68,10 +66,9 @@ void error_norms_per_element(const LRSpline<D>& g, const std::vector<LRElementBa
 }
 
 template <int D>
-ErrorNorms error_norms(const LRSpline<D>& g, const std::vector<LRElementBasis<D>>& elements,
-                       const Eigen::VectorXd& coefs, int components, const ExactSolution<D>& exact, int threads) {
+ErrorNorms error_norms(const RefinedSpace<D>& g, const Eigen::VectorXd& coefs, int components, const ExactSolution<D>& exact, int threads) {
   std::vector<double> l2, h1;
-  error_norms_per_element(g, elements, coefs, components, exact, l2, h1, threads);
+  error_norms_per_element(g, coefs, components, exact, l2, h1, threads);
   ErrorNorms e;
   for (std::size_t i = 0; i < l2.size(); ++i) {
     e.l2 += l2[i];
@@ -81,12 +78,12 @@ ErrorNorms error_norms(const LRSpline<D>& g, const std::vector<LRElementBasis<D>
 }
 
 #define TRIVAR_INSTANTIATE(D)                                                                                         \
-  template SolveResult solve_poisson(const LRSpline<D>&, const std::vector<LRElementBasis<D>>&,                        \
+  template SolveResult solve_poisson(const RefinedSpace<D>&, \
                                      const PoissonProblem<D>&, LinearSolver&, int);                                   \
-  template void error_norms_per_element(const LRSpline<D>&, const std::vector<LRElementBasis<D>>&,                     \
+  template void error_norms_per_element(const RefinedSpace<D>&, \
                                         const Eigen::VectorXd&, int, const ExactSolution<D>&, std::vector<double>&,  \
                                         std::vector<double>&, int);                                                  \
-  template ErrorNorms error_norms(const LRSpline<D>&, const std::vector<LRElementBasis<D>>&, const Eigen::VectorXd&,   \
+  template ErrorNorms error_norms(const RefinedSpace<D>&, const Eigen::VectorXd&,   \
                                   int, const ExactSolution<D>&, int);
 TRIVAR_INSTANTIATE(2)
 TRIVAR_INSTANTIATE(3)

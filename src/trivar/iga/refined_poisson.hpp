@@ -1,0 +1,30 @@
+#pragma once
+// The Poisson problem (poisson.hpp) on a locally refined space (LR, HB, THB; refined_space.hpp): element loop
+// with the element extraction operators, dense element matrices, Neumann loads on the element sides along the
+// Neumann faces, strong Dirichlet conditions by L2 projection onto the functions non-zero on the Dirichlet sides
+// (both in refined_boundary.hpp), L2 / H1 errors per element of scalar and vector fields.
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "trivar/iga/error_norms.hpp"
+#include "trivar/iga/refined_space.hpp"
+#include "trivar/iga/poisson.hpp"
+
+namespace trivar {
+
+// Same conventions as the tensor-patch solve_poisson: boundary faces neither Dirichlet nor Neumann are
+// natural (g = 0); a face listed as both is Dirichlet.
+template <int D>
+SolveResult solve_poisson(const RefinedSpace<D>& geometry, const PoissonProblem<D>& problem, LinearSolver& solver, int threads = 0);
+
+// Squared L2 and H1-seminorm errors per element (sums give the squares of the global errors) of a field with
+// `components` components (coefs component-major, exact as in error_norms.hpp).
+template <int D>
+void error_norms_per_element(const RefinedSpace<D>& geometry, const Eigen::VectorXd& coefs, int components, const ExactSolution<D>& exact,
+                             std::vector<double>& l2, std::vector<double>& h1, int threads = 0);
+// The global errors (per-element squares summed in element order).
+template <int D>
+ErrorNorms error_norms(const RefinedSpace<D>& geometry, const Eigen::VectorXd& coefs, int components, const ExactSolution<D>& exact, int threads = 0);
+
+}  // namespace trivar

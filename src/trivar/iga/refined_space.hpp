@@ -1,0 +1,69 @@
+#pragma once
+// Analysis on locally refined spaces: LR B-splines and hierarchical (HB, THB) splines, which are all
+// collections of (scaled or truncated) tensor B-splines over a box partition. RefinedSpace is what the
+// element loop needs from any of them: per element the active functions and their Bezier extraction operator
+// (rows in the element's tensor Bernstein basis), the geometry's control points, the functions non-zero on each
+// face of the domain and a point locator. One quadrature loop (refined_assembly.hpp), one Dirichlet projection
+// and one residual indicator serve every kind; refined_space() builds the space from an LR or a hierarchical
+// geometry. The geometry must be polynomial (rational locally refined geometries are not supported by the
+// analysis yet).
+#include <array>
+#include <functional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "trivar/hier/hierarchical_spline.hpp"
+#include "trivar/lr/lr_spline.hpp"
+
+namespace trivar {
+
+template <int D>
+struct RefinedElement {
+  std::vector<int> ids;  // active functions on the element, ascending
+  Eigen::MatrixXd C;     // extraction operator: ids.size() x prod(p_k + 1), rows include LR scaling factors
+  Box<D> box;
+};
+
+template <int D>
+struct RefinedSpace {
+  Ints<D> degrees{};
+  Box<D> domain{};
+  int num_basis = 0;
+  std::vector<double> control;                  // D coordinates per function: the geometry map
+  std::vector<RefinedElement<D>> elements;
+  std::array<std::vector<int>, 2 * D> face_basis;  // [2 * dir + side]: functions non-zero on that domain face
+  std::function<int(const Param<D>&)> locate;   // the element containing a parameter of the domain
+
+  int num_elements() const { return static_cast<int>(elements.size()); }
+  int degree(int k) const { return degrees[k]; }
+};
+
+// The analysis space of an LR geometry (its scaled B-splines, elements and mesh order) or of a hierarchical
+// geometry (its HB or THB functions, leaf elements). The locator refers to the geometry, which must outlive the
+// space. Throws trivar::Error for a rational or non-D-dimensional geometry.
+template <int D>
+RefinedSpace<D> refined_space(const LRSpline<D>& geometry, int threads = 0);
+template <int D>
+RefinedSpace<D> refined_space(const HierarchicalSpline<D>& geometry, int threads = 0);
+
+// The active functions and the geometry at parameter u of an element (u inside its box, boundary included).
+template <int D>
+struct RefinedPoint {
+  std::vector<double> R;    // values
+  std::vector<double> dR;   // [l * D + a]: d/du_a
+  std::vector<double> d2R;  // [(l * D + a) * D + b]: d2/du_a du_b
+  std::array<double, D> x{};
+  std::array<std::array<double, D>, D> J{};               // J[c][a] = dx_c/du_a
+  std::array<std::array<std::array<double, D>, D>, D> H{};  // H[c][a][b] = d2x_c/du_a du_b
+};
+
+template <int D>
+void refined_point(const RefinedSpace<D>& space, const RefinedElement<D>& element, const Param<D>& u,
+                   RefinedPoint<D>& out);
+
+// Physical gradients grad[l * D + k] = dR_l/dx_k of the active functions at p; returns |det J|.
+template <int D>
+double physical_gradients(const RefinedPoint<D>& p, std::vector<double>& grad);
+
+}  // namespace trivar
