@@ -1,0 +1,255 @@
+#include "trivar/spline/eval_kernels.hpp"
+
+#include <algorithm>
+
+#include "trivar/spline/basis.hpp"
+
+namespace trivar {
+
+namespace {
+
+// The bodies are forced inline into the per-instruction-set entry points below, so each is compiled for that
+// entry's target (GCC inlines default-target code into functions with a wider target).
+#define TRIVAR_KERNEL_INLINE [[gnu::always_inline]] inline
+
+// Span, basis functions (or with kD1 also their derivatives) in every direction and the offset of the active
+// control block; step[k] is the distance between neighbouring control values in direction k.
+template <int P, int ST, int D, bool kD1>
+TRIVAR_KERNEL_INLINE std::size_t locate(const std::array<KnotVector, D>& knots, const Param<D>& u, double (*N)[P + 1],
+                                        double (*dN)[P + 1], std::size_t* step) {
+  std::size_t offset = 0, stride_k = ST;
+#pragma GCC unroll 4
+  for (int k = 0; k < D; ++k) {
+    const KnotVector& kv = knots[k];
+    const double uk = std::clamp(u[k], kv.start(), kv.end());
+    const int s = kv.find_span(uk);
+    if constexpr (kD1)
+      basis_values_first_derivatives<P>(kv, s, uk, N[k], dN[k]);
+    else
+      basis_values<P>(kv, s, uk, N[k]);
+    step[k] = stride_k;
+    offset += static_cast<std::size_t>(s - P) * stride_k;
+    stride_k *= static_cast<std::size_t>(kv.size());
+  }
+  return offset;
+}
+
+// The active block is (P + 1)^(D - 1) rows of L = (P + 1) * ST contiguous control values (direction 0 and the
+// stride). Row r has weight W[r], the product of the basis functions of directions 1..D-1 for its indices, and
+// starts off[r] values after the block's first. Built by outer products, last direction outermost.
+template <int P, int D>
+inline constexpr int kRows = D == 1 ? 1 : (P + 1) * kRows<P, D - 1>;
+template <int P>
+inline constexpr int kRows<P, 1> = 1;
+
+template <int P, int D>
+TRIVAR_KERNEL_INLINE void row_offsets(const std::size_t* step, std::size_t* off) {
+  off[0] = 0;
+  int n = 1;
+#pragma GCC unroll 4
+  for (int k = 1; k < D; ++k, n *= P + 1)
+#pragma GCC unroll 8
+    for (int j = n - 1; j >= 0; --j) {
+      const std::size_t o = off[j];
+      for (int a = P; a >= 0; --a) off[j * (P + 1) + a] = o + static_cast<std::size_t>(a) * step[k];
+    }
+}
+
+// W[r] = prod_{k >= 1} (k == deriv ? dN : N)[k][a_k] in the order of row_offsets.
+template <int P, int D>
+TRIVAR_KERNEL_INLINE void row_weights(const double (*N)[P + 1], const double (*dN)[P + 1], int deriv, double* W) {
+  W[0] = 1.0;
+  int n = 1;
+#pragma GCC unroll 4
+  for (int k = 1; k < D; ++k, n *= P + 1) {
+    const double* B = k == deriv ? dN[k] : N[k];
+#pragma GCC unroll 8
+    for (int j = n - 1; j >= 0; --j) {
+      const double w = W[j];
+      for (int a = P; a >= 0; --a) W[j * (P + 1) + a] = w * B[a];
+    }
+  }
+}
+
+// W doubles as one value (GCC vector extension): the row contraction is written in these so it is vector code
+// in every build, W = 2 for generic x86-64 (SSE2), 4 for AVX2, 8 for AVX-512.
+// (GCC drops vector_size in an alias template with a dependent size, hence one explicit type per width.)
+template <int W>
+struct VecOf;
+template <>
+struct VecOf<1> {
+  typedef double type __attribute__((vector_size(8)));
+};
+template <>
+struct VecOf<2> {
+  typedef double type __attribute__((vector_size(16)));
+};
+template <>
+struct VecOf<4> {
+  typedef double type __attribute__((vector_size(32)));
+};
+template <>
+struct VecOf<8> {
+  typedef double type __attribute__((vector_size(64)));
+};
+template <int W>
+using Vec = typename VecOf<W>::type;
+// Vec never crosses a call boundary (everything is inlined into the entry points), so the ABI note about
+// passing wide vectors without AVX does not apply.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+template <int W>
+TRIVAR_KERNEL_INLINE Vec<W> load(const double* p) {
+  Vec<W> v;
+  __builtin_memcpy(&v, p, sizeof v);
+  return v;
+}
+
+// sums[t][X0..L) = sum_r W[t][r] * row_r[X0..L) for T weight sets at once (the value and, for first
+// derivatives, one set per direction k >= 1): as many W-wide pieces as fit, the rest with W / 2, down to
+// scalars. Two accumulators per set alternate between rows where registers allow, halving the chain of dependent
+// multiply-adds that bounds a single point.
+template <int VW, int X0, int L, int R, int T>
+TRIVAR_KERNEL_INLINE void contract_rows(const double* base, const std::size_t* off, const double (*Wt)[R],
+                                        double (*sums)[L]) {
+  constexpr int NV = (L - X0) / VW;
+  // Two accumulators only while they fit the 16 vector registers beside the loaded values.
+  constexpr int NA = 2 * T * NV <= 12 ? 2 : 1;
+  if constexpr (NV > 0) {
+    Vec<VW> acc[T][NA][NV] = {};
+#pragma GCC unroll 32
+    for (int r = 0; r < R; ++r) {
+      const double* row = base + off[r] + X0;
+      for (int t = 0; t < T; ++t)
+        for (int v = 0; v < NV; ++v) acc[t][r % NA][v] += Wt[t][r] * load<VW>(row + VW * v);
+    }
+    for (int t = 0; t < T; ++t)
+      for (int v = 0; v < NV; ++v) {
+        const Vec<VW> sum = NA == 2 ? acc[t][0][v] + acc[t][NA - 1][v] : acc[t][0][v];
+        __builtin_memcpy(sums[t] + X0 + VW * v, &sum, sizeof sum);
+      }
+  }
+  if constexpr (X0 + NV * VW < L) contract_rows<VW / 2, X0 + NV * VW, L, R, T>(base, off, Wt, sums);
+}
+
+// Homogeneous value: contract the rows, then reduce along direction 0.
+template <int VW, int P, int ST, int D>
+TRIVAR_KERNEL_INLINE void value_body(const std::array<KnotVector, D>& knots, const double* coefs, const Param<D>& u,
+                                     double* h) {
+  double N[D][P + 1];
+  std::size_t step[D], off[kRows<P, D>];
+  const double* base = coefs + locate<P, ST, D, false>(knots, u, N, nullptr, step);
+  double W[1][kRows<P, D>], sums[1][(P + 1) * ST] = {};
+  row_offsets<P, D>(step, off);
+  row_weights<P, D>(N, nullptr, -1, W[0]);
+  contract_rows<VW, 0, (P + 1) * ST, kRows<P, D>, 1>(base, off, W, sums);
+  for (int d = 0; d < ST; ++d) h[d] = 0.0;
+  for (int a = 0; a <= P; ++a)
+    for (int d = 0; d < ST; ++d) h[d] += N[0][a] * sums[0][a * ST + d];
+}
+
+// Value and first derivatives in one pass over the rows: weight set 0 gives the value row sum, set k >= 1 the
+// row sum with N_k replaced by its derivative; direction 0 is differentiated in the final reduction.
+template <int VW, int P, int ST, int D>
+TRIVAR_KERNEL_INLINE void first_body(const std::array<KnotVector, D>& knots, const double* coefs, const Param<D>& u,
+                                     double* h) {
+  double N[D][P + 1], dN[D][P + 1];
+  std::size_t step[D], off[kRows<P, D>];
+  const double* base = coefs + locate<P, ST, D, true>(knots, u, N, dN, step);
+  double W[D][kRows<P, D>], sums[D][(P + 1) * ST] = {};
+  row_offsets<P, D>(step, off);
+  for (int t = 0; t < D; ++t) row_weights<P, D>(N, dN, t == 0 ? -1 : t, W[t]);
+  contract_rows<VW, 0, (P + 1) * ST, kRows<P, D>, D>(base, off, W, sums);
+  for (int x = 0; x < (D + 1) * ST; ++x) h[x] = 0.0;
+  for (int a = 0; a <= P; ++a)
+    for (int d = 0; d < ST; ++d) {
+      h[d] += N[0][a] * sums[0][a * ST + d];
+      h[ST + d] += dN[0][a] * sums[0][a * ST + d];
+      for (int t = 1; t < D; ++t) h[(t + 1) * ST + d] += N[0][a] * sums[t][a * ST + d];
+    }
+}
+
+// Many points in one call: no indirect call per point, and consecutive points' independent work overlaps.
+template <int VW, int P, int ST, int D>
+TRIVAR_KERNEL_INLINE void batch_body(const std::array<KnotVector, D>& knots, const double* coefs, bool rational,
+                                     const Param<D>* u, std::size_t n, double* out) {
+  if (!rational) {
+    for (std::size_t i = 0; i < n; ++i) value_body<VW, P, ST, D>(knots, coefs, u[i], out + i * ST);
+    return;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    double h[ST];
+    value_body<VW, P, ST, D>(knots, coefs, u[i], h);
+    const double inv = 1.0 / h[ST - 1];
+    for (int d = 0; d < ST - 1; ++d) out[i * (ST - 1) + d] = h[d] * inv;
+  }
+}
+
+// One entry point of each kind per instruction set.
+// flatten: everything the bodies call (span search, basis functions) is compiled into the entry point too.
+#define TRIVAR_KERNEL_SET(NAME, VW, ...)                                                                              \
+  template <int P, int ST, int D>                                                                                   \
+  __VA_ARGS__ void NAME##_value(const std::array<KnotVector, D>& k, const double* c, const Param<D>& u, double* h) { \
+    value_body<VW, P, ST, D>(k, c, u, h);                                                                               \
+  }                                                                                                                 \
+  template <int P, int ST, int D>                                                                                   \
+  __VA_ARGS__ void NAME##_first(const std::array<KnotVector, D>& k, const double* c, const Param<D>& u, double* h) { \
+    first_body<VW, P, ST, D>(k, c, u, h);                                                                               \
+  }                                                                                                                 \
+  template <int P, int ST, int D>                                                                                   \
+  __VA_ARGS__ void NAME##_batch(const std::array<KnotVector, D>& k, const double* c, bool r, const Param<D>* u,      \
+                               std::size_t n, double* out) {                                                        \
+    batch_body<VW, P, ST, D>(k, c, r, u, n, out);                                                                       \
+  }                                                                                                                 \
+  template <int P, int ST, int D>                                                                                   \
+  FixedKernels<D> NAME##_kernels() {                                                                                \
+    return {&NAME##_value<P, ST, D>, &NAME##_first<P, ST, D>, &NAME##_batch<P, ST, D>};                             \
+  }
+
+TRIVAR_KERNEL_SET(generic, 2, [[gnu::flatten]])
+#if defined(__x86_64__)
+TRIVAR_KERNEL_SET(avx2, 4, [[gnu::flatten, gnu::target("avx2,fma")]])
+TRIVAR_KERNEL_SET(avx512, 8, [[gnu::flatten, gnu::target("avx512f,avx512vl,avx512dq,avx2,fma")]])
+#endif
+
+template <int P, int ST, int D>
+FixedKernels<D> kernels_at(SimdLevel level) {
+#if defined(__x86_64__)
+  if (level == SimdLevel::avx512) return avx512_kernels<P, ST, D>();
+  if (level == SimdLevel::avx2) return avx2_kernels<P, ST, D>();
+#endif
+  (void)level;
+  return generic_kernels<P, ST, D>();
+}
+
+template <int P, int D>
+FixedKernels<D> kernels_for_stride(int stride, SimdLevel level) {
+  switch (stride) {
+    case 1: return kernels_at<P, 1, D>(level);
+    case 3: return kernels_at<P, 3, D>(level);
+    case 4: return kernels_at<P, 4, D>(level);
+    default: return {};
+  }
+}
+
+}  // namespace
+
+template <int D>
+FixedKernels<D> fixed_kernels(const std::array<KnotVector, D>& knots, int stride, SimdLevel level) {
+  const int p = knots[0].degree();
+  for (int k = 1; k < D; ++k)
+    if (knots[k].degree() != p) return {};
+  switch (p) {
+    case 1: return kernels_for_stride<1, D>(stride, level);
+    case 2: return kernels_for_stride<2, D>(stride, level);
+    case 3: return kernels_for_stride<3, D>(stride, level);
+    case 4: return kernels_for_stride<4, D>(stride, level);  // exact spheres and tori (Cobb's patches, revolutions)
+    default: return {};
+  }
+}
+
+template FixedKernels<1> fixed_kernels<1>(const std::array<KnotVector, 1>&, int, SimdLevel);
+template FixedKernels<2> fixed_kernels<2>(const std::array<KnotVector, 2>&, int, SimdLevel);
+template FixedKernels<3> fixed_kernels<3>(const std::array<KnotVector, 3>&, int, SimdLevel);
+
+}  // namespace trivar
