@@ -132,13 +132,14 @@ TRIVAR_KERNEL_INLINE void contract_rows(const double* base, const std::size_t* o
   if constexpr (X0 + NV * VW < L) contract_rows<VW / 2, X0 + NV * VW, L, R, T>(base, off, Wt, sums);
 }
 
-// Homogeneous value: contract the rows, then reduce along direction 0.
-template <int VW, int P, int ST, int D>
-TRIVAR_KERNEL_INLINE void value_body(const std::array<KnotVector, D>& knots, const double* coefs, const Param<D>& u,
-                                     double* h) {
+// Homogeneous value: locate (basis functions of every direction, steps, offset of the active block), contract
+// the rows, then reduce along direction 0. `locate` is the B-spline span and basis, or a Bezier element's
+// Bernstein basis.
+template <int VW, int P, int ST, int D, class Locate>
+TRIVAR_KERNEL_INLINE void value_from(const double* coefs, Locate&& locate, double* h) {
   double N[D][P + 1];
   std::size_t step[D], off[kRows<P, D>];
-  const double* base = coefs + locate<P, ST, D, false>(knots, u, N, nullptr, step);
+  const double* base = coefs + locate(N, static_cast<double(*)[P + 1]>(nullptr), step);
   double W[1][kRows<P, D>], sums[1][(P + 1) * ST] = {};
   row_offsets<P, D>(step, off);
   row_weights<P, D>(N, nullptr, -1, W[0]);
@@ -150,12 +151,11 @@ TRIVAR_KERNEL_INLINE void value_body(const std::array<KnotVector, D>& knots, con
 
 // Value and first derivatives in one pass over the rows: weight set 0 gives the value row sum, set k >= 1 the
 // row sum with N_k replaced by its derivative; direction 0 is differentiated in the final reduction.
-template <int VW, int P, int ST, int D>
-TRIVAR_KERNEL_INLINE void first_body(const std::array<KnotVector, D>& knots, const double* coefs, const Param<D>& u,
-                                     double* h) {
+template <int VW, int P, int ST, int D, class Locate>
+TRIVAR_KERNEL_INLINE void first_from(const double* coefs, Locate&& locate, double* h) {
   double N[D][P + 1], dN[D][P + 1];
   std::size_t step[D], off[kRows<P, D>];
-  const double* base = coefs + locate<P, ST, D, true>(knots, u, N, dN, step);
+  const double* base = coefs + locate(N, dN, step);
   double W[D][kRows<P, D>], sums[D][(P + 1) * ST] = {};
   row_offsets<P, D>(step, off);
   for (int t = 0; t < D; ++t) row_weights<P, D>(N, dN, t == 0 ? -1 : t, W[t]);
@@ -167,6 +167,48 @@ TRIVAR_KERNEL_INLINE void first_body(const std::array<KnotVector, D>& knots, con
       h[ST + d] += dN[0][a] * sums[0][a * ST + d];
       for (int t = 1; t < D; ++t) h[(t + 1) * ST + d] += N[0][a] * sums[t][a * ST + d];
     }
+}
+
+template <int VW, int P, int ST, int D>
+TRIVAR_KERNEL_INLINE void value_body(const std::array<KnotVector, D>& knots, const double* coefs, const Param<D>& u,
+                                     double* h) {
+  value_from<VW, P, ST, D>(
+      coefs, [&](auto N, auto dN, std::size_t* step) { return locate<P, ST, D, false>(knots, u, N, dN, step); }, h);
+}
+
+template <int VW, int P, int ST, int D>
+TRIVAR_KERNEL_INLINE void first_body(const std::array<KnotVector, D>& knots, const double* coefs, const Param<D>& u,
+                                     double* h) {
+  first_from<VW, P, ST, D>(
+      coefs, [&](auto N, auto dN, std::size_t* step) { return locate<P, ST, D, true>(knots, u, N, dN, step); }, h);
+}
+
+// The Bernstein basis of a Bezier element block: steps of a dense (P + 1)^D block, offset 0.
+template <int P, int ST, int D, bool kD1>
+TRIVAR_KERNEL_INLINE std::size_t locate_bezier(const Param<D>& t, const Param<D>& scale, double (*N)[P + 1],
+                                               double (*dN)[P + 1], std::size_t* step) {
+  std::size_t stride_k = ST;
+#pragma GCC unroll 4
+  for (int k = 0; k < D; ++k) {
+    bernstein_values<P>(P, t[k], scale[k], N[k], kD1 ? dN[k] : nullptr);
+    step[k] = stride_k;
+    stride_k *= P + 1;
+  }
+  return 0;
+}
+
+template <int VW, int P, int ST, int D>
+TRIVAR_KERNEL_INLINE void bezier_value_body(const double* block, const Param<D>& t, const Param<D>& scale, double* h) {
+  value_from<VW, P, ST, D>(
+      block, [&](auto N, auto dN, std::size_t* step) { return locate_bezier<P, ST, D, false>(t, scale, N, dN, step); },
+      h);
+}
+
+template <int VW, int P, int ST, int D>
+TRIVAR_KERNEL_INLINE void bezier_first_body(const double* block, const Param<D>& t, const Param<D>& scale, double* h) {
+  first_from<VW, P, ST, D>(
+      block, [&](auto N, auto dN, std::size_t* step) { return locate_bezier<P, ST, D, true>(t, scale, N, dN, step); },
+      h);
 }
 
 // Many points in one call: no indirect call per point, and consecutive points' independent work overlaps.
@@ -202,6 +244,18 @@ TRIVAR_KERNEL_INLINE void batch_body(const std::array<KnotVector, D>& knots, con
     batch_body<VW, P, ST, D>(k, c, r, u, n, out);                                                                       \
   }                                                                                                                 \
   template <int P, int ST, int D>                                                                                   \
+  __VA_ARGS__ void NAME##_bezier_value(const double* b, const Param<D>& t, const Param<D>& sc, double* h) {         \
+    bezier_value_body<VW, P, ST, D>(b, t, sc, h);                                                                   \
+  }                                                                                                                 \
+  template <int P, int ST, int D>                                                                                   \
+  __VA_ARGS__ void NAME##_bezier_first(const double* b, const Param<D>& t, const Param<D>& sc, double* h) {         \
+    bezier_first_body<VW, P, ST, D>(b, t, sc, h);                                                                   \
+  }                                                                                                                 \
+  template <int P, int ST, int D>                                                                                   \
+  BezierKernels<D> NAME##_bezier_kernels() {                                                                        \
+    return {&NAME##_bezier_value<P, ST, D>, &NAME##_bezier_first<P, ST, D>};                                        \
+  }                                                                                                                 \
+  template <int P, int ST, int D>                                                                                   \
   FixedKernels<D> NAME##_kernels() {                                                                                \
     return {&NAME##_value<P, ST, D>, &NAME##_first<P, ST, D>, &NAME##_batch<P, ST, D>};                             \
   }
@@ -222,34 +276,63 @@ FixedKernels<D> kernels_at(SimdLevel level) {
   return generic_kernels<P, ST, D>();
 }
 
-template <int P, int D>
-FixedKernels<D> kernels_for_stride(int stride, SimdLevel level) {
-  switch (stride) {
-    case 1: return kernels_at<P, 1, D>(level);
-    case 3: return kernels_at<P, 3, D>(level);
-    case 4: return kernels_at<P, 4, D>(level);
+template <int P, int ST, int D>
+BezierKernels<D> bezier_kernels_at(SimdLevel level) {
+#if defined(__x86_64__)
+  if (level == SimdLevel::avx512) return avx512_bezier_kernels<P, ST, D>();
+  if (level == SimdLevel::avx2) return avx2_bezier_kernels<P, ST, D>();
+#endif
+  (void)level;
+  return generic_bezier_kernels<P, ST, D>();
+}
+
+// The kernel set of `Set` (fixed or Bezier) for the run-time degree and stride.
+template <template <int, int, int> class Set, int D>
+auto select(int p, int stride, SimdLevel level) -> decltype(Set<1, 1, D>::get(level)) {
+  auto for_stride = [&]<int P>() -> decltype(Set<1, 1, D>::get(level)) {
+    switch (stride) {
+      case 1: return Set<P, 1, D>::get(level);
+      case 3: return Set<P, 3, D>::get(level);
+      case 4: return Set<P, 4, D>::get(level);
+      default: return {};
+    }
+  };
+  switch (p) {
+    case 1: return for_stride.template operator()<1>();
+    case 2: return for_stride.template operator()<2>();
+    case 3: return for_stride.template operator()<3>();
+    case 4: return for_stride.template operator()<4>();  // exact spheres and tori (Cobb's patches, revolutions)
     default: return {};
   }
 }
+
+template <int P, int ST, int D>
+struct FixedSet {
+  static FixedKernels<D> get(SimdLevel level) { return kernels_at<P, ST, D>(level); }
+};
+template <int P, int ST, int D>
+struct BezierSet {
+  static BezierKernels<D> get(SimdLevel level) { return bezier_kernels_at<P, ST, D>(level); }
+};
 
 }  // namespace
 
 template <int D>
 FixedKernels<D> fixed_kernels(const std::array<KnotVector, D>& knots, int stride, SimdLevel level) {
-  const int p = knots[0].degree();
   for (int k = 1; k < D; ++k)
-    if (knots[k].degree() != p) return {};
-  switch (p) {
-    case 1: return kernels_for_stride<1, D>(stride, level);
-    case 2: return kernels_for_stride<2, D>(stride, level);
-    case 3: return kernels_for_stride<3, D>(stride, level);
-    case 4: return kernels_for_stride<4, D>(stride, level);  // exact spheres and tori (Cobb's patches, revolutions)
-    default: return {};
-  }
+    if (knots[k].degree() != knots[0].degree()) return {};
+  return select<FixedSet, D>(knots[0].degree(), stride, level);
+}
+
+template <int D>
+BezierKernels<D> bezier_kernels(int degree, int stride, SimdLevel level) {
+  return select<BezierSet, D>(degree, stride, level);
 }
 
 template FixedKernels<1> fixed_kernels<1>(const std::array<KnotVector, 1>&, int, SimdLevel);
 template FixedKernels<2> fixed_kernels<2>(const std::array<KnotVector, 2>&, int, SimdLevel);
 template FixedKernels<3> fixed_kernels<3>(const std::array<KnotVector, 3>&, int, SimdLevel);
+template BezierKernels<2> bezier_kernels<2>(int, int, SimdLevel);
+template BezierKernels<3> bezier_kernels<3>(int, int, SimdLevel);
 
 }  // namespace trivar

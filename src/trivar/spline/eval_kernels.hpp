@@ -35,8 +35,26 @@ struct FixedKernels {
 template <int D>
 FixedKernels<D> fixed_kernels(const std::array<KnotVector, D>& knots, int stride, SimdLevel level);
 
+// A tensor polynomial of degree P in every direction on one element, in Bernstein form: (P + 1)^D control
+// blocks of `stride` values, direction 0 fastest. t is the local parameter in [0, 1]^D and scale[k] = 1 / (element
+// width in direction k) (the chain rule of first derivatives). Same homogeneous outputs as PointKernel.
+template <int D>
+using BezierKernel = void (*)(const double* block, const Param<D>& t, const Param<D>& scale, double* h);
+
+template <int D>
+struct BezierKernels {
+  BezierKernel<D> value = nullptr;
+  BezierKernel<D> first = nullptr;
+};
+
+// Kernels for degree 1 to 4 and strides 1, 3, 4 (all null otherwise).
+template <int D>
+BezierKernels<D> bezier_kernels(int degree, int stride, SimdLevel level);
+
 extern template FixedKernels<1> fixed_kernels<1>(const std::array<KnotVector, 1>&, int, SimdLevel);
 extern template FixedKernels<2> fixed_kernels<2>(const std::array<KnotVector, 2>&, int, SimdLevel);
 extern template FixedKernels<3> fixed_kernels<3>(const std::array<KnotVector, 3>&, int, SimdLevel);
+extern template BezierKernels<2> bezier_kernels<2>(int, int, SimdLevel);
+extern template BezierKernels<3> bezier_kernels<3>(int, int, SimdLevel);
 
 }  // namespace trivar
