@@ -10,6 +10,7 @@ packages=(
   python3  # tests read output files back with its standard library (xml, zlib, struct, zipfile)
   libsuitesparse-dev libspectra-dev libgmp-dev
   clang-14 libclang-rt-14-dev libomp-14-dev
+  valgrind  # bench/check counts the instructions of the hot kernels with callgrind
   # OpenCASCADE: STEP B-rep import, exact NURBS conversion, trimmed-face tessellation, test solids
   libocct-data-exchange-dev libocct-modeling-algorithms-dev libocct-modeling-data-dev libocct-foundation-dev
 )
