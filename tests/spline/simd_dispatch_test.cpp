@@ -1,6 +1,6 @@
 // The evaluation kernels compiled for each instruction set (generic x86-64, AVX2 + FMA, AVX-512) agree with
 // each other to rounding and with the Cox-de Boor recursion, on every path (single point, batch, first
-// derivatives), for every degree and stride that has a kernel. Paths the CPU lacks are skipped.
+// derivatives), for every degree (and mixed degree) and stride that has a kernel. Paths the CPU lacks are skipped.
 #include "trivar/spline/simd_level.hpp"
 
 #include <gtest/gtest.h>
@@ -111,6 +111,19 @@ void check_dimension() {
                        name + " non-uniform");
       check_all_levels(uniform_spline<D>(p, dim, rational, 5u * static_cast<unsigned>(p)), name + " uniform");
     }
+  if constexpr (D > 1)
+    // A lower degree in the last direction (the kernels of sphere and torus shells).
+    for (auto [p, q] : {std::pair{2, 1}, std::pair{3, 1}, std::pair{3, 2}, std::pair{4, 1}, std::pair{4, 2}})
+      for (bool rational : {false, true}) {
+        Ints<D> deg, el;
+        for (int k = 0; k < D; ++k) {
+          deg[k] = k + 1 == D ? q : p;
+          el[k] = 2 + k;
+        }
+        check_all_levels(test::random_spline<D>(deg, el, 3, rational, 7u * static_cast<unsigned>(p + q)),
+                         std::to_string(D) + "-D degrees " + std::to_string(p) + "/" + std::to_string(q) +
+                             (rational ? " rational" : ""));
+      }
 }
 
 }  // namespace

@@ -12,62 +12,86 @@ namespace {
 // entry's target (GCC inlines default-target code into functions with a wider target).
 #define TRIVAR_KERNEL_INLINE [[gnu::always_inline]] inline
 
+// Degrees: P in directions 0..D-2 and Q in the last (P == Q for curves), which covers equal degrees and the
+// mixed cells of exact models (sphere and torus shells of degree 4 x 4 x 1). kWidth: the basis arrays' length.
+template <int P, int Q>
+inline constexpr int kWidth = (P > Q ? P : Q) + 1;
+
+template <int P, int Q, int D>
+constexpr int degree_of(int k) {
+  return D > 1 && k == D - 1 ? Q : P;
+}
+
 // Span, basis functions (or with kD1 also their derivatives) in every direction and the offset of the active
 // control block; step[k] is the distance between neighbouring control values in direction k.
-template <int P, int ST, int D, bool kD1>
-TRIVAR_KERNEL_INLINE std::size_t locate(const std::array<KnotVector, D>& knots, const Param<D>& u, double (*N)[P + 1],
-                                        double (*dN)[P + 1], std::size_t* step) {
+template <int P, int Q, int ST, int D, bool kD1>
+TRIVAR_KERNEL_INLINE std::size_t locate(const std::array<KnotVector, D>& knots, const Param<D>& u,
+                                        double (*N)[kWidth<P, Q>], double (*dN)[kWidth<P, Q>], std::size_t* step) {
   std::size_t offset = 0, stride_k = ST;
 #pragma GCC unroll 4
   for (int k = 0; k < D; ++k) {
     const KnotVector& kv = knots[k];
     const double uk = std::clamp(u[k], kv.start(), kv.end());
     const int s = kv.find_span(uk);
-    if constexpr (kD1)
-      basis_values_first_derivatives<P>(kv, s, uk, N[k], dN[k]);
-    else
-      basis_values<P>(kv, s, uk, N[k]);
+    const bool last = degree_of<P, Q, D>(k) != P;
+    if constexpr (kD1) {
+      if (last) basis_values_first_derivatives<Q>(kv, s, uk, N[k], dN[k]);
+      else basis_values_first_derivatives<P>(kv, s, uk, N[k], dN[k]);
+    } else {
+      if (last) basis_values<Q>(kv, s, uk, N[k]);
+      else basis_values<P>(kv, s, uk, N[k]);
+    }
     step[k] = stride_k;
-    offset += static_cast<std::size_t>(s - P) * stride_k;
+    offset += static_cast<std::size_t>(s - degree_of<P, Q, D>(k)) * stride_k;
     stride_k *= static_cast<std::size_t>(kv.size());
   }
   return offset;
 }
 
-// The active block is (P + 1)^(D - 1) rows of L = (P + 1) * ST contiguous control values (direction 0 and the
-// stride). Row r has weight W[r], the product of the basis functions of directions 1..D-1 for its indices, and
-// starts off[r] values after the block's first. Built by outer products, last direction outermost.
-template <int P, int D>
-inline constexpr int kRows = D == 1 ? 1 : (P + 1) * kRows<P, D - 1>;
-template <int P>
-inline constexpr int kRows<P, 1> = 1;
+// The active block is prod_{k >= 1} (p_k + 1) rows of L = (P + 1) * ST contiguous control values (direction 0
+// and the stride). Row r has weight W[r], the product of the basis functions of directions 1..D-1 for its
+// indices, and starts off[r] values after the block's first. Built by outer products, last direction outermost.
+template <int P, int Q, int D>
+constexpr int rows_count() {
+  int n = 1;
+  for (int k = 1; k < D; ++k) n *= degree_of<P, Q, D>(k) + 1;
+  return n;
+}
+template <int P, int Q, int D>
+inline constexpr int kRows = rows_count<P, Q, D>();
 
-template <int P, int D>
+template <int P, int Q, int D>
 TRIVAR_KERNEL_INLINE void row_offsets(const std::size_t* step, std::size_t* off) {
   off[0] = 0;
   int n = 1;
 #pragma GCC unroll 4
-  for (int k = 1; k < D; ++k, n *= P + 1)
+  for (int k = 1; k < D; ++k) {
+    const int pk = degree_of<P, Q, D>(k);
 #pragma GCC unroll 8
     for (int j = n - 1; j >= 0; --j) {
       const std::size_t o = off[j];
-      for (int a = P; a >= 0; --a) off[j * (P + 1) + a] = o + static_cast<std::size_t>(a) * step[k];
+      for (int a = pk; a >= 0; --a) off[j * (pk + 1) + a] = o + static_cast<std::size_t>(a) * step[k];
     }
+    n *= pk + 1;
+  }
 }
 
 // W[r] = prod_{k >= 1} (k == deriv ? dN : N)[k][a_k] in the order of row_offsets.
-template <int P, int D>
-TRIVAR_KERNEL_INLINE void row_weights(const double (*N)[P + 1], const double (*dN)[P + 1], int deriv, double* W) {
+template <int P, int Q, int D>
+TRIVAR_KERNEL_INLINE void row_weights(const double (*N)[kWidth<P, Q>], const double (*dN)[kWidth<P, Q>], int deriv,
+                                      double* W) {
   W[0] = 1.0;
   int n = 1;
 #pragma GCC unroll 4
-  for (int k = 1; k < D; ++k, n *= P + 1) {
+  for (int k = 1; k < D; ++k) {
+    const int pk = degree_of<P, Q, D>(k);
     const double* B = k == deriv ? dN[k] : N[k];
 #pragma GCC unroll 8
     for (int j = n - 1; j >= 0; --j) {
       const double w = W[j];
-      for (int a = P; a >= 0; --a) W[j * (P + 1) + a] = w * B[a];
+      for (int a = pk; a >= 0; --a) W[j * (pk + 1) + a] = w * B[a];
     }
+    n *= pk + 1;
   }
 }
 
@@ -135,15 +159,17 @@ TRIVAR_KERNEL_INLINE void contract_rows(const double* base, const std::size_t* o
 // Homogeneous value: locate (basis functions of every direction, steps, offset of the active block), contract
 // the rows, then reduce along direction 0. `locate` is the B-spline span and basis, or a Bezier element's
 // Bernstein basis.
-template <int VW, int P, int ST, int D, class Locate>
+template <int VW, int P, int Q, int ST, int D, class Locate>
 TRIVAR_KERNEL_INLINE void value_from(const double* coefs, Locate&& locate, double* h) {
-  double N[D][P + 1];
-  std::size_t step[D], off[kRows<P, D>];
-  const double* base = coefs + locate(N, static_cast<double(*)[P + 1]>(nullptr), step);
-  double W[1][kRows<P, D>], sums[1][(P + 1) * ST] = {};
-  row_offsets<P, D>(step, off);
-  row_weights<P, D>(N, nullptr, -1, W[0]);
-  contract_rows<VW, 0, (P + 1) * ST, kRows<P, D>, 1>(base, off, W, sums);
+  static_assert(D > 1 || P == Q);
+  constexpr int R = kRows<P, Q, D>;
+  double N[D][kWidth<P, Q>];
+  std::size_t step[D], off[R];
+  const double* base = coefs + locate(N, static_cast<double(*)[kWidth<P, Q>]>(nullptr), step);
+  double W[1][R], sums[1][(P + 1) * ST] = {};
+  row_offsets<P, Q, D>(step, off);
+  row_weights<P, Q, D>(N, nullptr, -1, W[0]);
+  contract_rows<VW, 0, (P + 1) * ST, R, 1>(base, off, W, sums);
   for (int d = 0; d < ST; ++d) h[d] = 0.0;
   for (int a = 0; a <= P; ++a)
     for (int d = 0; d < ST; ++d) h[d] += N[0][a] * sums[0][a * ST + d];
@@ -151,15 +177,17 @@ TRIVAR_KERNEL_INLINE void value_from(const double* coefs, Locate&& locate, doubl
 
 // Value and first derivatives in one pass over the rows: weight set 0 gives the value row sum, set k >= 1 the
 // row sum with N_k replaced by its derivative; direction 0 is differentiated in the final reduction.
-template <int VW, int P, int ST, int D, class Locate>
+template <int VW, int P, int Q, int ST, int D, class Locate>
 TRIVAR_KERNEL_INLINE void first_from(const double* coefs, Locate&& locate, double* h) {
-  double N[D][P + 1], dN[D][P + 1];
-  std::size_t step[D], off[kRows<P, D>];
+  static_assert(D > 1 || P == Q);
+  constexpr int R = kRows<P, Q, D>;
+  double N[D][kWidth<P, Q>], dN[D][kWidth<P, Q>];
+  std::size_t step[D], off[R];
   const double* base = coefs + locate(N, dN, step);
-  double W[D][kRows<P, D>], sums[D][(P + 1) * ST] = {};
-  row_offsets<P, D>(step, off);
-  for (int t = 0; t < D; ++t) row_weights<P, D>(N, dN, t == 0 ? -1 : t, W[t]);
-  contract_rows<VW, 0, (P + 1) * ST, kRows<P, D>, D>(base, off, W, sums);
+  double W[D][R], sums[D][(P + 1) * ST] = {};
+  row_offsets<P, Q, D>(step, off);
+  for (int t = 0; t < D; ++t) row_weights<P, Q, D>(N, dN, t == 0 ? -1 : t, W[t]);
+  contract_rows<VW, 0, (P + 1) * ST, R, D>(base, off, W, sums);
   for (int x = 0; x < (D + 1) * ST; ++x) h[x] = 0.0;
   for (int a = 0; a <= P; ++a)
     for (int d = 0; d < ST; ++d) {
@@ -169,18 +197,19 @@ TRIVAR_KERNEL_INLINE void first_from(const double* coefs, Locate&& locate, doubl
     }
 }
 
-template <int VW, int P, int ST, int D>
+template <int VW, int P, int Q, int ST, int D>
 TRIVAR_KERNEL_INLINE void value_body(const std::array<KnotVector, D>& knots, const double* coefs, const Param<D>& u,
                                      double* h) {
-  value_from<VW, P, ST, D>(
-      coefs, [&](auto N, auto dN, std::size_t* step) { return locate<P, ST, D, false>(knots, u, N, dN, step); }, h);
+  value_from<VW, P, Q, ST, D>(
+      coefs, [&](auto N, auto dN, std::size_t* step) { return locate<P, Q, ST, D, false>(knots, u, N, dN, step); },
+      h);
 }
 
-template <int VW, int P, int ST, int D>
+template <int VW, int P, int Q, int ST, int D>
 TRIVAR_KERNEL_INLINE void first_body(const std::array<KnotVector, D>& knots, const double* coefs, const Param<D>& u,
                                      double* h) {
-  first_from<VW, P, ST, D>(
-      coefs, [&](auto N, auto dN, std::size_t* step) { return locate<P, ST, D, true>(knots, u, N, dN, step); }, h);
+  first_from<VW, P, Q, ST, D>(
+      coefs, [&](auto N, auto dN, std::size_t* step) { return locate<P, Q, ST, D, true>(knots, u, N, dN, step); }, h);
 }
 
 // The Bernstein basis of a Bezier element block: steps of a dense (P + 1)^D block, offset 0.
@@ -199,29 +228,31 @@ TRIVAR_KERNEL_INLINE std::size_t locate_bezier(const Param<D>& t, const Param<D>
 
 template <int VW, int P, int ST, int D>
 TRIVAR_KERNEL_INLINE void bezier_value_body(const double* block, const Param<D>& t, const Param<D>& scale, double* h) {
-  value_from<VW, P, ST, D>(
+  value_from<VW, P, P, ST, D>(
       block, [&](auto N, auto dN, std::size_t* step) { return locate_bezier<P, ST, D, false>(t, scale, N, dN, step); },
       h);
 }
 
 template <int VW, int P, int ST, int D>
 TRIVAR_KERNEL_INLINE void bezier_first_body(const double* block, const Param<D>& t, const Param<D>& scale, double* h) {
-  first_from<VW, P, ST, D>(
+  first_from<VW, P, P, ST, D>(
       block, [&](auto N, auto dN, std::size_t* step) { return locate_bezier<P, ST, D, true>(t, scale, N, dN, step); },
       h);
 }
 
-// Many points in one call: no indirect call per point, and consecutive points' independent work overlaps.
-template <int VW, int P, int ST, int D>
-TRIVAR_KERNEL_INLINE void batch_body(const std::array<KnotVector, D>& knots, const double* coefs, bool rational,
-                                     const Param<D>* u, std::size_t n, double* out) {
+// Many points in one call: no indirect call and no thread-pool step per point. It calls the same compiled
+// point kernel as eval() (a wider-target function is never inlined into this one), so batch and pointwise
+// results are bit-identical.
+template <int ST, int D, PointKernel<D> kValue>
+void batch_of(const std::array<KnotVector, D>& knots, const double* coefs, bool rational, const Param<D>* u,
+              std::size_t n, double* out) {
   if (!rational) {
-    for (std::size_t i = 0; i < n; ++i) value_body<VW, P, ST, D>(knots, coefs, u[i], out + i * ST);
+    for (std::size_t i = 0; i < n; ++i) kValue(knots, coefs, u[i], out + i * ST);
     return;
   }
   for (std::size_t i = 0; i < n; ++i) {
     double h[ST];
-    value_body<VW, P, ST, D>(knots, coefs, u[i], h);
+    kValue(knots, coefs, u[i], h);
     const double inv = 1.0 / h[ST - 1];
     for (int d = 0; d < ST - 1; ++d) out[i * (ST - 1) + d] = h[d] * inv;
   }
@@ -229,35 +260,33 @@ TRIVAR_KERNEL_INLINE void batch_body(const std::array<KnotVector, D>& knots, con
 
 // One entry point of each kind per instruction set.
 // flatten: everything the bodies call (span search, basis functions) is compiled into the entry point too.
-#define TRIVAR_KERNEL_SET(NAME, VW, ...)                                                                              \
-  template <int P, int ST, int D>                                                                                   \
-  __VA_ARGS__ void NAME##_value(const std::array<KnotVector, D>& k, const double* c, const Param<D>& u, double* h) { \
-    value_body<VW, P, ST, D>(k, c, u, h);                                                                               \
-  }                                                                                                                 \
-  template <int P, int ST, int D>                                                                                   \
-  __VA_ARGS__ void NAME##_first(const std::array<KnotVector, D>& k, const double* c, const Param<D>& u, double* h) { \
-    first_body<VW, P, ST, D>(k, c, u, h);                                                                               \
-  }                                                                                                                 \
-  template <int P, int ST, int D>                                                                                   \
-  __VA_ARGS__ void NAME##_batch(const std::array<KnotVector, D>& k, const double* c, bool r, const Param<D>* u,      \
-                               std::size_t n, double* out) {                                                        \
-    batch_body<VW, P, ST, D>(k, c, r, u, n, out);                                                                       \
-  }                                                                                                                 \
-  template <int P, int ST, int D>                                                                                   \
-  __VA_ARGS__ void NAME##_bezier_value(const double* b, const Param<D>& t, const Param<D>& sc, double* h) {         \
-    bezier_value_body<VW, P, ST, D>(b, t, sc, h);                                                                   \
-  }                                                                                                                 \
-  template <int P, int ST, int D>                                                                                   \
-  __VA_ARGS__ void NAME##_bezier_first(const double* b, const Param<D>& t, const Param<D>& sc, double* h) {         \
-    bezier_first_body<VW, P, ST, D>(b, t, sc, h);                                                                   \
-  }                                                                                                                 \
-  template <int P, int ST, int D>                                                                                   \
-  BezierKernels<D> NAME##_bezier_kernels() {                                                                        \
-    return {&NAME##_bezier_value<P, ST, D>, &NAME##_bezier_first<P, ST, D>};                                        \
-  }                                                                                                                 \
-  template <int P, int ST, int D>                                                                                   \
-  FixedKernels<D> NAME##_kernels() {                                                                                \
-    return {&NAME##_value<P, ST, D>, &NAME##_first<P, ST, D>, &NAME##_batch<P, ST, D>};                             \
+#define TRIVAR_KERNEL_SET(NAME, VW, ...)                                                                         \
+  template <int P, int Q, int ST, int D>                                                                       \
+  __VA_ARGS__ void NAME##_value(const std::array<KnotVector, D>& k, const double* c, const Param<D>& u,       \
+                                double* h) {                                                                   \
+    value_body<VW, P, Q, ST, D>(k, c, u, h);                                                                   \
+  }                                                                                                            \
+  template <int P, int Q, int ST, int D>                                                                       \
+  __VA_ARGS__ void NAME##_first(const std::array<KnotVector, D>& k, const double* c, const Param<D>& u,       \
+                                double* h) {                                                                   \
+    first_body<VW, P, Q, ST, D>(k, c, u, h);                                                                   \
+  }                                                                                                            \
+  template <int P, int ST, int D>                                                                              \
+  __VA_ARGS__ void NAME##_bezier_value(const double* b, const Param<D>& t, const Param<D>& sc, double* h) {    \
+    bezier_value_body<VW, P, ST, D>(b, t, sc, h);                                                              \
+  }                                                                                                            \
+  template <int P, int ST, int D>                                                                              \
+  __VA_ARGS__ void NAME##_bezier_first(const double* b, const Param<D>& t, const Param<D>& sc, double* h) {    \
+    bezier_first_body<VW, P, ST, D>(b, t, sc, h);                                                              \
+  }                                                                                                            \
+  template <int P, int ST, int D>                                                                              \
+  BezierKernels<D> NAME##_bezier_kernels() {                                                                   \
+    return {&NAME##_bezier_value<P, ST, D>, &NAME##_bezier_first<P, ST, D>};                                   \
+  }                                                                                                            \
+  template <int P, int Q, int ST, int D>                                                                       \
+  FixedKernels<D> NAME##_kernels() {                                                                           \
+    return {&NAME##_value<P, Q, ST, D>, &NAME##_first<P, Q, ST, D>,                                            \
+            &batch_of<ST, D, &NAME##_value<P, Q, ST, D>>};                                                     \
   }
 
 TRIVAR_KERNEL_SET(generic, 2, [[gnu::flatten]])
@@ -266,14 +295,14 @@ TRIVAR_KERNEL_SET(avx2, 4, [[gnu::flatten, gnu::target("avx2,fma")]])
 TRIVAR_KERNEL_SET(avx512, 8, [[gnu::flatten, gnu::target("avx512f,avx512vl,avx512dq,avx2,fma")]])
 #endif
 
-template <int P, int ST, int D>
+template <int P, int Q, int ST, int D>
 FixedKernels<D> kernels_at(SimdLevel level) {
 #if defined(__x86_64__)
-  if (level == SimdLevel::avx512) return avx512_kernels<P, ST, D>();
-  if (level == SimdLevel::avx2) return avx2_kernels<P, ST, D>();
+  if (level == SimdLevel::avx512) return avx512_kernels<P, Q, ST, D>();
+  if (level == SimdLevel::avx2) return avx2_kernels<P, Q, ST, D>();
 #endif
   (void)level;
-  return generic_kernels<P, ST, D>();
+  return generic_kernels<P, Q, ST, D>();
 }
 
 template <int P, int ST, int D>
@@ -308,20 +337,45 @@ auto select(int p, int stride, SimdLevel level) -> decltype(Set<1, 1, D>::get(le
 
 template <int P, int ST, int D>
 struct FixedSet {
-  static FixedKernels<D> get(SimdLevel level) { return kernels_at<P, ST, D>(level); }
+  static FixedKernels<D> get(SimdLevel level) { return kernels_at<P, P, ST, D>(level); }
 };
 template <int P, int ST, int D>
 struct BezierSet {
   static BezierKernels<D> get(SimdLevel level) { return bezier_kernels_at<P, ST, D>(level); }
 };
 
+// Degree P in directions 0..D-2 and a lower degree Q in the last, for strides 3 and 4 (geometry): the shells of
+// exact spheres and tori (4 x 4 x 1 after the cube's degree elevation, 2 x 2 x 1 from revolutions).
+template <int D>
+FixedKernels<D> mixed_kernels(int p, int q, int stride, SimdLevel level) {
+  auto for_stride = [&]<int P, int Q>() -> FixedKernels<D> {
+    switch (stride) {
+      case 3: return kernels_at<P, Q, 3, D>(level);
+      case 4: return kernels_at<P, Q, 4, D>(level);
+      default: return {};
+    }
+  };
+  switch (p * 10 + q) {
+    case 21: return for_stride.template operator()<2, 1>();
+    case 31: return for_stride.template operator()<3, 1>();
+    case 32: return for_stride.template operator()<3, 2>();
+    case 41: return for_stride.template operator()<4, 1>();
+    case 42: return for_stride.template operator()<4, 2>();
+    default: return {};
+  }
+}
+
 }  // namespace
 
 template <int D>
 FixedKernels<D> fixed_kernels(const std::array<KnotVector, D>& knots, int stride, SimdLevel level) {
-  for (int k = 1; k < D; ++k)
-    if (knots[k].degree() != knots[0].degree()) return {};
-  return select<FixedSet, D>(knots[0].degree(), stride, level);
+  const int p = knots[0].degree(), q = knots[D - 1].degree();
+  for (int k = 1; k + 1 < D; ++k)
+    if (knots[k].degree() != p) return {};
+  if (q == p) return select<FixedSet, D>(p, stride, level);
+  if constexpr (D > 1)
+    return mixed_kernels<D>(p, q, stride, level);
+  return {};
 }
 
 template <int D>

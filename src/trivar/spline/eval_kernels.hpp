@@ -30,8 +30,9 @@ struct FixedKernels {
   BatchKernel<D> batch = nullptr;
 };
 
-// The kernels for these knot vectors and stride at the given level; all null when the degrees differ between
-// directions or the (degree, stride) pair has no kernel (degrees 1 to 4, strides 1, 3 and 4 have).
+// The kernels for these knot vectors and stride at the given level: equal degrees 1 to 4 with strides 1, 3, 4,
+// and degree p in all directions but a lower degree q in the last ((p, q) in (2,1), (3,1), (3,2), (4,1), (4,2))
+// with strides 3, 4; all null otherwise.
 template <int D>
 FixedKernels<D> fixed_kernels(const std::array<KnotVector, D>& knots, int stride, SimdLevel level);
 
