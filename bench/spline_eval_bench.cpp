@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "bench_volumes.hpp"
+#include "textbook_eval.hpp"
+#include "trivar/spline/simd_level.hpp"
 
 using namespace trivar;
 
@@ -35,6 +37,21 @@ std::vector<Param<D>> random_params(std::size_t n) {
 
 constexpr std::size_t kPoints = 1000000;
 
+// The volume with the kernels of the instruction set state.range(1) (0 generic, 1 AVX2, 2 AVX-512): splines
+// choose their kernels when constructed. False (benchmark skipped) when the CPU lacks the level.
+bool volume_at_level(benchmark::State& state, SplineVolume& s) {
+  const auto level = static_cast<SimdLevel>(state.range(1));
+  if (level > supported_simd_level()) {
+    state.SkipWithError("instruction set not supported by this CPU");
+    return false;
+  }
+  limit_simd_level(level);
+  s = bench::perturbed_cube(3, 8);
+  limit_simd_level(supported_simd_level());
+  state.SetLabel(simd_level_name(level));
+  return true;
+}
+
 // Runs evaluate(threads) per iteration and reports points/s; state.range(0) is the thread count (0 = all).
 template <class Evaluate>
 void measure_points(benchmark::State& state, double points, Evaluate&& evaluate) {
@@ -45,8 +62,10 @@ void measure_points(benchmark::State& state, double points, Evaluate&& evaluate)
       benchmark::Counter(points * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 
+// Args: threads, instruction set (0 generic, 1 AVX2, 2 AVX-512).
 void BM_VolumeValue(benchmark::State& state) {
-  const auto s = bench::perturbed_cube(3, 8);
+  SplineVolume s;
+  if (!volume_at_level(state, s)) return;
   const auto u = random_params<3>(kPoints);
   std::vector<double> out(kPoints * 3);
   measure_points(state, kPoints, [&](int threads) {
@@ -54,10 +73,26 @@ void BM_VolumeValue(benchmark::State& state) {
     benchmark::DoNotOptimize(out.data());
   });
 }
-BENCHMARK(BM_VolumeValue)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_VolumeValue)->ArgsProduct({{1, 0}, {0, 1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The textbook loop of textbook_eval.hpp on the same volume and points, 1 thread: the yardstick of the ratio.
+void BM_VolumeValueTextbook(benchmark::State& state) {
+  const auto s = bench::perturbed_cube(3, 8);
+  std::array<std::vector<double>, 3> t;
+  for (int k = 0; k < 3; ++k) t[k] = s.knots(k).knots();
+  const bench::TextbookVolume tb(3, t, {s.coefs().begin(), s.coefs().end()});
+  const auto u = random_params<3>(kPoints);
+  std::vector<double> out(kPoints * 3);
+  measure_points(state, kPoints, [&](int) {
+    for (std::size_t i = 0; i < kPoints; ++i) tb.eval(u[i], out.data() + 3 * i);
+    benchmark::DoNotOptimize(out.data());
+  });
+}
+BENCHMARK(BM_VolumeValueTextbook)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_VolumeValueFirstDerivs(benchmark::State& state) {
-  const auto s = bench::perturbed_cube(3, 8);
+  SplineVolume s;
+  if (!volume_at_level(state, s)) return;
   const auto u = random_params<3>(kPoints);
   std::vector<double> out(kPoints * 12);
   measure_points(state, kPoints, [&](int threads) {
@@ -65,7 +100,7 @@ void BM_VolumeValueFirstDerivs(benchmark::State& state) {
     benchmark::DoNotOptimize(out.data());
   });
 }
-BENCHMARK(BM_VolumeValueFirstDerivs)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_VolumeValueFirstDerivs)->ArgsProduct({{1, 0}, {0, 1, 2}})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_VolumeGrid100(benchmark::State& state) {
   const auto s = bench::perturbed_cube(3, 8);

@@ -6,42 +6,19 @@
 
 #include "trivar/core/error.hpp"
 #include "trivar/spline/basis.hpp"
+#include "trivar/spline/eval_kernels.hpp"
 #include "trivar/spline/knot_refinement.hpp"
 
 namespace trivar {
 
 namespace {
 
-// Bernstein values of degree P (P < 0: runtime p) at t in [0, 1]; with dB, also d/du given h = 1 / (b - a).
-template <int P>
-inline void bernstein(int p_runtime, double t, double h, double* B, double* dB) {
-  const int p = P >= 0 ? P : p_runtime;
-  const double s = 1.0 - t;
-  B[0] = 1.0;
-  for (int j = 1; j <= p; ++j) {
-    if (dB && j == p) {
-      // d/du B_{i,p} = p h (B_{i-1,p-1} - B_{i,p-1}).
-      dB[0] = -p * h * B[0];
-      for (int i = 1; i < p; ++i) dB[i] = p * h * (B[i - 1] - B[i]);
-      dB[p] = p * h * B[p - 1];
-    }
-    double saved = 0.0;
-    for (int r = 0; r < j; ++r) {
-      const double tmp = B[r];
-      B[r] = saved + s * tmp;
-      saved = t * tmp;
-    }
-    B[j] = saved;
-  }
-  if (dB && p == 0) dB[0] = 0.0;
-}
-
 inline void bernstein_any(int p, double t, double h, double* B, double* dB) {
   switch (p) {
-    case 1: bernstein<1>(1, t, h, B, dB); break;
-    case 2: bernstein<2>(2, t, h, B, dB); break;
-    case 3: bernstein<3>(3, t, h, B, dB); break;
-    default: bernstein<-1>(p, t, h, B, dB); break;
+    case 1: bernstein_values<1>(1, t, h, B, dB); break;
+    case 2: bernstein_values<2>(2, t, h, B, dB); break;
+    case 3: bernstein_values<3>(3, t, h, B, dB); break;
+    default: bernstein_values<-1>(p, t, h, B, dB); break;
   }
 }
 
@@ -109,6 +86,79 @@ ElementEvaluator<D>::ElementEvaluator(const Ints<D>& degrees, int dim, bool rati
   std::vector<int> ids(E);
   for (std::size_t e = 0; e < E; ++e) ids[e] = static_cast<int>(e);
   build_tree(ids, domain, 0);
+  build_start_grid();
+  build_bezier_blocks(st);
+}
+
+template <int D>
+void ElementEvaluator<D>::build_start_grid() {
+  const double per_direction = std::pow(static_cast<double>(std::max<std::size_t>(elements_.size(), 1)), 1.0 / D);
+  std::size_t cells = 1;
+  for (int k = 0; k < D; ++k) {
+    grid_n_[k] = std::clamp(static_cast<int>(std::ceil(per_direction)), 1, 1 << (18 / D));
+    grid_scale_[k] = grid_n_[k] / (domain_.hi[k] - domain_.lo[k]);
+    cells *= static_cast<std::size_t>(grid_n_[k]);
+  }
+  grid_start_.resize(cells);
+  for (std::size_t c = 0; c < cells; ++c) {
+    Box<D> cell;
+    std::size_t rest = c;
+    for (int k = 0; k < D; ++k) {
+      const auto i = static_cast<int>(rest % static_cast<std::size_t>(grid_n_[k]));
+      rest /= static_cast<std::size_t>(grid_n_[k]);
+      cell.lo[k] = domain_.lo[k] + i / grid_scale_[k];
+      cell.hi[k] = i + 1 == grid_n_[k] ? domain_.hi[k] : domain_.lo[k] + (i + 1) / grid_scale_[k];
+    }
+    int node = 0;
+    for (;;) {
+      const Node& n = nodes_[static_cast<std::size_t>(node)];
+      if (n.dir < 0) break;
+      if (cell.hi[n.dir] <= n.value) node = n.child[0];
+      else if (cell.lo[n.dir] >= n.value) node = n.child[1];
+      else break;
+    }
+    grid_start_[c] = node;
+  }
+}
+
+// Where it fits the budget, each element's polynomial is summed once into its Bezier block (the outer products
+// of each B-spline's Bernstein rows times gamma * control value): a point then costs the same contraction as a
+// tensor spline's, (p + 1)^D rows, instead of one product per B-spline of the element (more than (p + 1)^D on
+// refined elements) with gathered rows.
+template <int D>
+void ElementEvaluator<D>::build_bezier_blocks(int st) {
+  const int p = degrees_[0];
+  for (int k = 1; k < D; ++k)
+    if (degrees_[k] != p) return;
+  const BezierKernels<D> kernels = bezier_kernels<D>(p, st, simd_level());
+  std::size_t block = static_cast<std::size_t>(st);
+  for (int k = 0; k < D; ++k) block *= static_cast<std::size_t>(p + 1);
+  if (!kernels.value || elements_.size() * block * sizeof(double) > kBezierBudget) return;
+  blocks_.assign(elements_.size() * block, 0.0);
+  block_size_ = block;
+  const std::size_t P1 = static_cast<std::size_t>(p + 1);
+  std::vector<double> outer(block / static_cast<std::size_t>(st));
+  for (std::size_t e = 0; e < elements_.size(); ++e) {
+    double* out = blocks_.data() + e * block;
+    for (int i = entry_start_[e]; i < entry_start_[e + 1]; ++i) {
+      const Entry& en = entries_[static_cast<std::size_t>(i)];
+      // Outer product of the rows, direction 0 fastest.
+      outer[0] = 1.0;
+      std::size_t len = 1;
+      for (int k = 0; k < D; ++k) {
+        const double* row = rows_.data() + row_start_[e * D + static_cast<std::size_t>(k)] +
+                            static_cast<std::size_t>(en.row[static_cast<std::size_t>(k)]) * P1;
+        for (std::size_t j = P1; j-- > 0;)
+          for (std::size_t x = 0; x < len; ++x) outer[j * len + x] = outer[x] * row[j];
+        len *= P1;
+      }
+      const double* c = gc_.data() + static_cast<std::size_t>(en.id) * static_cast<std::size_t>(st);
+      for (std::size_t x = 0; x < len; ++x)
+        for (int d = 0; d < st; ++d) out[x * static_cast<std::size_t>(st) + static_cast<std::size_t>(d)] += outer[x] * c[d];
+    }
+  }
+  bezier_value_ = kernels.value;
+  bezier_first_ = kernels.first;
 }
 
 template <int D>
@@ -172,7 +222,12 @@ int ElementEvaluator<D>::build_tree(std::vector<int>& ids, const Box<D>& box, in
 
 template <int D>
 int ElementEvaluator<D>::find_element(const Param<D>& u) const {
-  const Node* n = nodes_.data();
+  std::size_t cell = 0;
+  for (int k = D - 1; k >= 0; --k) {
+    const int i = std::clamp(static_cast<int>((u[k] - domain_.lo[k]) * grid_scale_[k]), 0, grid_n_[k] - 1);
+    cell = cell * static_cast<std::size_t>(grid_n_[k]) + static_cast<std::size_t>(i);
+  }
+  const Node* n = nodes_.data() + grid_start_[cell];
   while (n->dir >= 0) n = nodes_.data() + n->child[u[static_cast<std::size_t>(n->dir)] >= n->value ? 1 : 0];
   for (int i = 0; i < n->count; ++i) {
     const int e = leaf_elements_[static_cast<std::size_t>(n->first + i)];
@@ -193,6 +248,18 @@ void ElementEvaluator<D>::evaluate(const Param<D>& u_in, double* out) const {
   const int e = find_element(u);
   const auto& el = elements_[static_cast<std::size_t>(e)];
   constexpr int kParts = kDerivs ? D + 1 : 1;
+  if (bezier_value_) {
+    Param<D> t, scale;
+    for (int k = 0; k < D; ++k) {
+      scale[k] = 1.0 / (el.hi[k] - el.lo[k]);
+      t[k] = (u[k] - el.lo[k]) * scale[k];
+    }
+    const double* block = blocks_.data() + block_size_ * static_cast<std::size_t>(e);
+    double h[kParts * 4];
+    (kDerivs ? bezier_first_ : bezier_value_)(block, t, scale, h);
+    finish<kParts>(h, dim_ + (rational_ ? 1 : 0), out);
+    return;
+  }
   // Per direction, the element's distinct univariate B-splines (and derivatives) at u.
   double val[D][256];
   double der[kDerivs ? D : 1][256];
@@ -235,6 +302,12 @@ void ElementEvaluator<D>::evaluate(const Param<D>& u_in, double* out) const {
       }
     }
   }
+  finish<kParts>(acc, st, out);
+}
+
+template <int D>
+template <int kParts>
+void ElementEvaluator<D>::finish(const double* acc, int st, double* out) const {
   if (!rational_) {
     std::copy(acc, acc + kParts * st, out);
     return;

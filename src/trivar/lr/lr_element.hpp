@@ -51,6 +51,12 @@ private:
   Box<D> domain_{};
   std::vector<Box<D>> elements_;
   std::vector<Node> nodes_;
+  // Start nodes of the tree descent: the domain cut into grid_n_[k] equal cells per direction (about one cell
+  // per element); each cell keeps the deepest node whose box contains it, so a point skips the levels above it
+  // (all of them on a tensor-like mesh) without a data-dependent branch.
+  Ints<D> grid_n_{};
+  Param<D> grid_scale_{};
+  std::vector<int> grid_start_;
   std::vector<int> leaf_elements_;
   std::vector<int> row_start_;      // per (element, direction): offset of its rows in rows_ (doubles)
   std::vector<std::uint8_t> row_count_;
@@ -58,8 +64,19 @@ private:
   std::vector<int> entry_start_;    // per element + 1: its entries in entries_
   std::vector<Entry> entries_;
   std::vector<double> gc_;          // gamma * control value, stride per B-spline
+  // Per element, its polynomial as a Bezier block ((p + 1)^D * stride values) when every degree is equal, a
+  // kernel exists and the blocks fit kBezierBudget bytes (empty otherwise: evaluation sums the entries).
+  static constexpr std::size_t kBezierBudget = std::size_t{64} << 20;
+  std::vector<double> blocks_;
+  std::size_t block_size_ = 0;
+  void (*bezier_value_)(const double*, const Param<D>&, const Param<D>&, double*) = nullptr;
+  void (*bezier_first_)(const double*, const Param<D>&, const Param<D>&, double*) = nullptr;
 
   int build_tree(std::vector<int>& ids, const Box<D>& box, int depth);
+  void build_bezier_blocks(int st);
+  void build_start_grid();
+  template <int kParts>
+  void finish(const double* acc, int st, double* out) const;
   template <bool kDerivs, int kStride>
   void evaluate(const Param<D>& u, double* out) const;
   template <bool kDerivs>

@@ -61,7 +61,9 @@ void Attribute::eval(const TensorSpline<3>& geometry, const Param<3>& u, double*
     case Kind::expression: {
       double vars[3] = {t[0], t[1], t[2]};
       if (space_ == Space::model) {
-        require(geometry.dim() == 3, "expression attribute in x, y, z: cell geometry is not in 3-space");
+        // The message is built only on failure: this runs once per slicer pixel.
+        require(geometry.dim() == 3,
+                [] { return std::string("expression attribute in x, y, z: cell geometry is not in 3-space"); });
         geometry.eval(t, vars);
       }
       for (std::size_t c = 0; c < expressions_.size(); ++c) out[c] = expressions_[c].eval(vars);

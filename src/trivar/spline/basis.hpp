@@ -87,6 +87,31 @@ inline void basis_values_first_derivatives(const KnotVector& kv, int s, double u
   if (p == 0) dN[0] = 0.0;
 }
 
+// Bernstein polynomials of degree P (P < 0: p_runtime) at t in [0, 1]: B[i] = C(p,i) t^i (1-t)^(p-i), by the same
+// triangle with knots 0 and 1. With dB, also their derivatives with respect to u where t = (u - a) h, h = 1/(b - a).
+template <int P>
+inline void bernstein_values(int p_runtime, double t, double h, double* B, double* dB) {
+  const int p = P >= 0 ? P : p_runtime;
+  const double s = 1.0 - t;
+  B[0] = 1.0;
+  for (int j = 1; j <= p; ++j) {
+    if (dB && j == p) {
+      // d/du B_{i,p} = p h (B_{i-1,p-1} - B_{i,p-1}).
+      dB[0] = -p * h * B[0];
+      for (int i = 1; i < p; ++i) dB[i] = p * h * (B[i - 1] - B[i]);
+      dB[p] = p * h * B[p - 1];
+    }
+    double saved = 0.0;
+    for (int r = 0; r < j; ++r) {
+      const double tmp = B[r];
+      B[r] = saved + s * tmp;
+      saved = t * tmp;
+    }
+    B[j] = saved;
+  }
+  if (dB && p == 0) dB[0] = 0.0;
+}
+
 // ders[k*(p+1) + i] = d^k/du^k B_{s-p+i,p}(u) for k = 0..n (derivatives above p are zero).
 inline void basis_derivatives(const double* t, int p, int s, double u, int n, double* ders) {
   double ndu[kMaxDegree + 1][kMaxDegree + 1];

@@ -12,6 +12,7 @@
 #include "trivar/core/scratch.hpp"
 #include "trivar/spline/basis.hpp"
 #include "trivar/spline/derivative_index.hpp"
+#include "trivar/spline/eval_kernels.hpp"
 
 namespace trivar {
 
@@ -55,111 +56,6 @@ inline void accumulate(const double* base, const std::array<std::size_t, D>& ste
                        const std::array<const double*, D>& N, int L, double* acc) {
   static constexpr auto table = make_rows_table<D>(std::make_index_sequence<33>{});
   table[L <= 32 ? L : 0](base, step, len, N, L, acc);
-}
-
-// Whole evaluation with every degree equal to P and the stride equal to ST: all loops have compile-time
-// bounds. This is the hot path of slicing and tessellation (cubic and quadratic geometry, 3-D, often rational).
-template <int P, int ST, int K, int D>
-inline void fixed_rows(const double* base, const std::array<std::size_t, D>& step, const double (*N)[P + 1],
-                       double w, double* acc) {
-  if constexpr (K == 0) {
-    for (int x = 0; x < (P + 1) * ST; ++x) acc[x] += w * base[x];
-  } else {
-    for (int a = 0; a <= P; ++a) fixed_rows<P, ST, K - 1, D>(base + a * step[K], step, N, w * N[K][a], acc);
-  }
-}
-
-template <int P, int ST, int D>
-void eval_fixed(const std::array<KnotVector, D>& knots, const double* coefs, const Param<D>& u, double* h) {
-  double N[D][P + 1];
-  std::array<std::size_t, D> step;
-  std::size_t offset = 0, stride_k = ST;
-  for (int k = 0; k < D; ++k) {
-    const KnotVector& kv = knots[k];
-    const double uk = std::clamp(u[k], kv.start(), kv.end());
-    const int s = kv.find_span(uk);
-    basis_values<P>(kv, s, uk, N[k]);
-    step[k] = stride_k;
-    offset += static_cast<std::size_t>(s - P) * stride_k;
-    stride_k *= static_cast<std::size_t>(kv.size());
-  }
-  double acc[(P + 1) * ST] = {};
-  fixed_rows<P, ST, D - 1, D>(coefs + offset, step, N, 1.0, acc);
-  for (int d = 0; d < ST; ++d) h[d] = 0.0;
-  for (int a = 0; a <= P; ++a)
-    for (int d = 0; d < ST; ++d) h[d] += N[0][a] * acc[a * ST + d];
-}
-
-// Value and first derivatives with compile-time degree and stride: one pass over the rows accumulates the
-// value row sum and, for each direction k >= 1, the row sum with N_k replaced by its derivative; direction 0
-// is differentiated in the final reduction. h receives (D+1)*ST homogeneous values: f, f_u, f_v, (f_w).
-template <int P, int ST, int K, int D>
-inline void fixed_rows_d1(const double* base, const std::array<std::size_t, D>& step, const double (*N)[P + 1],
-                          const double (*dN)[P + 1], const std::array<double, D>& w, double (*acc)[(P + 1) * ST]) {
-  if constexpr (K == 0) {
-    for (int t = 0; t < D; ++t)
-      for (int x = 0; x < (P + 1) * ST; ++x) acc[t][x] += w[t] * base[x];
-  } else {
-    for (int a = 0; a <= P; ++a) {
-      std::array<double, D> wa;
-      for (int t = 0; t < D; ++t) wa[t] = w[t] * (t == K ? dN[K][a] : N[K][a]);
-      fixed_rows_d1<P, ST, K - 1, D>(base + a * step[K], step, N, dN, wa, acc);
-    }
-  }
-}
-
-template <int P, int ST, int D>
-void eval_fixed_d1(const std::array<KnotVector, D>& knots, const double* coefs, const Param<D>& u, double* h) {
-  double N[D][P + 1], dN[D][P + 1];
-  std::array<std::size_t, D> step;
-  std::size_t offset = 0, stride_k = ST;
-  for (int k = 0; k < D; ++k) {
-    const KnotVector& kv = knots[k];
-    const double uk = std::clamp(u[k], kv.start(), kv.end());
-    const int s = kv.find_span(uk);
-    basis_values_first_derivatives<P>(kv, s, uk, N[k], dN[k]);
-    step[k] = stride_k;
-    offset += static_cast<std::size_t>(s - P) * stride_k;
-    stride_k *= static_cast<std::size_t>(kv.size());
-  }
-  double acc[D][(P + 1) * ST] = {};
-  std::array<double, D> w;
-  w.fill(1.0);
-  fixed_rows_d1<P, ST, D - 1, D>(coefs + offset, step, N, dN, w, acc);
-  for (int x = 0; x < (D + 1) * ST; ++x) h[x] = 0.0;
-  for (int a = 0; a <= P; ++a)
-    for (int d = 0; d < ST; ++d) {
-      h[d] += N[0][a] * acc[0][a * ST + d];
-      h[ST + d] += dN[0][a] * acc[0][a * ST + d];
-      for (int t = 1; t < D; ++t) h[(t + 1) * ST + d] += N[0][a] * acc[t][a * ST + d];
-    }
-}
-
-template <int D>
-using FixedKernel = void (*)(const std::array<KnotVector, D>&, const double*, const Param<D>&, double*);
-
-// Kernel for (degree, stride) when every direction has that degree and the pair is common, else null.
-// First derivatives select the kernel that also returns f_u, f_v, (f_w).
-template <int D>
-FixedKernel<D> fixed_kernel(const std::array<KnotVector, D>& knots, int st, bool first_derivatives) {
-  const int p = knots[0].degree();
-  for (int k = 1; k < D; ++k)
-    if (knots[k].degree() != p) return nullptr;
-  auto pick = [&]<int P>() -> FixedKernel<D> {
-    switch (st) {
-      case 1: return first_derivatives ? &eval_fixed_d1<P, 1, D> : &eval_fixed<P, 1, D>;
-      case 3: return first_derivatives ? &eval_fixed_d1<P, 3, D> : &eval_fixed<P, 3, D>;
-      case 4: return first_derivatives ? &eval_fixed_d1<P, 4, D> : &eval_fixed<P, 4, D>;
-      default: return nullptr;
-    }
-  };
-  switch (p) {
-    case 1: return pick.template operator()<1>();
-    case 2: return pick.template operator()<2>();
-    case 3: return pick.template operator()<3>();
-    case 4: return pick.template operator()<4>();  // exact spheres and tori (Cobb's patches, revolutions)
-    default: return nullptr;
-  }
 }
 
 // out[0..st) = sum_a N0[a] * acc[a*st .. a*st+st).
@@ -221,8 +117,10 @@ TensorSpline<D>::TensorSpline(std::array<KnotVector, D> knots, int dim, bool rat
                                          std::to_string(stride()) + "), got " + std::to_string(coefs_.size()));
   for (std::size_t i = 0; i < coefs_.size(); ++i)
     if (!std::isfinite(coefs_[i])) throw Error("spline: coefficient value " + std::to_string(i) + " is not finite");
-  fixed_ = fixed_kernel<D>(knots_, stride(), false);
-  fixed_d1_ = fixed_kernel<D>(knots_, stride(), true);
+  const FixedKernels<D> k = fixed_kernels<D>(knots_, stride(), simd_level());
+  fixed_ = k.value;
+  fixed_d1_ = k.first;
+  fixed_batch_ = k.batch;
   if (rational_) validate_weights(*this);
 }
 
@@ -438,6 +336,17 @@ void TensorSpline<D>::eval_derivs(const Param<D>& u, int order, double* out) con
 template <int D>
 void TensorSpline<D>::eval_batch(std::span<const Param<D>> u, std::span<double> out, int threads) const {
   require(out.size() >= u.size() * dim_, "spline: batch output buffer too small");
+  if (fixed_batch_) {
+    // Blocks of points per kernel call; the static split keeps every point on the same code for any thread count.
+    constexpr std::size_t kBlock = 256;
+    const std::size_t n = u.size(), blocks = (n + kBlock - 1) / kBlock;
+    parallel_for(static_cast<std::ptrdiff_t>(blocks), threads, [&](std::ptrdiff_t b) {
+      const std::size_t first = static_cast<std::size_t>(b) * kBlock;
+      fixed_batch_(knots_, coefs_.data(), rational_, u.data() + first, std::min(kBlock, n - first),
+                   out.data() + first * dim_);
+    });
+    return;
+  }
   parallel_for(static_cast<std::ptrdiff_t>(u.size()), threads,
                [&](std::ptrdiff_t i) { eval(u[i], out.data() + i * dim_); });
 }

@@ -69,9 +69,12 @@ private:
   int dim_ = 0;
   bool rational_ = false;
   std::vector<double> coefs_;
-  // Specialised evaluation kernel chosen at construction for common degree / stride pairs (or null).
+  // Specialised evaluation kernels (eval_kernels.hpp) chosen at construction for common degree / stride pairs
+  // and the instruction set of simd_level() (or null).
   void (*fixed_)(const std::array<KnotVector, D>&, const double*, const Param<D>&, double*) = nullptr;
   void (*fixed_d1_)(const std::array<KnotVector, D>&, const double*, const Param<D>&, double*) = nullptr;
+  void (*fixed_batch_)(const std::array<KnotVector, D>&, const double*, bool, const Param<D>*, std::size_t,
+                       double*) = nullptr;
 };
 
 extern template class TensorSpline<1>;
