@@ -195,3 +195,20 @@ TEST_F(Cli, SolveElasticModesOfTheRollerCube) {
   ASSERT_EQ(errors.size(), 8u) << r.out;
   for (double e : errors) EXPECT_LT(e, 1e-4);
 }
+
+TEST_F(Cli, SolveAdaptiveOnHierarchicalSpaces) {
+  // THB and HB span the same spaces: the same dofs, elements and errors at every step (printed to four
+  // digits); one line per step, and the table with --out.
+  const auto thb = ok("solve poisson --problem l-shape --degree 2 --refine 4 --adaptive --steps 4 --space thb "
+                      "--solver cholmod --out thb");
+  const auto hb = ok("solve poisson --problem l-shape --degree 2 --refine 4 --adaptive --steps 4 --space hb --solver cholmod");
+  const auto t = cli_test::lines(thb.out), h = cli_test::lines(hb.out);
+  ASSERT_EQ(t.size(), 4u) << thb.out;
+  ASSERT_EQ(h.size(), 4u) << hb.out;
+  for (std::size_t i = 0; i < 4; ++i) EXPECT_EQ(t[i].substr(0, t[i].find(", estimate")), h[i].substr(0, h[i].find(", estimate")));
+  EXPECT_GT(cli_test::numbers_after(thb.out, "step 3: dofs").at(0), cli_test::numbers_after(thb.out, "step 0: dofs").at(0));
+  EXPECT_TRUE(exists("thb/convergence.csv"));
+  EXPECT_EQ(cli_test::lines(cli_test::slurp(work_ / "thb/convergence.csv")).size(), 5u);
+  EXPECT_EQ(cli_test::lines(run("solve poisson --problem l-shape --space thb").err).at(0),
+            "trivar: error: solve: --space is an option of --adaptive");
+}
