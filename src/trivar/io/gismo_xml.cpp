@@ -193,6 +193,8 @@ struct Reader {
       const std::vector<double> v = numbers(b);
       if (v.size() != 2 * D) fail(b, "a box needs " + std::to_string(2 * D) + " indices, found " + std::to_string(v.size()));
       if (box.level > 40) fail(b, "box level " + std::to_string(box.level) + " is too deep");
+      for (double x : v)
+        if (!(x >= 0 && x <= 1e9)) fail(b, "box indices must be integers in [0, 1e9]");
       for (int k = 0; k < D; ++k) {
         box.lo[k] = static_cast<int>(v[static_cast<std::size_t>(k)]);
         box.hi[k] = static_cast<int>(v[static_cast<std::size_t>(D + k)]);
