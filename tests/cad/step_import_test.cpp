@@ -165,7 +165,8 @@ TEST(StepImport, ClassificationAgreesWithOpenCascade) {
     }
     int disagree = 0, checked = 0;
     for (const auto& x : pts) {
-      BRepClass3d_SolidClassifier c(ref, gp_Pnt(x[0], x[1], x[2]), 1e-9);
+      // Within 1e-3 (3e-5 of these parts' size) of an edge the trim polygons' slack leaves the answer open.
+      BRepClass3d_SolidClassifier c(ref, gp_Pnt(x[0], x[1], x[2]), 1e-3);
       if (c.State() == TopAbs_ON) continue;
       ++checked;
       if (solid->contains(x) != (c.State() == TopAbs_IN)) {

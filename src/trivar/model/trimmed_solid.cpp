@@ -344,12 +344,17 @@ int TrimmedSolid::classify_near(const std::array<double, 3>& x, double band) con
   }
   if (feet.empty()) return -1;
   const Foot& best = *std::min_element(feet.begin(), feet.end(), [](const Foot& a, const Foot& b) { return a.dist < b.dist; });
-  if (best.clean) return dot(best.r, best.n) < 0 ? 1 : 0;
-  const double same = 1e-6 * std::max(best.dist, 1e-12 * box_.diagonal()) + 1e-12 * box_.diagonal();
+  // A foot on a face is the answer unless it is much farther than the nearest point (a clamped point on the
+  // trim of another face may come out slightly nearer than the true foot, by the trim polygon's slack).
+  const Foot* clean = nullptr;
+  for (const Foot& f : feet)
+    if (f.clean && f.dist <= best.dist + 2 * bd.chordal_tolerance && (!clean || f.dist < clean->dist)) clean = &f;
+  if (clean) return dot(clean->r, clean->n) < 0 ? 1 : 0;
+  // No foot: the nearest point is on an edge or corner, where the faces' clamped points (nearly) meet.
   P3 pseudo{0, 0, 0};
   for (const Foot& f : feet) {
     const P3 gap = sub(f.s, best.s);
-    if (std::sqrt(dot(gap, gap)) <= std::max(same, 1e-3 * best.dist))
+    if (std::sqrt(dot(gap, gap)) <= 0.1 * best.dist + 1e-12 * box_.diagonal())
       for (int k = 0; k < 3; ++k) pseudo[k] += f.n[k];
   }
   return dot(best.r, pseudo) < 0 ? 1 : 0;
