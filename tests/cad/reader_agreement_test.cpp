@@ -28,7 +28,9 @@ TEST(ReaderAgreement, BsplineSurfacesAgreeWithTheP21Reader) {
       if (!std::holds_alternative<TensorSpline<2>>(c.splines[i])) continue;
       const auto& ours = std::get<TensorSpline<2>>(c.splines[i]);
       for (std::uint64_t face : c.spline_info[i].faces) {
-        const std::string label = "#" + std::to_string(face) + " ADVANCED_FACE";
+        std::string label = "#";
+        label += std::to_string(face);
+        label += " ADVANCED_FACE";
         const auto it = std::find_if(b.faces.begin(), b.faces.end(), [&](const TrimmedFace& f) { return f.name == label; });
         ASSERT_NE(it, b.faces.end()) << label;
         EXPECT_EQ(it->kind, "bspline");

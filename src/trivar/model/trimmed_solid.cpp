@@ -134,6 +134,37 @@ TrimmedSolid::TrimmedSolid(TrimmedBoundary boundary) : boundary_(std::move(bound
       for (int j = range[t][2]; j <= range[t][3]; ++j)
         for (int i = range[t][0]; i <= range[t][1]; ++i) g.triangles[count[static_cast<std::size_t>(j) * n + i]++] = static_cast<int>(t);
   }
+  {
+    // About two triangles per cell, cells as cubic as the box allows.
+    SpaceGrid& g = space_;
+    double vol = 1;
+    for (int k = 0; k < 3; ++k) vol *= std::max(box_.extent(k), 1e-12 * box_.diagonal());
+    const double h = std::cbrt(vol / std::max(1.0, static_cast<double>(nt) / 2));
+    for (int k = 0; k < 3; ++k) {
+      g.n[k] = std::clamp(static_cast<int>(box_.extent(k) / h), 1, 256);
+      g.lo[k] = box_.lo[k];
+      g.inv_h[k] = g.n[k] / std::max(box_.extent(k), 1e-300);
+    }
+    const auto cell = [&](double x, int k) { return std::clamp(static_cast<int>((x - g.lo[k]) * g.inv_h[k]), 0, g.n[k] - 1); };
+    std::vector<std::array<int, 6>> range(nt);
+    const std::size_t cells = static_cast<std::size_t>(g.n[0]) * g.n[1] * g.n[2];
+    std::vector<int> count(cells + 1, 0);
+    const auto each_cell = [&](const std::array<int, 6>& r, auto&& f) {
+      for (int c = r[4]; c <= r[5]; ++c)
+        for (int b2 = r[2]; b2 <= r[3]; ++b2)
+          for (int a = r[0]; a <= r[1]; ++a) f((static_cast<std::size_t>(c) * g.n[1] + b2) * g.n[0] + a);
+    };
+    for (std::size_t t = 0; t < nt; ++t) {
+      Box<3> tb = Box<3>::empty();
+      for (int v : b.mesh.triangles[t]) tb.extend(b.mesh.vertices[v].data());
+      range[t] = {cell(tb.lo[0], 0), cell(tb.hi[0], 0), cell(tb.lo[1], 1), cell(tb.hi[1], 1), cell(tb.lo[2], 2), cell(tb.hi[2], 2)};
+      each_cell(range[t], [&](std::size_t c) { ++count[c + 1]; });
+    }
+    for (std::size_t i = 1; i < count.size(); ++i) count[i] += count[i - 1];
+    g.start = count;
+    g.triangles.resize(static_cast<std::size_t>(count.back()));
+    for (std::size_t t = 0; t < nt; ++t) each_cell(range[t], [&](std::size_t c) { g.triangles[count[c]++] = static_cast<int>(t); });
+  }
   // 64 chords per curve span; the largest gap between a chord's midpoint and the curve, measured per face,
   // widens the polygon's edge into a band that counts as on the trim, so the polygon never cuts off a sliver
   // of the face.
@@ -265,11 +296,13 @@ void TrimmedSolid::axis_crossings(int axis, const std::array<double, 3>& p, doub
 }
 
 int TrimmedSolid::classify_near(const std::array<double, 3>& x, double band) const {
-  const AxisGrid& g = grids_[0];
+  const SpaceGrid& g = space_;
   const TrimmedBoundary& bd = boundary_;
-  const auto cell = [](double v, double lo, double inv, int n) { return std::clamp(static_cast<int>((v - lo) * inv), 0, n - 1); };
-  const int i0 = cell(x[g.b] - band, g.lo_b, g.inv_hb, g.nb), i1 = cell(x[g.b] + band, g.lo_b, g.inv_hb, g.nb);
-  const int j0 = cell(x[g.c] - band, g.lo_c, g.inv_hc, g.nc), j1 = cell(x[g.c] + band, g.lo_c, g.inv_hc, g.nc);
+  std::array<int, 3> lo, hi;
+  for (int k = 0; k < 3; ++k) {
+    lo[k] = std::clamp(static_cast<int>((x[k] - band - g.lo[k]) * g.inv_h[k]), 0, g.n[k] - 1);
+    hi[k] = std::clamp(static_cast<int>((x[k] + band - g.lo[k]) * g.inv_h[k]), 0, g.n[k] - 1);
+  }
   // Per face within the band: its nearest triangle and the barycentric coordinates of the nearest point there.
   struct Near {
     int face, triangle;
@@ -278,28 +311,28 @@ int TrimmedSolid::classify_near(const std::array<double, 3>& x, double band) con
   };
   thread_local std::vector<Near> near;
   near.clear();
-  for (int j = j0; j <= j1; ++j)
-    for (int i = i0; i <= i1; ++i) {
-      const std::size_t c = static_cast<std::size_t>(j) * g.nb + i;
-      for (int k = g.start[c]; k < g.start[c + 1]; ++k) {
-        const int t = g.triangles[k];
-        const auto& tri = bd.mesh.triangles[t];
-        const P3 &a = bd.mesh.vertices[tri[0]], &b = bd.mesh.vertices[tri[1]], &cc = bd.mesh.vertices[tri[2]];
-        if (std::max({a[0], b[0], cc[0]}) < x[0] - band || std::min({a[0], b[0], cc[0]}) > x[0] + band) continue;
-        const auto w = closest_on_triangle(x, a, b, cc);
-        const P3 q{w[0] * a[0] + w[1] * b[0] + w[2] * cc[0], w[0] * a[1] + w[1] * b[1] + w[2] * cc[1],
-                   w[0] * a[2] + w[1] * b[2] + w[2] * cc[2]};
-        const P3 d = sub(x, q);
-        const double d2 = dot(d, d);
-        if (d2 > band * band) continue;
-        const int f = bd.triangle_face[t];
-        auto it = std::find_if(near.begin(), near.end(), [f](const Near& n) { return n.face == f; });
-        if (it == near.end())
-          near.push_back({f, t, d2, w});
-        else if (d2 < it->d2)
-          *it = {f, t, d2, w};
+  for (int c = lo[2]; c <= hi[2]; ++c)
+    for (int j = lo[1]; j <= hi[1]; ++j)
+      for (int i = lo[0]; i <= hi[0]; ++i) {
+        const std::size_t cell = (static_cast<std::size_t>(c) * g.n[1] + j) * g.n[0] + i;
+        for (int k = g.start[cell]; k < g.start[cell + 1]; ++k) {
+          const int t = g.triangles[k];
+          const auto& tri = bd.mesh.triangles[t];
+          const P3 &a = bd.mesh.vertices[tri[0]], &b = bd.mesh.vertices[tri[1]], &cc = bd.mesh.vertices[tri[2]];
+          const auto w = closest_on_triangle(x, a, b, cc);
+          const P3 q{w[0] * a[0] + w[1] * b[0] + w[2] * cc[0], w[0] * a[1] + w[1] * b[1] + w[2] * cc[1],
+                     w[0] * a[2] + w[1] * b[2] + w[2] * cc[2]};
+          const P3 d = sub(x, q);
+          const double d2 = dot(d, d);
+          if (d2 > band * band) continue;
+          const int f = bd.triangle_face[t];
+          auto it = std::find_if(near.begin(), near.end(), [f](const Near& n) { return n.face == f; });
+          if (it == near.end())
+            near.push_back({f, t, d2, w});
+          else if (d2 < it->d2)
+            *it = {f, t, d2, w};
+        }
       }
-    }
   // The exact closest point on each of those faces (Gauss-Newton from the triangle's parameters, kept in the
   // domain), on faces where it lies within the trim. When the nearest is a foot (x - S along the normal), that
   // face's normal decides; otherwise the nearest point is on an edge or corner of the solid and the sum of the

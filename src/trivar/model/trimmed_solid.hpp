@@ -62,6 +62,12 @@ private:
   TrimmedBoundary boundary_;
   Box<3> box_;
   std::array<AxisGrid, 3> grids_;
+  // Triangles per cell of a uniform 3D grid over the box, for the near-boundary search.
+  struct SpaceGrid {
+    std::array<int, 3> n{1, 1, 1};
+    std::array<double, 3> lo{}, inv_h{};
+    std::vector<int> start, triangles;
+  } space_;
   // Per face its trimming loops as closed polygons in the parameter plane (each curve span sampled finely).
   std::vector<std::vector<std::vector<std::array<double, 2>>>> trim_polygons_;
   std::vector<double> trim_slack_;  // per face: how far its polygons may stray from the trimming curves
