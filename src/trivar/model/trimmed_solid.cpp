@@ -171,6 +171,7 @@ TrimmedSolid::TrimmedSolid(TrimmedBoundary boundary) : boundary_(std::move(bound
   constexpr int kChords = 64;
   trim_polygons_.resize(b.faces.size());
   trim_slack_.assign(b.faces.size(), 0.0);
+  trim_boxes_.resize(b.faces.size());
   for (std::size_t f = 0; f < b.faces.size(); ++f)
     for (const TrimLoop& l : b.faces[f].loops) {
       std::vector<P2> poly;
@@ -187,6 +188,9 @@ TrimmedSolid::TrimmedSolid(TrimmedBoundary boundary) : boundary_(std::move(bound
             poly.push_back(q);
           }
       }
+      Box<2> pb = Box<2>::empty();
+      for (const P2& q : poly) pb.extend(q.data());
+      trim_boxes_[f].push_back(pb);
       trim_polygons_[f].push_back(std::move(poly));
     }
   volume_ = trimmed_volume(b);
@@ -197,7 +201,10 @@ bool TrimmedSolid::inside_trim(int face, const Param<2>& uv) const {
   const Box<2> dom = boundary_.faces[face].surface.domain();
   const double eps = 2 * trim_slack_[face] + 1e-9 * (dom.extent(0) + dom.extent(1));
   bool inside = false;
-  for (const auto& poly : trim_polygons_[face])
+  for (std::size_t l = 0; l < trim_polygons_[face].size(); ++l) {
+    // A closed loop whose box does not hold the point is crossed an even number of times by the ray.
+    if (!trim_boxes_[face][l].contains(uv, eps)) continue;
+    const auto& poly = trim_polygons_[face][l];
     for (std::size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++) {
       const P2 &a = poly[j], &b = poly[i];
       const double ex = b[0] - a[0], ey = b[1] - a[1], len2 = ex * ex + ey * ey;
@@ -205,6 +212,7 @@ bool TrimmedSolid::inside_trim(int face, const Param<2>& uv) const {
       if (std::hypot(uv[0] - a[0] - s * ex, uv[1] - a[1] - s * ey) <= eps) return true;
       if ((b[1] > uv[1]) != (a[1] > uv[1]) && uv[0] < a[0] + ex * (uv[1] - a[1]) / ey) inside = !inside;
     }
+  }
   return inside;
 }
 

@@ -70,6 +70,7 @@ private:
   } space_;
   // Per face its trimming loops as closed polygons in the parameter plane (each curve span sampled finely).
   std::vector<std::vector<std::vector<std::array<double, 2>>>> trim_polygons_;
+  std::vector<std::vector<Box<2>>> trim_boxes_;  // per face and loop: the polygon's box
   std::vector<double> trim_slack_;  // per face: how far its polygons may stray from the trimming curves
   double volume_ = 0;
 
