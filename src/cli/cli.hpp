@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include <optional>
 
@@ -62,6 +63,14 @@ MaterialTable default_materials(int m);
 // normalised coordinates (formulas in x, y, z, 0 to 1 across the part) the blend follows.
 void write_model(const std::vector<TensorSpline<3>>& cells, const MaterialArgs& a, const std::string& radial,
                  const std::string& axial, const std::string& out);
+void write_model(std::vector<VCell> cells, const MaterialArgs& a, const std::string& radial, const std::string& axial,
+                 const std::string& out);
+// make vmodel PART.stp: trimmed V-models of the solids of a STEP file.
+void add_make_vmodel(CLI::App& make);
+// info on a STEP file: the B-rep as the geometry kernel reads it (solids, shells, faces by surface kind, what
+// is not a solid, faces that cannot be mapped); text or JSON.
+void print_brep_info(const std::string& file);
+nlohmann::json brep_info_json(const std::string& file);
 void add_invert_command(CLI::App& app, Context& ctx);
 void add_export_command(CLI::App& app, Context& ctx);
 void add_slice_command(CLI::App& app, Context& ctx);

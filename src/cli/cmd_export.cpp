@@ -13,6 +13,7 @@
 #include "trivar/io/vmodel_vtk.hpp"
 #include "trivar/model/material_fractions.hpp"
 #include "trivar/model/model_tessellation.hpp"
+#include "trivar/model/trimmed_tessellation.hpp"
 
 namespace trivar::cli {
 
@@ -74,11 +75,14 @@ void add_export_command(CLI::App& app, Context&) {
   auto a = std::make_shared<Args>();
   cmd->add_option("MODEL", a->in, "V-model (.json) or spline file with volumes (.json, .g2)")->required();
   cmd->add_option("OUT", a->out, "Output file (.stl, .3mf, .amf, .vtu)")->required();
-  cmd->add_option("--tolerance", a->tolerance, "Chordal tolerance in model units")
-      ->check(positive())
-      ->capture_default_str();
+  auto* tolerance = cmd->add_option("--tolerance", a->tolerance,
+                                    "Chordal tolerance in model units (trimmed models: the mesh made by make vmodel, "
+                                    "which must be at least this fine)")
+                        ->check(positive())
+                        ->capture_default_str();
   cmd->add_flag("--allow-open", a->allow_open, "Write the mesh even when it is not watertight (otherwise an error)");
-  cmd->callback([a] {
+  cmd->callback([a, tolerance] {
+    const bool tolerance_given = tolerance->count() > 0;
     const std::string ext = std::filesystem::path(a->out).extension().string();
     require(ext == ".stl" || ext == ".vtu" || ext == ".3mf" || ext == ".amf",
             "export: unknown output format '" + ext + "' (expected .stl, .3mf, .amf or .vtu)");
@@ -87,7 +91,17 @@ void add_export_command(CLI::App& app, Context&) {
       io::write_vmodel_vtu(a->out, m);
       return;
     }
-    const ModelTessellation t = tessellate_boundary(m, {.chordal_tolerance = a->tolerance});
+    // Trimmed cells carry their boundary mesh, made within the chordal tolerance chosen at import.
+    const bool trimmed = has_trimmed_cells(m);
+    if (trimmed && tolerance_given)
+      for (const VCell& c : m.cells())
+        require(!c.is_trimmed() || c.trim()->boundary().chordal_tolerance <= a->tolerance, [&] {
+          return "export: the trimmed boundary of " + a->in + " was meshed within " +
+                 fmt(c.trim()->boundary().chordal_tolerance) + "; remake it finer (make vmodel --tolerance " +
+                 fmt(a->tolerance) + ")";
+        });
+    const ModelTessellation t =
+        trimmed ? trimmed_boundary_mesh(m) : tessellate_boundary(m, {.chordal_tolerance = a->tolerance});
     // Watertight is what the format promises a printer; an open mesh is written only when asked for. An empty
     // mesh is trivially closed but bounds nothing, so it is never written.
     require(!t.mesh.triangles.empty(), "export: the boundary mesh of " + a->in +

@@ -149,7 +149,8 @@ void print_step_info(const std::string& file, bool json, const std::string& chec
                        {"warnings", nlohmann::json::array()},
                        {"entities", nlohmann::json::object()},
                        {"objects", nlohmann::json::array()},
-                       {"lr_objects", nlohmann::json::array()}};
+                       {"lr_objects", nlohmann::json::array()},
+                       {"brep", brep_info_json(file)}};
     for (const auto& [k, n] : kinds) out["entities"][k] = {{"count", n.total()}, {"mapped", n.kept}};
     for (const io::step::ReadWarning& w : c.warnings) out["warnings"].push_back({{"first", w.first}, {"count", w.count}});
     for (std::size_t i = 0; i < c.splines.size(); ++i) {
@@ -177,6 +178,7 @@ void print_step_info(const std::string& file, bool json, const std::string& chec
     std::printf("  %8zu  %s\n", kinds[i].second.total(), kinds[i].first.c_str());
   if (kinds.size() > kListed) std::printf("  ... %zu more entity kinds (--json lists all)\n", kinds.size() - kListed);
   if (const std::string faces = c.unmapped_faces_summary(); !faces.empty()) std::printf("  %s\n", faces.c_str());
+  print_brep_info(file);
   for (std::size_t i = 0; i < c.splines.size(); ++i) {
     std::printf("object %zu: %s\n", i, step_origin(c.spline_info[i]).c_str());
     std::visit([](const auto& s) { print_text(s); }, c.splines[i]);

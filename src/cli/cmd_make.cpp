@@ -166,12 +166,13 @@ void add_revolve(CLI::App& make) {
 }  // namespace
 
 void add_make_command(CLI::App& app, Context&) {
-  auto* make = app.add_subcommand("make", "Build a model: make box|revolve|extrude|ruled|loft|coons|sweep|morph|ball|cylinder|cone|torus ...");
+  auto* make = app.add_subcommand("make", "Build a model: make box|revolve|extrude|ruled|loft|coons|sweep|morph|ball|cylinder|cone|torus|vmodel ...");
   make->require_subcommand(1);
   add_box(*make);
   add_revolve(*make);
   add_make_constructors(*make);
   add_make_primitives(*make);
+  add_make_vmodel(*make);
 }
 
 }  // namespace trivar::cli

@@ -59,8 +59,13 @@ void add_material_options(CLI::App* cmd, MaterialArgs& a, const char* axial_mean
 
 void write_model(const std::vector<TensorSpline<3>>& cells, const MaterialArgs& a, const std::string& radial,
                  const std::string& axial, const std::string& out) {
+  write_model(std::vector<VCell>(cells.begin(), cells.end()), a, radial, axial, out);
+}
+
+void write_model(std::vector<VCell> cells, const MaterialArgs& a, const std::string& radial, const std::string& axial,
+                 const std::string& out) {
   VModel m;
-  for (const auto& c : cells) m.add_cell(VCell(c));
+  for (auto& c : cells) m.add_cell(std::move(c));
   std::vector<std::string> components = a.field;
   if (a.materials > 0) {
     // clamp: rounding can put boundary points a hair outside [0, 1].

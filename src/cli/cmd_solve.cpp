@@ -81,6 +81,10 @@ FileInput read_input(const SolveArgs& a) {
   FileInput in;
   in.model = read_model_if_any(a.file);
   if (in.model) {
+    // The analysis of a trimmed cell needs quadrature over the trimmed domain (detrimming), which is not built:
+    // solving on the untrimmed box would be wrong.
+    for (const VCell& c : in.model->cells())
+      require(!c.is_trimmed(), "solve: " + a.file + " has trimmed cells; analysis on trimmed cells is not supported yet");
     if (!in.model->is_glued()) in.model->glue();
   } else {
     in.spline = read_single(a.file, "solve");

@@ -1,4 +1,5 @@
 // Description of a V-model for `trivar info`: topology counts, boundary, volume, bounds and attributes.
+#include <algorithm>
 #include <cstdio>
 #include <map>
 #include <string>
@@ -8,6 +9,7 @@
 #include "cli.hpp"
 #include "trivar/model/material_fractions.hpp"
 #include "trivar/model/model_boundary.hpp"
+#include "trivar/model/trimmed_tessellation.hpp"
 #include "trivar/spline/jacobian.hpp"
 
 namespace trivar::cli {
@@ -26,7 +28,8 @@ const char* kind_word(Attribute::Kind k) {
 nlohmann::json describe(const VModel& m) {
   check_material_fractions(m);
   const VTopology& t = m.topology();
-  const ModelBoundary b = model_boundary(m);
+  // A trimmed cell's boundary is its trimming surfaces, closed by construction.
+  const bool closed = has_trimmed_cells(m) || model_boundary(m).closed();
   const Box<3> box = m.bounding_box();
   nlohmann::json j{{"kind", "vmodel"},
                    {"cells", m.num_cells()},
@@ -35,7 +38,8 @@ nlohmann::json describe(const VModel& m) {
                    {"curves", t.curves.size()},
                    {"points", t.points.size()},
                    {"non_conforming_faces", t.non_conforming.size()},
-                   {"boundary_closed", b.closed()},
+                   {"boundary_closed", closed},
+                   {"trimmed_cells", std::count_if(m.cells().begin(), m.cells().end(), [](const VCell& c) { return c.is_trimmed(); })},
                    {"gluing_tolerance", t.tolerance},
                    {"volume", m.volume()},
                    {"control_bounds", {{"lo", box.lo}, {"hi", box.hi}}}};
@@ -63,6 +67,15 @@ nlohmann::json describe(const VModel& m) {
                               {"rational", g.is_rational()},
                               {"jacobian", r.valid ? "valid" : r.invalid ? "invalid" : "undecided"},
                               {"min_det_j_lower_bound", r.min_lower_bound}});
+    if (const TrimmedSolid* trim = m.cell(i).trim()) {
+      std::map<std::string, int> kinds;
+      for (const TrimmedFace& f : trim->boundary().faces) ++kinds[f.kind.empty() ? "unknown" : f.kind];
+      j["cell_info"].back()["trim"] = {{"faces", trim->boundary().faces.size()},
+                                       {"faces_by_kind", kinds},
+                                       {"triangles", trim->boundary().mesh.triangles.size()},
+                                       {"chordal_tolerance", trim->boundary().chordal_tolerance},
+                                       {"volume", trim->volume()}};
+    }
   }
   return j;
 }
@@ -96,6 +109,13 @@ void print_model_info(const std::string& path, const VModel& m, bool json) {
     std::printf("  cell %d: degrees %s, control points %s, %s, Jacobian %s, min det J >= %s\n", i,
                 c["degrees"].dump().c_str(), c["counts"].dump().c_str(), c["rational"].get<bool>() ? "rational" : "polynomial",
                 c["jacobian"].get<std::string>().c_str(), fmt(c["min_det_j_lower_bound"].get<double>()).c_str());
+    if (!c.contains("trim")) continue;
+    const nlohmann::json& t = c["trim"];
+    std::string kinds;
+    for (const auto& [k, n] : t["faces_by_kind"].items()) kinds += (kinds.empty() ? "" : ", ") + std::to_string(n.get<int>()) + " " + k;
+    std::printf("    trimmed by %zu faces (%s), volume %s (exact boundary), boundary mesh %zu triangles within %s\n",
+                t["faces"].get<std::size_t>(), kinds.c_str(), fmt(t["volume"].get<double>()).c_str(),
+                t["triangles"].get<std::size_t>(), fmt(t["chordal_tolerance"].get<double>()).c_str());
   }
 }
 

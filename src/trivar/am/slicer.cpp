@@ -6,14 +6,17 @@
 #include <mutex>
 
 #include "trivar/am/layer_slicer.hpp"
+#include "trivar/am/trimmed_layer_slicer.hpp"
 #include "trivar/core/parallel.hpp"
 
 namespace trivar::am {
 
-SliceSummary slice_model(const VModel& model, const SliceOptions& options, const LayerConsumer& consume,
-                         const SliceProgress& progress) {
-  const auto start = std::chrono::steady_clock::now();
-  const LayerSlicer slicer(model, options);
+namespace {
+
+// All layers of one slicer kind (LayerSlicer, or TrimmedLayerSlicer for trimmed cells).
+template <class Slicer>
+SliceSummary slice_layers(const Slicer& slicer, const SliceOptions& options, const LayerConsumer& consume,
+                          const SliceProgress& progress, std::chrono::steady_clock::time_point start) {
   const SliceGrid& g = slicer.grid();
   const int n = g.layers;
   LayerStats total;
@@ -52,6 +55,16 @@ SliceSummary slice_model(const VModel& model, const SliceOptions& options, const
   s.max_residual = total.max_residual;
   s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return s;
+}
+
+}  // namespace
+
+SliceSummary slice_model(const VModel& model, const SliceOptions& options, const LayerConsumer& consume,
+                         const SliceProgress& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  for (const VCell& c : model.cells())
+    if (c.is_trimmed()) return slice_layers(TrimmedLayerSlicer(model, options), options, consume, progress, start);
+  return slice_layers(LayerSlicer(model, options), options, consume, progress, start);
 }
 
 std::vector<SliceLayer> slice_model(const VModel& model, const SliceOptions& options, SliceSummary* summary) {

@@ -6,6 +6,7 @@
 
 #include "trivar/core/error.hpp"
 #include "trivar/io/json_format.hpp"
+#include "trivar/io/trimmed_json.hpp"
 
 namespace trivar::io {
 
@@ -171,7 +172,9 @@ json to_json(const VModel& model, const GlueOptions& opts) {
     geometry.erase("trivar");
     json attributes = json::object();
     for (const auto& [name, a] : c.attributes()) attributes[name] = attribute_json(a);
-    cells.push_back({{"geometry", std::move(geometry)}, {"attributes", std::move(attributes)}});
+    json cell{{"geometry", std::move(geometry)}, {"attributes", std::move(attributes)}};
+    if (c.is_trimmed()) cell["trim"] = to_json(c.trim()->boundary());
+    cells.push_back(std::move(cell));
   }
   json doc{{"trivar", 1},
            {"kind", "vmodel"},
@@ -209,10 +212,20 @@ VModel vmodel_from_json(const json& j, const std::string& where) {
     const std::string at = where + ": cells[" + std::to_string(i) + "]";
     const json& c = cells[i];
     if (!c.is_object()) fail(at, std::string("expected an object, got ") + c.type_name());
-    only_keys(c, {"geometry", "attributes"}, at);
+    only_keys(c, {"geometry", "attributes", "trim"}, at);
     TensorSpline<3> geometry = volume_from_json(member(c, "geometry", at), at + ": geometry");
     if (geometry.dim() != 3) fail(at + ": geometry", "expected control dimension 3, got " + std::to_string(geometry.dim()));
-    VCell cell(std::move(geometry));
+    VCell cell = [&] {
+      if (!c.contains("trim")) return VCell(std::move(geometry));
+      try {
+        return VCell(std::move(geometry),
+                     std::make_shared<const TrimmedSolid>(trimmed_boundary_from_json(c["trim"], at + ": trim")));
+      } catch (const Error& e) {
+        // Structural errors already name their JSON path; geometric ones (TrimmedSolid) get it here.
+        if (std::string(e.what()).rfind(at, 0) == 0) throw;
+        fail(at + ": trim", e.what());
+      }
+    }();
     if (c.contains("attributes")) {
       const json& attrs = c["attributes"];
       if (!attrs.is_object()) fail(at + ": attributes", std::string("expected an object, got ") + attrs.type_name());

@@ -7,7 +7,8 @@
 //                "attributes": {"density": {"kind": "constant", "values": [..]},
 //                               "material": {"kind": "field", "spline": {<volume object, any dim>}},
 //                               "temperature": {"kind": "expression", "space": "model"|"parametric",
-//                                               "components": ["x + y", ..]}}} ],
+//                                               "components": ["x + y", ..]}},
+//                "trim": {<trimming boundary, trimmed_json.hpp>}} ],      trimmed cells only
 //    "summary": {...}}                      written for readers; ignored on input
 // The topology is not stored: it is a function of the cells and the glue options, and reading glues again.
 #include <string>

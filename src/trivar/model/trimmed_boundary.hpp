@@ -5,8 +5,9 @@
 // triangles know their face and face parameters. The exact form gives volumes and crossing points; the mesh
 // gives robust topology (inside/outside parity, candidate intersections) and output files.
 //
-// Coordinates are those of the space the boundary lives in: the parameter space of the trivariate of a
-// trimmed V-cell (for a cell whose trivariate is the identity on a box, this is also model space).
+// Coordinates are model space: a trimmed V-cell is the part of its trivariate's image inside the boundary
+// (for the default cell, whose trivariate is the identity on a box around the solid, parameter and model
+// points coincide).
 #include <array>
 #include <string>
 #include <vector>

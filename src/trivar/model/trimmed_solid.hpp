@@ -1,7 +1,15 @@
 #pragma once
 // TrimmedSolid: the region enclosed by a TrimmedBoundary, with the queries every consumer of a trimmed V-cell
-// needs: is a point inside, where does a line cross the boundary, how large is the region. Immutable after
-// construction and thread-safe, so cells share one through a shared_ptr.
+// needs: is a point inside, where does an axis-parallel line cross the boundary, how large is the region.
+// Immutable after construction and thread-safe, so cells share one through a shared_ptr.
+//
+// Classification away from the boundary works on the watertight mesh with an exact-parity ray test (the point
+// is perturbed symbolically, so a ray through a mesh vertex or edge, or one grazing the mesh tangentially, is
+// counted the same way by every triangle around it); that answer is the exact one because the point is
+// farther from the mesh than the mesh is from the faces. Within that band no ray is cast: of the faces whose
+// triangles come that close, the one with the nearest exact closest point inside its trim decides, by the
+// side of its outward normal the point lies on. So near-tangent rays, which may miss the inscribed mesh while
+// crossing the true surface, never decide.
 #include <array>
 #include <vector>
 
@@ -11,39 +19,67 @@
 namespace trivar {
 
 struct LineCrossing {
-  double t = 0;           // line parameter: the point is origin + t * direction
-  bool entering = false;  // the line enters the region here (leaves it otherwise)
+  double t = 0;           // coordinate along the line's axis
+  bool entering = false;  // the line, run towards +axis, enters the region here (leaves it otherwise)
   int face = -1;          // the boundary face crossed
   Param<2> uv{};          // its parameters on that face
 };
 
 class TrimmedSolid {
 public:
-  // Validates the boundary (watertight, outward oriented, per-triangle data consistent, faces of control
-  // dimension 3) and builds the search structures. Throws trivar::Error naming the first defect.
+  // Validates the boundary (faces of control dimension 3 and trimming loops of dimension 2, a watertight
+  // outward-oriented mesh with per-triangle faces and parameters) and builds one search grid per axis.
+  // Throws trivar::Error naming the first defect.
   explicit TrimmedSolid(TrimmedBoundary boundary);
 
   const TrimmedBoundary& boundary() const { return boundary_; }
-  // Box around the exact faces (not only the mesh).
+  // Box around the boundary: the mesh's box grown by its chordal tolerance.
   const Box<3>& bounding_box() const { return box_; }
 
-  // Whether x lies inside. Decided on the mesh by a parity count that treats rays through vertices and edges
-  // consistently (so the answer never depends on luck with tangent rays); within the chordal tolerance of the
-  // boundary the exact faces decide.
+  // Whether x lies inside (points on the boundary may go either way; near a sharp edge, within the chordal
+  // tolerance, the face of the nearest mesh triangle decides).
   bool contains(const std::array<double, 3>& x) const;
 
-  // The crossings of the line origin + t * direction with the boundary for t in (t_lo, t_hi), sorted by t,
-  // entering and leaving alternately (the first one leaving when origin + t_lo * direction is inside). Each
-  // position is refined onto the exact face; a tangential touch is no crossing. `out` is cleared first.
-  void crossings(const std::array<double, 3>& origin, const std::array<double, 3>& direction, double t_lo,
-                 double t_hi, std::vector<LineCrossing>& out) const;
+  // The crossings of the line through p parallel to coordinate axis `axis` (p[axis] is ignored) with the
+  // boundary for t in (t_lo, t_hi), sorted by t: the crossings with the mesh, each moved onto its exact face.
+  // Entering and leaving alternate; a line passing within the chordal tolerance of a silhouette may gain or
+  // lose a pair of crossings there (contains() decides such points exactly). `out` is cleared first.
+  void axis_crossings(int axis, const std::array<double, 3>& p, double t_lo, double t_hi,
+                      std::vector<LineCrossing>& out) const;
 
-  // Volume of the region from the exact faces (divergence theorem over the trimmed parameter domains).
-  double volume() const;
+  // Volume of the region from the exact faces (trimmed_integral.hpp), computed once at construction.
+  double volume() const { return volume_; }
 
 private:
+  // Triangles whose projection along an axis covers each cell of a uniform grid over the box's other two
+  // coordinates (compressed rows).
+  struct AxisGrid {
+    int b = 0, c = 0;  // the projected coordinates
+    int nb = 1, nc = 1;
+    double lo_b = 0, lo_c = 0, inv_hb = 0, inv_hc = 0;
+    std::vector<int> start, triangles;
+  };
   TrimmedBoundary boundary_;
   Box<3> box_;
+  std::array<AxisGrid, 3> grids_;
+  // Triangles per cell of a uniform 3D grid over the box, for the near-boundary search.
+  struct SpaceGrid {
+    std::array<int, 3> n{1, 1, 1};
+    std::array<double, 3> lo{}, inv_h{};
+    std::vector<int> start, triangles;
+  } space_;
+  // Per face its trimming loops as closed polygons in the parameter plane (each curve span sampled finely).
+  std::vector<std::vector<std::vector<std::array<double, 2>>>> trim_polygons_;
+  std::vector<std::vector<Box<2>>> trim_boxes_;  // per face and loop: the polygon's box
+  std::vector<double> trim_slack_;  // per face: how far its polygons may stray from the trimming curves
+  double volume_ = 0;
+
+  void mesh_crossings(int axis, const std::array<double, 3>& p, std::vector<LineCrossing>& out) const;
+  void refine(int axis, const std::array<double, 3>& p, LineCrossing& c) const;
+  // Within `band` of the mesh: 1 inside, 0 outside by the nearest exact face; -1 farther than `band` or when
+  // no close face has its closest point within its trim (then the mesh decides).
+  bool inside_trim(int face, const Param<2>& uv) const;
+  int classify_near(const std::array<double, 3>& x, double band) const;
 };
 
 }  // namespace trivar

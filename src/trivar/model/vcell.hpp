@@ -1,14 +1,19 @@
 #pragma once
 // VCell: a volumetric cell of a V-model (seed 001, Def. 3.2): the intersection of one or more trivariates,
-// delineated by trimming surfaces, carrying named attributes. Trimming is not supported yet, so a cell is one
-// untrimmed trivariate (its geometry); the list of trivariates keeps room for the general definition. The
+// delineated by trimming surfaces, carrying named attributes. A cell is one trivariate (its geometry), untrimmed
+// or trimmed by a closed boundary of trimming surfaces (trimmed_solid.hpp): the cell is then the part of the
+// trivariate's image inside the boundary. A trimmed cell's trivariate is today the identity on an axis-aligned
+// box around the boundary (x(u) = u), so its parameter and model points coincide and attributes in either
+// space are evaluated at the same point. The list of trivariates keeps room for the general definition. The
 // geometry is immutable after construction (the model's topology depends on it); attributes may change.
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "trivar/core/error.hpp"
 #include "trivar/model/attribute.hpp"
+#include "trivar/model/trimmed_solid.hpp"
 #include "trivar/spline/tensor_spline.hpp"
 
 namespace trivar {
@@ -21,6 +26,16 @@ public:
                                      std::to_string(geometry.dim()));
     trivariates_.push_back(std::move(geometry));
   }
+  // A trimmed cell. Throws trivar::Error unless the trivariate is the identity on a box (every control point at
+  // its Greville point) that contains the boundary's box.
+  VCell(TensorSpline<3> geometry, std::shared_ptr<const TrimmedSolid> trim);
+
+  bool is_trimmed() const { return trim_ != nullptr; }
+  // The trimming boundary, or null for an untrimmed cell.
+  const TrimmedSolid* trim() const { return trim_.get(); }
+  const std::shared_ptr<const TrimmedSolid>& shared_trim() const { return trim_; }
+  // Whether the cell parameter u lies in the cell (always for an untrimmed cell's domain).
+  bool contains_param(const Param<3>& u) const;
 
   const TensorSpline<3>& geometry() const { return trivariates_.front(); }
   const std::vector<TensorSpline<3>>& trivariates() const { return trivariates_; }
@@ -41,6 +56,7 @@ public:
 
 private:
   std::vector<TensorSpline<3>> trivariates_;
+  std::shared_ptr<const TrimmedSolid> trim_;
   std::map<std::string, Attribute> attributes_;
 };
 

@@ -1,0 +1,31 @@
+#pragma once
+// Integrals over the region enclosed by a trimmed boundary, computed on the exact faces only (no volume
+// mesh): by the divergence theorem with the field (F, 0, 0), where F(x, y, z) is an antiderivative of the
+// integrand in x, the volume integral becomes the sum over faces of the integral of F n_x over the trimmed
+// parameter domain, and Green's theorem turns each of those into an integral along the face's trimming loops
+// of G(u, v) = int_{u0}^{u} F(S) (S_u x S_v)_x du' dv. The loop integrals are adaptive Gauss-Legendre
+// quadratures over each trimming curve's knot spans; G is a Gauss-Legendre sum over the surface's knot spans.
+// Exact polynomial integrands on polynomial faces are integrated to rounding; rational faces (conics,
+// spheres, tori) converge spectrally.
+#include <functional>
+
+#include "trivar/model/trimmed_boundary.hpp"
+
+namespace trivar {
+
+struct TrimmedIntegralOptions {
+  // Relative accuracy the adaptive loop quadrature aims at (per trimming-curve span, against the face's scale).
+  double relative_tolerance = 1e-12;
+  // Gauss-Legendre points per span of the inner (surface) and outer (loop) quadratures.
+  int points = 16;
+};
+
+// Volume enclosed by the faces (positive for outward orientation).
+double trimmed_volume(const TrimmedBoundary& b, const TrimmedIntegralOptions& opts = {});
+
+// Integral of a density over the enclosed region. `antiderivative(x)` returns int_{x0}^{x[0]} rho(s, x[1],
+// x[2]) ds for a fixed x0 (any value left of the region); it is called from one thread.
+double trimmed_integral(const TrimmedBoundary& b, const std::function<double(const std::array<double, 3>&)>& antiderivative,
+                        const TrimmedIntegralOptions& opts = {});
+
+}  // namespace trivar

@@ -1,0 +1,87 @@
+#pragma once
+// Test solids built with OpenCASCADE and written to STEP by it: the independent source of the cad tests.
+#include <BRepAlgoAPI_Cut.hxx>
+#include <BRepAlgoAPI_Fuse.hxx>
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakePolygon.hxx>
+#include <BRepFilletAPI_MakeFillet.hxx>
+#include <BRepGProp.hxx>
+#include <BRepPrimAPI_MakeBox.hxx>
+#include <BRepPrimAPI_MakeCylinder.hxx>
+#include <BRepPrimAPI_MakeRevol.hxx>
+#include <BRepPrimAPI_MakeSphere.hxx>
+#include <GProp_GProps.hxx>
+#include <Interface_Static.hxx>
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
+#include <Message_PrinterOStream.hxx>
+#include <STEPControl_Writer.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
+#include <gp_Ax2.hxx>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+namespace trivar::test {
+
+inline const double kPi = 3.14159265358979323846;
+
+// 40 x 30 x 20 block with two through holes of radius 4 along z.
+inline TopoDS_Shape box_with_holes() {
+  TopoDS_Shape s = BRepPrimAPI_MakeBox(40, 30, 20).Shape();
+  for (double x : {12.0, 28.0})
+    s = BRepAlgoAPI_Cut(s, BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(x, 15, -1), gp_Dir(0, 0, 1)), 4, 22).Shape()).Shape();
+  return s;
+}
+
+// 30 x 20 x 10 block with every edge rounded (radius 2): planes, cylinders and spheres meet tangentially.
+inline TopoDS_Shape filleted_block() {
+  const TopoDS_Shape box = BRepPrimAPI_MakeBox(30, 20, 10).Shape();
+  BRepFilletAPI_MakeFillet f(box);
+  for (TopExp_Explorer e(box, TopAbs_EDGE); e.More(); e.Next()) f.Add(2.0, TopoDS::Edge(e.Current()));
+  return f.Shape();
+}
+
+// A stepped profile with a slanted side revolved once about z: planes, cylinders and a cone.
+inline TopoDS_Shape revolved_part() {
+  BRepBuilderAPI_MakePolygon p;
+  for (auto [r, z] : {std::pair{3.0, 0.0}, {10.0, 0.0}, {10.0, 4.0}, {6.0, 8.0}, {6.0, 12.0}, {3.0, 12.0}})
+    p.Add(gp_Pnt(r, 0, z));
+  p.Close();
+  const TopoDS_Face profile = BRepBuilderAPI_MakeFace(p.Wire());
+  return BRepPrimAPI_MakeRevol(profile, gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1))).Shape();
+}
+
+// A 20 x 20 x 10 block fused with a cylinder of radius 6 standing on its top, off-centre.
+inline TopoDS_Shape fused_box_cylinder() {
+  const TopoDS_Shape box = BRepPrimAPI_MakeBox(20, 20, 10).Shape();
+  const TopoDS_Shape cyl = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(12, 9, 5), gp_Dir(0, 0, 1)), 6, 15).Shape();
+  return BRepAlgoAPI_Fuse(box, cyl).Shape();
+}
+
+inline TopoDS_Shape ball() { return BRepPrimAPI_MakeSphere(gp_Pnt(1, 2, 3), 5).Shape(); }
+
+inline double occt_volume(const TopoDS_Shape& s) {
+  GProp_GProps g;
+  BRepGProp::VolumeProperties(s, g, 1e-10, true);
+  return g.Mass();
+}
+
+// Writes the shape as AP214 into `dir` and returns the path.
+inline std::string write_step(const TopoDS_Shape& s, const std::filesystem::path& dir, const std::string& name) {
+  Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));  // quiet writer
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / (name + ".stp")).string();
+  STEPControl_Writer w;
+  w.Transfer(s, STEPControl_AsIs);
+  if (w.Write(path.c_str()) != IFSelect_RetDone) throw std::runtime_error("cannot write " + path);
+  return path;
+}
+
+inline std::filesystem::path temp_dir(const std::string& name) {
+  return std::filesystem::temp_directory_path() / ("trivar_cad_" + name + "_" + std::to_string(::getpid()));
+}
+
+}  // namespace trivar::test
