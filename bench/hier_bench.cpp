@@ -45,15 +45,6 @@ void corner_levels(benchmark::State& state) {
   state.counters["elements"] = elements;
 }
 
-std::vector<Param<3>> random_params(std::size_t n) {
-  std::mt19937 rng(42);
-  std::uniform_real_distribution<double> U(0.0, 1.0);
-  std::vector<Param<3>> u(n);
-  for (auto& x : u)
-    for (auto& c : x) c = U(rng);
-  return u;
-}
-
 HierarchicalSpline<3> refined_volume() {
   HierarchicalSpline<3> h(bench::perturbed_cube(3, 8));
   for (int l = 0; l < 3; ++l) refine_corner(h, 4 << l);
@@ -73,7 +64,7 @@ void measure_points(benchmark::State& state, const HierarchicalSpline<3>& h, Eva
 
 void value(benchmark::State& state) {
   const auto h = refined_volume();
-  const auto u = random_params(kPoints);
+  const auto u = bench::random_params<3>(kPoints);
   std::vector<double> out(kPoints * 3);
   measure_points(state, h, [&](int threads) {
     h.eval_many(u, out, threads);
@@ -83,7 +74,7 @@ void value(benchmark::State& state) {
 
 void first_derivatives(benchmark::State& state) {
   const auto h = refined_volume();
-  const auto u = random_params(kPoints);
+  const auto u = bench::random_params<3>(kPoints);
   std::vector<double> out(kPoints * 12);
   measure_points(state, h, [&](int threads) {
     const auto& ev = h.evaluator();

@@ -24,15 +24,6 @@ namespace {
 
 constexpr std::size_t kPoints = 20000;
 
-std::vector<Param<3>> random_params(std::size_t n) {
-  std::mt19937 rng(42);
-  std::uniform_real_distribution<double> U(0.0, 1.0);
-  std::vector<Param<3>> u(n);
-  for (auto& x : u)
-    for (auto& c : x) c = U(rng);
-  return u;
-}
-
 // A kernel: set-up done by the factory, the returned function runs the measured work and returns its units.
 using Kernel = std::function<double()>;
 
@@ -41,14 +32,14 @@ std::map<std::string, std::function<Kernel()>> kernels() {
   return {
       {"spline_value",
        [] {
-         return Kernel([s = bench::perturbed_cube(3, 8), u = random_params(kPoints)] {
+         return Kernel([s = bench::perturbed_cube(3, 8), u = bench::random_params<3>(kPoints)] {
            s.eval_batch(u, out, 1);
            return static_cast<double>(u.size());
          });
        }},
       {"spline_first",
        [] {
-         return Kernel([s = bench::perturbed_cube(3, 8), u = random_params(kPoints)] {
+         return Kernel([s = bench::perturbed_cube(3, 8), u = bench::random_params<3>(kPoints)] {
            s.eval_derivs_batch(u, 1, out, 1);
            return static_cast<double>(u.size());
          });
@@ -69,21 +60,21 @@ std::map<std::string, std::function<Kernel()>> kernels() {
          std::array<std::vector<double>, 3> t;
          for (int k = 0; k < 3; ++k) t[k] = s.knots(k).knots();
          bench::TextbookVolume tb(3, t, {s.coefs().begin(), s.coefs().end()});
-         return Kernel([tb, u = random_params(kPoints)] {
+         return Kernel([tb, u = bench::random_params<3>(kPoints)] {
            for (std::size_t i = 0; i < u.size(); ++i) tb.eval(u[i], out.data() + 3 * i);
            return static_cast<double>(u.size());
          });
        }},
       {"lr_value",
        [] {
-         return Kernel([lr = LRSpline<3>(bench::perturbed_cube(3, 8)), u = random_params(kPoints)] {
+         return Kernel([lr = LRSpline<3>(bench::perturbed_cube(3, 8)), u = bench::random_params<3>(kPoints)] {
            lr.eval_many(u, out, 1);
            return static_cast<double>(u.size());
          });
        }},
       {"lr_first",
        [] {
-         return Kernel([lr = LRSpline<3>(bench::perturbed_cube(3, 8)), u = random_params(kPoints)] {
+         return Kernel([lr = LRSpline<3>(bench::perturbed_cube(3, 8)), u = bench::random_params<3>(kPoints)] {
            lr.eval_first_derivatives_many(u, out, 1);
            return static_cast<double>(u.size());
          });

@@ -18,15 +18,6 @@ namespace {
 
 constexpr std::size_t kPoints = 1000000;
 
-std::vector<Param<3>> random_params(std::size_t n) {
-  std::mt19937 rng(42);
-  std::uniform_real_distribution<double> U(0.0, 1.0);
-  std::vector<Param<3>> u(n);
-  for (auto& x : u)
-    for (auto& c : x) c = U(rng);
-  return u;
-}
-
 LRSpline<3> volume(int levels) {
   LRSpline<3> lr(bench::perturbed_cube(3, 8));
   for (int l = 0; l < levels; ++l) {
@@ -47,7 +38,7 @@ void measure_points(benchmark::State& state, Evaluate&& evaluate) {
 
 void value(benchmark::State& state, int levels) {
   const auto lr = volume(levels);
-  const auto u = random_params(kPoints);
+  const auto u = bench::random_params<3>(kPoints);
   std::vector<double> out(kPoints * 3);
   lr.eval(u[0], out.data());  // builds the evaluation data outside the timing
   measure_points(state, [&](int threads) {
@@ -59,7 +50,7 @@ void value(benchmark::State& state, int levels) {
 
 void first_derivatives(benchmark::State& state, int levels) {
   const auto lr = volume(levels);
-  const auto u = random_params(kPoints);
+  const auto u = bench::random_params<3>(kPoints);
   std::vector<double> out(kPoints * 12);
   lr.eval(u[0], out.data());
   measure_points(state, [&](int threads) {

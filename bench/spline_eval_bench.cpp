@@ -25,16 +25,6 @@ SplineSurface bicubic_surface() {
   return SplineSurface::from_cartesian(kv, 3, pts);
 }
 
-template <int D>
-std::vector<Param<D>> random_params(std::size_t n) {
-  std::mt19937 rng(42);
-  std::uniform_real_distribution<double> U(0.0, 1.0);
-  std::vector<Param<D>> u(n);
-  for (auto& x : u)
-    for (auto& c : x) c = U(rng);
-  return u;
-}
-
 constexpr std::size_t kPoints = 1000000;
 
 // The volume with the kernels of the instruction set state.range(1) (0 generic, 1 AVX2, 2 AVX-512): splines
@@ -66,7 +56,7 @@ void measure_points(benchmark::State& state, double points, Evaluate&& evaluate)
 void BM_VolumeValue(benchmark::State& state) {
   SplineVolume s;
   if (!volume_at_level(state, s)) return;
-  const auto u = random_params<3>(kPoints);
+  const auto u = bench::random_params<3>(kPoints);
   std::vector<double> out(kPoints * 3);
   measure_points(state, kPoints, [&](int threads) {
     s.eval_batch(u, out, threads);
@@ -81,7 +71,7 @@ void BM_VolumeValueTextbook(benchmark::State& state) {
   std::array<std::vector<double>, 3> t;
   for (int k = 0; k < 3; ++k) t[k] = s.knots(k).knots();
   const bench::TextbookVolume tb(3, t, {s.coefs().begin(), s.coefs().end()});
-  const auto u = random_params<3>(kPoints);
+  const auto u = bench::random_params<3>(kPoints);
   std::vector<double> out(kPoints * 3);
   measure_points(state, kPoints, [&](int) {
     for (std::size_t i = 0; i < kPoints; ++i) tb.eval(u[i], out.data() + 3 * i);
@@ -93,7 +83,7 @@ BENCHMARK(BM_VolumeValueTextbook)->Arg(1)->Unit(benchmark::kMillisecond)->UseRea
 void BM_VolumeValueFirstDerivs(benchmark::State& state) {
   SplineVolume s;
   if (!volume_at_level(state, s)) return;
-  const auto u = random_params<3>(kPoints);
+  const auto u = bench::random_params<3>(kPoints);
   std::vector<double> out(kPoints * 12);
   measure_points(state, kPoints, [&](int threads) {
     s.eval_derivs_batch(u, 1, out, threads);
@@ -117,7 +107,7 @@ BENCHMARK(BM_VolumeGrid100)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->UseR
 
 void BM_SurfaceValue(benchmark::State& state) {
   const auto s = bicubic_surface();
-  const auto u = random_params<2>(kPoints);
+  const auto u = bench::random_params<2>(kPoints);
   std::vector<double> out(kPoints * 3);
   measure_points(state, kPoints, [&](int threads) {
     s.eval_batch(u, out, threads);
