@@ -1,8 +1,5 @@
 #include "cli.hpp"
 
-#include <algorithm>
-#include <cctype>
-#include <filesystem>
 
 #include "trivar/core/error.hpp"
 #include "trivar/core/number_format.hpp"
@@ -17,9 +14,7 @@ bool is_step_file(const std::string& path) { return io::format_of(path) == io::F
 std::vector<AnySpline> read_objects(const std::string& path) { return io::read_spline_file(path); }
 
 std::optional<VModel> read_model_if_any(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (ext != ".json") return std::nullopt;
+  if (io::file_extension(path) != ".json") return std::nullopt;
   const nlohmann::json doc = io::read_json_document(path);
   if (!io::is_vmodel_json(doc)) return std::nullopt;
   return io::vmodel_from_json(doc, path);

@@ -1,20 +1,16 @@
 #include "hier_cli.hpp"
 
 #include <cstdio>
-#include <filesystem>
 
 #include "trivar/core/error.hpp"
 #include "trivar/io/gismo_xml.hpp"
+#include "trivar/io/spline_file.hpp"
 
 namespace trivar::cli {
 
 namespace {
 
-bool is_xml(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext == ".xml";
-}
+bool is_xml(const std::string& path) { return io::file_extension(path) == ".xml"; }
 
 }  // namespace
 

@@ -1,9 +1,7 @@
 #include "lr_cli.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <cstdio>
-#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -11,6 +9,7 @@
 #include "trivar/core/error.hpp"
 #include "trivar/io/json_format.hpp"
 #include "trivar/io/lr_format.hpp"
+#include "trivar/io/spline_file.hpp"
 #include "trivar/io/lr_g2_format.hpp"
 #include "trivar/io/lr_json.hpp"
 #include "trivar/lr/dimension_formula.hpp"
@@ -18,12 +17,6 @@
 namespace trivar::cli {
 
 namespace {
-
-std::string extension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
 
 bool is_lr_kind(const nlohmann::json& j) {
   if (!j.is_object() || !j.contains("kind")) return false;
@@ -83,7 +76,7 @@ nlohmann::json describe(const LRSpline<D>& lr, const std::string& check) {
 }  // namespace
 
 std::optional<std::vector<AnyLRSpline>> read_lr_if_any(const std::string& path) {
-  const std::string ext = extension(path);
+  const std::string ext = io::file_extension(path);
   if (ext == ".lr") return io::read_lr(path);
   if (ext == ".g2") {
     std::ifstream f(path, std::ios::binary);
@@ -121,15 +114,15 @@ std::vector<AnyLRSpline> read_as_lr(const std::string& path, const std::string& 
 }
 
 bool lr_output_extension(const std::string& path) {
-  const std::string ext = extension(path);
+  const std::string ext = io::file_extension(path);
   return ext == ".lr" || ext == ".g2" || ext == ".json" || ext == ".vtu";
 }
 
-bool is_lr_extension(const std::string& path) { return extension(path) == ".lr"; }
+bool is_lr_extension(const std::string& path) { return io::file_extension(path) == ".lr"; }
 
 void write_lr_file(const std::string& path, const std::vector<AnyLRSpline>& objects, const std::string& command,
                    const io::LRVtkOptions& vtk) {
-  const std::string ext = extension(path);
+  const std::string ext = io::file_extension(path);
   if (ext == ".lr") io::write_lr(path, objects);
   else if (ext == ".g2") io::write_lr_g2(path, objects);
   else if (ext == ".json") io::write_lr_json(path, objects);

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <fstream>
 #include <memory>
 #include <optional>
@@ -13,6 +12,7 @@
 #include "cli.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/io/lr_format.hpp"
+#include "trivar/io/spline_file.hpp"
 #include "trivar/io/step/step_file.hpp"
 #include "trivar/io/stl_writer.hpp"
 #include "trivar/io/t_spline_json.hpp"
@@ -28,14 +28,8 @@ namespace trivar::cli {
 
 namespace {
 
-std::string extension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
-
 bool is_t_spline_json(const std::string& path) {
-  if (extension(path) != ".json") return false;
+  if (io::file_extension(path) != ".json") return false;
   std::ifstream in(path);
   if (!in.good()) return false;
   const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
@@ -53,7 +47,7 @@ struct Loaded {
 
 Loaded load(const std::string& path) {
   Loaded l;
-  const std::string ext = extension(path);
+  const std::string ext = io::file_extension(path);
   if (ext == ".tsm") {
     io::TsmModel m = io::read_tsm(path);
     l.format = "TSM #TS0200";
@@ -83,7 +77,7 @@ Loaded load(const std::string& path) {
 }  // namespace
 
 bool is_t_spline_file(const std::string& path) {
-  const std::string ext = extension(path);
+  const std::string ext = io::file_extension(path);
   if (ext == ".tsm") return true;
   if (ext == ".json") return is_t_spline_json(path);
   if (!is_step_file(path)) return false;
@@ -196,7 +190,7 @@ void convert_tspline(const std::string& in, const std::string& out, const TSplin
           "convert: --step-form is t-spline or part42, not '" + o.step_form + "'");
   const Loaded l = load(in);
   const TSplineSurface& surf = *l.surface;
-  const std::string ext = extension(out);
+  const std::string ext = io::file_extension(out);
   if (is_step_file(out)) {
     require(l.layers.has_value(), "convert: " + in + " holds the blending functions only; it converts to Part 42 STEP, .lr, .vtu, .stl or .obj");
     const auto form = o.step_form == "part42" ? io::step::TSplineStepForm::part42 : io::step::TSplineStepForm::t_spline_entities;

@@ -25,14 +25,14 @@ constexpr std::array<FileFormatEntry, 8> kFormats{{{".json", FileFormat::json, t
                                                    {".xml", FileFormat::gismo_xml, true},
                                                    {".vtu", FileFormat::vtu, false}}};
 
-std::string extension(const std::string& path) {
+}  // namespace
+
+std::string file_extension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return ext;
 }
-
-}  // namespace
 
 std::span<const FileFormatEntry> file_formats() { return kFormats; }
 
@@ -47,14 +47,14 @@ std::string extension_list(bool reading) {
 }
 
 std::optional<FileFormat> format_of(const std::string& path) {
-  const std::string ext = extension(path);
+  const std::string ext = file_extension(path);
   for (const FileFormatEntry& f : kFormats)
     if (ext == f.extension) return f.format;
   return std::nullopt;
 }
 
 FileFormat file_format(const std::string& path, bool reading) {
-  const std::string ext = extension(path);
+  const std::string ext = file_extension(path);
   for (const FileFormatEntry& f : kFormats)
     if (ext == f.extension) {
       require(f.readable || !reading, [&] {
@@ -111,7 +111,7 @@ void write_spline_file(const std::string& path, const std::vector<AnySpline>& ob
     case FileFormat::lr:
     case FileFormat::step: break;
   }
-  throw Error(path + ": " + extension(path) + " output takes LR splines or STEP conversion; write .json, .g2, .xml or .vtu");
+  throw Error(path + ": " + file_extension(path) + " output takes LR splines or STEP conversion; write .json, .g2, .xml or .vtu");
 }
 
 }  // namespace trivar::io

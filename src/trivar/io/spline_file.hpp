@@ -21,6 +21,8 @@ struct FileFormatEntry {
   bool readable;  // false: output only
 };
 
+// The extension of `path` in lower case, with the dot ("" when it has none): what every dispatch compares.
+std::string file_extension(const std::string& path);
 // Every extension trivar knows, in the order messages list them.
 std::span<const FileFormatEntry> file_formats();
 // The readable (or, with reading = false, all) extensions as a message lists them: ".json, .g2, ... or .p21".
