@@ -10,4 +10,4 @@ ctest --preset release
 ctest --preset debug-asan -E "$(grep -v '^#' tests/release_only.txt | paste -sd '|')"
 CXX=clang++-14 cmake -S fuzz -B build/fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
 cmake --build build/fuzz -j2
-ctest --test-dir build/fuzz --output-on-failure
+ctest --test-dir build/fuzz --output-on-failure -j2
