@@ -180,13 +180,15 @@ void bind_files(py::module_& m) {
             return path + ": " + s.name + ": " + std::to_string(im.report.unmapped.size()) + " faces could not be mapped" +
                    (im.report.unmapped.empty() ? "" : " (" + im.report.unmapped.front().name + ": " + im.report.unmapped.front().reason + ")");
           });
-          models.append(trimmed_model(s.solid));
+          models.append(py::module_::import("types").attr("SimpleNamespace")(
+              py::arg("name") = s.name, py::arg("model") = trimmed_model(s.solid), py::arg("kernel_volume") = s.kernel_volume));
         }
         return models;
       },
       py::arg("path"), py::arg("tolerance") = 0.0,
-      "The B-rep solids of a STEP file as trimmed one-cell V-models (as `trivar make vmodel`): exact NURBS faces\n"
-      "with trimming loops; volume, tessellate, slice and write work on them. tolerance: chordal tolerance of\n"
+      "The B-rep solids of a STEP file, each as (name, model, kernel_volume): a trimmed one-cell V-model (as\n"
+      "`trivar make vmodel`: exact NURBS faces with trimming loops; volume, tessellate, slice and write work on\n"
+      "it) and OpenCASCADE's volume of the solid as read. tolerance: chordal tolerance of\n"
       "the boundary mesh (0: 1e-3 of the part's diagonal).");
 }
 

@@ -4,6 +4,7 @@
 
 #include "bindings.hpp"
 #include "trivar/am/dithering.hpp"
+#include "trivar/am/layer_slicer.hpp"
 #include "trivar/am/slicer.hpp"
 #include "trivar/model/ball.hpp"
 #include "trivar/model/cone.hpp"
@@ -127,9 +128,9 @@ py::object slice(const VModel& m, double layer_thickness, const std::vector<doub
       }
     }
   }
-  const double dx = 25.4 / o.dpi_x, dy = 25.4 / o.dpi_y;
+  const am::SliceGrid g = am::slice_grid(m, o);
   py::dict d(py::arg("z") = z, py::arg("cell") = cell, py::arg("fractions") = fractions,
-             py::arg("pixel_size") = py::make_tuple(dx, dy), py::arg("inside_pixels") = summary.inside_pixels,
+             py::arg("pixel_size") = py::make_tuple(g.dx, g.dy), py::arg("origin") = py::make_tuple(g.x0, g.y0), py::arg("inside_pixels") = summary.inside_pixels,
              py::arg("full_solve_percent") = summary.full_solve_percent(), py::arg("max_residual") = summary.max_residual,
              py::arg("seconds") = summary.seconds);
   if (dither != "none") d["labels"] = labels;
@@ -244,8 +245,9 @@ void bind_vmodel(py::module_& m) {
            py::arg("z_range") = py::none(), py::arg("material") = py::none(), py::arg("dither") = "error-diffusion",
            py::arg("threads") = 0,
            "Slices into printer layers (as `trivar slice`): z (L,), cell (L, H, W) (-1 outside), fractions\n"
-           "(L, H, W, materials), labels (L, H, W) after dithering (0 empty, k + 1 material k), pixel_size and\n"
-           "statistics. Row 0 is the lowest y.")
+           "(L, H, W, materials), labels (L, H, W) after dithering (0 empty, k + 1 material k), pixel_size,\n"
+           "origin and statistics. Pixel (i, j) of layer k has its centre at origin + ((i + 0.5) dx, (j + 0.5) dy),\n"
+           "z[k]; row 0 is the lowest y.")
       .def("__repr__", &repr);
 
   m.def("box", [](const Eigen::Vector3d& size, const Eigen::Vector3d& origin) { return glued(make_box({size, origin})); },

@@ -1,0 +1,61 @@
+"""Analysis: convergence rates from theory (L2 error O(h^(p+1)), H1 O(h^p)), the exact solutions evaluated
+through the returned fields, eigenvalues against pi^2 (i^2 + j^2 + k^2)."""
+import math
+
+import numpy as np
+
+import trivar
+
+
+def test_poisson_sine_cube_rates_and_field():
+    a = trivar.solve_poisson("sine-cube", degree=2, refine=4)
+    b = trivar.solve_poisson(problem="sine-cube", degree=2, refine=8)
+    assert b.dofs > a.dofs and len(b.coefficients) >= b.dofs
+    assert abs(math.log2(a.l2_error / b.l2_error) - 3) < 0.3
+    assert abs(math.log2(a.h1_error / b.h1_error) - 2) < 0.3
+    u = np.random.default_rng(5).uniform(0, 1, size=(200, 3))
+    x = b.geometry(u)
+    exact = np.prod(np.sin(math.pi * x), axis=1)
+    assert np.max(np.abs(b.field(u)[:, 0] - exact)) < 2e-3
+
+
+def test_poisson_on_a_user_volume_is_symmetric():
+    cube = trivar.block(1, 1, [1.0, 1.0, 1.0])
+    r = trivar.solve_poisson_on(cube, degree=2, refine=4)
+    assert r.l2_error is None and r.dofs == 4 ** 3 - 0 or r.dofs > 0
+    # -lap u = 1 on the unit cube, u = 0 on the boundary: symmetric about the centre, max there ~0.0562.
+    c = r.field(np.array([0.5, 0.5, 0.5]))[0]
+    assert abs(c - 0.05620) < 2e-3
+    assert abs(r.field(np.array([0.2, 0.3, 0.5]))[0] - r.field(np.array([0.8, 0.7, 0.5]))[0]) < 1e-8
+    square = trivar.block_surface(2, 2, [1.0, 1.0])
+    planar = trivar.Surface(square.knots, square.degrees, square.control_points[:, :2])
+    r2 = trivar.solve_poisson_on(planar, degree=2, refine=4)
+    assert abs(r2.field(np.array([0.5, 0.5]))[0] - 0.07367) < 2e-3
+
+
+def test_elasticity_lame_ring_displacement():
+    r = trivar.solve_elasticity("lame-ring", degree=2, refine=8)
+    assert r.l2_error < 1e-4 and r.field.dim == 2
+    # Lame: u_r = (1 + nu)/E ((1 - 2 nu) A r + B / r), A = p a^2 / (b^2 - a^2), B = p a^2 b^2 / (b^2 - a^2).
+    E, nu, p, a, b = 1000.0, 0.3, 1.0, 1.0, 2.0
+    A, B = p * a * a / (b * b - a * a), p * a * a * b * b / (b * b - a * a)
+    u = np.random.default_rng(6).uniform(0, 1, size=(100, 2))
+    x = r.geometry(u)
+    rad = np.linalg.norm(x, axis=1)
+    ur = (1 + nu) / E * ((1 - 2 * nu) * A * rad + B / rad)
+    disp = r.field(u)
+    assert np.max(np.abs(np.sum(disp * x, axis=1) / rad - ur)) < 1e-3 * np.max(ur)
+    assert trivar.solve_elasticity("lame-cylinder", degree=2, refine=2).l2_error is not None
+
+
+def test_laplace_and_elastic_modes():
+    r = trivar.solve_modes("cube-modes", degree=3, refine=4, modes=4)
+    pi2 = math.pi ** 2
+    assert np.allclose(r.values, [3 * pi2, 6 * pi2, 6 * pi2, 6 * pi2], rtol=1e-3)
+    assert np.allclose(r.exact, [3 * pi2, 6 * pi2, 6 * pi2, 6 * pi2])
+    assert r.vectors.shape[0] == 4
+    e = trivar.solve_modes("elastic-cube-modes", degree=2, refine=3, modes=3, youngs=1000.0, poisson_ratio=0.3)
+    assert np.allclose(e.values, e.exact, rtol=1e-2)
+    cube = trivar.block(1, 1, [1.0, 1.0, 1.0])
+    m = trivar.laplace_modes_on(cube, degree=3, refine=4, modes=1)
+    assert abs(m.values[0] - 3 * pi2) < 1e-3 * 3 * pi2
