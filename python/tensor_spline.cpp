@@ -280,11 +280,20 @@ void bind_spline(py::module_& m, const char* doc) {
       .def(
           "measure",
           [](const S& s, int n, int threads) {
+            if (n == 0) {
+              // det J of a polynomial map R^D -> R^D has degree D p - 1 per direction: ceil(D p / 2) Gauss points
+              // are exact. Rational maps and curved lengths or areas (a square root) get 2 p + 8, whose error
+              // decays spectrally (VModel::volume's rule).
+              int p = 0;
+              for (int k = 0; k < D; ++k) p = std::max(p, s.degree(k));
+              n = s.is_rational() || s.dim() != D ? 2 * p + 8 : (D * p + 1) / 2 + 1;
+            }
             py::gil_scoped_release release;
             return measure<D>(s, n, threads);
           },
           py::arg("n") = 0, py::arg("threads") = 0,
-          "Length, area or volume (Gauss quadrature, n points per element and direction; 0: exact for polynomials).")
+          "Length, area or volume by Gauss quadrature with n points per element and direction; n = 0: exact\n"
+          "for polynomial maps of control dimension D, 2 p + 8 points otherwise.")
       .def("invert", &invert<D>, py::arg("points"), py::arg("tolerance") = 1e-10, py::arg("max_newton") = 30,
            py::arg("max_depth") = 40, py::arg("threads") = 0,
            "Point inversion of model points (N, D) (control dimension D): returns (params (N, D), found (N,),\n"
