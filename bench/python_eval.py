@@ -44,6 +44,11 @@ def main():
             wall, cpu = best(lambda: call(threads), repetitions)
             label = "1" if threads == 1 else "all"
             print(f"{name:28s} threads {label:3s}: wall {wall:7.1f} ms, CPU {cpu:7.1f} ms, {n / cpu * 1e3:.3g} points per CPU s")
+    # The fixed cost of one call (argument conversion, result allocation, GIL release): one point.
+    one = u[:1]
+    calls = 20000
+    wall, _ = best(lambda: [v(one, threads=1) for _ in range(calls)], 3)
+    print(f"one call of one point: {1e3 * wall / calls:.2f} us")
 
 
 if __name__ == "__main__":

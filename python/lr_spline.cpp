@@ -49,14 +49,14 @@ void bind_lr(py::module_& m, const char* name, const char* doc) {
   using S = LRSpline<D>;
   py::class_<S>(m, name, doc)
       .def(py::init<const TensorSpline<D>&>(), py::arg("spline"), "Exact conversion of a tensor spline.")
-      .def_property_readonly("parametric_dim", [](const S&) { return D; })
-      .def_property_readonly("dim", &S::dim)
-      .def_property_readonly("rational", &S::is_rational)
-      .def_property_readonly("degrees", &S::degrees)
+      .def_property_readonly("parametric_dim", [](const S&) { return D; }, "2 or 3.")
+      .def_property_readonly("dim", &S::dim, "Control (model-space) dimension.")
+      .def_property_readonly("rational", &S::is_rational, "True when the control values are homogeneous with weights.")
+      .def_property_readonly("degrees", &S::degrees, "Polynomial degree per direction.")
       .def_property_readonly("domain", [](const S& s) { return box_array<D>(s.domain()); }, "(D, 2) bounds.")
-      .def_property_readonly("num_basis", &S::num_basis)
-      .def_property_readonly("num_elements", &S::num_elements)
-      .def_property_readonly("num_meshrects", [](const S& s) { return s.mesh().size(); })
+      .def_property_readonly("num_basis", &S::num_basis, "Number of LR B-splines.")
+      .def_property_readonly("num_elements", &S::num_elements, "Number of elements of the box mesh.")
+      .def_property_readonly("num_meshrects", [](const S& s) { return s.mesh().size(); }, "Mesh rectangles (lines in 2-D).")
       .def_property_readonly(
           "elements",
           [](const S& s) {

@@ -186,15 +186,15 @@ std::string repr(const TensorSpline<D>& s) {
 
 template <int D>
 void bind_jacobian_report(py::module_& m) {
-  const std::string name = std::string("JacobianReport") + std::to_string(D);
-  py::class_<JacobianReport<D>>(m, name.c_str(), "Certified sign of det J (see Volume.check_jacobian).")
+  const char* name = D == 3 ? "JacobianReport" : "SurfaceJacobianReport";
+  py::class_<JacobianReport<D>>(m, name, "Certified sign of det J (see Volume.check_jacobian).")
       .def_readonly("valid", &JacobianReport<D>::valid, "Certified: det J > 0 on the whole domain.")
       .def_readonly("invalid", &JacobianReport<D>::invalid, "Certified: det J <= 0 at `where`.")
       .def_readonly("min_lower_bound", &JacobianReport<D>::min_lower_bound, "Certified lower bound of min det J.")
       .def_readonly("min_value", &JacobianReport<D>::min_value, "Smallest det J value found.")
-      .def_property_readonly("where", [](const JacobianReport<D>& r) { return r.where; })
-      .def_readonly("elements", &JacobianReport<D>::elements)
-      .def_readonly("subdivisions", &JacobianReport<D>::subdivisions)
+      .def_property_readonly("where", [](const JacobianReport<D>& r) { return r.where; }, "Parameter of min_value.")
+      .def_readonly("elements", &JacobianReport<D>::elements, "Bezier elements examined.")
+      .def_readonly("subdivisions", &JacobianReport<D>::subdivisions, "Sub-boxes made by the branch and bound.")
       .def("__bool__", [](const JacobianReport<D>& r) { return r.valid; })
       .def("__repr__", [](const JacobianReport<D>& r) {
         return std::string("<trivar.JacobianReport ") + (r.valid ? "valid" : r.invalid ? "invalid" : "undecided") +
@@ -211,14 +211,14 @@ void bind_spline(py::module_& m, const char* doc) {
         "From knot vectors (one 1-D array per direction), degrees (an int or one per direction), control points of\n"
         "shape (n_0, ..., n_{D-1}, dim) or (N, dim) with the first direction fastest, and optional positive\n"
         "weights (N,) in the same order (a NURBS). Raises trivar.Error on invalid knots, sizes or weights.")
-      .def_property_readonly("parametric_dim", [](const S&) { return D; })
+      .def_property_readonly("parametric_dim", [](const S&) { return D; }, "1 (curve), 2 (surface) or 3 (volume).")
       .def_property_readonly("dim", &S::dim, "Control (model-space) dimension.")
-      .def_property_readonly("rational", &S::is_rational)
+      .def_property_readonly("rational", &S::is_rational, "True for a NURBS (weights stored).")
       .def_property_readonly("degrees", [](const S& s) {
         Ints<D> p;
         for (int k = 0; k < D; ++k) p[k] = s.degree(k);
         return p;
-      })
+      }, "Polynomial degree per direction.")
       .def_property_readonly("counts", &S::counts, "Control points per direction.")
       .def_property_readonly("knots", &knot_list<D>, "One array of knots per direction.")
       .def_property_readonly("domain", [](const S& s) { return box_array<D>(s.domain()); }, "(D, 2) bounds.")

@@ -183,8 +183,8 @@ void bind_vmodel(py::module_& m) {
            "Adds a cell (call glue() afterwards); returns its index.")
       .def("glue", [](VModel& v, double relative_tolerance) { v.glue({.relative_tolerance = relative_tolerance}); },
            py::arg("relative_tolerance") = 1e-7, "Builds the topology (shared V-surfaces, V-curves, V-points).")
-      .def_property_readonly("glued", &VModel::is_glued)
-      .def_property_readonly("num_cells", &VModel::num_cells)
+      .def_property_readonly("glued", &VModel::is_glued, "True when the topology is built.")
+      .def_property_readonly("num_cells", &VModel::num_cells, "Number of cells.")
       .def("__len__", &VModel::num_cells)
       .def_property_readonly(
           "cells", [](const VModel& v) {
@@ -192,11 +192,11 @@ void bind_vmodel(py::module_& m) {
             for (const VCell& cell : v.cells()) c.push_back(cell.geometry());
             return c;
           }, "The cells' trivariates (copies).")
-      .def_property_readonly("trimmed", [](const VModel& v) { return has_trimmed_cells(v); })
-      .def_property_readonly("num_boundary_surfaces", [](const VModel& v) { return v.topology().num_boundary_surfaces(); })
-      .def_property_readonly("num_shared_surfaces", [](const VModel& v) { return v.topology().num_shared_surfaces(); })
-      .def_property_readonly("num_curves", [](const VModel& v) { return v.topology().curves.size(); })
-      .def_property_readonly("num_points", [](const VModel& v) { return v.topology().points.size(); })
+      .def_property_readonly("trimmed", [](const VModel& v) { return has_trimmed_cells(v); }, "True when a cell is trimmed by a B-rep.")
+      .def_property_readonly("num_boundary_surfaces", [](const VModel& v) { return v.topology().num_boundary_surfaces(); }, "V-surfaces on the boundary.")
+      .def_property_readonly("num_shared_surfaces", [](const VModel& v) { return v.topology().num_shared_surfaces(); }, "V-surfaces shared by two cells.")
+      .def_property_readonly("num_curves", [](const VModel& v) { return v.topology().curves.size(); }, "V-curves (cell edges merged).")
+      .def_property_readonly("num_points", [](const VModel& v) { return v.topology().points.size(); }, "V-points (cell corners merged).")
       .def("neighbours", [](const VModel& v, int cell) { return v.neighbours(cell); }, py::arg("cell"),
            "Cells sharing a V-surface with `cell`.")
       .def_property_readonly("bounding_box", [](const VModel& v) { return box_array<3>(v.bounding_box()); },

@@ -46,6 +46,10 @@ def test_conversion_and_refinement_keep_the_geometry(rng):
     # The elements tile the domain: their volumes sum to 1.
     assert abs(np.sum(np.prod(e[:, :, 1] - e[:, :, 0], axis=1)) - 1.0) < 1e-12
     assert set(lr.element_support(0)) and "LRVolume" in repr(lr)
+    # Partition of unity: the scaled B-splines of every element sum to one (gammas of the converted
+    # tensor B-splines are 1, split ones below).
+    assert np.all(lr.gammas > 0) and np.all(lr.gammas <= 1) and lr.gammas.min() < 1
+    assert lr.num_meshrects > 8
 
 
 def test_lr_surface_fullspan():

@@ -84,6 +84,10 @@ def test_curve_and_surface(rng):
     assert "Surface" in repr(s) and "degrees (2, 4)" in repr(s)
 
 
+def test_kernels_are_named():
+    assert trivar.simd_level() in ("generic", "avx2", "avx512")
+
+
 def test_zero_copy_parameters_and_threads(rng):
     v, _, _, _ = random_volume(rng)
     u = rng.uniform(0, 1, size=(1000, 3))
@@ -158,6 +162,12 @@ def test_jacobian_check():
     bad = mirrored.check_jacobian()
     assert bad.invalid and not bad.valid and bad.min_value < 0
     assert "invalid" in repr(bad)
+    assert isinstance(r, trivar.JacobianReport) and len(r.where) == 3 and r.elements == 8 and r.subdivisions >= 0
+    # A planar surface: x = (u, v) on the unit square, det J = 1.
+    sq = trivar.block_surface(2, 2, [1.0, 1.0])
+    planar = trivar.Surface(sq.knots, sq.degrees, sq.control_points[:, :2])
+    s = planar.check_jacobian()
+    assert isinstance(s, trivar.SurfaceJacobianReport) and s.valid and abs(s.min_value - 1.0) < 1e-12
 
 
 def test_measure_and_block():

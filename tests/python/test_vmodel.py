@@ -13,6 +13,8 @@ def test_primitives_volumes():
     assert ball.num_cells == 7 and len(ball) == 7 and ball.glued
     assert abs(ball.volume() - 4 / 3 * math.pi * 8) < 1e-9 * 34
     assert ball.num_shared_surfaces == 18 and ball.num_boundary_surfaces == 6  # (7 * 6 - 6) / 2
+    # The cube's 8 corners and the sphere's 8 cube-sphere corners; 12 + 12 + 8 edges.
+    assert ball.num_points == 16 and ball.num_curves == 32
     assert sorted(ball.neighbours(0)) == [1, 2, 3, 4, 5, 6]
     assert np.allclose(ball.bounding_box[:, 0], [-1, -2, -2], atol=1e-12) or np.all(ball.bounding_box[:, 0] <= [-1, -2, -2])
     assert abs(trivar.cylinder(radius=1.5, height=2.0).volume() - math.pi * 2.25 * 2) < 1e-9
@@ -39,6 +41,11 @@ def test_model_from_cells_and_attributes():
     b = a.transform(np.eye(3), [1.0, 0, 0])
     m = trivar.VModel([a, b])
     assert m.num_shared_surfaces == 1 and m.num_cells == 2
+    m3 = trivar.VModel([a, b], glue=False)
+    assert not m3.glued
+    assert m3.add_cell(b.transform(np.eye(3), [1.0, 0, 0])) == 2
+    m3.glue()
+    assert m3.glued and m3.num_shared_surfaces == 2 and abs(m3.volume() - 3.0) < 1e-12
     m.set_attribute("density", value=[2.5])
     assert abs(m.mass("density") - 5.0) < 1e-12
     m.set_attribute("t", expression=["x + 2*y", "z^2"])
