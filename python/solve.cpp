@@ -56,6 +56,29 @@ py::object poisson_on(const TensorSpline<D>& geometry, int degree, int refine, c
   return poisson<D>(space, pb, nullptr, solver, threads);
 }
 
+// -lap u = 1 on the cells of a glued model as one multipatch space (shared faces numbered once), u = 0 on its
+// boundary; the solution as one field per cell.
+py::object poisson_on_model(const VModel& model, int degree, int refine, const std::string& solver, int threads) {
+  for (const VCell& c : model.cells())
+    require(!c.is_trimmed(), "solve_poisson_on: analysis on trimmed cells is not supported");
+  const MultipatchSpace<3> space = multipatch_space(model, degree, refine);
+  PoissonProblem<3> pb;
+  pb.source = [](const double*) { return 1.0; };
+  pb.dirichlet.push_back({space.boundary, {}, nullptr});
+  SolveResult r;
+  std::vector<SplineVolume> fields;
+  {
+    py::gil_scoped_release release;
+    auto s = make_solver(solver);
+    r = solve_poisson(space, pb, *s, threads);
+    for (int p = 0; p < space.num_patches(); ++p)
+      fields.push_back(solution_field(space.patches[static_cast<std::size_t>(p)], patch_coefs(space, p, r.coefs, 1), 1));
+  }
+  return namespace_of(py::dict(py::arg("dofs") = r.dofs, py::arg("coefficients") = array_of(r.coefs),
+                               py::arg("fields") = fields, py::arg("assembly_seconds") = r.assembly_seconds,
+                               py::arg("solve_seconds") = r.solve_seconds, py::arg("iterations") = r.stats.iterations));
+}
+
 template <int D>
 py::object elasticity(const ElasticityBenchmark<D>& b, const std::string& solver, int threads) {
   const MultipatchSpace<D> space = single_patch_space(b.space);
@@ -105,6 +128,9 @@ void bind_solve(py::module_& m) {
         "-lap u = 1 on a volume with u = 0 on its boundary (degree raised to `degree`, elements split `refine` times).");
   m.def("solve_poisson_on", &poisson_on<2>, py::arg("geometry"), py::arg("degree") = 2, py::arg("refine") = 8,
         py::arg("solver") = "cg", py::arg("threads") = 0, "The same on a planar surface (control dimension 2).");
+  m.def("solve_poisson_on", &poisson_on_model, py::arg("model"), py::arg("degree") = 2, py::arg("refine") = 8,
+        py::arg("solver") = "cg", py::arg("threads") = 0,
+        "The same on a glued V-model (one multipatch space, shared faces numbered once): one field per cell.");
   m.def(
       "solve_elasticity",
       [](const std::string& problem, int degree, int refine, const std::string& solver, int threads) {

@@ -224,3 +224,25 @@ def test_errors_carry_trivar_messages():
         v(np.zeros((5, 2)))
     with pytest.raises(trivar.Error, match="order"):
         v.derivatives(np.zeros((1, 3)), order=-1)
+
+
+def test_long_evaluations_release_the_gil():
+    import threading
+    v = trivar.block([3, 3, 3], [8, 8, 8], [1.0, 1.0, 1.0])
+    u = np.random.default_rng(9).uniform(0, 1, size=(2_000_000, 3))
+    state = {"in_call": False, "done": False}
+
+    def work():
+        state["in_call"] = True
+        v.derivatives(u, order=1, threads=1)
+        state["done"] = True
+
+    t = threading.Thread(target=work)
+    ticks = 0
+    t.start()
+    while not state["done"]:
+        if state["in_call"]:
+            ticks += 1
+    t.join()
+    # With the GIL held for the whole C++ call this thread could not run Python code meanwhile.
+    assert ticks > 1000
