@@ -3,7 +3,10 @@
 // (Poisson: f = 1, u = 0 on the boundary; Laplace modes with u = 0 on the boundary). The solution comes back as
 // its coefficients and as a spline field over the geometry's parameters.
 #include "bindings.hpp"
+#include "trivar/iga/adaptive_loop.hpp"
 #include "trivar/iga/benchmark_problems.hpp"
+#include "trivar/iga/elasticity.hpp"
+#include "trivar/iga/lr_solution_field.hpp"
 #include "trivar/iga/eigen_modes.hpp"
 #include "trivar/iga/error_norms.hpp"
 #include "trivar/iga/multipatch_space.hpp"
@@ -97,6 +100,71 @@ py::object modes_result(const ModesResult& r, const std::vector<double>& exact) 
   return namespace_of(d);
 }
 
+// Linear elasticity on one patch: clamped on the given parametric faces (direction, side), under a body force.
+template <int D>
+py::object elasticity_on(const TensorSpline<D>& geometry, const std::vector<std::pair<int, int>>& clamp,
+                         const std::vector<double>& body_force, int degree, int refine, double youngs,
+                         double poisson_ratio, const std::string& solver, int threads) {
+  require(static_cast<int>(body_force.size()) == D, "solve_elasticity_on: body_force needs " + std::to_string(D) + " values");
+  require(!clamp.empty(), "solve_elasticity_on: static elasticity needs supports (clamp)");
+  const MultipatchSpace<D> space = single_patch_space(make_tensor_space(geometry, degree, refine));
+  ElasticityProblem<D> pb;
+  pb.material = {youngs, poisson_ratio, 1.0};
+  require(pb.material.valid(), "solve_elasticity_on: youngs must be positive, poisson_ratio in (-1, 0.5)");
+  std::vector<Face> faces;
+  for (const auto& [dir, side] : clamp) {
+    require(dir >= 0 && dir < D && (side == 0 || side == 1),
+            "solve_elasticity_on: a clamped face is (direction 0.." + std::to_string(D - 1) + ", side 0 or 1)");
+    faces.push_back({dir, side, 0});
+  }
+  pb.displacement.push_back({faces, {}, nullptr});
+  pb.body_force = [body_force](const double*, double* b) { std::copy(body_force.begin(), body_force.end(), b); };
+  return static_result<D>(space, D, nullptr, [&](LinearSolver& s) { return solve_elasticity(space, pb, s, threads); },
+                          solver, threads);
+}
+
+// Adaptive refinement (solve, estimate, mark by Dorfler, refine) from a benchmark's tensor space on an LR, HB or
+// THB space, as `trivar solve poisson --adaptive`: the table of steps and, on LR, the final mesh and solution.
+template <int D>
+py::object adaptive(const PoissonBenchmark<D>& b, int steps, double beta, const std::string& space,
+                    const std::string& solver, int threads) {
+  require(space == "lr" || space == "hb" || space == "thb", "solve_poisson_adaptive: space is lr, hb or thb, got " + space);
+  AdaptiveOptions o;
+  o.steps = steps;
+  o.beta = beta;
+  o.solver = solver;
+  std::vector<ConvergenceRow> rows;
+  Eigen::VectorXd coefs;
+  std::optional<LRSpline<D>> lr;
+  std::optional<LRSpline<D>> field;
+  {
+    py::gil_scoped_release release;
+    if (space == "lr") {
+      lr.emplace(b.space.geometry);
+      rows = adaptive_poisson<D>(*lr, b.problem, b.exact, o, {}, &coefs, threads);
+      field.emplace(lr_solution_field(*lr, coefs));
+    } else {
+      HierarchicalSpline<D> h(b.space.geometry, space == "hb" ? HierarchicalBasis::hb : HierarchicalBasis::thb);
+      rows = adaptive_poisson<D>(h, b.problem, b.exact, o, {}, &coefs, threads);
+    }
+  }
+  const auto n = static_cast<py::ssize_t>(rows.size());
+  py::array_t<int> dofs(n), elements(n);
+  auto l2 = new_array({n}), h1 = new_array({n}), estimate = new_array({n});
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    dofs.mutable_data()[i] = rows[i].dofs;
+    elements.mutable_data()[i] = rows[i].elements;
+    l2.mutable_data()[i] = rows[i].l2;
+    h1.mutable_data()[i] = rows[i].h1;
+    estimate.mutable_data()[i] = rows[i].estimate;
+  }
+  py::dict d(py::arg("dofs") = dofs, py::arg("elements") = elements, py::arg("l2_error") = l2, py::arg("h1_error") = h1,
+             py::arg("estimate") = estimate, py::arg("coefficients") = array_of(coefs));
+  d["geometry"] = lr ? py::cast(*lr) : py::none();
+  d["field"] = field ? py::cast(*field) : py::none();
+  return namespace_of(d);
+}
+
 MultipatchSpace<3> unit_cube(int degree, int elements) {
   return single_patch_space(TensorSpace<3>{box_geometry<3>({0, 0, 0}, {1, 1, 1}, degree, elements)});
 }
@@ -144,6 +212,30 @@ void bind_solve(py::module_& m) {
       py::arg("threads") = 0,
       "Linear elasticity benchmark of `trivar solve elasticity --problem`: displacement field (dim = D) and\n"
       "errors against the exact solution.");
+  m.def("solve_elasticity_on", &elasticity_on<3>, py::arg("geometry"),
+        py::arg("clamp") = std::vector<std::pair<int, int>>{{0, 0}}, py::arg("body_force") = std::vector<double>{0, 0, -1},
+        py::arg("degree") = 2, py::arg("refine") = 8, py::arg("youngs") = 1000.0, py::arg("poisson_ratio") = 0.3,
+        py::arg("solver") = "cg", py::arg("threads") = 0,
+        "Linear elasticity on a volume clamped on the parametric faces `clamp` [(direction, side), ...] (default\n"
+        "u = 0) under a constant body force (default: unit along -z, as `trivar solve elasticity`).");
+  m.def("solve_elasticity_on", &elasticity_on<2>, py::arg("geometry"),
+        py::arg("clamp") = std::vector<std::pair<int, int>>{{0, 0}}, py::arg("body_force") = std::vector<double>{0, -1},
+        py::arg("degree") = 2, py::arg("refine") = 8, py::arg("youngs") = 1000.0, py::arg("poisson_ratio") = 0.3,
+        py::arg("solver") = "cg", py::arg("threads") = 0, "The same on a planar surface (plane strain).");
+  m.def(
+      "solve_poisson_adaptive",
+      [](const std::string& problem, int degree, int refine, int steps, double beta, const std::string& space,
+         const std::string& solver, int threads) {
+        if (problem == "sine-cube") return adaptive<3>(sine_box<3>(degree, refine), steps, beta, space, solver, threads);
+        if (problem == "sine-square") return adaptive<2>(sine_box<2>(degree, refine), steps, beta, space, solver, threads);
+        require(problem == "l-shape",
+                "solve_poisson_adaptive: unknown problem '" + problem + "' (l-shape, sine-square, sine-cube)");
+        return adaptive<2>(l_shape(degree, refine), steps, beta, space, solver, threads);
+      },
+      py::arg("problem") = "l-shape", py::arg("degree") = 2, py::arg("refine") = 8, py::arg("steps") = 5,
+      py::arg("beta") = 0.3, py::arg("space") = "lr", py::arg("solver") = "cg", py::arg("threads") = 0,
+      "Adaptive refinement as `trivar solve poisson --adaptive`: per step dofs, elements, l2_error, h1_error,\n"
+      "estimate (arrays); on LR (space='lr') the final geometry and the solution `field` as LR splines.");
   m.def(
       "solve_modes",
       [](const std::string& problem, int degree, int refine, int modes, double youngs, double poisson_ratio,

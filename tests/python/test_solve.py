@@ -77,3 +77,39 @@ def test_poisson_on_a_multipatch_model_matches_one_patch():
     p = np.random.default_rng(9).uniform(0, 1, size=(50, 3))
     mirrored = np.column_stack([1 - p[:, 0], p[:, 1:]])
     assert np.max(np.abs(r.fields[0](p) - r.fields[1](mirrored))) < 1e-8
+
+
+def test_elasticity_on_a_clamped_beam_against_timoshenko():
+    # A 10 x 1 x 1 beam clamped at both ends under its unit weight along -z: Euler-Bernoulli q L^4 / (384 E I)
+    # plus Timoshenko's shear term q L^2 / (8 k G A), k = 5/6.
+    E, nu, L = 1000.0, 0.3, 10.0
+    beam = trivar.block(1, [10, 1, 1], [L, 1.0, 1.0])
+    r = trivar.solve_elasticity_on(beam, clamp=[(0, 0), (0, 1)], degree=3, refine=1, youngs=E, poisson_ratio=nu)
+    bending = L ** 4 / (384 * E / 12)
+    shear = L ** 2 / (8 * 5 / 6 * E / (2 * (1 + nu)))
+    w = -r.field(np.array([0.5, 0.5, 0.5]))[2]
+    assert abs(w - (bending + shear)) < 0.05 * (bending + shear)
+    # Symmetric about the middle.
+    p = np.random.default_rng(3).uniform(0, 1, size=(20, 3))
+    q = np.column_stack([1 - p[:, 0], p[:, 1:]])
+    assert np.max(np.abs(r.field(p)[:, 2] - r.field(q)[:, 2])) < 1e-8
+    plate = trivar.block_surface(1, [4, 1], [4.0, 1.0])
+    planar = trivar.Surface(plate.knots, plate.degrees, plate.control_points[:, :2])
+    assert trivar.solve_elasticity_on(planar, degree=2, refine=2).field.dim == 2
+
+
+def test_adaptive_lr_beats_the_uniform_rate_on_the_l_shape():
+    a = trivar.solve_poisson_adaptive("l-shape", degree=2, refine=4, steps=8)
+    assert len(a.dofs) == 8 and np.all(np.diff(a.dofs) > 0)
+    # Uniform refinement is limited to H1 error ~ dofs^(-1/3) by the corner singularity; adaptive LR does
+    # better (optimal: dofs^(-p/2) = dofs^(-1)).
+    slope = np.log(a.h1_error[-1] / a.h1_error[0]) / np.log(a.dofs[-1] / a.dofs[0])
+    assert slope < -0.6
+    assert isinstance(a.geometry, trivar.LRSurface) and a.field.dim == 1
+    # The field is the exact solution up to the error: r^(2/3) sin(2 theta / 3) at a point.
+    uv = np.array([[0.3, 0.7]])
+    x = a.geometry(uv)[0]
+    r, t = np.hypot(*x), np.arctan2(x[1], x[0]) % (2 * np.pi)
+    assert abs(a.field(uv)[0, 0] - r ** (2 / 3) * np.sin(2 * t / 3)) < 0.02
+    thb = trivar.solve_poisson_adaptive("sine-square", degree=2, refine=4, steps=2, space="thb")
+    assert thb.geometry is None and thb.h1_error[1] < thb.h1_error[0]
