@@ -4,6 +4,7 @@
 #include <pybind11/eigen.h>
 
 #include "bindings.hpp"
+#include "trivar/core/memory_budget.hpp"
 #include "trivar/core/parallel.hpp"
 #include "trivar/spline/affine_transform.hpp"
 #include "trivar/spline/degree_elevation.hpp"
@@ -268,7 +269,16 @@ void bind_spline(py::module_& m, const char* doc) {
           },
           py::arg("direction"), py::arg("knots"), "The same geometry with the knots inserted (Boehm).")
       .def(
-          "refine", [](const S& s, const py::object& n) { return refine_uniform<D>(s, ints_of<D>(n, "refine")); },
+          "refine",
+          [](const S& s, const py::object& by) {
+            const Ints<D> n = ints_of<D>(by, "refine");
+            double coefs = s.stride();
+            for (int k = 0; k < D; ++k)
+              coefs *= static_cast<double>(s.knots(k).num_elements()) * std::max(1, n[k]) + s.degree(k);
+            require_memory(8.0 * coefs, "refining " + repr<D>(s) + " by " + py::str(by).cast<std::string>());
+            py::gil_scoped_release release;
+            return refine_uniform<D>(s, n);
+          },
           py::arg("n") = 2, "Every element split into n equal parts (an int or one per direction).")
       .def(
           "elevate", [](const S& s, const py::object& by) { return elevate_degree<D>(s, ints_of<D>(by, "elevate")); },

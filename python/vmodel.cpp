@@ -6,6 +6,7 @@
 #include "trivar/am/dithering.hpp"
 #include "trivar/am/layer_slicer.hpp"
 #include "trivar/am/slicer.hpp"
+#include "trivar/core/memory_budget.hpp"
 #include "trivar/model/ball.hpp"
 #include "trivar/model/cone.hpp"
 #include "trivar/model/cylinder.hpp"
@@ -75,7 +76,7 @@ py::object tessellate(const VModel& m, double tolerance) {
   }
   const auto nv = static_cast<py::ssize_t>(t.mesh.vertices.size());
   const auto nt = static_cast<py::ssize_t>(t.mesh.triangles.size());
-  py::array_t<double> vertices({nv, py::ssize_t{3}}, &t.mesh.vertices[0][0]);
+  py::array_t<double> vertices({nv, py::ssize_t{3}}, nv ? &t.mesh.vertices[0][0] : nullptr);
   py::array_t<int> triangles({nt, py::ssize_t{3}}, nt ? &t.mesh.triangles[0][0] : nullptr);
   py::array_t<int> cell(nv, t.cell.data());
   py::array_t<double> params({nv, py::ssize_t{3}}, nv ? &t.param[0][0] : nullptr);
@@ -100,6 +101,13 @@ py::object slice(const VModel& m, double layer_thickness, const std::vector<doub
   }
   o.material_attribute = material;
   o.threads = threads;
+  // Every layer is returned in memory: the library's layers and the arrays made from them (cell index, float
+  // fractions per material, a label).
+  const am::SliceGrid g = am::slice_grid(m, o);
+  const double channels = m.materials().empty() ? 1.0 : m.materials().size();
+  require_memory(2.0 * static_cast<double>(g.layers) * static_cast<double>(g.pixels()) * (4.0 + 4.0 * channels + 1.0),
+                 "slicing " + std::to_string(g.layers) + " layers of " + std::to_string(g.width) + " x " +
+                     std::to_string(g.height) + " pixels into arrays");
   am::SliceSummary summary;
   std::vector<am::SliceLayer> layers;
   {
@@ -128,7 +136,6 @@ py::object slice(const VModel& m, double layer_thickness, const std::vector<doub
       }
     }
   }
-  const am::SliceGrid g = am::slice_grid(m, o);
   py::dict d(py::arg("z") = z, py::arg("cell") = cell, py::arg("fractions") = fractions,
              py::arg("pixel_size") = py::make_tuple(g.dx, g.dy), py::arg("origin") = py::make_tuple(g.x0, g.y0), py::arg("inside_pixels") = summary.inside_pixels,
              py::arg("full_solve_percent") = summary.full_solve_percent(), py::arg("max_residual") = summary.max_residual,

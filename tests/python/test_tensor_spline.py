@@ -224,6 +224,9 @@ def test_errors_carry_trivar_messages():
         v(np.zeros((5, 2)))
     with pytest.raises(trivar.Error, match="order"):
         v.derivatives(np.zeros((1, 3)), order=-1)
+    # Absurd sizes are refused up front with the memory they would need.
+    with pytest.raises(trivar.Error, match="memory"):
+        v.refine(10**7)
 
 
 def test_long_evaluations_release_the_gil():

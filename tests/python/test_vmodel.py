@@ -110,3 +110,7 @@ def test_slices_of_a_graded_ball():
     r = np.sqrt(x * x + y * y + s.z[k] ** 2)
     assert np.max(np.abs(s.fractions[k, J, I, 1] - r / 2)) < 1e-5
     assert s.inside_pixels == int((s.cell >= 0).sum()) and s.max_residual < 1e-6
+    with pytest.raises(trivar.Error, match="memory"):
+        ball.slice(dpi=[1e6])
+    with pytest.raises(trivar.Error, match="memory"):
+        ball.tessellate(tolerance=1e-12)
