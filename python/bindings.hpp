@@ -76,8 +76,8 @@ Ints<D> ints_of(const py::object& o, const char* what) {
     return r;
   }
   const auto v = o.cast<std::vector<int>>();
-  require(v.size() == D, std::string(what) + ": expected one int or " + std::to_string(D) + " ints, got " +
-                             std::to_string(v.size()));
+  require(v.size() == D,
+          std::string(what) + ": expected one int or " + std::to_string(D) + " ints, got " + std::to_string(v.size()));
   for (int k = 0; k < D; ++k) r[k] = v[static_cast<std::size_t>(k)];
   return r;
 }

@@ -31,14 +31,17 @@ double radians(double degrees) { return degrees * std::numbers::pi / 180.0; }
 // Volumes from surfaces and surfaces from curves share one Python name; the argument types choose.
 template <int D>
 void bind_lower(py::module_& m) {
-  m.def("revolve", [](const TensorSpline<D - 1>& profile, const Eigen::Vector3d& axis_point, const Eigen::Vector3d& axis,
-                      double angle) { return revolve<D>(profile, axis_point, axis, radians(angle)); },
-        py::arg("profile"), py::arg("axis_point") = Eigen::Vector3d::Zero(),
-        py::arg("axis") = Eigen::Vector3d(0, 0, 1), py::arg("angle") = 360.0,
-        "Exact rational revolution of a curve (-> Surface) or surface (-> Volume) about an axis by `angle`\n"
-        "degrees (as `trivar make revolve`); the angular direction is the last one.");
-  m.def("extrude", [](const TensorSpline<D - 1>& base, const Eigen::VectorXd& d) { return extrude<D>(base, d); },
-        py::arg("base"), py::arg("direction"), "base(u) + t direction, t in [0, 1] (the new last direction).");
+  m.def(
+      "revolve",
+      [](const TensorSpline<D - 1>& profile, const Eigen::Vector3d& axis_point, const Eigen::Vector3d& axis,
+         double angle) { return revolve<D>(profile, axis_point, axis, radians(angle)); },
+      py::arg("profile"), py::arg("axis_point") = Eigen::Vector3d::Zero(), py::arg("axis") = Eigen::Vector3d(0, 0, 1),
+      py::arg("angle") = 360.0,
+      "Exact rational revolution of a curve (-> Surface) or surface (-> Volume) about an axis by `angle`\n"
+      "degrees (as `trivar make revolve`); the angular direction is the last one.");
+  m.def(
+      "extrude", [](const TensorSpline<D - 1>& base, const Eigen::VectorXd& d) { return extrude<D>(base, d); },
+      py::arg("base"), py::arg("direction"), "base(u) + t direction, t in [0, 1] (the new last direction).");
   m.def("extrude_along", &extrude_along<D>, py::arg("base"), py::arg("path"),
         "base translated along a path curve without turning.");
   m.def("ruled", &ruled<D>, py::arg("a"), py::arg("b"), "(1 - t) a + t b after making a and b compatible.");
@@ -56,18 +59,23 @@ void bind_constructors(py::module_& m) {
   m.def("block", &block<3>, py::arg("degrees") = 1, py::arg("elements") = 1,
         py::arg("size") = std::vector<double>{1.0, 1.0, 1.0},
         "The box [0, size_0] x [0, size_1] x [0, size_2] with x = size * u exactly (as `trivar make box`).");
-  m.def("circle_arc",
-        [](double radius, const Eigen::Vector3d& center, double start, double end, const Eigen::Vector3d& x_axis,
-           const Eigen::Vector3d& y_axis) { return circle_arc(center, x_axis, y_axis, radius, radians(start), radians(end)); },
-        py::arg("radius") = 1.0, py::arg("center") = Eigen::Vector3d::Zero(), py::arg("start") = 0.0,
-        py::arg("end") = 360.0, py::arg("x_axis") = Eigen::Vector3d(1, 0, 0), py::arg("y_axis") = Eigen::Vector3d(0, 1, 0),
-        "Exact rational circle arc (degree 2, one segment per started quarter turn); angles in degrees.");
+  m.def(
+      "circle_arc",
+      [](double radius, const Eigen::Vector3d& center, double start, double end, const Eigen::Vector3d& x_axis,
+         const Eigen::Vector3d& y_axis) {
+        return circle_arc(center, x_axis, y_axis, radius, radians(start), radians(end));
+      },
+      py::arg("radius") = 1.0, py::arg("center") = Eigen::Vector3d::Zero(), py::arg("start") = 0.0,
+      py::arg("end") = 360.0, py::arg("x_axis") = Eigen::Vector3d(1, 0, 0),
+      py::arg("y_axis") = Eigen::Vector3d(0, 1, 0),
+      "Exact rational circle arc (degree 2, one segment per started quarter turn); angles in degrees.");
   bind_lower<2>(m);
   bind_lower<3>(m);
   m.def(
       "coons",
       [](const std::vector<SplineSurface>& faces, double tolerance) {
-        require(faces.size() == 6, "coons: expected 6 faces (u=0, u=1, v=0, v=1, w=0, w=1), got " + std::to_string(faces.size()));
+        require(faces.size() == 6,
+                "coons: expected 6 faces (u=0, u=1, v=0, v=1, w=0, w=1), got " + std::to_string(faces.size()));
         return coons_volume({faces[0], faces[1], faces[2], faces[3], faces[4], faces[5]}, tolerance);
       },
       py::arg("faces"), py::arg("tolerance") = 1e-9, "Trilinear Coons volume (Boolean sum) of six boundary surfaces.");

@@ -177,11 +177,15 @@ void bind_files(py::module_& m) {
         py::list models;
         for (const cad::ImportedSolid& s : im.solids) {
           require(s.solid != nullptr, [&] {
-            return path + ": " + s.name + ": " + std::to_string(im.report.unmapped.size()) + " faces could not be mapped" +
-                   (im.report.unmapped.empty() ? "" : " (" + im.report.unmapped.front().name + ": " + im.report.unmapped.front().reason + ")");
+            return path + ": " + s.name + ": " + std::to_string(im.report.unmapped.size()) +
+                   " faces could not be mapped" +
+                   (im.report.unmapped.empty()
+                        ? ""
+                        : " (" + im.report.unmapped.front().name + ": " + im.report.unmapped.front().reason + ")");
           });
           models.append(py::module_::import("types").attr("SimpleNamespace")(
-              py::arg("name") = s.name, py::arg("model") = trimmed_model(s.solid), py::arg("kernel_volume") = s.kernel_volume));
+              py::arg("name") = s.name, py::arg("model") = trimmed_model(s.solid),
+              py::arg("kernel_volume") = s.kernel_volume));
         }
         return models;
       },

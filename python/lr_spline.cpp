@@ -36,8 +36,9 @@ py::array first_derivatives(const LRSpline<D>& s, const Array& u, int threads) {
 }
 
 template <int D>
-int refine(LRSpline<D>& s, const std::optional<std::vector<int>>& elements, const std::optional<std::vector<int>>& functions,
-           const std::string& strategy, int multiplicity, double max_aspect_ratio) {
+int refine(LRSpline<D>& s, const std::optional<std::vector<int>>& elements,
+           const std::optional<std::vector<int>>& functions, const std::string& strategy, int multiplicity,
+           double max_aspect_ratio) {
   require(elements.has_value() != functions.has_value(), "refine: give either elements or functions");
   const RefineOptions o{parse_strategy(strategy), multiplicity, max_aspect_ratio};
   py::gil_scoped_release release;
@@ -49,14 +50,17 @@ void bind_lr(py::module_& m, const char* name, const char* doc) {
   using S = LRSpline<D>;
   py::class_<S>(m, name, doc)
       .def(py::init<const TensorSpline<D>&>(), py::arg("spline"), "Exact conversion of a tensor spline.")
-      .def_property_readonly("parametric_dim", [](const S&) { return D; }, "2 or 3.")
+      .def_property_readonly(
+          "parametric_dim", [](const S&) { return D; }, "2 or 3.")
       .def_property_readonly("dim", &S::dim, "Control (model-space) dimension.")
       .def_property_readonly("rational", &S::is_rational, "True when the control values are homogeneous with weights.")
       .def_property_readonly("degrees", &S::degrees, "Polynomial degree per direction.")
-      .def_property_readonly("domain", [](const S& s) { return box_array<D>(s.domain()); }, "(D, 2) bounds.")
+      .def_property_readonly(
+          "domain", [](const S& s) { return box_array<D>(s.domain()); }, "(D, 2) bounds.")
       .def_property_readonly("num_basis", &S::num_basis, "Number of LR B-splines.")
       .def_property_readonly("num_elements", &S::num_elements, "Number of elements of the box mesh.")
-      .def_property_readonly("num_meshrects", [](const S& s) { return s.mesh().size(); }, "Mesh rectangles (lines in 2-D).")
+      .def_property_readonly(
+          "num_meshrects", [](const S& s) { return s.mesh().size(); }, "Mesh rectangles (lines in 2-D).")
       .def_property_readonly(
           "elements",
           [](const S& s) {
@@ -78,11 +82,14 @@ void bind_lr(py::module_& m, const char* name, const char* doc) {
             return a;
           },
           "Scaling factors of the B-splines (they sum with the B-splines to one).")
-      .def("element_support", [](const S& s, int e) {
-        require(e >= 0 && e < s.num_elements(), "element_support: no element " + std::to_string(e));
-        const auto v = s.element_support(e);
-        return std::vector<int>(v.begin(), v.end());
-      }, py::arg("element"), "Ids of the B-splines whose support contains the element.")
+      .def(
+          "element_support",
+          [](const S& s, int e) {
+            require(e >= 0 && e < s.num_elements(), "element_support: no element " + std::to_string(e));
+            const auto v = s.element_support(e);
+            return std::vector<int>(v.begin(), v.end());
+          },
+          py::arg("element"), "Ids of the B-splines whose support contains the element.")
       .def("__call__", &evaluate<D>, py::arg("u"), py::arg("threads") = 0, "Values (N, dim) at parameters (N, D).")
       .def("evaluate", &evaluate<D>, py::arg("u"), py::arg("threads") = 0, "Same as calling the spline.")
       .def("derivatives", &first_derivatives<D>, py::arg("u"), py::arg("threads") = 0,
@@ -91,20 +98,22 @@ void bind_lr(py::module_& m, const char* name, const char* doc) {
            py::arg("strategy") = "fullspan", py::arg("multiplicity") = 1, py::arg("max_aspect_ratio") = 0.0,
            "Refines marked elements (fullspan, minspan, structured) or B-splines (structured) in one batch, as\n"
            "`trivar refine`; returns the number of mesh rectangles that changed the spline.")
-      .def("check_independence",
-           [](const S& s, const std::string& method) {
-             py::gil_scoped_release release;
-             require(method == "peeling" || method == "exact", "check_independence: method is peeling or exact, got " + method);
-             return std::string(to_string(method == "peeling" ? peeling_test(s).status : exact_test(s).status));
-           },
-           py::arg("method") = "peeling",
-           "Linear independence of the B-splines: 'independent', 'not_independent' or 'not_tested' (peeling\n"
-           "undecided).")
+      .def(
+          "check_independence",
+          [](const S& s, const std::string& method) {
+            py::gil_scoped_release release;
+            require(method == "peeling" || method == "exact",
+                    "check_independence: method is peeling or exact, got " + method);
+            return std::string(to_string(method == "peeling" ? peeling_test(s).status : exact_test(s).status));
+          },
+          py::arg("method") = "peeling",
+          "Linear independence of the B-splines: 'independent', 'not_independent' or 'not_tested' (peeling\n"
+          "undecided).")
       .def("__repr__", [name](const S& s) {
         std::string d;
         for (int k = 0; k < D; ++k) d += (k ? ", " : "") + std::to_string(s.degree(k));
-        return std::string("<trivar.") + name + " degrees (" + d + "), " + std::to_string(s.num_basis()) + " B-splines, " +
-               std::to_string(s.num_elements()) + " elements, dim " + std::to_string(s.dim()) + ">";
+        return std::string("<trivar.") + name + " degrees (" + d + "), " + std::to_string(s.num_basis()) +
+               " B-splines, " + std::to_string(s.num_elements()) + " elements, dim " + std::to_string(s.dim()) + ">";
       });
 }
 

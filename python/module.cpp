@@ -12,8 +12,9 @@ PYBIND11_MODULE(trivar, m) {
   m.attr("__version__") = TRIVAR_VERSION;
   py::register_exception<trivar::Error>(m, "Error", PyExc_ValueError).attr("__doc__") =
       "Bad input to trivar (a file, a parameter, a knot vector): the library's one-line message naming what and where.";
-  m.def("simd_level", [] { return std::string(trivar::simd_level_name(trivar::simd_level())); },
-        "The instruction set of the evaluation kernels chosen for this CPU.");
+  m.def(
+      "simd_level", [] { return std::string(trivar::simd_level_name(trivar::simd_level())); },
+      "The instruction set of the evaluation kernels chosen for this CPU.");
   bind_knot_vector(m);
   bind_tensor_splines(m);
   bind_constructors(m);

@@ -46,8 +46,8 @@ py::object static_result(const MultipatchSpace<D>& space, int components, const 
 template <int D>
 py::object poisson(const MultipatchSpace<D>& space, const PoissonProblem<D>& pb, const ExactSolution<D>& exact,
                    const std::string& solver, int threads) {
-  return static_result<D>(space, 1, exact, [&](LinearSolver& s) { return solve_poisson(space, pb, s, threads); }, solver,
-                          threads);
+  return static_result<D>(
+      space, 1, exact, [&](LinearSolver& s) { return solve_poisson(space, pb, s, threads); }, solver, threads);
 }
 
 template <int D>
@@ -75,7 +75,8 @@ py::object poisson_on_model(const VModel& model, int degree, int refine, const s
     auto s = make_solver(solver);
     r = solve_poisson(space, pb, *s, threads);
     for (int p = 0; p < space.num_patches(); ++p)
-      fields.push_back(solution_field(space.patches[static_cast<std::size_t>(p)], patch_coefs(space, p, r.coefs, 1), 1));
+      fields.push_back(
+          solution_field(space.patches[static_cast<std::size_t>(p)], patch_coefs(space, p, r.coefs, 1), 1));
   }
   return namespace_of(py::dict(py::arg("dofs") = r.dofs, py::arg("coefficients") = array_of(r.coefs),
                                py::arg("fields") = fields, py::arg("assembly_seconds") = r.assembly_seconds,
@@ -85,14 +86,16 @@ py::object poisson_on_model(const VModel& model, int degree, int refine, const s
 template <int D>
 py::object elasticity(const ElasticityBenchmark<D>& b, const std::string& solver, int threads) {
   const MultipatchSpace<D> space = single_patch_space(b.space);
-  return static_result<D>(space, D, b.exact,
-                          [&](LinearSolver& s) { return solve_elasticity(space, b.problem, s, threads); }, solver, threads);
+  return static_result<D>(
+      space, D, b.exact, [&](LinearSolver& s) { return solve_elasticity(space, b.problem, s, threads); }, solver,
+      threads);
 }
 
 py::object modes_result(const ModesResult& r, const std::vector<double>& exact) {
   py::dict d(py::arg("values") = array_of(r.values), py::arg("dofs") = r.dofs,
              py::arg("assembly_seconds") = r.assembly_seconds, py::arg("solve_seconds") = r.solve_seconds);
-  d["exact"] = exact.empty() ? py::object(py::none()) : py::object(py::array_t<double>(static_cast<py::ssize_t>(exact.size()), exact.data()));
+  d["exact"] = exact.empty() ? py::object(py::none())
+                             : py::object(py::array_t<double>(static_cast<py::ssize_t>(exact.size()), exact.data()));
   auto vectors = new_array({r.vectors.cols(), r.vectors.rows()});
   for (Eigen::Index c = 0; c < r.vectors.cols(); ++c)
     std::copy_n(r.vectors.col(c).data(), r.vectors.rows(), vectors.mutable_data() + c * r.vectors.rows());
@@ -105,7 +108,8 @@ template <int D>
 py::object elasticity_on(const TensorSpline<D>& geometry, const std::vector<std::pair<int, int>>& clamp,
                          const std::vector<double>& body_force, int degree, int refine, double youngs,
                          double poisson_ratio, const std::string& solver, int threads) {
-  require(static_cast<int>(body_force.size()) == D, "solve_elasticity_on: body_force needs " + std::to_string(D) + " values");
+  require(static_cast<int>(body_force.size()) == D,
+          "solve_elasticity_on: body_force needs " + std::to_string(D) + " values");
   require(!clamp.empty(), "solve_elasticity_on: static elasticity needs supports (clamp)");
   const MultipatchSpace<D> space = single_patch_space(make_tensor_space(geometry, degree, refine));
   ElasticityProblem<D> pb;
@@ -119,8 +123,8 @@ py::object elasticity_on(const TensorSpline<D>& geometry, const std::vector<std:
   }
   pb.displacement.push_back({faces, {}, nullptr});
   pb.body_force = [body_force](const double*, double* b) { std::copy(body_force.begin(), body_force.end(), b); };
-  return static_result<D>(space, D, nullptr, [&](LinearSolver& s) { return solve_elasticity(space, pb, s, threads); },
-                          solver, threads);
+  return static_result<D>(
+      space, D, nullptr, [&](LinearSolver& s) { return solve_elasticity(space, pb, s, threads); }, solver, threads);
 }
 
 // Adaptive refinement (solve, estimate, mark by Dorfler, refine) from a benchmark's tensor space on an LR, HB or
@@ -128,7 +132,8 @@ py::object elasticity_on(const TensorSpline<D>& geometry, const std::vector<std:
 template <int D>
 py::object adaptive(const PoissonBenchmark<D>& b, int steps, double beta, const std::string& space,
                     const std::string& solver, int threads) {
-  require(space == "lr" || space == "hb" || space == "thb", "solve_poisson_adaptive: space is lr, hb or thb, got " + space);
+  require(space == "lr" || space == "hb" || space == "thb",
+          "solve_poisson_adaptive: space is lr, hb or thb, got " + space);
   AdaptiveOptions o;
   o.steps = steps;
   o.beta = beta;
@@ -183,7 +188,8 @@ void bind_solve(py::module_& m) {
           const auto b = sine_box<2>(degree, refine);
           return poisson<2>(single_patch_space(b.space), b.problem, b.exact, solver, threads);
         }
-        require(problem == "l-shape", "solve_poisson: unknown problem '" + problem + "' (sine-cube, sine-square, l-shape)");
+        require(problem == "l-shape",
+                "solve_poisson: unknown problem '" + problem + "' (sine-cube, sine-square, l-shape)");
         const auto b = l_shape(degree, refine);
         return poisson<2>(single_patch_space(b.space), b.problem, b.exact, solver, threads);
       },
@@ -191,9 +197,10 @@ void bind_solve(py::module_& m) {
       py::arg("threads") = 0,
       "Poisson benchmark of `trivar solve poisson --problem`: returns dofs, l2_error, h1_error, coefficients,\n"
       "field (the solution as a spline over the parameters: field(u)), geometry, timings.");
-  m.def("solve_poisson_on", &poisson_on<3>, py::arg("geometry"), py::arg("degree") = 2, py::arg("refine") = 8,
-        py::arg("solver") = "cg", py::arg("threads") = 0,
-        "-lap u = 1 on a volume with u = 0 on its boundary (degree raised to `degree`, elements split `refine` times).");
+  m.def(
+      "solve_poisson_on", &poisson_on<3>, py::arg("geometry"), py::arg("degree") = 2, py::arg("refine") = 8,
+      py::arg("solver") = "cg", py::arg("threads") = 0,
+      "-lap u = 1 on a volume with u = 0 on its boundary (degree raised to `degree`, elements split `refine` times).");
   m.def("solve_poisson_on", &poisson_on<2>, py::arg("geometry"), py::arg("degree") = 2, py::arg("refine") = 8,
         py::arg("solver") = "cg", py::arg("threads") = 0, "The same on a planar surface (control dimension 2).");
   m.def("solve_poisson_on", &poisson_on_model, py::arg("model"), py::arg("degree") = 2, py::arg("refine") = 8,
@@ -213,9 +220,9 @@ void bind_solve(py::module_& m) {
       "Linear elasticity benchmark of `trivar solve elasticity --problem`: displacement field (dim = D) and\n"
       "errors against the exact solution.");
   m.def("solve_elasticity_on", &elasticity_on<3>, py::arg("geometry"),
-        py::arg("clamp") = std::vector<std::pair<int, int>>{{0, 0}}, py::arg("body_force") = std::vector<double>{0, 0, -1},
-        py::arg("degree") = 2, py::arg("refine") = 8, py::arg("youngs") = 1000.0, py::arg("poisson_ratio") = 0.3,
-        py::arg("solver") = "cg", py::arg("threads") = 0,
+        py::arg("clamp") = std::vector<std::pair<int, int>>{{0, 0}},
+        py::arg("body_force") = std::vector<double>{0, 0, -1}, py::arg("degree") = 2, py::arg("refine") = 8,
+        py::arg("youngs") = 1000.0, py::arg("poisson_ratio") = 0.3, py::arg("solver") = "cg", py::arg("threads") = 0,
         "Linear elasticity on a volume clamped on the parametric faces `clamp` [(direction, side), ...] (default\n"
         "u = 0) under a constant body force (default: unit along -z, as `trivar solve elasticity`).");
   m.def("solve_elasticity_on", &elasticity_on<2>, py::arg("geometry"),
@@ -226,8 +233,10 @@ void bind_solve(py::module_& m) {
       "solve_poisson_adaptive",
       [](const std::string& problem, int degree, int refine, int steps, double beta, const std::string& space,
          const std::string& solver, int threads) {
-        if (problem == "sine-cube") return adaptive<3>(sine_box<3>(degree, refine), steps, beta, space, solver, threads);
-        if (problem == "sine-square") return adaptive<2>(sine_box<2>(degree, refine), steps, beta, space, solver, threads);
+        if (problem == "sine-cube")
+          return adaptive<3>(sine_box<3>(degree, refine), steps, beta, space, solver, threads);
+        if (problem == "sine-square")
+          return adaptive<2>(sine_box<2>(degree, refine), steps, beta, space, solver, threads);
         require(problem == "l-shape",
                 "solve_poisson_adaptive: unknown problem '" + problem + "' (l-shape, sine-square, sine-cube)");
         return adaptive<2>(l_shape(degree, refine), steps, beta, space, solver, threads);

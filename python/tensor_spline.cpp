@@ -52,7 +52,8 @@ std::vector<double> storage_order(const Array& p, const Ints<D>& counts, int& di
       linear += i[k] * stride;
       stride *= counts[k];
     }
-    std::copy_n(p.data() + static_cast<std::size_t>(cpos) * dim, dim, out.data() + static_cast<std::size_t>(linear) * dim);
+    std::copy_n(p.data() + static_cast<std::size_t>(cpos) * dim, dim,
+                out.data() + static_cast<std::size_t>(linear) * dim);
     for (int k = D - 1; k >= 0 && ++i[k] == counts[k]; --k) i[k] = 0;
   }
   return out;
@@ -70,7 +71,8 @@ template <int D>
 TensorSpline<D> make(const std::vector<Array>& knots, const py::object& degrees, const Array& points,
                      const std::optional<Array>& weights) {
   require(knots.size() == D, [&] {
-    return std::string(kNames[D]) + ": expected " + std::to_string(D) + " knot vectors, got " + std::to_string(knots.size());
+    return std::string(kNames[D]) + ": expected " + std::to_string(D) + " knot vectors, got " +
+           std::to_string(knots.size());
   });
   const Ints<D> p = ints_of<D>(degrees, "degrees");
   std::array<KnotVector, D> kv;
@@ -83,7 +85,15 @@ TensorSpline<D> make(const std::vector<Array>& knots, const py::object& degrees,
   int dim = 0;
   const std::vector<double> pts = storage_order<D>(points, counts, dim);
   std::vector<double> w;
-  if (weights) w.assign(weights->data(), weights->data() + weights->size());
+  if (weights && weights->ndim() == D && D > 1) {
+    // Weights indexed like the control net, [i_0, ..., i_{D-1}]: reordered as the points are.
+    std::vector<py::ssize_t> shape(weights->shape(), weights->shape() + D);
+    shape.push_back(1);
+    int one = 0;
+    w = storage_order<D>(Array(weights->attr("reshape")(shape)), counts, one);
+  } else if (weights) {
+    w.assign(weights->data(), weights->data() + weights->size());
+  }
   return TensorSpline<D>::from_cartesian(std::move(kv), dim, pts, w);
 }
 
@@ -163,7 +173,8 @@ py::tuple invert(const TensorSpline<D>& s, const Array& x, double tolerance, int
       r[i] = res.residual;
     });
   }
-  if (single) return py::make_tuple(params.attr("reshape")(D), found.attr("__getitem__")(0), residual.attr("__getitem__")(0));
+  if (single)
+    return py::make_tuple(params.attr("reshape")(D), found.attr("__getitem__")(0), residual.attr("__getitem__")(0));
   return py::make_tuple(params, found, residual);
 }
 
@@ -193,12 +204,16 @@ void bind_jacobian_report(py::module_& m) {
       .def_readonly("invalid", &JacobianReport<D>::invalid, "Certified: det J <= 0 at `where`.")
       .def_readonly("min_lower_bound", &JacobianReport<D>::min_lower_bound, "Certified lower bound of min det J.")
       .def_readonly("min_value", &JacobianReport<D>::min_value, "Smallest det J value found.")
-      .def_property_readonly("where", [](const JacobianReport<D>& r) { return r.where; }, "Parameter of min_value.")
+      .def_property_readonly(
+          "where", [](const JacobianReport<D>& r) { return r.where; }, "Parameter of min_value.")
       .def_readonly("elements", &JacobianReport<D>::elements, "Bezier elements examined.")
       .def_readonly("subdivisions", &JacobianReport<D>::subdivisions, "Sub-boxes made by the branch and bound.")
       .def("__bool__", [](const JacobianReport<D>& r) { return r.valid; })
       .def("__repr__", [](const JacobianReport<D>& r) {
-        return std::string("<trivar.JacobianReport ") + (r.valid ? "valid" : r.invalid ? "invalid" : "undecided") +
+        return std::string("<trivar.JacobianReport ") +
+               (r.valid     ? "valid"
+                : r.invalid ? "invalid"
+                            : "undecided") +
                ", min det J in [" + std::to_string(r.min_lower_bound) + ", " + std::to_string(r.min_value) + "]>";
       });
 }
@@ -211,18 +226,24 @@ void bind_spline(py::module_& m, const char* doc) {
         py::arg("weights") = py::none(),
         "From knot vectors (one 1-D array per direction), degrees (an int or one per direction), control points of\n"
         "shape (n_0, ..., n_{D-1}, dim) or (N, dim) with the first direction fastest, and optional positive\n"
-        "weights (N,) in the same order (a NURBS). Raises trivar.Error on invalid knots, sizes or weights.")
-      .def_property_readonly("parametric_dim", [](const S&) { return D; }, "1 (curve), 2 (surface) or 3 (volume).")
+        "weights (n_0, ..., n_{D-1}) or (N,) in the same order (a NURBS). Raises trivar.Error on invalid knots, sizes "
+        "or weights.")
+      .def_property_readonly(
+          "parametric_dim", [](const S&) { return D; }, "1 (curve), 2 (surface) or 3 (volume).")
       .def_property_readonly("dim", &S::dim, "Control (model-space) dimension.")
       .def_property_readonly("rational", &S::is_rational, "True for a NURBS (weights stored).")
-      .def_property_readonly("degrees", [](const S& s) {
-        Ints<D> p;
-        for (int k = 0; k < D; ++k) p[k] = s.degree(k);
-        return p;
-      }, "Polynomial degree per direction.")
+      .def_property_readonly(
+          "degrees",
+          [](const S& s) {
+            Ints<D> p;
+            for (int k = 0; k < D; ++k) p[k] = s.degree(k);
+            return p;
+          },
+          "Polynomial degree per direction.")
       .def_property_readonly("counts", &S::counts, "Control points per direction.")
       .def_property_readonly("knots", &knot_list<D>, "One array of knots per direction.")
-      .def_property_readonly("domain", [](const S& s) { return box_array<D>(s.domain()); }, "(D, 2) bounds.")
+      .def_property_readonly(
+          "domain", [](const S& s) { return box_array<D>(s.domain()); }, "(D, 2) bounds.")
       .def_property_readonly(
           "control_points",
           [](const S& s) {
@@ -265,7 +286,8 @@ void bind_spline(py::module_& m, const char* doc) {
           "insert_knots",
           [](const S& s, int direction, const Array& knots) {
             require(direction >= 0 && direction < D, "insert_knots: direction must be in 0.." + std::to_string(D - 1));
-            return insert_knots<D>(s, direction, std::span<const double>(knots.data(), static_cast<std::size_t>(knots.size())));
+            return insert_knots<D>(s, direction,
+                                   std::span<const double>(knots.data(), static_cast<std::size_t>(knots.size())));
           },
           py::arg("direction"), py::arg("knots"), "The same geometry with the knots inserted (Boehm).")
       .def(

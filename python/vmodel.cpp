@@ -46,7 +46,7 @@ void set_attribute(VModel& m, const std::string& name, const std::optional<std::
   require(int(value.has_value()) + int(expression.has_value()) + int(field.has_value()) == 1,
           "set_attribute: give exactly one of value, expression or field");
   require(space == "model" || space == "parametric", "set_attribute: space is model or parametric, got " + space);
-  const Attribute a = value ? Attribute::constant(*value)
+  const Attribute a = value        ? Attribute::constant(*value)
                       : expression ? Attribute::expression(*expression, space == "model" ? Attribute::Space::model
                                                                                          : Attribute::Space::parametric)
                                    : Attribute::field(*field);
@@ -62,7 +62,8 @@ py::array attribute_values(const VModel& m, int cell, const std::string& name, c
   double* o = out.mutable_data();
   {
     py::gil_scoped_release release;
-    for (std::size_t i = 0; i < params.size(); ++i) a.eval(m.cell(cell).geometry(), params[i], o + i * static_cast<std::size_t>(a.components()));
+    for (std::size_t i = 0; i < params.size(); ++i)
+      a.eval(m.cell(cell).geometry(), params[i], o + i * static_cast<std::size_t>(a.components()));
   }
   if (single) return out.attr("reshape")(a.components());
   return out;
@@ -130,16 +131,18 @@ py::object slice(const VModel& m, double layer_thickness, const std::vector<doub
       const auto& f = layer.fractions.data();
       std::copy(f.begin(), f.end(), fractions.mutable_data() + k * static_cast<std::size_t>(H * W * C));
       if (dither != "none") {
-        const LabelImage l = am::dither(layer.fractions, {.method = dither == "ordered" ? am::DitherMethod::ordered
-                                                                                       : am::DitherMethod::error_diffusion});
+        const LabelImage l =
+            am::dither(layer.fractions,
+                       {.method = dither == "ordered" ? am::DitherMethod::ordered : am::DitherMethod::error_diffusion});
         std::copy(l.data().begin(), l.data().end(), labels.mutable_data() + k * static_cast<std::size_t>(H * W));
       }
     }
   }
   py::dict d(py::arg("z") = z, py::arg("cell") = cell, py::arg("fractions") = fractions,
-             py::arg("pixel_size") = py::make_tuple(g.dx, g.dy), py::arg("origin") = py::make_tuple(g.x0, g.y0), py::arg("inside_pixels") = summary.inside_pixels,
-             py::arg("full_solve_percent") = summary.full_solve_percent(), py::arg("max_residual") = summary.max_residual,
-             py::arg("seconds") = summary.seconds);
+             py::arg("pixel_size") = py::make_tuple(g.dx, g.dy), py::arg("origin") = py::make_tuple(g.x0, g.y0),
+             py::arg("inside_pixels") = summary.inside_pixels,
+             py::arg("full_solve_percent") = summary.full_solve_percent(),
+             py::arg("max_residual") = summary.max_residual, py::arg("seconds") = summary.seconds);
   if (dither != "none") d["labels"] = labels;
   return namespace_of(d);
 }
@@ -169,7 +172,8 @@ VModel trimmed_model(std::shared_ptr<const TrimmedSolid> solid) {
   std::vector<double> pts;
   for (int k = 0; k < 2; ++k)
     for (int j = 0; j < 2; ++j)
-      for (int i = 0; i < 2; ++i) pts.insert(pts.end(), {i ? b.hi[0] : b.lo[0], j ? b.hi[1] : b.lo[1], k ? b.hi[2] : b.lo[2]});
+      for (int i = 0; i < 2; ++i)
+        pts.insert(pts.end(), {i ? b.hi[0] : b.lo[0], j ? b.hi[1] : b.lo[1], k ? b.hi[2] : b.lo[2]});
   VModel m;
   m.add_cell(VCell(SplineVolume::from_cartesian(knots, 3, pts), std::move(solid)));
   m.glue();
@@ -186,46 +190,68 @@ void bind_vmodel(py::module_& m) {
            }),
            py::arg("cells") = std::vector<SplineVolume>{}, py::arg("glue") = true,
            "From volumes of control dimension 3, glued (shared faces found) unless glue=False.")
-      .def("add_cell", [](VModel& v, const SplineVolume& c) { return v.add_cell(VCell(c)); }, py::arg("volume"),
-           "Adds a cell (call glue() afterwards); returns its index.")
-      .def("glue", [](VModel& v, double relative_tolerance) { v.glue({.relative_tolerance = relative_tolerance}); },
-           py::arg("relative_tolerance") = 1e-7, "Builds the topology (shared V-surfaces, V-curves, V-points).")
+      .def(
+          "add_cell", [](VModel& v, const SplineVolume& c) { return v.add_cell(VCell(c)); }, py::arg("volume"),
+          "Adds a cell (call glue() afterwards); returns its index.")
+      .def(
+          "glue", [](VModel& v, double relative_tolerance) { v.glue({.relative_tolerance = relative_tolerance}); },
+          py::arg("relative_tolerance") = 1e-7, "Builds the topology (shared V-surfaces, V-curves, V-points).")
       .def_property_readonly("glued", &VModel::is_glued, "True when the topology is built.")
       .def_property_readonly("num_cells", &VModel::num_cells, "Number of cells.")
       .def("__len__", &VModel::num_cells)
       .def_property_readonly(
-          "cells", [](const VModel& v) {
+          "cells",
+          [](const VModel& v) {
             std::vector<SplineVolume> c;
             for (const VCell& cell : v.cells()) c.push_back(cell.geometry());
             return c;
-          }, "The cells' trivariates (copies).")
-      .def_property_readonly("trimmed", [](const VModel& v) { return has_trimmed_cells(v); }, "True when a cell is trimmed by a B-rep.")
-      .def_property_readonly("num_boundary_surfaces", [](const VModel& v) { return v.topology().num_boundary_surfaces(); }, "V-surfaces on the boundary.")
-      .def_property_readonly("num_shared_surfaces", [](const VModel& v) { return v.topology().num_shared_surfaces(); }, "V-surfaces shared by two cells.")
-      .def_property_readonly("num_curves", [](const VModel& v) { return v.topology().curves.size(); }, "V-curves (cell edges merged).")
-      .def_property_readonly("num_points", [](const VModel& v) { return v.topology().points.size(); }, "V-points (cell corners merged).")
-      .def("neighbours", [](const VModel& v, int cell) { return v.neighbours(cell); }, py::arg("cell"),
-           "Cells sharing a V-surface with `cell`.")
-      .def_property_readonly("bounding_box", [](const VModel& v) { return box_array<3>(v.bounding_box()); },
-                             "(3, 2) box of the control points.")
-      .def("volume", [](const VModel& v, int n) {
-        py::gil_scoped_release release;
-        return v.volume(n);
-      }, py::arg("n") = 0, "Volume (Gauss quadrature, exact for polynomial cells with n = 0).")
-      .def("mass", [](const VModel& v, const std::string& density, int n) {
-        py::gil_scoped_release release;
-        return v.mass(density, n);
-      }, py::arg("density"), py::arg("n") = 0, "Integral of the scalar attribute `density` over the model.")
+          },
+          "The cells' trivariates (copies).")
+      .def_property_readonly(
+          "trimmed", [](const VModel& v) { return has_trimmed_cells(v); }, "True when a cell is trimmed by a B-rep.")
+      .def_property_readonly(
+          "num_boundary_surfaces", [](const VModel& v) { return v.topology().num_boundary_surfaces(); },
+          "V-surfaces on the boundary.")
+      .def_property_readonly(
+          "num_shared_surfaces", [](const VModel& v) { return v.topology().num_shared_surfaces(); },
+          "V-surfaces shared by two cells.")
+      .def_property_readonly(
+          "num_curves", [](const VModel& v) { return v.topology().curves.size(); }, "V-curves (cell edges merged).")
+      .def_property_readonly(
+          "num_points", [](const VModel& v) { return v.topology().points.size(); }, "V-points (cell corners merged).")
+      .def(
+          "neighbours", [](const VModel& v, int cell) { return v.neighbours(cell); }, py::arg("cell"),
+          "Cells sharing a V-surface with `cell`.")
+      .def_property_readonly(
+          "bounding_box", [](const VModel& v) { return box_array<3>(v.bounding_box()); },
+          "(3, 2) box of the control points.")
+      .def(
+          "volume",
+          [](const VModel& v, int n) {
+            py::gil_scoped_release release;
+            return v.volume(n);
+          },
+          py::arg("n") = 0, "Volume (Gauss quadrature, exact for polynomial cells with n = 0).")
+      .def(
+          "mass",
+          [](const VModel& v, const std::string& density, int n) {
+            py::gil_scoped_release release;
+            return v.mass(density, n);
+          },
+          py::arg("density"), py::arg("n") = 0, "Integral of the scalar attribute `density` over the model.")
       .def("set_attribute", &set_attribute, py::arg("name"), py::arg("value") = py::none(),
            py::arg("expression") = py::none(), py::arg("field") = py::none(), py::arg("space") = "model",
            py::arg("cells") = py::none(),
            "Sets a constant (list of values), expression (one formula per component in x, y, z, or u, v, w\n"
            "with space='parametric') or field (a Volume over [0, 1]^3) attribute on the given cells (all).")
-      .def("attribute_names", [](const VModel& v, int cell) {
-        std::vector<std::string> names;
-        for (const auto& [name, a] : v.cell(cell).attributes()) names.push_back(name);
-        return names;
-      }, py::arg("cell") = 0)
+      .def(
+          "attribute_names",
+          [](const VModel& v, int cell) {
+            std::vector<std::string> names;
+            for (const auto& [name, a] : v.cell(cell).attributes()) names.push_back(name);
+            return names;
+          },
+          py::arg("cell") = 0)
       .def("attribute", &attribute_values, py::arg("cell"), py::arg("name"), py::arg("u"),
            "Attribute values (N, components) at cell parameters (N, 3).")
       .def_property(
@@ -257,24 +283,41 @@ void bind_vmodel(py::module_& m) {
            "z[k]; row 0 is the lowest y.")
       .def("__repr__", &repr);
 
-  m.def("box", [](const Eigen::Vector3d& size, const Eigen::Vector3d& origin) { return glued(make_box({size, origin})); },
-        py::arg("size") = Eigen::Vector3d::Ones(), py::arg("origin") = Eigen::Vector3d::Zero(),
-        "A one-cell V-model of the box [origin, origin + size].");
-  m.def("ball", [](double radius, const Eigen::Vector3d& center, double core) {
-    return glued(make_ball({radius, center, core}));
-  }, py::arg("radius") = 1.0, py::arg("center") = Eigen::Vector3d::Zero(), py::arg("core") = kDefaultCore,
-        "Ball of 7 non-singular cells with an exact spherical boundary (as `trivar make ball`).");
-  m.def("cylinder", [](double radius, double height, double core) { return glued(make_cylinder({radius, height, core})); },
-        py::arg("radius") = 1.0, py::arg("height") = 1.0, py::arg("core") = kDefaultCore,
-        "Solid cylinder about the z-axis, 5 cells, exact lateral surface.");
-  m.def("cone", [](double bottom_radius, double top_radius, double height, double core) {
-    return glued(make_cone({bottom_radius, top_radius, height, core}));
-  }, py::arg("bottom_radius") = 1.0, py::arg("top_radius") = 0.5, py::arg("height") = 1.0, py::arg("core") = kDefaultCore,
-        "Frustum about the z-axis, 5 cells.");
-  m.def("torus", [](double major_radius, double minor_radius, double core) {
-    return glued(make_torus({major_radius, minor_radius, core}));
-  }, py::arg("major_radius") = 2.0, py::arg("minor_radius") = 0.5, py::arg("core") = kDefaultCore,
-        "Ring torus about the z-axis, 5 cells of revolution.");
+  m.def(
+      "box",
+      [](const Eigen::Vector3d& size, const Eigen::Vector3d& origin) {
+        return glued(make_box({size, origin}));
+      },
+      py::arg("size") = Eigen::Vector3d::Ones(), py::arg("origin") = Eigen::Vector3d::Zero(),
+      "A one-cell V-model of the box [origin, origin + size].");
+  m.def(
+      "ball",
+      [](double radius, const Eigen::Vector3d& center, double core) {
+        return glued(make_ball({radius, center, core}));
+      },
+      py::arg("radius") = 1.0, py::arg("center") = Eigen::Vector3d::Zero(), py::arg("core") = kDefaultCore,
+      "Ball of 7 non-singular cells with an exact spherical boundary (as `trivar make ball`).");
+  m.def(
+      "cylinder",
+      [](double radius, double height, double core) {
+        return glued(make_cylinder({radius, height, core}));
+      },
+      py::arg("radius") = 1.0, py::arg("height") = 1.0, py::arg("core") = kDefaultCore,
+      "Solid cylinder about the z-axis, 5 cells, exact lateral surface.");
+  m.def(
+      "cone",
+      [](double bottom_radius, double top_radius, double height, double core) {
+        return glued(make_cone({bottom_radius, top_radius, height, core}));
+      },
+      py::arg("bottom_radius") = 1.0, py::arg("top_radius") = 0.5, py::arg("height") = 1.0,
+      py::arg("core") = kDefaultCore, "Frustum about the z-axis, 5 cells.");
+  m.def(
+      "torus",
+      [](double major_radius, double minor_radius, double core) {
+        return glued(make_torus({major_radius, minor_radius, core}));
+      },
+      py::arg("major_radius") = 2.0, py::arg("minor_radius") = 0.5, py::arg("core") = kDefaultCore,
+      "Ring torus about the z-axis, 5 cells of revolution.");
 }
 
 }  // namespace trivar::python

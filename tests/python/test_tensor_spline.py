@@ -79,6 +79,10 @@ def test_curve_and_surface(rng):
     uv = rng.uniform(0, 1, size=(100, 2))
     assert np.max(np.abs(s(uv) - tensor_eval(ks, [2, 4], flat, uv))) < 1e-12
     assert s.degrees == [2, 4] and s.counts == [len(ks[0]) - 3, len(ks[1]) - 5]
+    w = rng.uniform(0.5, 2.0, size=net.shape[:2])  # indexed [i, j] like the net
+    nurbs = trivar.Surface(ks, [2, 4], net, w)
+    assert np.allclose(nurbs.weights, w.T.ravel())
+    assert np.max(np.abs(nurbs(uv) - tensor_eval(ks, [2, 4], flat, uv, weights=w.T.ravel()))) < 1e-12
     assert s.parametric_dim == 2 and s.dim == 3 and not s.rational
     assert np.allclose(s.domain, [[0, 1], [0, 1]])
     assert "Surface" in repr(s) and "degrees (2, 4)" in repr(s)
