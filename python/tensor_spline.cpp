@@ -187,10 +187,11 @@ py::list knot_list(const TensorSpline<D>& s) {
 
 template <int D>
 std::string repr(const TensorSpline<D>& s) {
+  // Appended piece by piece: GCC 12 warns falsely (-Wrestrict, bug 105329) on "literal" + std::string here.
   std::string degrees, counts;
   for (int k = 0; k < D; ++k) {
-    degrees += (k ? ", " : "") + std::to_string(s.degree(k));
-    counts += (k ? ", " : "") + std::to_string(s.count(k));
+    degrees.append(k ? ", " : "").append(std::to_string(s.degree(k)));
+    counts.append(k ? ", " : "").append(std::to_string(s.count(k)));
   }
   return std::string("<trivar.") + kNames[D] + " degrees (" + degrees + "), control points (" + counts + "), dim " +
          std::to_string(s.dim()) + (s.is_rational() ? ", rational" : "") + ">";
