@@ -10,6 +10,7 @@
 #include "trivar/model/coons.hpp"
 #include "trivar/model/extrude.hpp"
 #include "trivar/model/loft.hpp"
+#include "trivar/model/metamorphosis.hpp"
 #include "trivar/model/revolve.hpp"
 #include "trivar/model/ruled.hpp"
 #include "trivar/model/sweep.hpp"
@@ -79,6 +80,9 @@ void bind_constructors(py::module_& m) {
         return coons_volume({faces[0], faces[1], faces[2], faces[3], faces[4], faces[5]}, tolerance);
       },
       py::arg("faces"), py::arg("tolerance") = 1e-9, "Trilinear Coons volume (Boolean sum) of six boundary surfaces.");
+  m.def("morph", &metamorphosis, py::arg("s0"), py::arg("s1"), py::arg("smoothness") = 0,
+        "Metamorphosis: the volume S0 + b(w) (S1 - S0) with the smoothstep blend b of order `smoothness` (0:\n"
+        "linear, as ruled; 1: 3w^2 - 2w^3), as `trivar make morph`.");
   m.def(
       "sweep",
       [](const SplineSurface& profile, const SplineCurve& path, int degree, int sections) {

@@ -191,6 +191,13 @@ def test_constructors_volumes():
     assert abs(trivar.loft(sections, degree=2).measure() - 5.0) < 1e-10
     path = trivar.block_curve(1, 1, [1.0]).transform(np.array([[0, 0, 0], [0, 0, 0], [1.0, 0, 0]]), np.zeros(3))
     assert abs(trivar.extrude_along(square, path).measure() - 2.0) < 1e-12
+    # The smoothstep morph between two parallel squares 2 apart: the same volume as the ruled one, and the
+    # section at w is at height 2 b(w), b(w) = 3 w^2 - 2 w^3.
+    morph = trivar.morph(square, top, smoothness=1)
+    assert abs(morph.measure() - 4.0) < 1e-12
+    w = np.linspace(0, 1, 11)
+    z = morph(np.column_stack([np.full(11, 0.3), np.full(11, 0.6), w]))[:, 2]
+    assert np.max(np.abs(z - 2 * (3 * w ** 2 - 2 * w ** 3))) < 1e-14 * 10
     swept, err = trivar.sweep(square, path)
     assert err < 1e-9 and abs(swept.measure() - 2.0) < 1e-9
     b = trivar.block([1, 1, 1], 1, [1.0, 1.0, 1.0])
