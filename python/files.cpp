@@ -4,6 +4,7 @@
 
 #include "bindings.hpp"
 #include "trivar/cad/step_import.hpp"
+#include "trivar/io/amf_writer.hpp"
 #include "trivar/io/json_format.hpp"
 #include "trivar/io/lr_format.hpp"
 #include "trivar/io/lr_g2_format.hpp"
@@ -12,6 +13,7 @@
 #include "trivar/io/spline_file.hpp"
 #include "trivar/io/step/step_file.hpp"
 #include "trivar/io/stl_writer.hpp"
+#include "trivar/io/threemf_writer.hpp"
 #include "trivar/io/vmodel_json.hpp"
 #include "trivar/io/vmodel_vtk.hpp"
 #include "trivar/model/model_tessellation.hpp"
@@ -151,6 +153,42 @@ void write_file(const std::string& path, const py::object& objects, double toler
   }
 }
 
+// A triangle mesh from arrays, by extension: .stl, or .3mf / .amf with materials and per-vertex fractions
+// (3MF composite materials; AMF vertex colours, or the composite of `formulas` in x, y, z).
+void write_mesh(const std::string& path, const Array& vertices,
+                const py::array_t<int, py::array::c_style | py::array::forcecast>& triangles,
+                const std::vector<std::string>& materials, const std::optional<Array>& fractions,
+                const std::vector<std::string>& formulas) {
+  require(vertices.ndim() == 2 && vertices.shape(1) == 3, "write_mesh: vertices must have shape (V, 3)");
+  require(triangles.ndim() == 2 && triangles.shape(1) == 3, "write_mesh: triangles must have shape (T, 3)");
+  TriangleMesh mesh;
+  mesh.vertices.resize(static_cast<std::size_t>(vertices.shape(0)));
+  mesh.triangles.resize(static_cast<std::size_t>(triangles.shape(0)));
+  std::copy_n(vertices.data(), vertices.size(), &mesh.vertices[0][0]);
+  std::copy_n(triangles.data(), triangles.size(), &mesh.triangles[0][0]);
+  const std::string ext = io::file_extension(path);
+  if (ext == ".stl") {
+    py::gil_scoped_release release;
+    io::write_stl(path, mesh);
+    return;
+  }
+  require(ext == ".3mf" || ext == ".amf", "write_mesh: a mesh is written as .stl, .3mf or .amf, not '" + ext + "'");
+  std::vector<Material> list;
+  for (std::size_t i = 0; i < materials.size(); ++i) {
+    // Display colours: grey levels from light to dark, as VModel.materials.
+    const auto c = static_cast<std::uint8_t>(230 - (200 * i) / std::max<std::size_t>(1, materials.size()));
+    list.push_back({materials[i], Rgba{c, c, c, 255}});
+  }
+  const MaterialTable table(std::move(list));
+  std::vector<double> f;
+  if (fractions) f.assign(fractions->data(), fractions->data() + fractions->size());
+  py::gil_scoped_release release;
+  if (ext == ".3mf")
+    io::write_3mf(path, mesh, table, f);
+  else
+    io::write_amf(path, mesh, table, {.base_material = 0, .formulas = formulas}, f);
+}
+
 }  // namespace
 
 ModelTessellation boundary_mesh(const VModel& m, double tolerance) {
@@ -166,6 +204,12 @@ void bind_files(py::module_& m) {
         "Writes by extension: splines to .json, .g2, .xml, .vtu, .stp; LR splines to .lr, .g2, .json, .vtu,\n"
         ".stp; a VModel to .json, .vtu or .stl (watertight boundary within `tolerance`). Nothing is written on\n"
         "error; existing files are replaced atomically.");
+  m.def("write_mesh", &write_mesh, py::arg("path"), py::arg("vertices"), py::arg("triangles"),
+        py::arg("materials") = std::vector<std::string>{"part"}, py::arg("fractions") = py::none(),
+        py::arg("formulas") = std::vector<std::string>{},
+        "Writes a triangle mesh (vertices (V, 3), triangles (T, 3), e.g. from VModel.tessellate) for printers by\n"
+        "extension: .stl; .3mf with per-vertex material fractions (V, materials) as composite materials; .amf\n"
+        "with vertex colours from the fractions, or a composite material of one formula in x, y, z per material.");
   m.def(
       "import_step",
       [](const std::string& path, double tolerance) {

@@ -111,3 +111,29 @@ def test_file_errors(tmp_path, volume):
         trivar.write(str(tmp_path / "x.json"), [1, 2])
     with pytest.raises(trivar.Error, match="STEP"):
         trivar.write(str(tmp_path / "mixed.json"), [volume, trivar.LRVolume(volume)])
+
+
+def test_graded_mesh_files(tmp_path):
+    import zipfile
+
+    ball = trivar.ball(radius=1.0)
+    ball.set_attribute("material", expression=["0.5 - z/2", "0.5 + z/2"])
+    t = ball.tessellate(tolerance=0.05)
+    f = np.vstack([ball.attribute(c, "material", t.params[t.cell == c]) for c in range(ball.num_cells)])
+    order = np.concatenate([np.nonzero(t.cell == c)[0] for c in range(ball.num_cells)])
+    fractions = np.empty_like(f)
+    fractions[order] = f
+    # The fractions at each vertex follow the formula of its z.
+    assert np.allclose(fractions[:, 1], 0.5 + t.vertices[:, 2] / 2, atol=1e-12)
+    trivar.write_mesh(str(tmp_path / "ball.3mf"), t.vertices, t.triangles, ["a", "b"], fractions)
+    with zipfile.ZipFile(tmp_path / "ball.3mf") as z:
+        model = z.read("3D/3dmodel.model").decode()
+    assert model.count("<vertex ") == len(t.vertices) and model.count("<triangle ") == len(t.triangles)
+    trivar.write_mesh(str(tmp_path / "ball.amf"), t.vertices, t.triangles, ["a", "b"], formulas=["0.5 - z/2", "0.5 + z/2"])
+    text = (tmp_path / "ball.amf").read_text()
+    assert text.count("<triangle>") == len(t.triangles) and "0.5 + z/2" in text
+    trivar.write_mesh(str(tmp_path / "ball.stl"), t.vertices, t.triangles)
+    assert (tmp_path / "ball.stl").stat().st_size == 84 + 50 * len(t.triangles)
+    with pytest.raises(trivar.Error):
+        trivar.write_mesh(str(tmp_path / "bad.3mf"), t.vertices, t.triangles, ["a", "b"], fractions[:-1])
+    assert not (tmp_path / "bad.3mf").exists()
