@@ -8,6 +8,7 @@ packages=(
   libeigen3-dev libcli11-dev nlohmann-json3-dev libpng-dev zlib1g-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3  # tests read output files back with its standard library (xml, zlib, struct, zipfile)
+  pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module `trivar` (python/) and its tests
   libsuitesparse-dev libspectra-dev libgmp-dev
   libxml2-dev  # G+Smo XML files
   clang-14 libclang-rt-14-dev libomp-14-dev

@@ -1,0 +1,115 @@
+"""Analysis: convergence rates from theory (L2 error O(h^(p+1)), H1 O(h^p)), the exact solutions evaluated
+through the returned fields, eigenvalues against pi^2 (i^2 + j^2 + k^2)."""
+import math
+
+import numpy as np
+
+import trivar
+
+
+def test_poisson_sine_cube_rates_and_field():
+    a = trivar.solve_poisson("sine-cube", degree=2, refine=4)
+    b = trivar.solve_poisson(problem="sine-cube", degree=2, refine=8)
+    assert b.dofs > a.dofs and len(b.coefficients) >= b.dofs
+    assert abs(math.log2(a.l2_error / b.l2_error) - 3) < 0.3
+    assert abs(math.log2(a.h1_error / b.h1_error) - 2) < 0.3
+    u = np.random.default_rng(5).uniform(0, 1, size=(200, 3))
+    x = b.geometry(u)
+    exact = np.prod(np.sin(math.pi * x), axis=1)
+    assert np.max(np.abs(b.field(u)[:, 0] - exact)) < 2e-3
+
+
+def test_poisson_on_a_user_volume_is_symmetric():
+    cube = trivar.block(1, 1, [1.0, 1.0, 1.0])
+    r = trivar.solve_poisson_on(cube, degree=2, refine=4)
+    assert r.l2_error is None and r.dofs == 4 ** 3  # degree 2, 4 elements: 6^3 functions, 4^3 inside
+    # -lap u = 1 on the unit cube, u = 0 on the boundary: symmetric about the centre, max there ~0.0562.
+    c = r.field(np.array([0.5, 0.5, 0.5]))[0]
+    assert abs(c - 0.05620) < 2e-3
+    assert abs(r.field(np.array([0.2, 0.3, 0.5]))[0] - r.field(np.array([0.8, 0.7, 0.5]))[0]) < 1e-8
+    square = trivar.block_surface(2, 2, [1.0, 1.0])
+    planar = trivar.Surface(square.knots, square.degrees, square.control_points[:, :2])
+    r2 = trivar.solve_poisson_on(planar, degree=2, refine=4)
+    assert abs(r2.field(np.array([0.5, 0.5]))[0] - 0.07367) < 2e-3
+
+
+def test_elasticity_lame_ring_displacement():
+    r = trivar.solve_elasticity("lame-ring", degree=2, refine=8)
+    assert r.l2_error < 1e-4 and r.field.dim == 2
+    # Lame: u_r = (1 + nu)/E ((1 - 2 nu) A r + B / r), A = p a^2 / (b^2 - a^2), B = p a^2 b^2 / (b^2 - a^2).
+    E, nu, p, a, b = 1000.0, 0.3, 1.0, 1.0, 2.0
+    A, B = p * a * a / (b * b - a * a), p * a * a * b * b / (b * b - a * a)
+    u = np.random.default_rng(6).uniform(0, 1, size=(100, 2))
+    x = r.geometry(u)
+    rad = np.linalg.norm(x, axis=1)
+    ur = (1 + nu) / E * ((1 - 2 * nu) * A * rad + B / rad)
+    disp = r.field(u)
+    assert np.max(np.abs(np.sum(disp * x, axis=1) / rad - ur)) < 1e-3 * np.max(ur)
+    assert trivar.solve_elasticity("lame-cylinder", degree=2, refine=2).l2_error is not None
+
+
+def test_laplace_and_elastic_modes():
+    r = trivar.solve_modes("cube-modes", degree=3, refine=4, modes=4)
+    pi2 = math.pi ** 2
+    assert np.allclose(r.values, [3 * pi2, 6 * pi2, 6 * pi2, 6 * pi2], rtol=1e-3)
+    assert np.allclose(r.exact, [3 * pi2, 6 * pi2, 6 * pi2, 6 * pi2])
+    assert r.vectors.shape[0] == 4
+    e = trivar.solve_modes("elastic-cube-modes", degree=2, refine=3, modes=3, youngs=1000.0, poisson_ratio=0.3)
+    assert np.allclose(e.values, e.exact, rtol=1e-2)
+    cube = trivar.block(1, 1, [1.0, 1.0, 1.0])
+    m = trivar.laplace_modes_on(cube, degree=3, refine=4, modes=1)
+    assert abs(m.values[0] - 3 * pi2) < 1e-3 * 3 * pi2
+
+
+def test_poisson_on_a_multipatch_model_matches_one_patch():
+    # The unit cube as two glued cells solves the same problem as one patch: equal values at equal points.
+    a = trivar.block(1, 1, [0.5, 1.0, 1.0])
+    model = trivar.VModel([a, a.transform(np.eye(3), [0.5, 0, 0])])
+    r = trivar.solve_poisson_on(model, degree=2, refine=4)
+    assert len(r.fields) == 2
+    # Cell 1 covers x in [0.5, 1]: its parameter (0, 0.5, 0.5) is the centre, where u ~ 0.0562.
+    assert abs(r.fields[1](np.array([0.0, 0.5, 0.5]))[0] - 0.05620) < 2e-3
+    # Continuity across the shared face, and the symmetry x -> 1 - x between the cells.
+    w = np.random.default_rng(8).uniform(0, 1, size=(50, 2))
+    left = r.fields[0](np.column_stack([np.ones(50), w]))
+    right = r.fields[1](np.column_stack([np.zeros(50), w]))
+    assert np.max(np.abs(left - right)) < 1e-12
+    p = np.random.default_rng(9).uniform(0, 1, size=(50, 3))
+    mirrored = np.column_stack([1 - p[:, 0], p[:, 1:]])
+    assert np.max(np.abs(r.fields[0](p) - r.fields[1](mirrored))) < 1e-8
+
+
+def test_elasticity_on_a_clamped_beam_against_timoshenko():
+    # A 10 x 1 x 1 beam clamped at both ends under its unit weight along -z: Euler-Bernoulli q L^4 / (384 E I)
+    # plus Timoshenko's shear term q L^2 / (8 k G A), k = 5/6.
+    E, nu, L = 1000.0, 0.3, 10.0
+    beam = trivar.block(1, [10, 1, 1], [L, 1.0, 1.0])
+    r = trivar.solve_elasticity_on(beam, clamp=[(0, 0), (0, 1)], degree=3, refine=1, youngs=E, poisson_ratio=nu)
+    bending = L ** 4 / (384 * E / 12)
+    shear = L ** 2 / (8 * 5 / 6 * E / (2 * (1 + nu)))
+    w = -r.field(np.array([0.5, 0.5, 0.5]))[2]
+    assert abs(w - (bending + shear)) < 0.05 * (bending + shear)
+    # Symmetric about the middle.
+    p = np.random.default_rng(3).uniform(0, 1, size=(20, 3))
+    q = np.column_stack([1 - p[:, 0], p[:, 1:]])
+    assert np.max(np.abs(r.field(p)[:, 2] - r.field(q)[:, 2])) < 1e-8
+    plate = trivar.block_surface(1, [4, 1], [4.0, 1.0])
+    planar = trivar.Surface(plate.knots, plate.degrees, plate.control_points[:, :2])
+    assert trivar.solve_elasticity_on(planar, degree=2, refine=2).field.dim == 2
+
+
+def test_adaptive_lr_beats_the_uniform_rate_on_the_l_shape():
+    a = trivar.solve_poisson_adaptive("l-shape", degree=2, refine=4, steps=8)
+    assert len(a.dofs) == 8 and np.all(np.diff(a.dofs) > 0)
+    # Uniform refinement is limited to H1 error ~ dofs^(-1/3) by the corner singularity; adaptive LR does
+    # better (optimal: dofs^(-p/2) = dofs^(-1)).
+    slope = np.log(a.h1_error[-1] / a.h1_error[0]) / np.log(a.dofs[-1] / a.dofs[0])
+    assert slope < -0.6
+    assert isinstance(a.geometry, trivar.LRSurface) and a.field.dim == 1
+    # The field is the exact solution up to the error: r^(2/3) sin(2 theta / 3) at a point.
+    uv = np.array([[0.3, 0.7]])
+    x = a.geometry(uv)[0]
+    r, t = np.hypot(*x), np.arctan2(x[1], x[0]) % (2 * np.pi)
+    assert abs(a.field(uv)[0, 0] - r ** (2 / 3) * np.sin(2 * t / 3)) < 0.02
+    thb = trivar.solve_poisson_adaptive("sine-square", degree=2, refine=4, steps=2, space="thb")
+    assert thb.geometry is None and thb.h1_error[1] < thb.h1_error[0]
