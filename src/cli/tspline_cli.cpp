@@ -11,6 +11,9 @@
 
 #include "cli.hpp"
 #include "trivar/core/error.hpp"
+#include "trivar/iga/refined_poisson.hpp"
+#include "trivar/iga/solver.hpp"
+#include "trivar/iga/tensor_space.hpp"
 #include "trivar/io/lr_format.hpp"
 #include "trivar/io/spline_file.hpp"
 #include "trivar/io/step/step_file.hpp"
@@ -253,6 +256,35 @@ void convert_tspline(const std::string& in, const std::string& out, const TSplin
     io::write_stl(out, t);
   }
   std::printf("%s: %zu triangles, chordal tolerance %s\n", out.c_str(), m.triangles.size(), fmt(tol).c_str());
+}
+
+void solve_tspline_poisson(const std::string& path, const std::string& solver, const std::string& vtu, int threads) {
+  const Loaded l = load(path);
+  const TSplineSurface& surf = *l.surface;
+  RefinedSpace<2> space;
+  try {
+    space = refined_space(surf, threads);
+  } catch (const Error& e) {
+    throw Error("solve: " + path + ": " + e.what());
+  }
+  PoissonProblem<2> pb;
+  pb.source = [](const double*) { return 1.0; };
+  pb.dirichlet.push_back({all_faces<2>(), {}, nullptr});
+  auto s = make_solver(solver);
+  const SolveResult r = solve_poisson(space, pb, *s, threads);
+  std::printf("T-spline space: %d blending functions, %d Bezier elements, degrees %d x %d\n", space.num_basis,
+              space.num_elements(), space.degrees[0], space.degrees[1]);
+  // The solution as the surface (x, y, u) on the same blending functions.
+  std::vector<LRBSpline<2>> basis(surf.basis().begin(), surf.basis().end());
+  for (std::size_t i = 0; i < basis.size(); ++i) basis[i].coef[2] = r.coefs[static_cast<Eigen::Index>(i)];
+  const TSplineSurface field(surf.degrees(), std::move(basis), threads);
+  const Box<2> dom = surf.domain();
+  double c[3];
+  field.eval({0.5 * (dom.lo[0] + dom.hi[0]), 0.5 * (dom.lo[1] + dom.hi[1])}, c);
+  std::printf("dofs %d, assembly %.3f s, solve %.3f s\n", r.dofs, r.assembly_seconds, r.solve_seconds);
+  std::printf("u at the domain centre: %s at (x, y) = (%s, %s)\n", fmt(c[2]).c_str(), fmt(c[0]).c_str(),
+              fmt(c[1]).c_str());
+  if (!vtu.empty()) io::write_t_spline_vtu(vtu, field);
 }
 
 }  // namespace trivar::cli
