@@ -19,7 +19,8 @@ struct TSplineConvertOptions {
   double tolerance = 0;                // tessellations: chordal tolerance; 0: 1e-3 of the bounding box diagonal
   bool triangles = false;              // .vtu: the tessellation instead of exact Bezier cells
 };
-// To .stp/.step, .tsm, .lr (when the T-spline is an LR spline), .json, .vtu, .stl, .obj.
+// To .stp/.step, .tsm, .lr (when the T-spline is an LR spline), .g2 (the LR spline, else per-element rational
+// Bezier patches), .json, .vtu, .stl, .obj.
 void convert_tspline(const std::string& in, const std::string& out, const TSplineConvertOptions& options);
 
 // Poisson -lap u = 1, u = 0 on the boundary, on a planar T-spline domain (its Bezier extraction as the analysis

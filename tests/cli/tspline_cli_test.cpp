@@ -2,7 +2,9 @@
 // JSON, .lr, meshes; malformed input fails with one line and writes nothing; `solve poisson` on a planar
 // T-spline written as .tsm and .stp.
 #include "cli_fixture.hpp"
+#include "trivar/io/g2_format.hpp"
 #include "trivar/io/tsm_format.hpp"
+#include "trivar/tspline/t_spline_surface.hpp"
 #include "trivar/tspline/local_knots.hpp"
 #include "trivar/tspline/t_mesh_builder.hpp"
 
@@ -90,6 +92,44 @@ TEST_F(TSplineCli, SolvePoissonOnAPlanarTSpline) {
   EXPECT_TRUE(fs::exists(work_ / "sol" / "solution.vtu"));
   fails("solve poisson patch.tsm");  // not planar
   fails("solve elasticity square.tsm");
+}
+
+// .g2: the Bezier patch (an LR spline) as a GoTools LRSplineSurface, which evaluates as the T-spline; a T-spline
+// whose blending functions do not sum to one (crossing T-junction extensions) as rational Bezier patches.
+TEST_F(TSplineCli, G2HoldsTheLRSplineOrBezierPatches) {
+  const auto p = numbers_after(ok("eval patch.tsm 0.3 0.6").out, "S");
+  const Result lr = ok("convert patch.tsm patch.g2");
+  EXPECT_NE(lr.out.find("LRSplineSurface"), std::string::npos) << lr.out;
+  const auto q = numbers_after(ok("eval patch.g2 0.3 0.6").out, "S");
+  ASSERT_EQ(q.size(), 3u);
+  for (std::size_t d = 0; d < 3; ++d) EXPECT_NEAR(p[d], q[d], 1e-13);
+
+  using namespace trivar;
+  std::vector<KnotSegment> g;
+  for (int i = 0; i <= 6; ++i) {
+    g.push_back({{0.0, double(i)}, {6.0, double(i)}});
+    g.push_back({{double(i), 0.0}, {double(i), i == 3 ? 3.0 : 6.0}});
+  }
+  g.push_back({{0.0, 3.5}, {2.0, 3.5}});
+  g.push_back({{3.5, 0.0}, {3.5, 6.0}});
+  const TSpline ts = t_spline_from_segments({3, 3}, g, [](double s, double t, int a, int b) {
+    return RationalPoint{{s + 0.2 * a, t - 0.1 * b, std::sin(s) * std::cos(t)}, 1.0};
+  });
+  io::write_tsm((work_ / "cross.tsm").string(), ts);
+  const Result bz = ok("convert cross.tsm cross.g2");
+  EXPECT_NE(bz.out.find("rational Bezier patches"), std::string::npos) << bz.out;
+  const TSplineSurface surf(ts);
+  const auto patches = io::read_g2((work_ / "cross.g2").string());
+  ASSERT_EQ(patches.size(), surf.elements().size());
+  for (std::size_t e = 0; e < patches.size(); ++e) {
+    const auto& patch = std::get<TensorSpline<2>>(patches[e]);
+    const Box<2>& b = surf.elements()[e];
+    const Param<2> u{b.lo[0] + 0.3 * b.extent(0), b.lo[1] + 0.6 * b.extent(1)};
+    double x[3], y[3];
+    surf.eval(u, x);
+    patch.eval(u, y);
+    for (int d = 0; d < 3; ++d) EXPECT_NEAR(x[d], y[d], 1e-12) << e;
+  }
 }
 
 }  // namespace
