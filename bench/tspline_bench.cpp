@@ -2,7 +2,8 @@
 // points per second (one thread) on a 200 x 200 grid over the domain, crack-free tessellation to 1e-3 of the
 // bounding box diagonal. The models are the directory in
 // TRIVAR_TSM_DIR (e.g. the Rhino exports published with the seed-002 prototype); the hand-written patch of the
-// tests is always measured.
+// tests is always measured. Analysis: the space of a planar analysis-suitable T-spline (n x n cells, one line
+// stopping halfway: a T-junction) from its Bezier extraction, and the Poisson solve on it (f = 1, u = 0).
 #include <benchmark/benchmark.h>
 
 #include <cstdlib>
@@ -10,7 +11,12 @@
 #include <fstream>
 #include <sstream>
 
+#include "trivar/iga/refined_poisson.hpp"
+#include "trivar/iga/solver.hpp"
+#include "trivar/iga/tensor_space.hpp"
 #include "trivar/io/tsm_format.hpp"
+#include "trivar/tspline/local_knots.hpp"
+#include "trivar/tspline/t_mesh_builder.hpp"
 #include "trivar/tspline/t_spline_surface.hpp"
 #include "trivar/tspline/t_spline_tessellation.hpp"
 
@@ -63,6 +69,48 @@ void tessellation(benchmark::State& state, const std::string& path) {
   }
   state.counters["triangles"] = static_cast<double>(triangles);
 }
+
+trivar::TSplineSurface t_junction_square(int n) {
+  using namespace trivar;
+  std::vector<KnotSegment> g;
+  for (int i = 0; i <= n; ++i) {
+    const double x = double(i) / n;
+    g.push_back({{0.0, x}, {1.0, x}});
+    g.push_back({{x, 0.0}, {x, i == n / 2 ? 0.5 : 1.0}});
+  }
+  TSpline ts = t_spline_from_segments({3, 3}, g, [](double, double, int, int) { return RationalPoint{}; });
+  const auto knots = local_knot_vectors(ts);
+  for (std::size_t i = 0; i < knots.size(); ++i)
+    for (std::size_t k = 0; k < 2; ++k) {
+      const auto& t = knots[i][k];
+      ts.pointset.points[static_cast<std::size_t>(ts.connect.nodes[i].point)].xyz[k] = (t[1] + t[2] + t[3]) / 3.0;
+    }
+  return TSplineSurface(ts, 1);
+}
+
+void analysis_space(benchmark::State& state) {
+  const trivar::TSplineSurface s = t_junction_square(static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    const auto space = trivar::refined_space(s, 1);
+    benchmark::DoNotOptimize(space.elements.data());
+  }
+  state.counters["functions"] = static_cast<double>(s.basis().size());
+}
+BENCHMARK(analysis_space)->Arg(16)->Arg(64)->Unit(benchmark::kMillisecond);
+
+void poisson_solve(benchmark::State& state) {
+  const trivar::TSplineSurface s = t_junction_square(static_cast<int>(state.range(0)));
+  const auto space = trivar::refined_space(s, 1);
+  trivar::PoissonProblem<2> pb;
+  pb.source = [](const double*) { return 1.0; };
+  pb.dirichlet.push_back({trivar::all_faces<2>(), {}, nullptr});
+  for (auto _ : state) {
+    auto solver = trivar::make_solver("cholmod");
+    const auto r = trivar::solve_poisson(space, pb, *solver, 1);
+    benchmark::DoNotOptimize(r.coefs.data());
+  }
+}
+BENCHMARK(poisson_solve)->Arg(16)->Arg(64)->Unit(benchmark::kMillisecond);
 
 int register_models() {
   std::vector<std::string> files{std::string(TRIVAR_SOURCE_DIR) + "/tests/data/tsm/bezier_patch.tsm"};

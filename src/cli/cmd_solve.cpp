@@ -12,6 +12,7 @@
 #include <variant>
 
 #include "cli.hpp"
+#include "tspline_cli.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/iga/benchmark_problems.hpp"
 #include "trivar/iga/adaptive_loop.hpp"
@@ -473,6 +474,14 @@ void run(const SolveArgs& a) {
   if (a.problem.empty()) {
     require(!a.study, "solve: --study needs a problem with an exact solution (--problem)");
     require(a.kind != "elasticity" || a.clamp != "none", "solve: static elasticity needs supports (--clamp)");
+    if (is_t_spline_file(a.file)) {
+      require(a.kind == "poisson", "solve: on a T-spline (" + a.file + ") only poisson is available");
+      std::unique_ptr<OutputFolder> out;
+      if (!a.out.empty()) out = prepare_out(a);
+      solve_tspline_poisson(a.file, a.solver, out ? out->path("solution.vtu").string() : "", a.threads);
+      if (out) out->commit();
+      return;
+    }
     const FileInput in = read_input(a);
     if (a.kind == "modes" && in.dimension() == 3)
       file_modes<3>(a, in);
@@ -531,7 +540,7 @@ void add_solve_command(CLI::App& app, Context& ctx) {
   cmd->add_option("KIND", a->kind, "poisson, elasticity or modes")
       ->required()
       ->check(CLI::IsMember({"poisson", "elasticity", "modes"}));
-  cmd->add_option("MODEL_OR_SPLINE", a->file, "Volume, planar surface or V-model (.json, .g2)");
+  cmd->add_option("MODEL_OR_SPLINE", a->file, "Volume, planar surface or V-model (.json, .g2), or planar T-spline (.tsm, .stp)");
   cmd->add_option(
       "--problem", a->problem,
       "Built-in problem: sine-cube, sine-square, l-shape (poisson), lame-cylinder, lame-ring, plate-hole (elasticity), "

@@ -11,7 +11,12 @@
 
 #include "cli.hpp"
 #include "trivar/core/error.hpp"
+#include "trivar/iga/refined_poisson.hpp"
+#include "trivar/iga/solver.hpp"
+#include "trivar/iga/tensor_space.hpp"
+#include "trivar/io/g2_format.hpp"
 #include "trivar/io/lr_format.hpp"
+#include "trivar/io/lr_g2_format.hpp"
 #include "trivar/io/spline_file.hpp"
 #include "trivar/io/step/step_file.hpp"
 #include "trivar/io/stl_writer.hpp"
@@ -20,6 +25,7 @@
 #include "trivar/io/tsm_format.hpp"
 #include "trivar/lr/knot_line_mesh.hpp"
 #include "trivar/model/triangle_mesh.hpp"
+#include "trivar/tspline/bezier_patches.hpp"
 #include "trivar/tspline/classification.hpp"
 #include "trivar/tspline/t_spline_surface.hpp"
 #include "trivar/tspline/t_spline_tessellation.hpp"
@@ -72,6 +78,23 @@ Loaded load(const std::string& path) {
   }
   if (!l.surface) l.surface = std::make_unique<TSplineSurface>(*l.layers);
   return l;
+}
+
+// The T-spline as an LR spline (its blending functions with gamma 1 over the mesh of their knot lines), when
+// the LR construction accepts them (they must sum to one); otherwise empty with the reason in `why`.
+std::optional<LRSpline<2>> lr_form(const TSplineSurface& surf, std::string& why) {
+  bool rational = false;
+  for (const auto& b : surf.basis()) rational = rational || b.coef[3] != 1.0;
+  std::vector<LRBSpline<2>> basis(surf.basis().begin(), surf.basis().end());
+  if (!rational)
+    for (auto& b : basis) b.coef.resize(3);
+  auto mesh = knot_line_mesh<2>(basis);
+  try {
+    return LRSpline<2>(surf.degrees(), 3, rational, std::move(basis), std::move(mesh));
+  } catch (const Error& e) {
+    why = e.what();
+    return std::nullopt;
+  }
 }
 
 }  // namespace
@@ -200,19 +223,26 @@ void convert_tspline(const std::string& in, const std::string& out, const TSplin
     return;
   }
   if (ext == ".lr") {
-    bool rational = false;
-    for (const auto& b : surf.basis()) rational = rational || b.coef[3] != 1.0;
-    std::vector<LRBSpline<2>> basis(surf.basis().begin(), surf.basis().end());
-    if (!rational)
-      for (auto& b : basis) b.coef.resize(3);
-    auto mesh = knot_line_mesh<2>(basis);
-    std::vector<AnyLRSpline> lr;
-    try {
-      lr.emplace_back(LRSpline<2>(surf.degrees(), 3, rational, std::move(basis), std::move(mesh)));
-    } catch (const Error& e) {
-      throw Error("convert: " + in + " is not an LR spline (" + std::string(e.what()) + ")");
+    std::string why;
+    auto lr = lr_form(surf, why);
+    require(lr.has_value(), "convert: " + in + " is not an LR spline (" + why + ")");
+    io::write_lr(out, {AnyLRSpline(std::move(*lr))});
+    return;
+  }
+  if (ext == ".g2") {
+    // GoTools reads both: the LR spline (exact, one object) when the blending functions form one, else one
+    // rational Bezier patch per element.
+    std::string why;
+    if (auto lr = lr_form(surf, why)) {
+      io::write_lr_g2(out, {AnyLRSpline(std::move(*lr))});
+      std::printf("%s: GoTools LRSplineSurface\n", out.c_str());
+      return;
     }
-    io::write_lr(out, lr);
+    std::vector<AnySpline> patches;
+    for (TensorSpline<2>& p : bezier_patches(surf)) patches.emplace_back(std::move(p));
+    io::write_g2(out, patches);
+    std::printf("%s: %zu rational Bezier patches (SplineSurface; not an LR spline: %s)\n", out.c_str(), patches.size(),
+                why.c_str());
     return;
   }
   if (ext == ".tsm") {
@@ -226,7 +256,7 @@ void convert_tspline(const std::string& in, const std::string& out, const TSplin
     return;
   }
   require(ext == ".vtu" || ext == ".stl" || ext == ".obj",
-          "convert: a T-spline converts to .stp/.step, .tsm, .lr, .json, .vtu, .stl or .obj, not '" + ext + "'");
+          "convert: a T-spline converts to .stp/.step, .tsm, .lr, .g2, .json, .vtu, .stl or .obj, not '" + ext + "'");
   if (ext == ".vtu" && !o.triangles) {
     io::write_t_spline_vtu(out, surf);
     return;
@@ -253,6 +283,35 @@ void convert_tspline(const std::string& in, const std::string& out, const TSplin
     io::write_stl(out, t);
   }
   std::printf("%s: %zu triangles, chordal tolerance %s\n", out.c_str(), m.triangles.size(), fmt(tol).c_str());
+}
+
+void solve_tspline_poisson(const std::string& path, const std::string& solver, const std::string& vtu, int threads) {
+  const Loaded l = load(path);
+  const TSplineSurface& surf = *l.surface;
+  RefinedSpace<2> space;
+  try {
+    space = refined_space(surf, threads);
+  } catch (const Error& e) {
+    throw Error("solve: " + path + ": " + e.what());
+  }
+  PoissonProblem<2> pb;
+  pb.source = [](const double*) { return 1.0; };
+  pb.dirichlet.push_back({all_faces<2>(), {}, nullptr});
+  auto s = make_solver(solver);
+  const SolveResult r = solve_poisson(space, pb, *s, threads);
+  std::printf("T-spline space: %d blending functions, %d Bezier elements, degrees %d x %d\n", space.num_basis,
+              space.num_elements(), space.degrees[0], space.degrees[1]);
+  // The solution as the surface (x, y, u) on the same blending functions.
+  std::vector<LRBSpline<2>> basis(surf.basis().begin(), surf.basis().end());
+  for (std::size_t i = 0; i < basis.size(); ++i) basis[i].coef[2] = r.coefs[static_cast<Eigen::Index>(i)];
+  const TSplineSurface field(surf.degrees(), std::move(basis), threads);
+  const Box<2> dom = surf.domain();
+  double c[3];
+  field.eval({0.5 * (dom.lo[0] + dom.hi[0]), 0.5 * (dom.lo[1] + dom.hi[1])}, c);
+  std::printf("dofs %d, assembly %.3f s, solve %.3f s\n", r.dofs, r.assembly_seconds, r.solve_seconds);
+  std::printf("u at the domain centre: %s at (x, y) = (%s, %s)\n", fmt(c[2]).c_str(), fmt(c[0]).c_str(),
+              fmt(c[1]).c_str());
+  if (!vtu.empty()) io::write_t_spline_vtu(vtu, field);
 }
 
 }  // namespace trivar::cli

@@ -1,7 +1,7 @@
 #pragma once
 // The T-spline side of `trivar info|eval|convert`: Rhino .tsm files, STEP files holding T-splines (the
 // seed-002 T_SPLINE_SURFACE entities or a Part 42 locally refined surface of T-spline type) and trivar's
-// T-spline JSON.
+// T-spline JSON; `trivar solve poisson` on a planar T-spline.
 #include <string>
 #include <vector>
 
@@ -19,7 +19,12 @@ struct TSplineConvertOptions {
   double tolerance = 0;                // tessellations: chordal tolerance; 0: 1e-3 of the bounding box diagonal
   bool triangles = false;              // .vtu: the tessellation instead of exact Bezier cells
 };
-// To .stp/.step, .tsm, .lr (when the T-spline is an LR spline), .json, .vtu, .stl, .obj.
+// To .stp/.step, .tsm, .lr (when the T-spline is an LR spline), .g2 (the LR spline, else per-element rational
+// Bezier patches), .json, .vtu, .stl, .obj.
 void convert_tspline(const std::string& in, const std::string& out, const TSplineConvertOptions& options);
+
+// Poisson -lap u = 1, u = 0 on the boundary, on a planar T-spline domain (its Bezier extraction as the analysis
+// space): prints the space and the solve; with `vtu` non-empty writes the solution as a surface (x, y, u).
+void solve_tspline_poisson(const std::string& path, const std::string& solver, const std::string& vtu, int threads);
 
 }  // namespace trivar::cli

@@ -1,6 +1,12 @@
 // `trivar info|eval|convert` on T-splines: the hand-written Bezier patch in TSM, converted to both STEP forms,
-// JSON, .lr, meshes; malformed input fails with one line and writes nothing.
+// JSON, .lr, meshes; malformed input fails with one line and writes nothing; `solve poisson` on a planar
+// T-spline written as .tsm and .stp.
 #include "cli_fixture.hpp"
+#include "trivar/io/g2_format.hpp"
+#include "trivar/io/tsm_format.hpp"
+#include "trivar/tspline/t_spline_surface.hpp"
+#include "trivar/tspline/local_knots.hpp"
+#include "trivar/tspline/t_mesh_builder.hpp"
 
 namespace {
 
@@ -47,6 +53,83 @@ TEST_F(TSplineCli, MalformedTsmFailsWithOneLine) {
   EXPECT_FALSE(fs::exists(work_ / "bad.stp"));
   fails("eval patch.tsm 2 0.5");  // outside the domain
   fails("convert patch.tsm patch.png");
+}
+
+// The unit square as an analysis-suitable bicubic T-spline (8 x 8 cells, the line s = 1/2 stopping at t = 1/2),
+// points at the Greville points (the identity map).
+trivar::TSpline unit_square_t_spline() {
+  using namespace trivar;
+  std::vector<KnotSegment> g;
+  for (int i = 0; i <= 8; ++i) {
+    const double x = i / 8.0;
+    g.push_back({{0.0, x}, {1.0, x}});
+    g.push_back({{x, 0.0}, {x, i == 4 ? 0.5 : 1.0}});
+  }
+  TSpline ts = t_spline_from_segments({3, 3}, g, [](double, double, int, int) { return RationalPoint{}; });
+  const auto knots = local_knot_vectors(ts);
+  for (std::size_t i = 0; i < knots.size(); ++i)
+    for (std::size_t k = 0; k < 2; ++k) {
+      const auto& t = knots[i][k];
+      ts.pointset.points[static_cast<std::size_t>(ts.connect.nodes[i].point)].xyz[k] = (t[1] + t[2] + t[3]) / 3.0;
+    }
+  return ts;
+}
+
+// -lap u = 1 on the unit square, u = 0 on the boundary: u(1/2, 1/2) = 0.0736713532814 (the Fourier series);
+// 116 blending functions: the 11 x 11 of the tensor mesh without the 5 of the missing half line (measured
+// 0.0736659 at the centre).
+TEST_F(TSplineCli, SolvePoissonOnAPlanarTSpline) {
+  trivar::io::write_tsm((work_ / "square.tsm").string(), unit_square_t_spline());
+  ok("convert square.tsm square.stp");
+  for (const char* f : {"square.tsm", "square.stp"}) {
+    const Result r = ok(std::string("solve poisson ") + f + " --solver cholmod");
+    EXPECT_NE(r.out.find("T-spline space: 116 blending functions"), std::string::npos) << r.out;
+    const auto u = numbers_after(r.out, "u at the domain centre");
+    ASSERT_FALSE(u.empty()) << r.out;
+    EXPECT_NEAR(u[0], 0.0736713532814, 1e-5) << f;
+  }
+  ok("solve poisson square.tsm --out sol");
+  EXPECT_TRUE(fs::exists(work_ / "sol" / "solution.vtu"));
+  fails("solve poisson patch.tsm");  // not planar
+  fails("solve elasticity square.tsm");
+}
+
+// .g2: the Bezier patch (an LR spline) as a GoTools LRSplineSurface, which evaluates as the T-spline; a T-spline
+// whose blending functions do not sum to one (crossing T-junction extensions) as rational Bezier patches.
+TEST_F(TSplineCli, G2HoldsTheLRSplineOrBezierPatches) {
+  const auto p = numbers_after(ok("eval patch.tsm 0.3 0.6").out, "S");
+  const Result lr = ok("convert patch.tsm patch.g2");
+  EXPECT_NE(lr.out.find("LRSplineSurface"), std::string::npos) << lr.out;
+  const auto q = numbers_after(ok("eval patch.g2 0.3 0.6").out, "S");
+  ASSERT_EQ(q.size(), 3u);
+  for (std::size_t d = 0; d < 3; ++d) EXPECT_NEAR(p[d], q[d], 1e-13);
+
+  using namespace trivar;
+  std::vector<KnotSegment> g;
+  for (int i = 0; i <= 6; ++i) {
+    g.push_back({{0.0, double(i)}, {6.0, double(i)}});
+    g.push_back({{double(i), 0.0}, {double(i), i == 3 ? 3.0 : 6.0}});
+  }
+  g.push_back({{0.0, 3.5}, {2.0, 3.5}});
+  g.push_back({{3.5, 0.0}, {3.5, 6.0}});
+  const TSpline ts = t_spline_from_segments({3, 3}, g, [](double s, double t, int a, int b) {
+    return RationalPoint{{s + 0.2 * a, t - 0.1 * b, std::sin(s) * std::cos(t)}, 1.0};
+  });
+  io::write_tsm((work_ / "cross.tsm").string(), ts);
+  const Result bz = ok("convert cross.tsm cross.g2");
+  EXPECT_NE(bz.out.find("rational Bezier patches"), std::string::npos) << bz.out;
+  const TSplineSurface surf(ts);
+  const auto patches = io::read_g2((work_ / "cross.g2").string());
+  ASSERT_EQ(patches.size(), surf.elements().size());
+  for (std::size_t e = 0; e < patches.size(); ++e) {
+    const auto& patch = std::get<TensorSpline<2>>(patches[e]);
+    const Box<2>& b = surf.elements()[e];
+    const Param<2> u{b.lo[0] + 0.3 * b.extent(0), b.lo[1] + 0.6 * b.extent(1)};
+    double x[3], y[3];
+    surf.eval(u, x);
+    patch.eval(u, y);
+    for (int d = 0; d < 3; ++d) EXPECT_NEAR(x[d], y[d], 1e-12) << e;
+  }
 }
 
 }  // namespace

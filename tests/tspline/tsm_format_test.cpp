@@ -87,6 +87,67 @@ void expect_error(const std::string& text, const std::string& fragment) {
   }
 }
 
+// Three quadrilaterals around vertex 0 (a cube corner): the face angles there sum to 270 degrees, a star point.
+// Vertices 1, 3, 5 lie between two faces on the boundary (180 degrees), 2, 4, 6 are corners (90).
+TEST(Tsm, StarPointsAreNamedAndRefused) {
+  const std::string text = R"(#TS0200
+degree 3
+force-bezier-end-conditions 0
+f 0 0
+f 4 0
+f 8 0
+e 0 1
+e 3 1
+e 7 1
+e 1 1
+e 2 1
+e 5 1
+e 6 1
+e 9 1
+e 10 1
+v 0 EAST
+v 1 EAST
+v 2 EAST
+v 5 EAST
+v 6 EAST
+v 9 EAST
+v 10 EAST
+l 3 1 11 0 0 0 0
+l 0 2 12 1 0 3 0
+l 1 3 13 2 0 4 0
+l 2 0 4 3 0 1 0
+l 7 5 3 0 1 1 0
+l 4 6 14 3 1 5 0
+l 5 7 15 4 1 6 0
+l 6 4 8 5 1 2 0
+l 11 9 7 0 2 2 0
+l 8 10 16 5 2 7 0
+l 9 11 17 6 2 8 0
+l 10 8 0 1 2 0 0
+l 13 17 1 2 -1 3 2
+l 14 12 2 3 -1 4 1
+l 15 13 5 4 -1 5 2
+l 16 14 6 5 -1 6 1
+l 17 15 9 6 -1 7 2
+l 12 16 10 1 -1 8 1
+0m gvp 0
+0m gvp 1
+0m gvp 2
+0m gvp 3
+0m gvp 4
+0m gvp 5
+0m gvp 6
+0g 0 0 0 1
+0g 1 0 0 1
+0g 1 1 0 1
+0g 0 1 0 1
+0g 0 1 1 1
+0g 0 0 1 1
+0g 1 0 1 1
+)";
+  expect_error(text, "1 star point (extraordinary vertices: vertex 0 (270 degrees))");
+}
+
 TEST(Tsm, MalformedFilesGiveOneLineErrors) {
   const std::string p = patch_text();
   expect_error(replaced(p, "#TS0200", "#TS0100"), "#TS0200");

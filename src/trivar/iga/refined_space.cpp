@@ -21,6 +21,32 @@ void check_geometry(bool rational, int dim, const char* kind) {
   });
 }
 
+// Functions non-zero on a side: a Bernstein coefficient of the side's layer is non-zero on an element there.
+// Truncation writes exact zeros, and the blossoms of B-splines vanishing on a side are zero up to rounding, so
+// coefficients below 1e-14 (the rows are O(1): THB rows and those of T-splines that are a partition of unity
+// sum to one) count as zero.
+template <int D>
+void side_functions_from_elements(RefinedSpace<D>& s) {
+  for (int dir = 0; dir < D; ++dir)
+    for (int side = 0; side < 2; ++side) {
+      std::vector<char> on(static_cast<std::size_t>(s.num_basis), 0);
+      const double end = side == 0 ? s.domain.lo[dir] : s.domain.hi[dir];
+      for (const RefinedElement<D>& el : s.elements) {
+        if ((side == 0 ? el.box.lo[dir] : el.box.hi[dir]) != end) continue;
+        for (Eigen::Index j = 0; j < el.C.cols(); ++j) {
+          int a = static_cast<int>(j);
+          for (int k = 0; k < dir; ++k) a /= s.degrees[k] + 1;
+          if (a % (s.degrees[dir] + 1) != (side == 0 ? 0 : s.degrees[dir])) continue;
+          for (Eigen::Index r = 0; r < el.C.rows(); ++r)
+            if (std::abs(el.C(r, j)) > 1e-14) on[static_cast<std::size_t>(el.ids[static_cast<std::size_t>(r)])] = 1;
+        }
+      }
+      auto& ids = s.face_basis[static_cast<std::size_t>(2 * dir + side)];
+      for (int i = 0; i < s.num_basis; ++i)
+        if (on[static_cast<std::size_t>(i)]) ids.push_back(i);
+    }
+}
+
 }  // namespace
 
 template <int D>
@@ -73,30 +99,53 @@ RefinedSpace<D> refined_space(const HierarchicalSpline<D>& g, int threads) {
     HierarchicalElement<D> el = h.element_operator(static_cast<int>(e));
     s.elements[static_cast<std::size_t>(e)] = {std::move(el.ids), std::move(el.C), el.box};
   });
-  // Functions non-zero on a side: a Bernstein coefficient of the side's layer is non-zero on an element there.
-  // Truncation writes exact zeros, and the blossoms of B-splines vanishing on a side are zero up to rounding, so
-  // coefficients below 1e-14 (the rows are O(1): THB rows sum to one) count as zero.
-  for (int dir = 0; dir < D; ++dir)
-    for (int side = 0; side < 2; ++side) {
-      std::vector<char> on(static_cast<std::size_t>(s.num_basis), 0);
-      const double end = side == 0 ? s.domain.lo[dir] : s.domain.hi[dir];
-      for (const RefinedElement<D>& el : s.elements) {
-        if ((side == 0 ? el.box.lo[dir] : el.box.hi[dir]) != end) continue;
-        for (Eigen::Index j = 0; j < el.C.cols(); ++j) {
-          int a = static_cast<int>(j);
-          for (int k = 0; k < dir; ++k) a /= s.degrees[k] + 1;
-          if (a % (s.degrees[dir] + 1) != (side == 0 ? 0 : s.degrees[dir])) continue;
-          for (Eigen::Index r = 0; r < el.C.rows(); ++r)
-            if (std::abs(el.C(r, j)) > 1e-14) on[static_cast<std::size_t>(el.ids[static_cast<std::size_t>(r)])] = 1;
-        }
-      }
-      auto& ids = s.face_basis[static_cast<std::size_t>(2 * dir + side)];
-      for (int i = 0; i < s.num_basis; ++i)
-        if (on[static_cast<std::size_t>(i)]) ids.push_back(i);
-    }
+  side_functions_from_elements(s);
   const HierarchicalEvaluator<D>* locator = &g.evaluator();
   const HierarchicalSpace<D>* space = &h;
   s.locate = [locator, space](const Param<D>& u) { return locator->find_element(*space, u); };
+  return s;
+}
+
+RefinedSpace<2> refined_space(const TSplineSurface& g, int threads) {
+  const PartitionOfUnity& pu = g.partition_of_unity();
+  require(pu.max_defect <= 1e-12, [&] {
+    return "iga: the T-spline's blending functions do not sum to one (between " + std::to_string(pu.min_sum) + " and " +
+           std::to_string(pu.max_sum) + "): analysis needs a standard T-spline (e.g. analysis-suitable)";
+  });
+  RefinedSpace<2> s;
+  s.degrees = g.degrees();
+  s.domain = g.domain();
+  s.num_basis = static_cast<int>(g.basis().size());
+  s.control.resize(static_cast<std::size_t>(s.num_basis) * 2);
+  double size = 0;
+  for (const LRBSpline<2>& b : g.basis()) size = std::max({size, std::abs(b.coef[0]), std::abs(b.coef[1])});
+  for (int i = 0; i < s.num_basis; ++i) {
+    const LRBSpline<2>& b = g.basis()[static_cast<std::size_t>(i)];
+    require(b.coef[3] == 1.0, [&] {
+      return "iga: T-spline point " + std::to_string(i) + " has weight " + std::to_string(b.coef[3]) +
+             " (analysis needs the polynomial T-spline, all weights 1)";
+    });
+    require(std::abs(b.coef[2]) <= 1e-12 * std::max(size, 1.0), [&] {
+      return "iga: T-spline point " + std::to_string(i) + " has z = " + std::to_string(b.coef[2]) +
+             " (analysis needs a planar T-spline in the plane z = 0)";
+    });
+    std::copy_n(b.coef.data(), 2, s.control.data() + static_cast<std::ptrdiff_t>(i) * 2);
+  }
+  double area = 0;
+  for (const Box<2>& e : g.elements()) area += e.extent(0) * e.extent(1);
+  const double box = s.domain.extent(0) * s.domain.extent(1);
+  require(std::abs(area - box) <= 1e-12 * box,
+          "iga: the T-faces do not fill the domain rectangle (analysis on T-splines needs a rectangular domain)");
+  s.elements.resize(g.elements().size());
+  parallel_for(static_cast<std::ptrdiff_t>(s.elements.size()), threads, [&](std::ptrdiff_t e) {
+    RefinedElement<2>& el = s.elements[static_cast<std::size_t>(e)];
+    const auto ids = g.element_supports()[static_cast<int>(e)];
+    el.ids.assign(ids.begin(), ids.end());
+    el.box = g.elements()[static_cast<std::size_t>(e)];
+    el.C = extraction_operator<2>(g.degrees(), g.basis(), el.ids, el.box);
+  });
+  side_functions_from_elements(s);
+  s.locate = [&g](const Param<2>& u) { return g.locate(u); };
   return s;
 }
 

@@ -15,6 +15,7 @@
 
 #include "trivar/hier/hierarchical_spline.hpp"
 #include "trivar/lr/lr_spline.hpp"
+#include "trivar/tspline/t_spline_surface.hpp"
 
 namespace trivar {
 
@@ -46,6 +47,13 @@ template <int D>
 RefinedSpace<D> refined_space(const LRSpline<D>& geometry, int threads = 0);
 template <int D>
 RefinedSpace<D> refined_space(const HierarchicalSpline<D>& geometry, int threads = 0);
+// The analysis space of a planar T-spline: its blending functions on its Bezier elements (the same extraction
+// operators the evaluator uses), geometry (x, y) from the T-pointset. The analysis is the polynomial one, so the
+// blending functions must sum to one (standard: every analysis-suitable T-spline is) with all weights 1, the
+// points must lie in the plane z = 0 and the T-faces must fill the domain rectangle (sides of the domain are
+// the boundary of the analysis). Throws trivar::Error naming the violated condition. The surface must outlive
+// the space (its locator).
+RefinedSpace<2> refined_space(const TSplineSurface& geometry, int threads = 0);
 
 // The active functions and the geometry at parameter u of an element (u inside its box, boundary included).
 template <int D>

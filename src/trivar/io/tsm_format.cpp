@@ -197,6 +197,37 @@ TsmModel Reader::build() {
     } while (l != l0);
     if (corners != 4) fail(r.line, "face " + std::to_string(f) + " is not rectangular (" + std::to_string(corners) + " corners)");
   }
+  // Star points: the face angles at a vertex (90 degrees per corner flag step) sum to 360 inside the surface and
+  // to at most 270 on its boundary (outside links and holes, whose face records are deleted); any other sum is
+  // an extraordinary vertex, which no global (s, t) parametrisation has. All are named at once.
+  {
+    std::vector<int> angle(static_cast<std::size_t>(nv), 0);
+    std::vector<char> boundary(static_cast<std::size_t>(nv), 0);
+    for (int i = 0; i < nl; ++i) {
+      if (!links[static_cast<std::size_t>(i)]) continue;
+      const RawLink& k = *links[static_cast<std::size_t>(i)];
+      if (k.face >= 0 && !loops[static_cast<std::size_t>(k.face)].empty())
+        angle[static_cast<std::size_t>(k.vertex)] += 90 * (k.flag + 1);
+      else
+        boundary[static_cast<std::size_t>(k.vertex)] = 1;
+    }
+    std::string stars;
+    int first = -1;
+    for (int v = 0; v < nv; ++v) {
+      const int a = angle[static_cast<std::size_t>(v)];
+      const bool b = boundary[static_cast<std::size_t>(v)] != 0;
+      if (a == 0 || (b ? a <= 270 : a == 360)) continue;
+      if (first < 0) first = v;
+      if (++rep.star_points <= 5)
+        stars += (stars.empty() ? "vertex " : ", vertex ") + std::to_string(v) + " (" + std::to_string(a) + " degrees" +
+                 (b ? ", on the boundary)" : ")");
+    }
+    if (first >= 0)
+      fail(V[static_cast<std::size_t>(first)].line,
+           std::to_string(rep.star_points) + " star point" + (rep.star_points > 1 ? "s" : "") + " (extraordinary vertices: " +
+               stars + (rep.star_points > 5 ? ", ..." : "") +
+               "): a T-spline with star points has no global (s, t) parametrisation; not supported");
+  }
   // Link directions: turn left at every corner; opposite links point the other way.
   std::vector<int> dir(static_cast<std::size_t>(nl), -1);
   std::vector<int> stack;

@@ -4,6 +4,7 @@
 #include <map>
 
 #include "trivar/core/error.hpp"
+#include "trivar/spline/basis.hpp"
 
 namespace trivar {
 
@@ -93,41 +94,63 @@ TImage t_image_from_segments(std::span<const KnotSegment> segments) {
 
 TSpline t_spline_from_segments(const Ints<2>& degrees, std::span<const KnotSegment> segments,
                                const std::function<RationalPoint(double, double, int, int)>& point) {
-  require(degrees[0] % 2 == 1 && degrees[1] % 2 == 1, "T-mesh: vertex-anchored nodes need odd degrees");
+  for (int k = 0; k < 2; ++k)
+    require(degrees[k] >= 1 && degrees[k] <= kMaxDegree, "T-mesh: degree " + std::to_string(degrees[k]) + " out of range");
   TSpline ts;
   ts.degrees = degrees;
   ts.image = t_image_from_segments(segments);
   const Box<2> dom = ts.image.domain();
-  const std::array<int, 2> layers{(degrees[0] - 1) / 2, (degrees[1] - 1) / 2};
-  // Per vertex a block of nodes: offsets (a, b) inward from the boundary sides the vertex lies on.
-  std::map<std::array<int, 3>, int> node_at;  // (vertex, a, b) -> node
+  // Candidate anchors: vertices, edges (their forward link), faces, each a box. Per direction k the anchor
+  // holds nodes when its width fits the parity (odd: zero width, with (p - 1) / 2 more layers on a boundary
+  // line; even: positive width, or zero width on a boundary line with p / 2 layers of that end's repeated
+  // knots); the layers step inwards from the boundary.
+  struct Anchor {
+    TAnchorKind kind;
+    int id;
+    Box<2> box;
+  };
+  std::vector<Anchor> anchors;
   for (int v = 0; v < static_cast<int>(ts.image.vertices.size()); ++v) {
     const TVertex& x = ts.image.vertices[static_cast<std::size_t>(v)];
-    const std::array<double, 2> c{x.s, x.t};
+    anchors.push_back({TAnchorKind::vertex, v, Box<2>{{x.s, x.t}, {x.s, x.t}}});
+  }
+  for (int l = 0; l < static_cast<int>(ts.image.links.size()); ++l)
+    if (ts.image.links[static_cast<std::size_t>(l)].sense)
+      anchors.push_back({TAnchorKind::link, l, ts.image.edge_box(ts.image.links[static_cast<std::size_t>(l)].edge)});
+  for (int f = 0; f < static_cast<int>(ts.image.faces.size()); ++f)
+    anchors.push_back({TAnchorKind::face, f, ts.image.face_box(f)});
+  for (const Anchor& an : anchors) {
     std::array<int, 2> lo{0, 0}, hi{0, 0};
+    bool fits = true;
     for (int k = 0; k < 2; ++k) {
-      if (c[k] == dom.lo[k]) hi[k] = layers[k];
-      if (c[k] == dom.hi[k]) lo[k] = -layers[k];
+      const int p = degrees[k];
+      const bool width = an.box.hi[k] > an.box.lo[k];
+      const bool at_lo = !width && an.box.lo[k] == dom.lo[k], at_hi = !width && an.box.lo[k] == dom.hi[k];
+      const int layers = p % 2 == 1 ? (p - 1) / 2 : p / 2 - 1;
+      if (p % 2 == 1 ? width : !width && !at_lo && !at_hi) fits = false;
+      if (at_lo) hi[k] = layers;
+      if (at_hi) lo[k] = -layers;
     }
+    if (!fits) continue;
+    std::map<std::array<int, 2>, int> at;
     for (int b = lo[1]; b <= hi[1]; ++b)
       for (int a = lo[0]; a <= hi[0]; ++a) {
         const int id = static_cast<int>(ts.connect.nodes.size());
-        node_at[{v, a, b}] = id;
+        at[{a, b}] = id;
         TNode n;
-        n.kind = TAnchorKind::vertex;
-        n.anchor = v;
+        n.kind = an.kind;
+        n.anchor = an.id;
         n.point = id;
         ts.connect.nodes.push_back(n);
-        ts.pointset.points.push_back(point(x.s, x.t, std::abs(a), std::abs(b)));
+        ts.pointset.points.push_back(
+            point(0.5 * (an.box.lo[0] + an.box.hi[0]), 0.5 * (an.box.lo[1] + an.box.hi[1]), std::abs(a), std::abs(b)));
       }
-  }
-  for (auto& [key, id] : node_at) {
-    const auto [v, a, b] = key;
-    const std::array<std::array<int, 2>, 4> step{{{0, 1}, {-1, 0}, {0, -1}, {1, 0}}};
-    for (int d = 0; d < 4; ++d) {
-      auto it = node_at.find({v, a + step[static_cast<std::size_t>(d)][0], b + step[static_cast<std::size_t>(d)][1]});
-      if (it != node_at.end()) ts.connect.nodes[static_cast<std::size_t>(id)].neighbours[static_cast<std::size_t>(d)] = it->second;
-    }
+    static constexpr std::array<std::array<int, 2>, 4> step{{{0, 1}, {-1, 0}, {0, -1}, {1, 0}}};
+    for (const auto& [pos, id] : at)
+      for (int d = 0; d < 4; ++d) {
+        auto it = at.find({pos[0] + step[static_cast<std::size_t>(d)][0], pos[1] + step[static_cast<std::size_t>(d)][1]});
+        if (it != at.end()) ts.connect.nodes[static_cast<std::size_t>(id)].neighbours[static_cast<std::size_t>(d)] = it->second;
+      }
   }
   validate(ts);
   return ts;
