@@ -535,7 +535,7 @@ void run_trimmed(const SolveArgs& a, const VModel& m) {
               components == 1 ? "u" : "z-displacement", fmt(mean / volume).c_str());
   if (!a.out.empty()) {
     const auto out = prepare_out(a);
-    const TensorSpline<3> geometry = box_geometry<3>(box.lo, box.hi, a.degree, a.refine);
+    const TensorSpline<3> geometry = identity_geometry(box, a.degree, a.refine);
     std::vector<io::VtkPointField> vtk{
         {components == 1 ? "u" : "displacement", components,
          [&](int, std::span<const double> u, std::span<double> v) { field(param_of<3>(u), v.data()); }},

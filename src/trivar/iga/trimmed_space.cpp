@@ -6,7 +6,6 @@
 
 #include "trivar/core/error.hpp"
 #include "trivar/core/parallel.hpp"
-#include "trivar/iga/tensor_space.hpp"
 #include "trivar/lr/lr_spline.hpp"
 
 namespace trivar {
@@ -21,6 +20,20 @@ bool in_plane(const TriangleMesh& m, const std::array<int, 3>& tri, int k, doubl
 }
 
 }  // namespace
+
+TensorSpline<3> identity_geometry(const Box<3>& box, int degree, int elements) {
+  std::array<KnotVector, 3> knots;
+  std::array<std::vector<double>, 3> g;
+  for (int k = 0; k < 3; ++k) {
+    knots[k] = KnotVector::open_uniform(degree, elements, box.lo[k], box.hi[k]);
+    g[k] = knots[k].greville();
+  }
+  std::vector<double> coefs;
+  for (std::size_t c = 0; c < g[2].size(); ++c)
+    for (std::size_t b = 0; b < g[1].size(); ++b)
+      for (std::size_t a = 0; a < g[0].size(); ++a) coefs.insert(coefs.end(), {g[0][a], g[1][b], g[2][c]});
+  return TensorSpline<3>(knots, 3, false, std::move(coefs));
+}
 
 Box<3> analysis_box(const TrimmedSolid& solid) {
   const TrimmedBoundary& b = solid.boundary();
@@ -80,7 +93,7 @@ RefinedSpace<3> trimmed_space(const TrimmedSolid& solid, const Box<3>& box, int 
   for (int k = 0; k < 3; ++k)
     require(sb.lo[k] >= box.lo[k] - slack && sb.hi[k] <= box.hi[k] + slack,
             "trimmed space: the box does not hold the solid in direction " + std::to_string(k));
-  const LRSpline<3> lr(box_geometry<3>(box.lo, box.hi, degree, elements));
+  const LRSpline<3> lr(identity_geometry(box, degree, elements));
   RefinedSpace<3> s = refined_space(lr, threads);
   // The LR locator refers to the spline, which ends here: elements are found on the uniform grid instead.
   const int n = elements;
@@ -97,24 +110,17 @@ RefinedSpace<3> trimmed_space(const TrimmedSolid& solid, const Box<3>& box, int 
   };
 
   const TrimmedQuadratureOptions q{degree + 1 + opts.extra_points, opts.depth};
+  std::vector<char> skip(solid.boundary().faces.size(), 0);
+  for (int f : faces_on_box_sides(solid, box)) skip[static_cast<std::size_t>(f)] = 1;
   parallel_for(static_cast<std::ptrdiff_t>(s.elements.size()), threads, [&](std::ptrdiff_t e) {
     RefinedElement<3>& el = s.elements[static_cast<std::size_t>(e)];
-    std::vector<VolumePoint> pts;
-    const BoxPlacement p = trimmed_box_quadrature(solid, el.box, q, pts);
-    el.outside = p == BoxPlacement::outside || (p == BoxPlacement::cut && pts.empty());
-    for (const VolumePoint& v : pts) el.rule.push_back({v.x, v.weight});
+    std::vector<VolumePoint> vol;
+    std::vector<SurfacePoint> surf;
+    const BoxPlacement p = trimmed_box_quadrature(solid, el.box, q, vol, &surf, skip);
+    el.outside = p == BoxPlacement::outside || (p == BoxPlacement::cut && vol.empty() && surf.empty());
+    for (const VolumePoint& v : vol) el.rule.push_back({v.x, v.weight});
+    for (const SurfacePoint& sp : surf) el.trim_sides.push_back({sp.x, sp.normal, sp.weight});
   });
-  std::vector<int> sides = faces_on_box_sides(solid, box);
-  std::vector<SurfacePoint> pts;
-  for (int f = 0; f < static_cast<int>(solid.boundary().faces.size()); ++f)
-    if (!std::binary_search(sides.begin(), sides.end(), f)) trimmed_face_quadrature(solid, f, q.points, pts);
-  for (const SurfacePoint& p : pts) {
-    RefinedElement<3>& el = s.elements[static_cast<std::size_t>(s.locate(p.x))];
-    el.trim_sides.push_back({p.x, p.normal, p.weight});
-    // A face point may fall in an element whose volume rule found nothing (a sliver below the rule's reach): its
-    // functions still carry the load.
-    el.outside = false;
-  }
   require(std::any_of(s.elements.begin(), s.elements.end(), [](const RefinedElement<3>& e) { return !e.outside; }),
           "trimmed space: no element of the box meets the solid");
   return s;

@@ -3,8 +3,8 @@
 // around the solid, as a RefinedSpace (refined_space.hpp) whose elements know how much of them is inside. An
 // element the boundary stays out of keeps its Gauss rule or is marked outside; an element cut by the trimming
 // boundary gets the quadrature of its inside part (trimmed_quadrature.hpp: octree subdivision to a depth, then
-// lines cut at the exact crossings), and the Gauss points of the solid's faces inside it become its trimming
-// boundary points. So the one element loop (refined_assembly.hpp), the Dirichlet projection and the error norms
+// lines cut at the exact crossings), and the points of the solid's faces inside it on the same lines become its
+// trimming boundary points. So the one element loop (refined_assembly.hpp), the Dirichlet projection and the error norms
 // serve trimmed cells unchanged; functions without support in the solid are fixed at zero by the solvers.
 //
 // Boundary conditions: the trimming boundary is a Neumann boundary (the problem's flux, or natural). Faces of
@@ -25,6 +25,10 @@ struct TrimmedSpaceOptions {
 // The tightest box around the solid whose side planes hold the solid's plane faces exactly: the box of the
 // mesh, grown by the chordal tolerance on the sides where no mesh triangle lies in the side plane.
 Box<3> analysis_box(const TrimmedSolid& solid);
+
+// The identity x(u) = u on the box: degree `degree`, `elements` equal elements per direction (control points
+// at the Greville abscissae). The geometry of the space below, and of its solution files.
+TensorSpline<3> identity_geometry(const Box<3>& box, int degree, int elements);
 
 // The space of degree `degree` with `elements` equal elements per direction on `box` (which must contain the
 // solid), the identity geometry. Throws trivar::Error for degree < 1, elements < 1, a box not holding the solid

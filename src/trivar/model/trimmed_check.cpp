@@ -66,6 +66,38 @@ TrimCheck check_trim(const TrimmedSolid& solid, double tolerance) {
       }
     }
   }
+  // Each face's orientation flag against the (outward) mesh: the exact normal at the centre of the face's
+  // largest triangle must point the way the triangle does.
+  std::vector<int> largest(b.faces.size(), -1);
+  std::vector<double> area(b.faces.size(), 0.0);
+  const auto tri_normal = [&](std::size_t t) {
+    const auto& v = b.mesh.triangles[t];
+    const P3 &p0 = b.mesh.vertices[v[0]], &p1 = b.mesh.vertices[v[1]], &p2 = b.mesh.vertices[v[2]];
+    const P3 u{p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2]}, w{p2[0] - p0[0], p2[1] - p0[1], p2[2] - p0[2]};
+    return P3{u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2], u[0] * w[1] - u[1] * w[0]};
+  };
+  for (std::size_t t = 0; t < b.mesh.triangles.size(); ++t) {
+    const P3 n = tri_normal(t);
+    const double a = std::hypot(n[0], n[1], n[2]);
+    const std::size_t f = static_cast<std::size_t>(b.triangle_face[t]);
+    if (a > area[f]) {
+      area[f] = a;
+      largest[f] = static_cast<int>(t);
+    }
+  }
+  for (std::size_t f = 0; f < b.faces.size(); ++f) {
+    if (largest[f] < 0) continue;
+    const std::size_t t = static_cast<std::size_t>(largest[f]);
+    const auto& uv = b.triangle_uv[t];
+    double d[9];
+    b.faces[f].surface.eval_derivs({(uv[0][0] + uv[1][0] + uv[2][0]) / 3, (uv[0][1] + uv[1][1] + uv[2][1]) / 3}, 1, d);
+    const P3 n{d[4] * d[8] - d[5] * d[7], d[5] * d[6] - d[3] * d[8], d[3] * d[7] - d[4] * d[6]};
+    const P3 m = tri_normal(t);
+    const double s = (n[0] * m[0] + n[1] * m[1] + n[2] * m[2]) * (b.faces[f].reversed ? -1 : 1);
+    if (s < 0)
+      defect("face " + std::to_string(f) + (b.faces[f].name.empty() ? "" : " (" + b.faces[f].name + ")") +
+             ": its orientation flag disagrees with the outward boundary mesh");
+  }
   r.watertight = is_watertight(b.mesh);
   if (!r.watertight) defect("the boundary mesh is not closed and consistently oriented");
   r.exact_volume = solid.volume();

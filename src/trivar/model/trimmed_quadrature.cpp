@@ -1,6 +1,8 @@
 #include "trivar/model/trimmed_quadrature.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "trivar/core/error.hpp"
 #include "trivar/core/gauss_legendre.hpp"
@@ -19,34 +21,109 @@ void gauss_box(const Box<3>& b, const QuadratureRule& r, std::vector<VolumePoint
                        b.extent(0) * b.extent(1) * b.extent(2) * r.weights[i] * r.weights[j] * r.weights[k]});
 }
 
-void line_leaf(const TrimmedSolid& s, const Box<3>& b, const QuadratureRule& r, std::vector<VolumePoint>& out) {
+// Sorted breakpoints of [lo, hi]: the ends and the crossings of the line through p along `axis` inside.
+void add_crossings(const TrimmedSolid& s, int axis, const std::array<double, 3>& p, double lo, double hi,
+                   std::vector<LineCrossing>& cs, std::vector<double>& out) {
+  s.axis_crossings(axis, p, lo, hi, cs);
+  for (const LineCrossing& c : cs) out.push_back(c.t);
+}
+
+void finish(std::vector<double>& cuts, double lo, double hi) {
+  cuts.push_back(lo);
+  cuts.push_back(hi);
+  std::sort(cuts.begin(), cuts.end());
+}
+
+// The Gauss lines along axis a through a cut leaf, one dimension at a time (a simplified form of Saye's scheme
+// for implicitly defined domains): what a line sees (its crossings) is smooth in the other two coordinates b, c
+// except where the boundary crosses the leaf's faces a = lo, a = hi, so each b-line of the base is split where
+// it crosses the boundary on those faces, and the c-range where those kink curves reach the faces b = lo,
+// b = hi. Calls line(p, w, crossings) with p[b], p[c] set and the base weight w.
+template <class Line>
+void for_each_line(const TrimmedSolid& s, const Box<3>& box, int a, const QuadratureRule& r, Line&& line) {
   thread_local std::vector<LineCrossing> cs;
-  const int a = s.transversal_axis(b), e = (a + 1) % 3, f = (a + 2) % 3;
+  const int b = (a + 1) % 3, c = (a + 2) % 3;
   const std::size_t n = r.nodes.size();
-  std::vector<double> cuts;
-  for (std::size_t j = 0; j < n; ++j)
-    for (std::size_t i = 0; i < n; ++i) {
-      std::array<double, 3> p{};
-      p[e] = b.lo[e] + b.extent(e) * r.nodes[i];
-      p[f] = b.lo[f] + b.extent(f) * r.nodes[j];
-      const double w = b.extent(e) * b.extent(f) * r.weights[i] * r.weights[j];
-      s.axis_crossings(a, p, b.lo[a], b.hi[a], cs);
-      cuts.assign(1, b.lo[a]);
-      for (const LineCrossing& c : cs) cuts.push_back(c.t);
-      cuts.push_back(b.hi[a]);
-      for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
-        const double lo = cuts[k], len = cuts[k + 1] - lo;
-        if (len <= 0) continue;
-        // Whether the interval is inside is asked of its midpoint, not read off the crossings' directions, so a
-        // crossing lost at a silhouette costs accuracy but never flips a whole interval.
-        p[a] = lo + len / 2;
-        if (!s.contains(p)) continue;
-        for (std::size_t q = 0; q < n; ++q) {
-          p[a] = lo + len * r.nodes[q];
-          out.push_back({p, w * len * r.weights[q]});
+  std::vector<double> cc, bb;
+  std::array<double, 3> p{};
+  for (double pa : {box.lo[a], box.hi[a]})
+    for (double pb : {box.lo[b], box.hi[b]}) {
+      p[a] = pa;
+      p[b] = pb;
+      add_crossings(s, c, p, box.lo[c], box.hi[c], cs, cc);
+    }
+  finish(cc, box.lo[c], box.hi[c]);
+  for (std::size_t ci = 0; ci + 1 < cc.size(); ++ci) {
+    const double c0 = cc[ci], hc = cc[ci + 1] - c0;
+    if (hc <= 0) continue;
+    for (std::size_t j = 0; j < n; ++j) {
+      p[c] = c0 + hc * r.nodes[j];
+      bb.clear();
+      for (double pa : {box.lo[a], box.hi[a]}) {
+        p[a] = pa;
+        add_crossings(s, b, p, box.lo[b], box.hi[b], cs, bb);
+      }
+      finish(bb, box.lo[b], box.hi[b]);
+      for (std::size_t bi = 0; bi + 1 < bb.size(); ++bi) {
+        const double b0 = bb[bi], hb = bb[bi + 1] - b0;
+        if (hb <= 0) continue;
+        for (std::size_t i = 0; i < n; ++i) {
+          p[b] = b0 + hb * r.nodes[i];
+          s.axis_crossings(a, p, box.lo[a], box.hi[a], cs);
+          line(p, hb * hc * r.weights[i] * r.weights[j], std::as_const(cs));
         }
       }
     }
+  }
+}
+
+// Inside intervals of the lines along the transversal axis, Gauss on each.
+void volume_leaf(const TrimmedSolid& s, const Box<3>& box, const QuadratureRule& r, std::vector<VolumePoint>& out) {
+  const int a = s.transversal_axis(box);
+  std::vector<double> cuts;
+  for_each_line(s, box, a, r, [&](std::array<double, 3> p, double w, const std::vector<LineCrossing>& cs) {
+    cuts.clear();
+    for (const LineCrossing& c : cs) cuts.push_back(c.t);
+    finish(cuts, box.lo[a], box.hi[a]);
+    for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+      const double lo = cuts[k], len = cuts[k + 1] - lo;
+      if (len <= 0) continue;
+      // Whether the interval is inside is asked of its midpoint, not read off the crossings' directions, so a
+      // crossing lost at a silhouette costs accuracy but never flips a whole interval.
+      p[a] = lo + len / 2;
+      if (!s.contains(p)) continue;
+      for (std::size_t q = 0; q < r.nodes.size(); ++q) {
+        p[a] = lo + len * r.nodes[q];
+        out.push_back({p, w * len * r.weights[q]});
+      }
+    }
+  });
+}
+
+// The boundary in a cut leaf: with the partition of unity w_a = n_a^4 / (n_x^4 + n_y^4 + n_z^4) over the
+// axes, the surface integral is the sum over a of the integrals of w_a dS = w_a / |n_a| db dc over the base of
+// the a-lines, one point per crossing. Faces parallel to a line contribute nothing to that axis's term, and
+// near silhouettes the weight |n_a|^3 / sum n^4 vanishes smoothly instead of blowing up (so a crossing the
+// mesh misses within the chordal tolerance of a silhouette costs next to nothing).
+void surface_leaf(const TrimmedSolid& s, const Box<3>& box, const QuadratureRule& r, const std::vector<char>& skip,
+                  std::vector<SurfacePoint>& out) {
+  const TrimmedBoundary& bd = s.boundary();
+  for (int a = 0; a < 3; ++a)
+    for_each_line(s, box, a, r, [&](std::array<double, 3> p, double w, const std::vector<LineCrossing>& cs) {
+      for (const LineCrossing& c : cs) {
+        if (!skip.empty() && skip[static_cast<std::size_t>(c.face)]) continue;
+        const TrimmedFace& f = bd.faces[static_cast<std::size_t>(c.face)];
+        double d[9];
+        f.surface.eval_derivs(c.uv, 1, d);
+        std::array<double, 3> n{d[4] * d[8] - d[5] * d[7], d[5] * d[6] - d[3] * d[8], d[3] * d[7] - d[4] * d[6]};
+        const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        if (len == 0) continue;
+        for (double& x : n) x *= (f.reversed ? -1 : 1) / len;
+        p[a] = c.t;
+        const double n4 = n[0] * n[0] * n[0] * n[0] + n[1] * n[1] * n[1] * n[1] + n[2] * n[2] * n[2] * n[2];
+        out.push_back({p, n, w * std::pow(std::abs(n[a]), 3) / n4});
+      }
+    });
 }
 
 BoxPlacement place(const TrimmedSolid& s, const Box<3>& b) {
@@ -54,9 +131,16 @@ BoxPlacement place(const TrimmedSolid& s, const Box<3>& b) {
   return s.contains(b.center()) ? BoxPlacement::inside : BoxPlacement::outside;
 }
 
-void subdivide(const TrimmedSolid& s, const Box<3>& b, const QuadratureRule& r, int depth, std::vector<VolumePoint>& out) {
+struct Sink {
+  std::vector<VolumePoint>& volume;
+  std::vector<SurfacePoint>* surface;
+  const std::vector<char>& skip;
+};
+
+void subdivide(const TrimmedSolid& s, const Box<3>& b, const QuadratureRule& r, int depth, Sink& out) {
   if (depth == 0) {
-    line_leaf(s, b, r, out);
+    volume_leaf(s, b, r, out.volume);
+    if (out.surface) surface_leaf(s, b, r, out.skip, *out.surface);
     return;
   }
   const auto c = b.center();
@@ -68,7 +152,7 @@ void subdivide(const TrimmedSolid& s, const Box<3>& b, const QuadratureRule& r, 
       child.hi[k] = upper ? b.hi[k] : c[k];
     }
     switch (place(s, child)) {
-      case BoxPlacement::inside: gauss_box(child, r, out); break;
+      case BoxPlacement::inside: gauss_box(child, r, out.volume); break;
       case BoxPlacement::outside: break;
       case BoxPlacement::cut: subdivide(s, child, r, depth - 1, out); break;
     }
@@ -78,42 +162,14 @@ void subdivide(const TrimmedSolid& s, const Box<3>& b, const QuadratureRule& r, 
 }  // namespace
 
 BoxPlacement trimmed_box_quadrature(const TrimmedSolid& solid, const Box<3>& box, const TrimmedQuadratureOptions& opts,
-                                    std::vector<VolumePoint>& out) {
+                                    std::vector<VolumePoint>& volume, std::vector<SurfacePoint>* surface,
+                                    const std::vector<char>& skip_faces) {
   require(opts.points >= 1 && opts.points <= 32 && opts.depth >= 0 && opts.depth <= 8,
           "trimmed quadrature: points must be in [1, 32] and the depth in [0, 8]");
   const BoxPlacement p = place(solid, box);
-  if (p == BoxPlacement::cut) subdivide(solid, box, gauss_legendre(opts.points), opts.depth, out);
+  Sink sink{volume, surface, skip_faces};
+  if (p == BoxPlacement::cut) subdivide(solid, box, gauss_legendre(opts.points), opts.depth, sink);
   return p;
-}
-
-void trimmed_face_quadrature(const TrimmedSolid& solid, int face, int points, std::vector<SurfacePoint>& out) {
-  const TrimmedBoundary& b = solid.boundary();
-  require(face >= 0 && face < static_cast<int>(b.faces.size()) && points >= 1 && points <= 32,
-          "trimmed quadrature: no face " + std::to_string(face) + " or points not in [1, 32]");
-  const TensorSpline<2>& S = b.faces[static_cast<std::size_t>(face)].surface;
-  const double sign = b.faces[static_cast<std::size_t>(face)].reversed ? -1 : 1;
-  const QuadratureRule r = gauss_legendre(points);
-  for (std::size_t t = 0; t < b.triangle_face.size(); ++t) {
-    if (b.triangle_face[t] != face) continue;
-    const auto& q = b.triangle_uv[t];
-    const double e1[2] = {q[1][0] - q[0][0], q[1][1] - q[0][1]}, e2[2] = {q[2][0] - q[0][0], q[2][1] - q[0][1]};
-    const double jac = std::abs(e1[0] * e2[1] - e1[1] * e2[0]);
-    if (jac == 0) continue;
-    // Collapsed (Duffy) rule: (s, t) = (xi, eta (1 - xi)) maps the unit square onto the reference triangle.
-    for (std::size_t i = 0; i < r.nodes.size(); ++i)
-      for (std::size_t j = 0; j < r.nodes.size(); ++j) {
-        const double xi = r.nodes[i], s2 = xi, t2 = r.nodes[j] * (1 - xi);
-        const Param<2> uv{q[0][0] + s2 * e1[0] + t2 * e2[0], q[0][1] + s2 * e1[1] + t2 * e2[1]};
-        double d[9];
-        S.eval_derivs(uv, 1, d);
-        const std::array<double, 3> n{d[4] * d[8] - d[5] * d[7], d[5] * d[6] - d[3] * d[8], d[3] * d[7] - d[4] * d[6]};
-        const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-        if (len == 0) continue;  // a pole carries no area
-        out.push_back({{d[0], d[1], d[2]},
-                       {sign * n[0] / len, sign * n[1] / len, sign * n[2] / len},
-                       len * jac * r.weights[i] * r.weights[j] * (1 - xi)});
-      }
-  }
 }
 
 }  // namespace trivar
