@@ -1,10 +1,12 @@
-// trivar check FILE: certified Jacobian validity of planar surfaces and volumes.
+// trivar check FILE: certified Jacobian validity of planar surfaces and volumes, and of the cells of a V-model,
+// with the validity of the trimming boundaries of trimmed cells.
 #include <cstdio>
 #include <string>
 #include <variant>
 
 #include "cli.hpp"
 #include "trivar/core/error.hpp"
+#include "trivar/model/trimmed_check.hpp"
 #include "trivar/spline/jacobian.hpp"
 
 namespace trivar::cli {
@@ -29,6 +31,21 @@ int check(const TensorSpline<D>& s, const JacobianOptions& opts) {
   }
 }
 
+// The trim lines of a trimmed cell; returns its exit code.
+int check_trimmed(const TrimmedSolid& solid) {
+  const TrimCheck t = check_trim(solid);
+  std::printf("trim %s\n", t.valid ? "valid" : "invalid");
+  std::printf("trimming loops: largest gap %s, largest gap to edges %s\n", fmt(t.largest_loop_gap).c_str(),
+              fmt(t.largest_edge_gap).c_str());
+  std::printf("boundary mesh: %s\n", t.watertight ? "watertight" : "not watertight");
+  std::printf("inside volume %s (mesh %s, chordal band %s)\n", fmt(t.exact_volume).c_str(), fmt(t.mesh_volume).c_str(),
+              fmt(t.volume_band).c_str());
+  for (const std::string& d : t.defects) std::printf("defect: %s\n", d.c_str());
+  return t.valid ? kSuccess : kInvalid;
+}
+
+int worse(int a, int b) { return (b == kInvalid || (b == kUndecided && a == kSuccess)) ? b : a; }
+
 }  // namespace
 
 void add_check_command(CLI::App& app, Context& ctx) {
@@ -46,13 +63,23 @@ void add_check_command(CLI::App& app, Context& ctx) {
       ->check(positive())
       ->capture_default_str();
   cmd->callback([a, &ctx] {
+    if (const std::optional<VModel> m = read_model_if_any(a->file)) {
+      int worst = kSuccess;
+      for (int i = 0; i < m->num_cells(); ++i) {
+        const VCell& c = m->cell(i);
+        if (m->num_cells() > 1) std::printf("cell %d: ", i);
+        worst = worse(worst, check(c.geometry(), a->opts));
+        if (c.is_trimmed()) worst = worse(worst, check_trimmed(*c.trim()));
+      }
+      ctx.exit_code = worst;
+      return;
+    }
     const std::vector<AnySpline> objects = read_objects(a->file);
     // Several objects: the worst verdict decides (invalid over undecided over valid).
     int worst = kSuccess;
     for (std::size_t i = 0; i < objects.size(); ++i) {
       if (objects.size() > 1) std::printf("object %zu: ", i);
-      const int code = std::visit([&](const auto& s) { return check(s, a->opts); }, objects[i]);
-      if (code == kInvalid || (code == kUndecided && worst == kSuccess)) worst = code;
+      worst = worse(worst, std::visit([&](const auto& s) { return check(s, a->opts); }, objects[i]));
     }
     ctx.exit_code = worst;
   });

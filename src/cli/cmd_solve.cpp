@@ -1,6 +1,7 @@
 // trivar solve poisson|elasticity|modes [MODEL_OR_SPLINE] [--problem NAME] [--degree p] [--refine N] [--study]
 // [--adaptive --steps K --beta B] [--out DIR]:
 // isogeometric analysis on a spline volume (or planar surface) or on a built-in benchmark problem.
+#include <chrono>
 #include <cstdio>
 #include <memory>
 #include <filesystem>
@@ -24,7 +25,10 @@
 #include "trivar/iga/error_indicator.hpp"
 #include "trivar/iga/error_norms.hpp"
 #include "trivar/iga/refined_poisson.hpp"
+#include "trivar/iga/refined_quadrature.hpp"
+#include "trivar/iga/refined_elasticity.hpp"
 #include "trivar/iga/refined_space.hpp"
+#include "trivar/iga/trimmed_space.hpp"
 #include "trivar/iga/lr_solution_field.hpp"
 #include "trivar/iga/poisson.hpp"
 #include "trivar/iga/solution_field.hpp"
@@ -82,10 +86,6 @@ FileInput read_input(const SolveArgs& a) {
   FileInput in;
   in.model = read_model_if_any(a.file);
   if (in.model) {
-    // The analysis of a trimmed cell needs quadrature over the trimmed domain (detrimming), which is not built:
-    // solving on the untrimmed box would be wrong.
-    for (const VCell& c : in.model->cells())
-      require(!c.is_trimmed(), "solve: " + a.file + " has trimmed cells; analysis on trimmed cells is not supported yet");
     if (!in.model->is_glued()) in.model->glue();
   } else {
     in.spline = read_single(a.file, "solve");
@@ -459,6 +459,95 @@ void file_modes(const SolveArgs& a, const FileInput& in) {
   }
 }
 
+bool has_trimmed_cells(const FileInput& in) {
+  if (!in.model) return false;
+  for (const VCell& c : in.model->cells())
+    if (c.is_trimmed()) return true;
+  return false;
+}
+
+// A trimmed cell (one-cell model): the tensor space on the box around the solid with detrimmed quadrature
+// (iga/trimmed_space.hpp). The sides of the box that hold faces of the solid carry the strong conditions
+// (Poisson: u = 0 there; elasticity: --clamp names one of them); the trimming boundary is free (natural).
+void run_trimmed(const SolveArgs& a, const VModel& m) {
+  require(m.num_cells() == 1, "solve: " + a.file + " has " + std::to_string(m.num_cells()) +
+                                  " cells; analysis on trimmed cells takes a model of one cell");
+  require(a.kind != "modes", "solve: eigenmodes of trimmed cells are not supported (poisson and elasticity are)");
+  const VCell& cell = m.cell(0);
+  const TrimmedSolid& solid = *cell.trim();
+  const Box<3> box = analysis_box(solid);
+  const std::vector<Face> sides = box_sides_with_faces(solid, box);
+  const auto t0 = std::chrono::steady_clock::now();
+  const RefinedSpace<3> space = trimmed_space(solid, box, a.degree, a.refine, a.threads);
+  const double build = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  int cut = 0, outside = 0;
+  for (const RefinedElement<3>& el : space.elements) {
+    cut += !el.rule.empty();
+    outside += el.outside;
+  }
+  std::printf("trimmed cell: %d elements (%d cut, %d outside), quadrature %s s\n", space.num_elements(), cut, outside,
+              secs(build).c_str());
+  auto solver = make_solver(a.solver);
+  SolveResult r;
+  if (a.kind == "poisson") {
+    require(!sides.empty(), "solve: " + a.file + ": no face of the trimmed solid lies on a side of its bounding box, "
+                                "so there is nowhere to hold u = 0");
+    PoissonProblem<3> pb;
+    pb.source = [](const double*) { return 1.0; };
+    pb.dirichlet.push_back({sides, {}, nullptr});
+    r = solve_poisson(space, pb, *solver, a.threads);
+  } else {
+    require(a.clamp != "none", "solve: static elasticity needs supports (--clamp)");
+    const Face clamp{a.clamp[0] - 'x', a.clamp[1] == '-' ? 0 : 1, 0};
+    require(std::any_of(sides.begin(), sides.end(), [&](const Face& f) { return f.dir == clamp.dir && f.side == clamp.side; }),
+            "solve: --clamp " + a.clamp + ": no face of the trimmed solid lies in that side plane of its bounding box");
+    ElasticityProblem<3> pb;
+    pb.material = {a.youngs, a.poisson, a.density};
+    require(pb.material.valid(), "solve: --youngs and --density must be positive, --poisson-ratio in (-1, 0.5)");
+    pb.material_at = cell_materials(m, pb.material);
+    pb.displacement.push_back({{clamp}, {}, nullptr});
+    pb.body_force = [](const double*, double* b) { b[0] = b[1] = 0, b[2] = -1; };
+    r = solve_elasticity(space, pb, *solver, a.threads);
+  }
+  const int components = a.kind == "poisson" ? 1 : 3;
+  // The field at a parameter of the box (the identity: a point), from the element containing it.
+  const auto field = [&](const Param<3>& u, double* out) {
+    const RefinedElement<3>& el = space.elements[static_cast<std::size_t>(space.locate(u))];
+    RefinedPoint<3> p;
+    refined_point(space, el, u, p);
+    for (int c = 0; c < components; ++c) {
+      out[c] = 0;
+      for (std::size_t l = 0; l < el.ids.size(); ++l) out[c] += r.coefs[c * space.num_basis + el.ids[l]] * p.R[l];
+    }
+  };
+  double volume = 0, mean = 0;
+  for (const RefinedElement<3>& el : space.elements)
+    for_each_element_point<3>(el, a.degree + 2, [&](const Param<3>& u, double w) {
+      double v[3];
+      field(u, v);
+      volume += w;
+      mean += w * v[components - 1];
+    });
+  std::string line = "dofs " + std::to_string(r.dofs) + ", assembly " + secs(r.assembly_seconds) + " s, solve " +
+                     secs(r.solve_seconds) + " s";
+  if (r.stats.iterations > 0) line += " (" + std::to_string(r.stats.iterations) + " " + a.solver + " iterations)";
+  std::printf("%s\n", line.c_str());
+  std::printf("volume %s (exact boundary %s), mean %s %s\n", fmt(volume).c_str(), fmt(solid.volume()).c_str(),
+              components == 1 ? "u" : "z-displacement", fmt(mean / volume).c_str());
+  if (!a.out.empty()) {
+    const auto out = prepare_out(a);
+    const TensorSpline<3> geometry = identity_geometry(box, a.degree, a.refine);
+    std::vector<io::VtkPointField> vtk{
+        {components == 1 ? "u" : "displacement", components,
+         [&](int, std::span<const double> u, std::span<double> v) { field(param_of<3>(u), v.data()); }},
+        {"inside", 1, [&](int, std::span<const double> u, std::span<double> v) {
+           v[0] = solid.contains(param_of<3>(u)) ? 1.0 : 0.0;
+         }}};
+    io::write_vtu(out->path("solution.vtu").string(), {AnySpline(geometry)}, {}, vtk);
+    out->commit();
+  }
+}
+
 // The unit cube, the domain of cube-modes and elastic-cube-modes.
 MultipatchSpace<3> unit_cube(int degree, int elements) {
   const Param<3> lo{0, 0, 0}, hi{1, 1, 1};
@@ -483,7 +572,9 @@ void run(const SolveArgs& a) {
       return;
     }
     const FileInput in = read_input(a);
-    if (a.kind == "modes" && in.dimension() == 3)
+    if (has_trimmed_cells(in))
+      run_trimmed(a, *in.model);
+    else if (a.kind == "modes" && in.dimension() == 3)
       file_modes<3>(a, in);
     else if (a.kind == "modes")
       file_modes<2>(a, in);

@@ -11,6 +11,7 @@
 
 #include "cad/occt_solids.hpp"
 #include "trivar/core/error.hpp"
+#include "trivar/model/trimmed_check.hpp"
 
 using namespace trivar;
 
@@ -229,5 +230,28 @@ TEST(StepImport, BadInputIsOneLineError) {
   EXPECT_TRUE(im.solids.empty());
   ASSERT_EQ(im.report.not_solid.size(), 1u);
   EXPECT_NE(im.report.not_solid[0].find("1 open: 4 free edges"), std::string::npos) << im.report.not_solid[0];
+  std::filesystem::remove_all(dir);
+}
+
+// A closed shell with one face turned against its neighbours (inconsistent orientation, as written by a
+// careless exporter): OpenCASCADE's STEP transfer heals the shell, so the solid comes out with the box's volume
+// and faces whose orientation flags agree with the outward mesh (never a face inside out).
+TEST(StepImport, InconsistentFaceOrientationIsHealed) {
+  const auto dir = test::temp_dir("flipped");
+  const TopoDS_Shape box = BRepPrimAPI_MakeBox(2, 1, 1).Shape();
+  BRep_Builder bb;
+  TopoDS_Shell shell;
+  bb.MakeShell(shell);
+  int i = 0;
+  for (TopExp_Explorer f(box, TopAbs_FACE); f.More(); f.Next(), ++i) bb.Add(shell, i == 2 ? f.Current().Reversed() : f.Current());
+  TopoDS_Solid solid;
+  bb.MakeSolid(solid);
+  bb.Add(solid, shell);
+  const cad::StepImport im = cad::import_step(test::write_step(solid, dir, "flipped"));
+  ASSERT_EQ(im.solids.size(), 1u);
+  ASSERT_TRUE(im.solids[0].solid);
+  EXPECT_NEAR(im.solids[0].solid->volume(), 2.0, 1e-9);
+  const TrimCheck c = check_trim(*im.solids[0].solid);
+  EXPECT_TRUE(c.valid) << (c.defects.empty() ? "" : c.defects[0]);
   std::filesystem::remove_all(dir);
 }

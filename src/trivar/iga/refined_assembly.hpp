@@ -19,7 +19,7 @@ struct RefinedSystem {
   Eigen::VectorXd b;
 };
 
-// point(p, grad, dV, K, b) adds one Gauss point (p + 1 per direction, grad from physical_gradients, dV the
+// point(p, grad, dV, K, b) adds one Gauss point (p + 1 per direction, or the element's rule on a trimmed space, grad from physical_gradients, dV the
 // weighted |det J|) into K (components * m square) and b; sides(element, b) then adds the element's boundary
 // loads. Both run inside a parallel region and must not throw.
 template <int D, class Point, class Sides>
@@ -38,7 +38,7 @@ RefinedSystem assemble_refined_system(const RefinedSpace<D>& geometry, int compo
     v = Eigen::VectorXd::Zero(n);
     RefinedPoint<D> p;
     std::vector<double> grad;
-    for_each_gauss_point<D>(el.box, geometry.degrees[0] + 1, -1, 0, [&](const Param<D>& u, double w) {
+    for_each_element_point<D>(el, geometry.degrees[0] + 1, [&](const Param<D>& u, double w) {
       refined_point(geometry, el, u, p);
       const double dV = physical_gradients(p, grad) * w;
       point(std::as_const(p), std::as_const(grad), dV, K, v);

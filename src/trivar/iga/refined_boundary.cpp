@@ -26,9 +26,21 @@ FixedDofs project_dirichlet(const RefinedSpace<D>& g, int components,
       });
 }
 
+template <int D>
+void fix_inactive(const RefinedSpace<D>& g, int components, FixedDofs& fixed) {
+  std::vector<char> active(static_cast<std::size_t>(g.num_basis), 0);
+  for (const RefinedElement<D>& el : g.elements)
+    if (!el.outside)
+      for (int i : el.ids) active[static_cast<std::size_t>(i)] = 1;
+  for (int c = 0; c < components; ++c)
+    for (int i = 0; i < g.num_basis; ++i)
+      if (!active[static_cast<std::size_t>(i)]) fixed.fixed[static_cast<std::size_t>(c) * g.num_basis + i] = 1;
+}
+
 #define TRIVAR_INSTANTIATE(D)                                                                   \
   template FixedDofs project_dirichlet(const RefinedSpace<D>&, int, \
-                                       const std::vector<DirichletCondition<D>>&);
+                                       const std::vector<DirichletCondition<D>>&); \
+  template void fix_inactive(const RefinedSpace<D>&, int, FixedDofs&);
 TRIVAR_INSTANTIATE(2)
 TRIVAR_INSTANTIATE(3)
 #undef TRIVAR_INSTANTIATE

@@ -31,6 +31,28 @@ void add_side_loads(const RefinedSpace<D>& geometry, const RefinedElement<D>& el
   }
 }
 
+// Adds the integral of sum_c load_c(x, n) v_c over the trimming boundary inside the element (trimmed spaces;
+// nothing otherwise) to the element vector b.
+template <int D, class Load>
+void add_trimmed_side_loads(const RefinedSpace<D>& geometry, const RefinedElement<D>& element, int components,
+                            Load&& load, Eigen::VectorXd& b) {
+  if (element.trim_sides.empty()) return;
+  const Eigen::Index m = static_cast<Eigen::Index>(element.ids.size());
+  std::vector<double> t(static_cast<std::size_t>(components));
+  RefinedPoint<D> q;
+  for (const TrimmedSidePoint<D>& s : element.trim_sides) {
+    refined_point(geometry, element, s.u, q);
+    load(q.x.data(), s.normal.data(), t.data());
+    const Eigen::Map<const Eigen::VectorXd> R(q.R.data(), m);
+    for (int c = 0; c < components; ++c) b.segment(c * m, m) += (s.weight * t[static_cast<std::size_t>(c)]) * R;
+  }
+}
+
+// Fixes at zero the dofs of functions that are non-zero only on elements outside a trimmed domain (their rows
+// would be empty); those already fixed keep their values.
+template <int D>
+void fix_inactive(const RefinedSpace<D>& geometry, int components, FixedDofs& fixed);
+
 // Same conventions as the tensor-patch project_dirichlet; throws trivar::Error for a face or component out of
 // range or a singular boundary mass matrix.
 template <int D>

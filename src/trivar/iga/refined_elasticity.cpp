@@ -39,7 +39,8 @@ SolveResult solve_elasticity(const RefinedSpace<D>& g, const ElasticityProblem<D
         if (problem.traction) add_side_loads<D>(g, el, problem.traction_faces, D, problem.traction, b);
       });
   check.report();
-  const FixedDofs fixed = project_dirichlet(g, D, problem.displacement);
+  FixedDofs fixed = project_dirichlet(g, D, problem.displacement);
+  fix_inactive(g, D, fixed);
   return solve_constrained(A, rhs, fixed, solver, t0);
 }
 

@@ -24,12 +24,13 @@ SolveResult solve_poisson(const RefinedSpace<D>& g, const PoissonProblem<D>& pro
         b += (f * dV) * Eigen::Map<const Eigen::VectorXd>(p.R.data(), m);
       },
       [&](const RefinedElement<D>& el, Eigen::VectorXd& b) {
-        if (problem.flux)
-          add_side_loads<D>(
-              g, el, problem.neumann, 1,
-              [&](const double* x, const double* n, double* t) { t[0] = problem.flux(x, n); }, b);
+        if (!problem.flux) return;
+        const auto flux = [&](const double* x, const double* n, double* t) { t[0] = problem.flux(x, n); };
+        add_side_loads<D>(g, el, problem.neumann, 1, flux, b);
+        add_trimmed_side_loads<D>(g, el, 1, flux, b);
       });
-  const FixedDofs fixed = project_dirichlet(g, 1, problem.dirichlet);
+  FixedDofs fixed = project_dirichlet(g, 1, problem.dirichlet);
+  fix_inactive(g, 1, fixed);
   return solve_constrained(A, rhs, fixed, solver, t0);
 }
 
@@ -45,7 +46,7 @@ void error_norms_per_element(const RefinedSpace<D>& g, const Eigen::VectorXd& co
     RefinedPoint<D> p;
     std::vector<double> grad, uh(nc), ue(nc), guh(nc * D), ge(nc * D);
     double sl2 = 0, sh1 = 0;
-    for_each_gauss_point<D>(el.box, g.degrees[0] + 2, -1, 0, [&](const Param<D>& u, double w) {
+    for_each_element_point<D>(el, g.degrees[0] + 2, [&](const Param<D>& u, double w) {
       refined_point(g, el, u, p);
       const double dV = physical_gradients(p, grad) * w;
       std::fill(uh.begin(), uh.end(), 0.0);

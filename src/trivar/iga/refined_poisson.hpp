@@ -14,7 +14,8 @@
 namespace trivar {
 
 // Same conventions as the tensor-patch solve_poisson: boundary faces neither Dirichlet nor Neumann are
-// natural (g = 0); a face listed as both is Dirichlet.
+// natural (g = 0); a face listed as both is Dirichlet. On a trimmed space the trimming boundary is a Neumann
+// boundary (the flux applies there too), and functions without support in the trimmed domain are fixed at 0.
 template <int D>
 SolveResult solve_poisson(const RefinedSpace<D>& geometry, const PoissonProblem<D>& problem, LinearSolver& solver, int threads = 0);
 

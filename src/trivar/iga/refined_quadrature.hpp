@@ -37,6 +37,18 @@ void for_each_gauss_point(const Box<D>& box, int n, int dir, int side, Body&& bo
   }
 }
 
+// The volume quadrature of an element: n Gauss points per direction, or for an element of a trimmed space the
+// rule of its part inside (built with its own point count) or nothing when it lies outside. body(u, weight).
+template <int D, class Body>
+void for_each_element_point(const RefinedElement<D>& element, int n, Body&& body) {
+  if (element.outside) return;
+  if (element.rule.empty()) {
+    for_each_gauss_point<D>(element.box, n, -1, 0, body);
+    return;
+  }
+  for (const auto& [u, w] : element.rule) body(u, w);
+}
+
 // True when the side (face.dir, face.side) of an element box lies on that face of the domain.
 template <int D>
 bool on_domain_face(const Box<D>& domain, const Box<D>& box, const Face& face) {

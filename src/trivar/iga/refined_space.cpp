@@ -97,7 +97,10 @@ RefinedSpace<D> refined_space(const HierarchicalSpline<D>& g, int threads) {
   s.elements.resize(static_cast<std::size_t>(h.num_elements()));
   parallel_for(h.num_elements(), threads, [&](std::ptrdiff_t e) {
     HierarchicalElement<D> el = h.element_operator(static_cast<int>(e));
-    s.elements[static_cast<std::size_t>(e)] = {std::move(el.ids), std::move(el.C), el.box};
+    RefinedElement<D>& r = s.elements[static_cast<std::size_t>(e)];
+    r.ids = std::move(el.ids);
+    r.C = std::move(el.C);
+    r.box = el.box;
   });
   side_functions_from_elements(s);
   const HierarchicalEvaluator<D>* locator = &g.evaluator();

@@ -19,11 +19,25 @@
 
 namespace trivar {
 
+// A quadrature point of the trimming boundary of a trimmed space (trimmed_space.hpp) inside an element.
+template <int D>
+struct TrimmedSidePoint {
+  Param<D> u;
+  std::array<double, D> normal;  // unit, out of the trimmed domain
+  double weight;                 // surface measure times Gauss weight
+};
+
 template <int D>
 struct RefinedElement {
   std::vector<int> ids;  // active functions on the element, ascending
   Eigen::MatrixXd C;     // extraction operator: ids.size() x prod(p_k + 1), rows include LR scaling factors
   Box<D> box;
+  // Trimmed spaces only: the element lies outside the trimmed domain (no quadrature points); the quadrature of
+  // its part inside when the trimming boundary cuts it (parametric points and weights, replacing the Gauss
+  // rule; empty for an element wholly inside); the points of the trimming boundary inside it.
+  bool outside = false;
+  std::vector<std::pair<Param<D>, double>> rule;
+  std::vector<TrimmedSidePoint<D>> trim_sides;
 };
 
 template <int D>

@@ -63,6 +63,32 @@ std::array<double, 3> closest_on_triangle(const P3& p, const P3& a, const P3& b,
   return {1 - v - w, v, w};
 }
 
+// All control points (Cartesian) within rounding of the plane through the first one, the one farthest from
+// it and the one farthest from their line: the face is a plane, which the mesh reproduces exactly.
+bool is_flat(const TensorSpline<2>& s) {
+  const int n = s.num_coefs();
+  std::vector<P3> x(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) s.control_point(i, x[static_cast<std::size_t>(i)].data());
+  const auto cross = [](const P3& u, const P3& v) {
+    return P3{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+  };
+  P3 far{0, 0, 0};
+  for (const P3& p : x)
+    if (dot(sub(p, x[0]), sub(p, x[0])) > dot(far, far)) far = sub(p, x[0]);
+  const double size = std::sqrt(dot(far, far));
+  if (size == 0) return true;
+  P3 best{0, 0, 0};
+  for (const P3& p : x) {
+    const P3 c = cross(far, sub(p, x[0]));
+    if (dot(c, c) > dot(best, best)) best = c;
+  }
+  const double len = std::sqrt(dot(best, best));
+  if (len == 0) return true;
+  for (const P3& p : x)
+    if (std::abs(dot(sub(p, x[0]), best)) / len > 1e-12 * size) return false;
+  return true;
+}
+
 }  // namespace
 
 TrimmedSolid::TrimmedSolid(TrimmedBoundary boundary) : boundary_(std::move(boundary)) {
@@ -193,7 +219,72 @@ TrimmedSolid::TrimmedSolid(TrimmedBoundary boundary) : boundary_(std::move(bound
       trim_boxes_[f].push_back(pb);
       trim_polygons_[f].push_back(std::move(poly));
     }
+  flat_.assign(b.faces.size(), 0);
+  for (std::size_t f = 0; f < b.faces.size(); ++f) flat_[f] = is_flat(b.faces[f].surface);
   volume_ = trimmed_volume(b);
+}
+
+template <class F>
+bool TrimmedSolid::any_triangle_meeting(const Box<3>& q, F&& f) const {
+  const SpaceGrid& g = space_;
+  const TrimmedBoundary& bd = boundary_;
+  // The open box: shrunk by rounding, so that triangles in its side planes stay out.
+  Box<3> in = q;
+  const double eps = 1e-12 * box_.diagonal();
+  for (int k = 0; k < 3; ++k) {
+    in.lo[k] += eps;
+    in.hi[k] -= eps;
+  }
+  const double grow = bd.chordal_tolerance;
+  std::array<int, 3> lo, hi;
+  for (int k = 0; k < 3; ++k) {
+    if (in.hi[k] + grow < box_.lo[k] || in.lo[k] - grow > box_.hi[k]) return false;
+    lo[k] = std::clamp(static_cast<int>((in.lo[k] - grow - g.lo[k]) * g.inv_h[k]), 0, g.n[k] - 1);
+    hi[k] = std::clamp(static_cast<int>((in.hi[k] + grow - g.lo[k]) * g.inv_h[k]), 0, g.n[k] - 1);
+  }
+  for (int c = lo[2]; c <= hi[2]; ++c)
+    for (int j = lo[1]; j <= hi[1]; ++j)
+      for (int i = lo[0]; i <= hi[0]; ++i) {
+        const std::size_t cell = (static_cast<std::size_t>(c) * g.n[1] + j) * g.n[0] + i;
+        for (int k = g.start[cell]; k < g.start[cell + 1]; ++k) {
+          const int t = g.triangles[k];
+          const double r = flat_[static_cast<std::size_t>(bd.triangle_face[t])] ? 0.0 : grow;
+          bool meets = true;
+          for (int d = 0; d < 3 && meets; ++d) {
+            double a = INFINITY, z = -INFINITY;
+            for (int v : bd.mesh.triangles[t]) {
+              a = std::min(a, bd.mesh.vertices[v][d]);
+              z = std::max(z, bd.mesh.vertices[v][d]);
+            }
+            meets = z + r >= in.lo[d] && a - r <= in.hi[d];
+          }
+          if (meets && f(t)) return true;
+        }
+      }
+  return false;
+}
+
+bool TrimmedSolid::boundary_meets(const Box<3>& b) const {
+  return any_triangle_meeting(b, [](int) { return true; });
+}
+
+int TrimmedSolid::transversal_axis(const Box<3>& b) const {
+  const TrimmedBoundary& bd = boundary_;
+  std::array<double, 3> worst{1, 1, 1};
+  bool any = false;
+  any_triangle_meeting(b, [&](int t) {
+    const auto& tri = bd.mesh.triangles[static_cast<std::size_t>(t)];
+    const P3 &a = bd.mesh.vertices[tri[0]], &p = bd.mesh.vertices[tri[1]], &c = bd.mesh.vertices[tri[2]];
+    const P3 u = sub(p, a), v = sub(c, a);
+    const P3 n{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    const double len = std::sqrt(dot(n, n));
+    if (len == 0) return false;
+    any = true;
+    for (int k = 0; k < 3; ++k) worst[k] = std::min(worst[k], std::abs(n[k]) / len);
+    return false;
+  });
+  if (!any) return 0;
+  return static_cast<int>(std::max_element(worst.begin(), worst.end()) - worst.begin());
 }
 
 bool TrimmedSolid::inside_trim(int face, const Param<2>& uv) const {

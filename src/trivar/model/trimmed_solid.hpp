@@ -50,6 +50,15 @@ public:
   // Volume of the region from the exact faces (trimmed_integral.hpp), computed once at construction.
   double volume() const { return volume_; }
 
+  // Whether the boundary may pass through the open box: false proves that the box lies wholly inside or wholly
+  // outside (contains() at any of its points then decides). Conservative: the boxes of the mesh triangles,
+  // grown by the chordal tolerance on curved faces (flat faces are meshed exactly), are tested, so a face lying
+  // in a side plane of the box does not count.
+  bool boundary_meets(const Box<3>& b) const;
+  // The axis the boundary inside the box is most transversal to: the one whose smallest normal component over
+  // the mesh triangles boundary_meets() finds there is largest (0 when there are none).
+  int transversal_axis(const Box<3>& b) const;
+
 private:
   // Triangles whose projection along an axis covers each cell of a uniform grid over the box's other two
   // coordinates (compressed rows).
@@ -72,8 +81,13 @@ private:
   std::vector<std::vector<std::vector<std::array<double, 2>>>> trim_polygons_;
   std::vector<std::vector<Box<2>>> trim_boxes_;  // per face and loop: the polygon's box
   std::vector<double> trim_slack_;  // per face: how far its polygons may stray from the trimming curves
+  std::vector<char> flat_;          // per face: all control points in one plane
   double volume_ = 0;
 
+  // Calls f(t) for the mesh triangles whose boxes (grown as boundary_meets says) meet the open box, until f
+  // returns true; returns whether one did.
+  template <class F>
+  bool any_triangle_meeting(const Box<3>& b, F&& f) const;
   void mesh_crossings(int axis, const std::array<double, 3>& p, std::vector<LineCrossing>& out) const;
   void refine(int axis, const std::array<double, 3>& p, LineCrossing& c) const;
   // Within `band` of the mesh: 1 inside, 0 outside by the nearest exact face; -1 farther than `band` or when
