@@ -52,6 +52,7 @@ struct SolveArgs {
   std::string space = "lr";
   int steps = 5;
   double beta = 0.3;
+  int admissible = 0;
   std::string solver = "cg";
   std::string out;
   bool force = false;
@@ -362,6 +363,9 @@ void run_adaptive(const SolveArgs& a, const PoissonBenchmark<D>& b) {
   AdaptiveOptions o;
   o.steps = a.steps;
   o.beta = a.beta;
+  o.admissible = a.admissible;
+  require(a.admissible == 0 || (a.admissible >= 2 && a.space != "lr"),
+          "solve: --admissible takes a class m >= 2 and applies to --space hb or thb");
   o.solver = a.solver;
   Eigen::VectorXd coefs;
   const auto print = [](const ConvergenceRow& r) {
@@ -568,6 +572,8 @@ void add_solve_command(CLI::App& app, Context& ctx) {
       ->check(CLI::IsMember({"lr", "hb", "thb"}));
   cmd->add_option("--steps", a->steps, "Adaptive steps (solves)")->default_val(5);
   cmd->add_option("--beta", a->beta, "Dorfler marking fraction in (0, 1]")->default_val(0.3);
+  cmd->add_option("--admissible", a->admissible,
+                  "HB/THB adaptive loop: keep the mesh admissible of class M >= 2 (at most M levels act on an element)");
   cmd->add_option("--solver", a->solver, "cg, cg-ichol or cholmod")->default_val("cg");
   cmd->add_option("--out", a->out, "Folder for solution.vtu / modes.vtu, convergence.csv and .svg: new, empty, "
                                    "or written by trivar before (see --force)");

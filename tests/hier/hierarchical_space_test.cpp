@@ -282,3 +282,63 @@ TEST(HierarchicalSpace, DomainsCuttingCoarserCells) {
   EXPECT_TRUE(given.is_refined(0, {0, 0}));
   EXPECT_THROW(given.extend_domains({{}, {{8, 0}}}), Error);
 }
+
+namespace {
+
+// The largest number of successive levels, and of functions, acting on one element (THB: the truncated
+// functions non-zero there; HB: the B-splines).
+template <int D>
+std::pair<int, int> levels_and_functions_per_element(const HierarchicalSpace<D>& s) {
+  int levels = 0, functions = 0;
+  for (int e = 0; e < s.num_elements(); ++e) {
+    const auto el = s.element_operator(e);
+    int lo = 1 << 20, hi = -1;
+    for (int id : el.ids) {
+      lo = std::min(lo, s.function(id).level);
+      hi = std::max(hi, s.function(id).level);
+    }
+    levels = std::max(levels, hi - lo + 1);
+    functions = std::max(functions, static_cast<int>(el.ids.size()));
+  }
+  return {levels, functions};
+}
+
+// Refines `steps` times the leaf at (x, x) and 16 random leaves, admissibly of class m or (m = 0) plainly.
+template <int D>
+void refine_towards_corner(HierarchicalSpace<D>& s, int steps, int m, double x) {
+  std::mt19937 rng(9);
+  for (int i = 0; i < steps; ++i) {
+    Param<D> u;
+    u.fill(x);
+    std::vector<int> marked{s.find_element(u)};
+    std::uniform_int_distribution<int> pick(0, s.num_elements() - 1);
+    for (int j = 0; j < 16; ++j) marked.push_back(pick(rng));
+    if (m) s.refine_elements_admissible(marked, m);
+    else s.refine_elements(marked);
+  }
+}
+
+}  // namespace
+
+// Class-m admissible meshes: at most m levels and m (p + 1)^D functions act on any element. Refining the same
+// marks without the closure breaks the bound (so the check can fail).
+TEST(HierarchicalSpace, AdmissibleRefinementBoundsTheLevelsPerElement) {
+  for (auto b : {HierarchicalBasis::thb, HierarchicalBasis::hb})
+    for (int m : {2, 3}) {
+      auto s = uniform_space<2>(2, 4, b);
+      refine_towards_corner(s, 8, m, 0.3);
+      EXPECT_GE(s.num_levels(), 8);
+      const auto [levels, functions] = levels_and_functions_per_element(s);
+      EXPECT_LE(levels, m) << to_string(b) << " m = " << m;
+      EXPECT_LE(functions, m * 9) << to_string(b) << " m = " << m;
+    }
+  auto plain = uniform_space<2>(2, 4, HierarchicalBasis::thb);
+  refine_towards_corner(plain, 8, 0, 0.3);
+  EXPECT_GT(levels_and_functions_per_element(plain).first, 2);
+  // A volume, class 2.
+  auto v = uniform_space<3>(2, 2, HierarchicalBasis::thb);
+  refine_towards_corner(v, 4, 2, 0.3);
+  const auto [levels, functions] = levels_and_functions_per_element(v);
+  EXPECT_LE(levels, 2);
+  EXPECT_LE(functions, 2 * 27);
+}

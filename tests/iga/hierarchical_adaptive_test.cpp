@@ -79,6 +79,28 @@ TEST(HierarchicalPoisson, HBAndTHBGiveTheSameSolutionOnRefinedSpaces) {
   EXPECT_LT(nnz(thb), nnz(hb));
 }
 
+// The admissible loop (class 2) keeps its bound on every mesh it makes and still converges at the optimal rate.
+TEST(HierarchicalPoisson, AdmissibleAdaptiveLShape) {
+  const PoissonBenchmark<2> b = l_shape(2, 4);
+  HierarchicalSpline<2> h(b.space.geometry, HierarchicalBasis::thb);
+  AdaptiveOptions o;
+  o.steps = 12;
+  o.admissible = 2;
+  const auto rows = adaptive_poisson(h, b.problem, b.exact, o);
+  EXPECT_GE(h1_rate(rows, rows.size() / 2), 1.0 - 0.1);
+  const HierarchicalSpace<2>& s = h.space();
+  for (int e = 0; e < s.num_elements(); ++e) {
+    const auto el = s.element_operator(e);
+    int lo = 1 << 20, hi = -1;
+    for (int id : el.ids) {
+      lo = std::min(lo, s.function(id).level);
+      hi = std::max(hi, s.function(id).level);
+    }
+    EXPECT_LE(hi - lo + 1, 2);
+    EXPECT_LE(el.ids.size(), 2u * 9u);
+  }
+}
+
 TEST(HierarchicalPoisson, AdaptiveLShapeReachesTheOptimalRate) {
   for (int p : {2, 3}) {
     const PoissonBenchmark<2> b = l_shape(p, 4);

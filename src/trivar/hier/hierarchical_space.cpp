@@ -353,6 +353,45 @@ int HierarchicalSpace<D>::refine_elements(std::span<const int> elements) {
 }
 
 template <int D>
+int HierarchicalSpace<D>::refine_elements_admissible(std::span<const int> elements, int m) {
+  require(m >= 2, "hier: admissibility class " + std::to_string(m) + " (at least 2)");
+  std::vector<char> marked(static_cast<std::size_t>(num_elements()), 0);
+  std::vector<int> stack(elements.begin(), elements.end()), closure;
+  const int shift = basis_ == HierarchicalBasis::thb ? 2 : 1;
+  while (!stack.empty()) {
+    const int e = stack.back();
+    stack.pop_back();
+    const HierarchicalCell<D> q = element(e);
+    if (marked[static_cast<std::size_t>(e)]) continue;
+    marked[static_cast<std::size_t>(e)] = 1;
+    closure.push_back(e);
+    const int k = q.level - m + shift;  // level of the support extension
+    if (q.level - m + 1 < 0 || k < 0) continue;
+    Ints<D> c = q.index;
+    for (int j = q.level; j > k; --j) c = parent(j, c);
+    // The support extension as cells of level k, then the cells of level l - m + 1 meeting it.
+    Ints<D> lo, hi;
+    for (int d = 0; d < D; ++d) {
+      const HierarchyAxis& a = h_.axis(k, d);
+      const int span = a.span(c[d]);
+      lo[d] = a.first_cell(span - h_.degree(d));
+      hi[d] = a.end_cell(span);
+    }
+    const int n = q.level - m + 1;
+    if (n < k)
+      for (int d = 0; d < D; ++d) {
+        lo[d] = h_.parent(k, d, lo[d]);
+        hi[d] = h_.parent(k, d, hi[d] - 1) + 1;
+      }
+    for_each_index<D>(lo, hi, [&](const Ints<D>& cell) {
+      const int leaf = find_leaf(n, cell);
+      if (leaf >= 0 && !marked[static_cast<std::size_t>(leaf)]) stack.push_back(leaf);
+    });
+  }
+  return refine_elements(closure);
+}
+
+template <int D>
 int HierarchicalSpace<D>::refine_functions(std::span<const int> ids) {
   std::vector<std::vector<Ints<D>>> per_level(static_cast<std::size_t>(num_levels()));
   for (int id : ids) {

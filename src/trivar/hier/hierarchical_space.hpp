@@ -127,6 +127,14 @@ public:
   int refine_cells(int level, std::span<const Ints<D>> cells);
   // Marked elements (leaf ids): each leaf cell is refined. Returns the number of refined elements.
   int refine_elements(std::span<const int> elements);
+  // Marked elements refined so that the mesh stays admissible of class m >= 2 (Buffa and Giannelli 2016;
+  // Bracco, Buffa, Giannelli, Vazquez 2019; Carraturo et al. 2019): the functions non-zero on any element
+  // belong to at most m successive levels, so at most m prod(p_k + 1) act on it. A marked leaf Q of level l
+  // first refines, recursively, its neighbourhood: the leaves of level l - m + 1 meeting the support extension
+  // of Q at level l - m + 2 (THB) or l - m + 1 (HB), the union of the supports of that level's B-splines
+  // non-zero on Q. The mesh must be admissible of class m before (every aligned mesh refined only this way is).
+  // Returns the number of refined elements.
+  int refine_elements_admissible(std::span<const int> elements, int m);
   // Marked functions (ids): every cell of the support of each is refined (the HB refinement of Vuong,
   // Giannelli, Juttler, Simeon 2011). Returns the number of newly refined cells.
   int refine_functions(std::span<const int> ids);

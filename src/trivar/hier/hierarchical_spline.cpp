@@ -220,6 +220,11 @@ int HierarchicalSpline<D>::refine_elements(std::span<const int> elements) {
 }
 
 template <int D>
+int HierarchicalSpline<D>::refine_elements_admissible(std::span<const int> elements, int m) {
+  return refine([&](HierarchicalSpace<D>& s) { return s.refine_elements_admissible(elements, m); });
+}
+
+template <int D>
 int HierarchicalSpline<D>::refine_functions(std::span<const int> ids) {
   return refine([&](HierarchicalSpace<D>& s) { return s.refine_functions(ids); });
 }
