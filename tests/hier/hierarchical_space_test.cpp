@@ -285,24 +285,6 @@ TEST(HierarchicalSpace, DomainsCuttingCoarserCells) {
 
 namespace {
 
-// The largest number of successive levels, and of functions, acting on one element (THB: the truncated
-// functions non-zero there; HB: the B-splines).
-template <int D>
-std::pair<int, int> levels_and_functions_per_element(const HierarchicalSpace<D>& s) {
-  int levels = 0, functions = 0;
-  for (int e = 0; e < s.num_elements(); ++e) {
-    const auto el = s.element_operator(e);
-    int lo = 1 << 20, hi = -1;
-    for (int id : el.ids) {
-      lo = std::min(lo, s.function(id).level);
-      hi = std::max(hi, s.function(id).level);
-    }
-    levels = std::max(levels, hi - lo + 1);
-    functions = std::max(functions, static_cast<int>(el.ids.size()));
-  }
-  return {levels, functions};
-}
-
 // Refines `steps` times the leaf at (x, x) and 16 random leaves, admissibly of class m or (m = 0) plainly.
 template <int D>
 void refine_towards_corner(HierarchicalSpace<D>& s, int steps, int m, double x) {
