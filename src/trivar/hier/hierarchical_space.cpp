@@ -33,6 +33,20 @@ void for_each_index(const Ints<D>& lo, const Ints<D>& hi, F&& f) {
   }
 }
 
+// Whether pred(index) holds for every multi-index lo <= index < hi (stops at the first that fails).
+template <int D, class Pred>
+bool all_of_index(const Ints<D>& lo, const Ints<D>& hi, Pred&& pred) {
+  for (int k = 0; k < D; ++k)
+    if (lo[k] >= hi[k]) return true;
+  Ints<D> i = lo;
+  while (true) {
+    if (!pred(std::as_const(i))) return false;
+    int k = 0;
+    while (k < D && ++i[k] == hi[k]) i[k] = lo[k], ++k;
+    if (k == D) return true;
+  }
+}
+
 // Adds the sorted unique keys to the sorted unique set.
 void merge_into(std::vector<CellKey>& set, const std::vector<CellKey>& keys) {
   std::vector<CellKey> merged;
@@ -64,15 +78,24 @@ bool HierarchicalSpace<D>::support_in(int level, const Ints<D>& f, const std::ve
     lo[k] = h_.axis(level, k).first_cell(f[k]);
     hi[k] = h_.axis(level, k).end_cell(f[k]);
   }
-  bool all = true;
-  for_each_index<D>(lo, hi, [&](const Ints<D>& c) { all = all && contains(cells, pack_key<D>(c)); });
-  return all;
+  return all_of_index<D>(lo, hi, [&](const Ints<D>& c) { return contains(cells, pack_key<D>(c)); });
 }
 
 template <int D>
 bool HierarchicalSpace<D>::support_in_domain(int level, const Ints<D>& f) const {
   if (level == 0) return true;
-  return level < static_cast<int>(domain_.size()) && support_in(level, f, domain_[static_cast<std::size_t>(level)]);
+  if (level >= static_cast<int>(domain_.size())) return false;
+  if (!aligned_) return support_in(level, f, domain_[static_cast<std::size_t>(level)]);
+  // Aligned: the support's cells lie in Omega^level when their parents are covered cells of the level below
+  // (a few lookups in a smaller set instead of one per cell).
+  Ints<D> lo, hi;
+  for (int k = 0; k < D; ++k) {
+    const HierarchyAxis& a = h_.axis(level, k);
+    lo[k] = h_.parent(level, k, a.first_cell(f[k]));
+    hi[k] = h_.parent(level, k, a.end_cell(f[k]) - 1) + 1;
+  }
+  const auto& below = refined_[static_cast<std::size_t>(level) - 1];
+  return all_of_index<D>(lo, hi, [&](const Ints<D>& c) { return contains(below, pack_key<D>(c)); });
 }
 
 template <int D>
@@ -92,15 +115,25 @@ void HierarchicalSpace<D>::rebuild() {
     parents.erase(std::unique(parents.begin(), parents.end()), parents.end());
     for (CellKey key : parents) {
       const Ints<D> c = unpack_key<D>(key);
-      bool all = true;
-      for_each_index<D>(first_children(l, c), end_children(l, c),
-                        [&](const Ints<D>& child) { all = all && contains(finer, pack_key<D>(child)); });
-      if (all) level_of(refined_, l).push_back(key);
+      if (all_of_index<D>(first_children(l, c), end_children(l, c),
+                          [&](const Ints<D>& child) { return contains(finer, pack_key<D>(child)); }))
+        level_of(refined_, l).push_back(key);
     }
     for (CellKey key : level_of(split_, l + 1)) parents.push_back(pack_key<D>(parent(l + 1, unpack_key<D>(key))));
     std::sort(parents.begin(), parents.end());
     parents.erase(std::unique(parents.begin(), parents.end()), parents.end());
     level_of(split_, l) = std::move(parents);
+  }
+  aligned_ = true;
+  for (int l = 1; l < L && aligned_; ++l) {
+    std::size_t children = 0;
+    for (CellKey key : level_of(refined_, l - 1)) {
+      const Ints<D> lo = first_children(l - 1, unpack_key<D>(key)), hi = end_children(l - 1, unpack_key<D>(key));
+      std::size_t n = 1;
+      for (int k = 0; k < D; ++k) n *= static_cast<std::size_t>(hi[k] - lo[k]);
+      children += n;
+    }
+    aligned_ = children == level_of(domain_, l).size();
   }
   active_.assign(static_cast<std::size_t>(L), {});
   inside_.assign(static_cast<std::size_t>(L), {});
@@ -441,10 +474,9 @@ void HierarchicalSpace<D>::close_domains() {
     std::vector<CellKey> covered;
     for (CellKey key : finer) {
       const Ints<D> p = parent(l + 1, unpack_key<D>(key));
-      bool all = true;
-      for_each_index<D>(first_children(l, p), end_children(l, p),
-                        [&](const Ints<D>& child) { all = all && contains(finer, pack_key<D>(child)); });
-      if (all) covered.push_back(pack_key<D>(p));
+      if (all_of_index<D>(first_children(l, p), end_children(l, p),
+                          [&](const Ints<D>& child) { return contains(finer, pack_key<D>(child)); }))
+        covered.push_back(pack_key<D>(p));
     }
     std::sort(covered.begin(), covered.end());
     covered.erase(std::unique(covered.begin(), covered.end()), covered.end());

@@ -171,6 +171,7 @@ private:
   std::vector<std::vector<CellKey>> domain_;   // per level >= 1: sorted cells inside Omega^l (level 0 empty)
   std::vector<std::vector<CellKey>> refined_;  // per level: sorted cells covered by Omega^{l+1}
   std::vector<std::vector<CellKey>> split_;    // per level: sorted cells split in the mesh
+  bool aligned_ = true;                        // every Omega^l is the children of the covered cells of l - 1
   std::vector<std::vector<CellKey>> inside_;   // per level >= 1: sorted functions with support in Omega^l
   std::vector<std::vector<CellKey>> active_;   // per level: sorted active functions
   std::vector<int> offset_{0};                 // per level + 1: first id
