@@ -71,6 +71,12 @@ void add_convert_command(CLI::App& app, Context&) {
     require(!a->strict || is_step_file(a->in), "convert: --strict applies to STEP input, not " + a->in);
     if (is_step_file(a->out)) {
       require(!is_step_file(a->in), "convert: " + a->in + " is already a STEP file");
+      if (const auto h = read_hierarchical_if_any(a->in)) {
+        write_hierarchical_file(a->out, *h, "convert");
+        std::printf("%s: %zu hierarchical object%s as HB B-spline collections (AP242, ISO 10303-21)\n", a->out.c_str(),
+                    h->size(), h->size() == 1 ? "" : "s");
+        return;
+      }
       std::vector<AnySpline> splines;
       std::vector<AnyLRSpline> lr;
       if (const std::optional<VModel> model = read_model_if_any(a->in)) {
@@ -115,7 +121,7 @@ void add_convert_command(CLI::App& app, Context&) {
     }
     if (const auto h = read_hierarchical_if_any(a->in)) {
       require(!a->lr, "convert: --lr applies to tensor splines, not to the hierarchical splines of " + a->in);
-      write_hierarchical_file(a->out, *h, "convert");
+      write_hierarchical_file(a->out, *h, "convert", a->lr_vtk());
       return;
     }
     if (const std::optional<VModel> model = read_model_if_any(a->in)) {

@@ -57,6 +57,7 @@ struct SolveArgs {
   std::string space = "lr";
   int steps = 5;
   double beta = 0.3;
+  int admissible = 0;
   std::string solver = "cg";
   std::string out;
   bool force = false;
@@ -322,13 +323,12 @@ Discretisation<D> elasticity_discretisation(const ElasticityBenchmark<D>& b) {
   return elasticity_discretisation(single_patch_space(b.space), b.problem, b.exact);
 }
 
-// The LR solution as point field "u" on the final mesh, with the per-element indicator and errors as cell data
-// (so ParaView shows where the estimator and the true error disagree).
-template <int D>
-void write_lr_solution(const std::filesystem::path& path, const LRSpline<D>& lr, const PoissonBenchmark<D>& b,
-                       const Eigen::VectorXd& coefs, int threads) {
-  const LRSpline<D> field = lr_solution_field(lr, coefs);
-  const RefinedSpace<D> space = refined_space(lr, threads);
+// The solution as point field "u" on the final mesh of an LR or hierarchical geometry, with the per-element
+// indicator and errors as cell data (so ParaView shows where the estimator and the true error disagree).
+template <int D, class Geometry>
+void write_refined_solution(const std::filesystem::path& path, const Geometry& g, const PoissonBenchmark<D>& b,
+                            const Eigen::VectorXd& coefs, int threads) {
+  const RefinedSpace<D> space = refined_space(g, threads);
   const std::vector<double> eta = residual_indicators(space, b.problem, coefs, threads);
   std::vector<double> l2, h1;
   error_norms_per_element(space, coefs, 1, b.exact, l2, h1, threads);
@@ -337,14 +337,23 @@ void write_lr_solution(const std::filesystem::path& path, const LRSpline<D>& lr,
       out[0] = root ? std::sqrt(v[static_cast<std::size_t>(e)]) : v[static_cast<std::size_t>(e)];
     };
   };
-  io::write_lr_vtu(path.string(), AnyLRSpline(lr), {},
-                   {{"u", 1,
-                     [&](int, std::span<const double> u, std::span<double> out) {
-                       Param<D> p;
-                       for (int k = 0; k < D; ++k) p[k] = u[static_cast<std::size_t>(k)];
-                       field.eval(p, out.data());
-                     }}},
-                   {{"estimate", 1, cell(eta, false)}, {"error_l2", 1, cell(l2, true)}, {"error_h1", 1, cell(h1, true)}});
+  const std::vector<io::LRVtkCellField> cells{
+      {"estimate", 1, cell(eta, false)}, {"error_l2", 1, cell(l2, true)}, {"error_h1", 1, cell(h1, true)}};
+  auto point_field = [](const auto& field) {
+    return std::vector<io::VtkPointField>{{"u", 1, [&field](int, std::span<const double> u, std::span<double> out) {
+                                             Param<D> p;
+                                             for (int k = 0; k < D; ++k) p[k] = u[static_cast<std::size_t>(k)];
+                                             field.eval(p, out.data());
+                                           }}};
+  };
+  if constexpr (std::is_same_v<Geometry, LRSpline<D>>) {
+    const LRSpline<D> field = lr_solution_field(g, coefs);
+    io::write_lr_vtu(path.string(), AnyLRSpline(g), {}, point_field(field), cells);
+  } else {
+    // The solution's coefficients belong to the geometry's own functions (refined_space keeps their ids).
+    const HierarchicalSpline<D> field(g.space(), 1, false, std::vector<double>(coefs.data(), coefs.data() + coefs.size()));
+    io::write_hierarchical_vtu(path.string(), {AnyHierarchicalSpline(g)}, {}, point_field(field), cells);
+  }
 }
 
 // Adaptive refinement from the problem's tensor space, on an LR or a hierarchical (HB, THB) space: one line per
@@ -355,6 +364,9 @@ void run_adaptive(const SolveArgs& a, const PoissonBenchmark<D>& b) {
   AdaptiveOptions o;
   o.steps = a.steps;
   o.beta = a.beta;
+  o.admissible = a.admissible;
+  require(a.admissible == 0 || (a.admissible >= 2 && a.space != "lr"),
+          "solve: --admissible takes a class m >= 2 and applies to --space hb or thb");
   o.solver = a.solver;
   Eigen::VectorXd coefs;
   const auto print = [](const ConvergenceRow& r) {
@@ -369,6 +381,8 @@ void run_adaptive(const SolveArgs& a, const PoissonBenchmark<D>& b) {
       const auto out = prepare_out(a);
       write_convergence_csv(out->path("convergence.csv").string(), rows, D);
       write_convergence_svg(out->path("convergence.svg").string(), rows);
+      io::write_hierarchical_vtu(out->path("mesh.vtu").string(), {AnyHierarchicalSpline(h)});
+      write_refined_solution<D>(out->path("solution.vtu"), h, b, coefs, a.threads);
       out->commit();
     }
     return;
@@ -380,7 +394,7 @@ void run_adaptive(const SolveArgs& a, const PoissonBenchmark<D>& b) {
     write_convergence_csv(out->path("convergence.csv").string(), rows, D);
     write_convergence_svg(out->path("convergence.svg").string(), rows);
     io::write_lr_vtu(out->path("mesh.vtu").string(), AnyLRSpline(lr));
-    write_lr_solution<D>(out->path("solution.vtu"), lr, b, coefs, a.threads);
+    write_refined_solution<D>(out->path("solution.vtu"), lr, b, coefs, a.threads);
     out->commit();
   }
 }
@@ -658,6 +672,8 @@ void add_solve_command(CLI::App& app, Context& ctx) {
       ->check(CLI::IsMember({"lr", "hb", "thb"}));
   cmd->add_option("--steps", a->steps, "Adaptive steps (solves)")->default_val(5);
   cmd->add_option("--beta", a->beta, "Dorfler marking fraction in (0, 1]")->default_val(0.3);
+  cmd->add_option("--admissible", a->admissible,
+                  "HB/THB adaptive loop: keep the mesh admissible of class M >= 2 (at most M levels act on an element)");
   cmd->add_option("--solver", a->solver, "cg, cg-ichol or cholmod")->default_val("cg");
   cmd->add_option("--out", a->out, "Folder for solution.vtu / modes.vtu, convergence.csv and .svg: new, empty, "
                                    "or written by trivar before (see --force)");

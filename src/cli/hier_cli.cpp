@@ -5,6 +5,7 @@
 #include "trivar/core/error.hpp"
 #include "trivar/io/gismo_xml.hpp"
 #include "trivar/io/spline_file.hpp"
+#include "trivar/io/step/step_file.hpp"
 
 namespace trivar::cli {
 
@@ -52,8 +53,18 @@ void print_hierarchical_info(const std::string& file, const std::vector<AnyHiera
 }
 
 void write_hierarchical_file(const std::string& path, const std::vector<AnyHierarchical>& objects,
-                             const std::string& command) {
-  require(is_xml(path), command + ": hierarchical splines are written to G+Smo .xml files, not '" + path + "'");
+                             const std::string& command, const io::LRVtkOptions& vtk) {
+  if (io::file_extension(path) == ".vtu") {
+    io::write_hierarchical_vtu(path, objects, vtk);
+    return;
+  }
+  if (io::format_of(path) == io::FileFormat::step) {
+    io::step::GeometryFileOptions options;
+    options.description = "trivar hierarchical splines";
+    io::step::write_step(path, {}, {}, objects, options);
+    return;
+  }
+  require(is_xml(path), command + ": hierarchical splines are written to G+Smo .xml, .vtu or STEP files, not '" + path + "'");
   std::vector<io::GismoGeometry> g;
   for (const auto& o : objects) std::visit([&](const auto& h) { g.emplace_back(h); }, o);
   io::write_gismo_xml(path, g);

@@ -1,6 +1,8 @@
 #pragma once
 // Fixtures of the hierarchical-spline tests: tensor splines with generic coefficients and random refinements.
+#include <algorithm>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "trivar/hier/hierarchical_spline.hpp"
@@ -49,6 +51,24 @@ void refine_randomly(HierarchicalSpline<D>& s, int steps, unsigned seed = 3) {
     for (int j = 0; j < E / 5; ++j) marked.push_back(pick(rng));
     s.refine_elements(marked);
   }
+}
+
+// The largest number of successive levels, and of functions, acting on one element (THB: the truncated
+// functions non-zero there; HB: the B-splines).
+template <int D>
+std::pair<int, int> levels_and_functions_per_element(const HierarchicalSpace<D>& s) {
+  int levels = 0, functions = 0;
+  for (int e = 0; e < s.num_elements(); ++e) {
+    const auto el = s.element_operator(e);
+    int lo = 1 << 20, hi = -1;
+    for (int id : el.ids) {
+      lo = std::min(lo, s.function(id).level);
+      hi = std::max(hi, s.function(id).level);
+    }
+    levels = std::max(levels, hi - lo + 1);
+    functions = std::max(functions, static_cast<int>(el.ids.size()));
+  }
+  return {levels, functions};
 }
 
 }  // namespace trivar::test

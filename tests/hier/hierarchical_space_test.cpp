@@ -231,3 +231,96 @@ TEST(HierarchicalSpace, RefiningOutsideTheDomainThrows) {
   EXPECT_THROW(s.refine_cells(0, std::vector<Ints<2>>{{4, 0}}), Error);  // no such cell
   EXPECT_THROW(s.refine_elements(std::vector<int>{1000}), Error);
 }
+
+// Domains given as arbitrary cell sets (G+Smo's boxes): Omega^1 = level-1 cells [3, 8)^3 cuts level-0 cells,
+// Omega^2 = level-2 cells [7, 12)^3 cuts level-1 cells. HB functions stay independent, THB ones a partition of
+// unity on every element, and the mesh holds exactly the domain.
+TEST(HierarchicalSpace, DomainsCuttingCoarserCells) {
+  auto box = [](int lo, int hi) {
+    std::vector<Ints<3>> out;
+    for (int k = lo; k < hi; ++k)
+      for (int j = lo; j < hi; ++j)
+        for (int i = lo; i < hi; ++i) out.push_back({i, j, k});
+    return out;
+  };
+  for (auto b : {HierarchicalBasis::hb, HierarchicalBasis::thb}) {
+    auto s = uniform_space<3>(2, 4, b);
+    EXPECT_EQ(s.extend_domains({{}, box(3, 8), box(7, 12)}), 125 + 125);
+    EXPECT_EQ(s.num_levels(), 3);
+    EXPECT_TRUE(s.is_refined(1, {4, 4, 4}));
+    EXPECT_TRUE(s.is_split(1, {3, 3, 3}));
+    EXPECT_FALSE(s.is_refined(1, {3, 3, 3}));
+    // Elements tile the domain: volumes sum to one, and the element found at a point contains it.
+    double volume = 0;
+    for (int e = 0; e < s.num_elements(); ++e) {
+      const Box<3> q = s.element_box(e);
+      volume += q.extent(0) * q.extent(1) * q.extent(2);
+    }
+    EXPECT_NEAR(volume, 1.0, 1e-14);
+    for (const auto& u : random_points<3>(100)) {
+      const Box<3> q = s.element_box(s.find_element(u));
+      for (int k = 0; k < 3; ++k) EXPECT_TRUE(q.lo[k] <= u[k] && u[k] <= q.hi[k]);
+    }
+    EXPECT_GT(gram_condition(s), 1e-10);
+    if (b == HierarchicalBasis::thb)
+      for (int e = 0; e < s.num_elements(); ++e) {
+        const auto el = s.element_operator(e);
+        for (int q = 0; q < s.local_size(); ++q) EXPECT_NEAR(el.C.col(q).sum(), 1.0, 1e-13);
+      }
+  }
+  // Level-2 cells covering whole level-1 cells make those level-1 domain cells: the aligned hierarchy.
+  auto given = uniform_space<2>(1, 4, HierarchicalBasis::thb);
+  std::vector<Ints<2>> corner;
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) corner.push_back({i, j});
+  given.extend_domains({{}, {}, corner});
+  auto refined = uniform_space<2>(1, 4, HierarchicalBasis::thb);
+  refined.refine_cells(0, std::vector<Ints<2>>{{0, 0}});
+  refined.refine_cells(1, std::vector<Ints<2>>{{0, 0}, {1, 0}, {0, 1}, {1, 1}});
+  EXPECT_EQ(given.num_basis(), refined.num_basis());
+  EXPECT_EQ(given.num_elements(), refined.num_elements());
+  EXPECT_TRUE(given.is_refined(0, {0, 0}));
+  EXPECT_THROW(given.extend_domains({{}, {{8, 0}}}), Error);
+}
+
+namespace {
+
+// Refines `steps` times the leaf at (x, x) and 16 random leaves, admissibly of class m or (m = 0) plainly.
+template <int D>
+void refine_towards_corner(HierarchicalSpace<D>& s, int steps, int m, double x) {
+  std::mt19937 rng(9);
+  for (int i = 0; i < steps; ++i) {
+    Param<D> u;
+    u.fill(x);
+    std::vector<int> marked{s.find_element(u)};
+    std::uniform_int_distribution<int> pick(0, s.num_elements() - 1);
+    for (int j = 0; j < 16; ++j) marked.push_back(pick(rng));
+    if (m) s.refine_elements_admissible(marked, m);
+    else s.refine_elements(marked);
+  }
+}
+
+}  // namespace
+
+// Class-m admissible meshes: at most m levels and m (p + 1)^D functions act on any element. Refining the same
+// marks without the closure breaks the bound (so the check can fail).
+TEST(HierarchicalSpace, AdmissibleRefinementBoundsTheLevelsPerElement) {
+  for (auto b : {HierarchicalBasis::thb, HierarchicalBasis::hb})
+    for (int m : {2, 3}) {
+      auto s = uniform_space<2>(2, 4, b);
+      refine_towards_corner(s, 8, m, 0.3);
+      EXPECT_GE(s.num_levels(), 8);
+      const auto [levels, functions] = levels_and_functions_per_element(s);
+      EXPECT_LE(levels, m) << to_string(b) << " m = " << m;
+      EXPECT_LE(functions, m * 9) << to_string(b) << " m = " << m;
+    }
+  auto plain = uniform_space<2>(2, 4, HierarchicalBasis::thb);
+  refine_towards_corner(plain, 8, 0, 0.3);
+  EXPECT_GT(levels_and_functions_per_element(plain).first, 2);
+  // A volume, class 2.
+  auto v = uniform_space<3>(2, 2, HierarchicalBasis::thb);
+  refine_towards_corner(v, 4, 2, 0.3);
+  const auto [levels, functions] = levels_and_functions_per_element(v);
+  EXPECT_LE(levels, 2);
+  EXPECT_LE(functions, 2 * 27);
+}

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "hier/hier_test_support.hpp"
 #include "trivar/iga/adaptive_loop.hpp"
 #include "trivar/iga/benchmark_problems.hpp"
 #include "trivar/iga/refined_assembly.hpp"
@@ -77,6 +78,20 @@ TEST(HierarchicalPoisson, HBAndTHBGiveTheSameSolutionOnRefinedSpaces) {
         .A.nonZeros();
   };
   EXPECT_LT(nnz(thb), nnz(hb));
+}
+
+// The admissible loop (class 2) keeps its bound on every mesh it makes and still converges at the optimal rate.
+TEST(HierarchicalPoisson, AdmissibleAdaptiveLShape) {
+  const PoissonBenchmark<2> b = l_shape(2, 4);
+  HierarchicalSpline<2> h(b.space.geometry, HierarchicalBasis::thb);
+  AdaptiveOptions o;
+  o.steps = 12;
+  o.admissible = 2;
+  const auto rows = adaptive_poisson(h, b.problem, b.exact, o);
+  EXPECT_GE(h1_rate(rows, rows.size() / 2), 1.0 - 0.1);
+  const auto [levels, functions] = test::levels_and_functions_per_element(h.space());
+  EXPECT_LE(levels, 2);
+  EXPECT_LE(functions, 2 * 9);
 }
 
 TEST(HierarchicalPoisson, AdaptiveLShapeReachesTheOptimalRate) {

@@ -185,3 +185,47 @@ TEST(LrVtk, BezierCellsReproduceTheVolumeAndSplineFields) {
     }
   }
 }
+
+TEST(LrVtk, BezierCellsOfAThbVolume) {
+  // The leaves of a refined THB volume as Bezier hexahedra: the cells' Bezier points reproduce the spline, and
+  // "support" counts the functions non-zero on each leaf.
+  test::TempDir dir;
+  std::array<KnotVector, 3> kv{KnotVector::open_uniform(2, 2), KnotVector::open_uniform(2, 2), KnotVector::open_uniform(1, 2)};
+  std::mt19937 rng(63);
+  std::uniform_real_distribution<double> unit(0, 1);
+  std::vector<double> points(4 * 4 * 3 * 3);
+  for (double& c : points) c = unit(rng);
+  HierarchicalSpline<3> h(TensorSpline<3>::from_cartesian(kv, 3, points, std::vector<double>{}), HierarchicalBasis::thb);
+  h.refine_elements(std::vector<int>{0});
+  h.refine_elements(std::vector<int>{0, 3});
+  io::write_hierarchical_vtu(dir.file("h.vtu"), {AnyHierarchicalSpline(h)});
+  const test::VtuPiece v = test::read_vtu(dir.file("h.vtu"));
+  ASSERT_EQ(v.cells, h.space().num_elements());
+  const auto& conn = v.arrays.at("connectivity");
+  const auto& P = v.arrays.at("Points");
+  const auto& U = v.arrays.at("param");
+  const int p[3] = {2, 2, 1};
+  for (long long c = 0; c < v.cells; ++c) {
+    EXPECT_EQ(v.arrays.at("types")[c], 79);
+    const int e = static_cast<int>(v.arrays.at("element")[c]);
+    EXPECT_EQ(v.arrays.at("support")[c], static_cast<double>(h.space().element_operator(e).ids.size()));
+    const Box<3> b = h.space().element_box(e);
+    const long long begin = c ? static_cast<long long>(v.arrays.at("offsets")[c - 1]) : 0;
+    std::vector<std::array<int, 3>> node(18);
+    for (int q = 0; q < 18; ++q) {
+      const auto pt = static_cast<std::size_t>(conn[begin + q]);
+      for (int k = 0; k < 3; ++k)
+        node[static_cast<std::size_t>(q)][k] = static_cast<int>(std::lround((U[3 * pt + k] - b.lo[k]) / b.extent(k) * p[k]));
+    }
+    const double tt[3] = {unit(rng), unit(rng), unit(rng)};
+    double sum[3] = {0, 0, 0}, want[3];
+    for (int q = 0; q < 18; ++q) {
+      double B = 1;
+      for (int k = 0; k < 3; ++k) B *= bernstein(p[k], node[static_cast<std::size_t>(q)][k], tt[k]);
+      const auto pt = static_cast<std::size_t>(conn[begin + q]);
+      for (int d = 0; d < 3; ++d) sum[d] += B * P[3 * pt + d];
+    }
+    h.eval({b.lo[0] + tt[0] * b.extent(0), b.lo[1] + tt[1] * b.extent(1), b.lo[2] + tt[2] * b.extent(2)}, want);
+    for (int d = 0; d < 3; ++d) EXPECT_NEAR(sum[d], want[d], 1e-12);
+  }
+}

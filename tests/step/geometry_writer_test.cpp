@@ -4,7 +4,10 @@
 #include <sstream>
 #include <string>
 
+#include "hier/hier_test_support.hpp"
 #include "trivar/core/error.hpp"
+#include "trivar/io/step/geometry_reader.hpp"
+#include "trivar/io/step/parser.hpp"
 #include "trivar/io/step/geometry_writer.hpp"
 #include "trivar/io/step/writer.hpp"
 
@@ -86,4 +89,62 @@ TEST(StepGeometryWriter, RejectsUnwritable) {
   const TensorSpline<1> c4(kv, 4, false, std::vector<double>(8, 0.0));
   EXPECT_THROW(geometry_exchange_file({c4}, {}), Error);
   EXPECT_THROW(geometry_exchange_file({}, {}), Error);
+}
+
+namespace {
+
+// The B-spline on local knots t (size p + 2) at x by the Cox-de Boor recursion, half-open intervals.
+double local_bspline(const std::vector<double>& t, double x) {
+  const int p = static_cast<int>(t.size()) - 2;
+  std::vector<double> N(static_cast<std::size_t>(p) + 1);
+  for (int i = 0; i <= p; ++i) N[static_cast<std::size_t>(i)] = t[static_cast<std::size_t>(i)] <= x && x < t[static_cast<std::size_t>(i) + 1] ? 1 : 0;
+  for (int q = 1; q <= p; ++q)
+    for (int i = 0; i + q <= p; ++i) {
+      const auto a = static_cast<std::size_t>(i);
+      const double l = t[a + q] > t[a] ? (x - t[a]) / (t[a + q] - t[a]) * N[a] : 0;
+      const double r = t[a + q + 1] > t[a + 1] ? (t[a + q + 1] - x) / (t[a + q + 1] - t[a + 1]) * N[a + 1] : 0;
+      N[a] = l + r;
+    }
+  return N[0];
+}
+
+// A THB spline with generic coefficients refined at random, its geometry written as HB B-splines and read
+// back as the scaled B-splines a Part 42 reader sees: sum_i gamma_i c_i B_i must be the spline.
+template <int D>
+void check_hierarchical_collection(const std::string& entity) {
+  HierarchicalSpline<D> h(test::generic_spline<D>(2, 3, 3, false), HierarchicalBasis::thb);
+  test::refine_randomly(h, 3);
+  const std::string t = text(geometry_exchange_file({}, {}, {AnyHierarchicalSpline(h)}));
+  EXPECT_NE(t.find(".HIERARCHICAL_B_SPLINE."), std::string::npos);
+  const ExchangeFile f = parse_exchange_file(t, "hier.stp");
+  const GeometryReader reader(f, "hier.stp");
+  int found = 0;
+  for (const Instance& in : f.instances()) {
+    if (in.type_name() != entity) continue;
+    ++found;
+    LocallyRefinedParts<D> parts;
+    if constexpr (D == 2) parts = reader.locally_refined_surface_parts(in);
+    else parts = reader.locally_refined_volume_parts(in);
+    EXPECT_EQ(parts.type, "HIERARCHICAL_B_SPLINE");
+    ASSERT_EQ(static_cast<int>(parts.basis.size()), h.space().num_basis());
+    for (const auto& u : test::random_points<D>(50)) {
+      double want[3], got[3] = {0, 0, 0};
+      h.eval(u, want);
+      for (const LRBSpline<D>& b : parts.basis) {
+        EXPECT_EQ(b.gamma, 1.0);
+        double v = b.gamma;
+        for (int k = 0; k < D; ++k) v *= local_bspline(b.knots[static_cast<std::size_t>(k)], u[k]);
+        for (int d = 0; d < 3; ++d) got[d] += v * b.coef[static_cast<std::size_t>(d)];
+      }
+      for (int d = 0; d < 3; ++d) EXPECT_NEAR(got[d], want[d], 1e-12);
+    }
+  }
+  EXPECT_EQ(found, 1);
+}
+
+}  // namespace
+
+TEST(StepGeometryWriter, HierarchicalSplinesAsHierarchicalBSplines) {
+  check_hierarchical_collection<2>("LOCALLY_REFINED_SPLINE_SURFACE");
+  check_hierarchical_collection<3>("LOCALLY_REFINED_SPLINE_VOLUME");
 }

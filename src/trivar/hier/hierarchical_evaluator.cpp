@@ -79,7 +79,7 @@ int HierarchicalEvaluator<D>::build_table(const HierarchicalSpace<D>& space, int
   Ints<D> c = lo;
   for (int q = 0; q < size; ++q) {
     int code;
-    if (space.is_refined(level, c)) {
+    if (space.is_split(level, c)) {
       Ints<D> clo, chi;
       for (int k = 0; k < D; ++k) {
         clo[k] = space.hierarchy().first_child(level, k, c[k]);

@@ -33,6 +33,28 @@ void for_each_index(const Ints<D>& lo, const Ints<D>& hi, F&& f) {
   }
 }
 
+// Whether pred(index) holds for every multi-index lo <= index < hi (stops at the first that fails).
+template <int D, class Pred>
+bool all_of_index(const Ints<D>& lo, const Ints<D>& hi, Pred&& pred) {
+  for (int k = 0; k < D; ++k)
+    if (lo[k] >= hi[k]) return true;
+  Ints<D> i = lo;
+  while (true) {
+    if (!pred(std::as_const(i))) return false;
+    int k = 0;
+    while (k < D && ++i[k] == hi[k]) i[k] = lo[k], ++k;
+    if (k == D) return true;
+  }
+}
+
+// Adds the sorted unique keys to the sorted unique set.
+void merge_into(std::vector<CellKey>& set, const std::vector<CellKey>& keys) {
+  std::vector<CellKey> merged;
+  merged.reserve(set.size() + keys.size());
+  std::set_union(set.begin(), set.end(), keys.begin(), keys.end(), std::back_inserter(merged));
+  set = std::move(merged);
+}
+
 }  // namespace
 
 template <int D>
@@ -46,10 +68,7 @@ HierarchicalSpace<D>::HierarchicalSpace(TensorHierarchy<D> hierarchy, Hierarchic
 template <int D>
 bool HierarchicalSpace<D>::cell_in_domain(int level, const Ints<D>& c) const {
   if (level == 0) return true;
-  if (level > static_cast<int>(refined_.size())) return false;
-  Ints<D> parent;
-  for (int k = 0; k < D; ++k) parent[k] = h_.parent(level, k, c[k]);
-  return contains(refined_[static_cast<std::size_t>(level) - 1], pack_key<D>(parent));
+  return level < static_cast<int>(domain_.size()) && contains(domain_[static_cast<std::size_t>(level)], pack_key<D>(c));
 }
 
 template <int D>
@@ -59,69 +78,98 @@ bool HierarchicalSpace<D>::support_in(int level, const Ints<D>& f, const std::ve
     lo[k] = h_.axis(level, k).first_cell(f[k]);
     hi[k] = h_.axis(level, k).end_cell(f[k]);
   }
-  bool all = true;
-  for_each_index<D>(lo, hi, [&](const Ints<D>& c) { all = all && contains(cells, pack_key<D>(c)); });
-  return all;
+  return all_of_index<D>(lo, hi, [&](const Ints<D>& c) { return contains(cells, pack_key<D>(c)); });
 }
 
 template <int D>
 bool HierarchicalSpace<D>::support_in_domain(int level, const Ints<D>& f) const {
   if (level == 0) return true;
-  // The support's cells lie in Omega^level when their parents are refined cells of the level below.
+  if (level >= static_cast<int>(domain_.size())) return false;
+  if (!aligned_) return support_in(level, f, domain_[static_cast<std::size_t>(level)]);
+  // Aligned: the support's cells lie in Omega^level when their parents are covered cells of the level below
+  // (a few lookups in a smaller set instead of one per cell).
   Ints<D> lo, hi;
   for (int k = 0; k < D; ++k) {
     const HierarchyAxis& a = h_.axis(level, k);
     lo[k] = h_.parent(level, k, a.first_cell(f[k]));
     hi[k] = h_.parent(level, k, a.end_cell(f[k]) - 1) + 1;
   }
-  bool all = true;
   const auto& below = refined_[static_cast<std::size_t>(level) - 1];
-  for_each_index<D>(lo, hi, [&](const Ints<D>& c) { all = all && contains(below, pack_key<D>(c)); });
-  return all;
+  return all_of_index<D>(lo, hi, [&](const Ints<D>& c) { return contains(below, pack_key<D>(c)); });
 }
 
 template <int D>
 void HierarchicalSpace<D>::rebuild() {
-  while (!refined_.empty() && refined_.back().empty()) refined_.pop_back();
-  const int L = static_cast<int>(refined_.size()) + 1;
-  static const std::vector<CellKey> none;
+  if (domain_.empty()) domain_.resize(1);
+  while (domain_.size() > 1 && domain_.back().empty()) domain_.pop_back();
+  const int L = static_cast<int>(domain_.size());
+  const auto level_of = [](auto& v, int l) -> auto& { return v[static_cast<std::size_t>(l)]; };
+  // Covered and split cells, finest level first (a cell is split when a finer domain cell lies inside it).
+  refined_.assign(static_cast<std::size_t>(L), {});
+  split_.assign(static_cast<std::size_t>(L), {});
+  for (int l = L - 2; l >= 0; --l) {
+    const std::vector<CellKey>& finer = level_of(domain_, l + 1);
+    std::vector<CellKey> parents;
+    for (CellKey key : finer) parents.push_back(pack_key<D>(parent(l + 1, unpack_key<D>(key))));
+    std::sort(parents.begin(), parents.end());
+    parents.erase(std::unique(parents.begin(), parents.end()), parents.end());
+    for (CellKey key : parents) {
+      const Ints<D> c = unpack_key<D>(key);
+      if (all_of_index<D>(first_children(l, c), end_children(l, c),
+                          [&](const Ints<D>& child) { return contains(finer, pack_key<D>(child)); }))
+        level_of(refined_, l).push_back(key);
+    }
+    for (CellKey key : level_of(split_, l + 1)) parents.push_back(pack_key<D>(parent(l + 1, unpack_key<D>(key))));
+    std::sort(parents.begin(), parents.end());
+    parents.erase(std::unique(parents.begin(), parents.end()), parents.end());
+    level_of(split_, l) = std::move(parents);
+  }
+  aligned_ = true;
+  for (int l = 1; l < L && aligned_; ++l) {
+    std::size_t children = 0;
+    for (CellKey key : level_of(refined_, l - 1)) {
+      const Ints<D> lo = first_children(l - 1, unpack_key<D>(key)), hi = end_children(l - 1, unpack_key<D>(key));
+      std::size_t n = 1;
+      for (int k = 0; k < D; ++k) n *= static_cast<std::size_t>(hi[k] - lo[k]);
+      children += n;
+    }
+    aligned_ = children == level_of(domain_, l).size();
+  }
   active_.assign(static_cast<std::size_t>(L), {});
   inside_.assign(static_cast<std::size_t>(L), {});
   leaf_keys_.assign(static_cast<std::size_t>(L), {});
   for (int l = 0; l < L; ++l) {
-    const std::vector<CellKey>& refined = l < static_cast<int>(refined_.size()) ? refined_[static_cast<std::size_t>(l)] : none;
-    auto& active = active_[static_cast<std::size_t>(l)];
-    auto& leaves = leaf_keys_[static_cast<std::size_t>(l)];
-    Ints<D> zero{}, nf, nc;
-    for (int k = 0; k < D; ++k) {
-      nf[k] = h_.axis(l, k).num_functions();
-      nc[k] = h_.axis(l, k).num_cells();
-    }
+    const std::vector<CellKey>& refined = level_of(refined_, l);
+    const std::vector<CellKey>& split = level_of(split_, l);
+    auto& active = level_of(active_, l);
+    auto& leaves = level_of(leaf_keys_, l);
     if (l == 0) {
+      Ints<D> zero{}, nf, nc;
+      for (int k = 0; k < D; ++k) {
+        nf[k] = h_.axis(0, k).num_functions();
+        nc[k] = h_.axis(0, k).num_cells();
+      }
       for_each_index<D>(zero, nf, [&](const Ints<D>& f) {
         if (refined.empty() || !support_in(0, f, refined)) active.push_back(pack_key<D>(f));
       });
       for_each_index<D>(zero, nc, [&](const Ints<D>& c) {
         const CellKey key = pack_key<D>(c);
-        if (!contains(refined, key)) leaves.push_back(key);
+        if (!contains(split, key)) leaves.push_back(key);
       });
       continue;
     }
-    // Cells of Omega^l: the children of the refined cells of level l - 1; functions on them are the candidates.
-    std::vector<CellKey> cells, candidates;
-    for (CellKey key : refined_[static_cast<std::size_t>(l) - 1]) {
-      const Ints<D> parent = unpack_key<D>(key);
-      Ints<D> lo, hi;
-      for (int k = 0; k < D; ++k) {
-        lo[k] = h_.first_child(l - 1, k, parent[k]);
-        hi[k] = h_.end_child(l - 1, k, parent[k]);
-      }
-      for_each_index<D>(lo, hi, [&](const Ints<D>& c) { cells.push_back(pack_key<D>(c)); });
-    }
+    // Cells of the mesh of level l: the children of the split cells of level l - 1.
+    std::vector<CellKey> cells;
+    for (CellKey key : level_of(split_, l - 1))
+      for_each_index<D>(first_children(l - 1, unpack_key<D>(key)), end_children(l - 1, unpack_key<D>(key)),
+                        [&](const Ints<D>& c) { cells.push_back(pack_key<D>(c)); });
     std::sort(cells.begin(), cells.end());
-    for (CellKey key : cells) {
+    for (CellKey key : cells)
+      if (!contains(split, key)) leaves.push_back(key);
+    // Functions with support in Omega^l have it among the functions on the domain's cells.
+    std::vector<CellKey> candidates;
+    for (CellKey key : level_of(domain_, l)) {
       const Ints<D> c = unpack_key<D>(key);
-      if (!contains(refined, key)) leaves.push_back(key);
       Ints<D> lo, hi;
       for (int k = 0; k < D; ++k) {
         hi[k] = h_.axis(l, k).span(c[k]) + 1;
@@ -131,7 +179,7 @@ void HierarchicalSpace<D>::rebuild() {
     }
     std::sort(candidates.begin(), candidates.end());
     candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-    auto& inside = inside_[static_cast<std::size_t>(l)];
+    auto& inside = level_of(inside_, l);
     for (CellKey key : candidates) {
       const Ints<D> f = unpack_key<D>(key);
       if (!support_in_domain(l, f)) continue;
@@ -144,9 +192,9 @@ void HierarchicalSpace<D>::rebuild() {
   leaf_offset_.assign(1, 0);
   leaves_.clear();
   for (int l = 0; l < L; ++l) {
-    offset_.push_back(offset_.back() + static_cast<int>(active_[static_cast<std::size_t>(l)].size()));
-    leaf_offset_.push_back(leaf_offset_.back() + static_cast<int>(leaf_keys_[static_cast<std::size_t>(l)].size()));
-    for (CellKey key : leaf_keys_[static_cast<std::size_t>(l)]) leaves_.emplace_back(l, key);
+    offset_.push_back(offset_.back() + static_cast<int>(level_of(active_, l).size()));
+    leaf_offset_.push_back(leaf_offset_.back() + static_cast<int>(level_of(leaf_keys_, l).size()));
+    for (CellKey key : level_of(leaf_keys_, l)) leaves_.emplace_back(l, key);
   }
 }
 
@@ -213,7 +261,7 @@ int HierarchicalSpace<D>::find_element(const Param<D>& u) const {
   Ints<D> c;
   for (int k = 0; k < D; ++k) c[k] = h_.axis(0, k).cell_of(u[k]);
   int l = 0;
-  while (l < static_cast<int>(refined_.size()) && contains(refined_[static_cast<std::size_t>(l)], pack_key<D>(c))) {
+  while (l < static_cast<int>(split_.size()) && contains(split_[static_cast<std::size_t>(l)], pack_key<D>(c))) {
     ++l;
     for (int k = 0; k < D; ++k) {
       // The child along k containing u (the children of a cell are consecutive cells of the next level).
@@ -259,9 +307,15 @@ bool HierarchicalSpace<D>::is_refined(int level, const Ints<D>& cell) const {
 }
 
 template <int D>
-std::span<const CellKey> HierarchicalSpace<D>::refined_cells(int level) const {
-  if (level < 0 || level >= static_cast<int>(refined_.size())) return {};
-  return refined_[static_cast<std::size_t>(level)];
+bool HierarchicalSpace<D>::is_split(int level, const Ints<D>& cell) const {
+  return level >= 0 && level < static_cast<int>(split_.size()) &&
+         contains(split_[static_cast<std::size_t>(level)], pack_key<D>(cell));
+}
+
+template <int D>
+std::span<const CellKey> HierarchicalSpace<D>::domain_cells(int level) const {
+  if (level < 1 || level >= static_cast<int>(domain_.size())) return {};
+  return domain_[static_cast<std::size_t>(level)];
 }
 
 template <int D>
@@ -295,17 +349,30 @@ int HierarchicalSpace<D>::mark(int level, std::span<const Ints<D>> cells) {
   }
   std::sort(keys.begin(), keys.end());
   keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-  if (static_cast<int>(refined_.size()) <= level) refined_.resize(static_cast<std::size_t>(level) + 1);
   auto& r = refined_[static_cast<std::size_t>(level)];
   std::vector<CellKey> added;
   std::set_difference(keys.begin(), keys.end(), r.begin(), r.end(), std::back_inserter(added));
   if (added.empty()) return 0;
   h_.ensure_levels(level + 2);
-  std::vector<CellKey> merged;
-  merged.reserve(r.size() + added.size());
-  std::merge(r.begin(), r.end(), added.begin(), added.end(), std::back_inserter(merged));
-  r = std::move(merged);
+  if (static_cast<int>(domain_.size()) < level + 2) domain_.resize(static_cast<std::size_t>(level) + 2);
+  std::vector<CellKey> children;
+  for (CellKey key : added)
+    for_each_index<D>(first_children(level, unpack_key<D>(key)), end_children(level, unpack_key<D>(key)),
+                      [&](const Ints<D>& c) { children.push_back(pack_key<D>(c)); });
+  std::sort(children.begin(), children.end());
+  merge_into(domain_[static_cast<std::size_t>(level) + 1], children);
+  // Kept current for the coarser levels marked before the next rebuild.
+  merge_into(r, added);
   return static_cast<int>(added.size());
+}
+
+template <int D>
+int HierarchicalSpace<D>::mark_levels(const std::vector<std::vector<Ints<D>>>& per_level) {
+  // Finest level first: refining a level never changes the domains of the levels below it.
+  int n = 0;
+  for (int l = static_cast<int>(per_level.size()) - 1; l >= 0; --l) n += mark(l, per_level[static_cast<std::size_t>(l)]);
+  if (n > 0) rebuild();
+  return n;
 }
 
 template <int D>
@@ -315,12 +382,46 @@ int HierarchicalSpace<D>::refine_elements(std::span<const int> elements) {
     const HierarchicalCell<D> c = element(e);
     per_level[static_cast<std::size_t>(c.level)].push_back(c.index);
   }
-  // Finest level first: refining a level never changes the domains of the levels below it.
-  int n = 0;
-  for (int l = num_levels() - 1; l >= 0; --l)
-    n += mark(l, per_level[static_cast<std::size_t>(l)]);
-  if (n > 0) rebuild();
-  return n;
+  return mark_levels(per_level);
+}
+
+template <int D>
+int HierarchicalSpace<D>::refine_elements_admissible(std::span<const int> elements, int m) {
+  require(m >= 2, "hier: admissibility class " + std::to_string(m) + " (at least 2)");
+  std::vector<char> marked(static_cast<std::size_t>(num_elements()), 0);
+  std::vector<int> stack(elements.begin(), elements.end()), closure;
+  const int shift = basis_ == HierarchicalBasis::thb ? 2 : 1;
+  while (!stack.empty()) {
+    const int e = stack.back();
+    stack.pop_back();
+    const HierarchicalCell<D> q = element(e);
+    if (marked[static_cast<std::size_t>(e)]) continue;
+    marked[static_cast<std::size_t>(e)] = 1;
+    closure.push_back(e);
+    const int k = q.level - m + shift;  // level of the support extension
+    if (q.level - m + 1 < 0 || k < 0) continue;
+    Ints<D> c = q.index;
+    for (int j = q.level; j > k; --j) c = parent(j, c);
+    // The support extension as cells of level k, then the cells of level l - m + 1 meeting it.
+    Ints<D> lo, hi;
+    for (int d = 0; d < D; ++d) {
+      const HierarchyAxis& a = h_.axis(k, d);
+      const int span = a.span(c[d]);
+      lo[d] = a.first_cell(span - h_.degree(d));
+      hi[d] = a.end_cell(span);
+    }
+    const int n = q.level - m + 1;
+    if (n < k)
+      for (int d = 0; d < D; ++d) {
+        lo[d] = h_.parent(k, d, lo[d]);
+        hi[d] = h_.parent(k, d, hi[d] - 1) + 1;
+      }
+    for_each_index<D>(lo, hi, [&](const Ints<D>& cell) {
+      const int leaf = find_leaf(n, cell);
+      if (leaf >= 0 && !marked[static_cast<std::size_t>(leaf)]) stack.push_back(leaf);
+    });
+  }
+  return refine_elements(closure);
 }
 
 template <int D>
@@ -335,11 +436,52 @@ int HierarchicalSpace<D>::refine_functions(std::span<const int> ids) {
     }
     for_each_index<D>(lo, hi, [&](const Ints<D>& c) { per_level[static_cast<std::size_t>(f.level)].push_back(c); });
   }
-  int n = 0;
-  for (int l = num_levels() - 1; l >= 0; --l)
-    n += mark(l, per_level[static_cast<std::size_t>(l)]);
-  if (n > 0) rebuild();
-  return n;
+  return mark_levels(per_level);
+}
+
+template <int D>
+int HierarchicalSpace<D>::extend_domains(const std::vector<std::vector<Ints<D>>>& cells) {
+  require(cells.empty() || cells.front().empty(), "hier: level 0 is the whole domain; no cells can join it");
+  const int L = static_cast<int>(cells.size());
+  if (L > h_.num_levels()) h_.ensure_levels(L);
+  for (int l = 1; l < L; ++l)
+    for (const Ints<D>& c : cells[static_cast<std::size_t>(l)])
+      for (int k = 0; k < D; ++k)
+        require(c[k] >= 0 && c[k] < h_.axis(l, k).num_cells(), [&] {
+          return "hier: cell index " + std::to_string(c[k]) + " of level " + std::to_string(l) + " outside the " +
+                 std::to_string(h_.axis(l, k).num_cells()) + " cells in direction " + std::to_string(k);
+        });
+  if (static_cast<int>(domain_.size()) < L) domain_.resize(static_cast<std::size_t>(L));
+  std::size_t before = 0, after = 0;
+  for (const auto& d : domain_) before += d.size();
+  for (int l = 1; l < L; ++l) {
+    std::vector<CellKey> keys;
+    for (const Ints<D>& c : cells[static_cast<std::size_t>(l)]) keys.push_back(pack_key<D>(c));
+    std::sort(keys.begin(), keys.end());
+    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    merge_into(domain_[static_cast<std::size_t>(l)], keys);
+  }
+  close_domains();
+  for (const auto& d : domain_) after += d.size();
+  rebuild();
+  return static_cast<int>(after - before);
+}
+
+template <int D>
+void HierarchicalSpace<D>::close_domains() {
+  for (int l = static_cast<int>(domain_.size()) - 2; l >= 1; --l) {
+    const std::vector<CellKey>& finer = domain_[static_cast<std::size_t>(l) + 1];
+    std::vector<CellKey> covered;
+    for (CellKey key : finer) {
+      const Ints<D> p = parent(l + 1, unpack_key<D>(key));
+      if (all_of_index<D>(first_children(l, p), end_children(l, p),
+                          [&](const Ints<D>& child) { return contains(finer, pack_key<D>(child)); }))
+        covered.push_back(pack_key<D>(p));
+    }
+    std::sort(covered.begin(), covered.end());
+    covered.erase(std::unique(covered.begin(), covered.end()), covered.end());
+    merge_into(domain_[static_cast<std::size_t>(l)], covered);
+  }
 }
 
 template <int D>
@@ -347,6 +489,20 @@ Ints<D> HierarchicalSpace<D>::parent(int level, const Ints<D>& cell) const {
   Ints<D> p;
   for (int k = 0; k < D; ++k) p[k] = h_.parent(level, k, cell[k]);
   return p;
+}
+
+template <int D>
+Ints<D> HierarchicalSpace<D>::first_children(int level, const Ints<D>& cell) const {
+  Ints<D> c;
+  for (int k = 0; k < D; ++k) c[k] = h_.first_child(level, k, cell[k]);
+  return c;
+}
+
+template <int D>
+Ints<D> HierarchicalSpace<D>::end_children(int level, const Ints<D>& cell) const {
+  Ints<D> c;
+  for (int k = 0; k < D; ++k) c[k] = h_.end_child(level, k, cell[k]);
+  return c;
 }
 
 template <int D>

@@ -6,10 +6,19 @@
 //        trunc^{j} drops from a function written in level-j B-splines the terms of those inside Omega^j.
 // Both span the same space; THB functions are non-negative and sum to one, HB functions are independent.
 //
-// Domains. Omega^0 is the whole domain and Omega^{l+1} is a union of cells of level l inside Omega^l (the
-// refined cells of level l), so the hierarchy is always aligned: a refinement marks whole cells (leaf elements,
-// or the cells of a function's support). The elements (leaves) are the cells of level l in Omega^l that are not
-// refined, ids ordered by level, then lexicographically (last direction most significant).
+// Domains. Omega^0 is the whole domain and Omega^l (l >= 1) is any union of cells of level l, the union over
+// m >= l of the cell sets given for level m (G+Smo's box semantics: a domain of level l may cut cells of level
+// l - 1 and finer domains extend coarser ones). The space depends on Omega^l only through the cells of level l
+// inside it (a support of level l is made of such cells), so those are stored: every cell of level l covered
+// by Omega^l, closed under coverage by finer cells. Refinement by marked cells, elements or functions keeps
+// the hierarchy aligned (Omega^{l+1} a union of cells of level l); arbitrary domains come from
+// extend_domains.
+//
+// Mesh. The elements are the leaves of the tree whose root cells are those of level 0 and whose cell of level
+// l is split into its children when a domain cell of a finer level lies inside it: on a leaf of level m every
+// active function is one polynomial (functions of levels <= m are polynomials on cells of level m; finer ones
+// vanish outside their domains). Leaf ids are ordered by level, then lexicographically (last direction most
+// significant). In an aligned hierarchy the split cells are exactly those covered by the next domain.
 //
 // Ids. Active functions are numbered by level, then lexicographically in their tensor index (u fastest), so the
 // level-0 functions of a converted tensor spline keep its control-point order. Ids are valid until the next
@@ -103,11 +112,12 @@ public:
   // Id of the leaf (level, cell), -1 when that cell is not a leaf.
   int find_leaf(int level, const Ints<D>& cell) const;
 
-  // Cell (level, index) inside Omega^level / refined (its children in Omega^{level+1}).
+  // Cell (level, index) inside Omega^level / covered by Omega^{level+1} / split into children in the mesh.
   bool in_domain(int level, const Ints<D>& cell) const;
   bool is_refined(int level, const Ints<D>& cell) const;
-  // The refined cells of a level, sorted keys (hier/cell_key.hpp).
-  std::span<const CellKey> refined_cells(int level) const;
+  bool is_split(int level, const Ints<D>& cell) const;
+  // The cells of level l >= 1 inside Omega^l, sorted keys (hier/cell_key.hpp); empty for level 0.
+  std::span<const CellKey> domain_cells(int level) const;
   // B-spline (level, index) has its support inside Omega^level.
   bool function_inside(int level, const Ints<D>& index) const;
 
@@ -117,9 +127,21 @@ public:
   int refine_cells(int level, std::span<const Ints<D>> cells);
   // Marked elements (leaf ids): each leaf cell is refined. Returns the number of refined elements.
   int refine_elements(std::span<const int> elements);
+  // Marked elements refined so that the mesh stays admissible of class m >= 2 (Buffa and Giannelli 2016;
+  // Bracco, Buffa, Giannelli, Vazquez 2019; Carraturo et al. 2019): the functions non-zero on any element
+  // belong to at most m successive levels, so at most m prod(p_k + 1) act on it. A marked leaf Q of level l
+  // first refines, recursively, its neighbourhood: the leaves of level l - m + 1 meeting the support extension
+  // of Q at level l - m + 2 (THB) or l - m + 1 (HB), the union of the supports of that level's B-splines
+  // non-zero on Q. The mesh must be admissible of class m before (every aligned mesh refined only this way is).
+  // Returns the number of refined elements.
+  int refine_elements_admissible(std::span<const int> elements, int m);
   // Marked functions (ids): every cell of the support of each is refined (the HB refinement of Vuong,
   // Giannelli, Juttler, Simeon 2011). Returns the number of newly refined cells.
   int refine_functions(std::span<const int> ids);
+  // cells[l] (l >= 1) join Omega^l, and so every Omega^j, j < l (cells[0] must be empty): any cells of the
+  // level's mesh, also ones cutting coarser cells. Adds dyadic levels when needed. Returns the number of new
+  // domain cells. Throws trivar::Error, changing nothing, for a cell outside the level's index range.
+  int extend_domains(const std::vector<std::vector<Ints<D>>>& cells);
 
   // The element's active functions and Bernstein coefficients.
   HierarchicalElement<D> element_operator(int e) const;
@@ -146,7 +168,10 @@ private:
   TensorHierarchy<D> h_;
   HierarchicalBasis basis_ = HierarchicalBasis::thb;
   int local_size_ = 1;
-  std::vector<std::vector<CellKey>> refined_;  // per level: sorted refined cells (Omega^{l+1} in level-l cells)
+  std::vector<std::vector<CellKey>> domain_;   // per level >= 1: sorted cells inside Omega^l (level 0 empty)
+  std::vector<std::vector<CellKey>> refined_;  // per level: sorted cells covered by Omega^{l+1}
+  std::vector<std::vector<CellKey>> split_;    // per level: sorted cells split in the mesh
+  bool aligned_ = true;                        // every Omega^l is the children of the covered cells of l - 1
   std::vector<std::vector<CellKey>> inside_;   // per level >= 1: sorted functions with support in Omega^l
   std::vector<std::vector<CellKey>> active_;   // per level: sorted active functions
   std::vector<int> offset_{0};                 // per level + 1: first id
@@ -155,8 +180,12 @@ private:
   std::vector<std::pair<int, CellKey>> leaves_;
 
   void rebuild();
-  // Validates the cells and adds them to the refined cells of the level (no rebuild); the number added.
+  // Validates the cells and adds their children to Omega^{level+1} (no rebuild); the number of cells added.
   int mark(int level, std::span<const Ints<D>> cells);
+  // Marks the cells of every level, finest first, and rebuilds; the number of cells added.
+  int mark_levels(const std::vector<std::vector<Ints<D>>>& per_level);
+  // Adds to each domain the cells of its level covered by the finer domains (the closure the space assumes).
+  void close_domains();
   bool cell_in_domain(int level, const Ints<D>& cell) const;
   bool support_in(int level, const Ints<D>& f, const std::vector<CellKey>& cells) const;
   bool support_in_domain(int level, const Ints<D>& f) const;
@@ -168,6 +197,9 @@ private:
   const std::vector<double>& cached_expansion(int level, const Ints<D>& cell, std::span<const double> coefs, int stride,
                                               ExpansionCache& cache) const;
   Ints<D> parent(int level, const Ints<D>& cell) const;
+  // The children (level + 1) of a cell of `level`: the multi-index range [first_children, end_children).
+  Ints<D> first_children(int level, const Ints<D>& cell) const;
+  Ints<D> end_children(int level, const Ints<D>& cell) const;
 };
 
 extern template class HierarchicalSpace<2>;

@@ -12,6 +12,11 @@ namespace trivar {
 
 namespace {
 
+// Coefficients are read on a leaf of the function's level; hierarchies whose domains cut coarser cells (read
+// from G+Smo files) may lack one.
+constexpr const char* kNoLeaf =
+    "hier: no leaf of the function's level in its support to read its coefficient from (a domain cutting coarser cells covers the support partly)";
+
 // Coefficients in the THB basis of `target` of the spline (source, coefs): the coefficient of tau (level l) is
 // its entry in the level-l local expansion of the spline on a leaf of level l inside tau's support, where every
 // coarser THB function is truncated away. The source must be a subspace of the target (same hierarchy, its
@@ -29,7 +34,7 @@ std::vector<double> thb_coefficients(const HierarchicalSpace<D>& target, const H
     if (keep(id, c)) continue;
     const HierarchicalFunction<D> f = target.function(id);
     Ints<D> cell;
-    require(target.leaf_in_support(f.level, f.index, cell), "hier: active function without a leaf of its level");
+    require(target.leaf_in_support(f.level, f.index, cell), kNoLeaf);
     auto& expansion = cache[static_cast<std::size_t>(f.level)][pack_key<D>(cell)];
     if (expansion.empty()) {
       expansion.resize(static_cast<std::size_t>(P) * stride);
@@ -59,7 +64,7 @@ std::vector<double> hb_from_thb(const HierarchicalSpace<D>& hb, std::span<const 
     for (; id < end; ++id) {
       const HierarchicalFunction<D> f = hb.function(id);
       Ints<D> cell;
-      require(hb.leaf_in_support(l, f.index, cell), "hier: active function without a leaf of its level");
+      require(hb.leaf_in_support(l, f.index, cell), kNoLeaf);
       auto& e = cache[pack_key<D>(cell)];
       if (e.empty()) {
         e.resize(static_cast<std::size_t>(P) * stride);
@@ -212,6 +217,11 @@ int HierarchicalSpline<D>::refine_cells(int level, std::span<const Ints<D>> cell
 template <int D>
 int HierarchicalSpline<D>::refine_elements(std::span<const int> elements) {
   return refine([&](HierarchicalSpace<D>& s) { return s.refine_elements(elements); });
+}
+
+template <int D>
+int HierarchicalSpline<D>::refine_elements_admissible(std::span<const int> elements, int m) {
+  return refine([&](HierarchicalSpace<D>& s) { return s.refine_elements_admissible(elements, m); });
 }
 
 template <int D>

@@ -49,6 +49,7 @@ public:
   // Refinement keeping the spline (see above); same arguments and results as the space's.
   int refine_cells(int level, std::span<const Ints<D>> cells);
   int refine_elements(std::span<const int> elements);
+  int refine_elements_admissible(std::span<const int> elements, int m);
   int refine_functions(std::span<const int> ids);
   // The same spline in the other basis (HB <-> THB) over the same hierarchy.
   HierarchicalSpline with_basis(HierarchicalBasis basis) const;

@@ -19,7 +19,9 @@ void refine_marked(LRSpline<D>& g, std::span<const double> eta, const AdaptiveOp
 
 template <int D>
 void refine_marked(HierarchicalSpline<D>& g, std::span<const double> eta, const AdaptiveOptions& o) {
-  g.refine_elements(dorfler_mark(eta, o.beta));
+  const std::vector<int> marked = dorfler_mark(eta, o.beta);
+  if (o.admissible) g.refine_elements_admissible(marked, o.admissible);
+  else g.refine_elements(marked);
 }
 
 template <class Geometry, int D>

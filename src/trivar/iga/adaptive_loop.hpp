@@ -20,6 +20,9 @@ struct AdaptiveOptions {
   double beta = 0.3;   // Dorfler fraction in (0, 1]
   RefineOptions refine;  // LR geometries only
   std::string solver = "cholmod";
+  // Hierarchical geometries: 0 refines the marked leaves only; m >= 2 keeps the mesh admissible of class m (at
+  // most m levels of functions act on any element; HierarchicalSpace::refine_elements_admissible).
+  int admissible = 0;
 };
 
 // geometry: the initial space (refined in place: on return it is the space of the last solve, whose

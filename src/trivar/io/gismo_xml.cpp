@@ -10,7 +10,6 @@
 #include <fstream>
 #include <map>
 #include <memory>
-#include <set>
 #include <sstream>
 
 #include "trivar/core/atomic_file.hpp"
@@ -209,71 +208,35 @@ struct Reader {
     } catch (const Error& e) {
       fail(basis, e.what());
     }
-    // G+Smo's Omega^j is the union of the boxes of level >= j. From the finest level down: Omega^j in cells of
-    // level j is its own boxes plus the parents of Omega^{j+1}; Omega^j must consist of whole children sets
-    // of cells of level j - 1, which are the refined cells of level j - 1.
-    std::vector<std::set<CellKey>> omega(static_cast<std::size_t>(top) + 1);
+    // G+Smo's Omega^j is the union of the boxes of level >= j, each box in cells of its level (any cells of
+    // the level's mesh); a box of level 0 adds nothing.
+    std::vector<std::vector<Ints<D>>> cells(static_cast<std::size_t>(top) + 1);
     double total_cells = 0;
     for (const Box_& b : boxes) {
       for (int k = 0; k < D; ++k)
         if (b.hi[k] > h->axis(b.level, k).num_cells())
           fail(b.node, "box exceeds the " + std::to_string(h->axis(b.level, k).num_cells()) + " cells of level " +
                            std::to_string(b.level) + " in direction " + std::to_string(k));
-      double cells = 1;
-      for (int k = 0; k < D; ++k) cells *= b.hi[k] - b.lo[k];
-      if (cells == 0) continue;
-      total_cells += cells;
-      // Sets of cells per level are built from the boxes: refuse absurd sizes before allocating them.
+      double count = 1;
+      for (int k = 0; k < D; ++k) count *= b.hi[k] - b.lo[k];
+      if (count == 0 || b.level == 0) continue;
+      total_cells += count;
+      // The cells of every box are listed: refuse absurd sizes before allocating them.
       if (total_cells > kMaxBoxCells)
         fail(b.node, "the boxes cover more than " + std::to_string(static_cast<long>(kMaxBoxCells)) + " cells");
       Ints<D> c = b.lo;
       while (true) {
-        omega[static_cast<std::size_t>(b.level)].insert(pack_key<D>(c));
+        cells[static_cast<std::size_t>(b.level)].push_back(c);
         int k = 0;
         while (k < D && ++c[k] == b.hi[k]) c[k] = b.lo[k], ++k;
         if (k == D) break;
       }
     }
-    std::vector<std::vector<Ints<D>>> refine(static_cast<std::size_t>(top) + 1);
-    for (int j = top; j >= 1; --j) {
-      std::set<CellKey> parents;
-      for (CellKey key : omega[static_cast<std::size_t>(j)]) {
-        const Ints<D> c = unpack_key<D>(key);
-        Ints<D> p;
-        for (int k = 0; k < D; ++k) p[k] = h->parent(j, k, c[k]);
-        parents.insert(pack_key<D>(p));
-      }
-      for (CellKey key : parents) {
-        const Ints<D> p = unpack_key<D>(key);
-        Ints<D> lo, hi;
-        for (int k = 0; k < D; ++k) {
-          lo[k] = h->first_child(j - 1, k, p[k]);
-          hi[k] = h->end_child(j - 1, k, p[k]);
-        }
-        Ints<D> c = lo;
-        while (true) {
-          if (!omega[static_cast<std::size_t>(j)].count(pack_key<D>(c))) {
-            const xmlNode* culprit = basis;
-            for (const Box_& b : boxes)
-              if (b.level == j) culprit = b.node;
-            fail(culprit, "the domain of level " + std::to_string(j) + " cuts a cell of level " + std::to_string(j - 1) +
-                              " (trivar's hierarchies refine whole cells)");
-          }
-          int k = 0;
-          while (k < D && ++c[k] == hi[k]) c[k] = lo[k], ++k;
-          if (k == D) break;
-        }
-        refine[static_cast<std::size_t>(j) - 1].push_back(p);
-        omega[static_cast<std::size_t>(j) - 1].insert(key);
-      }
-    }
     HierarchicalSpace<D> space(*h, kind);
-    for (int j = 0; j < top; ++j) {
-      try {
-        space.refine_cells(j, refine[static_cast<std::size_t>(j)]);
-      } catch (const Error& e) {
-        fail(basis, e.what());
-      }
+    try {
+      space.extend_domains(cells);
+    } catch (const Error& e) {
+      fail(basis, e.what());
     }
     int dim = 0;
     std::vector<double> c = coefs(g, space.num_basis(), dim);
@@ -367,15 +330,26 @@ void put(std::ostream& os, const HierarchicalSpline<D>& s, int id) {
     if (manual) text.insert(text.find('>'), " level=\"" + std::to_string(l) + "\"");
     os << text;
   }
-  // One box per refined cell: its children, a box of the next level.
-  for (int l = 0; l + 1 < sp.num_levels(); ++l)
-    for (CellKey key : sp.refined_cells(l)) {
-      const Ints<D> c = unpack_key<D>(key);
-      os << "   <box level=\"" << l + 1 << "\">";
-      for (int k = 0; k < D; ++k) os << h.first_child(l, k, c[k]) << ' ';
-      for (int k = 0; k < D; ++k) os << h.end_child(l, k, c[k]) << (k + 1 < D ? " " : "");
+  // The domain cells of each level that no finer domain covers (the leaves of G+Smo's box tree, whose union
+  // over levels >= l is Omega^l), as boxes: runs of consecutive cells along u.
+  for (int l = 1; l < sp.num_levels(); ++l) {
+    const auto cells = sp.domain_cells(l);
+    for (std::size_t i = 0; i < cells.size();) {
+      const Ints<D> lo = unpack_key<D>(cells[i]);
+      if (sp.is_refined(l, lo)) {
+        ++i;
+        continue;
+      }
+      Ints<D> hi = lo;
+      ++hi[0];
+      for (++i; i < cells.size() && cells[i] == pack_key<D>(hi) && !sp.is_refined(l, hi); ++i) ++hi[0];
+      for (int k = 1; k < D; ++k) ++hi[k];
+      os << "   <box level=\"" << l << "\">";
+      for (int k = 0; k < D; ++k) os << lo[k] << ' ';
+      for (int k = 0; k < D; ++k) os << hi[k] << (k + 1 < D ? " " : "");
       os << "</box>\n";
     }
+  }
   os << "  </Basis>\n";
   put_coefs(os, s.coefs().data(), sp.num_basis(), s.dim(), s.stride());
   os << " </Geometry>\n";

@@ -12,9 +12,9 @@
 // (lower corner, then upper corner, exclusive): the box lies in Omega^l. Functions are numbered by level, then
 // u fastest inside a level, as in trivar.
 //
-// Hierarchies: trivar's hierarchical spaces refine whole cells, so Omega^l is a union of cells of level l - 1.
-// A file whose boxes make some Omega^l cut a cell of level l - 1 (G+Smo allows that) is refused with a
-// one-line error naming the box; everything trivar writes is read back exactly.
+// Hierarchies follow G+Smo's box semantics: Omega^l is the union of the boxes of level >= l, each given in
+// cells of its level, so a domain may cut cells of coarser levels. The writer lists, per level, the domain
+// cells no finer domain covers (what G+Smo writes: the leaves of its box tree).
 #include <string>
 #include <string_view>
 #include <variant>

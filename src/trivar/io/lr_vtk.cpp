@@ -77,8 +77,35 @@ void add_linear_cells(Piece& p, const Ints<D>& n, std::int64_t base) {
   });
 }
 
+// What the writer reads of a locally refined object, element by element: the element's box, its Bezier net
+// (u fastest, stride dim + rational) and the number of functions non-zero on it.
 template <int D>
-Piece build_piece(const LRSpline<D>& s, int piece, const LRVtkOptions& opts,
+struct LRSource {
+  const LRSpline<D>& s;
+  int degree(int k) const { return s.degree(k); }
+  int num_elements() const { return s.num_elements(); }
+  Box<D> box(int e) const { return s.element(e); }
+  int support(int e) const { return static_cast<int>(s.element_support(e).size()); }
+  void net(int e, std::vector<double>& out) const {
+    out = bezier_element<D>(s.degrees(), s.basis_functions(), s.element_support(e), s.element(e), s.dim(), s.is_rational()).coefs;
+  }
+};
+
+template <int D>
+struct HierarchicalSource {
+  const HierarchicalSpline<D>& s;
+  int degree(int k) const { return s.space().degree(k); }
+  int num_elements() const { return s.space().num_elements(); }
+  Box<D> box(int e) const { return s.space().element_box(e); }
+  int support(int e) const { return static_cast<int>(s.space().element_operator(e).ids.size()); }
+  void net(int e, std::vector<double>& out) const {
+    const auto n = s.evaluator().net(e);
+    out.assign(n.begin(), n.end());
+  }
+};
+
+template <int D, template <int> class Source, class Spline>
+Piece build_piece(const Spline& s, int piece, const LRVtkOptions& opts,
                   const std::vector<VtkPointField>& point_fields, const std::vector<LRVtkCellField>& cell_fields,
                   const std::string& where) {
   Piece p;
@@ -88,9 +115,10 @@ Piece build_piece(const LRSpline<D>& s, int piece, const LRVtkOptions& opts,
   const int dim = s.dim();
   const bool bezier = opts.cells == LRVtkCells::bezier, mesh = opts.cells == LRVtkCells::parametric_mesh;
   // Nodes per element: the Bezier nodes, the sample grid or the corners.
+  const Source<D> source{s};
   Ints<D> n;
   for (int k = 0; k < D; ++k) {
-    n[k] = bezier ? s.degree(k) : mesh ? 1 : opts.samples_per_element;
+    n[k] = bezier ? source.degree(k) : mesh ? 1 : opts.samples_per_element;
     require(n[k] >= 1, where + ": Bezier cells need degree >= 1 in every direction, direction " +
                            std::string(1, "uvw"[k]) + " has degree 0 (use sampled output)");
   }
@@ -101,17 +129,17 @@ Piece build_piece(const LRSpline<D>& s, int piece, const LRVtkOptions& opts,
   // Elements do not share points: per point coordinates, parameters, weight and fields, per cell its corners.
   int field_values = 0;
   for (const VtkPointField& f : point_fields) field_values += f.components;
-  const double points = static_cast<double>(s.num_elements()) * nodes;
+  const double points = static_cast<double>(source.num_elements()) * nodes;
   require_memory(8.0 * points * (7 + std::max(dim - 3, 0) + field_values + 2),
                  where + ": VTU output of " + format_number(points) + " points");
   std::vector<std::int64_t> conn(static_cast<std::size_t>(nodes));
-  std::vector<double> x(static_cast<std::size_t>(dim)), element_weights;
-  for (int e = 0; e < s.num_elements(); ++e) {
-    const Box<D>& b = s.element(e);
+  std::vector<double> x(static_cast<std::size_t>(dim)), element_weights, net;
+  const int stride = dim + (s.is_rational() ? 1 : 0);
+  for (int e = 0; e < source.num_elements(); ++e) {
+    const Box<D> b = source.box(e);
     const auto base = static_cast<std::int64_t>(p.num_points());
-    BezierElement<D> net;
     if (bezier) {
-      net = bezier_element<D>(s.degrees(), s.basis_functions(), s.element_support(e), b, dim, s.is_rational());
+      source.net(e, net);
       element_weights.clear();
     }
     for_each_node<D>(n, [&](const Ints<D>& i) {
@@ -125,7 +153,7 @@ Piece build_piece(const LRSpline<D>& s, int piece, const LRVtkOptions& opts,
         for (int k = 0; k < 3; ++k) p.points.push_back(k < D ? u[k] : 0.0);
       } else {
         if (bezier) {
-          const double* c = net.coefs.data() + static_cast<std::size_t>(node_linear<D>(i, n)) * net.stride();
+          const double* c = net.data() + static_cast<std::size_t>(node_linear<D>(i, n)) * stride;
           const double w = s.is_rational() ? c[dim] : 1.0;
           for (int d = 0; d < dim; ++d) x[static_cast<std::size_t>(d)] = c[d] / w;
           p.weights.push_back(w);
@@ -159,9 +187,10 @@ Piece build_piece(const LRSpline<D>& s, int piece, const LRVtkOptions& opts,
     } else {
       add_linear_cells<D>(p, n, base);
     }
+    const int support = source.support(e);
     for (std::size_t c = first; c < p.types.size(); ++c) {
       p.element.push_back(e);
-      p.support.push_back(static_cast<std::int32_t>(s.element_support(e).size()));
+      p.support.push_back(support);
     }
     for (std::size_t f = 0; f < cell_fields.size(); ++f) {
       value.resize(static_cast<std::size_t>(cell_fields[f].components));
@@ -206,7 +235,17 @@ VtuPiece vtu_piece(const Piece& p, bool bezier, bool rational, const std::vector
 
 }  // namespace
 
-void write_lr_vtu(const std::string& path, const std::vector<AnyLRSpline>& objects, const LRVtkOptions& opts,
+namespace {
+
+template <class T>
+constexpr int kParametricDimension = 0;
+template <int D>
+constexpr int kParametricDimension<LRSpline<D>> = D;
+template <int D>
+constexpr int kParametricDimension<HierarchicalSpline<D>> = D;
+
+template <template <int> class Source, class Any>
+void write_pieces(const std::string& path, const std::vector<Any>& objects, const LRVtkOptions& opts,
                   const std::vector<VtkPointField>& point_fields, const std::vector<LRVtkCellField>& cell_fields) {
   require(!objects.empty(), path + ": nothing to write (no objects)");
   require(opts.cells != LRVtkCells::sampled || opts.samples_per_element >= 1,
@@ -218,7 +257,10 @@ void write_lr_vtu(const std::string& path, const std::vector<AnyLRSpline>& objec
   for (std::size_t i = 0; i < objects.size(); ++i) {
     const std::string where = objects.size() > 1 ? path + ": object " + std::to_string(i + 1) : path;
     pieces.push_back(std::visit(
-        [&](const auto& lr) { return build_piece(lr, static_cast<int>(i), opts, point_fields, cell_fields, where); },
+        [&](const auto& o) {
+          constexpr int D = kParametricDimension<std::decay_t<decltype(o)>>;
+          return build_piece<D, Source>(o, static_cast<int>(i), opts, point_fields, cell_fields, where);
+        },
         objects[i]));
   }
   // RationalWeights in every piece or none, so ParaView merges the pieces into one data set.
@@ -232,9 +274,22 @@ void write_lr_vtu(const std::string& path, const std::vector<AnyLRSpline>& objec
   write_vtu_file(path, out);
 }
 
+}  // namespace
+
+void write_lr_vtu(const std::string& path, const std::vector<AnyLRSpline>& objects, const LRVtkOptions& opts,
+                  const std::vector<VtkPointField>& point_fields, const std::vector<LRVtkCellField>& cell_fields) {
+  write_pieces<LRSource>(path, objects, opts, point_fields, cell_fields);
+}
+
 void write_lr_vtu(const std::string& path, const AnyLRSpline& s, const LRVtkOptions& opts,
                   const std::vector<VtkPointField>& point_fields, const std::vector<LRVtkCellField>& cell_fields) {
   write_lr_vtu(path, std::vector<AnyLRSpline>{s}, opts, point_fields, cell_fields);
+}
+
+void write_hierarchical_vtu(const std::string& path, const std::vector<AnyHierarchicalSpline>& objects,
+                            const LRVtkOptions& opts, const std::vector<VtkPointField>& point_fields,
+                            const std::vector<LRVtkCellField>& cell_fields) {
+  write_pieces<HierarchicalSource>(path, objects, opts, point_fields, cell_fields);
 }
 
 }  // namespace trivar::io

@@ -1,6 +1,7 @@
 #pragma once
-// VTK XML UnstructuredGrid (.vtu, binary and zlib-compressed: vtu_file.hpp) output of LR splines for
-// ParaView, one <Piece> per object:
+// VTK XML UnstructuredGrid (.vtu, binary and zlib-compressed: vtu_file.hpp) output of locally refined splines
+// (LR splines; HB and THB splines, whose elements are the leaves of their hierarchical mesh) for ParaView, one
+// <Piece> per object:
 //  - bezier (default): one VTK_BEZIER_QUADRILATERAL / _HEXAHEDRON (types 77 / 79) per element of the LR mesh,
 //    exact up to rounding: the element's Bezier control points (lr_bezier_extraction.hpp) in VTK's point order,
 //    cell data "HigherOrderDegrees" and, for rational splines, point data "RationalWeights". Elements do not
@@ -24,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "trivar/hier/any_hierarchical_spline.hpp"
 #include "trivar/io/vtk_writer.hpp"
 #include "trivar/lr/any_lr_spline.hpp"
 
@@ -52,5 +54,10 @@ void write_lr_vtu(const std::string& path, const AnyLRSpline& s, const LRVtkOpti
 void write_lr_vtu(const std::string& path, const std::vector<AnyLRSpline>& objects, const LRVtkOptions& opts = {},
                   const std::vector<VtkPointField>& point_fields = {},
                   const std::vector<LRVtkCellField>& cell_fields = {});
+
+// The same for hierarchical splines (element = leaf id, "support" = active functions non-zero on the leaf).
+void write_hierarchical_vtu(const std::string& path, const std::vector<AnyHierarchicalSpline>& objects,
+                            const LRVtkOptions& opts = {}, const std::vector<VtkPointField>& point_fields = {},
+                            const std::vector<LRVtkCellField>& cell_fields = {});
 
 }  // namespace trivar::io

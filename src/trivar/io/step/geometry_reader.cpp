@@ -604,6 +604,13 @@ LocallyRefinedSurfaceParts GeometryReader::locally_refined_surface_parts(const I
   return {c.degrees, c.dim, c.rational, std::move(c.basis), std::move(c.type)};
 }
 
+LocallyRefinedParts<3> GeometryReader::locally_refined_volume_parts(const Instance& in) const {
+  const Scope s(file_, file_name_, in);
+  s.check(geometry_kind(in) == GeometryKind::lr_volume, "not a locally refined volume");
+  auto c = read_scaled<3>(s, in);
+  return {c.degrees, c.dim, c.rational, std::move(c.basis), std::move(c.type)};
+}
+
 template <int D>
 LRSpline<D> GeometryReader::read_lr(const Instance& in) const {
   const Scope s(file_, file_name_, in);

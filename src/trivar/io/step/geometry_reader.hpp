@@ -46,15 +46,18 @@ GeometryKind geometry_kind(const Instance& instance);
 // The keywords the mapper reads (spline entities, their parts, CARTESIAN_POINT); a ReadOptions::keep filter.
 bool is_geometry_keyword(std::string_view keyword);
 
-// The parts of a locally refined surface (homogeneous control values when rational) and its
-// locally_refined_spline_type, for kinds whose B-splines need not sum to one (T-splines).
-struct LocallyRefinedSurfaceParts {
-  Ints<2> degrees{};
+// The parts of a locally refined surface or volume (homogeneous control values when rational) and its
+// locally_refined_spline_type, for kinds whose B-splines need not sum to one (T-splines, hierarchical
+// B-splines).
+template <int D>
+struct LocallyRefinedParts {
+  Ints<D> degrees{};
   int dim = 0;
   bool rational = false;
-  std::vector<LRBSpline<2>> basis;
+  std::vector<LRBSpline<D>> basis;
   std::string type;  // e.g. "STANDARD_T_SPLINE"
 };
+using LocallyRefinedSurfaceParts = LocallyRefinedParts<2>;
 
 class GeometryReader {
 public:
@@ -67,6 +70,7 @@ public:
   AnyLRSpline lr_spline(const Instance& instance) const;
   // A locally refined surface's B-splines and type, validated like lr_spline except for the partition of unity.
   LocallyRefinedSurfaceParts locally_refined_surface_parts(const Instance& instance) const;
+  LocallyRefinedParts<3> locally_refined_volume_parts(const Instance& instance) const;
   // The locally_refined_spline_type of a locally refined surface or volume as written (empty when absent or
   // not an enumeration; lr_spline reports that), without reading the rest.
   std::string locally_refined_type(const Instance& instance) const;

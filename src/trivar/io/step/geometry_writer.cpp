@@ -168,6 +168,27 @@ std::uint64_t add_lr(ExchangeFile& f, const LRSpline<D>& s, const std::string& n
   return add_scaled<D>(f, s.degrees(), s.basis_functions(), s.domain(), s.dim(), s.is_rational(), "LR_B_SPLINE", name);
 }
 
+template <int D>
+std::uint64_t add_hier(ExchangeFile& f, const HierarchicalSpline<D>& s, const std::string& name) {
+  const HierarchicalSpline<D> hb = s.space().basis() == HierarchicalBasis::hb ? s : s.with_basis(HierarchicalBasis::hb);
+  const HierarchicalSpace<D>& space = hb.space();
+  std::vector<std::array<KnotVector, D>> knots(static_cast<std::size_t>(space.num_levels()));
+  for (int l = 0; l < space.num_levels(); ++l)
+    for (int k = 0; k < D; ++k) knots[static_cast<std::size_t>(l)][static_cast<std::size_t>(k)] = space.hierarchy().knots(l, k);
+  std::vector<LRBSpline<D>> basis(static_cast<std::size_t>(space.num_basis()));
+  for (int id = 0; id < space.num_basis(); ++id) {
+    const HierarchicalFunction<D> fn = space.function(id);
+    LRBSpline<D>& b = basis[static_cast<std::size_t>(id)];
+    for (int k = 0; k < D; ++k) {
+      const KnotVector& kv = knots[static_cast<std::size_t>(fn.level)][static_cast<std::size_t>(k)];
+      b.knots[k].assign(kv.data() + fn.index[k], kv.data() + fn.index[k] + space.degree(k) + 2);
+    }
+    b.gamma = 1.0;
+    b.coef.assign(hb.coef(id), hb.coef(id) + hb.stride());
+  }
+  return add_scaled<D>(f, space.degrees(), basis, space.domain(), hb.dim(), hb.is_rational(), "HIERARCHICAL_B_SPLINE", name);
+}
+
 std::uint64_t add_si_unit(ExchangeFile& f, const char* unit_kind, Parameter prefix, const char* name) {
   return f.add_complex({{unit_kind, {}}, {"NAMED_UNIT", {Derived{}}}, {"SI_UNIT", {std::move(prefix), enumeration(name)}}});
 }
@@ -188,6 +209,10 @@ std::uint64_t add_lr_spline(ExchangeFile& file, const AnyLRSpline& spline, const
   return std::visit([&](const auto& s) { return add_lr(file, s, name); }, spline);
 }
 
+std::uint64_t add_hierarchical_spline(ExchangeFile& file, const AnyHierarchicalSpline& spline, const std::string& name) {
+  return std::visit([&](const auto& s) { return add_hier(file, s, name); }, spline);
+}
+
 std::uint64_t add_geometric_context(ExchangeFile& file, int dimension) {
   const auto mm = add_si_unit(file, "LENGTH_UNIT", enumeration("MILLI"), "METRE");
   const auto rad = add_si_unit(file, "PLANE_ANGLE_UNIT", Unset{}, "RADIAN");
@@ -200,10 +225,17 @@ std::uint64_t add_geometric_context(ExchangeFile& file, int dimension) {
 
 ExchangeFile geometry_exchange_file(const std::vector<AnySpline>& splines, const std::vector<AnyLRSpline>& lr_splines,
                                     const GeometryFileOptions& options) {
-  require(!splines.empty() || !lr_splines.empty(), "STEP: nothing to write");
+  return geometry_exchange_file(splines, lr_splines, {}, options);
+}
+
+ExchangeFile geometry_exchange_file(const std::vector<AnySpline>& splines, const std::vector<AnyLRSpline>& lr_splines,
+                                    const std::vector<AnyHierarchicalSpline>& hierarchical,
+                                    const GeometryFileOptions& options) {
+  require(!splines.empty() || !lr_splines.empty() || !hierarchical.empty(), "STEP: nothing to write");
   int dim = 1;
   for (const auto& s : splines) dim = std::max(dim, std::visit([](const auto& x) { return x.dim(); }, s));
   for (const auto& s : lr_splines) dim = std::max(dim, std::visit([](const auto& x) { return x.dim(); }, s));
+  for (const auto& s : hierarchical) dim = std::max(dim, std::visit([](const auto& x) { return x.dim(); }, s));
   check_dim(dim);
   ExchangeFile f;
   f.header.description = {options.description};
@@ -214,6 +246,7 @@ ExchangeFile geometry_exchange_file(const std::vector<AnySpline>& splines, const
   const auto name = [&] { return n < options.names.size() ? options.names[n++] : (++n, std::string()); };
   for (const auto& s : splines) items.push_back(reference(add_spline(f, s, name())));
   for (const auto& s : lr_splines) items.push_back(reference(add_lr_spline(f, s, name())));
+  for (const auto& s : hierarchical) items.push_back(reference(add_hierarchical_spline(f, s, name())));
   f.add({"SHAPE_REPRESENTATION", {options.representation_name, list(std::move(items)), reference(ctx)}});
   return f;
 }

@@ -8,6 +8,10 @@
 //                                     is a single leaf of its supertype chain), with shared LOCAL_B_SPLINEs
 //                                     (1-based knot indices), type .LR_B_SPLINE., linearly_independent
 //                                     .NOT_TESTED.
+//   HierarchicalSpline<2|3>        -> the same entities with type .HIERARCHICAL_B_SPLINE.: the HB basis (each
+//                                     active function a B-spline of its level, scaling factor 1) with the HB
+//                                     coefficients; a THB spline is written as the same function in the HB basis
+//                                     of its hierarchy (truncated functions are no scaled B-splines).
 // Control grids are written u outermost. Knots, polynomial control points, weights and scaling factors are
 // the stored doubles, so they read back bit-identical. Rational control points are written Cartesian
 // (x = (w x) / w, one rounding per coordinate) because STEP stores points and weights; reading multiplies
@@ -20,6 +24,7 @@
 #include <vector>
 
 #include "trivar/io/step/exchange_file.hpp"
+#include "trivar/hier/any_hierarchical_spline.hpp"
 #include "trivar/lr/any_lr_spline.hpp"
 #include "trivar/spline/any_spline.hpp"
 
@@ -28,6 +33,7 @@ namespace trivar::io::step {
 // Adds the object (and its points and local B-splines) to `file`; returns the id of the spline instance.
 std::uint64_t add_spline(ExchangeFile& file, const AnySpline& spline, const std::string& name = "");
 std::uint64_t add_lr_spline(ExchangeFile& file, const AnyLRSpline& spline, const std::string& name = "");
+std::uint64_t add_hierarchical_spline(ExchangeFile& file, const AnyHierarchicalSpline& spline, const std::string& name = "");
 // A LOCALLY_REFINED_SPLINE_SURFACE (RATIONAL_... when rational: homogeneous control values) of any collection
 // of scaled B-splines with the given locally_refined_spline_type (e.g. "STANDARD_T_SPLINE").
 std::uint64_t add_locally_refined_surface(ExchangeFile& file, const Ints<2>& degrees, std::span<const LRBSpline<2>> basis,
@@ -44,7 +50,8 @@ struct GeometryFileOptions {
   // The schema written to FILE_SCHEMA (AP242 edition 1 long form by default).
   std::string schema = "AP242_MANAGED_MODEL_BASED_3D_ENGINEERING_MIM_LF { 1 0 10303 442 1 1 4 }";
   std::string description = "trivar geometry";
-  // Names of the objects, splines first then LR splines; missing entries are written ''.
+  // Names of the objects, splines first, then LR splines, then hierarchical splines; missing entries are
+  // written ''.
   std::vector<std::string> names;
 };
 
@@ -52,6 +59,9 @@ struct GeometryFileOptions {
 // is 3-D unless all objects have a smaller control dimension (then the largest one). Throws trivar::Error when
 // there is no object or an object's control dimension is outside 1..3.
 ExchangeFile geometry_exchange_file(const std::vector<AnySpline>& splines, const std::vector<AnyLRSpline>& lr_splines,
+                                    const GeometryFileOptions& options = {});
+ExchangeFile geometry_exchange_file(const std::vector<AnySpline>& splines, const std::vector<AnyLRSpline>& lr_splines,
+                                    const std::vector<AnyHierarchicalSpline>& hierarchical,
                                     const GeometryFileOptions& options = {});
 
 }  // namespace trivar::io::step

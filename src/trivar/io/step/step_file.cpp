@@ -160,7 +160,13 @@ StepContents parse_step(std::string_view text, const std::string& name, bool str
 void write_step(const std::string& path, const std::vector<AnySpline>& splines,
                 const std::vector<AnyLRSpline>& lr_splines, const GeometryFileOptions& options,
                 const std::string& time_stamp) {
-  ExchangeFile f = geometry_exchange_file(splines, lr_splines, options);
+  write_step(path, splines, lr_splines, {}, options, time_stamp);
+}
+
+void write_step(const std::string& path, const std::vector<AnySpline>& splines,
+                const std::vector<AnyLRSpline>& lr_splines, const std::vector<AnyHierarchicalSpline>& hierarchical,
+                const GeometryFileOptions& options, const std::string& time_stamp) {
+  ExchangeFile f = geometry_exchange_file(splines, lr_splines, hierarchical, options);
   f.header.name = path.substr(path.find_last_of('/') + 1);
   WriteOptions w;
   w.time_stamp = time_stamp;

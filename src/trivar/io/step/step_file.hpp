@@ -65,5 +65,9 @@ StepContents parse_step(std::string_view text, const std::string& name = "<memor
 void write_step(const std::string& path, const std::vector<AnySpline>& splines,
                 const std::vector<AnyLRSpline>& lr_splines, const GeometryFileOptions& options = {},
                 const std::string& time_stamp = "");
+// The same with hierarchical splines (geometry_writer.hpp: their HB form, type .HIERARCHICAL_B_SPLINE.).
+void write_step(const std::string& path, const std::vector<AnySpline>& splines,
+                const std::vector<AnyLRSpline>& lr_splines, const std::vector<AnyHierarchicalSpline>& hierarchical,
+                const GeometryFileOptions& options = {}, const std::string& time_stamp = "");
 
 }  // namespace trivar::io::step
