@@ -620,7 +620,11 @@ LRSpline<D> GeometryReader::read_lr(const Instance& in) const {
   try {
     return LRSpline<D>(degrees, dim, rational, std::move(basis), std::move(mesh));
   } catch (const Error& e) {
-    s.fail(prefix_lr(e.what()));
+    // Hierarchical B-splines (trivar writes HB and THB splines so) are read only when their B-splines also form
+    // an LR spline; an HB basis in general does not sum to one, so the error says which kind was refused.
+    s.fail(prefix_lr(e.what()) + (type == "HIERARCHICAL_B_SPLINE"
+                                      ? " (a HIERARCHICAL_B_SPLINE entity is read only when it is also an LR spline)"
+                                      : ""));
   }
 }
 
