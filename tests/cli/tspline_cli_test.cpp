@@ -66,12 +66,7 @@ trivar::TSpline unit_square_t_spline() {
     g.push_back({{x, 0.0}, {x, i == 4 ? 0.5 : 1.0}});
   }
   TSpline ts = t_spline_from_segments({3, 3}, g, [](double, double, int, int) { return RationalPoint{}; });
-  const auto knots = local_knot_vectors(ts);
-  for (std::size_t i = 0; i < knots.size(); ++i)
-    for (std::size_t k = 0; k < 2; ++k) {
-      const auto& t = knots[i][k];
-      ts.pointset.points[static_cast<std::size_t>(ts.connect.nodes[i].point)].xyz[k] = (t[1] + t[2] + t[3]) / 3.0;
-    }
+  place_at_greville_points(ts);
   return ts;
 }
 

@@ -60,13 +60,7 @@ TEST_P(EvenDegrees, TJunctionMeshIsAPartitionOfUnityAndReproducesLinears) {
   const Ints<2> p{GetParam()[0], GetParam()[1]};
   const std::vector<double> b{0, 1, 2, 3, 4, 5, 6};
   TSpline ts = t_spline_from_segments(p, grid(b, b, 3.0), origin);
-  const auto knots = local_knot_vectors(ts);
-  for (std::size_t i = 0; i < knots.size(); ++i)  // Greville points: the mean of the p_k inner local knots
-    for (std::size_t k = 0; k < 2; ++k) {
-      double g = 0;
-      for (int j = 1; j <= p[k]; ++j) g += knots[i][k][static_cast<std::size_t>(j)];
-      ts.pointset.points[static_cast<std::size_t>(ts.connect.nodes[i].point)].xyz[k] = g / p[k];
-    }
+  place_at_greville_points(ts);
   const TSplineSurface surf(ts);
   // Hand counts: the tensor count less the anchors the missing half line merges (three faces or links above
   // t = 3, and the top boundary's anchors at s = 3 with their layers).

@@ -27,14 +27,7 @@ TSpline as_t_mesh(int n) {
     g.push_back({{x, 0.0}, {x, i == n / 2 ? 0.5 : 1.0}});
   }
   TSpline ts = t_spline_from_segments({3, 3}, g, [](double, double, int, int) { return RationalPoint{}; });
-  const auto knots = local_knot_vectors(ts);
-  for (std::size_t i = 0; i < knots.size(); ++i) {  // Greville points: the identity map
-    RationalPoint& p = ts.pointset.points[static_cast<std::size_t>(ts.connect.nodes[i].point)];
-    for (int k = 0; k < 2; ++k) {
-      const auto& t = knots[i][static_cast<std::size_t>(k)];
-      p.xyz[static_cast<std::size_t>(k)] = (t[1] + t[2] + t[3]) / 3.0;
-    }
-  }
+  place_at_greville_points(ts);  // the identity map
   return ts;
 }
 

@@ -132,4 +132,17 @@ std::vector<LRBSpline<2>> blending_functions(const TSpline& ts) {
   return basis;
 }
 
+void place_at_greville_points(TSpline& ts) {
+  const auto knots = local_knot_vectors(ts);
+  for (std::size_t i = 0; i < knots.size(); ++i) {
+    RationalPoint& point = ts.pointset.points[static_cast<std::size_t>(ts.connect.nodes[i].point)];
+    for (std::size_t k = 0; k < 2; ++k) {
+      const std::vector<double>& t = knots[i][k];
+      double g = 0;
+      for (std::size_t j = 1; j + 1 < t.size(); ++j) g += t[j];
+      point.xyz[k] = g / static_cast<double>(t.size() - 2);
+    }
+  }
+}
+
 }  // namespace trivar

@@ -21,4 +21,9 @@ std::vector<std::array<std::vector<double>, 2>> local_knot_vectors(const TSpline
 // The blending functions, in node order.
 std::vector<LRBSpline<2>> blending_functions(const TSpline& ts);
 
+// Moves every node's point (x, y) to its Greville point (the mean of the p inner local knots per direction),
+// leaving z and the weight: a T-spline whose blending functions sum to one then maps its parameter domain onto
+// itself (linear precision), the geometry analysis on a planar parameter domain starts from.
+void place_at_greville_points(TSpline& ts);
+
 }  // namespace trivar
