@@ -201,6 +201,7 @@ struct LRSpline<D>::Batch {
   std::vector<double> candidates;
   std::vector<const Rect*> plane_rects;
   std::vector<double> fine, coefs;  // split(): the finer local knots and the coefficients on them
+  LRBSpline<D> piece;               // split(): the piece being added
   // B-splines made since the last resolve lack support lists: each one's list is filtered, once it is final,
   // from the list of the B-spline on a touched element it descends from (its root; extended by resolve).
   std::vector<int> root;
@@ -532,11 +533,14 @@ struct LRSpline<D>::Batch {
     coefs.resize(fine.size() - static_cast<std::size_t>(p) - 1);
     express_in<double>(y, fine, coefs.data());
     for (std::size_t j = 0; j < coefs.size(); ++j) {
-      LRBSpline<D> piece = j + 1 < coefs.size() ? fn : std::move(fn);
+      // Built in the reused `piece` (copy assignment keeps its storage): most pieces merge into an existing
+      // B-spline, and only a new one takes the storage away.
+      piece.knots = fn.knots;
+      piece.coef = fn.coef;
       piece.knots[k].assign(fine.begin() + static_cast<std::ptrdiff_t>(j),
                             fine.begin() + static_cast<std::ptrdiff_t>(j) + p + 2);
-      piece.gamma *= coefs[j];
-      add(std::move(piece), from);
+      piece.gamma = fn.gamma * coefs[j];
+      add(piece, from);
     }
   }
 
@@ -554,7 +558,8 @@ struct LRSpline<D>::Batch {
   }
 
   // A piece descending from `from`; a merge keeps the old B-spline's list (or root: both supports contain it).
-  void add(LRBSpline<D>&& b, int from) {
+  // b is moved into the collection when it is new.
+  void add(LRBSpline<D>& b, int from) {
     const std::uint64_t h = knot_hash(b);
     const int same = by_knots.find(h, [&](int i) { return same_knots(s.basis_[static_cast<std::size_t>(i)], b); });
     if (same >= 0) {
