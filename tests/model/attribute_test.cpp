@@ -70,3 +70,38 @@ TEST(Attribute, InvalidAttributesFailCleanly) {
     EXPECT_STREQ(e.what(), "V-cell: no attribute 'density'");
   }
 }
+
+TEST(Attribute, ManyParametersGiveTheSameValuesAsOneAtATime) {
+  const VCell cell = rotated_cell();
+  const TensorSpline<3>& g = cell.geometry();
+  const std::vector<Attribute> attributes = {
+      Attribute::constant({0.25, 0.75}),
+      Attribute::field(make_block<3>({2, 1, 1}, {1, 1, 1}, {1, 2, 3})),
+      Attribute::expression({"x + 10*y", "sqrt(z) - x*y"}, Attribute::Space::model),
+      Attribute::expression({"u*v*w", "min(u, v) + 1"}, Attribute::Space::parametric)};
+  // Parameters in the domain and, clamped onto it, outside (there the given model points are not used).
+  std::vector<Param<3>> u;
+  for (int i = 0; i < 300; ++i)
+    u.push_back({std::fmod(0.37 * i, 1.3) - 0.1, std::fmod(0.61 * i, 1.0), std::fmod(0.13 * i, 1.0)});
+  std::vector<double> points;
+  for (const auto& p : u) {
+    double x[3] = {-1, -1, -1};  // wrong on purpose outside the domain
+    if (p[0] >= 0 && p[0] <= 1) g.eval(p, x);
+    points.insert(points.end(), x, x + 3);
+  }
+  for (const Attribute& a : attributes) {
+    const auto m = static_cast<std::size_t>(a.components());
+    std::vector<double> many(m * u.size());
+    a.eval_many(g, u, points.data(), many.data());
+    for (std::size_t i = 0; i < u.size(); ++i) {
+      double one[3], at[3];
+      a.eval(g, u[i], one);
+      if (u[i][0] >= 0 && u[i][0] <= 1) a.eval_at(g, u[i], points.data() + 3 * i, at);
+      else std::copy(one, one + 3, at);
+      for (std::size_t c = 0; c < m; ++c) {
+        EXPECT_EQ(many[m * i + c], one[c]) << "attribute " << &a - attributes.data() << " point " << i;
+        EXPECT_EQ(at[c], one[c]);
+      }
+    }
+  }
+}

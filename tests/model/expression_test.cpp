@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -120,4 +121,36 @@ TEST(Expression, NestingBeyondTheLimitIsAnErrorNotAStackOverflow) {
   std::string powers = "2";
   for (int k = 0; k < 300; ++k) powers += "^1";
   EXPECT_THROW(Expression::parse(powers, {}), Error);
+}
+
+TEST(Expression, ManyPointsGiveTheSameBitsAsOnePointAtATime) {
+  // Every instruction, NaN and infinity inputs, and a count that is not a multiple of the block of points.
+  const Expression e = Expression::parse(
+      "min(x, y, 0.5*z) + max(x, -y) + x^y + atan2(y, x) + sin(x) - cos(y) + tan(z) + exp(-x*x) + log(abs(y)) + "
+      "sqrt(abs(z))/3 - pow(abs(x), 0.25) + -(z) + pi",
+      {"x", "y", "z"});
+  const std::size_t n = 101;
+  std::vector<double> x(n), y(n), z(n), many(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    x[i] = std::sin(1.7 * static_cast<double>(i)) * 3;
+    y[i] = std::cos(0.9 * static_cast<double>(i)) * 2;
+    z[i] = 0.01 * static_cast<double>(i) - 0.4;
+  }
+  x[7] = NAN;
+  y[40] = INFINITY;
+  z[99] = 0;
+  const double* const vars[3] = {x.data(), y.data(), z.data()};
+  e.eval_many(vars, n, many.data());
+  for (std::size_t i = 0; i < n; ++i) {
+    const double one = e.eval(std::vector<double>{x[i], y[i], z[i]});
+    if (std::isnan(one)) EXPECT_TRUE(std::isnan(many[i])) << i;
+    else EXPECT_EQ(many[i], one) << i;
+  }
+  EXPECT_EQ(many[0], std::min({x[0], y[0], 0.5 * z[0]}) + std::max(x[0], -y[0]) + std::pow(x[0], y[0]) + std::atan2(y[0], x[0]) + std::sin(x[0]) -
+                         std::cos(y[0]) + std::tan(z[0]) + std::exp(-x[0] * x[0]) + std::log(std::abs(y[0])) +
+                         std::sqrt(std::abs(z[0])) / 3 - std::pow(std::abs(x[0]), 0.25) + -z[0] + std::numbers::pi)
+      << "the formula written out in C++ at the first point";
+  e.eval_many(vars, 0, many.data());  // no points: nothing to do
+  const double* const two[2] = {x.data(), y.data()};
+  EXPECT_THROW(e.eval_many(two, n, many.data()), Error);
 }

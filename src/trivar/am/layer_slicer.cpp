@@ -49,11 +49,10 @@ bool jacobian_inverse(const TensorSpline<3>& s, const Param<3>& u, Eigen::Matrix
 // True, with u and residual, when chord steps from u reach |s(u) - x| <= tol without leaving the domain
 // (a root outside it belongs to another cell, or to none). `next` gets one more chord step from the accepted
 // u, taken without evaluating: a better start for the following pixels than u itself, whose error is up to
-// the tolerance and would be amplified by extrapolation.
+// the tolerance and would be amplified by extrapolation. p gets s(u), for the material attribute.
 bool chord_solve(const TensorSpline<3>& s, const Box<3>& dom, const Eigen::Matrix3d& inv, const double* x, double tol,
-                 Param<3>& u, double& residual, Param<3>& next) {
+                 Param<3>& u, double& residual, Param<3>& next, double* p) {
   for (int k = 0; k < 3; ++k) u[k] = std::clamp(u[k], dom.lo[k], dom.hi[k]);
-  double p[3];
   for (int it = 0;; ++it) {
     s.eval(u, p);
     const Eigen::Vector3d r(x[0] - p[0], x[1] - p[1], x[2] - p[2]);
@@ -241,7 +240,28 @@ SliceLayer LayerSlicer::slice(int k) const {
   std::size_t model_pos = 0;
   std::vector<Param<3>> cur(static_cast<std::size_t>(w)), prev(static_cast<std::size_t>(w)), seed(static_cast<std::size_t>(w));
   std::vector<int> seed_cell(static_cast<std::size_t>(w), -1);
-  double values[MaterialTable::max_materials];
+  // Material fractions are evaluated for runs of up to kBatch pixels of one cell at once (the attribute's
+  // formulas run over the whole run): pixel columns, parameters and model points of the pending run.
+  constexpr std::size_t kBatch = 64;
+  std::vector<int> batch_i;
+  std::vector<Param<3>> batch_u;
+  std::vector<double> batch_x, values(kBatch * static_cast<std::size_t>(materials_));
+  int batch_cell = -1;
+  auto flush = [&](int j) {
+    if (batch_i.empty()) return;
+    const int c = batch_cell;
+    const auto mats = static_cast<std::size_t>(materials_);
+    material_[static_cast<std::size_t>(c)]->eval_many(model_.cell(c).geometry(), batch_u, batch_x.data(), values.data());
+    for (std::size_t q = 0; q < batch_i.size(); ++q) {
+      const double* v = values.data() + mats * q;
+      const double sum = material_fraction_sum(std::span<const double>(v, mats), [&] { return cell_point(c, batch_u[q]); });
+      float* out = L.fractions.pixel(batch_i[q], j);
+      for (std::size_t m = 0; m < mats; ++m) out[m] = static_cast<float>(v[m] / sum);
+    }
+    batch_i.clear();
+    batch_u.clear();
+    batch_x.clear();
+  };
   LayerStats& st = L.stats;
   for (int j = 0; j < h; ++j) {
     int* row = L.cell.data() + static_cast<std::size_t>(j) * static_cast<std::size_t>(w);
@@ -269,8 +289,9 @@ SliceLayer LayerSlicer::slice(int k) const {
       if (c == -1) continue;
       const double x[3] = {g.x(i), g.y(j), z};
       InversionResult<3> r;
-      bool ok = false, newton_used = false, next_set = false;
+      bool ok = false, newton_used = false, next_set = false;  // next_set: solved by chord steps, point = s(r.param)
       Param<3> next;
+      double point[3];
       if (c >= 0) {
         const PointInverter<3>& inv = inverters_[static_cast<std::size_t>(c)];
         const TensorSpline<3>& geo = inv.spline();
@@ -291,7 +312,7 @@ SliceLayer LayerSlicer::slice(int k) const {
           if (chord_cell == c) {
             r.param = guess;
             ok = chord_solve(geo, domains_[static_cast<std::size_t>(c)], chord_inverse, x, inv.absolute_tolerance(),
-                             r.param, r.residual, next);
+                             r.param, r.residual, next, point);
           }
           next_set = ok;
           ok = ok || newton_from(guess);
@@ -342,17 +363,27 @@ SliceLayer LayerSlicer::slice(int k) const {
       ++st.inside_pixels;
       st.max_residual = std::max(st.max_residual, r.residual);
 
-      float* out = L.fractions.pixel(i, j);
       const Attribute* a = material_[static_cast<std::size_t>(c)];
       if (!a) {
-        out[0] = 1.0f;
+        L.fractions.pixel(i, j)[0] = 1.0f;
         continue;
       }
-      a->eval(model_.cell(c).geometry(), r.param, values);
-      const double sum = material_fraction_sum(std::span<const double>(values, static_cast<std::size_t>(materials_)),
-                                               [&] { return cell_point(c, r.param); });
-      for (int m = 0; m < materials_; ++m) out[m] = static_cast<float>(values[m] / sum);
+      if (c != batch_cell || batch_i.size() == kBatch) flush(j);
+      batch_cell = c;
+      batch_i.push_back(i);
+      batch_u.push_back(r.param);
+      if (a->uses_model_point()) {
+        if (!next_set) {
+          // Newton and the robust search end with derivatives; the value kernel gives the point eval() would.
+          const Box<3>& dom = domains_[static_cast<std::size_t>(c)];
+          Param<3> t;
+          for (int d = 0; d < 3; ++d) t[d] = std::clamp(r.param[d], dom.lo[d], dom.hi[d]);
+          model_.cell(c).geometry().eval(t, point);
+        }
+        batch_x.insert(batch_x.end(), point, point + 3);
+      }
     }
+    flush(j);
     std::swap(cur, prev);
   }
   return L;

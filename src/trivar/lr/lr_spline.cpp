@@ -201,12 +201,12 @@ struct LRSpline<D>::Batch {
   std::vector<double> candidates;
   std::vector<const Rect*> plane_rects;
   std::vector<double> fine, coefs;  // split(): the finer local knots and the coefficients on them
+  LRBSpline<D> piece;               // split(): the piece being added
   // B-splines made since the last resolve lack support lists: each one's list is filtered, once it is final,
   // from the list of the B-spline on a touched element it descends from (its root; extended by resolve).
   std::vector<int> root;
   std::vector<int> stale;
   std::vector<int> extended;       // B-splines whose lists resolve extended by the new elements
-  std::vector<int> inside;         // refresh_lists' elements of one support
   std::size_t sorted_count = 0;    // B-splines before the batch, in id order
   std::vector<int> touched;
   std::size_t base = 0;            // elements whose lists element_basis_ holds
@@ -249,10 +249,10 @@ struct LRSpline<D>::Batch {
   }
 
   // Whether the rectangles `ids` of the plane (dir, value) with multiplicity >= m cover S's cross-section.
-  bool plane_covers(const std::vector<int>& ids, int dir, double value, const Box<D>& S, int m) {
-    plane_rects.clear();
-    for (int id : ids) plane_rects.push_back(&s.mesh_[static_cast<std::size_t>(id)]);
-    return mesh_covers<D>(plane_rects, dir, value, S, m);
+  bool plane_covers(const std::vector<int>& ids, int dir, double value, const Box<D>& S, int m) const {
+    return mesh_covers<D>(
+        ids.size(), [&](std::size_t i) -> const Rect& { return s.mesh_[static_cast<std::size_t>(ids[i])]; }, dir, value,
+        S, m);
   }
 
   bool insert_one(const Rect& r, bool strict) {
@@ -391,28 +391,21 @@ struct LRSpline<D>::Batch {
   }
 
   // The support lists of the B-splines made by the last resolve that survive: the elements of their root's
-  // list whose centres lie inside their support. The lists resolve extended end in the new elements unsorted
-  // (sorting them there cost more than sorting the survivors' shorter ends here). Then every B-spline is its
-  // own root again.
+  // list whose centres lie inside their support. Lists stay unsorted within a batch (only their sets matter
+  // there): finish() renumbers the elements and rebuilds every list in order by transposition, so sorting here
+  // would be wasted. Then every B-spline is its own root again.
   void refresh_lists() {
-    const auto is_old = [this](int e) { return static_cast<std::size_t>(e) < base; };
     for (int b : stale) {
       if (dead[static_cast<std::size_t>(b)]) continue;
       const Box<D> S = s.basis_[static_cast<std::size_t>(b)].support();
-      inside.clear();
+      auto& L = s.basis_elements_[static_cast<std::size_t>(b)];
+      L.clear();
       for (int e : s.basis_elements_[static_cast<std::size_t>(root[static_cast<std::size_t>(b)])])
-        if (center_inside(s.elements_[static_cast<std::size_t>(e)], S)) inside.push_back(e);
-      std::sort(std::partition_point(inside.begin(), inside.end(), is_old), inside.end());
-      s.basis_elements_[static_cast<std::size_t>(b)].assign(inside.begin(), inside.end());
+        if (center_inside(s.elements_[static_cast<std::size_t>(e)], S)) L.push_back(e);
       root[static_cast<std::size_t>(b)] = b;
     }
-    for (int b : extended) {
-      auto& L = s.basis_elements_[static_cast<std::size_t>(b)];
-      if (dead[static_cast<std::size_t>(b)])
-        L = {};
-      else
-        std::sort(std::partition_point(L.begin(), L.end(), is_old), L.end());
-    }
+    for (int b : extended)
+      if (dead[static_cast<std::size_t>(b)]) s.basis_elements_[static_cast<std::size_t>(b)] = {};
     stale.clear();
     extended.clear();
   }
@@ -540,11 +533,14 @@ struct LRSpline<D>::Batch {
     coefs.resize(fine.size() - static_cast<std::size_t>(p) - 1);
     express_in<double>(y, fine, coefs.data());
     for (std::size_t j = 0; j < coefs.size(); ++j) {
-      LRBSpline<D> piece = j + 1 < coefs.size() ? fn : std::move(fn);
+      // Built in the reused `piece` (copy assignment keeps its storage): most pieces merge into an existing
+      // B-spline, and only a new one takes the storage away.
+      piece.knots = fn.knots;
+      piece.coef = fn.coef;
       piece.knots[k].assign(fine.begin() + static_cast<std::ptrdiff_t>(j),
                             fine.begin() + static_cast<std::ptrdiff_t>(j) + p + 2);
-      piece.gamma *= coefs[j];
-      add(std::move(piece), from);
+      piece.gamma = fn.gamma * coefs[j];
+      add(piece, from);
     }
   }
 
@@ -562,7 +558,8 @@ struct LRSpline<D>::Batch {
   }
 
   // A piece descending from `from`; a merge keeps the old B-spline's list (or root: both supports contain it).
-  void add(LRBSpline<D>&& b, int from) {
+  // b is moved into the collection when it is new.
+  void add(LRBSpline<D>& b, int from) {
     const std::uint64_t h = knot_hash(b);
     const int same = by_knots.find(h, [&](int i) { return same_knots(s.basis_[static_cast<std::size_t>(i)], b); });
     if (same >= 0) {
@@ -848,10 +845,11 @@ void LRSpline<D>::reorder_elements(std::span<const int> order) {
   }
   elements_ = std::move(elements);
   element_basis_ = std::move(element_basis);
-  for (auto& list : basis_elements_) {
-    for (int& e : list) e = new_id[static_cast<std::size_t>(e)];
-    std::sort(list.begin(), list.end());
-  }
+  // The support lists as the transpose of the element lists, visited in the new order: ascending without a
+  // sort, and each list keeps its storage (its size does not change).
+  for (auto& list : basis_elements_) list.clear();
+  for (std::size_t e = 0; e < n; ++e)
+    for (int b : element_basis_[e]) basis_elements_[static_cast<std::size_t>(b)].push_back(static_cast<int>(e));
   evaluator_.reset();
 }
 

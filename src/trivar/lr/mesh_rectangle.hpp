@@ -3,6 +3,7 @@
 // one direction (a mesh line for D = 2, a mesh rectangle for D = 3) with a knot multiplicity.
 #include <algorithm>
 #include <array>
+#include <cstddef>
 #include <span>
 #include <vector>
 
@@ -43,37 +44,42 @@ struct MeshRectangle {
   }
 };
 
-// True when the union of the rectangles among `rects` at (dir, value) with multiplicity >= `multiplicity`
-// covers the box `b` (its `dir` entries ignored). Unions of rectangles are not boxes in 3D, so coverage is
-// decided on the cells of the grid spanned by all rectangle bounds inside `b`. Callers pass the few rectangles
-// of one plane (LRSpline keeps them indexed by plane), so the cost is independent of the mesh size.
-template <int D>
-bool mesh_covers(std::span<const MeshRectangle<D>* const> rects, int dir, double value, const Box<D>& b,
-                 int multiplicity) {
-  std::vector<const MeshRectangle<D>*> hits;
-  for (const auto* r : rects)
-    if (r->dir == dir && r->value == value && r->multiplicity >= multiplicity && r->overlaps_across(b)) {
-      if (r->contains_across(b)) return true;
-      hits.push_back(r);
+// True when the union of the rectangles rect(0), ..., rect(n - 1) (each a const MeshRectangle<D>&) at
+// (dir, value) with multiplicity >= `multiplicity` covers the box `b` (its `dir` entries ignored). Unions of
+// rectangles are not boxes in 3D, so coverage is decided on the cells of the grid spanned by all rectangle bounds
+// inside `b`. Callers pass the few rectangles of one plane (LRSpline keeps them indexed by plane), so the cost is
+// independent of the mesh size. The refinement asks this for every plane inside every support it tests, so the
+// scratch lists are kept per thread instead of allocated per call.
+template <int D, class Rect>
+bool mesh_covers(std::size_t n, Rect&& rect, int dir, double value, const Box<D>& b, int multiplicity) {
+  thread_local std::vector<const MeshRectangle<D>*> hits;
+  thread_local std::array<std::vector<double>, D> cuts;
+  hits.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    const MeshRectangle<D>& r = rect(i);
+    if (r.dir == dir && r.value == value && r.multiplicity >= multiplicity && r.overlaps_across(b)) {
+      if (r.contains_across(b)) return true;
+      hits.push_back(&r);
     }
+  }
   if (hits.empty()) return false;
-  std::array<std::vector<double>, D> cuts;
   for (int j = 0; j < D; ++j) {
     if (j == dir) continue;
-    cuts[j] = {b.lo[j], b.hi[j]};
+    auto& c = cuts[static_cast<std::size_t>(j)];
+    c.assign({b.lo[j], b.hi[j]});
     for (const auto* r : hits) {
-      if (r->extent.lo[j] > b.lo[j] && r->extent.lo[j] < b.hi[j]) cuts[j].push_back(r->extent.lo[j]);
-      if (r->extent.hi[j] > b.lo[j] && r->extent.hi[j] < b.hi[j]) cuts[j].push_back(r->extent.hi[j]);
+      if (r->extent.lo[j] > b.lo[j] && r->extent.lo[j] < b.hi[j]) c.push_back(r->extent.lo[j]);
+      if (r->extent.hi[j] > b.lo[j] && r->extent.hi[j] < b.hi[j]) c.push_back(r->extent.hi[j]);
     }
-    std::sort(cuts[j].begin(), cuts[j].end());
-    cuts[j].erase(std::unique(cuts[j].begin(), cuts[j].end()), cuts[j].end());
+    std::sort(c.begin(), c.end());
+    c.erase(std::unique(c.begin(), c.end()), c.end());
   }
   // Odometer over the grid cells; each cell's centre must lie in some rectangle.
   std::array<int, D> c{};
   for (;;) {
     Param<D> mid{};
     for (int j = 0; j < D; ++j)
-      if (j != dir) mid[j] = 0.5 * (cuts[j][c[j]] + cuts[j][c[j] + 1]);
+      if (j != dir) mid[j] = 0.5 * (cuts[static_cast<std::size_t>(j)][c[j]] + cuts[static_cast<std::size_t>(j)][c[j] + 1]);
     bool inside = false;
     for (const auto* r : hits) {
       bool in = true;
@@ -88,11 +94,19 @@ bool mesh_covers(std::span<const MeshRectangle<D>* const> rects, int dir, double
     int j = 0;
     for (; j < D; ++j) {
       if (j == dir) continue;
-      if (++c[j] + 1 < static_cast<int>(cuts[j].size())) break;
+      if (++c[j] + 1 < static_cast<int>(cuts[static_cast<std::size_t>(j)].size())) break;
       c[j] = 0;
     }
     if (j == D) return true;
   }
+}
+
+// mesh_covers over a list of rectangles.
+template <int D>
+bool mesh_covers(std::span<const MeshRectangle<D>* const> rects, int dir, double value, const Box<D>& b,
+                 int multiplicity) {
+  return mesh_covers<D>(rects.size(), [&](std::size_t i) -> const MeshRectangle<D>& { return *rects[i]; }, dir, value,
+                        b, multiplicity);
 }
 
 }  // namespace trivar

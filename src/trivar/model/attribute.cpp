@@ -45,29 +45,64 @@ int Attribute::components() const {
   return 0;
 }
 
-void Attribute::eval(const TensorSpline<3>& geometry, const Param<3>& u, double* out) const {
+void Attribute::eval(const TensorSpline<3>& geometry, const Param<3>& u, double* out) const { eval_at(geometry, u, nullptr, out); }
+
+void Attribute::eval_at(const TensorSpline<3>& geometry, const Param<3>& u, const double* point, double* out) const {
+  if (kind_ == Kind::constant) {
+    std::copy(values_.begin(), values_.end(), out);
+    return;
+  }
   const Box<3> cell = geometry.domain();
   Param<3> t;
   for (int k = 0; k < 3; ++k) t[k] = std::clamp(u[k], cell.lo[k], cell.hi[k]);
-  switch (kind_) {
-    case Kind::constant: std::copy(values_.begin(), values_.end(), out); return;
-    case Kind::field: {
-      const Box<3> f = field_->domain();
-      Param<3> s;
-      for (int k = 0; k < 3; ++k) s[k] = f.lo[k] + (t[k] - cell.lo[k]) / cell.extent(k) * f.extent(k);
-      field_->eval(s, out);
-      return;
-    }
-    case Kind::expression: {
-      double vars[3] = {t[0], t[1], t[2]};
-      if (space_ == Space::model) {
-        // The message is built only on failure: this runs once per slicer pixel.
-        require(geometry.dim() == 3,
-                [] { return std::string("expression attribute in x, y, z: cell geometry is not in 3-space"); });
-        geometry.eval(t, vars);
+  if (kind_ == Kind::field) {
+    const Box<3> f = field_->domain();
+    Param<3> s;
+    for (int k = 0; k < 3; ++k) s[k] = f.lo[k] + (t[k] - cell.lo[k]) / cell.extent(k) * f.extent(k);
+    field_->eval(s, out);
+    return;
+  }
+  double vars[3] = {t[0], t[1], t[2]};
+  if (space_ == Space::model) {
+    // The message is built only on failure: this runs once per slicer pixel.
+    require(geometry.dim() == 3,
+            [] { return std::string("expression attribute in x, y, z: cell geometry is not in 3-space"); });
+    if (point && t == u) std::copy(point, point + 3, vars);
+    else geometry.eval(t, vars);
+  }
+  for (std::size_t c = 0; c < expressions_.size(); ++c) out[c] = expressions_[c].eval(vars);
+}
+
+void Attribute::eval_many(const TensorSpline<3>& geometry, std::span<const Param<3>> u, const double* points,
+                          double* out) const {
+  const auto n = u.size();
+  const auto m = static_cast<std::size_t>(components());
+  if (kind_ != Kind::expression) {
+    for (std::size_t i = 0; i < n; ++i) eval_at(geometry, u[i], nullptr, out + m * i);
+    return;
+  }
+  require(!uses_model_point() || geometry.dim() == 3,
+          [] { return std::string("expression attribute in x, y, z: cell geometry is not in 3-space"); });
+  // Variables by column, in blocks that stay in the L1 cache.
+  constexpr std::size_t kBlock = 256;
+  double columns[3][kBlock], values[kBlock];
+  const Box<3> cell = geometry.domain();
+  for (std::size_t first = 0; first < n; first += kBlock) {
+    const std::size_t b = std::min(kBlock, n - first);
+    for (std::size_t i = 0; i < b; ++i) {
+      Param<3> t;
+      for (int k = 0; k < 3; ++k) t[k] = std::clamp(u[first + i][k], cell.lo[k], cell.hi[k]);
+      double x[3] = {t[0], t[1], t[2]};
+      if (uses_model_point()) {
+        if (t == u[first + i]) std::copy(points + 3 * (first + i), points + 3 * (first + i) + 3, x);
+        else geometry.eval(t, x);
       }
-      for (std::size_t c = 0; c < expressions_.size(); ++c) out[c] = expressions_[c].eval(vars);
-      return;
+      for (int k = 0; k < 3; ++k) columns[k][i] = x[k];
+    }
+    const double* const vars[3] = {columns[0], columns[1], columns[2]};
+    for (std::size_t c = 0; c < m; ++c) {
+      expressions_[c].eval_many(vars, b, values);
+      for (std::size_t i = 0; i < b; ++i) out[m * (first + i) + c] = values[i];
     }
   }
 }

@@ -2,6 +2,7 @@
 // Cell attributes (materials, densities, fields): a constant vector, a spline field over the cell's parameter
 // domain, or per-component expressions in model coordinates (x, y, z) or cell parameters (u, v, w).
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,16 @@ public:
   // components() values at parameter u of a cell with geometry `geometry` (control dimension 3; used for the
   // cell's domain and, for model-space expressions, for x(u)). u outside the cell's domain is clamped.
   void eval(const TensorSpline<3>& geometry, const Param<3>& u, double* out) const;
+  // As eval() for a u inside the cell's domain whose model point geometry(u) the caller has already
+  // evaluated (point inversion ends with it): a model-space expression uses `point` instead of evaluating the
+  // geometry again, so the result is the same as eval()'s when point is geometry.eval(u).
+  void eval_at(const TensorSpline<3>& geometry, const Param<3>& u, const double* point, double* out) const;
+  // eval_at() at u.size() parameters of one cell: points[3 i..3 i+2] = geometry(u[i]) (read only when
+  // uses_model_point()), out[components() i + c] gets component c at u[i]. Expressions run over all points at
+  // once (Expression::eval_many), so this is the per-pixel path of the slicer; results equal eval_at()'s.
+  void eval_many(const TensorSpline<3>& geometry, std::span<const Param<3>> u, const double* points, double* out) const;
+  // Model-space expressions read the cell's model point x(u).
+  bool uses_model_point() const { return kind_ == Kind::expression && space_ == Space::model; }
 
 private:
   Kind kind_ = Kind::constant;

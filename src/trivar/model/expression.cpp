@@ -219,7 +219,8 @@ double Expression::eval(std::span<const double> vars) const {
     return "expression '" + text_ + "': " + std::to_string(variables_.size()) + " variable values expected, got " +
            std::to_string(vars.size());
   });
-  require(!program_.empty(), "expression: evaluating an empty (default-constructed) expression");
+  // The message is built only on failure: attributes evaluate formulas once per slicer pixel.
+  require(!program_.empty(), [] { return std::string("expression: evaluating an empty (default-constructed) expression"); });
   std::array<double, kMaxStack> st;
   int top = -1;  // index of the top of the stack
   for (const Instruction& in : program_) {
@@ -252,6 +253,62 @@ double Expression::eval(std::span<const double> vars) const {
     }
   }
   return st[0];
+}
+
+void Expression::eval_many(std::span<const double* const> vars, std::size_t n, double* out) const {
+  require(vars.size() == variables_.size(), [&] {
+    return "expression '" + text_ + "': " + std::to_string(variables_.size()) + " variable columns expected, got " +
+           std::to_string(vars.size());
+  });
+  require(!program_.empty(), [] { return std::string("expression: evaluating an empty (default-constructed) expression"); });
+  // 64 stack levels of 32 points: 16 KiB, and 32 points amortise the dispatch of an instruction well.
+  constexpr std::size_t kBlock = 32;
+  alignas(64) double st[kMaxStack][kBlock];
+  for (std::size_t first = 0; first < n; first += kBlock) {
+    const std::size_t m = std::min(kBlock, n - first);
+    auto unary = [&](double* a, auto f) {
+      for (std::size_t i = 0; i < m; ++i) a[i] = f(a[i]);
+    };
+    int top = -1;
+    for (const Instruction& in : program_) {
+      double* a = top >= 0 ? st[top] : nullptr;
+      const double* b = top >= 1 ? st[top] : nullptr;
+      double* c = top >= 1 ? st[top - 1] : nullptr;  // binary: c op= b, the result on c
+      switch (in.op) {
+        case Op::number: std::fill_n(st[++top], m, in.value); break;
+        case Op::variable: std::copy_n(vars[static_cast<std::size_t>(in.arg)] + first, m, st[++top]); break;
+        case Op::add: for (std::size_t i = 0; i < m; ++i) c[i] += b[i]; --top; break;
+        case Op::sub: for (std::size_t i = 0; i < m; ++i) c[i] -= b[i]; --top; break;
+        case Op::mul: for (std::size_t i = 0; i < m; ++i) c[i] *= b[i]; --top; break;
+        case Op::div: for (std::size_t i = 0; i < m; ++i) c[i] /= b[i]; --top; break;
+        case Op::pow: for (std::size_t i = 0; i < m; ++i) c[i] = std::pow(c[i], b[i]); --top; break;
+        case Op::atan2: for (std::size_t i = 0; i < m; ++i) c[i] = std::atan2(c[i], b[i]); --top; break;
+        case Op::neg: unary(a, [](double v) { return -v; }); break;
+        case Op::sin: unary(a, [](double v) { return std::sin(v); }); break;
+        case Op::cos: unary(a, [](double v) { return std::cos(v); }); break;
+        case Op::tan: unary(a, [](double v) { return std::tan(v); }); break;
+        case Op::exp: unary(a, [](double v) { return std::exp(v); }); break;
+        case Op::log: unary(a, [](double v) { return std::log(v); }); break;
+        case Op::sqrt: unary(a, [](double v) { return std::sqrt(v); }); break;
+        case Op::abs: unary(a, [](double v) { return std::abs(v); }); break;
+        case Op::min:
+        case Op::max: {
+          const int lowest = top - in.arg + 1;
+          double* r = st[lowest];
+          for (int k = lowest + 1; k <= top; ++k) {
+            const double* v = st[k];
+            if (in.op == Op::min)
+              for (std::size_t i = 0; i < m; ++i) r[i] = std::min(r[i], v[i]);
+            else
+              for (std::size_t i = 0; i < m; ++i) r[i] = std::max(r[i], v[i]);
+          }
+          top = lowest;
+          break;
+        }
+      }
+    }
+    std::copy_n(st[0], m, out + first);
+  }
 }
 
 }  // namespace trivar
