@@ -32,7 +32,7 @@ TEST_F(MaterialFractionsCli, EveryConsumerRejectsTheSameBadFractionsAlike) {
   for (const auto& [material, problem] : cases) {
     write("m.json", cube_model(material));
     const std::string expected = "trivar: error: cell 0 at parameter (0, 0, 0): " + problem + rule + "\n";
-    for (const std::string& args : {"info m.json", "slice m.json --out s", "export m.json m.3mf", "export m.json m.amf"}) {
+    for (const char* args : {"info m.json", "slice m.json --out s", "export m.json m.3mf", "export m.json m.amf"}) {
       const auto before = listing();
       const Result r = run(args);
       EXPECT_EQ(r.code, 1) << args;
