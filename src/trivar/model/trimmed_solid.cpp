@@ -225,6 +225,24 @@ TrimmedSolid::TrimmedSolid(TrimmedBoundary boundary) : boundary_(std::move(bound
 }
 
 template <class F>
+bool TrimmedSolid::SpaceGrid::any_triangle_in(const std::array<double, 3>& from, const std::array<double, 3>& to,
+                                              F&& f) const {
+  std::array<int, 3> a, z;
+  for (int k = 0; k < 3; ++k) {
+    a[k] = std::clamp(static_cast<int>((from[k] - lo[k]) * inv_h[k]), 0, n[k] - 1);
+    z[k] = std::clamp(static_cast<int>((to[k] - lo[k]) * inv_h[k]), 0, n[k] - 1);
+  }
+  for (int c = a[2]; c <= z[2]; ++c)
+    for (int j = a[1]; j <= z[1]; ++j)
+      for (int i = a[0]; i <= z[0]; ++i) {
+        const std::size_t cell = (static_cast<std::size_t>(c) * n[1] + j) * n[0] + i;
+        for (int k = start[cell]; k < start[cell + 1]; ++k)
+          if (f(triangles[static_cast<std::size_t>(k)])) return true;
+      }
+  return false;
+}
+
+template <class F>
 bool TrimmedSolid::any_triangle_meeting(const Box<3>& q, F&& f) const {
   const SpaceGrid& g = space_;
   const TrimmedBoundary& bd = boundary_;
@@ -236,32 +254,24 @@ bool TrimmedSolid::any_triangle_meeting(const Box<3>& q, F&& f) const {
     in.hi[k] -= eps;
   }
   const double grow = bd.chordal_tolerance;
-  std::array<int, 3> lo, hi;
+  std::array<double, 3> lo, hi;
   for (int k = 0; k < 3; ++k) {
     if (in.hi[k] + grow < box_.lo[k] || in.lo[k] - grow > box_.hi[k]) return false;
-    lo[k] = std::clamp(static_cast<int>((in.lo[k] - grow - g.lo[k]) * g.inv_h[k]), 0, g.n[k] - 1);
-    hi[k] = std::clamp(static_cast<int>((in.hi[k] + grow - g.lo[k]) * g.inv_h[k]), 0, g.n[k] - 1);
+    lo[k] = in.lo[k] - grow;
+    hi[k] = in.hi[k] + grow;
   }
-  for (int c = lo[2]; c <= hi[2]; ++c)
-    for (int j = lo[1]; j <= hi[1]; ++j)
-      for (int i = lo[0]; i <= hi[0]; ++i) {
-        const std::size_t cell = (static_cast<std::size_t>(c) * g.n[1] + j) * g.n[0] + i;
-        for (int k = g.start[cell]; k < g.start[cell + 1]; ++k) {
-          const int t = g.triangles[k];
-          const double r = flat_[static_cast<std::size_t>(bd.triangle_face[t])] ? 0.0 : grow;
-          bool meets = true;
-          for (int d = 0; d < 3 && meets; ++d) {
-            double a = INFINITY, z = -INFINITY;
-            for (int v : bd.mesh.triangles[t]) {
-              a = std::min(a, bd.mesh.vertices[v][d]);
-              z = std::max(z, bd.mesh.vertices[v][d]);
-            }
-            meets = z + r >= in.lo[d] && a - r <= in.hi[d];
-          }
-          if (meets && f(t)) return true;
-        }
+  return g.any_triangle_in(lo, hi, [&](int t) {
+    const double r = flat_[static_cast<std::size_t>(bd.triangle_face[t])] ? 0.0 : grow;
+    for (int d = 0; d < 3; ++d) {
+      double a = INFINITY, z = -INFINITY;
+      for (int v : bd.mesh.triangles[t]) {
+        a = std::min(a, bd.mesh.vertices[v][d]);
+        z = std::max(z, bd.mesh.vertices[v][d]);
       }
-  return false;
+      if (z + r < in.lo[d] || a - r > in.hi[d]) return false;
+    }
+    return f(t);
+  });
 }
 
 bool TrimmedSolid::boundary_meets(const Box<3>& b) const {
@@ -395,13 +405,7 @@ void TrimmedSolid::axis_crossings(int axis, const std::array<double, 3>& p, doub
 }
 
 int TrimmedSolid::classify_near(const std::array<double, 3>& x, double band) const {
-  const SpaceGrid& g = space_;
   const TrimmedBoundary& bd = boundary_;
-  std::array<int, 3> lo, hi;
-  for (int k = 0; k < 3; ++k) {
-    lo[k] = std::clamp(static_cast<int>((x[k] - band - g.lo[k]) * g.inv_h[k]), 0, g.n[k] - 1);
-    hi[k] = std::clamp(static_cast<int>((x[k] + band - g.lo[k]) * g.inv_h[k]), 0, g.n[k] - 1);
-  }
   // Per face within the band: its nearest triangle and the barycentric coordinates of the nearest point there.
   struct Near {
     int face, triangle;
@@ -410,28 +414,23 @@ int TrimmedSolid::classify_near(const std::array<double, 3>& x, double band) con
   };
   thread_local std::vector<Near> near;
   near.clear();
-  for (int c = lo[2]; c <= hi[2]; ++c)
-    for (int j = lo[1]; j <= hi[1]; ++j)
-      for (int i = lo[0]; i <= hi[0]; ++i) {
-        const std::size_t cell = (static_cast<std::size_t>(c) * g.n[1] + j) * g.n[0] + i;
-        for (int k = g.start[cell]; k < g.start[cell + 1]; ++k) {
-          const int t = g.triangles[k];
-          const auto& tri = bd.mesh.triangles[t];
-          const P3 &a = bd.mesh.vertices[tri[0]], &b = bd.mesh.vertices[tri[1]], &cc = bd.mesh.vertices[tri[2]];
-          const auto w = closest_on_triangle(x, a, b, cc);
-          const P3 q{w[0] * a[0] + w[1] * b[0] + w[2] * cc[0], w[0] * a[1] + w[1] * b[1] + w[2] * cc[1],
-                     w[0] * a[2] + w[1] * b[2] + w[2] * cc[2]};
-          const P3 d = sub(x, q);
-          const double d2 = dot(d, d);
-          if (d2 > band * band) continue;
-          const int f = bd.triangle_face[t];
-          auto it = std::find_if(near.begin(), near.end(), [f](const Near& n) { return n.face == f; });
-          if (it == near.end())
-            near.push_back({f, t, d2, w});
-          else if (d2 < it->d2)
-            *it = {f, t, d2, w};
-        }
-      }
+  space_.any_triangle_in({x[0] - band, x[1] - band, x[2] - band}, {x[0] + band, x[1] + band, x[2] + band}, [&](int t) {
+    const auto& tri = bd.mesh.triangles[t];
+    const P3 &a = bd.mesh.vertices[tri[0]], &b = bd.mesh.vertices[tri[1]], &cc = bd.mesh.vertices[tri[2]];
+    const auto w = closest_on_triangle(x, a, b, cc);
+    const P3 q{w[0] * a[0] + w[1] * b[0] + w[2] * cc[0], w[0] * a[1] + w[1] * b[1] + w[2] * cc[1],
+               w[0] * a[2] + w[1] * b[2] + w[2] * cc[2]};
+    const P3 d = sub(x, q);
+    const double d2 = dot(d, d);
+    if (d2 > band * band) return false;
+    const int f = bd.triangle_face[t];
+    auto it = std::find_if(near.begin(), near.end(), [f](const Near& n) { return n.face == f; });
+    if (it == near.end())
+      near.push_back({f, t, d2, w});
+    else if (d2 < it->d2)
+      *it = {f, t, d2, w};
+    return false;
+  });
   // The exact closest point on each of those faces (Gauss-Newton from the triangle's parameters, kept in the
   // domain), on faces where it lies within the trim. When the nearest is a foot (x - S along the normal), that
   // face's normal decides; otherwise the nearest point is on an edge or corner of the solid and the sum of the

@@ -76,6 +76,10 @@ private:
     std::array<int, 3> n{1, 1, 1};
     std::array<double, 3> lo{}, inv_h{};
     std::vector<int> start, triangles;
+    // Calls f(t) for the triangles listed in the cells that meet [from, to] (a triangle once per cell), until f
+    // returns true; returns whether one did.
+    template <class F>
+    bool any_triangle_in(const std::array<double, 3>& from, const std::array<double, 3>& to, F&& f) const;
   } space_;
   // Per face its trimming loops as closed polygons in the parameter plane (each curve span sampled finely).
   std::vector<std::vector<std::vector<std::array<double, 2>>>> trim_polygons_;
