@@ -64,6 +64,31 @@ TEST(HierarchicalSpline, RefinementByFunctionsKeepsTheSpline) {
   }
 }
 
+// Domains cutting coarser cells (G+Smo's boxes): Omega^1 = stripes of level-1 cells {1,2,3,5,6,7}^2 split every
+// level-0 cell and cover none of those under the level-0 functions' supports in the first column, so no level-0
+// function has a leaf of its own level; Omega^2 = level-2 cells [3, 7)^2 cuts level-1 cells again. The spline
+// stays the tensor spline through the refinement, both bases and further refinement.
+TEST(HierarchicalSpline, DomainsCuttingEveryCellOfASupportKeepTheSpline) {
+  std::vector<Ints<2>> stripes, inner;
+  for (int j : {1, 2, 3, 5, 6, 7})
+    for (int i : {1, 2, 3, 5, 6, 7}) stripes.push_back({i, j});
+  for (int j = 3; j < 7; ++j)
+    for (int i = 3; i < 7; ++i) inner.push_back({i, j});
+  for (bool rational : {false, true})
+    for (auto basis : {HierarchicalBasis::thb, HierarchicalBasis::hb}) {
+      const TensorSpline<2> t = generic_spline<2>(2, 4, 3, rational, 7);
+      HierarchicalSpline<2> h(t, basis);
+      EXPECT_EQ(h.extend_domains({{}, stripes, inner}), 36 + 16);
+      EXPECT_FALSE(h.space().is_refined(0, {0, 0}));
+      EXPECT_LT(h.space().find_leaf(0, {0, 0}), 0);
+      EXPECT_LT(max_difference(t, h, 300, 3), 1e-12);
+      const auto other = h.with_basis(basis == HierarchicalBasis::thb ? HierarchicalBasis::hb : HierarchicalBasis::thb);
+      EXPECT_LT(max_difference(t, other, 300, 4), 1e-12);
+      refine_randomly(h, 2, 5);
+      EXPECT_LT(max_difference(t, h, 300, 6), 1e-12);
+    }
+}
+
 TEST(HierarchicalSpline, MixedDegreesAndDeepCorner) {
   // Degrees (1, 3): ten levels at the corner u = 0.
   std::array<KnotVector, 2> kv{KnotVector::open_uniform(1, 3), KnotVector::open_uniform(3, 2)};

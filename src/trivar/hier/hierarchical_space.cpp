@@ -276,7 +276,7 @@ int HierarchicalSpace<D>::find_element(const Param<D>& u) const {
 }
 
 template <int D>
-bool HierarchicalSpace<D>::leaf_in_support(int level, const Ints<D>& f, Ints<D>& cell) const {
+bool HierarchicalSpace<D>::uncovered_cell_in_support(int level, const Ints<D>& f, Ints<D>& cell) const {
   Ints<D> lo, hi;
   for (int k = 0; k < D; ++k) {
     lo[k] = h_.axis(level, k).first_cell(f[k]);
@@ -284,7 +284,7 @@ bool HierarchicalSpace<D>::leaf_in_support(int level, const Ints<D>& f, Ints<D>&
   }
   bool found = false;
   for_each_index<D>(lo, hi, [&](const Ints<D>& c) {
-    if (!found && find_leaf(level, c) >= 0) {
+    if (!found && cell_in_domain(level, c) && !is_refined(level, c)) {
       cell = c;
       found = true;
     }
@@ -378,11 +378,25 @@ int HierarchicalSpace<D>::mark_levels(const std::vector<std::vector<Ints<D>>>& p
 template <int D>
 int HierarchicalSpace<D>::refine_elements(std::span<const int> elements) {
   std::vector<std::vector<Ints<D>>> per_level(static_cast<std::size_t>(num_levels()));
+  // A leaf of level m outside Omega^m (a child of a cell a finer domain cuts, where level m - 1 lives) is
+  // halved by its children joining Omega^{m+1}, which brings it into Omega^m too.
+  std::vector<std::vector<Ints<D>>> joins;
+  int outside = 0;
   for (int e : elements) {
     const HierarchicalCell<D> c = element(e);
-    per_level[static_cast<std::size_t>(c.level)].push_back(c.index);
+    if (cell_in_domain(c.level, c.index)) {
+      per_level[static_cast<std::size_t>(c.level)].push_back(c.index);
+      continue;
+    }
+    h_.ensure_levels(c.level + 2);
+    if (static_cast<int>(joins.size()) < c.level + 2) joins.resize(static_cast<std::size_t>(c.level) + 2);
+    for_each_index<D>(first_children(c.level, c.index), end_children(c.level, c.index),
+                      [&](const Ints<D>& child) { joins[static_cast<std::size_t>(c.level) + 1].push_back(child); });
+    ++outside;
   }
-  return mark_levels(per_level);
+  const int n = mark_levels(per_level);
+  if (outside) extend_domains(joins);
+  return n + outside;
 }
 
 template <int D>

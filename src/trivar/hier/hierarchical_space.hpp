@@ -87,9 +87,11 @@ public:
   Box<D> domain() const { return h_.domain(); }
   // Makes the hierarchy hold at least n levels (dyadic beyond those given); the space is unchanged.
   void reserve_levels(int n) { h_.ensure_levels(n); }
-  // A leaf of `level` inside the support of the B-spline (level, index), or false when there is none (then the
-  // function is not active).
-  bool leaf_in_support(int level, const Ints<D>& index, Ints<D>& cell) const;
+  // A cell of `level` in the support of the B-spline (level, index) that lies in Omega^level and is not covered
+  // by Omega^{level+1}, or false when there is none (then the function is not active). Finer functions vanish on
+  // its uncovered part, so there the spline is the polynomial of the levels up to `level`: a leaf, or a cell a
+  // finer domain cuts.
+  bool uncovered_cell_in_support(int level, const Ints<D>& index, Ints<D>& cell) const;
   // Levels with a non-empty domain Omega^l.
   int num_levels() const { return static_cast<int>(active_.size()); }
   // Local B-splines on a cell: prod (p_k + 1).
@@ -125,7 +127,8 @@ public:
   // to the hierarchy when needed. Returns the number of cells that were not refined before. Throws
   // trivar::Error, changing nothing, for a cell outside Omega^level or outside the level's index range.
   int refine_cells(int level, std::span<const Ints<D>> cells);
-  // Marked elements (leaf ids): each leaf cell is refined. Returns the number of refined elements.
+  // Marked elements (leaf ids): each leaf cell is refined (halved), also a leaf outside its level's domain, which
+  // a finer domain cutting its parent left. Returns the number of refined elements.
   int refine_elements(std::span<const int> elements);
   // Marked elements refined so that the mesh stays admissible of class m >= 2 (Buffa and Giannelli 2016;
   // Bracco, Buffa, Giannelli, Vazquez 2019; Carraturo et al. 2019): the functions non-zero on any element

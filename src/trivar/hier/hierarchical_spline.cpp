@@ -12,16 +12,12 @@ namespace trivar {
 
 namespace {
 
-// Coefficients are read on a leaf of the function's level; hierarchies whose domains cut coarser cells (read
-// from G+Smo files) may lack one.
-constexpr const char* kNoLeaf =
-    "hier: no leaf of the function's level in its support to read its coefficient from (a domain cutting coarser cells covers the support partly)";
-
 // Coefficients in the THB basis of `target` of the spline (source, coefs): the coefficient of tau (level l) is
-// its entry in the level-l local expansion of the spline on a leaf of level l inside tau's support, where every
-// coarser THB function is truncated away. The source must be a subspace of the target (same hierarchy, its
-// domains inside the target's), and its hierarchy must hold the target's levels. keep(id) may give a known
-// coefficient (returns false otherwise).
+// its entry in the level-l local expansion of the spline on a cell of level l in tau's support that Omega^{l+1}
+// does not cover, where every coarser THB function is truncated away (on the uncovered part the spline is the
+// polynomial of levels <= l, and a polynomial on part of a cell fixes it on the whole cell). The source must be
+// a subspace of the target (same hierarchy, its domains inside the target's), and its hierarchy must hold the
+// target's levels. keep(id) may give a known coefficient (returns false otherwise).
 template <int D, class Keep>
 std::vector<double> thb_coefficients(const HierarchicalSpace<D>& target, const HierarchicalSpace<D>& source,
                                      std::span<const double> coefs, int stride, Keep&& keep) {
@@ -34,7 +30,7 @@ std::vector<double> thb_coefficients(const HierarchicalSpace<D>& target, const H
     if (keep(id, c)) continue;
     const HierarchicalFunction<D> f = target.function(id);
     Ints<D> cell;
-    require(target.leaf_in_support(f.level, f.index, cell), kNoLeaf);
+    require(target.uncovered_cell_in_support(f.level, f.index, cell), "hier: function is not active");
     auto& expansion = cache[static_cast<std::size_t>(f.level)][pack_key<D>(cell)];
     if (expansion.empty()) {
       expansion.resize(static_cast<std::size_t>(P) * stride);
@@ -64,7 +60,7 @@ std::vector<double> hb_from_thb(const HierarchicalSpace<D>& hb, std::span<const 
     for (; id < end; ++id) {
       const HierarchicalFunction<D> f = hb.function(id);
       Ints<D> cell;
-      require(hb.leaf_in_support(l, f.index, cell), kNoLeaf);
+      require(hb.uncovered_cell_in_support(l, f.index, cell), "hier: function is not active");
       auto& e = cache[pack_key<D>(cell)];
       if (e.empty()) {
         e.resize(static_cast<std::size_t>(P) * stride);
@@ -102,7 +98,7 @@ HierarchicalSpline<D>::HierarchicalSpline(HierarchicalSpace<D> space, int dim, b
   });
   for (std::size_t i = 0; i < coefs_.size(); ++i)
     require(std::isfinite(coefs_[i]), [&] { return "hier: coefficient value " + std::to_string(i) + " is not finite"; });
-  if (rational_)
+  if (rational_ && space_.basis() == HierarchicalBasis::thb)
     for (int i = 0; i < space_.num_basis(); ++i)
       require(coef(i)[dim_] > 0, [&] { return "hier: weight of function " + std::to_string(i) + " is not positive"; });
 }
@@ -212,6 +208,11 @@ int HierarchicalSpline<D>::refine(Refine&& how) {
 template <int D>
 int HierarchicalSpline<D>::refine_cells(int level, std::span<const Ints<D>> cells) {
   return refine([&](HierarchicalSpace<D>& s) { return s.refine_cells(level, cells); });
+}
+
+template <int D>
+int HierarchicalSpline<D>::extend_domains(const std::vector<std::vector<Ints<D>>>& cells) {
+  return refine([&](HierarchicalSpace<D>& s) { return s.extend_domains(cells); });
 }
 
 template <int D>

@@ -5,7 +5,8 @@
 //
 // Refinement keeps the spline exactly (up to rounding): the spaces are nested, and the new coefficients are
 //   THB: unchanged for functions that stay active; for a new function tau of level l, the coefficient of tau in
-//        the level-l local expansion of the spline on any leaf of level l inside tau's support (every coarser
+//        the level-l local expansion of the spline on a cell of level l in tau's support that the next domain
+//        does not cover (a leaf, or a cell a finer domain cuts; every coarser
 //        function is truncated there, so that coefficient is tau's; Speleers and Manni 2016, "preservation of
 //        coefficients");
 //   HB:  a function that leaves the active set passes c_i times its refinement coefficients to its children
@@ -31,7 +32,9 @@ public:
   // level-0 coefficients in the same order. Throws trivar::Error for unclamped knot vectors.
   explicit HierarchicalSpline(const TensorSpline<D>& s, HierarchicalBasis basis = HierarchicalBasis::thb);
   // From parts (file readers): coefs holds space.num_basis() * (dim + rational) values. Throws trivar::Error on a
-  // size mismatch, dim < 1 or a value that is not finite.
+  // size mismatch, dim < 1, a value that is not finite, or a THB weight that is not positive (THB functions are
+  // a partition of unity, so positive weights keep the denominator positive; HB weights may be zero or negative:
+  // a fine function over still-active coarse ones carries the difference of two expansions).
   HierarchicalSpline(HierarchicalSpace<D> space, int dim, bool rational, std::vector<double> coefs);
   HierarchicalSpline(const HierarchicalSpline& o);
   HierarchicalSpline& operator=(const HierarchicalSpline& o);
@@ -51,6 +54,7 @@ public:
   int refine_elements(std::span<const int> elements);
   int refine_elements_admissible(std::span<const int> elements, int m);
   int refine_functions(std::span<const int> ids);
+  int extend_domains(const std::vector<std::vector<Ints<D>>>& cells);
   // The same spline in the other basis (HB <-> THB) over the same hierarchy.
   HierarchicalSpline with_basis(HierarchicalBasis basis) const;
 
