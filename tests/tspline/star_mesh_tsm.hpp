@@ -17,7 +17,8 @@ struct QuadMesh {
   std::vector<std::array<int, 4>> quads;  // counter-clockwise seen from outside
 };
 
-// Every edge gets knot interval `interval`; boundary links get the outside angle's flag.
+// Every edge gets knot interval `interval`; boundary links get the outside angle's flag; every boundary vertex
+// gets the repeated-knot node block of Bezier end conditions (one layer outwards, its points on the vertex).
 inline std::string tsm_text(const QuadMesh& m, double interval = 1.0) {
   struct Link {
     int prev, next, opp = -1, vertex, face, edge = -1, flag;
@@ -61,9 +62,33 @@ inline std::string tsm_text(const QuadMesh& m, double interval = 1.0) {
   std::vector<int> vertex_link(m.points.size(), -1);
   for (int l = 0; l < static_cast<int>(links.size()); ++l)
     if (vertex_link[links[l].vertex] < 0) vertex_link[links[l].vertex] = l;
+  // Blocks: the outward directions in the vertex frame (link vertex_link[v] goes EAST; the next link
+  // counter-clockwise turns by its face's angle); a straight boundary vertex one layer, a corner two and the
+  // diagonal node.
+  std::vector<std::string> blocks;
+  std::vector<int> block_vertex;
+  for (int o = inner; o < static_cast<int>(links.size()); ++o) {
+    const int v = links[o].vertex;
+    int l = vertex_link[v], frame = 3;
+    while (l != o) {
+      frame = (frame + links[l].flag + 1) % 4;
+      l = links[links[l].prev].opp;
+    }
+    std::array<int, 4> dims{0, 0, 0, 0};
+    dims[(frame + 1) % 4] = 1;
+    if (links[o].flag == 2) dims[(frame + 2) % 4] = 1;  // a convex corner: outwards across both sides
+    std::ostringstream b;
+    b << "0m cg " << v << " 4 " << dims[0] << ' ' << dims[1] << ' ' << dims[2] << ' ' << dims[3];
+    for (int k = 0; k < 4; ++k)
+      for (int i = 0; i < dims[k] * (dims[(k + 1) % 4] + 1); ++i) {
+        b << ' ' << m.points.size() + block_vertex.size();
+        block_vertex.push_back(v);
+      }
+    blocks.push_back(b.str());
+  }
   std::ostringstream os;
   os.precision(17);
-  os << "#TS0200\n\ndegree 3\ncap-type 1\nstar-smoothness 0\nunits 1 millimeters\nforce-bezier-end-conditions 0\n";
+  os << "#TS0200\n\ndegree 3\ncap-type 1\nstar-smoothness 0\nunits 1 millimeters\nforce-bezier-end-conditions 1\n";
   for (int f = 0; f < static_cast<int>(m.quads.size()); ++f) os << "f " << 4 * f << " 0\n";
   for (int e = 0; e < edges; ++e) os << "e " << edge_link[e] << ' ' << interval << '\n';
   for (int v : vertex_link) os << "v " << v << " EAST\n";
@@ -73,7 +98,10 @@ inline std::string tsm_text(const QuadMesh& m, double interval = 1.0) {
     if (links[edge_link[e]].face < 0 || links[links[edge_link[e]].opp].face < 0) os << "ec " << e << " 0\n";
   os << "0m odd-grip-map\n";
   for (std::size_t v = 0; v < m.points.size(); ++v) os << "0m gvp " << v << '\n';
+  for (int v : block_vertex) os << "0m gv " << v << '\n';
+  for (const std::string& b : blocks) os << b << '\n';
   for (const auto& p : m.points) os << "0g " << p[0] << ' ' << p[1] << ' ' << p[2] << " 1\n";
+  for (int v : block_vertex) os << "0g " << m.points[v][0] << ' ' << m.points[v][1] << ' ' << m.points[v][2] << " 1\n";
   os << "\ntol 1e-05\nver 1\n";
   return os.str();
 }

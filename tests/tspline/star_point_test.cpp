@@ -241,6 +241,7 @@ TEST(StarPoints, PlanarFanAroundAValenceFiveStarPoint) {
   EXPECT_LT(c.c1, 1e-10);
   const TSplineTriangulation t = tessellate(s, 1e-2);
   expect_watertight_closed(t, false);
+  for (const auto& p : t.points) ASSERT_TRUE(std::isfinite(p[0] + p[1] + p[2]));  // the boundary too (end conditions)
   EXPECT_GT(t.triangles.size(), 1000u);
   std::printf("valence-5 fan: %d edges, position gap %.2e, normal defect (sin) %.2e, C1 defect %.2e\n", c.edges,
               c.gap, c.normal_angle, c.c1);
@@ -289,6 +290,8 @@ TEST(StarPoints, ChartsGiveTheGlobalTSplineOnEveryFace) {
       }
   }
   EXPECT_LT(worst, 1e-12);
+  // T-junction faces pass their long side's samples across: still no T-vertex in the triangulation.
+  expect_watertight_closed(tessellate(s, 1e-2), false);
 }
 
 void expect_error(const std::string& text, const std::string& fragment) {
