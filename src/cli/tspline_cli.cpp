@@ -196,7 +196,7 @@ void print_tspline_info(const std::string& path, bool json) {
   if (l.layers) {
     const TSpline& ts = *l.layers;
     cls = classify(ts, surf);
-    as = cls->analysis_suitable ? (*cls->analysis_suitable ? "yes" : "no") : "not classified (even degree)";
+    as = cls->analysis_suitable ? "yes" : "no";
     j["t_image"] = {{"vertices", ts.image.vertices.size()}, {"edges", ts.image.edges.size()},
                     {"links", ts.image.links.size()}, {"faces", ts.image.faces.size()},
                     {"edge_conditions", ts.image.conditions.size()}};
@@ -204,6 +204,8 @@ void print_tspline_info(const std::string& path, bool json) {
     j["t_pointset"] = {{"points", ts.pointset.points.size()}};
     j["classification"] = {{"t_junctions", cls->t_junctions}, {"analysis_suitable", as},
                            {"crossing_extensions", cls->crossing_extensions},
+                           {"dual_compatible", cls->dual.compatible},
+                           {"dual_incompatible_pairs", cls->dual.failing_pairs},
                            {"rectangular_domain", cls->rectangular_domain}, {"standard", cls->standard},
                            {"semi_standard", cls->semi_standard},
                            {"linear_independence", to_string(cls->independence)},
@@ -243,9 +245,9 @@ void print_tspline_info(const std::string& path, bool json) {
               fmt(pu.sampled_min).c_str(), fmt(pu.sampled_max).c_str(), fmt(pu.min_sum).c_str(), fmt(pu.max_sum).c_str(),
               pu.elements_off, pu.elements_off == 1 ? "" : "s");
   if (cls)
-    std::printf("  classification: %d T-junctions, analysis-suitable %s (%d crossing extensions%s), standard %s, "
-                "semi-standard %s, blending functions %s; Part 42 type %s\n",
-                cls->t_junctions, as.c_str(), cls->crossing_extensions,
+    std::printf("  classification: %d T-junctions, analysis-suitable %s (%d crossing extensions, dual-compatible %s%s), "
+                "standard %s, semi-standard %s, blending functions %s; Part 42 type %s\n",
+                cls->t_junctions, as.c_str(), cls->crossing_extensions, cls->dual.compatible ? "yes" : "no",
                 cls->rectangular_domain ? "" : "; the domain is not a rectangle", cls->standard ? "yes" : "no",
                 cls->semi_standard ? "yes" : "no", to_string(cls->independence), cls->part42_type().c_str());
   if (l.tsm && !l.tsm->skipped_records.empty()) {

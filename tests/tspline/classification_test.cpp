@@ -31,11 +31,12 @@ TEST(Classification, OneTJunctionIsAnalysisSuitableIndependentAndStandard) {
   EXPECT_EQ(ext[0].hi, 5.0);
   const TSplineSurface surf(ts);
   const TSplineClass c = classify(ts, surf);
-  EXPECT_TRUE(c.analysis_suitable.value());
+  EXPECT_TRUE(c.analysis_suitable);
   EXPECT_TRUE(c.standard);       // AS T-splines form a partition of unity (Li et al. 2012)
   EXPECT_TRUE(c.semi_standard);  // all weights 1
   EXPECT_EQ(c.independence, Independence::independent);  // and are linearly independent
   EXPECT_EQ(c.part42_type(), "ANALYSIS_SUITABLE_T_SPLINE");
+  EXPECT_TRUE(c.dual.compatible);  // AS <=> dual-compatible (Beirao da Veiga, Buffa, Sangalli, Vazquez 2013)
 }
 
 TEST(Classification, CrossingExtensionsAreNotAnalysisSuitable) {
@@ -47,9 +48,47 @@ TEST(Classification, CrossingExtensionsAreNotAnalysisSuitable) {
   ASSERT_EQ(ext.size(), 2u);
   const TSplineSurface surf(ts);
   const TSplineClass c = classify(ts, surf);
-  EXPECT_FALSE(c.analysis_suitable.value());
+  EXPECT_FALSE(c.analysis_suitable);
   EXPECT_EQ(c.crossing_extensions, 1);
   EXPECT_NE(c.part42_type(), "ANALYSIS_SUITABLE_T_SPLINE");
+  EXPECT_FALSE(c.dual.compatible);
+  EXPECT_GT(c.dual.failing_pairs, 0);
+}
+
+// Any degree (Beirao da Veiga, Buffa, Sangalli, Vazquez 2013): extensions cross ceil(p / 2) knot lines on the
+// missing edge's side and floor(p / 2) on the other, and a T-mesh on a rectangle is analysis-suitable exactly
+// when it is dual-compatible, which is tested here from the blending functions' local knot vectors alone. The
+// stub mesh plus a horizontal T-junction at (1, 3.5) missing east (the line s = 3.5 runs through): for p_s = 2
+// the horizontal extension is s in [0, 2] (face: s = 2; edge: s = 0), short of the vertical one at s = 3 (t in
+// [3 - floor(p_t / 2), 3 + ceil(p_t / 2)]); for p_s = 3 and 4 it reaches s = 3.5 past s = 3 (the stub does not
+// reach t = 3.5): they cross, whatever p_t.
+TEST(Classification, AnyDegreeExtensionsAgreeWithDualCompatibility) {
+  auto g = grid_with_stub();
+  g.push_back({{0.0, 3.5}, {1.0, 3.5}});
+  g.push_back({{3.5, 0.0}, {3.5, 6.0}});
+  for (const auto& [p, expect_as] : std::vector<std::pair<Ints<2>, bool>>{
+           {{2, 2}, true}, {{3, 3}, false}, {{4, 4}, false}, {{2, 3}, true}, {{3, 2}, false}, {{2, 4}, true}}) {
+    const TSpline ts = t_spline_from_segments(p, g, plane);
+    const auto ext = t_junction_extensions(ts);
+    ASSERT_EQ(ext.size(), 2u);
+    for (const auto& e : ext) {
+      if (e.axis == 0) {  // the horizontal one, at t = 3.5, degree p_s
+        EXPECT_EQ(e.lo, 0.0);
+        EXPECT_EQ(e.hi, p[0] == 2 ? 2.0 : 3.5) << p[0];
+      } else {  // the vertical one, at s = 3, degree p_t: [3 - floor(p_t / 2), 3 + ceil(p_t / 2)]
+        EXPECT_EQ(e.lo, 3.0 - p[1] / 2) << p[1];
+        EXPECT_EQ(e.hi, 3.0 + (p[1] + 1) / 2) << p[1];
+      }
+    }
+    const TSplineSurface surf(ts);
+    const TSplineClass c = classify(ts, surf);
+    EXPECT_EQ(c.analysis_suitable, expect_as) << p[0] << ' ' << p[1];
+    EXPECT_EQ(c.dual.compatible, expect_as) << p[0] << ' ' << p[1];
+    if (expect_as) {
+      EXPECT_TRUE(c.standard);
+      EXPECT_EQ(c.independence, Independence::independent);
+    }
+  }
 }
 
 TEST(Classification, TensorMeshHasNoTJunction) {
@@ -59,7 +98,8 @@ TEST(Classification, TensorMeshHasNoTJunction) {
   const TSplineSurface surf(ts);
   const TSplineClass cl = classify(ts, surf);
   EXPECT_EQ(cl.t_junctions, 0);
-  EXPECT_FALSE(cl.analysis_suitable.has_value());  // even degrees are not classified
+  EXPECT_TRUE(cl.analysis_suitable);
+  EXPECT_TRUE(cl.dual.compatible);
   EXPECT_TRUE(cl.standard);
   EXPECT_EQ(cl.independence, Independence::independent);
 }
