@@ -106,3 +106,42 @@ TEST(Classification, TensorMeshHasNoTJunction) {
 
 }  // namespace
 }  // namespace trivar
+
+namespace trivar {
+namespace {
+
+// Extensions that only touch: an 8 x 8 grid whose line s = 4 has a gap for t in (2, 4) and whose line t = 5 has a
+// gap for s in (2, 4). The extension of (4, 4) (missing south) is t in [2, 5] at s = 4; those of (2, 5) and (4, 5)
+// on t = 5 are s in [1, 4] and [2, 5]: the vertical one ends on the horizontal ones. Extensions are closed
+// segments, so these cross, and indeed the blending functions are neither dual-compatible nor a partition of
+// unity.
+TEST(Classification, ExtensionsThatTouchCross) {
+  std::vector<KnotSegment> g;
+  for (int i = 0; i <= 8; ++i) {
+    const double x = i;
+    if (i == 4) {
+      g.push_back({{x, 0.0}, {x, 2.0}});
+      g.push_back({{x, 4.0}, {x, 8.0}});
+    } else {
+      g.push_back({{x, 0.0}, {x, 8.0}});
+    }
+    if (i == 5) {
+      g.push_back({{0.0, x}, {2.0, x}});
+      g.push_back({{4.0, x}, {8.0, x}});
+    } else {
+      g.push_back({{0.0, x}, {8.0, x}});
+    }
+  }
+  const TSpline ts = t_spline_from_segments({3, 3}, g, plane);
+  const auto ext = t_junction_extensions(ts);
+  EXPECT_EQ(ext.size(), 4u);
+  const TSplineSurface surf(ts);
+  const TSplineClass c = classify(ts, surf);
+  EXPECT_GT(c.crossing_extensions, 0);
+  EXPECT_FALSE(c.analysis_suitable);
+  EXPECT_FALSE(c.dual.compatible);
+  EXPECT_FALSE(c.standard);
+}
+
+}  // namespace
+}  // namespace trivar

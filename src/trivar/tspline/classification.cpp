@@ -109,6 +109,8 @@ TSplineClass classify(const TSpline& ts, const TSplineSurface& surface, bool exa
   c.rectangular_domain = std::abs(area - dom.extent(0) * dom.extent(1)) <= 1e-12 * dom.extent(0) * dom.extent(1);
   for (const auto& a : ext)
     for (const auto& b : ext)
+      // Closed segments: an extension ending on another crosses it (tests: then the blending functions are not
+      // dual-compatible either).
       if (a.axis == 0 && b.axis == 1 && a.lo <= b.line && b.line <= a.hi && b.lo <= a.line && a.line <= b.hi)
         ++c.crossing_extensions;
   constexpr double kTol = 1e-12;
