@@ -248,15 +248,27 @@ TEST(StarPoints, PlanarFanAroundAValenceFiveStarPoint) {
               c.gap, c.normal_angle, c.c1);
 }
 
-// A T-mesh without star points through the charts, face by face against the global T-spline: T-junctions,
-// Bezier end-condition blocks, rational points.
-TEST(StarPoints, ChartsGiveTheGlobalTSplineOnEveryFace) {
-  std::vector<KnotSegment> g;
+// T-meshes without star points through the charts, face by face against the global T-spline: T-junctions,
+// Bezier end-condition blocks, rational points; the second has a coarse quarter of 2 x 2 faces beside fine ones,
+// where knot vectors reach further in face rings.
+std::vector<std::vector<KnotSegment>> chart_test_meshes() {
+  std::vector<KnotSegment> a;
   for (int i = 0; i <= 7; ++i) {
-    g.push_back({{0.0, double(i)}, {7.0, double(i)}});
-    g.push_back({{double(i), 0.0}, {double(i), i == 3 ? 3.0 : 7.0}});
+    a.push_back({{0.0, double(i)}, {7.0, double(i)}});
+    a.push_back({{double(i), 0.0}, {double(i), i == 3 ? 3.0 : 7.0}});
   }
-  g.push_back({{2.5, 4.0}, {2.5, 7.0}});
+  a.push_back({{2.5, 4.0}, {2.5, 7.0}});
+  std::vector<KnotSegment> b;
+  for (int i = 0; i <= 12; ++i) {
+    const bool odd = i % 2 == 1;
+    b.push_back({{0.0, double(i)}, {odd ? 4.0 : 12.0, double(i)}});
+    b.push_back({{double(i), 0.0}, {double(i), odd ? 4.0 : 12.0}});
+  }
+  return {a, b};
+}
+
+TEST(StarPoints, ChartsGiveTheGlobalTSplineOnEveryFace) {
+  for (const auto& g : chart_test_meshes()) {
   const TSpline ts = t_spline_from_segments({3, 3}, g, [](double s, double t, int a, int b) {
     return RationalPoint{{s + 0.1 * a, t + 0.1 * b, std::sin(s + t)}, 1.0 + 0.01 * s};
   });
@@ -293,6 +305,7 @@ TEST(StarPoints, ChartsGiveTheGlobalTSplineOnEveryFace) {
   EXPECT_LT(worst, 1e-12);
   // T-junction faces pass their long side's samples across: still no T-vertex in the triangulation.
   expect_watertight_closed(tessellate(s, 1e-2), false);
+  }
 }
 
 void expect_error(const std::string& text, const std::string& fragment) {

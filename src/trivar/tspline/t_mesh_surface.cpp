@@ -205,32 +205,74 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(mesh), stars_
   }
   charts_.resize(clusters.size());
   std::vector<std::string> errors(clusters.size());
+  // A chart is exact for its members when no blending function that is nonzero on a member has a knot vector
+  // cut by the chart's border inside the mesh (a ray stopped there: its support box reaches a border edge whose
+  // other side is a face outside the chart). Otherwise the chart grows by a ring, as long as it holds no star point.
   parallel_for(static_cast<std::ptrdiff_t>(clusters.size()), threads, [&](std::ptrdiff_t i) {
     const Cluster& cl = clusters[static_cast<std::size_t>(i)];
-    std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX);
-    dist[static_cast<std::size_t>(cl.centre)] = 0;
-    const std::vector<int> hood = rings({cl.centre}, cl.rings, dist);
+    const int centre_dist = star_dist[static_cast<std::size_t>(cl.centre)];
     try {
-      const TChart c = t_spline_chart(m, hood, cl.centre, false);
-      for (int g : cl.members) {
-        Face& face = faces_[static_cast<std::size_t>(g)];
-        face.chart = static_cast<int>(i);
-        const auto corner = [&](int j) {
-          const int l = m.faces[static_cast<std::size_t>(g)][static_cast<std::size_t>(j)];
-          const TVertex& x = c.spline.image.vertices[static_cast<std::size_t>(c.vertex[static_cast<std::size_t>(L(l).vertex)])];
+      for (int r = cl.rings;; ++r) {
+        require(r < centre_dist && r <= cl.rings + 8, [&] {
+          return "the T-spline's knot vectors on face " + std::to_string(cl.centre) + " reach beyond " + std::to_string(r - 1) +
+                 " face rings" + (r >= centre_dist ? " (to a star point)" : "");
+        });
+        std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX);
+        dist[static_cast<std::size_t>(cl.centre)] = 0;
+        const std::vector<int> hood = rings({cl.centre}, r, dist);
+        TChart c = t_spline_chart(m, hood, cl.centre, false);
+        const auto at = [&](int v) {
+          const TVertex& x = c.spline.image.vertices[static_cast<std::size_t>(c.vertex[static_cast<std::size_t>(v)])];
           return std::array<double, 2>{x.s, x.t};
         };
-        // The face's frame in the chart: its first corner, the next corner and the last one.
-        const auto& loop = m.faces[static_cast<std::size_t>(g)];
-        std::vector<int> corners;
-        for (int j = 0; j < static_cast<int>(loop.size()); ++j)
-          if (L(loop[static_cast<std::size_t>(j)]).flag == 0) corners.push_back(j);
-        const auto o = corner(corners[0]), a = corner(corners[1]), b = corner(corners[3]);
-        face.origin = o;
-        face.axis_u = {a[0] - o[0], a[1] - o[1]};
-        face.axis_v = {b[0] - o[0], b[1] - o[1]};
+        std::vector<Box<2>> border;  // edges of the chart with a face outside it on the other side
+        for (int l = 0; l < static_cast<int>(m.links.size()); ++l) {
+          const TMeshLink& k = L(l);
+          if (k.face < 0 || c.face[static_cast<std::size_t>(k.face)] < 0) continue;
+          const int g = L(k.opp).face;
+          if (g < 0 || c.face[static_cast<std::size_t>(g)] >= 0) continue;
+          const auto p = at(k.vertex), q = at(L(k.opp).vertex);
+          border.push_back({{std::min(p[0], q[0]), std::min(p[1], q[1])}, {std::max(p[0], q[0]), std::max(p[1], q[1])}});
+        }
+        std::vector<Face> frames;
+        std::vector<Box<2>> boxes;
+        for (int g : cl.members) {
+          // The face's frame in the chart: its first corner, the next corner and the last one.
+          const auto& loop = m.faces[static_cast<std::size_t>(g)];
+          std::vector<int> corners;
+          for (int l : loop)
+            if (L(l).flag == 0) corners.push_back(L(l).vertex);
+          Face fr = faces_[static_cast<std::size_t>(g)];
+          const auto o = at(corners[0]), a = at(corners[1]), b = at(corners[3]);
+          fr.origin = o;
+          fr.axis_u = {a[0] - o[0], a[1] - o[1]};
+          fr.axis_v = {b[0] - o[0], b[1] - o[1]};
+          frames.push_back(fr);
+          const auto x = at(corners[2]);
+          boxes.push_back({{std::min(o[0], x[0]), std::min(o[1], x[1])}, {std::max(o[0], x[0]), std::max(o[1], x[1])}});
+        }
+        auto surface = std::make_unique<TSplineSurface>(c.spline, 1);
+        bool cut = false;
+        for (const auto& f : surface->basis()) {
+          const Box<2> sb{{f.knots[0].front(), f.knots[1].front()}, {f.knots[0].back(), f.knots[1].back()}};
+          const auto on_member = std::any_of(boxes.begin(), boxes.end(), [&](const Box<2>& b) {
+            return sb.lo[0] < b.hi[0] && b.lo[0] < sb.hi[0] && sb.lo[1] < b.hi[1] && b.lo[1] < sb.hi[1];
+          });
+          if (!on_member) continue;
+          cut = std::any_of(border.begin(), border.end(), [&](const Box<2>& e) {
+            return e.lo[0] <= sb.hi[0] && sb.lo[0] <= e.hi[0] && e.lo[1] <= sb.hi[1] && sb.lo[1] <= e.hi[1];
+          });
+          if (cut) break;
+        }
+        if (cut) continue;
+        for (std::size_t j = 0; j < cl.members.size(); ++j) {
+          Face& face = faces_[static_cast<std::size_t>(cl.members[j])];
+          face = frames[j];
+          face.chart = static_cast<int>(i);
+        }
+        charts_[static_cast<std::size_t>(i)] = std::move(surface);
+        break;
       }
-      charts_[static_cast<std::size_t>(i)] = std::make_unique<TSplineSurface>(c.spline, 1);
     } catch (const Error& e) {
       errors[static_cast<std::size_t>(i)] = "T-mesh: face " + std::to_string(cl.centre) + ": its chart: " + e.what();
     }

@@ -3,8 +3,10 @@
 // frame (u, v) in [0, 1]^2 (u along its first corner link, v turning left):
 //   exact          faces whose neighbourhood of p + 1 face rings holds no star point: the T-spline itself,
 //                  evaluated in the chart of that neighbourhood (t_spline_chart), where the T-spline rules
-//                  (local knot vectors by rays, end-condition blocks) apply unchanged. This is the same surface
-//                  the global T-spline has on a model without star points (tested face by face to 1e-12).
+//                  (local knot vectors by rays, end-condition blocks) apply unchanged. A chart is accepted only
+//                  when no blending function nonzero on its faces has a knot vector cut by the chart's border
+//                  inside the mesh (else it grows by a ring), so this is the global T-spline's surface wherever
+//                  one exists (tested face by face to 1e-12, also starting from one-ring charts).
 //   bicubic        the other faces without a star corner: the uniform bicubic B-spline patch of their 4 x 4
 //                  control points, which is the T-spline there (equal knot intervals, no T-junction).
 //   star           the faces at a star point: the Catmull-Clark limit surface of their 2N + 8 control points,
