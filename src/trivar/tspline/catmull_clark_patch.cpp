@@ -202,7 +202,12 @@ std::array<double, 3> CatmullClarkPatch::limit_point(std::span<const std::array<
 
 void CatmullClarkPatch::eval(std::span<const std::array<double, 3>> points, double u, double v, double* out) const {
   const std::size_t k = static_cast<std::size_t>(size());
-  std::vector<std::array<double, 3>> p(points.begin(), points.begin() + static_cast<std::ptrdiff_t>(k)), q(k);
+  // Relative to the star point's limit (the rules are affine): the points of level j then have the size of the
+  // neighbourhood, about lambda^j, and their rounding, scaled by 2^j in the derivatives, stays small.
+  const std::array<double, 3> origin = limit_point(points);
+  std::vector<std::array<double, 3>> p(k), q(k);
+  for (std::size_t i = 0; i < k; ++i)
+    for (std::size_t c = 0; c < 3; ++c) p[i][c] = points[i][c] - origin[c];
   int level = 0;
   while (u < 0.5 && v < 0.5 && !(u == 0 && v == 0) && level < 1100) {
     for (std::size_t r = 0; r < k; ++r) {
@@ -220,11 +225,10 @@ void CatmullClarkPatch::eval(std::span<const std::array<double, 3>> points, doub
   }
   if (u < 0.5 && v < 0.5) {
     // The star point: its limit position and the limit tangents towards e_0 and e_1.
-    const auto x = limit_point(p);
     const double n = n_, a = 1 + std::cos(2 * std::numbers::pi / n) +
                              std::cos(std::numbers::pi / n) * std::sqrt(2 * (9 + std::cos(2 * std::numbers::pi / n)));
     for (std::size_t c = 0; c < 3; ++c) {
-      out[c] = x[c];
+      out[c] = origin[c];
       for (int t = 0; t < 2; ++t) {
         double s = 0;
         for (int i = 0; i < n_; ++i) {
@@ -246,6 +250,7 @@ void CatmullClarkPatch::eval(std::span<const std::array<double, 3>> points, doub
   }
   const double su = s == 2 ? 2 * u : 2 * u - 1, sv = s == 0 ? 2 * v : 2 * v - 1;
   eval_uniform_bicubic(g, su, sv, out);
+  for (std::size_t c = 0; c < 3; ++c) out[c] += origin[c];
   const double scale = std::ldexp(2.0, level);
   for (int c = 3; c < 9; ++c) out[c] *= scale;
 }
