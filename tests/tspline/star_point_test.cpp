@@ -244,13 +244,13 @@ TEST(StarPoints, ClosedCubeOfEightValenceThreeStarPoints) {
 double height(double x, double y) { return 0.05 * x * x - 0.03 * x * y + 0.2 * std::sin(0.4 * y); }
 
 TEST(StarPoints, PlanarFanAroundAValenceFiveStarPoint) {
-  const io::TsmModel model = io::parse_tsm(tsm_text(test::fan_mesh(5, 10, height)), "fan.tsm");
+  const io::TsmModel model = io::parse_tsm(tsm_text(test::fan_mesh(5, 8, height)), "fan.tsm");
   EXPECT_EQ(model.report.star_points, 1);
   const TMeshSurface s(model.mesh, 1);
   EXPECT_EQ(s.count(FaceMethod::star), 5);
   // Within 5 face rings of the star point (max(i, j) < 5 in each sector): Catmull-Clark; beyond: exact.
   EXPECT_EQ(s.count(FaceMethod::bicubic), 5 * 25 - 5);
-  EXPECT_EQ(s.count(FaceMethod::exact), 5 * 75);
+  EXPECT_EQ(s.count(FaceMethod::exact), 5 * 39);
   // An exact face with uniform knots is the uniform bicubic patch of its 4 x 4 control points.
   const Continuity c = continuity(s);
   EXPECT_LT(c.gap, 1e-12);
@@ -259,7 +259,7 @@ TEST(StarPoints, PlanarFanAroundAValenceFiveStarPoint) {
   const TSplineTriangulation t = tessellate(s, 1e-2);
   expect_watertight_closed(t, false);
   for (const auto& p : t.points) ASSERT_TRUE(std::isfinite(p[0] + p[1] + p[2]));  // the boundary too (end conditions)
-  EXPECT_GT(t.triangles.size(), 1000u);
+  EXPECT_GT(t.triangles.size(), 500u);
   std::printf("valence-5 fan: %d edges, position gap %.2e, normal defect (sin) %.2e, C1 defect %.2e\n", c.edges,
               c.gap, c.normal_angle, c.c1);
 }

@@ -144,17 +144,20 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(mesh), stars_
       exact.push_back(f);
       continue;
     }
-    // Near a star point: the Catmull-Clark region's conditions on the neighbourhood.
+    // Near a star point: the Catmull-Clark region's conditions on the neighbourhood. A face's uniform bicubic
+    // patch is the T-spline there when the (p + 1) / 2 rings around it are uniform quadrilaterals inside the
+    // mesh: its 16 nodes are the corners of the first ring and their rays cross (p + 1) / 2 lines.
+    const int cc_depth = (m.degree + 1) / 2;
     std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX);
     dist[static_cast<std::size_t>(f)] = 0;
-    const std::vector<int> hood = rings({f}, depth, dist);
+    const std::vector<int> hood = rings({f}, cc_depth, dist);
     const auto where = [&] { return "T-mesh: face " + std::to_string(f) + " (within " + std::to_string(depth + 1) + " face rings of a star point): "; };
     require(m.degree == 3, [&] { return where() + "star points are evaluated for degree 3, not " + std::to_string(m.degree); });
     const double d0 = m.intervals[static_cast<std::size_t>(L(m.faces[static_cast<std::size_t>(f)].front()).edge)];
     for (int g : hood)
       for (int l : m.faces[static_cast<std::size_t>(g)]) {
-        require(m.faces[static_cast<std::size_t>(g)].size() == 4, [&] { return where() + "face " + std::to_string(g) + " nearby has a T-junction; the Catmull-Clark evaluation around star points needs none within " + std::to_string(depth) + " rings"; });
-        require(!boundary[static_cast<std::size_t>(L(l).vertex)], [&] { return where() + "boundary vertex " + std::to_string(L(l).vertex) + " is within " + std::to_string(depth) + " rings; the Catmull-Clark evaluation around star points needs none"; });
+        require(m.faces[static_cast<std::size_t>(g)].size() == 4, [&] { return where() + "face " + std::to_string(g) + " nearby has a T-junction; the Catmull-Clark evaluation around star points needs none within " + std::to_string(cc_depth) + " rings"; });
+        require(!boundary[static_cast<std::size_t>(L(l).vertex)], [&] { return where() + "boundary vertex " + std::to_string(L(l).vertex) + " is within " + std::to_string(cc_depth) + " rings; the Catmull-Clark evaluation around star points needs none"; });
         const double d = m.intervals[static_cast<std::size_t>(L(l).edge)];
         require(std::abs(d - d0) <= 1e-12 * d0, [&] { return where() + "edge " + std::to_string(L(l).edge) + " nearby has knot interval " + std::to_string(d) + ", not " + std::to_string(d0) + "; the Catmull-Clark evaluation around star points needs equal intervals"; });
       }

@@ -12,7 +12,8 @@
 //   star           the faces at a star point: the Catmull-Clark limit surface of their 2N + 8 control points,
 //                  evaluated exactly (catmull_clark_patch, Stam 1998).
 // The faces within p + 2 rings of a star point (bicubic and star) need, and are checked to have, degree 3,
-// equal knot intervals, no T-junction, no boundary and one star point per face within p + 1 rings of them; the
+// equal knot intervals, no T-junction and no boundary within (p + 1) / 2 rings of them, control points of
+// weight 1 without repeated-knot nodes, and at most one star corner per face; the
 // surface there is then the Catmull-Clark limit surface of the control mesh, which on faces without a star
 // corner is the uniform bicubic B-spline = the T-spline. Continuity: C2 across every edge away from star points
 // (T-spline and uniform B-spline pieces meet as one spline); C1 across the edges at a star point except at the
