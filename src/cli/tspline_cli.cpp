@@ -299,8 +299,12 @@ void convert_tspline(const std::string& in, const std::string& out, const TSplin
   const Loaded l = load(in);
   const std::string ext = io::file_extension(out);
   if (l.mesh) {
+    if (ext == ".tsm") {
+      io::write_tsm(out, l.mesh->mesh());
+      return;
+    }
     require(ext == ".stl" || ext == ".obj" || ext == ".vtu",
-            "convert: " + in + " has star points (no global (s, t), no exact spline form around them); it converts to .stl, .obj or .vtu triangles, not '" + ext + "'");
+            "convert: " + in + " has star points (no global (s, t), no exact spline form around them); it converts to .tsm, or to .stl, .obj or .vtu triangles, not '" + ext + "'");
     double tol = o.tolerance;
     if (tol <= 0) {
       Box<3> b = Box<3>::empty();

@@ -153,6 +153,8 @@ TEST_F(TSplineCli, StarPointModel) {
   ok("convert cube.tsm cube.stl --tolerance 1e-3");
   ok("convert cube.tsm cube.obj");
   fails("convert cube.tsm cube.stp");
+  ok("convert cube.tsm cube2.tsm");
+  EXPECT_EQ(numbers_after(ok("eval cube2.tsm 4 0.5 0.5").out, "S"), p);
   EXPECT_FALSE(fs::exists(work_ / "cube.stp"));
   // The OBJ is closed: every edge in two triangles.
   std::ifstream obj(work_ / "cube.obj");

@@ -560,3 +560,91 @@ void write_tsm(const std::string& path, const TSpline& ts) {
 }
 
 }  // namespace trivar::io
+
+namespace trivar::io {
+
+void write_tsm(std::ostream& os, const TMesh& m) {
+  static constexpr std::array<const char*, 4> kName{"NORTH", "WEST", "SOUTH", "EAST"};
+  // Each grip's vertex (its own node or a block node); grips no vertex names are deleted slots.
+  std::vector<int> grip_vertex(m.points.size(), -1);
+  std::vector<char> primary(m.points.size(), 0);
+  for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+    const TMeshVertex& x = m.vertices[v];
+    if (!x.live) continue;
+    if (x.primary >= 0) {
+      grip_vertex[static_cast<std::size_t>(x.primary)] = static_cast<int>(v);
+      primary[static_cast<std::size_t>(x.primary)] = 1;
+    }
+    for (int g : x.block)
+      if (g >= 0) grip_vertex[static_cast<std::size_t>(g)] = static_cast<int>(v);
+  }
+  os << "#TS0200\n\ndegree " << m.degree << "\ncap-type 1\nstar-smoothness 0\nunits 1 millimeters\n"
+     << "force-bezier-end-conditions " << (m.force_bezier ? 1 : 0) << '\n';
+  for (const auto& loop : m.faces) {
+    if (loop.empty()) os << "f\n";
+    else os << "f " << loop.front() << " 0\n";
+  }
+  std::vector<int> edge_link(m.intervals.size(), -1);
+  for (int l = 0; l < static_cast<int>(m.links.size()); ++l)
+    if (m.links[static_cast<std::size_t>(l)].vertex >= 0 && edge_link[static_cast<std::size_t>(m.links[static_cast<std::size_t>(l)].edge)] < 0)
+      edge_link[static_cast<std::size_t>(m.links[static_cast<std::size_t>(l)].edge)] = l;
+  for (std::size_t e = 0; e < m.intervals.size(); ++e) {
+    if (edge_link[e] < 0) {
+      os << "e\n";
+      continue;
+    }
+    os << "e " << edge_link[e] << ' ';
+    write_number(os, m.intervals[e]);
+    os << '\n';
+  }
+  std::vector<int> vertex_link(m.vertices.size(), -1);
+  for (int l = 0; l < static_cast<int>(m.links.size()); ++l) {
+    const TMeshLink& k = m.links[static_cast<std::size_t>(l)];
+    if (k.vertex >= 0 && k.frame >= 0 && vertex_link[static_cast<std::size_t>(k.vertex)] < 0) vertex_link[static_cast<std::size_t>(k.vertex)] = l;
+  }
+  for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+    if (!m.vertices[v].live) {
+      os << "v\n";
+      continue;
+    }
+    require(vertex_link[v] >= 0, "TSM: vertex " + std::to_string(v) + " has no link with a frame direction");
+    os << "v " << vertex_link[v] << ' ' << kName[static_cast<std::size_t>(m.links[static_cast<std::size_t>(vertex_link[v])].frame)] << '\n';
+  }
+  for (const TMeshLink& k : m.links) {
+    if (k.vertex < 0) os << "l\n";
+    else os << "l " << k.prev << ' ' << k.next << ' ' << k.opp << ' ' << k.vertex << ' ' << k.face << ' ' << k.edge << ' ' << k.flag << '\n';
+  }
+  for (const auto& [e, flag] : m.conditions) os << "ec " << e << ' ' << flag << '\n';
+  os << "0m odd-grip-map\n";
+  for (std::size_t g = 0; g < m.points.size(); ++g) os << "0m " << (primary[g] ? "gvp " : "gv ") << grip_vertex[g] << '\n';
+  for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+    const TMeshVertex& x = m.vertices[v];
+    if (!x.live || x.block.empty()) continue;
+    os << "0m cg " << v << " 4";
+    for (int d : x.block_dims) os << ' ' << d;
+    for (int g : x.block) os << ' ' << g;
+    os << '\n';
+  }
+  for (std::size_t g = 0; g < m.points.size(); ++g) {
+    if (grip_vertex[g] < 0) {
+      os << "0g\n";
+      continue;
+    }
+    const RationalPoint& p = m.points[g];
+    os << "0g";
+    for (double x : {p.xyz[0], p.xyz[1], p.xyz[2], p.w}) {
+      os << ' ';
+      write_number(os, x);
+    }
+    os << '\n';
+  }
+  os << "\ntol 1e-05\nver 1\n";
+}
+
+void write_tsm(const std::string& path, const TMesh& m) {
+  std::ostringstream text;
+  write_tsm(text, m);
+  write_file_atomically(path, [&](std::ostream& os) { os << text.str(); });
+}
+
+}  // namespace trivar::io

@@ -62,5 +62,9 @@ TsmModel read_tsm(const std::string& path);
 // boundary that is not a simple loop at a vertex. Written atomically; nothing is written on error.
 void write_tsm(std::ostream& os, const TSpline& ts);
 void write_tsm(const std::string& path, const TSpline& ts);
+// Writes the half-edge mesh as read (also one with star points): every slot keeps its number (deleted ones as
+// bare keywords), so read_tsm gives the same mesh. Written atomically.
+void write_tsm(std::ostream& os, const TMesh& mesh);
+void write_tsm(const std::string& path, const TMesh& mesh);
 
 }  // namespace trivar::io
