@@ -397,6 +397,23 @@ int compass(const TImage& im, int l) {
   return a.s == b.s ? (b.t > a.t ? 0 : 2) : (b.s > a.s ? 3 : 1);
 }
 
+void write_grip(std::ostream& os, const RationalPoint& p) {
+  os << "0g";
+  for (double x : {p.xyz[0], p.xyz[1], p.xyz[2], p.w}) {
+    os << ' ';
+    write_number(os, x);
+  }
+  os << "\n";
+}
+
+// The text first, so that nothing is written on error.
+template <class Model>
+void write_tsm_file(const std::string& path, const Model& model) {
+  std::ostringstream text;
+  write_tsm(text, model);
+  write_file_atomically(path, [&](std::ostream& os) { os << text.str(); });
+}
+
 }  // namespace
 
 void write_tsm(std::ostream& os, const TSpline& ts) {
@@ -541,27 +558,11 @@ void write_tsm(std::ostream& os, const TSpline& ts) {
     os << "0m " << (grip_of[static_cast<std::size_t>(on[static_cast<std::size_t>(grip_vertex[g])][0])] == static_cast<int>(g) ? "gvp " : "gv ")
        << grip_vertex[g] << '\n';
   for (const std::string& b : blocks) os << b << '\n';
-  for (int n : grip_node) {
-    const RationalPoint& p = ts.pointset.points[static_cast<std::size_t>(ts.connect.nodes[static_cast<std::size_t>(n)].point)];
-    os << "0g";
-    for (double x : {p.xyz[0], p.xyz[1], p.xyz[2], p.w}) {
-      os << ' ';
-      write_number(os, x);
-    }
-    os << '\n';
-  }
+  for (int n : grip_node) write_grip(os, ts.pointset.points[static_cast<std::size_t>(ts.connect.nodes[static_cast<std::size_t>(n)].point)]);
   os << "\ntol 1e-05\nver 1\n";
 }
 
-void write_tsm(const std::string& path, const TSpline& ts) {
-  std::ostringstream text;
-  write_tsm(text, ts);
-  write_file_atomically(path, [&](std::ostream& os) { os << text.str(); });
-}
-
-}  // namespace trivar::io
-
-namespace trivar::io {
+void write_tsm(const std::string& path, const TSpline& ts) { write_tsm_file(path, ts); }
 
 void write_tsm(std::ostream& os, const TMesh& m) {
   static constexpr std::array<const char*, 4> kName{"NORTH", "WEST", "SOUTH", "EAST"};
@@ -630,21 +631,11 @@ void write_tsm(std::ostream& os, const TMesh& m) {
       os << "0g\n";
       continue;
     }
-    const RationalPoint& p = m.points[g];
-    os << "0g";
-    for (double x : {p.xyz[0], p.xyz[1], p.xyz[2], p.w}) {
-      os << ' ';
-      write_number(os, x);
-    }
-    os << '\n';
+    write_grip(os, m.points[g]);
   }
   os << "\ntol 1e-05\nver 1\n";
 }
 
-void write_tsm(const std::string& path, const TMesh& m) {
-  std::ostringstream text;
-  write_tsm(text, m);
-  write_file_atomically(path, [&](std::ostream& os) { os << text.str(); });
-}
+void write_tsm(const std::string& path, const TMesh& m) { write_tsm_file(path, m); }
 
 }  // namespace trivar::io
