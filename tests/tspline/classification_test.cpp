@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include "star_mesh_tsm.hpp"
+#include "trivar/io/tsm_format.hpp"
 #include "trivar/spline/tensor_spline.hpp"
 #include "trivar/tspline/classification.hpp"
 #include "trivar/tspline/t_mesh_builder.hpp"
@@ -141,6 +143,58 @@ TEST(Classification, ExtensionsThatTouchCross) {
   EXPECT_FALSE(c.analysis_suitable);
   EXPECT_FALSE(c.dual.compatible);
   EXPECT_FALSE(c.standard);
+}
+
+}  // namespace
+}  // namespace trivar
+
+namespace trivar {
+namespace {
+
+// The B-spline on local knots t_0 .. t_(p+1) at x, by the Cox-de Boor recursion (x not on a knot).
+double local_bspline(const std::vector<double>& t, double x) {
+  const std::size_t p = t.size() - 2;
+  std::vector<double> n(p + 1);
+  for (std::size_t i = 0; i <= p; ++i) n[i] = t[i] <= x && x < t[i + 1] ? 1.0 : 0.0;
+  for (std::size_t k = 1; k <= p; ++k)
+    for (std::size_t i = 0; i + k <= p; ++i) {
+      const double a = t[i + k] > t[i] ? (x - t[i]) / (t[i + k] - t[i]) * n[i] : 0.0;
+      const double b = t[i + k + 1] > t[i + 1] ? (t[i + k + 1] - x) / (t[i + k + 1] - t[i + 1]) * n[i + 1] : 0.0;
+      n[i] = a + b;
+    }
+  return n[0];
+}
+
+// A 6 x 6 grid of faces with the centre-left face deleted (a hole, TSM `f` without a link): a domain that is not
+// a rectangle, no T-junction. Analysis-suitability there needs the blending functions to be dual-compatible and
+// to sum to one; the sum is checked here point by point from the blending functions themselves.
+TEST(Classification, AHoleNeedsDualCompatibilityAndAPartitionOfUnity) {
+  test::QuadMesh m;
+  for (int j = 0; j <= 6; ++j)
+    for (int i = 0; i <= 6; ++i) m.points.push_back({double(i), double(j), 0.1 * i * j});
+  for (int j = 0; j < 6; ++j)
+    for (int i = 0; i < 6; ++i)
+      if (!(i == 2 && j == 2)) m.quads.push_back({i + 7 * j, i + 1 + 7 * j, i + 1 + 7 * (j + 1), i + 7 * (j + 1)});
+  const io::TsmModel model = io::parse_tsm(test::tsm_text(m), "hole.tsm");
+  ASSERT_EQ(model.report.star_points, 0);
+  const TSplineSurface surf(model.spline);
+  const TSplineClass c = classify(model.spline, surf);
+  EXPECT_FALSE(c.rectangular_domain);
+  EXPECT_EQ(c.t_junctions, 0);
+  EXPECT_EQ(c.crossing_extensions, 0);
+  double defect = 0;
+  for (const Box<2>& e : surf.elements())
+    for (double a : {0.1, 0.5, 0.9})
+      for (double b : {0.3, 0.7}) {
+        const double x[2] = {e.lo[0] + a * e.extent(0), e.lo[1] + b * e.extent(1)};
+        double sum = 0;
+        for (const auto& f : surf.basis()) sum += local_bspline(f.knots[0], x[0]) * local_bspline(f.knots[1], x[1]);
+        defect = std::max(defect, std::abs(sum - 1));
+      }
+  EXPECT_EQ(c.standard, defect < 1e-12) << defect;
+  EXPECT_EQ(c.analysis_suitable, c.dual.compatible && defect < 1e-12);
+  std::printf("hole: sum of blending functions off 1 by up to %.3g, dual-compatible %s, analysis-suitable %s\n", defect,
+              c.dual.compatible ? "yes" : "no", c.analysis_suitable ? "yes" : "no");
 }
 
 }  // namespace
