@@ -4,6 +4,10 @@
 // TRIVAR_TSM_DIR (e.g. the Rhino exports published with the seed-002 prototype); the hand-written patch of the
 // tests is always measured. Analysis: the space of a planar analysis-suitable T-spline (n x n cells, one line
 // stopping halfway: a T-junction) from its Bezier extraction, and the Poisson solve on it (f = 1, u = 0).
+// Star points: the closed cube of 3 x 3 faces per side (eight valence-3 star points) and the valence-5 fan of
+// 5 x 10 x 10 faces (tests/tspline/star_mesh_tsm.hpp): parse + per-face surface build, evaluation on a 16 x 16
+// grid per face (all faces, and the faces at star points alone: the Catmull-Clark subdivision path), and the
+// watertight tessellation.
 #include <benchmark/benchmark.h>
 
 #include <cstdlib>
@@ -15,7 +19,10 @@
 #include "trivar/iga/solver.hpp"
 #include "trivar/iga/tensor_space.hpp"
 #include "trivar/io/tsm_format.hpp"
+#include "../tests/tspline/star_mesh_tsm.hpp"
 #include "trivar/tspline/local_knots.hpp"
+#include "trivar/tspline/t_mesh_surface.hpp"
+#include "trivar/tspline/t_mesh_tessellation.hpp"
 #include "trivar/tspline/t_mesh_builder.hpp"
 #include "trivar/tspline/t_spline_surface.hpp"
 #include "trivar/tspline/t_spline_tessellation.hpp"
@@ -106,6 +113,52 @@ void poisson_solve(benchmark::State& state) {
   }
 }
 BENCHMARK(poisson_solve)->Arg(16)->Arg(64)->Unit(benchmark::kMillisecond);
+
+std::string star_model(int which) {
+  using namespace trivar::test;
+  return which == 0 ? tsm_text(cube_mesh(3))
+                    : tsm_text(fan_mesh(5, 10, [](double x, double y) { return 0.05 * x * x - 0.03 * x * y; }));
+}
+
+void star_build(benchmark::State& state) {
+  const std::string text = star_model(static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    const trivar::TMeshSurface s(trivar::io::parse_tsm(text, "star.tsm").mesh, 1);
+    benchmark::DoNotOptimize(s.num_faces());
+  }
+}
+BENCHMARK(star_build)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+// range(1) = 1: only the faces at star points.
+void star_eval(benchmark::State& state) {
+  const trivar::TMeshSurface s(trivar::io::parse_tsm(star_model(static_cast<int>(state.range(0))), "star.tsm").mesh, 1);
+  std::vector<int> faces;
+  for (int f = 0; f < s.num_faces(); ++f)
+    if (s.method(f) != trivar::FaceMethod::none && (state.range(1) == 0 || s.method(f) == trivar::FaceMethod::star))
+      faces.push_back(f);
+  double out[9];
+  for (auto _ : state)
+    for (int f : faces)
+      for (int j = 0; j < 16; ++j)
+        for (int i = 0; i < 16; ++i) {
+          s.eval(f, (i + 0.5) / 16, (j + 0.5) / 16, out);
+          benchmark::DoNotOptimize(out);
+        }
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(faces.size()) * 256);
+}
+BENCHMARK(star_eval)->Args({0, 0})->Args({0, 1})->Args({1, 0})->Args({1, 1})->Unit(benchmark::kMillisecond);
+
+void star_tessellate(benchmark::State& state) {
+  const trivar::TMeshSurface s(trivar::io::parse_tsm(star_model(static_cast<int>(state.range(0))), "star.tsm").mesh, 1);
+  std::size_t triangles = 0;
+  for (auto _ : state) {
+    const auto m = trivar::tessellate(s, state.range(0) == 0 ? 3.5e-3 : 4.5e-2);
+    triangles = m.triangles.size();
+    benchmark::DoNotOptimize(m.points.data());
+  }
+  state.counters["triangles"] = static_cast<double>(triangles);
+}
+BENCHMARK(star_tessellate)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 int register_models() {
   std::vector<std::string> files{std::string(TRIVAR_SOURCE_DIR) + "/tests/data/tsm/bezier_patch.tsm"};

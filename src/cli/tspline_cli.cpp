@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <optional>
 
@@ -27,6 +28,8 @@
 #include "trivar/model/triangle_mesh.hpp"
 #include "trivar/tspline/bezier_patches.hpp"
 #include "trivar/tspline/classification.hpp"
+#include "trivar/tspline/t_mesh_surface.hpp"
+#include "trivar/tspline/t_mesh_tessellation.hpp"
 #include "trivar/tspline/t_spline_surface.hpp"
 #include "trivar/tspline/t_spline_tessellation.hpp"
 
@@ -48,7 +51,8 @@ struct Loaded {
   std::optional<TSpline> layers;
   std::optional<io::TsmReport> tsm;
   std::string step_type;  // Part 42 locally_refined_spline_type when read from that form
-  std::unique_ptr<TSplineSurface> surface;
+  std::unique_ptr<TSplineSurface> surface;  // empty for a TSM model with star points
+  std::unique_ptr<TMeshSurface> mesh;       // a TSM model with star points: evaluated per face
 };
 
 Loaded load(const std::string& path) {
@@ -57,8 +61,16 @@ Loaded load(const std::string& path) {
   if (ext == ".tsm") {
     io::TsmModel m = io::read_tsm(path);
     l.format = "TSM #TS0200";
-    l.layers = std::move(m.spline);
     l.tsm = std::move(m.report);
+    if (l.tsm->star_points > 0) {
+      try {
+        l.mesh = std::make_unique<TMeshSurface>(m.mesh);
+      } catch (const Error& e) {
+        throw Error(path + ": " + e.what());
+      }
+      return l;
+    }
+    l.layers = std::move(m.spline);
   } else if (is_t_spline_json(path)) {
     l.format = "trivar T-spline JSON";
     l.layers = io::read_t_spline_json(path);
@@ -97,6 +109,21 @@ std::optional<LRSpline<2>> lr_form(const TSplineSurface& surf, std::string& why)
   }
 }
 
+void write_triangulation(const std::string& out, const TSplineTriangulation& m, double tol) {
+  const std::string ext = io::file_extension(out);
+  if (ext == ".vtu") {
+    io::write_triangulation_vtu(out, m);
+  } else if (ext == ".obj") {
+    io::write_triangulation_obj(out, m);
+  } else {
+    TriangleMesh t;
+    t.vertices = m.points;
+    t.triangles = m.triangles;
+    io::write_stl(out, t);
+  }
+  std::printf("%s: %zu triangles, chordal tolerance %s\n", out.c_str(), m.triangles.size(), fmt(tol).c_str());
+}
+
 }  // namespace
 
 bool is_t_spline_file(const std::string& path) {
@@ -110,8 +137,46 @@ bool is_t_spline_file(const std::string& path) {
   return text.find("T_SPLINE_SURFACE(") != std::string::npos || text.find("_T_SPLINE.") != std::string::npos;
 }
 
+// A T-mesh with star points: faces by evaluation method, the star points, the continuity the methods give.
+void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
+  const TMeshSurface& s = *l.mesh;
+  const io::TsmReport& r = *l.tsm;
+  std::map<int, int> valences;
+  for (int v : s.stars()) ++valences[s.valence(v)];
+  const int faces = s.count(FaceMethod::exact) + s.count(FaceMethod::bicubic) + s.count(FaceMethod::star);
+  const char* continuity = "C2 across every edge away from star points; C1 across the edges at a star point; G1 at star points";
+  nlohmann::json j{{"file", path}, {"kind", "T-spline surface with star points"}, {"format", l.format},
+                   {"degrees", {s.mesh().degree, s.mesh().degree}}, {"units", r.units}, {"faces", faces},
+                   {"star_points", r.star_points}, {"faces_exact", s.count(FaceMethod::exact)},
+                   {"faces_catmull_clark", s.count(FaceMethod::bicubic) + s.count(FaceMethod::star)},
+                   {"faces_at_star_points", s.count(FaceMethod::star)}, {"continuity", continuity},
+                   {"deleted_slots", r.deleted}, {"deleted_faces", r.holes}, {"skipped_records", r.skipped_records}};
+  for (const auto& [n, c] : valences) j["star_valences"][std::to_string(n)] = c;
+  if (json) {
+    std::printf("%s\n", j.dump(2).c_str());
+    return;
+  }
+  std::string vs;
+  for (const auto& [n, c] : valences) vs += (vs.empty() ? "" : ", ") + std::to_string(c) + " of valence " + std::to_string(n);
+  std::printf("%s: T-spline surface with star points (%s), degree %d%s\n", path.c_str(), l.format.c_str(), s.mesh().degree,
+              r.units.empty() ? "" : (", units " + r.units).c_str());
+  std::printf("  %d faces, %d star points (%s); no global (s, t): faces are evaluated in their own (u, v)\n", faces,
+              r.star_points, vs.c_str());
+  std::printf("  %d faces exact (the T-spline in a chart of their neighbourhood), %d faces within %d rings of a star "
+              "point by the Catmull-Clark limit surface (%d at a star point, evaluated exactly by subdivision)\n",
+              s.count(FaceMethod::exact), s.count(FaceMethod::bicubic) + s.count(FaceMethod::star), s.mesh().degree + 2,
+              s.count(FaceMethod::star));
+  std::printf("  continuity: %s\n", continuity);
+  if (!r.skipped_records.empty()) {
+    std::string k;
+    for (const auto& [name, n] : r.skipped_records) k += (k.empty() ? "" : ", ") + name + " x" + std::to_string(n);
+    std::printf("  records without geometry (skipped): %s\n", k.c_str());
+  }
+}
+
 void print_tspline_info(const std::string& path, bool json) {
   const Loaded l = load(path);
+  if (l.mesh) return print_mesh_info(path, l, json);
   const TSplineSurface& surf = *l.surface;
   const PartitionOfUnity& pu = surf.partition_of_unity();
   const Box<2> dom = surf.domain();
@@ -131,7 +196,7 @@ void print_tspline_info(const std::string& path, bool json) {
   if (l.layers) {
     const TSpline& ts = *l.layers;
     cls = classify(ts, surf);
-    as = cls->analysis_suitable ? (*cls->analysis_suitable ? "yes" : "no") : "not classified (even degree)";
+    as = cls->analysis_suitable ? "yes" : "no";
     j["t_image"] = {{"vertices", ts.image.vertices.size()}, {"edges", ts.image.edges.size()},
                     {"links", ts.image.links.size()}, {"faces", ts.image.faces.size()},
                     {"edge_conditions", ts.image.conditions.size()}};
@@ -139,6 +204,8 @@ void print_tspline_info(const std::string& path, bool json) {
     j["t_pointset"] = {{"points", ts.pointset.points.size()}};
     j["classification"] = {{"t_junctions", cls->t_junctions}, {"analysis_suitable", as},
                            {"crossing_extensions", cls->crossing_extensions},
+                           {"dual_compatible", cls->dual.compatible},
+                           {"dual_incompatible_pairs", cls->dual.failing_pairs},
                            {"rectangular_domain", cls->rectangular_domain}, {"standard", cls->standard},
                            {"semi_standard", cls->semi_standard},
                            {"linear_independence", to_string(cls->independence)},
@@ -178,9 +245,9 @@ void print_tspline_info(const std::string& path, bool json) {
               fmt(pu.sampled_min).c_str(), fmt(pu.sampled_max).c_str(), fmt(pu.min_sum).c_str(), fmt(pu.max_sum).c_str(),
               pu.elements_off, pu.elements_off == 1 ? "" : "s");
   if (cls)
-    std::printf("  classification: %d T-junctions, analysis-suitable %s (%d crossing extensions%s), standard %s, "
-                "semi-standard %s, blending functions %s; Part 42 type %s\n",
-                cls->t_junctions, as.c_str(), cls->crossing_extensions,
+    std::printf("  classification: %d T-junctions, analysis-suitable %s (%d crossing extensions, dual-compatible %s%s), "
+                "standard %s, semi-standard %s, blending functions %s; Part 42 type %s\n",
+                cls->t_junctions, as.c_str(), cls->crossing_extensions, cls->dual.compatible ? "yes" : "no",
                 cls->rectangular_domain ? "" : "; the domain is not a rectangle", cls->standard ? "yes" : "no",
                 cls->semi_standard ? "yes" : "no", to_string(cls->independence), cls->part42_type().c_str());
   if (l.tsm && !l.tsm->skipped_records.empty()) {
@@ -191,9 +258,27 @@ void print_tspline_info(const std::string& path, bool json) {
 }
 
 void eval_tspline(const std::string& path, const std::vector<double>& params, int order) {
-  require(params.size() == 2, "eval: a T-spline surface takes 2 parameters, got " + std::to_string(params.size()));
   require(order <= 1, "eval: T-splines evaluate first derivatives at most (--derivs 0 or 1), got " + std::to_string(order));
   const Loaded l = load(path);
+  if (l.mesh) {
+    require(params.size() == 3 && params[0] == std::floor(params[0]),
+            "eval: " + path + " has star points and no global (s, t): give FACE U V (u, v in [0, 1] on the face)");
+    const int face = static_cast<int>(params[0]);
+    require(face >= 0 && face < l.mesh->num_faces() && l.mesh->method(face) != FaceMethod::none,
+            "eval: " + path + " has no face " + fmt(params[0]));
+    require(params[1] >= 0 && params[1] <= 1 && params[2] >= 0 && params[2] <= 1,
+            "eval: (u, v) = (" + fmt(params[1]) + ", " + fmt(params[2]) + ") is outside the face's [0, 1]^2");
+    double out[9];
+    l.mesh->eval(face, params[1], params[2], out);
+    std::printf("S   = %s\n", fmt(out, 3).c_str());
+    if (order == 1) {
+      std::printf("S_u = %s\n", fmt(out + 3, 3).c_str());
+      std::printf("S_v = %s\n", fmt(out + 6, 3).c_str());
+    }
+    std::printf("face %d: %s\n", face, face_method_name(l.mesh->method(face)));
+    return;
+  }
+  require(params.size() == 2, "eval: a T-spline surface takes 2 parameters, got " + std::to_string(params.size()));
   const TSplineSurface& surf = *l.surface;
   const Param<2> u{params[0], params[1]};
   require(surf.locate(u) >= 0, "eval: (" + fmt(u[0]) + ", " + fmt(u[1]) + ") is outside the T-spline's faces (domain [" +
@@ -212,8 +297,24 @@ void convert_tspline(const std::string& in, const std::string& out, const TSplin
   require(o.step_form == "t-spline" || o.step_form == "part42",
           "convert: --step-form is t-spline or part42, not '" + o.step_form + "'");
   const Loaded l = load(in);
-  const TSplineSurface& surf = *l.surface;
   const std::string ext = io::file_extension(out);
+  if (l.mesh) {
+    if (ext == ".tsm") {
+      io::write_tsm(out, l.mesh->mesh());
+      return;
+    }
+    require(ext == ".stl" || ext == ".obj" || ext == ".vtu",
+            "convert: " + in + " has star points (no global (s, t), no exact spline form around them); it converts to .tsm, or to .stl, .obj or .vtu triangles, not '" + ext + "'");
+    double tol = o.tolerance;
+    if (tol <= 0) {
+      Box<3> b = Box<3>::empty();
+      for (const RationalPoint& p : l.mesh->mesh().points) b.extend(p.xyz.data());
+      tol = 1e-3 * b.diagonal();
+    }
+    write_triangulation(out, tessellate(*l.mesh, tol), tol);
+    return;
+  }
+  const TSplineSurface& surf = *l.surface;
   if (is_step_file(out)) {
     require(l.layers.has_value(), "convert: " + in + " holds the blending functions only; it converts to Part 42 STEP, .lr, .vtu, .stl or .obj");
     const auto form = o.step_form == "part42" ? io::step::TSplineStepForm::part42 : io::step::TSplineStepForm::t_spline_entities;
@@ -271,22 +372,12 @@ void convert_tspline(const std::string& in, const std::string& out, const TSplin
       }
     tol = 1e-3 * b.diagonal();
   }
-  const TSplineTriangulation m = tessellate(surf, tol);
-  if (ext == ".vtu") {
-    io::write_triangulation_vtu(out, m);
-  } else if (ext == ".obj") {
-    io::write_triangulation_obj(out, m);
-  } else {
-    TriangleMesh t;
-    t.vertices = m.points;
-    t.triangles = m.triangles;
-    io::write_stl(out, t);
-  }
-  std::printf("%s: %zu triangles, chordal tolerance %s\n", out.c_str(), m.triangles.size(), fmt(tol).c_str());
+  write_triangulation(out, tessellate(surf, tol), tol);
 }
 
 void solve_tspline_poisson(const std::string& path, const std::string& solver, const std::string& vtu, int threads) {
   const Loaded l = load(path);
+  require(l.surface != nullptr, "solve: " + path + " has star points; analysis on T-splines with star points is not built");
   const TSplineSurface& surf = *l.surface;
   RefinedSpace<2> space;
   try {

@@ -1,6 +1,8 @@
 // `trivar info|eval|convert` on T-splines: the hand-written Bezier patch in TSM, converted to both STEP forms,
 // JSON, .lr, meshes; malformed input fails with one line and writes nothing; `solve poisson` on a planar
 // T-spline written as .tsm and .stp.
+#include <map>
+
 #include "cli_fixture.hpp"
 #include "trivar/io/g2_format.hpp"
 #include "trivar/io/tsm_format.hpp"
@@ -125,6 +127,50 @@ TEST_F(TSplineCli, G2HoldsTheLRSplineOrBezierPatches) {
     patch.eval(u, y);
     for (int d = 0; d < 3; ++d) EXPECT_NEAR(x[d], y[d], 1e-12) << e;
   }
+}
+
+}  // namespace
+
+namespace {
+
+// The closed cube of 3 x 3 faces per side with its eight valence-3 star points (tests/data/tsm/star_cube.tsm,
+// written from tests/tspline/star_mesh_tsm.hpp): info counts the faces by method, eval takes FACE U V, the
+// tessellation is closed, forms without star points are refused.
+TEST_F(TSplineCli, StarPointModel) {
+  fs::copy_file(std::string(TRIVAR_TEST_DATA) + "/tsm/star_cube.tsm", work_ / "cube.tsm");
+  const Result info = ok("info cube.tsm");
+  EXPECT_NE(info.out.find("54 faces, 8 star points (8 of valence 3)"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("54 faces within 5 rings of a star point"), std::string::npos) << info.out;
+  EXPECT_NE(info.out.find("24 at a star point"), std::string::npos) << info.out;
+  // The centre face of a side is the flat square [-1/3, 1/3]^2 of that side (linear precision).
+  const Result e = ok("eval cube.tsm 4 0.5 0.5 --derivs 1");
+  const auto p = numbers_after(e.out, "S");
+  ASSERT_EQ(p.size(), 3u);
+  EXPECT_NEAR(std::abs(p[0]) + std::abs(p[1]) + std::abs(p[2]), 1.0, 1e-14);
+  fails("eval cube.tsm 0.5 0.5");
+  fails("eval cube.tsm 54 0.5 0.5");
+  fails("eval cube.tsm 3 1.5 0.5");
+  ok("convert cube.tsm cube.stl --tolerance 1e-3");
+  ok("convert cube.tsm cube.obj");
+  fails("convert cube.tsm cube.stp");
+  ok("convert cube.tsm cube2.tsm");
+  EXPECT_EQ(numbers_after(ok("eval cube2.tsm 4 0.5 0.5").out, "S"), p);
+  EXPECT_FALSE(fs::exists(work_ / "cube.stp"));
+  // The OBJ is closed: every edge in two triangles.
+  std::ifstream obj(work_ / "cube.obj");
+  std::map<std::pair<long, long>, int> edges;
+  std::string line;
+  while (std::getline(obj, line)) {
+    if (line.rfind("f ", 0) != 0) continue;
+    std::istringstream is(line.substr(2));
+    std::vector<long> v;
+    std::string w;
+    while (is >> w) v.push_back(std::stol(w));
+    ASSERT_EQ(v.size(), 3u);
+    for (int k = 0; k < 3; ++k) ++edges[{std::min(v[k], v[(k + 1) % 3]), std::max(v[k], v[(k + 1) % 3])}];
+  }
+  ASSERT_FALSE(edges.empty());
+  for (const auto& [k, n] : edges) ASSERT_EQ(n, 2);
 }
 
 }  // namespace

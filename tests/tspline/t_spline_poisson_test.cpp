@@ -45,7 +45,7 @@ TEST(TSplinePoisson, AnalysisSuitableTMeshConvergesAtTheOptimalRate) {
   for (int n : {4, 8, 16, 32}) {
     const TSpline ts = as_t_mesh(n);
     const TSplineSurface surf(ts);
-    ASSERT_TRUE(classify(ts, surf).analysis_suitable.value());
+    ASSERT_TRUE(classify(ts, surf).analysis_suitable);
     // The geometry is the identity: x(s, t) = (s, t).
     double x[3];
     surf.eval({0.3, 0.7}, x);

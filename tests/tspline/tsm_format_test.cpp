@@ -7,6 +7,7 @@
 #include "trivar/io/tsm_format.hpp"
 #include "trivar/spline/tensor_spline.hpp"
 #include "trivar/tspline/t_mesh_builder.hpp"
+#include "trivar/tspline/t_mesh_surface.hpp"
 #include "trivar/tspline/t_spline_surface.hpp"
 
 namespace trivar {
@@ -88,8 +89,9 @@ void expect_error(const std::string& text, const std::string& fragment) {
 }
 
 // Three quadrilaterals around vertex 0 (a cube corner): the face angles there sum to 270 degrees, a star point.
-// Vertices 1, 3, 5 lie between two faces on the boundary (180 degrees), 2, 4, 6 are corners (90).
-TEST(Tsm, StarPointsAreNamedAndRefused) {
+// Vertices 1, 3, 5 lie between two faces on the boundary (180 degrees), 2, 4, 6 are corners (90). The model
+// loads as its mesh; its surface needs the Catmull-Clark region around the star point, which the boundary cuts.
+TEST(Tsm, StarPointsLoadAsTheMesh) {
   const std::string text = R"(#TS0200
 degree 3
 force-bezier-end-conditions 0
@@ -145,7 +147,16 @@ l 12 16 10 1 -1 8 1
 0g 0 0 1 1
 0g 1 0 1 1
 )";
-  expect_error(text, "1 star point (extraordinary vertices: vertex 0 (270 degrees))");
+  const io::TsmModel m = io::parse_tsm(text, "corner.tsm");
+  EXPECT_EQ(m.report.star_points, 1);
+  EXPECT_EQ(star_points(m.mesh), std::vector<int>{0});
+  EXPECT_TRUE(m.spline.image.faces.empty());
+  try {
+    const TMeshSurface s(m.mesh);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("boundary vertex"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Tsm, MalformedFilesGiveOneLineErrors) {

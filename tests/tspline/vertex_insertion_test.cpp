@@ -116,7 +116,7 @@ TEST(VertexInsertion, TSplineAndLRBasesOnTheSameRefinements) {
     EXPECT_EQ(c.common, s.common) << s.v.s << " " << s.v.t;
     EXPECT_EQ(c.t_functions, ts.connect.nodes.size());  // no two T-nodes with the same knots
     const TSplineClass cls = classify(ts, TSplineSurface(ts));
-    EXPECT_TRUE(cls.analysis_suitable.value());
+    EXPECT_TRUE(cls.analysis_suitable);
     EXPECT_EQ(cls.independence, Independence::independent);
   }
 }

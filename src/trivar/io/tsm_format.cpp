@@ -197,92 +197,11 @@ TsmModel Reader::build() {
     } while (l != l0);
     if (corners != 4) fail(r.line, "face " + std::to_string(f) + " is not rectangular (" + std::to_string(corners) + " corners)");
   }
-  // Star points: the face angles at a vertex (90 degrees per corner flag step) sum to 360 inside the surface and
-  // to at most 270 on its boundary (outside links and holes, whose face records are deleted); any other sum is
-  // an extraordinary vertex, which no global (s, t) parametrisation has. All are named at once.
-  {
-    std::vector<int> angle(static_cast<std::size_t>(nv), 0);
-    std::vector<char> boundary(static_cast<std::size_t>(nv), 0);
-    for (int i = 0; i < nl; ++i) {
-      if (!links[static_cast<std::size_t>(i)]) continue;
-      const RawLink& k = *links[static_cast<std::size_t>(i)];
-      if (k.face >= 0 && !loops[static_cast<std::size_t>(k.face)].empty())
-        angle[static_cast<std::size_t>(k.vertex)] += 90 * (k.flag + 1);
-      else
-        boundary[static_cast<std::size_t>(k.vertex)] = 1;
-    }
-    std::string stars;
-    int first = -1;
-    for (int v = 0; v < nv; ++v) {
-      const int a = angle[static_cast<std::size_t>(v)];
-      const bool b = boundary[static_cast<std::size_t>(v)] != 0;
-      if (a == 0 || (b ? a <= 270 : a == 360)) continue;
-      if (first < 0) first = v;
-      if (++rep.star_points <= 5)
-        stars += (stars.empty() ? "vertex " : ", vertex ") + std::to_string(v) + " (" + std::to_string(a) + " degrees" +
-                 (b ? ", on the boundary)" : ")");
-    }
-    if (first >= 0)
-      fail(V[static_cast<std::size_t>(first)].line,
-           std::to_string(rep.star_points) + " star point" + (rep.star_points > 1 ? "s" : "") + " (extraordinary vertices: " +
-               stars + (rep.star_points > 5 ? ", ..." : "") +
-               "): a T-spline with star points has no global (s, t) parametrisation; not supported");
-  }
-  // Link directions: turn left at every corner; opposite links point the other way.
-  std::vector<int> dir(static_cast<std::size_t>(nl), -1);
-  std::vector<int> stack;
-  int seed = -1;
-  for (int f = 0; f < nf && seed < 0; ++f)
-    if (!loops[static_cast<std::size_t>(f)].empty()) seed = f;
-  if (seed < 0) fail("no face");
-  const auto set_dir = [&](int l, int d, int line) {
-    if (dir[static_cast<std::size_t>(l)] == -1) {
-      dir[static_cast<std::size_t>(l)] = d;
-      return true;
-    }
-    if (dir[static_cast<std::size_t>(l)] != d) {
-      ++rep.star_points;
-      fail(line, "link " + std::to_string(l) + " gets two directions: the T-image has a star point (extraordinary vertex) near vertex " +
-                     std::to_string(link(l).vertex) + ", which has no global (s, t) parametrisation");
-    }
-    return false;
-  };
-  {
-    const auto& loop = loops[static_cast<std::size_t>(seed)];
-    auto first_corner = std::find_if(loop.begin(), loop.end(), [&](int l) { return link(l).flag == 0; });
-    set_dir(*first_corner, 3, F[static_cast<std::size_t>(seed)].line);
-    stack.push_back(seed);
-  }
-  std::vector<char> face_done(static_cast<std::size_t>(nf), 0);
-  face_done[static_cast<std::size_t>(seed)] = 1;
-  while (!stack.empty()) {
-    const int f = stack.back();
-    stack.pop_back();
-    const auto& loop = loops[static_cast<std::size_t>(f)];
-    const int line = F[static_cast<std::size_t>(f)].line;
-    std::size_t start = 0;
-    while (dir[static_cast<std::size_t>(loop[start])] < 0) ++start;
-    int d = dir[static_cast<std::size_t>(loop[start])];
-    for (std::size_t i = 1; i <= loop.size(); ++i) {
-      const int l = loop[(start + i) % loop.size()];
-      if (link(l).flag == 0) d = (d + 1) % 4;
-      set_dir(l, d, line);
-    }
-    for (int l : loop) {
-      const RawLink& k = link(l);
-      set_dir(k.opp, (dir[static_cast<std::size_t>(l)] + 2) % 4, line);
-      const int g = link(k.opp).face;
-      if (g >= 0 && !face_done[static_cast<std::size_t>(g)]) {
-        face_done[static_cast<std::size_t>(g)] = 1;
-        stack.push_back(g);
-      }
-    }
-  }
-  for (int f = 0; f < nf; ++f)
-    if (!loops[static_cast<std::size_t>(f)].empty() && !face_done[static_cast<std::size_t>(f)])
-      fail(F[static_cast<std::size_t>(f)].line, "face " + std::to_string(f) + " is not connected to face " + std::to_string(seed) + " (one T-spline per file)");
-  // Edge intervals and vertex parameters.
-  std::vector<double> interval(static_cast<std::size_t>(ne), 0.0);
+  // Edge intervals.
+  TMesh& mesh = out.mesh;
+  mesh.degree = degree;
+  mesh.force_bezier = ts.force_bezier;
+  mesh.intervals.assign(static_cast<std::size_t>(ne), 0.0);
   for (int e = 0; e < ne; ++e) {
     const Record& r = E[static_cast<std::size_t>(e)];
     if (r.words.empty()) {
@@ -292,106 +211,55 @@ TsmModel Reader::build() {
     const int l = number<int>(r, 0, "link");
     if (l < 0 || l >= nl || !links[static_cast<std::size_t>(l)] || link(l).edge != e)
       fail(r.line, "edge " + std::to_string(e) + " names link " + std::to_string(l) + ", which is not one of its links");
-    interval[static_cast<std::size_t>(e)] = number<double>(r, 1, "knot interval");
-    if (!(interval[static_cast<std::size_t>(e)] > 0) || !std::isfinite(interval[static_cast<std::size_t>(e)]))
+    double& d = mesh.intervals[static_cast<std::size_t>(e)];
+    d = number<double>(r, 1, "knot interval");
+    if (!(d > 0) || !std::isfinite(d))
       fail(r.line, "edge " + std::to_string(e) + ": knot interval " + std::string(r.words[1]) + " is not positive");
   }
-  std::vector<std::array<double, 2>> param(static_cast<std::size_t>(nv));
-  std::vector<char> placed(static_cast<std::size_t>(nv), 0);
-  std::vector<std::vector<int>> out_links(static_cast<std::size_t>(nv));
+  // The half-edge mesh; each link's direction in its vertex's frame, walking round the vertex from the link its
+  // `v` record names (the next link counter-clockwise turns by the angle of the face between them).
+  mesh.links.resize(static_cast<std::size_t>(nl));
   for (int i = 0; i < nl; ++i)
-    if (links[static_cast<std::size_t>(i)]) out_links[static_cast<std::size_t>(link(i).vertex)].push_back(i);
-  double extent = 0;
-  for (double x : interval) extent += x;
-  const double tol = 1e-9 * std::max(extent, 1e-300);
-  const int v0 = link(loops[static_cast<std::size_t>(seed)].front()).vertex;
-  placed[static_cast<std::size_t>(v0)] = 1;
-  std::vector<int> vstack{v0};
-  while (!vstack.empty()) {
-    const int v = vstack.back();
-    vstack.pop_back();
-    for (int l : out_links[static_cast<std::size_t>(v)]) {
-      const int d = dir[static_cast<std::size_t>(l)];
-      if (d < 0) continue;  // a link of a boundary only reached through its opposite's face: set below
-      const int w = link(link(l).opp).vertex;
-      std::array<double, 2> p = param[static_cast<std::size_t>(v)];
-      p[static_cast<std::size_t>(tdir_axis(d))] += tdir_sign(d) * interval[static_cast<std::size_t>(link(l).edge)];
-      if (!placed[static_cast<std::size_t>(w)]) {
-        placed[static_cast<std::size_t>(w)] = 1;
-        param[static_cast<std::size_t>(w)] = p;
-        vstack.push_back(w);
-      } else if (std::abs(p[0] - param[static_cast<std::size_t>(w)][0]) > tol || std::abs(p[1] - param[static_cast<std::size_t>(w)][1]) > tol) {
-        fail(E[static_cast<std::size_t>(link(l).edge)].line,
-             "contradictory knot intervals: vertex " + std::to_string(w) + " gets two different (s, t) through edge " +
-                 std::to_string(link(l).edge));
-      }
+    if (links[static_cast<std::size_t>(i)]) {
+      const RawLink& k = *links[static_cast<std::size_t>(i)];
+      const bool in_face = k.face >= 0 && !loops[static_cast<std::size_t>(k.face)].empty();
+      mesh.links[static_cast<std::size_t>(i)] = {k.prev, k.next, k.opp, k.vertex, in_face ? k.face : -1, k.edge, k.flag, -1};
     }
-  }
-  // Merge parameter values that agree up to rounding.
-  for (int k = 0; k < 2; ++k) {
-    std::vector<std::pair<double, int>> vals;
-    for (int v = 0; v < nv; ++v)
-      if (placed[static_cast<std::size_t>(v)]) vals.push_back({param[static_cast<std::size_t>(v)][static_cast<std::size_t>(k)], v});
-    std::sort(vals.begin(), vals.end());
-    double rep_value = vals.front().first, base = vals.front().first;
-    for (auto& [x, v] : vals) {
-      if (x - rep_value > tol) rep_value = x;
-      param[static_cast<std::size_t>(v)][static_cast<std::size_t>(k)] = rep_value - base;
-    }
-  }
-  // The T-image, without deleted slots.
-  TImage& im = ts.image;
-  std::vector<int> vmap(static_cast<std::size_t>(nv), -1), emap(static_cast<std::size_t>(ne), -1), lmap(static_cast<std::size_t>(nl), -1);
+  mesh.faces = loops;
+  mesh.vertices.resize(static_cast<std::size_t>(nv));
   for (int v = 0; v < nv; ++v) {
-    if (V[static_cast<std::size_t>(v)].words.empty()) {
+    const Record& vr = V[static_cast<std::size_t>(v)];
+    TMeshVertex& x = mesh.vertices[static_cast<std::size_t>(v)];
+    if (vr.words.empty()) {
       ++rep.deleted;
+      x.live = false;
       continue;
     }
-    if (!placed[static_cast<std::size_t>(v)]) fail(V[static_cast<std::size_t>(v)].line, "vertex " + std::to_string(v) + " is on no face");
-    vmap[static_cast<std::size_t>(v)] = static_cast<int>(im.vertices.size());
-    im.vertices.push_back({param[static_cast<std::size_t>(v)][0], param[static_cast<std::size_t>(v)][1], {-1, -1, -1, -1}});
-  }
-  for (int e = 0; e < ne; ++e) {
-    if (E[static_cast<std::size_t>(e)].words.empty()) continue;
-    const int l = number<int>(E[static_cast<std::size_t>(e)], 0, "link");
-    int a = vmap[static_cast<std::size_t>(link(l).vertex)], b = vmap[static_cast<std::size_t>(link(link(l).opp).vertex)];
-    const int d = dir[static_cast<std::size_t>(l)];
-    if (d == 1 || d == 2) std::swap(a, b);  // edges run in increasing parameter
-    emap[static_cast<std::size_t>(e)] = static_cast<int>(im.edges.size());
-    im.edges.push_back({a, b});
-  }
-  for (int l = 0; l < nl; ++l) {
-    if (!links[static_cast<std::size_t>(l)]) continue;
-    const int d = dir[static_cast<std::size_t>(l)];
-    lmap[static_cast<std::size_t>(l)] = static_cast<int>(im.links.size());
-    im.links.push_back({emap[static_cast<std::size_t>(link(l).edge)], d == 0 || d == 3});
-  }
-  for (int f = 0; f < nf; ++f) {
-    if (loops[static_cast<std::size_t>(f)].empty()) continue;
-    TFace face;
-    for (int l : loops[static_cast<std::size_t>(f)]) face.loop.push_back(lmap[static_cast<std::size_t>(l)]);
-    im.faces.push_back(std::move(face));
+    const int l = number<int>(vr, 0, "link");
+    const int fd = vr.words.size() > 1 ? direction_of(vr.words[1]) : -1;
+    if (l < 0 || l >= nl || !links[static_cast<std::size_t>(l)] || link(l).vertex != v || fd < 0)
+      fail(vr.line, "vertex " + std::to_string(v) + " needs an outgoing link and a direction (NORTH, WEST, SOUTH, EAST)");
+    int c = l, frame = fd;
+    for (int n = 0; n < 8 && mesh.links[static_cast<std::size_t>(c)].frame < 0; ++n) {
+      mesh.links[static_cast<std::size_t>(c)].frame = frame;
+      frame = (frame + link(c).flag + 1) % 4;
+      c = link(link(c).prev).opp;
+    }
   }
   for (const Record& r : all("ec"))
     if (!r.words.empty()) {
       const int e = number<int>(r, 0, "edge");
-      if (e < 0 || e >= ne || emap[static_cast<std::size_t>(e)] < 0) fail(r.line, "edge condition names edge " + std::to_string(e) + ", which does not exist");
-      im.conditions.push_back({emap[static_cast<std::size_t>(e)], number<int>(r, 1, "condition") != 0});
+      if (e < 0 || e >= ne || E[static_cast<std::size_t>(e)].words.empty()) fail(r.line, "edge condition names edge " + std::to_string(e) + ", which does not exist");
+      mesh.conditions.push_back({e, number<int>(r, 1, "condition") != 0 ? 1 : 0});
     }
-  connect_vertex_links(im);
-  try {
-    validate(im);
-  } catch (const Error& e) {
-    fail(e.what());
-  }
-  for (int v = 0; v < nv; ++v) {
-    int n = 0, straight = 0;
-    for (int l : out_links[static_cast<std::size_t>(v)]) {
-      ++n;
-      if (link(l).face >= 0 && link(l).flag == 1) ++straight;
+  std::vector<int> valence(static_cast<std::size_t>(nv), 0), straight(static_cast<std::size_t>(nv), 0);
+  for (int l = 0; l < nl; ++l)
+    if (links[static_cast<std::size_t>(l)]) {
+      ++valence[static_cast<std::size_t>(link(l).vertex)];
+      if (link(l).face >= 0 && link(l).flag == 1) ++straight[static_cast<std::size_t>(link(l).vertex)];
     }
-    if (straight > 0 && n == 3) ++rep.t_junctions;
-  }
+  for (int v = 0; v < nv; ++v)
+    if (straight[static_cast<std::size_t>(v)] > 0 && valence[static_cast<std::size_t>(v)] == 3) ++rep.t_junctions;
 
   // Grips and the grip map.
   const auto& G = all("0g");
@@ -400,23 +268,25 @@ TsmModel Reader::build() {
     deleted_grip.push_back(r.words.empty() ? 1 : 0);
     if (r.words.empty()) {  // a deleted grip keeps its number; the grip map gives it vertex -1
       ++rep.deleted;
-      ts.pointset.points.push_back({});
+      mesh.points.push_back({});
       continue;
     }
     RationalPoint p{{number<double>(r, 0, "x"), number<double>(r, 1, "y"), number<double>(r, 2, "z")},
                     r.words.size() > 3 ? number<double>(r, 3, "weight") : 1.0};
     if (!(p.w > 0)) fail(r.line, "control point weight " + std::string(r.words[3]) + " is not positive");
-    ts.pointset.points.push_back(p);
+    mesh.points.push_back(p);
   }
   const int ng = static_cast<int>(G.size());
   std::vector<int> grip_vertex;
-  std::vector<int> primary(static_cast<std::size_t>(nv), -1);
-  struct Block {
-    int line;
-    std::array<int, 4> dims;
-    std::vector<int> grips;
+  std::vector<char> used(static_cast<std::size_t>(ng), 0);
+  const auto use = [&](int g, int v, int line) {
+    if (deleted_grip[static_cast<std::size_t>(g)]) fail(line, "grip " + std::to_string(g) + " is deleted but used");
+    if (used[static_cast<std::size_t>(g)]) fail(line, "grip " + std::to_string(g) + " is used twice");
+    used[static_cast<std::size_t>(g)] = 1;
+    if (g < static_cast<int>(grip_vertex.size()) && grip_vertex[static_cast<std::size_t>(g)] != v)
+      fail(line, "grip " + std::to_string(g) + " belongs to vertex " + std::to_string(grip_vertex[static_cast<std::size_t>(g)]) + ", not " + std::to_string(v));
   };
-  std::map<int, Block> blocks;
+  std::vector<int> block_line(static_cast<std::size_t>(nv), 0);  // blocks are checked once the map is complete
   for (const Record& r : grip_map_) {
     if (r.words.empty()) fail(r.line, "empty grip map record");
     const std::string_view w = r.words[0];
@@ -427,23 +297,29 @@ TsmModel Reader::build() {
         grip_vertex.push_back(-1);
         continue;
       }
-      if (v < 0 || v >= nv || vmap[static_cast<std::size_t>(v)] < 0) fail(r.line, "grip map names vertex " + std::to_string(v) + ", which does not exist");
+      if (v < 0 || v >= nv || !mesh.vertices[static_cast<std::size_t>(v)].live) fail(r.line, "grip map names vertex " + std::to_string(v) + ", which does not exist");
       if (w == "gvp") {
-        if (primary[static_cast<std::size_t>(v)] >= 0) fail(r.line, "vertex " + std::to_string(v) + " has two primary grips");
-        primary[static_cast<std::size_t>(v)] = static_cast<int>(grip_vertex.size());
+        int& p = mesh.vertices[static_cast<std::size_t>(v)].primary;
+        if (p >= 0) fail(r.line, "vertex " + std::to_string(v) + " has two primary grips");
+        p = static_cast<int>(grip_vertex.size());
+        if (p >= ng) fail(r.line, "the grip map lists more grips than the file has control points");
+        grip_vertex.push_back(v);
+        use(p, v, r.line);
+        continue;
       }
       grip_vertex.push_back(v);
     } else if (w == "cg") {
-      Block b{r.line, {}, {}};
       const int v = number<int>(r, 1, "vertex");
-      if (v < 0 || v >= nv || vmap[static_cast<std::size_t>(v)] < 0) fail(r.line, "grip block names vertex " + std::to_string(v) + ", which does not exist");
+      if (v < 0 || v >= nv || !mesh.vertices[static_cast<std::size_t>(v)].live) fail(r.line, "grip block names vertex " + std::to_string(v) + ", which does not exist");
+      TMeshVertex& x = mesh.vertices[static_cast<std::size_t>(v)];
+      if (!x.block.empty() || x.block_dims != std::array<int, 4>{}) fail(r.line, "vertex " + std::to_string(v) + " has two grip blocks");
       if (number<int>(r, 2, "valence") != 4) fail(r.line, "grip block of valence other than 4 (a star point)");
       long long count = 0;
-      for (int k = 0; k < 4; ++k) b.dims[static_cast<std::size_t>(k)] = number<int>(r, 3 + static_cast<std::size_t>(k), "block size");
+      for (int k = 0; k < 4; ++k) x.block_dims[static_cast<std::size_t>(k)] = number<int>(r, 3 + static_cast<std::size_t>(k), "block size");
       for (int k = 0; k < 4; ++k) {
-        const int d = b.dims[static_cast<std::size_t>(k)];
+        const int d = x.block_dims[static_cast<std::size_t>(k)];
         if (d < 0 || static_cast<std::size_t>(d) > r.words.size()) fail(r.line, "grip block size " + std::to_string(d) + " out of range");
-        count += static_cast<long long>(d) * (b.dims[static_cast<std::size_t>((k + 1) % 4)] + 1LL);
+        count += static_cast<long long>(d) * (x.block_dims[static_cast<std::size_t>((k + 1) % 4)] + 1LL);
       }
       if (static_cast<long long>(r.words.size()) != 7 + count)
         fail(r.line, "grip block of vertex " + std::to_string(v) + " lists " + std::to_string(r.words.size() - 7) +
@@ -451,62 +327,23 @@ TsmModel Reader::build() {
       for (long long i = 0; i < count; ++i) {
         const int g = number<int>(r, 7 + static_cast<std::size_t>(i), "grip");
         if (g < -1 || g >= ng) fail(r.line, "grip block names grip " + std::to_string(g) + ", which does not exist");
-        b.grips.push_back(g);
+        x.block.push_back(g);
       }
-      if (!blocks.emplace(v, std::move(b)).second) fail(r.line, "vertex " + std::to_string(v) + " has two grip blocks");
+      block_line[static_cast<std::size_t>(v)] = r.line;
+      if (x.block.empty()) x.block.push_back(-1);  // an empty block still counts as the vertex's one block
     } else {
       rep.skipped_records["0m " + std::string(w)]++;
     }
   }
   if (static_cast<int>(grip_vertex.size()) != ng)
     fail("the grip map lists " + std::to_string(grip_vertex.size()) + " grips, the file has " + std::to_string(ng) + " control points");
-  // Nodes: per vertex its primary grip at block position (0, 0) and the block's grips at (a, b) (a east, b north).
-  std::vector<char> used(static_cast<std::size_t>(ng), 0);
   for (int v = 0; v < nv; ++v) {
-    if (vmap[static_cast<std::size_t>(v)] < 0 || primary[static_cast<std::size_t>(v)] < 0) continue;
-    std::map<std::array<int, 2>, int> node_at;
-    const auto add_node = [&](std::array<int, 2> pos, int g, int line) {
-      if (deleted_grip[static_cast<std::size_t>(g)]) fail(line, "grip " + std::to_string(g) + " is deleted but used");
-      if (used[static_cast<std::size_t>(g)]) fail(line, "grip " + std::to_string(g) + " is used twice");
-      if (grip_vertex[static_cast<std::size_t>(g)] != v) fail(line, "grip " + std::to_string(g) + " belongs to vertex " + std::to_string(grip_vertex[static_cast<std::size_t>(g)]) + ", not " + std::to_string(v));
-      used[static_cast<std::size_t>(g)] = 1;
-      node_at[pos] = static_cast<int>(ts.connect.nodes.size());
-      TNode n;
-      n.kind = TAnchorKind::vertex;
-      n.anchor = vmap[static_cast<std::size_t>(v)];
-      n.point = g;
-      ts.connect.nodes.push_back(n);
-    };
-    add_node({0, 0}, primary[static_cast<std::size_t>(v)], V[static_cast<std::size_t>(v)].line);
-    if (auto it = blocks.find(v); it != blocks.end()) {
-      const Block& b = it->second;
-      // The vertex frame: `v L DIR` says link L goes DIR in it; its direction here gives the rotation.
-      const Record& vr = V[static_cast<std::size_t>(v)];
-      const int l = number<int>(vr, 0, "link");
-      const int fd = vr.words.size() > 1 ? direction_of(vr.words[1]) : -1;
-      if (l < 0 || l >= nl || !links[static_cast<std::size_t>(l)] || link(l).vertex != v || fd < 0)
-        fail(vr.line, "vertex " + std::to_string(v) + " needs an outgoing link and a direction (NORTH, WEST, SOUTH, EAST)");
-      const int rot = (dir[static_cast<std::size_t>(l)] - fd + 4) % 4;
-      static constexpr std::array<std::array<int, 2>, 4> step{{{0, 1}, {-1, 0}, {0, -1}, {1, 0}}};
-      std::size_t gi = 0;
-      for (int k = 0; k < 4; ++k) {
-        const auto& a = step[static_cast<std::size_t>((k + rot) % 4)];
-        const auto& c = step[static_cast<std::size_t>((k + 1 + rot) % 4)];
-        for (int i = 1; i <= b.dims[static_cast<std::size_t>(k)]; ++i)
-          for (int j = 0; j <= b.dims[static_cast<std::size_t>((k + 1) % 4)]; ++j) {
-            const int g = b.grips[gi++];
-            if (g >= 0) {
-              add_node({i * a[0] + j * c[0], i * a[1] + j * c[1]}, g, b.line);
-              ++rep.repeated_knot_nodes;
-            }
-          }
-      }
-    }
-    for (const auto& [pos, id] : node_at)
-      for (int d = 0; d < 4; ++d) {
-        static constexpr std::array<std::array<int, 2>, 4> step{{{0, 1}, {-1, 0}, {0, -1}, {1, 0}}};
-        auto it = node_at.find({pos[0] + step[static_cast<std::size_t>(d)][0], pos[1] + step[static_cast<std::size_t>(d)][1]});
-        if (it != node_at.end()) ts.connect.nodes[static_cast<std::size_t>(id)].neighbours[static_cast<std::size_t>(d)] = it->second;
+    TMeshVertex& x = mesh.vertices[static_cast<std::size_t>(v)];
+    if (x.block.size() == 1 && x.block[0] == -1 && x.block_dims == std::array<int, 4>{}) x.block.clear();
+    for (int g : x.block)
+      if (g >= 0) {
+        use(g, v, block_line[static_cast<std::size_t>(v)]);
+        ++rep.repeated_knot_nodes;
       }
   }
   for (int g = 0; g < ng; ++g) {
@@ -516,8 +353,20 @@ TsmModel Reader::build() {
       fail(G[static_cast<std::size_t>(g)].line, "control point " + std::to_string(g) + " (vertex " + std::to_string(grip_vertex[static_cast<std::size_t>(g)]) +
                                                     ") is neither a primary grip nor in a grip block");
   }
+  // Star points (extraordinary vertices): no global (s, t); the model is kept as its mesh (see t_mesh_surface).
+  const std::vector<int> stars = star_points(mesh);
+  rep.star_points = static_cast<int>(stars.size());
+  int seed = -1;
+  for (int f = 0; f < nf && seed < 0; ++f)
+    if (!loops[static_cast<std::size_t>(f)].empty()) seed = f;
+  if (seed < 0) fail("no face");
+  for (int v = 0; v < nv; ++v)
+    if (mesh.vertices[static_cast<std::size_t>(v)].live && valence[static_cast<std::size_t>(v)] == 0)
+      fail(V[static_cast<std::size_t>(v)].line, "vertex " + std::to_string(v) + " is on no face");
+  if (!stars.empty()) return out;
   try {
-    validate(ts);
+    TChart chart = t_spline_chart(mesh, {}, seed, true);
+    ts = std::move(chart.spline);
   } catch (const Error& e) {
     fail(e.what());
   }
@@ -546,6 +395,23 @@ int compass(const TImage& im, int l) {
   const TVertex& a = im.vertices[static_cast<std::size_t>(im.link_start(l))];
   const TVertex& b = im.vertices[static_cast<std::size_t>(im.link_end(l))];
   return a.s == b.s ? (b.t > a.t ? 0 : 2) : (b.s > a.s ? 3 : 1);
+}
+
+void write_grip(std::ostream& os, const RationalPoint& p) {
+  os << "0g";
+  for (double x : {p.xyz[0], p.xyz[1], p.xyz[2], p.w}) {
+    os << ' ';
+    write_number(os, x);
+  }
+  os << "\n";
+}
+
+// The text first, so that nothing is written on error.
+template <class Model>
+void write_tsm_file(const std::string& path, const Model& model) {
+  std::ostringstream text;
+  write_tsm(text, model);
+  write_file_atomically(path, [&](std::ostream& os) { os << text.str(); });
 }
 
 }  // namespace
@@ -692,22 +558,84 @@ void write_tsm(std::ostream& os, const TSpline& ts) {
     os << "0m " << (grip_of[static_cast<std::size_t>(on[static_cast<std::size_t>(grip_vertex[g])][0])] == static_cast<int>(g) ? "gvp " : "gv ")
        << grip_vertex[g] << '\n';
   for (const std::string& b : blocks) os << b << '\n';
-  for (int n : grip_node) {
-    const RationalPoint& p = ts.pointset.points[static_cast<std::size_t>(ts.connect.nodes[static_cast<std::size_t>(n)].point)];
-    os << "0g";
-    for (double x : {p.xyz[0], p.xyz[1], p.xyz[2], p.w}) {
-      os << ' ';
-      write_number(os, x);
+  for (int n : grip_node) write_grip(os, ts.pointset.points[static_cast<std::size_t>(ts.connect.nodes[static_cast<std::size_t>(n)].point)]);
+  os << "\ntol 1e-05\nver 1\n";
+}
+
+void write_tsm(const std::string& path, const TSpline& ts) { write_tsm_file(path, ts); }
+
+void write_tsm(std::ostream& os, const TMesh& m) {
+  static constexpr std::array<const char*, 4> kName{"NORTH", "WEST", "SOUTH", "EAST"};
+  // Each grip's vertex (its own node or a block node); grips no vertex names are deleted slots.
+  std::vector<int> grip_vertex(m.points.size(), -1);
+  std::vector<char> primary(m.points.size(), 0);
+  for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+    const TMeshVertex& x = m.vertices[v];
+    if (!x.live) continue;
+    if (x.primary >= 0) {
+      grip_vertex[static_cast<std::size_t>(x.primary)] = static_cast<int>(v);
+      primary[static_cast<std::size_t>(x.primary)] = 1;
     }
+    for (int g : x.block)
+      if (g >= 0) grip_vertex[static_cast<std::size_t>(g)] = static_cast<int>(v);
+  }
+  os << "#TS0200\n\ndegree " << m.degree << "\ncap-type 1\nstar-smoothness 0\nunits 1 millimeters\n"
+     << "force-bezier-end-conditions " << (m.force_bezier ? 1 : 0) << '\n';
+  for (const auto& loop : m.faces) {
+    if (loop.empty()) os << "f\n";
+    else os << "f " << loop.front() << " 0\n";
+  }
+  std::vector<int> edge_link(m.intervals.size(), -1);
+  for (int l = 0; l < static_cast<int>(m.links.size()); ++l)
+    if (m.links[static_cast<std::size_t>(l)].vertex >= 0 && edge_link[static_cast<std::size_t>(m.links[static_cast<std::size_t>(l)].edge)] < 0)
+      edge_link[static_cast<std::size_t>(m.links[static_cast<std::size_t>(l)].edge)] = l;
+  for (std::size_t e = 0; e < m.intervals.size(); ++e) {
+    if (edge_link[e] < 0) {
+      os << "e\n";
+      continue;
+    }
+    os << "e " << edge_link[e] << ' ';
+    write_number(os, m.intervals[e]);
     os << '\n';
+  }
+  std::vector<int> vertex_link(m.vertices.size(), -1);
+  for (int l = 0; l < static_cast<int>(m.links.size()); ++l) {
+    const TMeshLink& k = m.links[static_cast<std::size_t>(l)];
+    if (k.vertex >= 0 && k.frame >= 0 && vertex_link[static_cast<std::size_t>(k.vertex)] < 0) vertex_link[static_cast<std::size_t>(k.vertex)] = l;
+  }
+  for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+    if (!m.vertices[v].live) {
+      os << "v\n";
+      continue;
+    }
+    require(vertex_link[v] >= 0, "TSM: vertex " + std::to_string(v) + " has no link with a frame direction");
+    os << "v " << vertex_link[v] << ' ' << kName[static_cast<std::size_t>(m.links[static_cast<std::size_t>(vertex_link[v])].frame)] << '\n';
+  }
+  for (const TMeshLink& k : m.links) {
+    if (k.vertex < 0) os << "l\n";
+    else os << "l " << k.prev << ' ' << k.next << ' ' << k.opp << ' ' << k.vertex << ' ' << k.face << ' ' << k.edge << ' ' << k.flag << '\n';
+  }
+  for (const auto& [e, flag] : m.conditions) os << "ec " << e << ' ' << flag << '\n';
+  os << "0m odd-grip-map\n";
+  for (std::size_t g = 0; g < m.points.size(); ++g) os << "0m " << (primary[g] ? "gvp " : "gv ") << grip_vertex[g] << '\n';
+  for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+    const TMeshVertex& x = m.vertices[v];
+    if (!x.live || x.block.empty()) continue;
+    os << "0m cg " << v << " 4";
+    for (int d : x.block_dims) os << ' ' << d;
+    for (int g : x.block) os << ' ' << g;
+    os << '\n';
+  }
+  for (std::size_t g = 0; g < m.points.size(); ++g) {
+    if (grip_vertex[g] < 0) {
+      os << "0g\n";
+      continue;
+    }
+    write_grip(os, m.points[g]);
   }
   os << "\ntol 1e-05\nver 1\n";
 }
 
-void write_tsm(const std::string& path, const TSpline& ts) {
-  std::ostringstream text;
-  write_tsm(text, ts);
-  write_file_atomically(path, [&](std::ostream& os) { os << text.str(); });
-}
+void write_tsm(const std::string& path, const TMesh& m) { write_tsm_file(path, m); }
 
 }  // namespace trivar::io

@@ -18,13 +18,14 @@
 // Parametrisation: link directions follow from the corners (each face is a counter-clockwise rectangle, turning
 // left at every corner), propagated across edges; vertex parameters are sums of knot intervals along links
 // from vertex 0, with values that agree to 1e-9 of the domain size merged (interval sums are rounded).
-// Star points (extraordinary interior vertices) have no global (s, t) parametrisation: they are detected and
-// counted, and the file is refused with a message naming them.
+// Star points (extraordinary vertices) have no global (s, t) parametrisation: such a model is kept as its mesh
+// (TsmModel::mesh, evaluated per face by TMeshSurface) and TsmModel::spline stays empty.
 #include <iosfwd>
 #include <map>
 #include <string>
 #include <string_view>
 
+#include "trivar/tspline/t_mesh.hpp"
 #include "trivar/tspline/t_spline.hpp"
 
 namespace trivar::io {
@@ -42,13 +43,14 @@ struct TsmReport {
 };
 
 struct TsmModel {
-  TSpline spline;
+  TSpline spline;  // the global T-spline; empty (no faces) when the mesh has star points
+  TMesh mesh;      // the half-edge mesh as read
   TsmReport report;
 };
 
 // Throws trivar::Error "name:line: ..." (or "name: ..." for whole-model checks) on a missing header, a
 // malformed record, a dangling id, inconsistent links (opp not mutual, a loop that does not close, a link in
-// the wrong face), a non-rectangular face, contradictory knot intervals, star points, or grips that do not
+// the wrong face), a non-rectangular face, contradictory knot intervals, or grips that do not
 // match the grip map.
 TsmModel parse_tsm(std::string_view text, const std::string& name);
 TsmModel read_tsm(const std::string& path);
@@ -60,5 +62,9 @@ TsmModel read_tsm(const std::string& path);
 // boundary that is not a simple loop at a vertex. Written atomically; nothing is written on error.
 void write_tsm(std::ostream& os, const TSpline& ts);
 void write_tsm(const std::string& path, const TSpline& ts);
+// Writes the half-edge mesh as read (also one with star points): every slot keeps its number (deleted ones as
+// bare keywords), so read_tsm gives the same mesh. Written atomically.
+void write_tsm(std::ostream& os, const TMesh& mesh);
+void write_tsm(const std::string& path, const TMesh& mesh);
 
 }  // namespace trivar::io

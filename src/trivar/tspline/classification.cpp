@@ -1,5 +1,6 @@
 #include "trivar/tspline/classification.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "trivar/core/error.hpp"
@@ -38,15 +39,59 @@ std::vector<TJunctionExtension> t_junction_extensions(const TSpline& ts) {
         }
         return y;
       };
-      const double face_end = walk(sign, (p + 1) / 2), edge_end = walk(-sign, (p - 1) / 2);
+      // ceil(p / 2) and floor(p / 2) knot lines (Beirao da Veiga et al. 2013; (p + 1) / 2 and (p - 1) / 2 for odd p).
+      const double face_end = walk(sign, (p + 1) / 2), edge_end = walk(-sign, p / 2);
       out.push_back({v, d, k, line, std::min(face_end, edge_end), std::max(face_end, edge_end)});
     }
   }
   return out;
 }
 
+namespace {
+
+// Whether two local knot vectors are windows of one knot vector (the one's knots from some index on are the
+// other's first knots, and the rest lies beyond).
+bool windows_of_one(const std::vector<double>& a, const std::vector<double>& b) {
+  const std::size_t n = a.size();
+  for (std::size_t shift = 0; shift < n; ++shift) {
+    bool ok = true;
+    for (std::size_t i = 0; i + shift < n && ok; ++i) ok = a[i + shift] == b[i];
+    if (ok) return true;
+  }
+  return false;
+}
+
+bool overlap(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && (windows_of_one(a, b) || windows_of_one(b, a));
+}
+
+}  // namespace
+
+DualCompatibility dual_compatibility(const TSplineSurface& surface) {
+  DualCompatibility dc;
+  const auto basis = surface.basis();
+  const Incidence& on = surface.element_supports();
+  std::vector<std::pair<int, int>> seen;
+  for (int e = 0; e < on.size(); ++e) {
+    const auto f = on[e];
+    for (std::size_t i = 0; i < f.size(); ++i)
+      for (std::size_t j = i + 1; j < f.size(); ++j) {
+        const int a = std::min(f[i], f[j]), b = std::max(f[i], f[j]);
+        const auto& ka = basis[static_cast<std::size_t>(a)].knots;
+        const auto& kb = basis[static_cast<std::size_t>(b)].knots;
+        if (overlap(ka[0], kb[0]) || overlap(ka[1], kb[1])) continue;
+        if (std::find(seen.begin(), seen.end(), std::pair{a, b}) != seen.end()) continue;
+        seen.push_back({a, b});
+        ++dc.failing_pairs;
+        if (dc.first_pair[0] < 0) dc.first_pair = {a, b};
+      }
+  }
+  dc.compatible = dc.failing_pairs == 0;
+  return dc;
+}
+
 std::string TSplineClass::part42_type() const {
-  if (analysis_suitable.value_or(false)) return "ANALYSIS_SUITABLE_T_SPLINE";
+  if (analysis_suitable) return "ANALYSIS_SUITABLE_T_SPLINE";
   if (semi_standard) return "SEMI_STANDARD_T_SPLINE";
   return "STANDARD_T_SPLINE";
 }
@@ -62,15 +107,16 @@ TSplineClass classify(const TSpline& ts, const TSplineSurface& surface, bool exa
   }
   const Box<2> dom = ts.image.domain();
   c.rectangular_domain = std::abs(area - dom.extent(0) * dom.extent(1)) <= 1e-12 * dom.extent(0) * dom.extent(1);
-  if (ts.degrees[0] % 2 == 1 && ts.degrees[1] % 2 == 1) {
-    for (const auto& a : ext)
-      for (const auto& b : ext)
-        if (a.axis == 0 && b.axis == 1 && a.lo <= b.line && b.line <= a.hi && b.lo <= a.line && a.line <= b.hi)
-          ++c.crossing_extensions;
-    c.analysis_suitable = c.crossing_extensions == 0 && c.rectangular_domain;
-  }
+  for (const auto& a : ext)
+    for (const auto& b : ext)
+      // Closed segments: an extension ending on another crosses it (tests: then the blending functions are not
+      // dual-compatible either).
+      if (a.axis == 0 && b.axis == 1 && a.lo <= b.line && b.line <= a.hi && b.lo <= a.line && a.line <= b.hi)
+        ++c.crossing_extensions;
   constexpr double kTol = 1e-12;
   c.standard = surface.partition_of_unity().max_defect <= kTol;
+  c.dual = dual_compatibility(surface);
+  c.analysis_suitable = c.crossing_extensions == 0 && (c.rectangular_domain || (c.dual.compatible && c.standard));
   c.semi_standard = true;
   for (const auto& e : surface.bezier_elements())
     for (std::size_t j = 3; j < e.coefs.size(); j += 4)

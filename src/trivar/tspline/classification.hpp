@@ -1,19 +1,24 @@
 #pragma once
 // What kind of T-spline a T-spline is, and what follows for analysis:
-//   T-junctions and their extensions (Scott, Li, Sederberg, Hughes 2012): for a T-junction whose missing edge
-//   points along s (t likewise), the face extension runs from it in the missing edge's direction until it has
-//   crossed (p_s + 1) / 2 knot lines, the edge extension the other way until (p_s - 1) / 2; the T-mesh is
-//   analysis-suitable when no s-extension meets a t-extension (odd degrees; even degrees are not classified) on a
-//   rectangular domain: the theory (Li, Zheng, Sederberg, Hughes, Scott 2012) is for rectangles, and at concave
-//   corners or holes with Bezier end conditions the blending functions need not sum to one (Rhino's mouse
-//   model: no crossing extensions, sums up to 1.08), so a T-mesh of another shape is not called analysis-suitable.
+//   T-junctions and their extensions (Scott, Li, Sederberg, Hughes 2012 for odd degrees; Beirao da Veiga, Buffa,
+//   Sangalli, Vazquez 2013 for any degree): for a T-junction whose missing edge points along s (t likewise), the
+//   face extension runs from it in the missing edge's direction until it has crossed ceil(p_s / 2) knot lines,
+//   the edge extension the other way until floor(p_s / 2); the T-mesh is analysis-suitable when no s-extension
+//   meets a t-extension. Beirao da Veiga et al. prove, for any degrees on a rectangle, analysis-suitable <=>
+//   dual-compatible: every two blending functions whose supports overlap have, in at least one direction, local
+//   knot vectors that are windows of one knot vector; dual compatibility gives a dual basis, hence linear
+//   independence, on any domain (checked here from the blending functions, independently of the extensions).
+//   On a domain that is not a rectangle the theory does not give a partition of unity (at concave corners or
+//   holes with Bezier end conditions the sums reach 1.08 on Rhino's mouse model with no crossing extensions), so
+//   there a T-mesh is called analysis-suitable when its extensions do not cross, its blending functions are
+//   dual-compatible and they sum to one: the properties analysis relies on.
 //   standard: the blending functions sum to one; semi-standard: sum w_i B_i is one (Sederberg et al. 2004);
 //   read off the Bezier coefficients of the sums, exactly up to rounding.
 //   Linear independence by lr/linear_independence (peeling, then the exact rank of the Bezier extraction).
 // The Part 42 locally_refined_spline_type written for a T-spline (part42_type): ANALYSIS_SUITABLE_T_SPLINE when
 // analysis-suitable, else SEMI_STANDARD_T_SPLINE when semi-standard, else STANDARD_T_SPLINE (the general rational
 // T-spline of Sederberg et al. 2003, whose blending functions need not sum to one).
-#include <optional>
+#include <array>
 #include <string>
 #include <vector>
 
@@ -34,14 +39,22 @@ struct TJunctionExtension {
 // Every T-junction (a vertex with a missing edge whose continuation lies inside a face) and its extension.
 std::vector<TJunctionExtension> t_junction_extensions(const TSpline& ts);
 
+struct DualCompatibility {
+  bool compatible = true;
+  int failing_pairs = 0;                // pairs of overlapping supports with no overlapping knot vectors
+  std::array<int, 2> first_pair{-1, -1};
+};
+DualCompatibility dual_compatibility(const TSplineSurface& surface);
+
 struct TSplineClass {
   int t_junctions = 0;
-  std::optional<bool> analysis_suitable;  // empty for even degrees
+  bool analysis_suitable = false;
   int crossing_extensions = 0;            // pairs of an s- and a t-extension that meet
   bool rectangular_domain = true;         // the faces fill their bounding box
   bool standard = false;                  // sum B_i = 1
   bool semi_standard = false;             // sum w_i B_i = 1
   Independence independence = Independence::not_tested;
+  DualCompatibility dual;
   std::string part42_type() const;
 };
 

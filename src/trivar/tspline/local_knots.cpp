@@ -122,6 +122,7 @@ std::vector<std::array<std::vector<double>, 2>> local_knot_vectors(const TSpline
 }
 
 std::vector<LRBSpline<2>> blending_functions(const TSpline& ts) {
+  require(!ts.image.faces.empty(), "T-spline: no faces (a TSM model with star points has no global (s, t); it is evaluated face by face, TMeshSurface)");
   auto knots = local_knot_vectors(ts);
   std::vector<LRBSpline<2>> basis(knots.size());
   for (std::size_t i = 0; i < knots.size(); ++i) {

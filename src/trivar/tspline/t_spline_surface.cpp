@@ -209,6 +209,11 @@ void TSplineSurface::eval_on_element(int e, const Param<2>& u, double* out) cons
   require(e >= 0 && e < static_cast<int>(elements_.size()), "TSplineSurface::eval_on_element: no element " + std::to_string(e));
   eval_element<false>(e, u, out);
 }
+
+void TSplineSurface::eval_first_derivatives_on_element(int e, const Param<2>& u, double* out) const {
+  require(e >= 0 && e < static_cast<int>(elements_.size()), "TSplineSurface::eval_first_derivatives_on_element: no element " + std::to_string(e));
+  eval_element<true>(e, u, out);
+}
 void TSplineSurface::eval_first_derivatives(const Param<2>& u, double* out) const { eval_impl<true>(u, out); }
 
 void TSplineSurface::eval_many(std::span<const Param<2>> u, std::span<double> out, int threads) const {

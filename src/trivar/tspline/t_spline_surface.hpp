@@ -52,6 +52,8 @@ public:
   // x, y, z at u by element e's patch (u in its closed box): points on a side shared with a hole or with
   // another element, evaluated by the element that owns them.
   void eval_on_element(int e, const Param<2>& u, double* out) const;
+  // Value, d/ds, d/dt by element e's patch (9 values).
+  void eval_first_derivatives_on_element(int e, const Param<2>& u, double* out) const;
   // eval at every u (out: 3 per point), threads as parallel_for (<= 0: all).
   void eval_many(std::span<const Param<2>> u, std::span<double> out, int threads = 0) const;
 

@@ -1,0 +1,63 @@
+#pragma once
+// A T-spline as its control mesh, before any parametrisation: half-edge links as the Rhino T-Splines format
+// stores them, a knot interval per edge, and per vertex its node's control point and the repeated-knot node
+// block of Bezier end conditions. A T-mesh with star points (extraordinary vertices) has no global (s, t); each
+// face still has local charts (`t_spline_chart`): the faces around it laid out in the plane by their knot
+// intervals, where the T-spline rules apply wherever the chart holds no star point.
+#include <array>
+#include <span>
+#include <vector>
+
+#include "trivar/tspline/t_spline.hpp"
+
+namespace trivar {
+
+struct TMeshLink {
+  int prev = -1, next = -1, opp = -1;  // in the face loop (counter-clockwise); the link of the same edge back
+  int vertex = -1;                     // the vertex it leaves; -1: a deleted slot
+  int face = -1;                       // -1: outside (a boundary link) or a deleted face
+  int edge = -1;
+  int flag = 0;                        // (angle of its face at `vertex`) / 90 - 1: 0 corner, 1 straight, 2 reflex
+  int frame = -1;                      // its direction (north, west, south, east) in the vertex's own frame
+};
+
+struct TMeshVertex {
+  bool live = true;
+  int primary = -1;                // control point of the vertex's own node
+  std::array<int, 4> block_dims{};  // Bezier end-condition block: dK node layers towards frame direction K
+  std::vector<int> block;          // its points, wedge K = N, W, S, E holding dK x (d(K+1) + 1) entries; -1: none
+};
+
+struct TMesh {
+  int degree = 3;  // odd, both directions
+  bool force_bezier = true;
+  std::vector<TMeshLink> links;
+  std::vector<std::vector<int>> faces;  // link loops; empty: a deleted face (a hole)
+  std::vector<double> intervals;        // per edge; 0: a deleted edge
+  std::vector<TMeshVertex> vertices;
+  std::vector<RationalPoint> points;
+  std::vector<std::array<int, 2>> conditions;  // edge conditions (edge, flag)
+
+  bool live_face(int f) const { return !faces[static_cast<std::size_t>(f)].empty(); }
+  // The face's first corner link (flag 0): its canonical frame starts at that link's vertex going east.
+  int first_corner(int f) const;
+};
+
+// Face angle sums at the vertices: a star point is an interior vertex whose faces' angles do not sum to 360
+// degrees, or a boundary vertex whose faces' angles exceed 270.
+std::vector<int> star_points(const TMesh& m);
+
+// The chart of a set of faces (empty: all live faces): the faces reached from `seed` across shared edges, laid
+// out by their knot intervals with the seed's first corner link going east and the smallest (s, t) at 0, and
+// the T-spline on it (nodes of the chart's vertices, their end-condition blocks turned into the chart's frame).
+// With `all_connected`, a face of the set not reached is an error. Throws trivar::Error when the layout
+// contradicts itself (a star point inside the set, a closed strip, contradictory knot intervals).
+struct TChart {
+  TSpline spline;
+  std::vector<int> vertex;    // mesh vertex -> T-image vertex, -1: not in the chart
+  std::vector<int> face;      // mesh face -> T-image face, -1: not in the chart
+  std::vector<int> link_dir;  // mesh link -> its compass direction in the chart, -1: not in the chart
+};
+TChart t_spline_chart(const TMesh& m, std::span<const int> faces, int seed, bool all_connected);
+
+}  // namespace trivar

@@ -1,0 +1,355 @@
+#include "trivar/tspline/t_mesh_surface.hpp"
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <string>
+
+#include "trivar/core/error.hpp"
+#include "trivar/core/parallel.hpp"
+#include "trivar/tspline/catmull_clark_patch.hpp"
+
+namespace trivar {
+
+const char* face_method_name(FaceMethod m) {
+  switch (m) {
+    case FaceMethod::none: return "none";
+    case FaceMethod::exact: return "exact";
+    case FaceMethod::bicubic: return "bicubic";
+    case FaceMethod::star: return "star";
+  }
+  return "?";
+}
+
+namespace {
+
+struct Gather {
+  std::vector<int> points;  // mesh vertices in the catmull_clark_patch layout
+  std::string error;        // why the face's neighbourhood is not a Catmull-Clark patch
+};
+
+// The 2N + 8 vertices around the corner that link l0 (in its face) leaves, in the catmull_clark_patch layout.
+Gather gather(const TMesh& m, int l0) {
+  const auto L = [&](int l) -> const TMeshLink& { return m.links[static_cast<std::size_t>(l)]; };
+  const auto nxt = [&](int l, int k) {
+    for (int i = 0; i < k; ++i) l = L(l).next;
+    return l;
+  };
+  const auto quad = [&](int l) {
+    return L(l).face >= 0 && m.faces[static_cast<std::size_t>(L(l).face)].size() == 4;
+  };
+  Gather g;
+  const int v = L(l0).vertex;
+  std::vector<int> ring;  // links leaving v, one per face counter-clockwise
+  int l = l0;
+  do {
+    if (!quad(l)) {
+      g.error = "a face at vertex " + std::to_string(v) + " is not a quadrilateral without T-junctions, or it is on the boundary";
+      return g;
+    }
+    ring.push_back(l);
+    l = L(L(l).prev).opp;
+  } while (l != l0 && ring.size() <= 64);
+  if (l != l0 || ring.size() < 3) {
+    g.error = "vertex " + std::to_string(v) + " has no closed ring of 3 to 64 faces";
+    return g;
+  }
+  const int n = static_cast<int>(ring.size());
+  g.points.push_back(v);
+  for (int i = 0; i < n; ++i) {
+    g.points.push_back(L(nxt(ring[static_cast<std::size_t>(i)], 1)).vertex);
+    g.points.push_back(L(nxt(ring[static_cast<std::size_t>(i)], 2)).vertex);
+  }
+  // The outer faces: beyond e_0 d_0 (o1), beyond d_0 (o2), beyond d_0 e_1 (o3), beyond e_0 d_(N-1) (o4),
+  // beyond e_1 d_1 (o5); each must be a quadrilateral and the rings at e_0, d_0, e_1 must close with four faces.
+  const int o1 = L(nxt(l0, 1)).opp, o3 = L(nxt(l0, 2)).opp;
+  const int o2 = quad(o1) ? L(nxt(o1, 3)).opp : -1;
+  const int o4 = L(nxt(ring.back(), 2)).opp, o5 = L(nxt(ring[1], 1)).opp;
+  for (int o : {o1, o2, o3, o4, o5})
+    if (o < 0 || !quad(o)) {
+      g.error = "the faces around vertex " + std::to_string(v) + " are not surrounded by quadrilaterals";
+      return g;
+    }
+  const int x20 = L(nxt(o1, 2)).vertex, x21 = L(nxt(o1, 3)).vertex, x22 = L(nxt(o2, 2)).vertex,
+            x12 = L(nxt(o2, 3)).vertex, x02 = L(nxt(o3, 3)).vertex, x2m = L(nxt(o4, 2)).vertex,
+            xm2 = L(nxt(o5, 3)).vertex;
+  if (L(nxt(o3, 2)).vertex != x12 || L(nxt(o4, 3)).vertex != x20 || L(nxt(o5, 2)).vertex != x02) {
+    g.error = "a vertex next to vertex " + std::to_string(v) + " is a second star point or a T-junction";
+    return g;
+  }
+  for (int x : {x2m, x20, x21, x22, x12, x02, xm2}) g.points.push_back(x);
+  return g;
+}
+
+}  // namespace
+
+TMeshSurface::~TMeshSurface() = default;
+TMeshSurface::TMeshSurface(TMeshSurface&&) noexcept = default;
+
+TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(mesh), stars_(star_points(mesh)) {
+  const TMesh& m = mesh_;
+  const int nf = static_cast<int>(m.faces.size()), nv = static_cast<int>(m.vertices.size());
+  const auto L = [&](int l) -> const TMeshLink& { return m.links[static_cast<std::size_t>(l)]; };
+  faces_.resize(static_cast<std::size_t>(nf));
+  std::vector<std::vector<int>> vertex_faces(static_cast<std::size_t>(nv));
+  std::vector<char> boundary(static_cast<std::size_t>(nv), 0);
+  for (const TMeshLink& k : m.links) {
+    if (k.vertex < 0) continue;
+    if (k.face >= 0)
+      vertex_faces[static_cast<std::size_t>(k.vertex)].push_back(k.face);
+    else
+      boundary[static_cast<std::size_t>(k.vertex)] = 1;
+  }
+  for (int s : stars_)
+    require(!boundary[static_cast<std::size_t>(s)], [&] {
+      return "T-mesh: star point at boundary vertex " + std::to_string(s) + ": only interior star points are evaluated";
+    });
+  // Face rings: faces sharing a vertex with the previous ring.
+  const auto rings = [&](std::vector<int> front, int depth, std::vector<int>& dist) {
+    std::vector<int> all = front;
+    for (int r = 1; r <= depth && !front.empty(); ++r) {
+      std::vector<int> next;
+      for (int f : front)
+        for (int l : m.faces[static_cast<std::size_t>(f)])
+          for (int g : vertex_faces[static_cast<std::size_t>(L(l).vertex)])
+            if (dist[static_cast<std::size_t>(g)] > r) {
+              dist[static_cast<std::size_t>(g)] = r;
+              next.push_back(g);
+              all.push_back(g);
+            }
+      front = std::move(next);
+    }
+    return all;
+  };
+  const int depth = m.degree + 1;
+  std::vector<int> star_dist(static_cast<std::size_t>(nf), INT_MAX);
+  {
+    std::vector<int> front;
+    for (int s : stars_)
+      for (int f : vertex_faces[static_cast<std::size_t>(s)])
+        if (star_dist[static_cast<std::size_t>(f)] != 0) {
+          star_dist[static_cast<std::size_t>(f)] = 0;
+          front.push_back(f);
+        }
+    rings(front, depth + 5, star_dist);  // far enough to size the clusters below
+  }
+  std::vector<int> exact;
+  std::vector<char> is_star(static_cast<std::size_t>(nv), 0);
+  for (int s : stars_) is_star[static_cast<std::size_t>(s)] = 1;
+  for (int f = 0; f < nf; ++f) {
+    if (!m.live_face(f)) continue;
+    Face& face = faces_[static_cast<std::size_t>(f)];
+    if (star_dist[static_cast<std::size_t>(f)] > depth) {
+      face.method = FaceMethod::exact;
+      exact.push_back(f);
+      continue;
+    }
+    // Near a star point: the Catmull-Clark region's conditions on the neighbourhood. A face's uniform bicubic
+    // patch is the T-spline there when the (p + 1) / 2 rings around it are uniform quadrilaterals inside the
+    // mesh: its 16 nodes are the corners of the first ring and their rays cross (p + 1) / 2 lines.
+    const int cc_depth = (m.degree + 1) / 2;
+    std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX);
+    dist[static_cast<std::size_t>(f)] = 0;
+    const std::vector<int> hood = rings({f}, cc_depth, dist);
+    const auto where = [&] { return "T-mesh: face " + std::to_string(f) + " (within " + std::to_string(depth + 1) + " face rings of a star point): "; };
+    require(m.degree == 3, [&] { return where() + "star points are evaluated for degree 3, not " + std::to_string(m.degree); });
+    const double d0 = m.intervals[static_cast<std::size_t>(L(m.faces[static_cast<std::size_t>(f)].front()).edge)];
+    for (int g : hood)
+      for (int l : m.faces[static_cast<std::size_t>(g)]) {
+        require(m.faces[static_cast<std::size_t>(g)].size() == 4, [&] { return where() + "face " + std::to_string(g) + " nearby has a T-junction; the Catmull-Clark evaluation around star points needs none within " + std::to_string(cc_depth) + " rings"; });
+        require(!boundary[static_cast<std::size_t>(L(l).vertex)], [&] { return where() + "boundary vertex " + std::to_string(L(l).vertex) + " is within " + std::to_string(cc_depth) + " rings; the Catmull-Clark evaluation around star points needs none"; });
+        const double d = m.intervals[static_cast<std::size_t>(L(l).edge)];
+        require(std::abs(d - d0) <= 1e-12 * d0, [&] { return where() + "edge " + std::to_string(L(l).edge) + " nearby has knot interval " + std::to_string(d) + ", not " + std::to_string(d0) + "; the Catmull-Clark evaluation around star points needs equal intervals"; });
+      }
+    const auto& loop = m.faces[static_cast<std::size_t>(f)];
+    int corner = 0, star_corners = 0;
+    for (int c = 0; c < 4; ++c)
+      if (is_star[static_cast<std::size_t>(L(loop[static_cast<std::size_t>(c)]).vertex)]) {
+        corner = c;
+        ++star_corners;
+      }
+    require(star_corners <= 1, [&] { return where() + "it has " + std::to_string(star_corners) + " star corners; subdivide the control mesh once so that every face has at most one"; });
+    Gather gth = gather(m, loop[static_cast<std::size_t>(corner)]);
+    require(gth.error.empty(), [&] { return where() + gth.error; });
+    for (int x : gth.points)
+    {
+      const TMeshVertex& mv = m.vertices[static_cast<std::size_t>(x)];
+      require(mv.primary >= 0 && m.points[static_cast<std::size_t>(mv.primary)].w == 1.0 && mv.block.empty(), [&] {
+        return where() + "vertex " + std::to_string(x) + " has no control point, a weight other than 1 or repeated-knot nodes; the Catmull-Clark evaluation around star points needs one point of weight 1";
+      });
+    }
+    face.method = star_corners ? FaceMethod::star : FaceMethod::bicubic;
+    face.corner = corner;
+    face.points = std::move(gth.points);
+  }
+  // Exact faces: the T-spline in a chart of their neighbourhood. A chart of depth + k rings around a face serves
+  // every face within k rings of it (their neighbourhoods lie inside), so faces are grouped greedily: a cluster
+  // around the first face not yet served, k as large as the star points allow (up to 4).
+  struct Cluster {
+    int centre, rings;
+    std::vector<int> members;
+  };
+  std::vector<Cluster> clusters;
+  {
+    std::vector<char> served(static_cast<std::size_t>(nf), 0);
+    for (int f : exact) {
+      if (served[static_cast<std::size_t>(f)]) continue;
+      const int k = std::min(4, star_dist[static_cast<std::size_t>(f)] == INT_MAX ? 4 : star_dist[static_cast<std::size_t>(f)] - depth - 1);
+      std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX);
+      dist[static_cast<std::size_t>(f)] = 0;
+      Cluster c{f, depth + k, {}};
+      for (int g : rings({f}, k, dist))
+        if (faces_[static_cast<std::size_t>(g)].method == FaceMethod::exact && !served[static_cast<std::size_t>(g)]) {
+          served[static_cast<std::size_t>(g)] = 1;
+          c.members.push_back(g);
+        }
+      clusters.push_back(std::move(c));
+    }
+  }
+  charts_.resize(clusters.size());
+  std::vector<std::string> errors(clusters.size());
+  // A chart is exact for its members when no blending function that is nonzero on a member has a knot vector
+  // cut by the chart's border inside the mesh (a ray stopped there: its support box reaches a border edge whose
+  // other side is a face outside the chart). Otherwise the chart grows by a ring, as long as it holds no star point.
+  parallel_for(static_cast<std::ptrdiff_t>(clusters.size()), threads, [&](std::ptrdiff_t i) {
+    const Cluster& cl = clusters[static_cast<std::size_t>(i)];
+    const int centre_dist = star_dist[static_cast<std::size_t>(cl.centre)];
+    try {
+      for (int r = cl.rings;; ++r) {
+        require(r < centre_dist && r <= cl.rings + 8, [&] {
+          return "the T-spline's knot vectors on face " + std::to_string(cl.centre) + " reach beyond " + std::to_string(r - 1) +
+                 " face rings" + (r >= centre_dist ? " (to a star point)" : "");
+        });
+        std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX);
+        dist[static_cast<std::size_t>(cl.centre)] = 0;
+        const std::vector<int> hood = rings({cl.centre}, r, dist);
+        TChart c = t_spline_chart(m, hood, cl.centre, false);
+        const auto at = [&](int v) {
+          const TVertex& x = c.spline.image.vertices[static_cast<std::size_t>(c.vertex[static_cast<std::size_t>(v)])];
+          return std::array<double, 2>{x.s, x.t};
+        };
+        std::vector<Box<2>> border;  // edges of the chart with a face outside it on the other side
+        for (int l = 0; l < static_cast<int>(m.links.size()); ++l) {
+          const TMeshLink& k = L(l);
+          if (k.face < 0 || c.face[static_cast<std::size_t>(k.face)] < 0) continue;
+          const int g = L(k.opp).face;
+          if (g < 0 || c.face[static_cast<std::size_t>(g)] >= 0) continue;
+          const auto p = at(k.vertex), q = at(L(k.opp).vertex);
+          border.push_back({{std::min(p[0], q[0]), std::min(p[1], q[1])}, {std::max(p[0], q[0]), std::max(p[1], q[1])}});
+        }
+        std::vector<Face> frames;
+        std::vector<Box<2>> boxes;
+        for (int g : cl.members) {
+          // The face's frame in the chart: its first corner, the next corner and the last one.
+          const auto& loop = m.faces[static_cast<std::size_t>(g)];
+          std::vector<int> corners;
+          for (int l : loop)
+            if (L(l).flag == 0) corners.push_back(L(l).vertex);
+          Face fr = faces_[static_cast<std::size_t>(g)];
+          const auto o = at(corners[0]), a = at(corners[1]), b = at(corners[3]);
+          fr.origin = o;
+          fr.axis_u = {a[0] - o[0], a[1] - o[1]};
+          fr.axis_v = {b[0] - o[0], b[1] - o[1]};
+          frames.push_back(fr);
+          const auto x = at(corners[2]);
+          boxes.push_back({{std::min(o[0], x[0]), std::min(o[1], x[1])}, {std::max(o[0], x[0]), std::max(o[1], x[1])}});
+        }
+        auto surface = std::make_unique<TSplineSurface>(c.spline, 1);
+        bool cut = false;
+        for (const auto& f : surface->basis()) {
+          const Box<2> sb{{f.knots[0].front(), f.knots[1].front()}, {f.knots[0].back(), f.knots[1].back()}};
+          const auto on_member = std::any_of(boxes.begin(), boxes.end(), [&](const Box<2>& b) {
+            return sb.lo[0] < b.hi[0] && b.lo[0] < sb.hi[0] && sb.lo[1] < b.hi[1] && b.lo[1] < sb.hi[1];
+          });
+          if (!on_member) continue;
+          cut = std::any_of(border.begin(), border.end(), [&](const Box<2>& e) {
+            return e.lo[0] <= sb.hi[0] && sb.lo[0] <= e.hi[0] && e.lo[1] <= sb.hi[1] && sb.lo[1] <= e.hi[1];
+          });
+          if (cut) break;
+        }
+        if (cut) continue;
+        for (std::size_t j = 0; j < cl.members.size(); ++j) {
+          Face& face = faces_[static_cast<std::size_t>(cl.members[j])];
+          face = frames[j];
+          face.chart = static_cast<int>(i);
+        }
+        charts_[static_cast<std::size_t>(i)] = std::move(surface);
+        break;
+      }
+    } catch (const Error& e) {
+      errors[static_cast<std::size_t>(i)] = "T-mesh: face " + std::to_string(cl.centre) + ": its chart: " + e.what();
+    }
+  });
+  for (const std::string& e : errors) require(e.empty(), e);
+}
+
+int TMeshSurface::count(FaceMethod m) const {
+  return static_cast<int>(std::count_if(faces_.begin(), faces_.end(), [m](const Face& f) { return f.method == m; }));
+}
+
+int TMeshSurface::valence(int star) const {
+  int n = 0;
+  for (const TMeshLink& k : mesh_.links) n += k.vertex == star && k.face >= 0;
+  return n;
+}
+
+std::array<int, 4> TMeshSurface::corners(int face) const {
+  std::array<int, 4> c{};
+  int i = 0;
+  for (int l : mesh_.faces[static_cast<std::size_t>(face)])
+    if (mesh_.links[static_cast<std::size_t>(l)].flag == 0 && i < 4) c[static_cast<std::size_t>(i++)] = mesh_.links[static_cast<std::size_t>(l)].vertex;
+  // Start at the first corner link's vertex.
+  const int first = mesh_.links[static_cast<std::size_t>(mesh_.first_corner(face))].vertex;
+  std::rotate(c.begin(), std::find(c.begin(), c.end(), first), c.end());
+  return c;
+}
+
+void TMeshSurface::eval(int face, double u, double v, double* out) const {
+  require(face >= 0 && face < num_faces() && faces_[static_cast<std::size_t>(face)].method != FaceMethod::none,
+          [&] { return "T-mesh: no face " + std::to_string(face); });
+  require(u >= 0 && u <= 1 && v >= 0 && v <= 1, [&] { return "T-mesh: (u, v) = (" + std::to_string(u) + ", " + std::to_string(v) + ") outside [0, 1]^2"; });
+  const Face& f = faces_[static_cast<std::size_t>(face)];
+  if (f.method == FaceMethod::exact) {
+    const TSplineSurface& s = *charts_[static_cast<std::size_t>(f.chart)];
+    const auto at = [&](double x, double y) {
+      return Param<2>{f.origin[0] + x * f.axis_u[0] + y * f.axis_v[0], f.origin[1] + x * f.axis_u[1] + y * f.axis_v[1]};
+    };
+    // The element of this face that holds the point (cells are half-open; the face's sides belong to it here).
+    const int e = s.locate(at(std::clamp(u, 1e-9, 1 - 1e-9), std::clamp(v, 1e-9, 1 - 1e-9)));
+    double q[9];
+    s.eval_first_derivatives_on_element(e, at(u, v), q);
+    for (int c = 0; c < 3; ++c) {
+      out[c] = q[c];
+      out[3 + c] = f.axis_u[0] * q[3 + c] + f.axis_u[1] * q[6 + c];
+      out[6 + c] = f.axis_v[0] * q[3 + c] + f.axis_v[1] * q[6 + c];
+    }
+    return;
+  }
+  std::vector<std::array<double, 3>> p(f.points.size());
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const RationalPoint& q = mesh_.points[static_cast<std::size_t>(mesh_.vertices[static_cast<std::size_t>(f.points[i])].primary)];
+    p[i] = q.xyz;
+  }
+  // The patch's frame: (u', v') from the corner along the next and the previous corner.
+  static constexpr std::array<std::array<double, 2>, 4> origin{{{0, 0}, {1, 0}, {1, 1}, {0, 1}}};
+  static constexpr std::array<std::array<double, 2>, 4> axis_a{{{1, 0}, {0, 1}, {-1, 0}, {0, -1}}};
+  static constexpr std::array<std::array<double, 2>, 4> axis_b{{{0, 1}, {-1, 0}, {0, -1}, {1, 0}}};
+  const auto& o = origin[static_cast<std::size_t>(f.corner)];
+  const auto& a = axis_a[static_cast<std::size_t>(f.corner)];
+  const auto& b = axis_b[static_cast<std::size_t>(f.corner)];
+  const double up = a[0] * (u - o[0]) + a[1] * (v - o[1]), vp = b[0] * (u - o[0]) + b[1] * (v - o[1]);
+  double q[9];
+  if (f.method == FaceMethod::bicubic) {
+    const auto g = regular_grid(p);
+    eval_uniform_bicubic(g, std::clamp(up, 0.0, 1.0), std::clamp(vp, 0.0, 1.0), q);
+  } else {
+    catmull_clark_patch(static_cast<int>((p.size() - 8) / 2)).eval(p, std::clamp(up, 0.0, 1.0), std::clamp(vp, 0.0, 1.0), q);
+  }
+  for (int c = 0; c < 3; ++c) {
+    out[c] = q[c];
+    out[3 + c] = a[0] * q[3 + c] + b[0] * q[6 + c];
+    out[6 + c] = a[1] * q[3 + c] + b[1] * q[6 + c];
+  }
+}
+
+}  // namespace trivar

@@ -1,0 +1,67 @@
+#pragma once
+// The surface of a T-mesh with star points (extraordinary vertices), evaluated face by face in each face's own
+// frame (u, v) in [0, 1]^2 (u along its first corner link, v turning left):
+//   exact          faces whose neighbourhood of p + 1 face rings holds no star point: the T-spline itself,
+//                  evaluated in the chart of that neighbourhood (t_spline_chart), where the T-spline rules
+//                  (local knot vectors by rays, end-condition blocks) apply unchanged. A chart is accepted only
+//                  when no blending function nonzero on its faces has a knot vector cut by the chart's border
+//                  inside the mesh (else it grows by a ring), so this is the global T-spline's surface wherever
+//                  one exists (tested face by face to 1e-12, also starting from one-ring charts).
+//   bicubic        the other faces without a star corner: the uniform bicubic B-spline patch of their 4 x 4
+//                  control points, which is the T-spline there (equal knot intervals, no T-junction).
+//   star           the faces at a star point: the Catmull-Clark limit surface of their 2N + 8 control points,
+//                  evaluated exactly (catmull_clark_patch, Stam 1998).
+// The faces within p + 2 rings of a star point (bicubic and star) need, and are checked to have, degree 3,
+// equal knot intervals, no T-junction and no boundary within (p + 1) / 2 rings of them, control points of
+// weight 1 without repeated-knot nodes, and at most one star corner per face; the
+// surface there is then the Catmull-Clark limit surface of the control mesh, which on faces without a star
+// corner is the uniform bicubic B-spline = the T-spline. Continuity: C2 across every edge away from star points
+// (T-spline and uniform B-spline pieces meet as one spline); C1 across the edges at a star point except at the
+// point itself, where the surface is G1 (tangent-plane continuous; the face parametrisations are singular there
+// for valence != 4). tests/tspline/star_point_test.cpp measures positions, normals and first derivatives across
+// every edge.
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "trivar/tspline/t_mesh.hpp"
+#include "trivar/tspline/t_spline_surface.hpp"
+
+namespace trivar {
+
+enum class FaceMethod { none, exact, bicubic, star };
+const char* face_method_name(FaceMethod m);
+
+class TMeshSurface {
+public:
+  // threads for the charts' builds (parallel_for; <= 0: all).
+  explicit TMeshSurface(const TMesh& mesh, int threads = 0);
+  ~TMeshSurface();
+  TMeshSurface(TMeshSurface&&) noexcept;
+
+  const TMesh& mesh() const { return mesh_; }
+  int num_faces() const { return static_cast<int>(faces_.size()); }  // mesh face ids (deleted faces: none)
+  FaceMethod method(int face) const { return faces_[static_cast<std::size_t>(face)].method; }
+  int count(FaceMethod m) const;
+  const std::vector<int>& stars() const { return stars_; }
+  int valence(int star) const;  // faces around a star point
+  // The corners of a face (its first corner link's vertex, then counter-clockwise), for quads and T-faces.
+  std::array<int, 4> corners(int face) const;
+  // Value, d/du, d/dv (9 values) at (u, v) in [0, 1]^2 of the face.
+  void eval(int face, double u, double v, double* out) const;
+
+private:
+  struct Face {
+    FaceMethod method = FaceMethod::none;
+    int chart = -1;                // exact: index into charts_
+    std::array<double, 2> origin{}, axis_u{}, axis_v{};  // exact: the face's first corner and sides in the chart
+    int corner = 0;                // star: the star point's corner (0..3)
+    std::vector<int> points;       // bicubic: 16, star: 2N + 8 control points (catmull_clark_patch layout)
+  };
+  TMesh mesh_;
+  std::vector<int> stars_;
+  std::vector<Face> faces_;
+  std::vector<std::unique_ptr<TSplineSurface>> charts_;
+};
+
+}  // namespace trivar

@@ -1,0 +1,165 @@
+#pragma once
+// Quad control meshes written as Rhino TSM text (#TS0200 records: f, e, v, l with the corner flags, ec, the
+// grip map and the control points), for the star-point tests: a closed cube of n x n faces per side (eight
+// valence-3 star points) and a planar fan of N sectors of m x m faces around one star point of valence N.
+#include <array>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace trivar::test {
+
+struct QuadMesh {
+  std::vector<std::array<double, 3>> points;
+  std::vector<std::array<int, 4>> quads;  // counter-clockwise seen from outside
+};
+
+// Every edge gets knot interval `interval`; boundary links get the outside angle's flag; every boundary vertex
+// gets the repeated-knot node block of Bezier end conditions (one layer outwards, its points on the vertex).
+inline std::string tsm_text(const QuadMesh& m, double interval = 1.0) {
+  struct Link {
+    int prev, next, opp = -1, vertex, face, edge = -1, flag;
+  };
+  std::vector<Link> links;
+  std::map<std::array<int, 2>, int> by_ends;
+  std::vector<int> faces_at(m.points.size(), 0);
+  for (int f = 0; f < static_cast<int>(m.quads.size()); ++f)
+    for (int i = 0; i < 4; ++i) {
+      const int l = static_cast<int>(links.size());
+      links.push_back({4 * f + (i + 3) % 4, 4 * f + (i + 1) % 4, -1, m.quads[f][i], f, -1, 0});
+      by_ends[{m.quads[f][i], m.quads[f][(i + 1) % 4]}] = l;
+      ++faces_at[m.quads[f][i]];
+    }
+  const int inner = static_cast<int>(links.size());
+  std::map<int, int> outside_from;  // boundary vertex -> outside link leaving it
+  for (int l = 0; l < inner; ++l) {
+    const int a = links[l].vertex, b = links[links[l].next].vertex;
+    auto it = by_ends.find({b, a});
+    if (it != by_ends.end()) {
+      links[l].opp = it->second;
+      continue;
+    }
+    const int o = static_cast<int>(links.size());
+    links.push_back({-1, -1, l, b, -1, -1, 3 - faces_at[b]});
+    links[l].opp = o;
+    outside_from[b] = o;
+  }
+  for (int o = inner; o < static_cast<int>(links.size()); ++o) {
+    const int end = links[links[o].opp].vertex;  // the outside link runs b -> a
+    links[o].next = outside_from.at(end);
+    links[outside_from.at(end)].prev = o;
+  }
+  int edges = 0;
+  std::vector<int> edge_link;
+  for (int l = 0; l < static_cast<int>(links.size()); ++l)
+    if (links[l].edge < 0) {
+      links[l].edge = links[links[l].opp].edge = edges++;
+      edge_link.push_back(l);
+    }
+  std::vector<int> vertex_link(m.points.size(), -1);
+  for (int l = 0; l < static_cast<int>(links.size()); ++l)
+    if (vertex_link[links[l].vertex] < 0) vertex_link[links[l].vertex] = l;
+  // Blocks: the outward directions in the vertex frame (link vertex_link[v] goes EAST; the next link
+  // counter-clockwise turns by its face's angle); a straight boundary vertex one layer, a corner two and the
+  // diagonal node.
+  std::vector<std::string> blocks;
+  std::vector<int> block_vertex;
+  for (int o = inner; o < static_cast<int>(links.size()); ++o) {
+    const int v = links[o].vertex;
+    int l = vertex_link[v], frame = 3;
+    while (l != o) {
+      frame = (frame + links[l].flag + 1) % 4;
+      l = links[links[l].prev].opp;
+    }
+    std::array<int, 4> dims{0, 0, 0, 0};
+    dims[(frame + 1) % 4] = 1;
+    if (links[o].flag == 2) dims[(frame + 2) % 4] = 1;  // a convex corner: outwards across both sides
+    std::ostringstream b;
+    b << "0m cg " << v << " 4 " << dims[0] << ' ' << dims[1] << ' ' << dims[2] << ' ' << dims[3];
+    for (int k = 0; k < 4; ++k)
+      for (int i = 0; i < dims[k] * (dims[(k + 1) % 4] + 1); ++i) {
+        b << ' ' << m.points.size() + block_vertex.size();
+        block_vertex.push_back(v);
+      }
+    blocks.push_back(b.str());
+  }
+  std::ostringstream os;
+  os.precision(17);
+  os << "#TS0200\n\ndegree 3\ncap-type 1\nstar-smoothness 0\nunits 1 millimeters\nforce-bezier-end-conditions 1\n";
+  for (int f = 0; f < static_cast<int>(m.quads.size()); ++f) os << "f " << 4 * f << " 0\n";
+  for (int e = 0; e < edges; ++e) os << "e " << edge_link[e] << ' ' << interval << '\n';
+  for (int v : vertex_link) os << "v " << v << " EAST\n";
+  for (const Link& k : links)
+    os << "l " << k.prev << ' ' << k.next << ' ' << k.opp << ' ' << k.vertex << ' ' << k.face << ' ' << k.edge << ' ' << k.flag << '\n';
+  for (int e = 0; e < edges; ++e)
+    if (links[edge_link[e]].face < 0 || links[links[edge_link[e]].opp].face < 0) os << "ec " << e << " 0\n";
+  os << "0m odd-grip-map\n";
+  for (std::size_t v = 0; v < m.points.size(); ++v) os << "0m gvp " << v << '\n';
+  for (int v : block_vertex) os << "0m gv " << v << '\n';
+  for (const std::string& b : blocks) os << b << '\n';
+  for (const auto& p : m.points) os << "0g " << p[0] << ' ' << p[1] << ' ' << p[2] << " 1\n";
+  for (int v : block_vertex) os << "0g " << m.points[v][0] << ' ' << m.points[v][1] << ' ' << m.points[v][2] << " 1\n";
+  os << "\ntol 1e-05\nver 1\n";
+  return os.str();
+}
+
+// The surface of the cube [-1, 1]^3 in n x n faces per side.
+inline QuadMesh cube_mesh(int n) {
+  QuadMesh m;
+  std::map<std::array<int, 3>, int> id;
+  const auto vertex = [&](std::array<int, 3> g) {
+    auto [it, fresh] = id.emplace(g, static_cast<int>(m.points.size()));
+    if (fresh) m.points.push_back({-1 + 2.0 * g[0] / n, -1 + 2.0 * g[1] / n, -1 + 2.0 * g[2] / n});
+    return it->second;
+  };
+  for (int a = 0; a < 3; ++a)
+    for (int side : {0, n}) {
+      const int b = (a + 1) % 3, c = (a + 2) % 3;
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+          std::array<std::array<int, 3>, 4> q;
+          const std::array<std::array<int, 2>, 4> ij{{{i, j}, {i + 1, j}, {i + 1, j + 1}, {i, j + 1}}};
+          for (int k = 0; k < 4; ++k) {
+            q[k][a] = side;
+            q[k][b] = ij[k][0];
+            q[k][c] = ij[k][1];
+          }
+          std::array<int, 4> f{vertex(q[0]), vertex(q[1]), vertex(q[2]), vertex(q[3])};
+          if (side == 0) std::swap(f[1], f[3]);
+          m.quads.push_back(f);
+        }
+    }
+  return m;
+}
+
+// N sectors of m x m faces around a star point of valence N at the origin; z = height(x, y).
+template <class Height>
+QuadMesh fan_mesh(int valence, int m, Height height) {
+  QuadMesh q;
+  std::map<std::array<int, 3>, int> id;  // (sector, i, j), with (k, 0, j) stored as (k - 1, j, 0)
+  const auto vertex = [&](int k, int i, int j) {
+    if (i == 0 && j == 0) k = 0;
+    if (i == 0 && j > 0) {
+      k = (k + 1) % valence;
+      i = j;
+      j = 0;
+    }
+    auto [it, fresh] = id.emplace(std::array<int, 3>{k, i, j}, static_cast<int>(q.points.size()));
+    if (fresh) {
+      const double a = 2 * std::numbers::pi * k / valence, b = 2 * std::numbers::pi * (k + 1) / valence;
+      const double x = i * std::cos(a) + j * std::cos(b), y = i * std::sin(a) + j * std::sin(b);
+      q.points.push_back({x, y, height(x, y)});
+    }
+    return it->second;
+  };
+  for (int k = 0; k < valence; ++k)
+    for (int j = 0; j < m; ++j)
+      for (int i = 0; i < m; ++i)
+        q.quads.push_back({vertex(k, i, j), vertex(k, i + 1, j), vertex(k, i + 1, j + 1), vertex(k, i, j + 1)});
+  return q;
+}
+
+}  // namespace trivar::test
