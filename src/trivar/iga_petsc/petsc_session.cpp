@@ -45,6 +45,15 @@ std::vector<double> peak_memory_per_rank() {
   return all;
 }
 
+std::string broadcast_from_rank0(const std::string& text) {
+  unsigned long size = text.size();
+  MPI_Bcast(&size, 1, MPI_UNSIGNED_LONG, 0, PETSC_COMM_WORLD);
+  std::string out = text;
+  out.resize(size);
+  MPI_Bcast(out.data(), static_cast<int>(size), MPI_CHAR, 0, PETSC_COMM_WORLD);
+  return out;
+}
+
 double max_over_ranks(double x) {
   double m = x;
   MPI_Allreduce(&x, &m, 1, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);

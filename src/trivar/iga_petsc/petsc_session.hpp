@@ -2,6 +2,7 @@
 // The process's MPI / PETSc / SLEPc run time. One session per process, alive while any distributed solve runs:
 // it starts MPI (under mpirun: one process per rank) and PETSc with SLEPc, and finalises them when destroyed.
 // Options for PETSc's own objects may be given in the environment variable PETSC_OPTIONS.
+#include <string>
 #include <vector>
 
 namespace trivar {
@@ -26,6 +27,9 @@ bool petsc_session_active();
 
 // The peak resident memory of every rank in bytes (getrusage), on every rank; collective.
 std::vector<double> peak_memory_per_rank();
+
+// Rank 0's text on every rank; collective.
+std::string broadcast_from_rank0(const std::string& text);
 
 // The largest of every rank's x, on every rank; collective. Wall times of a distributed step are the slowest
 // rank's.
