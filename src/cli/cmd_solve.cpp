@@ -91,10 +91,12 @@ PetscSolverOptions petsc_options(const SolveArgs& a) {
   return o;
 }
 
-// The ranks and the peak resident memory of each (collective).
+// The ranks, the processor time of the phases and the peak resident memory of each rank (collective).
 void print_ranks() {
   const std::vector<double> peak = peak_memory_per_rank();
-  std::string line = "ranks " + std::to_string(peak.size()) + ", peak memory per rank (MB):";
+  const PhaseCpuSeconds& cpu = last_phase_cpu_seconds();
+  std::string line = "ranks " + std::to_string(peak.size()) + ", CPU per rank (slowest): assembly " + secs(cpu.assembly) +
+                     " s, solve " + secs(cpu.solve) + " s, peak memory per rank (MB):";
   for (double b : peak) line += " " + std::to_string(static_cast<long>(b / 1e6));
   std::printf("%s\n", line.c_str());
 }

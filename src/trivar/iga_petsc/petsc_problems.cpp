@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 
 #include <petscksp.h>
 #include <slepceps.h>
@@ -24,10 +25,24 @@ ElementPartition rank_partition() {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
+PhaseCpuSeconds last_cpu;
 
-double seconds_since(Clock::time_point t0) {
-  return max_over_ranks(std::chrono::duration<double>(Clock::now() - t0).count());
+double cpu_now() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+// A phase's wall clock and processor clock together.
+struct Clock {
+  using time_point = std::pair<std::chrono::steady_clock::time_point, double>;
+  static time_point now() { return {std::chrono::steady_clock::now(), cpu_now()}; }
+};
+
+// Wall seconds since t0 (slowest rank); the phase's processor seconds go to `cpu`.
+double seconds_since(Clock::time_point t0, double& cpu) {
+  cpu = max_over_ranks(cpu_now() - t0.second);
+  return max_over_ranks(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0.first).count());
 }
 
 // Checked before anything is assembled, so a bad name costs nothing.
@@ -121,7 +136,7 @@ SolveResult solve_distributed(const MultipatchSpace<D>& space, SparseMatrix& loc
                               Clock::time_point t0) {
   const ElementPartition part = rank_partition();
   const DofLayout L = dof_layout(local, space.num_basis, m);
-  Mat A = distributed_matrix(local, L);
+  Mat A = distributed_matrix(local, L, space.num_patches() == 1);
   Eigen::VectorXd b_local = f ? assemble_load<D>(space, m, f, o.threads, part)
                               : Eigen::VectorXd::Zero(static_cast<Eigen::Index>(space.num_basis) * m);
   if (part.part == 0 && g && !faces.empty()) add_face_load<D>(space, faces, m, g, b_local);
@@ -131,7 +146,7 @@ SolveResult solve_distributed(const MultipatchSpace<D>& space, SparseMatrix& loc
   apply_dirichlet(A, b, fixed, L);
   if (m == D && m > 1 && o.preconditioner == "gamg") set_rigid_body_modes<D>(A, space, L);
   SolveResult r;
-  r.assembly_seconds = seconds_since(t0);
+  r.assembly_seconds = seconds_since(t0, last_cpu.assembly);
   const auto t1 = Clock::now();
   KSP ksp;
   petsc_check(KSPCreate(PETSC_COMM_WORLD, &ksp), "KSPCreate");
@@ -150,7 +165,7 @@ SolveResult solve_distributed(const MultipatchSpace<D>& space, SparseMatrix& loc
   petsc_check(VecNorm(b, NORM_2, &bnorm), "VecNorm");
   require(reason > 0, "petsc: conjugate gradients with " + o.preconditioner + " did not converge (" +
                           KSPConvergedReasons[reason] + " after " + std::to_string(its) + " iterations)");
-  r.solve_seconds = seconds_since(t1);
+  r.solve_seconds = seconds_since(t1, last_cpu.solve);
   r.coefs = gather(x, L);
   r.stats.iterations = static_cast<int>(its);
   r.stats.residual = bnorm > 0 ? rnorm / bnorm : 0.0;
@@ -163,11 +178,11 @@ SolveResult solve_distributed(const MultipatchSpace<D>& space, SparseMatrix& loc
 }
 
 // The free rows of K and M (owned by this rank) and the lowest `count` eigenpairs of the pencil there.
-ModesResult modes_distributed(SparseMatrix& K_local, SparseMatrix& M_local, int num_basis, int m,
+ModesResult modes_distributed(SparseMatrix& K_local, SparseMatrix& M_local, int num_basis, bool one_patch, int m,
                               const FixedDofs& fixed, int count, bool elastic, const PetscSolverOptions& o,
                               Clock::time_point t0) {
   const DofLayout L = dof_layout(K_local, num_basis, m);
-  Mat K = distributed_matrix(K_local, L), M = distributed_matrix(M_local, L);
+  Mat K = distributed_matrix(K_local, L, one_patch), M = distributed_matrix(M_local, L, one_patch);
   // The free rows in PETSc's numbering; their positions in the reduced system follow in the same order.
   std::vector<PetscInt> free_rows;
   for (std::size_t i = 0; i < fixed.fixed.size(); ++i) {
@@ -202,7 +217,7 @@ ModesResult modes_distributed(SparseMatrix& K_local, SparseMatrix& M_local, int 
                                        std::to_string(n) + " free dofs");
   ModesResult r;
   r.dofs = static_cast<int>(n);
-  r.assembly_seconds = seconds_since(t0);
+  r.assembly_seconds = seconds_since(t0, last_cpu.assembly);
   const auto t1 = Clock::now();
   EPS eps;
   petsc_check(EPSCreate(PETSC_COMM_WORLD, &eps), "EPSCreate");
@@ -267,7 +282,7 @@ ModesResult modes_distributed(SparseMatrix& K_local, SparseMatrix& M_local, int 
     petsc_check(VecScatterDestroy(&scatter), "VecScatterDestroy");
     petsc_check(VecDestroy(&all), "VecDestroy");
   }
-  r.solve_seconds = seconds_since(t1);
+  r.solve_seconds = seconds_since(t1, last_cpu.solve);
   petsc_check(ISRestoreIndices(all_rows, &where), "ISRestoreIndices");
   petsc_check(ISDestroy(&all_rows), "ISDestroy");
   petsc_check(ISDestroy(&rows), "ISDestroy");
@@ -280,6 +295,8 @@ ModesResult modes_distributed(SparseMatrix& K_local, SparseMatrix& M_local, int 
 }
 
 }  // namespace
+
+const PhaseCpuSeconds& last_phase_cpu_seconds() { return last_cpu; }
 
 template <int D>
 SolveResult petsc_solve_poisson(const MultipatchSpace<D>& space, const PoissonProblem<D>& problem,
@@ -314,7 +331,7 @@ ModesResult petsc_laplace_modes(const MultipatchSpace<D>& space, const std::vect
   SparseMatrix K = assemble_matrix<D>(space, [&](int) { return stiffness; }, o.threads, rank_partition());
   SparseMatrix M = assemble_matrix<D>(space, [&](int) { return mass; }, o.threads, rank_partition());
   const FixedDofs fixed = project_dirichlet<D>(space, 1, {{dirichlet, {}, nullptr}});
-  return modes_distributed(K, M, space.num_basis, 1, fixed, count, false, o, t0);
+  return modes_distributed(K, M, space.num_basis, space.num_patches() == 1, 1, fixed, count, false, o, t0);
 }
 
 template <int D>
@@ -325,7 +342,7 @@ ModesResult petsc_elastic_modes(const MultipatchSpace<D>& space, const Elasticit
   SparseMatrix K = elastic_stiffness(space, problem, o.threads, rank_partition());
   SparseMatrix M = elastic_mass(space, problem, o.threads, rank_partition());
   const FixedDofs fixed = project_dirichlet(space, D, problem.displacement);
-  return modes_distributed(K, M, space.num_basis, D, fixed, count, true, o, t0);
+  return modes_distributed(K, M, space.num_basis, space.num_patches() == 1, D, fixed, count, true, o, t0);
 }
 
 template <int D>

@@ -27,6 +27,13 @@ struct PetscSolverOptions {
   int threads = 1;           // threads of each rank's element loop (0: all cores)
 };
 
+// Processor time of the last distributed solve's phases (assembly up to the eliminated system; solve or
+// eigensolve), the slowest rank's: on a loaded machine the wall times include waiting for the processor.
+struct PhaseCpuSeconds {
+  double assembly = 0, solve = 0;
+};
+const PhaseCpuSeconds& last_phase_cpu_seconds();
+
 // This rank's share of the elements.
 ElementPartition rank_partition();
 

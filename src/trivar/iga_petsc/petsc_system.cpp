@@ -69,13 +69,28 @@ void add_rows(Mat A, const SparseMatrix& local, const DofLayout& L, bool values)
 
 }  // namespace
 
-Mat distributed_matrix(SparseMatrix& local, const DofLayout& L) {
-  Mat pre = empty_matrix(L, MATPREALLOCATOR);
-  petsc_check(MatSetUp(pre), "MatSetUp");
-  add_rows(pre, local, L, false);
+Mat distributed_matrix(SparseMatrix& local, const DofLayout& L, bool rows_complete) {
   Mat A = empty_matrix(L, MATAIJ);
-  petsc_check(MatPreallocatorPreallocate(pre, PETSC_TRUE, A), "MatPreallocatorPreallocate");
-  petsc_check(MatDestroy(&pre), "MatDestroy");
+  if (rows_complete) {
+    // Counted directly: columns owned by this rank (diagonal block) and the others, per owned row.
+    std::vector<PetscInt> diagonal(static_cast<std::size_t>(L.local_rows()), 0), off(diagonal.size(), 0);
+    for (Eigen::Index r = 0; r < local.outerSize(); ++r) {
+      const PetscInt row = L.row(static_cast<int>(r));
+      if (row < L.begin || row >= L.end) continue;
+      for (int k = local.outerIndexPtr()[r]; k < local.outerIndexPtr()[r + 1]; ++k) {
+        const PetscInt col = L.row(local.innerIndexPtr()[k]);
+        ++(col >= L.begin && col < L.end ? diagonal : off)[static_cast<std::size_t>(row - L.begin)];
+      }
+    }
+    petsc_check(MatSeqAIJSetPreallocation(A, 0, diagonal.data()), "MatSeqAIJSetPreallocation");
+    petsc_check(MatMPIAIJSetPreallocation(A, 0, diagonal.data(), 0, off.data()), "MatMPIAIJSetPreallocation");
+  } else {
+    Mat pre = empty_matrix(L, MATPREALLOCATOR);
+    petsc_check(MatSetUp(pre), "MatSetUp");
+    add_rows(pre, local, L, false);
+    petsc_check(MatPreallocatorPreallocate(pre, PETSC_TRUE, A), "MatPreallocatorPreallocate");
+    petsc_check(MatDestroy(&pre), "MatDestroy");
+  }
   // Every entry was preallocated: a new one would mean a pattern bug, not a slow insertion.
   petsc_check(MatSetOption(A, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE), "MatSetOption");
   add_rows(A, local, L, true);

@@ -9,8 +9,11 @@
 // interleaved (row = m * block + c), so the matrix has PETSc block size m (what GAMG's elasticity set-up uses).
 //
 // Preallocation comes from the spline supports: the compressed rows a rank assembles hold the whole pattern
-// of every row its elements touch, and that pattern is inserted into a MATPREALLOCATOR first (rows owned
-// elsewhere included), so the real matrix is allocated exactly once, before any value arrives.
+// of every row its elements touch. On one patch that is the row's global pattern, so the owner counts its
+// rows' diagonal- and off-block entries directly. On several patches a shared function's row also couples to
+// the functions of other patches, which another rank may assemble alone: the patterns of all ranks go through
+// a MATPREALLOCATOR first (rows owned elsewhere included). Either way the matrix is allocated exactly once,
+// before any value arrives.
 #include <vector>
 
 #include <petscmat.h>
@@ -38,7 +41,8 @@ struct DofLayout {
 DofLayout dof_layout(const SparseMatrix& local, int num_basis, int components);
 
 // A distributed AIJ matrix summed from every rank's `local` rows; collective. `local` is released.
-Mat distributed_matrix(SparseMatrix& local, const DofLayout& layout);
+// rows_complete: each of this rank's rows holds its whole global pattern (one patch).
+Mat distributed_matrix(SparseMatrix& local, const DofLayout& layout, bool rows_complete);
 
 // A distributed vector summed from every rank's `local` (global component-major numbering); collective.
 Vec distributed_vector(const Eigen::VectorXd& local, const DofLayout& layout);
