@@ -45,7 +45,7 @@ for args, pattern in [
         args[1], serial.returncode, petsc.returncode, petsc.stderr))
     want, got = numbers(serial.stdout, pattern), numbers(petsc.stdout, pattern)
     check(want and want == got, "%s: serial %s, petsc %s" % (args[1], want, got))
-    check("ranks 2, peak memory per rank" in petsc.stdout, "%s: no per-rank memory line" % args[1])
+    check(re.search(r"ranks 2, CPU per rank .*peak memory per rank \(MB\): \d+ \d+", petsc.stdout), "%s: no per-rank memory line" % args[1])
     check(petsc.stdout.count("dofs") == 1, "%s: rank 1 printed as well" % args[1])
 
 with tempfile.TemporaryDirectory() as tmp:
