@@ -49,18 +49,25 @@ Mat empty_matrix(const DofLayout& L, MatType type) {
   return A;
 }
 
-// Adds every non-empty row of `local` to A (values, or zeros for the preallocator).
+// Adds every non-empty row of `local` to A (values, or zeros for the preallocator). Rows owned by another rank
+// travel to it: of those only the entries this rank's elements made (the rest of the pattern is zero here).
 void add_rows(Mat A, const SparseMatrix& local, const DofLayout& L, bool values) {
   std::vector<PetscInt> cols;
-  std::vector<PetscScalar> zeros;
+  std::vector<PetscScalar> vals;
   for (Eigen::Index r = 0; r < local.outerSize(); ++r) {
     const int b = local.outerIndexPtr()[r], e = local.outerIndexPtr()[r + 1];
     if (b == e) continue;
-    cols.resize(static_cast<std::size_t>(e - b));
-    for (int k = b; k < e; ++k) cols[static_cast<std::size_t>(k - b)] = L.row(local.innerIndexPtr()[k]);
-    if (!values) zeros.assign(cols.size(), 0.0);
     const PetscInt row = L.row(static_cast<int>(r));
-    petsc_check(MatSetValues(A, 1, &row, e - b, cols.data(), values ? local.valuePtr() + b : zeros.data(), ADD_VALUES),
+    const bool ghost = values && (row < L.begin || row >= L.end);
+    cols.clear();
+    vals.clear();
+    for (int k = b; k < e; ++k) {
+      const double v = values ? local.valuePtr()[k] : 0.0;
+      if (ghost && v == 0.0) continue;
+      cols.push_back(L.row(local.innerIndexPtr()[k]));
+      vals.push_back(v);
+    }
+    petsc_check(MatSetValues(A, 1, &row, static_cast<PetscInt>(cols.size()), cols.data(), vals.data(), ADD_VALUES),
                 "MatSetValues");
   }
   petsc_check(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
