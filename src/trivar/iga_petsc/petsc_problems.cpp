@@ -10,6 +10,8 @@
 
 #include "trivar/core/error.hpp"
 #include "trivar/iga/multipatch_assembly.hpp"
+#include "trivar/iga/refined_elasticity.hpp"
+#include "trivar/iga/refined_poisson.hpp"
 #include "trivar/iga_petsc/petsc_session.hpp"
 #include "trivar/iga_petsc/petsc_system.hpp"
 
@@ -126,25 +128,17 @@ void set_rigid_body_modes(Mat A, const MultipatchSpace<D>& space, const DofLayou
   petsc_check(VecDestroy(&coords), "VecDestroy");
 }
 
-// The static problems' common part (solve_loaded in poisson.cpp, distributed): this rank's rows `local` of A,
-// loads of its elements (face loads: rank 0, they are boundary integrals), conditions, solve.
-template <int D>
-SolveResult solve_distributed(const MultipatchSpace<D>& space, SparseMatrix& local, int m,
-                              const std::function<void(const double*, double*)>& f, const std::vector<Face>& faces,
-                              const std::function<void(const double*, const double*, double*)>& g,
-                              const std::vector<DirichletCondition<D>>& conditions, const PetscSolverOptions& o,
-                              Clock::time_point t0) {
-  const ElementPartition part = rank_partition();
-  const DofLayout L = dof_layout(local, space.num_basis, m);
-  Mat A = distributed_matrix(local, L, space.num_patches() == 1);
-  Eigen::VectorXd b_local = f ? assemble_load<D>(space, m, f, o.threads, part)
-                              : Eigen::VectorXd::Zero(static_cast<Eigen::Index>(space.num_basis) * m);
-  if (part.part == 0 && g && !faces.empty()) add_face_load<D>(space, faces, m, g, b_local);
+// The static problems' common end (solve_constrained in poisson.cpp, distributed): this rank's rows `local` of
+// A and its share of the load, the fixed dofs, the solve. near_null (may be null) gives GAMG its near null space.
+SolveResult solve_assembled(SparseMatrix& local, Eigen::VectorXd& b_local, const FixedDofs& fixed, int num_basis, int m,
+                            bool rows_complete, const std::function<void(Mat, const DofLayout&)>& near_null,
+                            const PetscSolverOptions& o, Clock::time_point t0) {
+  const DofLayout L = dof_layout(local, num_basis, m);
+  Mat A = distributed_matrix(local, L, rows_complete);
   Vec b = distributed_vector(b_local, L);
   b_local = Eigen::VectorXd();
-  const FixedDofs fixed = project_dirichlet(space, m, conditions);
   apply_dirichlet(A, b, fixed, L);
-  if (m == D && m > 1 && o.preconditioner == "gamg") set_rigid_body_modes<D>(A, space, L);
+  if (near_null && o.preconditioner == "gamg") near_null(A, L);
   SolveResult r;
   r.assembly_seconds = seconds_since(t0, last_cpu.assembly);
   const auto t1 = Clock::now();
@@ -175,6 +169,24 @@ SolveResult solve_distributed(const MultipatchSpace<D>& space, SparseMatrix& loc
   petsc_check(VecDestroy(&b), "VecDestroy");
   petsc_check(MatDestroy(&A), "MatDestroy");
   return r;
+}
+
+// On a multipatch space: loads of this rank's elements (face loads: rank 0, they are boundary integrals), the
+// conditions, the rigid-body modes of elasticity.
+template <int D>
+SolveResult solve_distributed(const MultipatchSpace<D>& space, SparseMatrix& local, int m,
+                              const std::function<void(const double*, double*)>& f, const std::vector<Face>& faces,
+                              const std::function<void(const double*, const double*, double*)>& g,
+                              const std::vector<DirichletCondition<D>>& conditions, const PetscSolverOptions& o,
+                              Clock::time_point t0) {
+  const ElementPartition part = rank_partition();
+  Eigen::VectorXd b_local = f ? assemble_load<D>(space, m, f, o.threads, part)
+                              : Eigen::VectorXd::Zero(static_cast<Eigen::Index>(space.num_basis) * m);
+  if (part.part == 0 && g && !faces.empty()) add_face_load<D>(space, faces, m, g, b_local);
+  const FixedDofs fixed = project_dirichlet(space, m, conditions);
+  std::function<void(Mat, const DofLayout&)> near_null;
+  if (m == D && m > 1) near_null = [&](Mat A, const DofLayout& L) { set_rigid_body_modes<D>(A, space, L); };
+  return solve_assembled(local, b_local, fixed, space.num_basis, m, space.num_patches() == 1, near_null, o, t0);
 }
 
 // The free rows of K and M (owned by this rank) and the lowest `count` eigenpairs of the pencil there.
@@ -354,7 +366,42 @@ ErrorNorms petsc_error_norms(const MultipatchSpace<D>& space, const Eigen::Vecto
   return {std::sqrt(squares[0]), std::sqrt(squares[1])};
 }
 
+template <int D>
+SolveResult petsc_solve_poisson(const RefinedSpace<D>& space, const PoissonProblem<D>& problem,
+                                const PetscSolverOptions& o) {
+  check_preconditioner(o);
+  const auto t0 = Clock::now();
+  auto [A, b] = poisson_system(space, problem, o.threads, rank_partition());
+  return solve_assembled(A, b, refined_fixed_dofs(space, 1, problem.dirichlet), space.num_basis, 1, false, nullptr, o,
+                         t0);
+}
+
+template <int D>
+SolveResult petsc_solve_elasticity(const RefinedSpace<D>& space, const ElasticityProblem<D>& problem,
+                                   const PetscSolverOptions& o) {
+  check_preconditioner(o);
+  const auto t0 = Clock::now();
+  auto [A, b] = elasticity_system(space, problem, o.threads, rank_partition());
+  return solve_assembled(A, b, refined_fixed_dofs(space, D, problem.displacement), space.num_basis, D, false, nullptr,
+                         o, t0);
+}
+
+template <int D>
+ErrorNorms petsc_error_norms(const RefinedSpace<D>& space, const Eigen::VectorXd& coefs, int components,
+                             const ExactSolution<D>& exact, int threads) {
+  const ErrorNorms mine = error_norms(space, coefs, components, exact, threads, rank_partition());
+  double squares[2] = {mine.l2 * mine.l2, mine.h1 * mine.h1};
+  MPI_Allreduce(MPI_IN_PLACE, squares, 2, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+  return {std::sqrt(squares[0]), std::sqrt(squares[1])};
+}
+
 #define TRIVAR_INSTANTIATE(D)                                                                                    \
+  template SolveResult petsc_solve_poisson(const RefinedSpace<D>&, const PoissonProblem<D>&,                     \
+                                           const PetscSolverOptions&);                                           \
+  template SolveResult petsc_solve_elasticity(const RefinedSpace<D>&, const ElasticityProblem<D>&,               \
+                                              const PetscSolverOptions&);                                        \
+  template ErrorNorms petsc_error_norms(const RefinedSpace<D>&, const Eigen::VectorXd&, int,                     \
+                                        const ExactSolution<D>&, int);                                           \
   template SolveResult petsc_solve_poisson(const MultipatchSpace<D>&, const PoissonProblem<D>&,                   \
                                            const PetscSolverOptions&);                                           \
   template SolveResult petsc_solve_elasticity(const MultipatchSpace<D>&, const ElasticityProblem<D>&,             \

@@ -15,6 +15,7 @@
 #include "trivar/iga/element_partition.hpp"
 #include "trivar/iga/error_norms.hpp"
 #include "trivar/iga/poisson.hpp"
+#include "trivar/iga/refined_space.hpp"
 
 namespace trivar {
 
@@ -46,6 +47,16 @@ template <int D>
 SolveResult petsc_solve_elasticity(const MultipatchSpace<D>& space, const ElasticityProblem<D>& problem,
                                    const PetscSolverOptions& options);
 
+// On a locally refined space (LR, HB, THB; refined_space.hpp): each rank assembles a contiguous run of the
+// space's elements, and the matrix is preallocated from all ranks' patterns (MATPREALLOCATOR). No rigid-body
+// near null space is given to GAMG there.
+template <int D>
+SolveResult petsc_solve_poisson(const RefinedSpace<D>& space, const PoissonProblem<D>& problem,
+                                const PetscSolverOptions& options);
+template <int D>
+SolveResult petsc_solve_elasticity(const RefinedSpace<D>& space, const ElasticityProblem<D>& problem,
+                                   const PetscSolverOptions& options);
+
 // As laplace_modes and elastic_modes (eigen_modes.hpp): the shift-invert systems are solved by the options'
 // preconditioner (mumps: exactly; otherwise CG to the options' tolerance, which bounds the eigenvalues'
 // accuracy).
@@ -59,6 +70,9 @@ ModesResult petsc_elastic_modes(const MultipatchSpace<D>& space, const Elasticit
 // error_norms (error_norms.hpp) with each rank integrating its own elements, the squares summed over ranks.
 template <int D>
 ErrorNorms petsc_error_norms(const MultipatchSpace<D>& space, const Eigen::VectorXd& coefs, int components,
+                             const ExactSolution<D>& exact, int threads = 1);
+template <int D>
+ErrorNorms petsc_error_norms(const RefinedSpace<D>& space, const Eigen::VectorXd& coefs, int components,
                              const ExactSolution<D>& exact, int threads = 1);
 
 }  // namespace trivar
