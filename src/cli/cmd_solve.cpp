@@ -32,6 +32,9 @@
 #include "trivar/iga/lr_solution_field.hpp"
 #include "trivar/iga/poisson.hpp"
 #include "trivar/iga/solution_field.hpp"
+#include "trivar/iga_petsc/parallel_vtk.hpp"
+#include "trivar/iga_petsc/petsc_problems.hpp"
+#include "trivar/iga_petsc/petsc_session.hpp"
 #include "trivar/io/lr_vtk.hpp"
 #include "trivar/io/vtk_writer.hpp"
 #include "trivar/lr/any_lr_spline.hpp"
@@ -59,6 +62,8 @@ struct SolveArgs {
   double beta = 0.3;
   int admissible = 0;
   std::string solver = "cg";
+  std::string backend = "serial";
+  std::string pc = "gamg";
   std::string out;
   bool force = false;
   int threads = 0;
@@ -75,6 +80,28 @@ std::string secs(double x) {
   std::snprintf(buf, sizeof buf, "%.3f", x);
   return buf;
 }
+
+bool distributed(const SolveArgs& a) { return a.backend == "petsc"; }
+
+// One thread per rank unless --threads says otherwise: mpirun starts a rank per core.
+PetscSolverOptions petsc_options(const SolveArgs& a) {
+  PetscSolverOptions o;
+  o.preconditioner = a.pc;
+  o.threads = a.threads == 0 ? 1 : a.threads;
+  return o;
+}
+
+// The ranks, the processor time of the phases and the peak resident memory of each rank (collective).
+void print_ranks() {
+  const std::vector<double> peak = peak_memory_per_rank();
+  const PhaseCpuSeconds& cpu = last_phase_cpu_seconds();
+  std::string line = "ranks " + std::to_string(peak.size()) + ", CPU per rank (slowest): assembly " + secs(cpu.assembly) +
+                     " s, solve " + secs(cpu.solve) + " s, peak memory per rank (MB):";
+  for (double b : peak) line += " " + std::to_string(static_cast<long>(b / 1e6));
+  std::printf("%s\n", line.c_str());
+}
+
+std::string solver_name(const SolveArgs& a) { return distributed(a) ? "cg+" + a.pc : a.solver; }
 
 // The input file, read (and a model glued) once: a V-model or a single spline.
 struct FileInput {
@@ -198,7 +225,7 @@ template <int D>
 struct Discretisation {
   MultipatchSpace<D> space;
   int components = 1;
-  std::function<SolveResult(LinearSolver&, int threads)> solve;
+  std::function<SolveResult(const SolveArgs&)> solve;
   ExactSolution<D> exact;  // null when unknown
   // Elasticity: the material of a patch at a point, for the von Mises output.
   std::function<ElasticMaterial(int patch, const double* x)> material;
@@ -224,6 +251,22 @@ double von_mises_at(const TensorSpline<D>& geometry, const TensorSpline<D>& fiel
     for (int j = 0; j < D; ++j) g[i * D + j] = grad(i, j);
   stress<D>(m, g, sigma);
   return von_mises<D>(m, sigma);
+}
+
+// With the PETSc back end: <stem>.pvtu and one piece per rank (iga_petsc/parallel_vtk.hpp) in the folder rank 0
+// stages; collective.
+template <int D>
+void write_parallel(const SolveArgs& a, const std::string& stem, const MultipatchSpace<D>& space,
+                    const std::vector<ParallelField>& fields) {
+  std::unique_ptr<OutputFolder> out;
+  std::string staging;
+  const std::vector<std::string> names = parallel_vtu_files(stem, rank_partition().parts);
+  if (rank_partition().part == 0) {
+    out = prepare_out(a);
+    for (const std::string& n : names) staging = out->path(n).parent_path().string();
+  }
+  write_parallel_vtu<D>(broadcast_from_rank0(staging), stem, space, fields);
+  if (out) out->commit();
 }
 
 template <int D>
@@ -255,8 +298,7 @@ void run_static(const SolveArgs& a, const std::function<Discretisation<D>(int)>&
   for (std::size_t i = 0; i < sizes.size(); ++i) {
     last = make(sizes[i]);
     const Discretisation<D>& d = *last;
-    auto solver = make_solver(a.solver);
-    const SolveResult r = d.solve(*solver, a.threads);
+    const SolveResult r = d.solve(a);
     coefs = r.coefs;
     ConvergenceRow row;
     row.step = static_cast<int>(i);
@@ -271,7 +313,8 @@ void run_static(const SolveArgs& a, const std::function<Discretisation<D>(int)>&
     }
     std::string line = "dofs " + std::to_string(r.dofs);
     if (d.exact) {
-      const ErrorNorms e = error_norms(d.space, r.coefs, d.components, d.exact, a.threads);
+      const ErrorNorms e = distributed(a) ? petsc_error_norms(d.space, r.coefs, d.components, d.exact, petsc_options(a).threads)
+                                          : error_norms(d.space, r.coefs, d.components, d.exact, a.threads);
       row.l2 = e.l2;
       row.h1 = e.h1;
       line += ", L2 error " + sci(e.l2) + ", H1 error " + sci(e.h1);
@@ -279,14 +322,17 @@ void run_static(const SolveArgs& a, const std::function<Discretisation<D>(int)>&
       row.l2 = row.h1 = -1;
     }
     line += ", assembly " + secs(r.assembly_seconds) + " s, solve " + secs(r.solve_seconds) + " s";
-    if (r.stats.iterations > 0) line += " (" + std::to_string(r.stats.iterations) + " " + a.solver + " iterations)";
+    if (r.stats.iterations > 0) line += " (" + std::to_string(r.stats.iterations) + " " + solver_name(a) + " iterations)";
     std::printf("%s\n", line.c_str());
     rows.push_back(row);
   }
   for (std::size_t i = 1; i < rows.size(); ++i)
     std::printf("elements %d: L2 rate %.2f, H1 rate %.2f\n", rows[i].elements, observed_rate(rows, i, D, false),
                 observed_rate(rows, i, D, true));
-  if (!a.out.empty()) {
+  if (distributed(a)) print_ranks();
+  if (!a.out.empty() && distributed(a)) {
+    write_parallel<D>(a, "solution", last->space, {{last->components == 1 ? "u" : "displacement", coefs, last->components}});
+  } else if (!a.out.empty()) {
     const auto out = prepare_out(a);
     write_solution<D>(out->path("solution.vtu"), *last, coefs);
     if (a.study) {
@@ -301,8 +347,11 @@ template <int D>
 Discretisation<D> poisson_discretisation(const MultipatchSpace<D>& space, const PoissonProblem<D>& problem,
                                          const ExactSolution<D>& exact) {
   return {space, 1,
-          [space, problem](LinearSolver& s, int threads) { return solve_poisson(space, problem, s, threads); }, exact,
-          nullptr};
+          [space, problem](const SolveArgs& a) {
+            if (distributed(a)) return petsc_solve_poisson(space, problem, petsc_options(a));
+            return solve_poisson(space, problem, *make_solver(a.solver), a.threads);
+          },
+          exact, nullptr};
 }
 
 template <int D>
@@ -314,7 +363,10 @@ template <int D>
 Discretisation<D> elasticity_discretisation(const MultipatchSpace<D>& space, const ElasticityProblem<D>& problem,
                                             const ExactSolution<D>& exact) {
   return {space, D,
-          [space, problem](LinearSolver& s, int threads) { return solve_elasticity(space, problem, s, threads); },
+          [space, problem](const SolveArgs& a) {
+            if (distributed(a)) return petsc_solve_elasticity(space, problem, petsc_options(a));
+            return solve_elasticity(space, problem, *make_solver(a.solver), a.threads);
+          },
           exact, [problem](int patch, const double* x) { return problem.material_of(patch, x); }};
 }
 
@@ -436,8 +488,10 @@ template <int D>
 void modes(const SolveArgs& a, const MultipatchSpace<D>& space, const ElasticityProblem<D>* elastic,
            const std::vector<double>& exact) {
   const ModesResult r =
-      elastic ? elastic_modes(space, *elastic, a.modes, a.threads)
-              : laplace_modes(space, space.boundary, a.modes, a.threads);
+      distributed(a) ? (elastic ? petsc_elastic_modes(space, *elastic, a.modes, petsc_options(a))
+                                : petsc_laplace_modes(space, space.boundary, a.modes, petsc_options(a)))
+      : elastic      ? elastic_modes(space, *elastic, a.modes, a.threads)
+                     : laplace_modes(space, space.boundary, a.modes, a.threads);
   for (int i = 0; i < a.modes; ++i) {
     std::string line = "mode " + std::to_string(i + 1) + ": " + (elastic ? "omega^2 " : "lambda ") + sci(r.values[i]);
     if (elastic) line += ", frequency " + sci(std::sqrt(std::max(0.0, r.values[i])) / (2 * M_PI));
@@ -449,7 +503,12 @@ void modes(const SolveArgs& a, const MultipatchSpace<D>& space, const Elasticity
   }
   std::printf("dofs %d, assembly %s s, solve %s s\n", r.dofs, secs(r.assembly_seconds).c_str(),
               secs(r.solve_seconds).c_str());
-  if (!a.out.empty()) {
+  if (distributed(a)) print_ranks();
+  if (!a.out.empty() && distributed(a)) {
+    std::vector<ParallelField> fields;
+    for (int i = 0; i < a.modes; ++i) fields.push_back({"mode_" + std::to_string(i + 1), r.vectors.col(i), elastic ? D : 1});
+    write_parallel<D>(a, "modes", space, fields);
+  } else if (!a.out.empty()) {
     const int components = elastic ? D : 1;
     std::vector<std::vector<TensorSpline<D>>> fields;
     for (int i = 0; i < a.modes; ++i) fields.push_back(patch_fields(space, r.vectors.col(i), components));
@@ -574,6 +633,10 @@ void run(const SolveArgs& a) {
   require(a.problem.empty() != a.file.empty(), "solve: give either a model/spline file or --problem NAME");
   require(a.modes >= 1, "solve: --modes must be at least 1, got " + std::to_string(a.modes));
   if (!a.out.empty()) check_output_folder(a.out, out_options(a));
+  require(!distributed(a) || (!a.adaptive && !is_t_spline_file(a.file)),
+          "solve: --backend petsc solves tensor and multipatch spaces (not --adaptive, not T-splines)");
+  require(!distributed(a) || !a.study || a.out.empty(),
+          "solve: --study writes its convergence table with the serial back end only");
   if (a.problem.empty()) {
     require(!a.study, "solve: --study needs a problem with an exact solution (--problem)");
     require(a.kind != "elasticity" || a.clamp != "none", "solve: static elasticity needs supports (--clamp)");
@@ -586,9 +649,10 @@ void run(const SolveArgs& a) {
       return;
     }
     const FileInput in = read_input(a);
-    if (has_trimmed_cells(in))
+    if (has_trimmed_cells(in)) {
+      require(!distributed(a), "solve: --backend petsc does not take trimmed cells");
       run_trimmed(a, *in.model);
-    else if (a.kind == "modes" && in.dimension() == 3)
+    } else if (a.kind == "modes" && in.dimension() == 3)
       file_modes<3>(a, in);
     else if (a.kind == "modes")
       file_modes<2>(a, in);
@@ -675,11 +739,27 @@ void add_solve_command(CLI::App& app, Context& ctx) {
   cmd->add_option("--admissible", a->admissible,
                   "HB/THB adaptive loop: keep the mesh admissible of class M >= 2 (at most M levels act on an element)");
   cmd->add_option("--solver", a->solver, "cg, cg-ichol or cholmod")->default_val("cg");
+  cmd->add_option("--backend", a->backend,
+                  "serial (one process) or petsc (distributed over the MPI ranks of mpirun -np N trivar solve ...; "
+                  "one thread per rank unless --threads)")
+      ->default_val("serial")
+      ->check(CLI::IsMember({"serial", "petsc"}));
+  cmd->add_option("--pc", a->pc,
+                  "Preconditioner of --backend petsc: gamg, hypre (BoomerAMG), bjacobi (ICC blocks), jacobi, or mumps "
+                  "(direct)")
+      ->default_val("gamg")
+      ->check(CLI::IsMember({"gamg", "hypre", "bjacobi", "jacobi", "mumps"}));
   cmd->add_option("--out", a->out, "Folder for solution.vtu / modes.vtu, convergence.csv and .svg: new, empty, "
                                    "or written by trivar before (see --force)");
   cmd->add_flag("--force", a->force, "Write into a non-empty folder trivar did not write (only trivar's file names are replaced)");
   cmd->callback([a, &ctx] {
     a->threads = ctx.threads;
+    std::optional<PetscSession> mpi;
+    if (distributed(*a)) {
+      mpi.emplace();
+      // Rank 0 speaks for all: every rank computes the same summary lines.
+      if (mpi->rank() > 0) require(std::freopen("/dev/null", "w", stdout) != nullptr, "solve: cannot silence rank output");
+    }
     run(*a);
   });
 }

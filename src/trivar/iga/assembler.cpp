@@ -36,20 +36,22 @@ Pattern1D pattern_1d(const DirectionTable& t, int count) {
   return p;
 }
 
-// Runs body(e) for every element, slab by slab (see assembler.hpp): two passes over the slabs of p + 1
-// layers in the last direction, even slabs then odd ones, each pass in parallel over slabs.
+// Runs body(e) for every element of the part, slab by slab (see assembler.hpp): two passes over the slabs of
+// p + 1 layers in the last direction, even slabs then odd ones, each pass in parallel over slabs.
 template <int D, class Body>
-void for_each_element_by_slabs(const PatchQuadrature<D>& quad, int threads, Body&& body) {
+void for_each_element_by_slabs(const PatchQuadrature<D>& quad, int threads, const ElementPartition& part,
+                               Body&& body) {
   const DirectionTable& last = quad.dir[D - 1];
-  const int layers = last.elements();
-  const int per_layer = quad.num_elements() / layers;
+  const std::pair<int, int> range = part.layers(last.elements());
+  const int first = range.first, end_layer = range.second;
+  const int per_layer = quad.num_elements() / last.elements();
   const int slab = last.degree + 1;
-  const int slabs = (layers + slab - 1) / slab;
+  const int slabs = (end_layer - first + slab - 1) / slab;
   for (int parity = 0; parity < 2; ++parity) {
     const int count = (slabs - parity + 1) / 2;
     parallel_for(count, threads, [&](std::ptrdiff_t s) {
       const int b = 2 * static_cast<int>(s) + parity;
-      const int begin = b * slab * per_layer, end = std::min(layers, (b + 1) * slab) * per_layer;
+      const int begin = (first + b * slab) * per_layer, end = std::min(end_layer, first + (b + 1) * slab) * per_layer;
       for (int e = begin; e < end; ++e) body(e);
     });
   }
@@ -60,6 +62,9 @@ struct Pattern {
   std::array<Pattern1D, D> dir;
   int components = 1;
   int num_basis = 0;
+  // Rows whose index along the last direction lies in [rows_lo, rows_hi] (the functions of the assembled
+  // part's elements) get their pattern; the others stay empty.
+  int rows_lo = 0, rows_hi = std::numeric_limits<int>::max();
 };
 
 // Compressed rows with the column indices filled in and zero values.
@@ -68,6 +73,8 @@ SparseMatrix make_matrix(const TensorSpace<D>& space, const Pattern<D>& pat, int
   const TensorSpline<D>& g = space.geometry;
   const int N = pat.num_basis, m = pat.components, rows = N * m;
   auto width = [&](int I) {
+    const int last = I / (N / g.count(D - 1));
+    if (last < pat.rows_lo || last > pat.rows_hi) return 0L;
     long w = 1;
     for (int k = 0; k < D; ++k) {
       w *= pat.dir[k].width[static_cast<std::size_t>(I % g.count(k))];
@@ -86,6 +93,7 @@ SparseMatrix make_matrix(const TensorSpace<D>& space, const Pattern<D>& pat, int
   std::fill(A.valuePtr(), A.valuePtr() + outer.back(), 0.0);
   parallel_for(rows, threads, [&](std::ptrdiff_t r) {
     const int I = static_cast<int>(r) % N;
+    if (outer[static_cast<std::size_t>(r) + 1] == outer[static_cast<std::size_t>(r)]) return;
     Ints<D> lo, w;
     for (int k = 0, rest = I; k < D; rest /= g.count(k), ++k) {
       lo[k] = pat.dir[k].lo[static_cast<std::size_t>(rest % g.count(k))];
@@ -176,7 +184,8 @@ void scatter(const double* E, bool symmetric, const Ints<D>& n, const std::array
 }  // namespace
 
 template <int D>
-SparseMatrix assemble_matrix(const TensorSpace<D>& space, const BilinearForm<D>& form, int threads) {
+SparseMatrix assemble_matrix(const TensorSpace<D>& space, const BilinearForm<D>& form, int threads,
+                             const ElementPartition& part) {
   require(form.components >= 1 && form.coefficients, "iga: bilinear form without components or coefficients");
   constexpr int K = D + 1;
   const TensorSpline<D>& geo = space.geometry;
@@ -186,6 +195,12 @@ SparseMatrix assemble_matrix(const TensorSpace<D>& space, const BilinearForm<D>&
   pat.components = m;
   pat.num_basis = N;
   for (int k = 0; k < D; ++k) pat.dir[k] = pattern_1d(quad.dir[k], geo.count(k));
+  if (!part.whole()) {
+    const DirectionTable& last = quad.dir[D - 1];
+    const auto [first, end] = part.layers(last.elements());
+    pat.rows_lo = first < end ? last.first[static_cast<std::size_t>(first)] : 0;
+    pat.rows_hi = first < end ? last.first[static_cast<std::size_t>(end - 1)] + last.degree : -1;
+  }
   SparseMatrix A = make_matrix(space, pat, threads);
   const std::vector<int> pairs = active_pairs(form, geo.is_rational());
   const int np = static_cast<int>(pairs.size());
@@ -199,7 +214,7 @@ SparseMatrix assemble_matrix(const TensorSpace<D>& space, const BilinearForm<D>&
   const int* outer = A.outerIndexPtr();
   double* values = A.valuePtr();
 
-  for_each_element_by_slabs(quad, threads, [&](int el) {
+  for_each_element_by_slabs(quad, threads, part, [&](int el) {
     thread_local GridScratch scratch;
     thread_local GridGeometry<D> g;
     thread_local ElementMatrixKernel<D> kernel;
@@ -287,12 +302,13 @@ SparseMatrix assemble_matrix(const TensorSpace<D>& space, const BilinearForm<D>&
 
 template <int D>
 Eigen::VectorXd assemble_load(const TensorSpace<D>& space, int components,
-                              const std::function<void(const double* x, double* f)>& f, int threads) {
+                              const std::function<void(const double* x, double* f)>& f, int threads,
+                              const ElementPartition& part) {
   const TensorSpline<D>& geo = space.geometry;
   const PatchQuadrature<D> quad = patch_quadrature(space);
   const int m = components, N = space.num_basis(), Q = quad.points();
   Eigen::VectorXd b = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(N) * m);
-  for_each_element_by_slabs(quad, threads, [&](int el) {
+  for_each_element_by_slabs(quad, threads, part, [&](int el) {
     thread_local GridScratch scratch;
     thread_local GridGeometry<D> g;
     thread_local std::vector<double> fq, gq, local;
@@ -316,9 +332,11 @@ Eigen::VectorXd assemble_load(const TensorSpace<D>& space, int components,
 }
 
 #define TRIVAR_INSTANTIATE(D)                                                                                  \
-  template SparseMatrix assemble_matrix(const TensorSpace<D>&, const BilinearForm<D>&, int);                   \
+  template SparseMatrix assemble_matrix(const TensorSpace<D>&, const BilinearForm<D>&, int,                    \
+                                        const ElementPartition&);                                              \
   template Eigen::VectorXd assemble_load(const TensorSpace<D>&, int,                                          \
-                                         const std::function<void(const double*, double*)>&, int);
+                                         const std::function<void(const double*, double*)>&, int,              \
+                                         const ElementPartition&);
 TRIVAR_INSTANTIATE(2)
 TRIVAR_INSTANTIATE(3)
 #undef TRIVAR_INSTANTIATE

@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 
+#include "trivar/iga/element_partition.hpp"
 #include "trivar/iga/sparse_matrix.hpp"
 #include "trivar/iga/tensor_space.hpp"
 
@@ -28,13 +29,17 @@ struct BilinearForm {
   std::function<void(const double* x, double* P)> coefficients;
 };
 
-// The matrix of the form on the space's basis (dofs numbered component-major, see tensor_space.hpp).
+// The matrix of the form on the space's basis (dofs numbered component-major, see tensor_space.hpp). With a
+// part of the elements (element_partition.hpp), only they are summed and only the rows of their functions
+// hold a pattern (each such row its whole pattern, the entries of other parts' elements zero).
 template <int D>
-SparseMatrix assemble_matrix(const TensorSpace<D>& space, const BilinearForm<D>& form, int threads = 0);
+SparseMatrix assemble_matrix(const TensorSpace<D>& space, const BilinearForm<D>& form, int threads = 0,
+                             const ElementPartition& part = {});
 
 // b = integral of f . v: f(x, out) writes `components` values.
 template <int D>
 Eigen::VectorXd assemble_load(const TensorSpace<D>& space, int components,
-                              const std::function<void(const double* x, double* f)>& f, int threads = 0);
+                              const std::function<void(const double* x, double* f)>& f, int threads = 0,
+                              const ElementPartition& part = {});
 
 }  // namespace trivar

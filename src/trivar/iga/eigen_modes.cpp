@@ -110,17 +110,7 @@ template <int D>
 ModesResult laplace_modes(const MultipatchSpace<D>& space, const std::vector<Face>& dirichlet, int count,
                           int threads) {
   const auto t0 = std::chrono::steady_clock::now();
-  BilinearForm<D> stiffness, mass;
-  stiffness.coefficients = [](const double*, double* P) {
-    for (int a = 0; a < (D + 1) * (D + 1); ++a) P[a] = 0.0;
-    for (int a = 1; a <= D; ++a) P[a * (D + 1) + a] = 1.0;
-  };
-  mass.value_terms = true;
-  mass.gradient_terms = false;
-  mass.coefficients = [](const double*, double* P) {
-    for (int a = 0; a < (D + 1) * (D + 1); ++a) P[a] = 0.0;
-    P[0] = 1.0;
-  };
+  const BilinearForm<D> stiffness = poisson_form(PoissonProblem<D>{}), mass = scalar_mass_form<D>();
   const SparseMatrix K = assemble_matrix<D>(space, [&](int) { return stiffness; }, threads);
   const SparseMatrix M = assemble_matrix<D>(space, [&](int) { return mass; }, threads);
   const FixedDofs fixed = project_dirichlet<D>(space, 1, {{dirichlet, {}, nullptr}});
@@ -139,14 +129,28 @@ ModesResult elastic_modes(const MultipatchSpace<D>& space, const ElasticityProbl
   const SparseMatrix K = elastic_stiffness(space, problem, threads);
   const SparseMatrix M = elastic_mass(space, problem, threads);
   const FixedDofs fixed = project_dirichlet(space, D, problem.displacement);
-  // A body held by too few conditions has rigid-body modes (lambda = 0, K singular): a shift below zero keeps
-  // K - sigma M positive definite. Its size, a millionth of the mean diagonal ratio, is far below the lowest
-  // elastic eigenvalue of any mesh and large enough for a well-conditioned factorisation.
-  const double sigma = -1e-6 * K.diagonal().sum() / M.diagonal().sum();
-  return timed_modes<D>(t0, K, M, fixed, count, sigma);
+  return timed_modes<D>(t0, K, M, fixed, count, rigid_body_shift(K.diagonal().sum(), M.diagonal().sum()));
+}
+
+// A body held by too few conditions has rigid-body modes (lambda = 0, K singular): a shift below zero keeps
+// K - sigma M positive definite. Its size, a millionth of the mean diagonal ratio, is far below the lowest
+// elastic eigenvalue of any mesh and large enough for a well-conditioned factorisation.
+double rigid_body_shift(double stiffness_trace, double mass_trace) { return -1e-6 * stiffness_trace / mass_trace; }
+
+template <int D>
+BilinearForm<D> scalar_mass_form() {
+  BilinearForm<D> mass;
+  mass.value_terms = true;
+  mass.gradient_terms = false;
+  mass.coefficients = [](const double*, double* P) {
+    for (int a = 0; a < (D + 1) * (D + 1); ++a) P[a] = 0.0;
+    P[0] = 1.0;
+  };
+  return mass;
 }
 
 #define TRIVAR_INSTANTIATE(D)                                                                                 \
+  template BilinearForm<D> scalar_mass_form<D>();                                                              \
   template ModesResult laplace_modes(const MultipatchSpace<D>&, const std::vector<Face>&, int, int);         \
   template ModesResult laplace_modes(const TensorSpace<D>&, const std::vector<Face>&, int, int);             \
   template ModesResult elastic_modes(const MultipatchSpace<D>&, const ElasticityProblem<D>&, int, int);

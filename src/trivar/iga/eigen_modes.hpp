@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 
+#include "trivar/iga/assembler.hpp"
 #include "trivar/iga/dirichlet.hpp"
 #include "trivar/iga/elasticity.hpp"
 #include "trivar/iga/multipatch_space.hpp"
@@ -26,6 +27,14 @@ struct ModesResult {
 // 1 .. free dofs - 1 or when the iteration does not converge.
 ModesResult lowest_modes(const SparseMatrix& K, const SparseMatrix& M, const FixedDofs& fixed, int count,
                          double sigma = 0.0);
+
+// The mass form integral of u v of a scalar unknown.
+template <int D>
+BilinearForm<D> scalar_mass_form();
+
+// The shift of elastic_modes from the traces of K and M: below zero, so K - sigma M stays positive definite
+// when too few conditions leave rigid-body modes (lambda = 0).
+double rigid_body_shift(double stiffness_trace, double mass_trace);
 
 // Eigenpairs of -Laplace u = lambda u with u = 0 on the given faces (natural condition elsewhere).
 template <int D>

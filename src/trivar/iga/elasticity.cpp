@@ -45,7 +45,8 @@ namespace {
 // A form whose coefficients depend on the material at the point only: fill(material, P).
 template <int D, class Fill>
 SparseMatrix assemble_material_form(const MultipatchSpace<D>& space, const ElasticityProblem<D>& problem,
-                                    const BilinearForm<D>& shape, Fill fill, int threads) {
+                                    const BilinearForm<D>& shape, Fill fill, int threads,
+                                    const ElementPartition& part) {
   MaterialCheck check;
   SparseMatrix A = assemble_matrix<D>(
       space,
@@ -56,7 +57,7 @@ SparseMatrix assemble_material_form(const MultipatchSpace<D>& space, const Elast
         };
         return form;
       },
-      threads);
+      threads, part);
   check.report();
   return A;
 }
@@ -64,7 +65,8 @@ SparseMatrix assemble_material_form(const MultipatchSpace<D>& space, const Elast
 }  // namespace
 
 template <int D>
-SparseMatrix elastic_stiffness(const MultipatchSpace<D>& space, const ElasticityProblem<D>& problem, int threads) {
+SparseMatrix elastic_stiffness(const MultipatchSpace<D>& space, const ElasticityProblem<D>& problem, int threads,
+                               const ElementPartition& part) {
   constexpr int K = D + 1;
   BilinearForm<D> shape;
   shape.components = D;
@@ -84,11 +86,12 @@ SparseMatrix elastic_stiffness(const MultipatchSpace<D>& space, const Elasticity
               for (int a = 1; a <= D; ++a) B[a * K + a] += mu;
           }
       },
-      threads);
+      threads, part);
 }
 
 template <int D>
-SparseMatrix elastic_mass(const MultipatchSpace<D>& space, const ElasticityProblem<D>& problem, int threads) {
+SparseMatrix elastic_mass(const MultipatchSpace<D>& space, const ElasticityProblem<D>& problem, int threads,
+                          const ElementPartition& part) {
   constexpr int K = D + 1;
   BilinearForm<D> shape;
   shape.components = D;
@@ -100,7 +103,7 @@ SparseMatrix elastic_mass(const MultipatchSpace<D>& space, const ElasticityProbl
         for (int e = 0; e < D * D * K * K; ++e) P[e] = 0.0;
         for (int c = 0; c < D; ++c) P[(c * D + c) * K * K] = m.density;
       },
-      threads);
+      threads, part);
 }
 
 template <int D>
@@ -119,8 +122,10 @@ SolveResult solve_elasticity(const TensorSpace<D>& space, const ElasticityProble
 }
 
 #define TRIVAR_INSTANTIATE(D)                                                                                      \
-  template SparseMatrix elastic_stiffness(const MultipatchSpace<D>&, const ElasticityProblem<D>&, int);            \
-  template SparseMatrix elastic_mass(const MultipatchSpace<D>&, const ElasticityProblem<D>&, int);                 \
+  template SparseMatrix elastic_stiffness(const MultipatchSpace<D>&, const ElasticityProblem<D>&, int,            \
+                                          const ElementPartition&);                                             \
+  template SparseMatrix elastic_mass(const MultipatchSpace<D>&, const ElasticityProblem<D>&, int,                 \
+                                     const ElementPartition&);                                                  \
   template SolveResult solve_elasticity(const MultipatchSpace<D>&, const ElasticityProblem<D>&, LinearSolver&, int); \
   template SolveResult solve_elasticity(const TensorSpace<D>&, const ElasticityProblem<D>&, LinearSolver&, int);   \
   template void stress<D>(const ElasticMaterial&, const double*, double*);                                         \

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "trivar/iga/dirichlet.hpp"
+#include "trivar/iga/element_partition.hpp"
 #include "trivar/iga/multipatch_space.hpp"
 #include "trivar/iga/poisson.hpp"
 #include "trivar/iga/solver.hpp"
@@ -39,11 +40,14 @@ struct ElasticityProblem {
 };
 
 // The stiffness matrix a(u, v) = int sigma(u) : eps(v) and the mass matrix int rho u . v on the global dofs
-// (component-major). Throws trivar::Error when a material met at a quadrature point is not valid().
+// (component-major). Throws trivar::Error when a material met at a quadrature point is not valid(). With a part
+// of the elements, their share only (multipatch_assembly.hpp).
 template <int D>
-SparseMatrix elastic_stiffness(const MultipatchSpace<D>& space, const ElasticityProblem<D>& problem, int threads = 0);
+SparseMatrix elastic_stiffness(const MultipatchSpace<D>& space, const ElasticityProblem<D>& problem, int threads = 0,
+                               const ElementPartition& part = {});
 template <int D>
-SparseMatrix elastic_mass(const MultipatchSpace<D>& space, const ElasticityProblem<D>& problem, int threads = 0);
+SparseMatrix elastic_mass(const MultipatchSpace<D>& space, const ElasticityProblem<D>& problem, int threads = 0,
+                          const ElementPartition& part = {});
 
 // Displacement coefficients component-major (component c of global basis function I at c * num_basis + I).
 // Throws trivar::Error for an invalid material (see elastic_stiffness).

@@ -10,7 +10,7 @@ namespace trivar {
 
 template <int D>
 ErrorNorms error_norms(const TensorSpace<D>& space, const Eigen::VectorXd& coefs, int components,
-                       const ExactSolution<D>& exact, int threads) {
+                       const ExactSolution<D>& exact, int threads, const ElementPartition& part) {
   const int m = components, N = space.num_basis();
   const PatchQuadrature<D> quad = patch_quadrature(space, 2);
   const int Q = quad.points();
@@ -19,8 +19,13 @@ ErrorNorms error_norms(const TensorSpace<D>& space, const Eigen::VectorXd& coefs
   for (int I = 0; I < N; ++I)
     for (int c = 0; c < m; ++c)
       num[static_cast<std::size_t>(I * m + c)] = coefs[static_cast<Eigen::Index>(c) * N + I] * space.geometry.weight(I);
-  std::vector<double> l2(static_cast<std::size_t>(quad.num_elements())), h1(l2.size());
-  parallel_for(quad.num_elements(), threads, [&](std::ptrdiff_t el) {
+  // Elements are numbered with the last direction slowest: a part's layers are one run of elements.
+  const int per_layer = quad.num_elements() / quad.dir[D - 1].elements();
+  const std::pair<int, int> layers = part.layers(quad.dir[D - 1].elements());
+  const int first = layers.first * per_layer;
+  std::vector<double> l2(static_cast<std::size_t>((layers.second - layers.first) * per_layer)), h1(l2.size());
+  parallel_for(static_cast<std::ptrdiff_t>(l2.size()), threads, [&](std::ptrdiff_t i) {
+    const std::ptrdiff_t el = first + i;
     thread_local GridScratch scratch;
     thread_local GridGeometry<D> g;
     thread_local std::vector<double> f, u, grad;
@@ -48,8 +53,8 @@ ErrorNorms error_norms(const TensorSpace<D>& space, const Eigen::VectorXd& coefs
         }
       }
     }
-    l2[static_cast<std::size_t>(el)] = sl2;
-    h1[static_cast<std::size_t>(el)] = sh1;
+    l2[static_cast<std::size_t>(i)] = sl2;
+    h1[static_cast<std::size_t>(i)] = sh1;
   });
   ErrorNorms r;
   for (std::size_t i = 0; i < l2.size(); ++i) {
@@ -63,11 +68,11 @@ ErrorNorms error_norms(const TensorSpace<D>& space, const Eigen::VectorXd& coefs
 
 template <int D>
 ErrorNorms error_norms(const MultipatchSpace<D>& space, const Eigen::VectorXd& coefs, int components,
-                       const ExactSolution<D>& exact, int threads) {
+                       const ExactSolution<D>& exact, int threads, const ElementPartition& part) {
   double l2 = 0, h1 = 0;
   for (int p = 0; p < space.num_patches(); ++p) {
     const ErrorNorms e = error_norms(space.patches[static_cast<std::size_t>(p)],
-                                     patch_coefs(space, p, coefs, components), components, exact, threads);
+                                     patch_coefs(space, p, coefs, components), components, exact, threads, part);
     l2 += e.l2 * e.l2;
     h1 += e.h1 * e.h1;
   }
@@ -75,8 +80,10 @@ ErrorNorms error_norms(const MultipatchSpace<D>& space, const Eigen::VectorXd& c
 }
 
 #define TRIVAR_INSTANTIATE(D)                                                                                   \
-  template ErrorNorms error_norms(const TensorSpace<D>&, const Eigen::VectorXd&, int, const ExactSolution<D>&, int); \
-  template ErrorNorms error_norms(const MultipatchSpace<D>&, const Eigen::VectorXd&, int, const ExactSolution<D>&, int);
+  template ErrorNorms error_norms(const TensorSpace<D>&, const Eigen::VectorXd&, int, const ExactSolution<D>&, int, \
+                                  const ElementPartition&);                                                      \
+  template ErrorNorms error_norms(const MultipatchSpace<D>&, const Eigen::VectorXd&, int, const ExactSolution<D>&, int, \
+                                  const ElementPartition&);
 TRIVAR_INSTANTIATE(2)
 TRIVAR_INSTANTIATE(3)
 #undef TRIVAR_INSTANTIATE

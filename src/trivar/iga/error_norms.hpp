@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 
+#include "trivar/iga/element_partition.hpp"
 #include "trivar/iga/multipatch_space.hpp"
 #include "trivar/iga/tensor_space.hpp"
 
@@ -20,13 +21,15 @@ struct ErrorNorms {
 template <int D>
 using ExactSolution = std::function<void(const double* x, double* u, double* grad)>;
 
-// coefs: per dof, component-major. Deterministic for any thread count (per-element sums added in order).
+// coefs: per dof, component-major. Deterministic for any thread count (per-element sums added in order). With
+// a part of the elements (element_partition.hpp), the norms over those elements only: the parts' squares sum
+// to the squares of the whole.
 template <int D>
 ErrorNorms error_norms(const TensorSpace<D>& space, const Eigen::VectorXd& coefs, int components,
-                       const ExactSolution<D>& exact, int threads = 0);
+                       const ExactSolution<D>& exact, int threads = 0, const ElementPartition& part = {});
 // Over all patches of a multipatch space (coefs on its global dofs).
 template <int D>
 ErrorNorms error_norms(const MultipatchSpace<D>& space, const Eigen::VectorXd& coefs, int components,
-                       const ExactSolution<D>& exact, int threads = 0);
+                       const ExactSolution<D>& exact, int threads = 0, const ElementPartition& part = {});
 
 }  // namespace trivar

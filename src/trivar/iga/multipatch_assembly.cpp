@@ -53,8 +53,8 @@ bool injective(const std::vector<int>& g, int num_basis) {
 
 template <int D>
 SparseMatrix assemble_matrix(const MultipatchSpace<D>& space, const std::function<BilinearForm<D>(int patch)>& form,
-                             int threads) {
-  if (space.num_patches() == 1) return assemble_matrix(space.patches[0], form(0), threads);
+                             int threads, const ElementPartition& part) {
+  if (space.num_patches() == 1) return assemble_matrix(space.patches[0], form(0), threads, part);
   const int N = space.num_basis;
   std::vector<SparseMatrix> local;
   int m = 0;
@@ -62,7 +62,7 @@ SparseMatrix assemble_matrix(const MultipatchSpace<D>& space, const std::functio
     const BilinearForm<D> f = form(p);
     require(p == 0 || f.components == m, "iga: the forms of a multipatch problem differ in components");
     m = f.components;
-    local.push_back(assemble_matrix(space.patches[static_cast<std::size_t>(p)], f, threads));
+    local.push_back(assemble_matrix(space.patches[static_cast<std::size_t>(p)], f, threads, part));
   }
   const GlobalPattern pat = global_pattern(local, space.global, N, threads);
   const auto width = [&](int G) { return static_cast<long>(pat.columns[static_cast<std::size_t>(G)].size()); };
@@ -113,19 +113,22 @@ void add_patch_vector(const MultipatchSpace<D>& space, int patch, const Eigen::V
 
 template <int D>
 Eigen::VectorXd assemble_load(const MultipatchSpace<D>& space, int components,
-                              const std::function<void(const double* x, double* f)>& f, int threads) {
-  if (space.num_patches() == 1) return assemble_load(space.patches[0], components, f, threads);
+                              const std::function<void(const double* x, double* f)>& f, int threads,
+                              const ElementPartition& part) {
+  if (space.num_patches() == 1) return assemble_load(space.patches[0], components, f, threads, part);
   Eigen::VectorXd b = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(space.num_basis) * components);
   for (int p = 0; p < space.num_patches(); ++p)
-    add_patch_vector(space, p, assemble_load(space.patches[static_cast<std::size_t>(p)], components, f, threads),
+    add_patch_vector(space, p, assemble_load(space.patches[static_cast<std::size_t>(p)], components, f, threads, part),
                      components, b);
   return b;
 }
 
 #define TRIVAR_INSTANTIATE(D)                                                                                      \
-  template SparseMatrix assemble_matrix(const MultipatchSpace<D>&, const std::function<BilinearForm<D>(int)>&, int); \
+  template SparseMatrix assemble_matrix(const MultipatchSpace<D>&, const std::function<BilinearForm<D>(int)>&, int, \
+                                        const ElementPartition&);                                                 \
   template Eigen::VectorXd assemble_load(const MultipatchSpace<D>&, int,                                          \
-                                         const std::function<void(const double*, double*)>&, int);                 \
+                                         const std::function<void(const double*, double*)>&, int,                  \
+                                         const ElementPartition&);                                                 \
   template void add_patch_vector(const MultipatchSpace<D>&, int, const Eigen::VectorXd&, int, Eigen::VectorXd&);
 TRIVAR_INSTANTIATE(2)
 TRIVAR_INSTANTIATE(3)

@@ -12,13 +12,15 @@
 namespace trivar {
 
 // form(patch): the bilinear form on that patch (materials may differ per patch); all with the same components.
+// part: the same share of every patch's elements (see the tensor assembler).
 template <int D>
 SparseMatrix assemble_matrix(const MultipatchSpace<D>& space, const std::function<BilinearForm<D>(int patch)>& form,
-                             int threads = 0);
+                             int threads = 0, const ElementPartition& part = {});
 
 template <int D>
 Eigen::VectorXd assemble_load(const MultipatchSpace<D>& space, int components,
-                              const std::function<void(const double* x, double* f)>& f, int threads = 0);
+                              const std::function<void(const double* x, double* f)>& f, int threads = 0,
+                              const ElementPartition& part = {});
 
 // Adds the patch vector b_patch (component-major over the patch's basis) to the global vector b.
 template <int D>

@@ -63,15 +63,21 @@ SolveResult solve_loaded(const MultipatchSpace<D>& space, SparseMatrix& A, int c
 }
 
 template <int D>
+BilinearForm<D> poisson_form(const PoissonProblem<D>& problem) {
+  BilinearForm<D> form;
+  form.coefficients = [k = problem.conductivity](const double* x, double* P) {
+    const double kx = k ? k(x) : 1.0;
+    for (int a = 0; a < (D + 1) * (D + 1); ++a) P[a] = 0.0;
+    for (int a = 1; a <= D; ++a) P[a * (D + 1) + a] = kx;
+  };
+  return form;
+}
+
+template <int D>
 SolveResult solve_poisson(const MultipatchSpace<D>& space, const PoissonProblem<D>& problem, LinearSolver& solver,
                           int threads) {
   const auto t0 = std::chrono::steady_clock::now();
-  BilinearForm<D> form;
-  form.coefficients = [&](const double* x, double* P) {
-    const double k = problem.conductivity ? problem.conductivity(x) : 1.0;
-    for (int a = 0; a < (D + 1) * (D + 1); ++a) P[a] = 0.0;
-    for (int a = 1; a <= D; ++a) P[a * (D + 1) + a] = k;
-  };
+  const BilinearForm<D> form = poisson_form(problem);
   SparseMatrix A = assemble_matrix<D>(space, [&](int) { return form; }, threads);
   std::function<void(const double*, double*)> f;
   if (problem.source) f = [&](const double* x, double* out) { out[0] = problem.source(x); };
@@ -87,6 +93,7 @@ SolveResult solve_poisson(const TensorSpace<D>& space, const PoissonProblem<D>& 
 }
 
 #define TRIVAR_INSTANTIATE(D)                                                                                        \
+  template BilinearForm<D> poisson_form(const PoissonProblem<D>&);                                                   \
   template void add_face_load(const MultipatchSpace<D>&, const std::vector<Face>&, int,                              \
                               const std::function<void(const double*, const double*, double*)>&, Eigen::VectorXd&); \
   template SolveResult solve_loaded(const MultipatchSpace<D>&, SparseMatrix&, int,                                   \

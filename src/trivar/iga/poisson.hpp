@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 
+#include "trivar/iga/assembler.hpp"
 #include "trivar/iga/dirichlet.hpp"
 #include "trivar/iga/multipatch_space.hpp"
 #include "trivar/iga/solver.hpp"
@@ -22,6 +23,10 @@ struct PoissonProblem {
   std::vector<Face> neumann;
   std::function<double(const double* x, const double* normal)> flux;  // g = k du/dn (null: 0)
 };
+
+// a(u, v) = integral of k grad u . grad v.
+template <int D>
+BilinearForm<D> poisson_form(const PoissonProblem<D>& problem);
 
 struct SolveResult {
   Eigen::VectorXd coefs;  // per dof (component-major), boundary values included

@@ -2,13 +2,15 @@
 // The element loop of the problems on locally refined spaces (LR, HB, THB): dense element matrices and vectors filled in parallel (one element per
 // task, so no locking) at the Gauss points of each element, then scattered into the global system in element
 // order (deterministic for any thread count). Element dofs are component-major like the global ones: local
-// c * m + l is global c * N + ids[l].
+// c * m + l is global c * N + ids[l]. With a part of the elements (element_partition.hpp: here a contiguous run
+// of element indices), only those are summed; the rows of other functions stay empty.
 #include <utility>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "trivar/core/parallel.hpp"
+#include "trivar/iga/element_partition.hpp"
 #include "trivar/iga/refined_quadrature.hpp"
 #include "trivar/iga/sparse_matrix.hpp"
 
@@ -23,14 +25,16 @@ struct RefinedSystem {
 // weighted |det J|) into K (components * m square) and b; sides(element, b) then adds the element's boundary
 // loads. Both run inside a parallel region and must not throw.
 template <int D, class Point, class Sides>
-RefinedSystem assemble_refined_system(const RefinedSpace<D>& geometry, int components, int threads, Point&& point, Sides&& sides) {
+RefinedSystem assemble_refined_system(const RefinedSpace<D>& geometry, int components, int threads, Point&& point, Sides&& sides,
+                                      const ElementPartition& part = {}) {
   const int N = geometry.num_basis;
   const auto& elements = geometry.elements;
-  const std::size_t E = elements.size();
+  const std::pair<int, int> range = part.layers(static_cast<int>(elements.size()));
+  const std::size_t first = static_cast<std::size_t>(range.first), E = static_cast<std::size_t>(range.second - range.first);
   std::vector<Eigen::MatrixXd> Ke(E);
   std::vector<Eigen::VectorXd> be(E);
   parallel_for(static_cast<std::ptrdiff_t>(E), threads, [&](std::ptrdiff_t e) {
-    const RefinedElement<D>& el = elements[static_cast<std::size_t>(e)];
+    const RefinedElement<D>& el = elements[first + static_cast<std::size_t>(e)];
     const Eigen::Index n = static_cast<Eigen::Index>(el.ids.size()) * components;
     Eigen::MatrixXd& K = Ke[static_cast<std::size_t>(e)];
     Eigen::VectorXd& v = be[static_cast<std::size_t>(e)];
@@ -52,7 +56,7 @@ RefinedSystem assemble_refined_system(const RefinedSpace<D>& geometry, int compo
   for (std::size_t e = 0; e < E; ++e) {
     dofs.clear();
     for (int c = 0; c < components; ++c)
-      for (int id : elements[e].ids) dofs.push_back(c * N + id);
+      for (int id : elements[first + e].ids) dofs.push_back(c * N + id);
     for (std::size_t i = 0; i < dofs.size(); ++i) {
       out.b[dofs[i]] += be[e][static_cast<Eigen::Index>(i)];
       for (std::size_t j = 0; j < dofs.size(); ++j)

@@ -5,14 +5,15 @@
 #include "trivar/iga/refined_assembly.hpp"
 #include "trivar/iga/refined_boundary.hpp"
 #include "trivar/iga/material_check.hpp"
+#include "trivar/iga/refined_poisson.hpp"
 
 namespace trivar {
 
 template <int D>
-SolveResult solve_elasticity(const RefinedSpace<D>& g, const ElasticityProblem<D>& problem, LinearSolver& solver, int threads) {
-  const auto t0 = std::chrono::steady_clock::now();
+RefinedSystem elasticity_system(const RefinedSpace<D>& g, const ElasticityProblem<D>& problem, int threads,
+                                const ElementPartition& part) {
   MaterialCheck check;
-  auto [A, rhs] = assemble_refined_system<D>(
+  RefinedSystem system = assemble_refined_system<D>(
       g, D, threads,
       [&](const RefinedPoint<D>& p, const std::vector<double>& grad, double dV, Eigen::MatrixXd& K, Eigen::VectorXd& b) {
         const Eigen::Index m = static_cast<Eigen::Index>(p.R.size());
@@ -37,14 +38,22 @@ SolveResult solve_elasticity(const RefinedSpace<D>& g, const ElasticityProblem<D
       },
       [&](const RefinedElement<D>& el, Eigen::VectorXd& b) {
         if (problem.traction) add_side_loads<D>(g, el, problem.traction_faces, D, problem.traction, b);
-      });
+      },
+      part);
   check.report();
-  FixedDofs fixed = project_dirichlet(g, D, problem.displacement);
-  fix_inactive(g, D, fixed);
-  return solve_constrained(A, rhs, fixed, solver, t0);
+  return system;
+}
+
+template <int D>
+SolveResult solve_elasticity(const RefinedSpace<D>& g, const ElasticityProblem<D>& problem, LinearSolver& solver, int threads) {
+  const auto t0 = std::chrono::steady_clock::now();
+  auto [A, rhs] = elasticity_system(g, problem, threads, {});
+  return solve_constrained(A, rhs, refined_fixed_dofs(g, D, problem.displacement), solver, t0);
 }
 
 #define TRIVAR_INSTANTIATE(D)                                                                                  \
+  template RefinedSystem elasticity_system(const RefinedSpace<D>&, const ElasticityProblem<D>&, int,             \
+                                           const ElementPartition&);                                            \
   template SolveResult solve_elasticity(const RefinedSpace<D>&, \
                                         const ElasticityProblem<D>&, LinearSolver&, int);
 TRIVAR_INSTANTIATE(2)

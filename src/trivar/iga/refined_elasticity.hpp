@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "trivar/iga/elasticity.hpp"
+#include "trivar/iga/refined_assembly.hpp"
 #include "trivar/iga/refined_space.hpp"
 
 namespace trivar {
@@ -15,5 +16,10 @@ namespace trivar {
 // assembly).
 template <int D>
 SolveResult solve_elasticity(const RefinedSpace<D>& geometry, const ElasticityProblem<D>& problem, LinearSolver& solver, int threads = 0);
+
+// The stiffness and load of solve_elasticity over a part of the elements, before the displacement conditions.
+template <int D>
+RefinedSystem elasticity_system(const RefinedSpace<D>& geometry, const ElasticityProblem<D>& problem, int threads,
+                                const ElementPartition& part);
 
 }  // namespace trivar

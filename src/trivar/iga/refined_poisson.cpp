@@ -11,9 +11,9 @@
 namespace trivar {
 
 template <int D>
-SolveResult solve_poisson(const RefinedSpace<D>& g, const PoissonProblem<D>& problem, LinearSolver& solver, int threads) {
-  const auto t0 = std::chrono::steady_clock::now();
-  auto [A, rhs] = assemble_refined_system<D>(
+RefinedSystem poisson_system(const RefinedSpace<D>& g, const PoissonProblem<D>& problem, int threads,
+                             const ElementPartition& part) {
+  return assemble_refined_system<D>(
       g, 1, threads,
       [&](const RefinedPoint<D>& p, const std::vector<double>& grad, double dV, Eigen::MatrixXd& K, Eigen::VectorXd& b) {
         const Eigen::Index m = static_cast<Eigen::Index>(p.R.size());
@@ -28,19 +28,33 @@ SolveResult solve_poisson(const RefinedSpace<D>& g, const PoissonProblem<D>& pro
         const auto flux = [&](const double* x, const double* n, double* t) { t[0] = problem.flux(x, n); };
         add_side_loads<D>(g, el, problem.neumann, 1, flux, b);
         add_trimmed_side_loads<D>(g, el, 1, flux, b);
-      });
-  FixedDofs fixed = project_dirichlet(g, 1, problem.dirichlet);
-  fix_inactive(g, 1, fixed);
-  return solve_constrained(A, rhs, fixed, solver, t0);
+      },
+      part);
+}
+
+template <int D>
+FixedDofs refined_fixed_dofs(const RefinedSpace<D>& g, int components, const std::vector<DirichletCondition<D>>& conditions) {
+  FixedDofs fixed = project_dirichlet(g, components, conditions);
+  fix_inactive(g, components, fixed);
+  return fixed;
+}
+
+template <int D>
+SolveResult solve_poisson(const RefinedSpace<D>& g, const PoissonProblem<D>& problem, LinearSolver& solver, int threads) {
+  const auto t0 = std::chrono::steady_clock::now();
+  auto [A, rhs] = poisson_system(g, problem, threads, {});
+  return solve_constrained(A, rhs, refined_fixed_dofs(g, 1, problem.dirichlet), solver, t0);
 }
 
 template <int D>
 void error_norms_per_element(const RefinedSpace<D>& g, const Eigen::VectorXd& coefs, int components, const ExactSolution<D>& exact,
-                             std::vector<double>& l2, std::vector<double>& h1, int threads) {
+                             std::vector<double>& l2, std::vector<double>& h1, int threads, const ElementPartition& part) {
   const int E = g.num_elements(), N = g.num_basis;
   l2.assign(static_cast<std::size_t>(E), 0.0);
   h1.assign(static_cast<std::size_t>(E), 0.0);
-  parallel_for(E, threads, [&](std::ptrdiff_t e) {
+  const std::pair<int, int> range = part.layers(E);
+  parallel_for(range.second - range.first, threads, [&](std::ptrdiff_t i) {
+    const std::ptrdiff_t e = range.first + i;
     const RefinedElement<D>& el = g.elements[static_cast<std::size_t>(e)];
     const std::size_t nc = static_cast<std::size_t>(components);
     RefinedPoint<D> p;
@@ -67,9 +81,10 @@ void error_norms_per_element(const RefinedSpace<D>& g, const Eigen::VectorXd& co
 }
 
 template <int D>
-ErrorNorms error_norms(const RefinedSpace<D>& g, const Eigen::VectorXd& coefs, int components, const ExactSolution<D>& exact, int threads) {
+ErrorNorms error_norms(const RefinedSpace<D>& g, const Eigen::VectorXd& coefs, int components, const ExactSolution<D>& exact, int threads,
+                       const ElementPartition& part) {
   std::vector<double> l2, h1;
-  error_norms_per_element(g, coefs, components, exact, l2, h1, threads);
+  error_norms_per_element(g, coefs, components, exact, l2, h1, threads, part);
   ErrorNorms e;
   for (std::size_t i = 0; i < l2.size(); ++i) {
     e.l2 += l2[i];
@@ -79,13 +94,15 @@ ErrorNorms error_norms(const RefinedSpace<D>& g, const Eigen::VectorXd& coefs, i
 }
 
 #define TRIVAR_INSTANTIATE(D)                                                                                         \
+  template RefinedSystem poisson_system(const RefinedSpace<D>&, const PoissonProblem<D>&, int, const ElementPartition&); \
+  template FixedDofs refined_fixed_dofs(const RefinedSpace<D>&, int, const std::vector<DirichletCondition<D>>&);     \
   template SolveResult solve_poisson(const RefinedSpace<D>&, \
                                      const PoissonProblem<D>&, LinearSolver&, int);                                   \
   template void error_norms_per_element(const RefinedSpace<D>&, \
                                         const Eigen::VectorXd&, int, const ExactSolution<D>&, std::vector<double>&,  \
-                                        std::vector<double>&, int);                                                  \
+                                        std::vector<double>&, int, const ElementPartition&);                         \
   template ErrorNorms error_norms(const RefinedSpace<D>&, const Eigen::VectorXd&,   \
-                                  int, const ExactSolution<D>&, int);
+                                  int, const ExactSolution<D>&, int, const ElementPartition&);
 TRIVAR_INSTANTIATE(2)
 TRIVAR_INSTANTIATE(3)
 #undef TRIVAR_INSTANTIATE

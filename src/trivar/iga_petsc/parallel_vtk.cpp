@@ -1,0 +1,115 @@
+#include "trivar/iga_petsc/parallel_vtk.hpp"
+
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include <mpi.h>
+#include <petscsys.h>
+
+#include "trivar/core/atomic_file.hpp"
+#include "trivar/core/error.hpp"
+#include "trivar/iga/solution_field.hpp"
+#include "trivar/iga_petsc/petsc_problems.hpp"
+#include "trivar/io/vtk_writer.hpp"
+#include "trivar/spline/split.hpp"
+
+namespace trivar {
+
+std::vector<std::string> parallel_vtu_files(const std::string& stem, int ranks) {
+  std::vector<std::string> names{stem + ".pvtu"};
+  for (int r = 0; r < ranks; ++r) names.push_back(stem + "_" + std::to_string(r) + ".vtu");
+  return names;
+}
+
+namespace {
+
+// The .pvtu index: the arrays of the first piece's header (written by io::write_vtu) declared once, then the
+// pieces. The header is text up to the appended binary section.
+std::string pvtu_index(const std::filesystem::path& first_piece, const std::vector<std::string>& pieces) {
+  std::ifstream in(first_piece, std::ios::binary);
+  std::string header, line;
+  while (std::getline(in, line) && line.find("<AppendedData") == std::string::npos) header += line + "\n";
+  const std::regex section(R"(<(PointData|CellData|Points)([^>]*)>([\s\S]*?)</\1>)");
+  const std::regex array(R"re(<DataArray type="([^"]+)"(?: Name="([^"]*)")?(?: NumberOfComponents="(\d+)")?)re");
+  std::ostringstream os;
+  os << "<?xml version=\"1.0\"?>\n<VTKFile type=\"PUnstructuredGrid\" version=\"2.1\" byte_order=\"LittleEndian\" "
+        "header_type=\"UInt64\">\n  <PUnstructuredGrid GhostLevel=\"0\">\n";
+  const std::string piece = header.substr(0, header.find("</Piece>"));
+  for (std::sregex_iterator s(piece.begin(), piece.end(), section), end; s != end; ++s) {
+    const std::string body = (*s)[3];
+    os << "    <P" << (*s)[1] << (*s)[2] << ">\n";
+    for (std::sregex_iterator a(body.begin(), body.end(), array); a != end; ++a) {
+      os << "      <PDataArray type=\"" << (*a)[1] << "\"";
+      if ((*a)[2].matched) os << " Name=\"" << (*a)[2] << "\"";
+      if ((*a)[3].matched) os << " NumberOfComponents=\"" << (*a)[3] << "\"";
+      os << "/>\n";
+    }
+    os << "    </P" << (*s)[1] << ">\n";
+  }
+  for (const std::string& p : pieces) os << "    <Piece Source=\"" << p << "\"/>\n";
+  os << "  </PUnstructuredGrid>\n</VTKFile>\n";
+  return os.str();
+}
+
+}  // namespace
+
+template <int D>
+void write_parallel_vtu(const std::filesystem::path& folder, const std::string& stem,
+                        const MultipatchSpace<D>& space, const std::vector<ParallelField>& fields) {
+  const ElementPartition part = rank_partition();
+  std::vector<AnySpline> pieces;
+  std::vector<int> patch_of;
+  for (int p = 0; p < space.num_patches(); ++p) {
+    const TensorSpline<D>& g = space.patches[static_cast<std::size_t>(p)].geometry;
+    const std::vector<double> breaks = g.knots(D - 1).breakpoints();
+    const std::pair<int, int> layers = part.layers(static_cast<int>(breaks.size()) - 1);
+    if (layers.first == layers.second) continue;
+    Box<D> box;
+    for (int k = 0; k < D; ++k) {
+      const std::vector<double> b = g.knots(k).breakpoints();
+      box.lo[k] = b.front();
+      box.hi[k] = b.back();
+    }
+    box.lo[D - 1] = breaks[static_cast<std::size_t>(layers.first)];
+    box.hi[D - 1] = breaks[static_cast<std::size_t>(layers.second)];
+    pieces.emplace_back(sub_patch(g, box));
+    patch_of.push_back(p);
+  }
+  // Per field and patch the solution as a spline on the patch's parameters (the pieces keep them).
+  std::vector<std::vector<TensorSpline<D>>> splines(fields.size());
+  std::vector<io::VtkPointField> vtk;
+  for (std::size_t f = 0; f < fields.size(); ++f) {
+    for (int p : patch_of)
+      splines[f].push_back(solution_field(space.patches[static_cast<std::size_t>(p)],
+                                          patch_coefs(space, p, fields[f].coefs, fields[f].components),
+                                          fields[f].components));
+    vtk.push_back({fields[f].name, fields[f].components,
+                   [&s = splines[f]](int piece, std::span<const double> u, std::span<double> out) {
+                     Param<D> q;
+                     for (int k = 0; k < D; ++k) q[k] = u[static_cast<std::size_t>(k)];
+                     s[static_cast<std::size_t>(piece)].eval(q, out.data());
+                   }});
+  }
+  const std::vector<std::string> names = parallel_vtu_files(stem, part.parts);
+  int wrote = pieces.empty() ? 0 : 1;
+  if (wrote) io::write_vtu((folder / names[static_cast<std::size_t>(part.part) + 1]).string(), pieces, {}, vtk);
+  std::vector<int> all(static_cast<std::size_t>(part.parts));
+  MPI_Gather(&wrote, 1, MPI_INT, all.data(), 1, MPI_INT, 0, PETSC_COMM_WORLD);
+  if (part.part == 0) {
+    std::vector<std::string> written;
+    for (int r = 0; r < part.parts; ++r)
+      if (all[static_cast<std::size_t>(r)]) written.push_back(names[static_cast<std::size_t>(r) + 1]);
+    require(!written.empty(), "vtk: no rank has elements to write");
+    const std::string index = pvtu_index(folder / written.front(), written);
+    write_file_atomically((folder / names[0]).string(), [&](std::ostream& os) { os << index; });
+  }
+  MPI_Barrier(PETSC_COMM_WORLD);
+}
+
+template void write_parallel_vtu(const std::filesystem::path&, const std::string&, const MultipatchSpace<2>&,
+                                 const std::vector<ParallelField>&);
+template void write_parallel_vtu(const std::filesystem::path&, const std::string&, const MultipatchSpace<3>&,
+                                 const std::vector<ParallelField>&);
+
+}  // namespace trivar

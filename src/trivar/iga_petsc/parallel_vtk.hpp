@@ -1,0 +1,29 @@
+#pragma once
+// Parallel VTK output of a distributed solution: every rank writes the elements it assembled (its slab of each
+// patch, ElementPartition) as `<stem>_<rank>.vtu` (io/vtk_writer.hpp, Bezier cells, one piece per patch
+// slab), and rank 0 writes `<stem>.pvtu`, the index ParaView opens to load all pieces. The folder must be the
+// same on every rank (a shared file system, as MPI-IO output assumes). Collective.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "trivar/iga/multipatch_space.hpp"
+
+namespace trivar {
+
+struct ParallelField {
+  std::string name;
+  Eigen::VectorXd coefs;  // every dof, component-major over the global basis
+  int components = 1;
+};
+
+// The piece file names of a stem for `ranks` ranks, in rank order (what the caller reserves in its folder).
+std::vector<std::string> parallel_vtu_files(const std::string& stem, int ranks);
+
+template <int D>
+void write_parallel_vtu(const std::filesystem::path& folder, const std::string& stem,
+                        const MultipatchSpace<D>& space, const std::vector<ParallelField>& fields);
+
+}  // namespace trivar

@@ -1,0 +1,63 @@
+#include "trivar/iga_petsc/petsc_session.hpp"
+
+#include <sys/resource.h>
+
+#include <slepcsys.h>
+
+#include "trivar/core/error.hpp"
+
+namespace trivar {
+
+namespace {
+
+bool active = false, started_once = false;
+
+}  // namespace
+
+PetscSession::PetscSession() {
+  require(!started_once, "petsc: MPI can be started once per process");
+  // PETSc's signal handlers would replace the ones trivar (output folders) and the sanitizers install.
+  static char name[] = "trivar", no_handler[] = "-no_signal_handler";
+  static char* args[] = {name, no_handler, nullptr};
+  static char** argv = args;
+  static int argc = 2;
+  require(SlepcInitialize(&argc, &argv, nullptr, nullptr) == 0, "petsc: PETSc/SLEPc failed to start");
+  started_once = active = true;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank_);
+  MPI_Comm_size(PETSC_COMM_WORLD, &ranks_);
+}
+
+PetscSession::~PetscSession() {
+  SlepcFinalize();
+  active = false;
+}
+
+bool petsc_session_active() { return active; }
+
+std::vector<double> peak_memory_per_rank() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  const double mine = static_cast<double>(u.ru_maxrss) * 1024.0;  // Linux reports kilobytes
+  int ranks = 1;
+  MPI_Comm_size(PETSC_COMM_WORLD, &ranks);
+  std::vector<double> all(static_cast<std::size_t>(ranks));
+  MPI_Allgather(&mine, 1, MPI_DOUBLE, all.data(), 1, MPI_DOUBLE, PETSC_COMM_WORLD);
+  return all;
+}
+
+std::string broadcast_from_rank0(const std::string& text) {
+  unsigned long size = text.size();
+  MPI_Bcast(&size, 1, MPI_UNSIGNED_LONG, 0, PETSC_COMM_WORLD);
+  std::string out = text;
+  out.resize(size);
+  MPI_Bcast(out.data(), static_cast<int>(size), MPI_CHAR, 0, PETSC_COMM_WORLD);
+  return out;
+}
+
+double max_over_ranks(double x) {
+  double m = x;
+  MPI_Allreduce(&x, &m, 1, MPI_DOUBLE, MPI_MAX, PETSC_COMM_WORLD);
+  return m;
+}
+
+}  // namespace trivar

@@ -1,0 +1,38 @@
+#pragma once
+// The process's MPI / PETSc / SLEPc run time. One session per process, alive while any distributed solve runs:
+// it starts MPI (under mpirun: one process per rank) and PETSc with SLEPc, and finalises them when destroyed.
+// Options for PETSc's own objects may be given in the environment variable PETSC_OPTIONS.
+#include <string>
+#include <vector>
+
+namespace trivar {
+
+class PetscSession {
+public:
+  // Throws trivar::Error when a session already ran in this process (MPI starts once) or PETSc fails to start.
+  PetscSession();
+  ~PetscSession();
+  PetscSession(const PetscSession&) = delete;
+  PetscSession& operator=(const PetscSession&) = delete;
+
+  int rank() const { return rank_; }
+  int ranks() const { return ranks_; }
+
+private:
+  int rank_ = 0, ranks_ = 1;
+};
+
+// Whether a session is alive (the distributed solvers refuse to run without one).
+bool petsc_session_active();
+
+// The peak resident memory of every rank in bytes (getrusage), on every rank; collective.
+std::vector<double> peak_memory_per_rank();
+
+// Rank 0's text on every rank; collective.
+std::string broadcast_from_rank0(const std::string& text);
+
+// The largest of every rank's x, on every rank; collective. Wall times of a distributed step are the slowest
+// rank's.
+double max_over_ranks(double x);
+
+}  // namespace trivar
