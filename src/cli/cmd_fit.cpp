@@ -124,6 +124,8 @@ void add_fit_command(CLI::App& app, Context& ctx) {
       ->capture_default_str();
   cmd->add_option("--max-coefs", a->opts.max_coefficients, "Stop before exceeding this many coefficients (0: no limit)")
       ->check(at_least(0));
+  cmd->add_flag("--uniform", a->opts.uniform,
+                "Refine every element (a uniform tensor spline), to compare with the local refinement");
   cmd->add_flag("--volume", a->volume, "The first three columns are x y z (an LR volume), the rest values");
   cmd->add_flag("--height-field", a->height_field, "Terrain: write the height z(x, y) instead of the surface (x, y, z)");
   cmd->add_flag("--no-independence-check", a->no_check, "Skip the linear-independence test after each refinement");

@@ -75,7 +75,7 @@ TEST(LeastSquares, ReproducesALocallyRefinedSplineInTheSpace) {
 
 TEST(LrApproximation, ReproducesATensorSplineAtLevelZero) {
   ApproximationOptions o;
-  o.initial_elements = 5;
+  o.initial_elements = 3;
   o.degree = 3;
   o.tolerance = 1e-12;
   o.smoothing = 0.0;
@@ -86,7 +86,7 @@ TEST(LrApproximation, ReproducesATensorSplineAtLevelZero) {
   for (double& x : coefs) x = c(rng);
   const LRSpline<3> truth = with_coefficients(space, 1, coefs);
   // Sampled at the corners too, so the bounding box is the unit cube and the fit's space is `space`.
-  ScatteredData<3> d = sample<3>(20000, 1, 11, [&](const Param<3>& p, double* v, auto&) { truth.eval(p, v); });
+  ScatteredData<3> d = sample<3>(5000, 1, 11, [&](const Param<3>& p, double* v, auto&) { truth.eval(p, v); });
   for (int k = 0; k < 8; ++k) {
     d.params[static_cast<std::size_t>(k)] = {double(k & 1), double((k >> 1) & 1), double(k >> 2)};
     truth.eval(d.params[static_cast<std::size_t>(k)], &d.values[static_cast<std::size_t>(k)]);
@@ -175,7 +175,7 @@ TEST(LrApproximation, VolumetricScalarField) {
 
 TEST(LrApproximation, MaterialFractionsKeepTheirSum) {
   // Three fractions from a graded blend with a sharp inclusion; they sum to one at every sample.
-  const ScatteredData<3> d = sample<3>(20000, 3, 8, [](const Param<3>& p, double* v, auto&) {
+  const ScatteredData<3> d = sample<3>(6000, 3, 8, [](const Param<3>& p, double* v, auto&) {
     const double inc = std::hypot(p[0] - 0.5, p[1] - 0.5, p[2] - 0.5) < 0.2 ? 0.6 : 0.0;
     v[0] = (1 - inc) * p[2];
     v[1] = (1 - inc) * (1 - p[2]);
@@ -184,7 +184,7 @@ TEST(LrApproximation, MaterialFractionsKeepTheirSum) {
   ApproximationOptions o;
   o.tolerance = 0.05;
   o.initial_elements = 2;
-  o.max_levels = 4;
+  o.max_levels = 2;
   const Approximation<3> a = approximate(d, o);
   EXPECT_EQ(a.spline.dim(), 3);
   // Constants lie in the space and have no energy, so the fitted fractions sum to one everywhere.

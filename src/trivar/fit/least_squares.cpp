@@ -87,22 +87,84 @@ Eigen::MatrixXd element_energy(const std::array<BernsteinGram, D>& gram, const P
   return K;
 }
 
-// Tensor Bernstein values (direction 0 fastest) of the element `box` at u.
-template <int D>
-void tensor_bernstein(const Ints<D>& deg, const Box<D>& box, const Param<D>& u, double* out) {
+// Tensor Bernstein values (direction 0 fastest) at u of the element with lower corner lo and reciprocal sides
+// inv_h. P >= 0: every degree is P, known at compile time (the common case, a third of the fit's time otherwise).
+template <int D, int P>
+void tensor_bernstein(const Ints<D>& deg, const Param<D>& lo, const Param<D>& inv_h, const Param<D>& u, double* out) {
   double b[D][kMaxDegree + 1];
   for (int k = 0; k < D; ++k) {
-    const double t = std::clamp((u[k] - box.lo[k]) / (box.hi[k] - box.lo[k]), 0.0, 1.0);
-    bernstein_values<-1>(deg[k], t, 1.0, b[k], nullptr);
+    const double t = std::clamp((u[k] - lo[k]) * inv_h[k], 0.0, 1.0);
+    bernstein_values<P>(deg[k], t, 1.0, b[k], nullptr);
   }
-  int n = deg[0] + 1;
+  int n = (P >= 0 ? P : deg[0]) + 1;
   std::copy(b[0], b[0] + n, out);
   for (int k = 1; k < D; ++k) {
-    const int m = deg[k] + 1;
+    const int m = (P >= 0 ? P : deg[k]) + 1;
     for (int i = m - 1; i >= 0; --i)
       for (int j = 0; j < n; ++j) out[i * n + j] = b[k][i] * out[j];
     n *= m;
   }
+}
+
+// Bernstein Gram matrix (lower triangle of G, nb x nb column-major) and moments g (nb x m) of an element's points.
+template <int D, int P>
+void accumulate(const Ints<D>& deg, const Box<D>& box, const ScatteredData<D>& data, std::span<const int> points,
+                double* G, double* g) {
+  const int nb = [&] {
+    int n = 1;
+    for (int k = 0; k < D; ++k) n *= (P >= 0 ? P : deg[k]) + 1;
+    return n;
+  }();
+  Param<D> inv_h;
+  for (int k = 0; k < D; ++k) inv_h[k] = 1.0 / (box.hi[k] - box.lo[k]);
+  double b[256];
+  for (int i : points) {
+    tensor_bernstein<D, P>(deg, box.lo, inv_h, data.params[static_cast<std::size_t>(i)], b);
+    for (int c = 0; c < nb; ++c) {
+      const double bc = b[c];
+      double* col = G + c * nb;
+      for (int r = c; r < nb; ++r) col[r] += b[r] * bc;
+    }
+    const double* f = data.value(static_cast<std::size_t>(i));
+    for (int c = 0; c < data.dim; ++c)
+      for (int r = 0; r < nb; ++r) g[c * nb + r] += f[c] * b[r];
+  }
+}
+
+// The largest component error of every point of an element whose Bezier net (nb x m, column-major) is `net`.
+template <int D, int P>
+void element_errors(const Ints<D>& deg, const Box<D>& box, const ScatteredData<D>& data, std::span<const int> points,
+                    const double* net, int nb, std::vector<double>& errors) {
+  Param<D> inv_h;
+  for (int k = 0; k < D; ++k) inv_h[k] = 1.0 / (box.hi[k] - box.lo[k]);
+  double b[256];
+  for (int i : points) {
+    tensor_bernstein<D, P>(deg, box.lo, inv_h, data.params[static_cast<std::size_t>(i)], b);
+    const double* f = data.value(static_cast<std::size_t>(i));
+    double err = 0.0;
+    for (int c = 0; c < data.dim; ++c) {
+      double v = 0.0;
+      for (int r = 0; r < nb; ++r) v += net[c * nb + r] * b[r];
+      err = std::max(err, std::abs(v - f[c]));
+    }
+    errors[static_cast<std::size_t>(i)] = err;
+  }
+}
+
+// Calls f with std::integral_constant<int, P>: P the common degree when it is 1, 2 or 3, else -1.
+template <int D, class F>
+void with_degree(const Ints<D>& deg, F&& f) {
+  const bool equal = std::all_of(deg.begin(), deg.end(), [&](int p) { return p == deg[0]; });
+  if (equal && deg[0] == 1) f(std::integral_constant<int, 1>());
+  else if (equal && deg[0] == 2) f(std::integral_constant<int, 2>());
+  else if (equal && deg[0] == 3) f(std::integral_constant<int, 3>());
+  else f(std::integral_constant<int, -1>());
+}
+
+std::span<const int> points_of(const PointsByElement& where, int e) {
+  const auto first = static_cast<std::size_t>(where.offsets[static_cast<std::size_t>(e)]);
+  const auto last = static_cast<std::size_t>(where.offsets[static_cast<std::size_t>(e) + 1]);
+  return {where.points.data() + first, last - first};
 }
 
 }  // namespace
@@ -130,6 +192,7 @@ LeastSquaresResult least_squares_fit(const LRSpline<D>& lr, const ScatteredData<
   const Ints<D>& deg = lr.degrees();
   const int m = data.dim;
   const int ne = lr.num_elements();
+  for (int k = 0; k < D; ++k) require(deg[k] >= 1 && deg[k] <= 5, "fit: degree " + std::to_string(deg[k]) + " outside 1..5");
   int nb = 1;
   for (int k = 0; k < D; ++k) nb *= deg[k] + 1;
   const Box<D>& dom = lr.domain();
@@ -155,18 +218,15 @@ LeastSquaresResult least_squares_fit(const LRSpline<D>& lr, const ScatteredData<
     const Eigen::MatrixXd C = extraction_operator(deg, lr.basis_functions(), ids, box);
     Eigen::MatrixXd G = Eigen::MatrixXd::Zero(nb, nb);
     Eigen::MatrixXd g = Eigen::MatrixXd::Zero(nb, m);
-    Eigen::VectorXd b(nb);
-    for (int q = where.offsets[static_cast<std::size_t>(e)]; q < where.offsets[static_cast<std::size_t>(e) + 1]; ++q) {
-      const auto i = static_cast<std::size_t>(where.points[static_cast<std::size_t>(q)]);
-      tensor_bernstein<D>(deg, box, data.params[i], b.data());
-      G.template selfadjointView<Eigen::Lower>().rankUpdate(b);
-      for (int c = 0; c < m; ++c) g.col(c) += data.value(i)[c] * b;
-    }
+    with_degree<D>(deg, [&](auto P) {
+      accumulate<D, P()>(deg, box, data, points_of(where, e), G.data(), g.data());
+    });
     G.template triangularView<Eigen::StrictlyUpper>() = G.transpose();
     if (w > 0.0) {
       Param<D> h;
-      for (int k = 0; k < D; ++k) h[k] = box.hi[k] - box.lo[k];
-      G += w * element_energy<D>(gram, h);
+      double ve = 1.0;
+      for (int k = 0; k < D; ++k) ve *= h[k] = box.hi[k] - box.lo[k];
+      G += (w * std::pow(ve, 2.0 / D) / (L * L)) * element_energy<D>(gram, h);
     }
     const auto k = static_cast<Eigen::Index>(ids.size());
     Eigen::Map<Eigen::MatrixXd> A(local.data() + start[static_cast<std::size_t>(e)], k, k);
@@ -220,14 +280,9 @@ LeastSquaresResult least_squares_fit(const LRSpline<D>& lr, const ScatteredData<
     for (std::size_t r = 0; r < ids.size(); ++r)
       for (int j = 0; j < m; ++j) c(static_cast<Eigen::Index>(r), j) = res.coefs[static_cast<std::size_t>(ids[r]) * static_cast<std::size_t>(m) + static_cast<std::size_t>(j)];
     const Eigen::MatrixXd net = C.transpose() * c;  // nb x m
-    Eigen::VectorXd b(nb);
-    for (int q = first; q < last; ++q) {
-      const auto i = static_cast<std::size_t>(where.points[static_cast<std::size_t>(q)]);
-      tensor_bernstein<D>(deg, box, data.params[i], b.data());
-      double err = 0.0;
-      for (int j = 0; j < m; ++j) err = std::max(err, std::abs(net.col(j).dot(b) - data.value(i)[j]));
-      res.errors[i] = err;
-    }
+    with_degree<D>(deg, [&](auto P) {
+      element_errors<D, P()>(deg, box, data, points_of(where, e), net.data(), nb, res.errors);
+    });
   });
   return res;
 }

@@ -1,8 +1,11 @@
 #pragma once
 // Penalised least squares on the space of an LR spline: the coefficients c (num_basis x dim) minimising
-//   sum_i |s(x_i) - f_i|^2 + w E(s),   E(s) = integral over the domain of sum_{j,k} |d^2 s / du_j du_k|^2
-// (the thin-plate energy, every component). w = smoothing * N * L^4 / |domain| with N points and L = |domain|^(1/D),
-// so `smoothing` is dimensionless: the energy is weighed as if measured on the unit box with the points' density.
+//   sum_i |s(x_i) - f_i|^2 + w sum_e (h_e / L)^2 E_e(s),   E_e(s) = integral over element e of
+//   sum_{j,k} |d^2 s / du_j du_k|^2 (the thin-plate energy, every component),
+// with w = smoothing * N * L^4 / |domain| for N points, L = |domain|^(1/D) and h_e = |e|^(1/D), so `smoothing` is
+// dimensionless (the energy weighed as if measured on the unit box with the points' density). The factor
+// (h_e / L)^2 keeps the penalty in proportion to the data term as elements shrink: at a kink (a crater rim) the
+// energy of a good fit grows like 1/h_e^2 per element, which would otherwise stall the refinement.
 //
 // The normal equations are assembled per element in its tensor Bernstein basis (a point adds b b^T with b its
 // (p+1)^D Bernstein values; the energy is a sum of Kronecker products of three 1-D Bernstein matrices scaled by the

@@ -1,7 +1,10 @@
 #include "trivar/fit/lr_approximation.hpp"
 
 #include <chrono>
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <numeric>
 
 #include "trivar/core/error.hpp"
 #include "trivar/fit/least_squares.hpp"
@@ -27,6 +30,35 @@ void check_options(const ApproximationOptions& o) {
   require(o.smoothing >= 0.0 && std::isfinite(o.smoothing), "fit: the smoothing weight must be >= 0");
 }
 
+// The data in Morton order of a 2^10 grid over the box, and the permutation (sorted[i] = data[order[i]]): the fit
+// visits the points element by element, and spatially sorted points make those visits stream through memory.
+template <int D>
+std::pair<ScatteredData<D>, std::vector<std::uint32_t>> spatially_sorted(const ScatteredData<D>& data, const Box<D>& box) {
+  constexpr int kBits = 10;
+  std::vector<std::uint64_t> key(data.size());
+  for (std::size_t i = 0; i < data.size(); ++i) {
+    std::uint64_t code = 0;
+    for (int k = 0; k < D; ++k) {
+      const double t = (data.params[i][k] - box.lo[k]) / (box.hi[k] - box.lo[k]);
+      const auto c = static_cast<std::uint64_t>(std::clamp(t, 0.0, 1.0) * ((1 << kBits) - 1));
+      for (int b = 0; b < kBits; ++b) code |= ((c >> b) & 1u) << (b * D + k);
+    }
+    key[i] = code;
+  }
+  std::vector<std::uint32_t> order(data.size());
+  std::iota(order.begin(), order.end(), 0u);
+  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return key[a] < key[b]; });
+  ScatteredData<D> sorted;
+  sorted.dim = data.dim;
+  sorted.params.resize(data.size());
+  sorted.values.resize(data.values.size());
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    sorted.params[i] = data.params[order[i]];
+    std::copy_n(data.value(order[i]), data.dim, sorted.values.data() + i * static_cast<std::size_t>(data.dim));
+  }
+  return {std::move(sorted), std::move(order)};
+}
+
 }  // namespace
 
 template <int D>
@@ -50,7 +82,9 @@ Approximation<D> approximate(const ScatteredData<D>& data, const ApproximationOp
   check_options(o);
   validate(data, "fit");
   using Clock = std::chrono::steady_clock;
+  require(data.size() < (std::size_t{1} << 31), "fit: more than 2^31 points");
   const Box<D> box = data.bounding_box();
+  const auto [sorted, order] = spatially_sorted(data, box);
   LRSpline<D> space = initial_space(box, o);
   std::string status = "independent";  // a tensor basis
   std::vector<IterationReport> reports;
@@ -58,8 +92,8 @@ Approximation<D> approximate(const ScatteredData<D>& data, const ApproximationOp
   LeastSquaresResult fit;
   for (int level = 0;; ++level) {
     const auto t0 = Clock::now();
-    const PointsByElement where = locate_points(space, data.params, o.threads);
-    fit = least_squares_fit(space, data, where, o.smoothing, o.threads);
+    const PointsByElement where = locate_points(space, std::span<const Param<D>>(sorted.params), o.threads);
+    fit = least_squares_fit(space, sorted, where, o.smoothing, o.threads);
     IterationReport r;
     r.level = level;
     r.coefficients = space.num_basis();
@@ -115,7 +149,9 @@ Approximation<D> approximate(const ScatteredData<D>& data, const ApproximationOp
     if (!stop.empty()) break;
   }
   const bool converged = reports.back().outside == 0;
-  return Approximation<D>{with_coefficients(space, data.dim, fit.coefs), std::move(reports), std::move(fit.errors),
+  std::vector<double> errors(data.size());
+  for (std::size_t i = 0; i < order.size(); ++i) errors[order[i]] = fit.errors[i];
+  return Approximation<D>{with_coefficients(space, data.dim, fit.coefs), std::move(reports), std::move(errors),
                           converged, stop};
 }
 

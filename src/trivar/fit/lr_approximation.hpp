@@ -22,13 +22,10 @@ struct ApproximationOptions {
   double tolerance = 0.0;       // absolute, > 0, on the largest component error of every point
   int degree = 2;               // in every direction, 1..5
   int initial_elements = 4;     // along the longest side of the box; other sides in proportion (at least 1)
-  int max_levels = 8;           // refinement rounds after the first fit
+  int max_levels = 10;          // refinement rounds after the first fit
   int max_coefficients = 0;     // stop before a refinement would exceed it (0: no limit)
   Strategy strategy = Strategy::fullspan;
-  // Dimensionless weight of the thin-plate energy (least_squares.hpp). It only has to make the system definite
-  // where elements hold no points: at a kink (a crater rim) the energy of a fit grows as the elements shrink, so a
-  // larger weight stalls the refinement before the tolerance is met.
-  double smoothing = 1e-12;
+  double smoothing = 1e-9;      // dimensionless weight of the thin-plate energy (least_squares.hpp)
   bool check_independence = true;
   bool uniform = false;         // refine every element (a uniform tensor spline, for comparison)
   int threads = 1;
