@@ -2,6 +2,7 @@
 // point (checked by evaluating the result with the LR spline's own evaluator, not the fit's Bernstein path),
 // local refinement around a crater rim, noise, volumes and material fractions, the three strategies.
 #include "trivar/core/error.hpp"
+#include "trivar/fit/graph_surface.hpp"
 #include "trivar/fit/least_squares.hpp"
 #include "trivar/fit/lr_approximation.hpp"
 #include "trivar/lr/linear_independence.hpp"
@@ -236,6 +237,39 @@ TEST(LrApproximation, BadOptionsAndData) {
   }
   ScatteredData<2> two = sample<2>(2, 1, 14, [](const Param<2>&, double* v, auto&) { v[0] = 0; });
   EXPECT_THROW(approximate(two, o), Error);
+}
+
+}  // namespace
+}  // namespace trivar
+
+namespace trivar {
+namespace {
+
+TEST(GraphSurface, ReproducesTheParametersExactly) {
+  // A locally refined cubic height field: its graph's x and y are u and v (linear precision of LR B-splines with
+  // Greville abscissae), its z the height, at random points to rounding.
+  ApproximationOptions o;
+  o.degree = 3;
+  o.tolerance = 1.0;
+  LRSpline<2> space = initial_space<2>(Box<2>{{-2, 1}, {3, 2}}, o);
+  refine_elements(space, std::span<const int>(std::vector<int>{0, 2}), RefineOptions{Strategy::structured});
+  std::vector<double> coefs(static_cast<std::size_t>(space.num_basis()));
+  for (std::size_t i = 0; i < coefs.size(); ++i) coefs[i] = std::sin(1.0 + static_cast<double>(i));
+  const LRSpline<2> h = with_coefficients(space, 1, coefs);
+  const LRSpline<2> g = graph_surface(h);
+  ASSERT_EQ(g.dim(), 3);
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<double> u(-2.0, 3.0), v(1.0, 2.0);
+  for (int i = 0; i < 500; ++i) {
+    const Param<2> p{u(rng), v(rng)};
+    double z, xyz[3];
+    h.eval(p, &z);
+    g.eval(p, xyz);
+    EXPECT_NEAR(xyz[0], p[0], 1e-13);
+    EXPECT_NEAR(xyz[1], p[1], 1e-13);
+    EXPECT_NEAR(xyz[2], z, 1e-13);
+  }
+  EXPECT_THROW(graph_surface(g), Error);
 }
 
 }  // namespace
