@@ -8,6 +8,7 @@
 
 #include "trivar/core/error.hpp"
 #include "trivar/core/gauss_legendre.hpp"
+#include "trivar/core/memory_budget.hpp"
 #include "trivar/core/parallel.hpp"
 #include "trivar/iga/solver.hpp"
 #include "trivar/lr/lr_bezier_extraction.hpp"
@@ -210,6 +211,9 @@ LeastSquaresResult least_squares_fit(const LRSpline<D>& lr, const ScatteredData<
     const std::size_t k = lr.element_support(e).size();
     start[static_cast<std::size_t>(e) + 1] = start[static_cast<std::size_t>(e)] + k * k + k * static_cast<std::size_t>(m);
   }
+  // The local systems, the triplets of the global matrix (twice: Eigen sorts them into a copy) and the matrix.
+  require_memory(8.0 * static_cast<double>(start.back()) + 40.0 * static_cast<double>(start.back()),
+                 "fit: the least-squares system of " + std::to_string(lr.num_basis()) + " coefficients");
   std::vector<double> local(start.back());
   parallel_for(ne, threads, [&](std::ptrdiff_t ei) {
     const int e = static_cast<int>(ei);

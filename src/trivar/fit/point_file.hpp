@@ -1,7 +1,7 @@
 #pragma once
 // Point files for scattered-data fitting: rows of numbers, as plain text / CSV or as trivar's binary point
 // format. Written by hand because no Debian package reads these simple layouts into memory for us (the LAS
-// readers liblas and PDAL are not packaged in Debian 13).
+// readers liblas and PDAL are not packaged in Debian 12).
 //
 // Text: one point per line, numbers separated by blanks, commas or semicolons; '#' starts a comment; blank lines
 // are skipped; one header line of names (no number in it) may come first. Every row has the same count.
