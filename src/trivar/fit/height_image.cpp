@@ -93,13 +93,22 @@ LayerImage<std::uint8_t> error_image(const ScatteredData<2>& data, std::span<con
   const Box<2> box = data.bounding_box();
   const double w = std::max(box.hi[0] - box.lo[0], 1e-300), h = std::max(box.hi[1] - box.lo[1], 1e-300);
   const auto [nx, ny] = image_size(w, h, width);
-  std::vector<double> worst(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny), -1.0);
+  // Bins of about four points each (at most one per pixel), so sparse data shows as areas, not speckles.
+  const double per_bin = std::max(1.0, static_cast<double>(data.size()) / 4.0);
+  const int bx = std::clamp(static_cast<int>(std::lround(std::sqrt(per_bin * w / h))), 1, nx);
+  const int by = std::clamp(static_cast<int>(std::lround(std::sqrt(per_bin * h / w))), 1, ny);
+  std::vector<double> bins(static_cast<std::size_t>(bx) * static_cast<std::size_t>(by), -1.0);
   for (std::size_t i = 0; i < data.size(); ++i) {
-    const int x = std::clamp(static_cast<int>((data.params[i][0] - box.lo[0]) / w * nx), 0, nx - 1);
-    const int y = std::clamp(static_cast<int>((data.params[i][1] - box.lo[1]) / h * ny), 0, ny - 1);
-    double& c = worst[static_cast<std::size_t>(y) * nx + x];
+    const int x = std::clamp(static_cast<int>((data.params[i][0] - box.lo[0]) / w * bx), 0, bx - 1);
+    const int y = std::clamp(static_cast<int>((data.params[i][1] - box.lo[1]) / h * by), 0, by - 1);
+    double& c = bins[static_cast<std::size_t>(y) * bx + x];
     c = std::max(c, errors[i]);
   }
+  std::vector<double> worst(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny));
+  for (int y = 0; y < ny; ++y)
+    for (int x = 0; x < nx; ++x)
+      worst[static_cast<std::size_t>(y) * nx + x] =
+          bins[static_cast<std::size_t>(y * by / ny) * bx + static_cast<std::size_t>(x * bx / nx)];
   static const std::array<std::pair<double, Rgb>, 4> heat = {
       {{0.0, {1.0, 1.0, 1.0}}, {0.4, {1.0, 0.95, 0.3}}, {0.75, {1.0, 0.55, 0.1}}, {1.0, {0.85, 0.05, 0.05}}}};
   LayerImage<std::uint8_t> img(nx, ny, 3);

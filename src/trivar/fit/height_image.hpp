@@ -1,7 +1,8 @@
 #pragma once
 // The pictures a terrain user looks at before reading numbers: the fitted height field coloured by height
 // (a terrain colour ramp, hill-shaded from the north-west) and the error at the data points (white at 0, through
-// yellow to red at the tolerance, purple above it, grey where a pixel holds no point). RGB LayerImages, row 0 the
+// yellow to red at the tolerance, purple above it, grey where no point lies; the largest error over bins of about
+// four points, so scattered data shows as areas). RGB LayerImages, row 0 the
 // lowest y (layer_image.hpp), so io::write_png shows north up. The pixel grid covers the spline's domain with
 // square pixels, `width` across.
 #include <cstdint>
