@@ -208,6 +208,29 @@ def check_lr(work):
         check(-1e-12 <= x[0] <= 2 + 1e-12 and all(-1e-12 <= v <= 1 + 1e-12 for v in x[1:]), "inside the box %s" % x)
 
 
+def check_fit(work):
+    # A terrain fitted by `trivar fit` and written as Bezier cells: evaluated here from the VTU alone, the surface
+    # is the graph of the sampled function (x and y exactly, z within a few tolerances between the points).
+    pts = os.path.join(work, "terrain.xyz")
+    f = lambda x, y: math.sin(2 * x) * math.cos(3 * y) + 0.2 * x
+    with open(pts, "w") as out:
+        for j in range(41):
+            for i in range(81):
+                x, y = 2.0 * i / 80, 1.0 * j / 40
+                out.write("%.17g %.17g %.17g\n" % (x, y, f(x, y)))
+    vtu = os.path.join(work, "terrain.vtu")
+    run("fit", pts, "--tolerance", "1e-3", "-o", vtu)
+    cells = Cells(read_vtu.read(vtu)[0])
+    check(cells.n > 0 and set(cells.a["types"]) == {77}, "one Bezier quadrilateral per LR element")
+    rng = random.Random(6)
+    worst = 0.0
+    for c in range(cells.n):
+        x, _ = cells.eval(c, [rng.random(), rng.random()])
+        check(-1e-12 <= x[0] <= 2 + 1e-12 and -1e-12 <= x[1] <= 1 + 1e-12, "fit cell inside the points' box %s" % x)
+        worst = max(worst, abs(x[2] - f(x[0], x[1])))
+    check(worst < 5e-3, "fitted terrain within 5e-3 of the function between the points, not %g" % worst)
+
+
 def vertices_on_sphere(xml_text, tag, what):
     root = ET.fromstring(xml_text)
     radii = []
@@ -254,6 +277,7 @@ def main():
         check_poisson_solution(work)
         ball = check_ball(work)
         check_lr(work)
+        check_fit(work)
         check_am(work, ball)
     for f in failures[:20]:
         print("FAILED:", f)
