@@ -76,6 +76,7 @@ void add_export_command(CLI::App& app, Context& ctx);
 void add_slice_command(CLI::App& app, Context& ctx);
 void add_demo_command(CLI::App& app, Context& ctx);
 void add_solve_command(CLI::App& app, Context& ctx);
+void add_boolean_command(CLI::App& app, Context& ctx);
 
 // True for ISO 10303-21 files: .stp, .step, .p21 (case-insensitive).
 bool is_step_file(const std::string& path);
