@@ -71,3 +71,117 @@ TEST(Boolean, BallMinusCylinderIsTheNapkinRing) {
   EXPECT_EQ(boundary_euler(ring), 0);  // a torus-like surface: genus 1
   expect_symmetric_neighbours(rep);
 }
+
+// Two unit balls one radius apart: the lens (intersection) is pi (4R + d)(2R - d)^2 / 12, the union
+// vol(A) + vol(B) - lens; the union's boundary is one sphere-like surface.
+TEST(Boolean, OverlappingBallsLensAndUnion) {
+  const double R = 1, d = 1;
+  const VModel a = ball(R), b = ball(R, {d, 0, 0});
+  const double lens = kPi * (4 * R + d) * (2 * R - d) * (2 * R - d) / 12;
+  cad::BooleanReport rep;
+  const VModel u = cad::boolean(a, b, BooleanOp::unite, {}, &rep);
+  EXPECT_NEAR(u.volume(), a.volume() + b.volume() - lens, 1e-8 * u.volume());
+  EXPECT_NEAR(a.volume(), 4.0 / 3 * kPi, 1e-10);
+  EXPECT_EQ(rep.cells, rep.pieces);
+  EXPECT_GT(rep.pieces_both, 0);
+  EXPECT_EQ(boundary_euler(u), 2);
+  expect_symmetric_neighbours(rep);
+  const VModel i = cad::boolean(a, b, BooleanOp::intersect);
+  EXPECT_NEAR(i.volume(), lens, 1e-8 * lens);
+  EXPECT_EQ(boundary_euler(i), 2);
+}
+
+// A torus with a quadrant removed by a box: three quarters of 2 pi^2 R r^2, one sphere-like boundary.
+TEST(Boolean, TorusMinusBox) {
+  const double R = 2, r = 0.5;
+  const VModel t = model_of(make_torus({R, r}));
+  const VModel q = box({0, 0, -1}, {3, 3, 2});
+  const VModel cut = cad::boolean(t, q, BooleanOp::subtract);
+  const double exact = 0.75 * 2 * kPi * kPi * R * r * r;
+  EXPECT_NEAR(cut.volume(), exact, 1e-8 * exact);
+  EXPECT_EQ(boundary_euler(cut), 2);
+}
+
+// Coincident faces: two unit cubes sharing a face fuse into a 2 x 1 x 1 block of two cells that are
+// neighbours across that one face.
+TEST(Boolean, CubesSharingAFace) {
+  cad::BooleanReport rep;
+  const VModel u = cad::boolean(box({0, 0, 0}, {1, 1, 1}), box({1, 0, 0}, {1, 1, 1}), BooleanOp::unite, {}, &rep);
+  EXPECT_EQ(rep.cells, 2);
+  EXPECT_EQ(rep.interior_faces, 1);
+  EXPECT_EQ(rep.boundary_faces, 10);
+  EXPECT_NEAR(u.volume(), 2, 1e-12);
+  EXPECT_EQ(boundary_euler(u), 2);
+  EXPECT_EQ(rep.neighbours[0], std::vector<int>{1});
+  // Their intersection is a face, no volume: refused, as is any empty result.
+  EXPECT_THROW(cad::boolean(box({0, 0, 0}, {1, 1, 1}), box({1, 0, 0}, {1, 1, 1}), BooleanOp::intersect), Error);
+}
+
+// Tangent contact: a ball touching a cube in one point. The union keeps both whole; the cube minus the ball
+// is the cube.
+TEST(Boolean, TangentContact) {
+  const VModel b = ball(1);
+  const VModel c = box({1, -1, -1}, {2, 2, 2});
+  cad::BooleanReport rep;
+  const VModel u = cad::boolean(b, c, BooleanOp::unite, {}, &rep);
+  EXPECT_EQ(rep.pieces_both, 0);
+  EXPECT_NEAR(u.volume(), 4.0 / 3 * kPi + 8, 1e-8 * u.volume());
+  const VModel d = cad::boolean(c, b, BooleanOp::subtract);
+  EXPECT_NEAR(d.volume(), 8, 1e-10);
+  EXPECT_EQ(boundary_euler(d), 2);
+}
+
+// One operand inside the other: the difference has an inner boundary (two spheres: Euler characteristic 4),
+// the union is the outer one, the intersection the inner one.
+TEST(Boolean, OneInsideTheOther) {
+  const double r = 0.3;
+  const VModel c = box({-1, -1, -1}, {2, 2, 2});
+  const VModel b = ball(r);
+  const double vb = 4.0 / 3 * kPi * r * r * r;
+  const VModel d = cad::boolean(c, b, BooleanOp::subtract);
+  EXPECT_NEAR(d.volume(), 8 - vb, 1e-8 * 8);
+  EXPECT_EQ(boundary_euler(d), 4);
+  cad::BooleanReport rep;
+  const VModel u = cad::boolean(c, b, BooleanOp::unite, {}, &rep);
+  EXPECT_NEAR(u.volume(), 8, 1e-8 * 8);
+  EXPECT_EQ(boundary_euler(u), 2);
+  EXPECT_EQ(rep.pieces_both, 7);
+  const VModel i = cad::boolean(c, b, BooleanOp::intersect);
+  EXPECT_NEAR(i.volume(), vb, 1e-8 * vb);
+}
+
+// Disjoint operands: the union holds both, the intersection is empty (refused with a message).
+TEST(Boolean, DisjointOperands) {
+  const VModel a = box({0, 0, 0}, {1, 1, 1}), b = box({3, 0, 0}, {1, 2, 1});
+  const VModel u = cad::boolean(a, b, BooleanOp::unite);
+  EXPECT_EQ(u.num_cells(), 2);
+  EXPECT_NEAR(u.volume(), 3, 1e-12);
+  EXPECT_EQ(boundary_euler(u), 4);
+  try {
+    cad::boolean(a, b, BooleanOp::intersect);
+    FAIL() << "empty intersection accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("intersection is empty"), std::string::npos) << e.what();
+  }
+}
+
+// Results as operands, through the JSON file: (cube u cube) - ball, the ball centred on the shared face (a
+// cavity: the boundary is two spheres). A trimmed operand's faces are rebuilt for the kernel from their
+// trimming curves, whose 3D curves the kernel approximates: volumes hold to 1e-7 relative there.
+TEST(Boolean, ResultsAreOperandsAgain) {
+  const VModel two = cad::boolean(box({0, 0, 0}, {1, 1, 1}), box({1, 0, 0}, {1, 1, 1}), BooleanOp::unite);
+  const VModel back = io::vmodel_from_json(io::to_json(two), "two");
+  const double r = 0.4;
+  cad::BooleanReport rep;
+  const VModel d = cad::boolean(back, ball(r, {1, 0.5, 0.5}), BooleanOp::subtract, {}, &rep);
+  EXPECT_EQ(rep.cells, 2);
+  EXPECT_NEAR(d.volume(), 2 - 4.0 / 3 * kPi * r * r * r, 1e-7 * 2);
+  EXPECT_EQ(boundary_euler(d), 4);
+  EXPECT_EQ(rep.interior_faces, 1);
+  // And once more: minus the slab above z = 0.7, which cuts a cap of height 0.2 off the hole.
+  const VModel e = cad::boolean(d, box({-1, -1, 0.7}, {4, 3, 1}), BooleanOp::subtract);
+  const double h = 0.2, cap = kPi * h * h * (3 * r - h) / 3;
+  EXPECT_EQ(e.num_cells(), 2);
+  EXPECT_NEAR(e.volume(), 2 * 0.7 - (4.0 / 3 * kPi * r * r * r - cap), 1e-7 * 2);
+  EXPECT_EQ(boundary_euler(e), 2);
+}

@@ -3,7 +3,9 @@
 #include <BRepAlgoAPI_BuilderAlgo.hxx>
 #include <BRepBuilderAPI_NurbsConvert.hxx>
 #include <BRepMesh_IncrementalMesh.hxx>
+#include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
+#include <TopoDS_Compound.hxx>
 #include <Poly_Triangulation.hxx>
 #include <Standard_Failure.hxx>
 #include <TopExp.hxx>
@@ -195,15 +197,31 @@ VModel boolean(const VModel& a, const VModel& b, BooleanOp op, const BooleanOpti
 
   const VModel* operands[2] = {&a, &b};
   std::vector<TopoDS_Solid> args;  // A's cells, then B's
-  for (int s = 0; s < 2; ++s)
-    for (int c = 0; c < operands[s]->num_cells(); ++c)
-      args.push_back(kernel_solid(operands[s]->cell(c), std::string(s == 0 ? "A" : "B") + ": cell " + std::to_string(c)));
+  bool shared[2] = {false, false};
+  for (int s = 0; s < 2; ++s) {
+    OperandSolids os = operand_solids(*operands[s], s == 0 ? "A" : "B");
+    shared[s] = os.shared_faces;
+    for (TopoDS_Solid& solid : os.solids) args.push_back(std::move(solid));
+  }
 
   VModel out;
   try {
     BRepAlgoAPI_BuilderAlgo gf;
+    // An operand whose cells share their faces is one argument: its cells are not intersected with one another.
+    // Otherwise (an earlier Boolean's result) its cells have coincident faces only, which the kernel identifies
+    // when they are arguments of their own.
     TopTools_ListOfShape list;
-    for (const TopoDS_Solid& s : args) list.Append(s);
+    for (int s = 0, first = 0; s < 2; first += operands[s]->num_cells(), ++s) {
+      if (!shared[s]) {
+        for (int c = 0; c < operands[s]->num_cells(); ++c) list.Append(args[static_cast<std::size_t>(first + c)]);
+        continue;
+      }
+      BRep_Builder bb;
+      TopoDS_Compound compound;
+      bb.MakeCompound(compound);
+      for (int c = 0; c < operands[s]->num_cells(); ++c) bb.Add(compound, args[static_cast<std::size_t>(first + c)]);
+      list.Append(compound);
+    }
     gf.SetArguments(list);
     gf.SetFuzzyValue(options.fuzzy * diag);
     gf.SetNonDestructive(true);

@@ -9,7 +9,10 @@
 #include <BRepGProp.hxx>
 #include <BRepLib.hxx>
 #include <BRepTools_WireExplorer.hxx>
+#include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
+#include <ShapeFix_Shell.hxx>
+#include <TopoDS_Shell.hxx>
 #include <GProp_GProps.hxx>
 #include <Geom2dConvert.hxx>
 #include <Geom2d_TrimmedCurve.hxx>
@@ -225,6 +228,27 @@ std::string SolidMapper::add_mesh(const TopoDS_Face& face, int face_index) {
 
 namespace {
 
+// The solid bounded by a closed shell, its shell turned when it faced inwards (a reversed solid would be the
+// complement of the region to the kernel's Booleans).
+TopoDS_Solid outward_solid(TopoDS_Shell shell, const std::string& what) {
+  BRep_Builder b;
+  const auto make = [&] {
+    TopoDS_Solid s;
+    b.MakeSolid(s);
+    b.Add(s, shell);
+    return s;
+  };
+  TopoDS_Solid solid = make();
+  GProp_GProps g;
+  BRepGProp::VolumeProperties(solid, g);
+  if (g.Mass() < 0) {
+    shell.Reverse();
+    solid = make();
+  }
+  require(BRepCheck_Analyzer(solid).IsValid(), what + ": the kernel reports the solid of the boundary faces invalid");
+  return solid;
+}
+
 // Sews faces into a closed solid and orients it outwards; throws naming `what`.
 TopoDS_Solid sew_solid(const std::vector<TopoDS_Face>& faces, double tolerance, const std::string& what) {
   BRepBuilderAPI_Sewing sew(tolerance);
@@ -234,19 +258,10 @@ TopoDS_Solid sew_solid(const std::vector<TopoDS_Face>& faces, double tolerance, 
   TopExp_Explorer shells(sewn, TopAbs_SHELL);
   require(shells.More() && sew.NbFreeEdges() == 0,
           what + ": the boundary faces do not close a solid (" + std::to_string(sew.NbFreeEdges()) + " free edges after sewing)");
-  BRepBuilderAPI_MakeSolid make(TopoDS::Shell(shells.Current()));
+  const TopoDS_Shell shell = TopoDS::Shell(shells.Current());
   shells.Next();
   require(!shells.More(), what + ": the boundary faces form more than one shell");
-  ShapeFix_Solid fix(make.Solid());
-  fix.Perform();
-  TopExp_Explorer solids(fix.Shape(), TopAbs_SOLID);
-  require(solids.More(), what + ": the kernel could not make a solid of the boundary faces");
-  TopoDS_Solid solid = TopoDS::Solid(solids.Current());
-  GProp_GProps g;
-  BRepGProp::VolumeProperties(solid, g);
-  if (g.Mass() < 0) solid.Reverse();
-  require(BRepCheck_Analyzer(solid).IsValid(), what + ": the kernel reports the sewn solid invalid");
-  return solid;
+  return outward_solid(shell, what);
 }
 
 // The six faces of the trivariate, each an untrimmed B-spline face.
@@ -278,7 +293,7 @@ std::vector<TopoDS_Face> trimmed_faces(const TrimmedBoundary& b, double toleranc
     for (std::size_t w = 1; w < wires.size(); ++w) make.Add(wires[w]);
     require(make.IsDone(), what + ": face " + std::to_string(i) + ": the kernel cannot bound the surface by its loops");
     TopoDS_Face face = make.Face();
-    BRepLib::BuildCurves3d(face, tolerance);
+    BRepLib::BuildCurves3d(face, 1e-3 * tolerance, GeomAbs_C1, 14, 0);
     ShapeFix_Shape fix(face);
     fix.Perform();
     face = TopoDS::Face(fix.Shape());
@@ -310,6 +325,55 @@ TopoDS_Solid kernel_solid(const VCell& cell, const std::string& what) {
   } catch (const Standard_Failure& e) {
     throw Error(what + ": the geometry kernel failed: " + std::string(e.GetMessageString()));
   }
+}
+
+OperandSolids operand_solids(const VModel& model, const std::string& what) {
+  OperandSolids out;
+  const auto one_by_one = [&] {
+    out.shared_faces = false;
+    out.solids.clear();
+    for (int c = 0; c < model.num_cells(); ++c) out.solids.push_back(kernel_solid(model.cell(c), what + ": cell " + std::to_string(c)));
+    return out;
+  };
+  const bool trimmed = std::any_of(model.cells().begin(), model.cells().end(), [](const VCell& c) { return c.is_trimmed(); });
+  if (trimmed || !model.is_glued()) return one_by_one();
+  out.shared_faces = true;
+  try {
+    const VTopology& t = model.topology();
+    std::vector<std::array<TensorSpline<2>, 6>> cell_faces;
+    for (const VCell& c : model.cells()) cell_faces.push_back(boundary_faces(c.geometry()));
+    // One kernel face per V-surface, all sewn at once, so the cells' solids share their faces and edges.
+    BRepBuilderAPI_Sewing sew(1e-7 * model.bounding_box().diagonal(), true, true, false, true);
+    std::vector<TopoDS_Face> faces(t.surfaces.size());
+    for (std::size_t s = 0; s < t.surfaces.size(); ++s) {
+      const HalfVSurface& h = t.halves[static_cast<std::size_t>(t.surfaces[s].halves[0])];
+      faces[s] = BRepBuilderAPI_MakeFace(to_occt(cell_faces[static_cast<std::size_t>(h.cell)][static_cast<std::size_t>(h.face)]), 1e-9).Face();
+      sew.Add(faces[s]);
+    }
+    sew.Perform();
+    for (int c = 0; c < model.num_cells(); ++c) {
+      const std::string cw = what + ": cell " + std::to_string(c);
+      BRep_Builder b;
+      TopoDS_Shell shell;
+      b.MakeShell(shell);
+      for (int f = 0; f < 6; ++f) {
+        const HalfVSurface& h = t.halves[static_cast<std::size_t>(6 * c + f)];
+        // A face glued to another face of the same cell (a ring closing on itself) is inside the cell.
+        if (h.degenerate || h.surface < 0 || (h.twin >= 0 && h.twin / 6 == c)) continue;
+        b.Add(shell, sew.Modified(faces[static_cast<std::size_t>(h.surface)]));
+      }
+      ShapeFix_Shell fix(shell);
+      fix.Perform();
+      shell = fix.Shell();
+      // Sewing many faces at once occasionally leaves a pair of coincident edges apart; the cells are then made
+      // one by one (the fuse finds their coincident faces, at a higher cost).
+      if (!BRep_Tool::IsClosed(shell)) return one_by_one();
+      out.solids.push_back(outward_solid(shell, cw));
+    }
+  } catch (const Standard_Failure& e) {
+    throw Error(what + ": the geometry kernel failed: " + std::string(e.GetMessageString()));
+  }
+  return out;
 }
 
 }  // namespace trivar::cad

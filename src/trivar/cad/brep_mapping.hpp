@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "trivar/model/trimmed_boundary.hpp"
-#include "trivar/model/vcell.hpp"
+#include "trivar/model/vmodel.hpp"
 
 namespace trivar::cad {
 
@@ -46,5 +46,14 @@ private:
 // into a valid closed solid (a singular trivariate whose faces collapse, a trimming boundary the kernel
 // cannot rebuild).
 TopoDS_Solid kernel_solid(const VCell& cell, const std::string& what);
+
+// The solids of all cells of a model, outward oriented. For a glued model of untrimmed cells every V-surface is
+// one kernel face used by the cells on both sides (and their edges are shared), so a general fuse need not
+// find coincident faces within the model (shared_faces); trimmed cells are made one by one (kernel_solid).
+struct OperandSolids {
+  std::vector<TopoDS_Solid> solids;
+  bool shared_faces = false;
+};
+OperandSolids operand_solids(const VModel& model, const std::string& what);
 
 }  // namespace trivar::cad
