@@ -13,6 +13,9 @@
 #include <BRep_Tool.hxx>
 #include <ShapeFix_Shell.hxx>
 #include <TopoDS_Shell.hxx>
+#include <gp_Trsf.hxx>
+#include <BRepBuilderAPI_Transform.hxx>
+#include <TopoDS_Compound.hxx>
 #include <GProp_GProps.hxx>
 #include <Geom2dConvert.hxx>
 #include <Geom2d_TrimmedCurve.hxx>
@@ -34,6 +37,7 @@
 #include "trivar/cad/occt_spline.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/core/gauss_legendre.hpp"
+#include "trivar/spline/affine_transform.hpp"
 #include "trivar/spline/iso_extraction.hpp"
 
 namespace trivar::cad {
@@ -340,8 +344,14 @@ OperandSolids operand_solids(const VModel& model, const std::string& what) {
   out.shared_faces = true;
   try {
     const VTopology& t = model.topology();
+    // The faces are sewn about the model's centre and the solids moved back: sewing all faces of a ball of
+    // cells away from the origin left pairs of coincident edges unsewn, about the origin it does not.
+    const std::array<double, 3> centre = model.bounding_box().center();
     std::vector<std::array<TensorSpline<2>, 6>> cell_faces;
-    for (const VCell& c : model.cells()) cell_faces.push_back(boundary_faces(c.geometry()));
+    for (const VCell& c : model.cells())
+      cell_faces.push_back(boundary_faces(transform(c.geometry(), Eigen::Matrix3d::Identity(), -Eigen::Vector3d(centre[0], centre[1], centre[2]))));
+    gp_Trsf back;
+    back.SetTranslation(gp_Vec(centre[0], centre[1], centre[2]));
     // One kernel face per V-surface, all sewn at once, so the cells' solids share their faces and edges.
     BRepBuilderAPI_Sewing sew(1e-7 * model.bounding_box().diagonal(), true, true, false, true);
     std::vector<TopoDS_Face> faces(t.surfaces.size());
@@ -370,6 +380,16 @@ OperandSolids operand_solids(const VModel& model, const std::string& what) {
       if (!BRep_Tool::IsClosed(shell)) return one_by_one();
       out.solids.push_back(outward_solid(shell, cw));
     }
+    // Moved back as one shape with copied geometry, so the solids keep sharing their faces (the mapping of
+    // pieces reads geometry and triangulations as stored, without locations).
+    BRep_Builder b;
+    TopoDS_Compound all;
+    b.MakeCompound(all);
+    for (const TopoDS_Solid& solid : out.solids) b.Add(all, solid);
+    const TopoDS_Shape moved = BRepBuilderAPI_Transform(all, back, true).Shape();
+    out.solids.clear();
+    for (TopExp_Explorer x(moved, TopAbs_SOLID); x.More(); x.Next()) out.solids.push_back(TopoDS::Solid(x.Current()));
+    require(static_cast<int>(out.solids.size()) == model.num_cells(), what + ": the kernel lost a cell's solid when moving it");
   } catch (const Standard_Failure& e) {
     throw Error(what + ": the geometry kernel failed: " + std::string(e.GetMessageString()));
   }
