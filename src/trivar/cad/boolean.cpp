@@ -247,6 +247,9 @@ VModel boolean(const VModel& a, const VModel& b, BooleanOp op, const BooleanOpti
         owner = cell;
       }
     }
+    for (std::size_t p = 0; p < pieces.size(); ++p)
+      require(pieces[p].a >= 0 || pieces[p].b >= 0,
+              "Boolean: the geometry kernel's fuse returned piece " + std::to_string(p) + ", which no cell contains");
     rep.pieces = static_cast<int>(pieces.size());
     for (Piece& p : pieces) {
       const bool ia = p.a >= 0, ib = p.b >= 0;
