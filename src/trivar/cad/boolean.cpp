@@ -1,7 +1,6 @@
 #include "trivar/cad/boolean.hpp"
 
 #include <BRepAlgoAPI_BuilderAlgo.hxx>
-#include <BRepBuilderAPI_NurbsConvert.hxx>
 #include <BRepMesh_IncrementalMesh.hxx>
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
@@ -262,12 +261,13 @@ VModel boolean(const VModel& a, const VModel& b, BooleanOp op, const BooleanOpti
             std::string("Boolean: the ") + (op == BooleanOp::subtract ? "difference" : "intersection") +
                 " is empty (a V-model needs at least one cell)");
 
-    // Exact NURBS faces and one triangulation of every face, shared by the pieces on either side.
-    BRepBuilderAPI_NurbsConvert conv(fused, true);
-    const TopoDS_Shape nurbs = conv.Shape();
+    // One triangulation of every face, shared by the pieces on either side.
+    // The pieces' faces lie on the operands' faces, which are B-spline surfaces already (the cells' faces were
+    // given to the kernel as such), so no NURBS conversion is needed; the mapping converts the edge curves.
+    const TopoDS_Shape& nurbs = fused;
     BRepMesh_IncrementalMesh mesh(nurbs, chordal, false, options.angular_tolerance, true);
     std::vector<TopoDS_Shape> converted(pieces.size());
-    for (std::size_t p = 0; p < pieces.size(); ++p) converted[p] = conv.ModifiedShape(solids(static_cast<int>(p) + 1));
+    for (std::size_t p = 0; p < pieces.size(); ++p) converted[p] = solids(static_cast<int>(p) + 1);
     TopTools_IndexedDataMapOfShapeListOfShape face_solids;
     TopExp::MapShapesAndAncestors(nurbs, TopAbs_FACE, TopAbs_SOLID, face_solids);
     TopTools_IndexedMapOfShape piece_index;
