@@ -13,18 +13,6 @@ namespace trivar::cli {
 
 namespace {
 
-// The identity x(u) = u on the box (degree 1, one element per direction).
-TensorSpline<3> identity_box(const Box<3>& b) {
-  std::vector<double> pts;
-  for (int k = 0; k < 2; ++k)
-    for (int j = 0; j < 2; ++j)
-      for (int i = 0; i < 2; ++i) pts.insert(pts.end(), {i ? b.hi[0] : b.lo[0], j ? b.hi[1] : b.lo[1], k ? b.hi[2] : b.lo[2]});
-  return TensorSpline<3>::from_cartesian({KnotVector::open_uniform(1, 1, b.lo[0], b.hi[0]),
-                                          KnotVector::open_uniform(1, 1, b.lo[1], b.hi[1]),
-                                          KnotVector::open_uniform(1, 1, b.lo[2], b.hi[2])},
-                                         3, pts);
-}
-
 // "part.json" for one solid; "part.0.json", "part.1.json", ... for several.
 std::string output_name(const std::string& out, std::size_t index, std::size_t count) {
   if (count == 1) return out;

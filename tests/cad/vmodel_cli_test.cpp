@@ -159,3 +159,41 @@ TEST(VmodelCli, SolveAndCheckTrimmedModels) {
   EXPECT_NE(k.out.find("defect: "), std::string::npos) << k.out;
   std::filesystem::remove_all(dir);
 }
+
+// trivar boolean end to end: a ball minus a cylinder, the report and the result read back by info; bad
+// operations and empty results are one-line errors without an output file.
+TEST(BooleanCli, BallMinusCylinder) {
+  const auto dir = test::temp_dir("boolean_cli");
+  std::filesystem::create_directories(dir);
+  const std::string d = dir.string() + "/";
+  ASSERT_EQ(run("make ball --radius 1 --material-field 1 0 -o " + d + "ball.json", dir).code, 0);
+  ASSERT_EQ(run("make cylinder --radius 0.4 --height 3 --material-field 0 1 -o " + d + "cyl.json", dir).code, 0);
+  const CliRun r = run("boolean " + d + "ball.json " + d + "cyl.json --op difference -o " + d + "ring.json --json", dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  // The cylinder stands on z = 0: the lower half ball stays, the upper half becomes half a napkin ring,
+  // (2/3) pi (1 + (1 - 0.16)^(3/2)).
+  const double pi = 3.14159265358979323846;
+  const double exact = 2.0 / 3 * pi * (1 + (1 - 0.16) * std::sqrt(1 - 0.16));
+  EXPECT_NEAR(j["volume"]["result"].get<double>(), exact, 1e-8 * exact);
+  EXPECT_TRUE(j["boundary_mesh"]["watertight"].get<bool>());
+  EXPECT_EQ(j["boundary_mesh"]["euler_characteristic"].get<int>(), 2);
+  const CliRun info = run("info " + d + "ring.json --json", dir);
+  ASSERT_EQ(info.code, 0) << info.err;
+  EXPECT_NEAR(nlohmann::json::parse(info.out)["volume"].get<double>(), exact, 1e-8 * exact);
+  // A one-cell result (a cube with a spherical cavity) is solved with detrimmed quadrature; its volume there is
+  // the quadrature's, close to the exact one.
+  ASSERT_EQ(run("make box --degree 1 1 1 --elements 1 1 1 --size 2 2 2 -o " + d + "cube.json", dir).code, 0);
+  ASSERT_EQ(run("make ball --radius 0.5 --center 1 1 1 -o " + d + "hole.json", dir).code, 0);
+  ASSERT_EQ(run("boolean " + d + "cube.json " + d + "hole.json --op difference -o " + d + "cavity.json", dir).code, 0);
+  const CliRun solve = run("solve poisson " + d + "cavity.json --refine 2", dir);
+  ASSERT_EQ(solve.code, 0) << solve.err;
+  EXPECT_NE(solve.out.find("trimmed cell"), std::string::npos) << solve.out;
+  const CliRun bad = run("boolean " + d + "ball.json " + d + "cyl.json --op xor -o " + d + "x.json", dir);
+  EXPECT_NE(bad.code, 0);
+  const CliRun empty = run("boolean " + d + "cyl.json " + d + "cyl.json --op difference -o " + d + "e.json", dir);
+  EXPECT_EQ(empty.code, 1);
+  EXPECT_NE(empty.err.find("difference is empty"), std::string::npos) << empty.err;
+  EXPECT_FALSE(std::filesystem::exists(d + "e.json"));
+  std::filesystem::remove_all(dir);
+}

@@ -1,6 +1,10 @@
 #include "trivar/cad/occt_spline.hpp"
 
+#include <TColStd_Array1OfInteger.hxx>
 #include <TColStd_Array1OfReal.hxx>
+#include <TColStd_Array2OfReal.hxx>
+#include <TColgp_Array1OfPnt2d.hxx>
+#include <TColgp_Array2OfPnt.hxx>
 
 namespace trivar::cad {
 
@@ -29,7 +33,56 @@ TensorSpline<1> curve_to_spline(const Curve& in) {
   return TensorSpline<1>::from_cartesian({flat_knots(c->Degree(), seq)}, N, pts, w);
 }
 
+// Distinct knots and their multiplicities, as the kernel stores them.
+void knots_and_mults(const KnotVector& k, TColStd_Array1OfReal& knots, TColStd_Array1OfInteger& mults) {
+  const std::vector<double> u = k.unique();
+  const std::vector<int> m = k.multiplicities();
+  knots.Resize(1, static_cast<int>(u.size()), false);
+  mults.Resize(1, static_cast<int>(u.size()), false);
+  for (std::size_t i = 0; i < u.size(); ++i) {
+    knots(static_cast<int>(i) + 1) = u[i];
+    mults(static_cast<int>(i) + 1) = m[i];
+  }
+}
+
 }  // namespace
+
+Handle(Geom_BSplineSurface) to_occt(const TensorSpline<2>& s) {
+  const int nu = s.count(0), nv = s.count(1);
+  TColgp_Array2OfPnt poles(1, nu, 1, nv);
+  TColStd_Array2OfReal weights(1, nu, 1, nv);
+  for (int j = 0; j < nv; ++j)
+    for (int i = 0; i < nu; ++i) {
+      const int l = s.linear_index({i, j});
+      double x[3];
+      s.control_point(l, x);
+      poles(i + 1, j + 1) = gp_Pnt(x[0], x[1], x[2]);
+      weights(i + 1, j + 1) = s.weight(l);
+    }
+  TColStd_Array1OfReal uk(1, 1), vk(1, 1);
+  TColStd_Array1OfInteger um(1, 1), vm(1, 1);
+  knots_and_mults(s.knots(0), uk, um);
+  knots_and_mults(s.knots(1), vk, vm);
+  if (!s.is_rational()) return new Geom_BSplineSurface(poles, uk, vk, um, vm, s.degree(0), s.degree(1));
+  return new Geom_BSplineSurface(poles, weights, uk, vk, um, vm, s.degree(0), s.degree(1));
+}
+
+Handle(Geom2d_BSplineCurve) to_occt_2d(const TensorSpline<1>& c) {
+  const int n = c.count(0);
+  TColgp_Array1OfPnt2d poles(1, n);
+  TColStd_Array1OfReal weights(1, n);
+  for (int i = 0; i < n; ++i) {
+    double x[2];
+    c.control_point(i, x);
+    poles(i + 1) = gp_Pnt2d(x[0], x[1]);
+    weights(i + 1) = c.weight(i);
+  }
+  TColStd_Array1OfReal k(1, 1);
+  TColStd_Array1OfInteger m(1, 1);
+  knots_and_mults(c.knots(0), k, m);
+  if (!c.is_rational()) return new Geom2d_BSplineCurve(poles, k, m, c.degree(0));
+  return new Geom2d_BSplineCurve(poles, weights, k, m, c.degree(0));
+}
 
 TensorSpline<2> to_spline(const Geom_BSplineSurface& in) {
   Handle(Geom_BSplineSurface) s = Handle(Geom_BSplineSurface)::DownCast(in.Copy());

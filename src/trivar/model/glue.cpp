@@ -307,7 +307,8 @@ VTopology glue(std::span<const VCell> cells, const GlueOptions& options) {
       HalfVSurface& h = topo.halves[6 * c + f];
       h.cell = c, h.face = f;
       h.degenerate = collapsed_face(faces[c][f], tol);
-      if (h.degenerate) continue;
+      // A trimmed cell's box faces are not its boundary (its trimming faces are), so they are never shared.
+      if (h.degenerate || cells[c].is_trimmed()) continue;
       std::array<int, 4> key;
       for (int k = 0; k < 4; ++k) key[k] = topo.cell_corners[c][face_corner(f, k & 1, k >> 1)];
       std::sort(key.begin(), key.end());
@@ -394,7 +395,7 @@ VTopology glue(std::span<const VCell> cells, const GlueOptions& options) {
     std::vector<int> open;
     std::vector<Box<3>> bounds;
     for (int h = 0; h < 6 * nc; ++h)
-      if (!topo.halves[h].degenerate && topo.halves[h].twin < 0) {
+      if (!topo.halves[h].degenerate && topo.halves[h].twin < 0 && !cells[h / 6].is_trimmed()) {
         open.push_back(h);
         Box<3> b;
         faces[h / 6][h % 6].control_bounds(b.lo.data(), b.hi.data());

@@ -11,6 +11,8 @@
 //    but whose nets differ are glued too and reported as control_nets_differ.
 // 4. Remaining boundary faces of which an interior sample lies on another boundary face are reported as
 //    partial_overlap (non-conforming contact, e.g. a T-junction), and stay boundary faces.
+// The box faces of trimmed cells take part in neither 3 nor 4: a trimmed cell is bounded by its trimming
+// faces, and the neighbours of trimmed cells are the faces their meshes share (a Boolean reports them).
 // A face with an edge direction collapsed (control net of zero extent along s or t) is degenerate: it is a
 // curve or a point, not a V-surface. A face can be glued to another face of the same cell (a closed ring).
 #include <span>

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <unordered_map>
+#include <unordered_set>
 
 namespace trivar {
 
@@ -32,6 +33,19 @@ bool is_watertight(const TriangleMesh& m) {
       uses[std::min(a, b) * n + std::max(a, b)] += a < b ? 1 : (std::uint64_t{1} << 32);
     }
   return std::all_of(uses.begin(), uses.end(), [](const auto& kv) { return kv.second == 1 + (std::uint64_t{1} << 32); });
+}
+
+int euler_characteristic(const TriangleMesh& m) {
+  std::unordered_set<std::uint64_t> edges;
+  std::unordered_set<int> vertices;
+  const auto n = static_cast<std::uint64_t>(m.vertices.size());
+  for (const auto& t : m.triangles)
+    for (int e = 0; e < 3; ++e) {
+      vertices.insert(t[e]);
+      const auto a = static_cast<std::uint64_t>(t[e]), b = static_cast<std::uint64_t>(t[(e + 1) % 3]);
+      edges.insert(std::min(a, b) * n + std::max(a, b));
+    }
+  return static_cast<int>(vertices.size()) - static_cast<int>(edges.size()) + static_cast<int>(m.triangles.size());
 }
 
 double surface_area(const TriangleMesh& m) {

@@ -17,6 +17,10 @@ bool is_watertight(const TriangleMesh& m);
 
 double surface_area(const TriangleMesh& m);
 
+// V - E + F of the mesh (vertices used by some triangle, distinct undirected edges, triangles): 2 - 2g for a
+// closed orientable surface of genus g, summed over its components.
+int euler_characteristic(const TriangleMesh& m);
+
 // Signed enclosed volume by the divergence theorem (positive for outward-oriented closed meshes).
 double enclosed_volume(const TriangleMesh& m);
 

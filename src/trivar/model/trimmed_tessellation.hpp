@@ -1,7 +1,8 @@
 #pragma once
-// The boundary of a V-model of trimmed cells as one triangle mesh: the cells' watertight trimming meshes side
-// by side, each vertex traced back to its cell and parameters (a trimmed cell's parameters are model
-// coordinates), so exporters colour it by the cells' attributes like any other model boundary.
+// The boundary of a V-model of trimmed cells as one triangle mesh: the cells' watertight trimming meshes with
+// the faces two cells share left out (cells of a Boolean share the triangulation of the faces between them),
+// each vertex traced back to its cell and parameters (a trimmed cell's parameters are model coordinates), so
+// exporters colour it by the cells' attributes like any other model boundary.
 #include "trivar/model/model_tessellation.hpp"
 
 namespace trivar {

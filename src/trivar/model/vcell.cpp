@@ -26,6 +26,17 @@ VCell::VCell(TensorSpline<3> geometry, std::shared_ptr<const TrimmedSolid> trim)
   trim_ = std::move(trim);
 }
 
+TensorSpline<3> identity_box(const Box<3>& b) {
+  std::vector<double> pts;
+  for (int k = 0; k < 2; ++k)
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 2; ++i) pts.insert(pts.end(), {i ? b.hi[0] : b.lo[0], j ? b.hi[1] : b.lo[1], k ? b.hi[2] : b.lo[2]});
+  return TensorSpline<3>::from_cartesian({KnotVector::open_uniform(1, 1, b.lo[0], b.hi[0]),
+                                          KnotVector::open_uniform(1, 1, b.lo[1], b.hi[1]),
+                                          KnotVector::open_uniform(1, 1, b.lo[2], b.hi[2])},
+                                         3, pts);
+}
+
 bool VCell::contains_param(const Param<3>& u) const {
   if (!geometry().domain().contains(u)) return false;
   return !trim_ || trim_->contains(u);

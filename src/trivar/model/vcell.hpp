@@ -60,4 +60,7 @@ private:
   std::map<std::string, Attribute> attributes_;
 };
 
+// The trivariate of a trimmed cell: the identity x(u) = u on the box (degree 1, one element per direction).
+TensorSpline<3> identity_box(const Box<3>& b);
+
 }  // namespace trivar

@@ -1,0 +1,59 @@
+#pragma once
+// Internal to the cad layer (includes OpenCASCADE): the kernel's solids as trivar TrimmedBoundaries and back.
+//
+// SolidMapper maps one solid whose faces are B-spline surfaces (after BRepBuilderAPI_NurbsConvert) and carry
+// the kernel's triangulation: every face an exact NURBS patch with its trimming loops, the mesh made
+// watertight by identifying the nodes on shared edges. Faces triangulated once for several solids (a general
+// fuse of cells) give the same triangles to each, so neighbouring cells' meshes conform.
+//
+// kernel_solid() goes the other way: the closed solid of a V-cell (the six boundary faces of its trivariate,
+// or the exact faces and loops of its trimming boundary), sewn with a tolerance relative to its size.
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS_Face.hxx>
+#include <TopoDS_Shape.hxx>
+#include <TopoDS_Solid.hxx>
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "trivar/model/trimmed_boundary.hpp"
+#include "trivar/model/vmodel.hpp"
+
+namespace trivar::cad {
+
+class SolidMapper {
+public:
+  SolidMapper(const TopoDS_Shape& solid, double chordal);
+
+  // Maps one face; `kind` and `name` describe the face as read. Returns an empty string or why it failed.
+  std::string add_face(const TopoDS_Face& face, const std::string& kind, const std::string& name);
+  // The boundary of the faces added (triangles collapsed by poles dropped).
+  TrimmedBoundary take();
+
+private:
+  TopTools_IndexedMapOfShape edges_, vertices_;
+  TrimmedBoundary boundary_;
+  std::vector<bool> edge_done_;
+  std::map<std::pair<int, int>, int> edge_nodes_;  // (edge, polygon position) -> mesh vertex
+  std::map<int, int> vertex_nodes_;                // topological vertex -> mesh vertex
+
+  int mesh_vertex_of(const TopoDS_Shape& vertex);
+  std::string add_mesh(const TopoDS_Face& face, int face_index);
+};
+
+// The closed solid of a cell, outward oriented. Throws trivar::Error naming `what` when the faces do not sew
+// into a valid closed solid (a singular trivariate whose faces collapse, a trimming boundary the kernel
+// cannot rebuild).
+TopoDS_Solid kernel_solid(const VCell& cell, const std::string& what);
+
+// The solids of all cells of a model, outward oriented. For a glued model of untrimmed cells every V-surface is
+// one kernel face used by the cells on both sides (and their edges are shared), so a general fuse need not
+// find coincident faces within the model (shared_faces); trimmed cells are made one by one (kernel_solid).
+struct OperandSolids {
+  std::vector<TopoDS_Solid> solids;
+  bool shared_faces = false;
+};
+OperandSolids operand_solids(const VModel& model, const std::string& what);
+
+}  // namespace trivar::cad
