@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <set>
 #include <string>
 
 #include "trivar/core/error.hpp"
@@ -135,13 +134,6 @@ double min_angle_degrees(const TriangleMesh& m) {
     }
   }
   return worst;
-}
-
-long euler_characteristic(const TriangleMesh& m) {
-  std::set<std::pair<int, int>> edges;
-  for (const auto& t : m.triangles)
-    for (int e = 0; e < 3; ++e) edges.insert(std::minmax(t[e], t[(e + 1) % 3]));
-  return static_cast<long>(m.vertices.size()) - static_cast<long>(edges.size()) + static_cast<long>(m.triangles.size());
 }
 
 // Cells are at most twice as long as wide in space and fanned from their centres, with at most one
