@@ -56,6 +56,15 @@ TEST(PointFile, BinaryRoundTripAndTruncation) {
   std::string bad = bytes;
   bad[8] = 0;
   EXPECT_THROW(parse_point_bytes(bad, "b"), Error);
+  // A row count whose byte size does not fit in 64 bits (found by the fuzz target): one line, no overflow.
+  bad = bytes;
+  for (int i = 16; i < 24; ++i) bad[static_cast<std::size_t>(i)] = static_cast<char>(0xff);
+  try {
+    parse_point_bytes(bad, "b");
+    ADD_FAILURE() << "accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("needs more than 2^64 bytes"), std::string::npos) << e.what();
+  }
   bad = bytes;
   bad[24 + 7] = static_cast<char>(0x7f);  // first number's exponent all ones, mantissa non-zero: NaN
   bad[24 + 6] = static_cast<char>(0xf8);

@@ -32,10 +32,14 @@ PointTable parse_binary(std::string_view b, const std::string& name) {
   require(cols >= 1 && cols <= kMaxColumns,
           name + ": byte 8: " + std::to_string(cols) + " columns, expected 1.." + std::to_string(kMaxColumns));
   require(reserved == 0, name + ": byte 12: reserved field is " + std::to_string(reserved) + ", expected 0");
-  const double expected = static_cast<double>(kHeader) + 8.0 * static_cast<double>(cols) * static_cast<double>(rows);
-  require(expected == static_cast<double>(b.size()),
-          name + ": binary point file of " + std::to_string(b.size()) + " bytes, its header (" + std::to_string(rows) +
-              " rows of " + std::to_string(cols) + ") needs " + std::to_string(static_cast<unsigned long long>(expected)));
+  // In integers, overflow checked first: a header may claim any 64-bit row count.
+  const std::uint64_t row_bytes = 8 * std::uint64_t{cols};
+  const bool representable = rows <= (UINT64_MAX - kHeader) / row_bytes;
+  require(representable && kHeader + rows * row_bytes == b.size(), [&] {
+    return name + ": binary point file of " + std::to_string(b.size()) + " bytes, its header (" + std::to_string(rows) +
+           " rows of " + std::to_string(cols) + ") needs " +
+           (representable ? std::to_string(kHeader + rows * row_bytes) : std::string("more than 2^64")) + " bytes";
+  });
   PointTable t;
   t.columns = static_cast<int>(cols);
   t.values.resize(static_cast<std::size_t>(rows) * cols);
