@@ -24,6 +24,7 @@
 #include "trivar/core/error.hpp"
 #include "trivar/model/attribute_blend.hpp"
 #include "trivar/model/expression.hpp"
+#include "trivar/model/triangle_mesh.hpp"
 #include "trivar/spline/point_inversion.hpp"
 
 namespace trivar::cad {
@@ -48,37 +49,15 @@ namespace {
 
 using Point = std::array<double, 3>;
 
-// Distance from p to the triangle abc (closest point by Voronoi regions, Ericson, Real-Time Collision
-// Detection 5.1.5).
+// Distance from p to the triangle abc.
 double triangle_distance(const Point& p, const Point& a, const Point& b, const Point& c) {
-  const auto sub = [](const Point& x, const Point& y) { return Point{x[0] - y[0], x[1] - y[1], x[2] - y[2]}; };
-  const auto dot = [](const Point& x, const Point& y) { return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]; };
-  const auto at = [&](double v, double w) {
-    const Point q{a[0] + v * (b[0] - a[0]) + w * (c[0] - a[0]), a[1] + v * (b[1] - a[1]) + w * (c[1] - a[1]),
-                  a[2] + v * (b[2] - a[2]) + w * (c[2] - a[2])};
-    const Point d = sub(p, q);
-    return std::sqrt(dot(d, d));
-  };
-  const Point ab = sub(b, a), ac = sub(c, a), ap = sub(p, a);
-  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
-  if (d1 <= 0 && d2 <= 0) return at(0, 0);
-  const Point bp = sub(p, b);
-  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
-  if (d3 >= 0 && d4 <= d3) return at(1, 0);
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return at(d1 / (d1 - d3), 0);
-  const Point cp = sub(p, c);
-  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
-  if (d6 >= 0 && d5 <= d6) return at(0, 1);
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return at(0, d2 / (d2 - d6));
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) {
-    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-    return at(1 - w, w);
+  const auto w = closest_on_triangle(p, a, b, c);
+  double s = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double d = p[k] - (w[0] * a[k] + w[1] * b[k] + w[2] * c[k]);
+    s += d * d;
   }
-  const double denom = 1 / (va + vb + vc);
-  return at(vb * denom, vc * denom);
+  return std::sqrt(s);
 }
 
 // A set of triangles and the distance of points to it (boxes first, so far triangles cost one box test).

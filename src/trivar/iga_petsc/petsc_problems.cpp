@@ -306,6 +306,13 @@ ModesResult modes_distributed(SparseMatrix& K_local, SparseMatrix& M_local, int 
   return r;
 }
 
+// The norms of the whole domain from each rank's part (squares add).
+ErrorNorms sum_over_ranks(const ErrorNorms& mine) {
+  double squares[2] = {mine.l2 * mine.l2, mine.h1 * mine.h1};
+  MPI_Allreduce(MPI_IN_PLACE, squares, 2, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
+  return {std::sqrt(squares[0]), std::sqrt(squares[1])};
+}
+
 }  // namespace
 
 const PhaseCpuSeconds& last_phase_cpu_seconds() { return last_cpu; }
@@ -360,10 +367,7 @@ ModesResult petsc_elastic_modes(const MultipatchSpace<D>& space, const Elasticit
 template <int D>
 ErrorNorms petsc_error_norms(const MultipatchSpace<D>& space, const Eigen::VectorXd& coefs, int components,
                              const ExactSolution<D>& exact, int threads) {
-  const ErrorNorms mine = error_norms(space, coefs, components, exact, threads, rank_partition());
-  double squares[2] = {mine.l2 * mine.l2, mine.h1 * mine.h1};
-  MPI_Allreduce(MPI_IN_PLACE, squares, 2, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
-  return {std::sqrt(squares[0]), std::sqrt(squares[1])};
+  return sum_over_ranks(error_norms(space, coefs, components, exact, threads, rank_partition()));
 }
 
 template <int D>
@@ -389,10 +393,7 @@ SolveResult petsc_solve_elasticity(const RefinedSpace<D>& space, const Elasticit
 template <int D>
 ErrorNorms petsc_error_norms(const RefinedSpace<D>& space, const Eigen::VectorXd& coefs, int components,
                              const ExactSolution<D>& exact, int threads) {
-  const ErrorNorms mine = error_norms(space, coefs, components, exact, threads, rank_partition());
-  double squares[2] = {mine.l2 * mine.l2, mine.h1 * mine.h1};
-  MPI_Allreduce(MPI_IN_PLACE, squares, 2, MPI_DOUBLE, MPI_SUM, PETSC_COMM_WORLD);
-  return {std::sqrt(squares[0]), std::sqrt(squares[1])};
+  return sum_over_ranks(error_norms(space, coefs, components, exact, threads, rank_partition()));
 }
 
 #define TRIVAR_INSTANTIATE(D)                                                                                    \

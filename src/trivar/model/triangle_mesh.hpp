@@ -21,6 +21,11 @@ double surface_area(const TriangleMesh& m);
 // closed orientable surface of genus g, summed over its components.
 int euler_characteristic(const TriangleMesh& m);
 
+// Barycentric coordinates of the point of triangle abc closest to p (Ericson, Real-Time Collision Detection,
+// 5.1.5).
+std::array<double, 3> closest_on_triangle(const std::array<double, 3>& p, const std::array<double, 3>& a,
+                                          const std::array<double, 3>& b, const std::array<double, 3>& c);
+
 // Signed enclosed volume by the divergence theorem (positive for outward-oriented closed meshes).
 double enclosed_volume(const TriangleMesh& m);
 

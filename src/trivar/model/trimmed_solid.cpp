@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "trivar/core/error.hpp"
+#include "trivar/model/triangle_mesh.hpp"
 #include "trivar/model/trimmed_integral.hpp"
 
 namespace trivar {
@@ -30,38 +31,6 @@ using P3 = std::array<double, 3>;
 
 P3 sub(const P3& a, const P3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
 double dot(const P3& a, const P3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
-// Barycentric coordinates of the point of triangle abc closest to p (Ericson, Real-Time Collision Detection,
-// 5.1.5).
-std::array<double, 3> closest_on_triangle(const P3& p, const P3& a, const P3& b, const P3& c) {
-  const P3 ab = sub(b, a), ac = sub(c, a), ap = sub(p, a);
-  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
-  if (d1 <= 0 && d2 <= 0) return {1, 0, 0};
-  const P3 bp = sub(p, b);
-  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
-  if (d3 >= 0 && d4 <= d3) return {0, 1, 0};
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
-    const double v = d1 / (d1 - d3);
-    return {1 - v, v, 0};
-  }
-  const P3 cp = sub(p, c);
-  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
-  if (d6 >= 0 && d5 <= d6) return {0, 0, 1};
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
-    const double w = d2 / (d2 - d6);
-    return {1 - w, 0, w};
-  }
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-    return {0, 1 - w, w};
-  }
-  const double denom = 1 / (va + vb + vc);
-  const double v = vb * denom, w = vc * denom;
-  return {1 - v - w, v, w};
-}
 
 // All control points (Cartesian) within rounding of the plane through the first one, the one farthest from
 // it and the one farthest from their line: the face is a plane, which the mesh reproduces exactly.
