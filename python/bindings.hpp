@@ -3,6 +3,7 @@
 // C-contiguous float64 array already), results allocated as NumPy arrays the library writes into, and the
 // registration functions of the binding files (one per part of the library).
 #include <array>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -16,6 +17,13 @@
 #include "trivar/model/model_tessellation.hpp"
 #include "trivar/model/trimmed_solid.hpp"
 #include "trivar/model/vmodel.hpp"
+
+namespace trivar {
+struct ModesResult;
+}
+namespace trivar::io::step {
+struct StepTSpline;
+}
 
 namespace trivar::python {
 
@@ -88,6 +96,10 @@ ModelTessellation boundary_mesh(const VModel& m, double tolerance);
 // A one-cell V-model trimmed by a B-rep solid (as `trivar make vmodel`).
 VModel trimmed_model(std::shared_ptr<const TrimmedSolid> solid);
 
+// Eigenvalues and modes as `solve_modes` returns them: values, exact (None when empty), dofs, vectors, timings.
+py::object modes_result(const ModesResult& r, const std::vector<double>& exact);
+
+void bind_solve_model(py::module_& m);
 void bind_knot_vector(py::module_& m);
 void bind_tensor_splines(py::module_& m);
 void bind_constructors(py::module_& m);
@@ -95,5 +107,17 @@ void bind_lr_splines(py::module_& m);
 void bind_vmodel(py::module_& m);
 void bind_files(py::module_& m);
 void bind_solve(py::module_& m);
+void bind_tspline(py::module_& m);
+void bind_hierarchical(py::module_& m);
+void bind_boolean(py::module_& m);
+void bind_fit(py::module_& m);
+
+// T-splines for read/write (tspline.cpp): a .tsm file; a T-spline JSON file (kind "t_spline"); the
+// T-splines of a STEP file; whether an object is a TSplineSurface, and writing one by extension.
+py::object read_tsm_file(const std::string& path, int threads = 0);
+py::object read_t_spline_json_file(const std::string& path);
+void append_step_t_splines(py::list& out, std::vector<io::step::StepTSpline>& splines);
+bool is_t_spline(const py::handle& o);
+void write_t_spline_file(const std::string& path, const py::handle& o, const std::string& step_form);
 
 }  // namespace trivar::python

@@ -5,6 +5,7 @@
 #include "bindings.hpp"
 #include "trivar/cad/step_import.hpp"
 #include "trivar/io/amf_writer.hpp"
+#include "trivar/io/gismo_xml.hpp"
 #include "trivar/io/json_format.hpp"
 #include "trivar/io/lr_format.hpp"
 #include "trivar/io/lr_g2_format.hpp"
@@ -46,7 +47,30 @@ bool is_lr_kind(const nlohmann::json& j) {
 py::list read_file(const std::string& path) {
   py::list out;
   const std::string ext = io::file_extension(path);
+  if (ext == ".tsm") {
+    out.append(read_tsm_file(path));
+    return out;
+  }
+  if (ext == ".xml") {
+    // G+Smo: tensor and hierarchical geometries, in document order.
+    std::vector<io::GismoGeometry> all;
+    {
+      py::gil_scoped_release release;
+      all = io::read_gismo_xml(path);
+    }
+    for (const io::GismoGeometry& g : all) out.append(std::visit([](const auto& x) { return py::cast(x); }, g));
+    return out;
+  }
   if (ext == ".json") {
+    {
+      // T-spline JSON has its own layout (io/t_spline_json.hpp), without the "trivar" header of the others.
+      std::ifstream in(path);
+      const nlohmann::json peek = nlohmann::json::parse(in, nullptr, false);
+      if (peek.is_object() && peek.value("kind", "") == "t_spline") {
+        out.append(read_t_spline_json_file(path));
+        return out;
+      }
+    }
     nlohmann::json doc;
     {
       py::gil_scoped_release release;
@@ -81,6 +105,7 @@ py::list read_file(const std::string& path) {
     }
     for (const AnySpline& s : c.splines) out.append(to_python(s));
     for (const AnyLRSpline& s : c.lr_splines) out.append(to_python(s));
+    append_step_t_splines(out, c.t_splines);
     return out;
   }
   std::vector<AnySpline> splines;
@@ -109,10 +134,12 @@ void write_model(const std::string& path, const VModel& m, double tolerance) {
   }
 }
 
-void write_file(const std::string& path, const py::object& objects, double tolerance) {
+void write_file(const std::string& path, const py::object& objects, double tolerance, const std::string& step_form) {
   if (py::isinstance<VModel>(objects)) return write_model(path, objects.cast<const VModel&>(), tolerance);
+  if (is_t_spline(objects)) return write_t_spline_file(path, objects, step_form);
   std::vector<AnySpline> splines;
   std::vector<AnyLRSpline> lr;
+  std::vector<AnyHierarchicalSpline> hier;
   const py::list list = py::isinstance<py::list>(objects) || py::isinstance<py::tuple>(objects)
                             ? py::list(objects)
                             : py::list(py::make_tuple(objects));
@@ -127,15 +154,36 @@ void write_file(const std::string& path, const py::object& objects, double toler
       lr.emplace_back(o.cast<LRSpline<2>>());
     else if (py::isinstance<LRSpline<3>>(o))
       lr.emplace_back(o.cast<LRSpline<3>>());
+    else if (py::isinstance<HierarchicalSpline<2>>(o))
+      hier.emplace_back(o.cast<HierarchicalSpline<2>>());
+    else if (py::isinstance<HierarchicalSpline<3>>(o))
+      hier.emplace_back(o.cast<HierarchicalSpline<3>>());
     else
       throw Error("write: cannot write a " + std::string(py::str(o.get_type().attr("__name__"))) +
-                  " (Curve, Surface, Volume, LRSurface, LRVolume or a VModel)");
+                  " (Curve, Surface, Volume, LRSurface, LRVolume, HierarchicalSurface, HierarchicalVolume, a list of\n"
+                  "them, a TSplineSurface or a VModel)");
   }
-  require(!splines.empty() || !lr.empty(), "write: nothing to write");
+  require(!splines.empty() || !lr.empty() || !hier.empty(), "write: nothing to write");
   const std::string ext = io::file_extension(path);
   py::gil_scoped_release release;
   if (io::format_of(path) == io::FileFormat::step) {
-    io::step::write_step(path, splines, lr);
+    io::step::write_step(path, splines, lr, hier);
+  } else if (!hier.empty()) {
+    require(lr.empty(), "write: hierarchical and LR splines together are written to STEP only (.stp, .step)");
+    if (ext == ".vtu") {
+      require(splines.empty(), "write: hierarchical and tensor splines together go to .xml or STEP, not .vtu");
+      io::write_hierarchical_vtu(path, hier);
+      return;
+    }
+    require(ext == ".xml", "write: hierarchical splines are written as G+Smo .xml, .vtu or .stp, not '" + ext + "'");
+    std::vector<io::GismoGeometry> g;
+    for (const AnySpline& s : splines) {
+      if (const auto* x = std::get_if<TensorSpline<2>>(&s)) g.emplace_back(*x);
+      else if (const auto* y = std::get_if<TensorSpline<3>>(&s)) g.emplace_back(*y);
+      else throw Error("write: a G+Smo .xml file holds surfaces and volumes, not curves");
+    }
+    for (const AnyHierarchicalSpline& h : hier) std::visit([&](const auto& x) { g.emplace_back(x); }, h);
+    io::write_gismo_xml(path, g);
   } else if (!lr.empty()) {
     require(splines.empty(), "write: tensor and LR splines together are written to STEP only (.stp, .step)");
     if (ext == ".lr")
@@ -197,13 +245,17 @@ ModelTessellation boundary_mesh(const VModel& m, double tolerance) {
 
 void bind_files(py::module_& m) {
   m.def("read", &read_file, py::arg("path"),
-        "The objects of a file by extension: .json (splines, LR splines or one V-model), .g2 (GoTools, LR 293/793\n"
-        "too), .lr (LRsplines), .xml (G+Smo tensor geometries), .stp/.step/.p21 (Part 42 spline curves,\n"
-        "surfaces, volumes and locally refined splines). Returns a list.");
+        "The objects of a file by extension: .json (splines, LR splines, a T-spline or one V-model), .g2\n"
+        "(GoTools, LR 293/793 too), .lr (LRsplines), .xml (G+Smo tensor and THB/HB geometries), .tsm (Rhino\n"
+        "T-splines), .stp/.step/.p21 (Part 42 spline curves, surfaces, volumes, locally refined splines and\n"
+        "T-splines). Returns a list.");
   m.def("write", &write_file, py::arg("path"), py::arg("objects"), py::arg("tolerance") = 0.01,
+        py::arg("step_form") = "t-spline",
         "Writes by extension: splines to .json, .g2, .xml, .vtu, .stp; LR splines to .lr, .g2, .json, .vtu,\n"
-        ".stp; a VModel to .json, .vtu or .stl (watertight boundary within `tolerance`). Nothing is written on\n"
-        "error; existing files are replaced atomically.");
+        ".stp; hierarchical splines to .xml (with tensor splines), .vtu, .stp (their HB form); a TSplineSurface\n"
+        "to .tsm, .json, .vtu, .lr, .g2, .stp (step_form 't-spline' or 'part42'); a VModel to .json, .vtu or .stl\n"
+        "(watertight boundary within `tolerance`). Nothing is written on error; existing files are replaced\n"
+        "atomically.");
   m.def("write_mesh", &write_mesh, py::arg("path"), py::arg("vertices"), py::arg("triangles"),
         py::arg("materials") = std::vector<std::string>{"part"}, py::arg("fractions") = py::none(),
         py::arg("formulas") = std::vector<std::string>{},

@@ -1,6 +1,7 @@
 // LRSurface, LRVolume: locally refined B-splines (LRSpline<2, 3>), from tensor splines, refined by the
 // strategies of `trivar refine` (FULLSPAN, MINSPAN, STRUCTURED), evaluated on NumPy batches.
 #include "bindings.hpp"
+#include "trivar/lr/knot_line_mesh.hpp"
 #include "trivar/lr/linear_independence.hpp"
 #include "trivar/lr/lr_spline.hpp"
 #include "trivar/lr/refinement.hpp"
@@ -45,13 +46,74 @@ int refine(LRSpline<D>& s, const std::optional<std::vector<int>>& elements,
   return elements ? refine_elements<D>(s, *elements, o) : refine_functions<D>(s, *functions, o);
 }
 
+// An LR spline from its B-splines: local knots per direction (F, p_k + 2), coefficients (F, dim [+ 1]), gammas;
+// the mesh is the union of the B-splines' knot lines (the mesh of an LR spline is determined by its B-splines
+// only where it holds no line a B-spline does not use, which the constructor's checks exclude).
+template <int D>
+LRSpline<D> from_basis(const Ints<D>& degrees, const std::vector<Array>& knots, const Array& coefficients,
+                       const std::optional<Array>& gammas, bool rational) {
+  require(knots.size() == D, "LR spline: knots needs " + std::to_string(D) + " arrays, one per direction");
+  require(coefficients.ndim() == 2, "LR spline: coefficients must have shape (F, dim)");
+  const auto n = coefficients.shape(0);
+  const int stride = static_cast<int>(coefficients.shape(1));
+  require(stride >= (rational ? 2 : 1), "LR spline: coefficients need at least one value (plus the weight if rational)");
+  for (int k = 0; k < D; ++k) {
+    const Array& t = knots[static_cast<std::size_t>(k)];
+    require(degrees[k] >= 0 && t.ndim() == 2 && t.shape(0) == n && t.shape(1) == degrees[k] + 2,
+            "LR spline: knots[" + std::to_string(k) + "] must have shape (" + std::to_string(n) + ", " +
+                std::to_string(degrees[k] + 2) + ")");
+  }
+  require(!gammas || (gammas->ndim() == 1 && gammas->shape(0) == n),
+          "LR spline: gammas must have shape (" + std::to_string(n) + ",)");
+  std::vector<LRBSpline<D>> basis(static_cast<std::size_t>(n));
+  for (py::ssize_t i = 0; i < n; ++i) {
+    LRBSpline<D>& b = basis[static_cast<std::size_t>(i)];
+    for (int k = 0; k < D; ++k) {
+      const double* t = knots[static_cast<std::size_t>(k)].data() + i * (degrees[k] + 2);
+      b.knots[k].assign(t, t + degrees[k] + 2);
+    }
+    b.gamma = gammas ? gammas->data()[i] : 1.0;
+    b.coef.assign(coefficients.data() + i * stride, coefficients.data() + (i + 1) * stride);
+  }
+  py::gil_scoped_release release;
+  auto mesh = knot_line_mesh<D>(basis);
+  return LRSpline<D>(degrees, stride - (rational ? 1 : 0), rational, std::move(basis), std::move(mesh));
+}
+
 template <int D>
 void bind_lr(py::module_& m, const char* name, const char* doc) {
   using S = LRSpline<D>;
   py::class_<S>(m, name, doc)
       .def(py::init<const TensorSpline<D>&>(), py::arg("spline"), "Exact conversion of a tensor spline.")
+      .def(py::init(&from_basis<D>), py::arg("degrees"), py::arg("knots"), py::arg("coefficients"),
+           py::arg("gammas") = py::none(), py::arg("rational") = false,
+           "From raw arrays: degrees (D ints), knots (D arrays (F, p_k + 2): each B-spline's local knots),\n"
+           "coefficients (F, dim), homogeneous (w x, ..., w) with rational=True, gammas (F,) scaling factors\n"
+           "(default 1). The mesh is the union of the knot lines; the B-splines must sum to one with their gammas.")
       .def_property_readonly(
           "parametric_dim", [](const S&) { return D; }, "2 or 3.")
+      .def_property_readonly(
+          "knots",
+          [](const S& s) {
+            py::list out;
+            for (int k = 0; k < D; ++k) {
+              auto a = new_array({s.num_basis(), s.degree(k) + 2});
+              double* p = a.mutable_data();
+              for (const LRBSpline<D>& b : s.basis_functions()) p = std::copy(b.knots[k].begin(), b.knots[k].end(), p);
+              out.append(a);
+            }
+            return out;
+          },
+          "Local knot vectors of the B-splines, one array (F, p_k + 2) per direction (a copy).")
+      .def_property_readonly(
+          "coefficients",
+          [](const S& s) {
+            auto a = new_array({s.num_basis(), s.stride()});
+            double* p = a.mutable_data();
+            for (const LRBSpline<D>& b : s.basis_functions()) p = std::copy(b.coef.begin(), b.coef.end(), p);
+            return a;
+          },
+          "Coefficients (F, dim [+ 1]), homogeneous when rational (a copy).")
       .def_property_readonly("dim", &S::dim, "Control (model-space) dimension.")
       .def_property_readonly("rational", &S::is_rational, "True when the control values are homogeneous with weights.")
       .def_property_readonly("degrees", &S::degrees, "Polynomial degree per direction.")

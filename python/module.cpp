@@ -22,4 +22,9 @@ PYBIND11_MODULE(trivar, m) {
   bind_vmodel(m);
   bind_files(m);
   bind_solve(m);
+  bind_solve_model(m);
+  bind_tspline(m);
+  bind_hierarchical(m);
+  bind_boolean(m);
+  bind_fit(m);
 }

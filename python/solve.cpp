@@ -91,18 +91,6 @@ py::object elasticity(const ElasticityBenchmark<D>& b, const std::string& solver
       threads);
 }
 
-py::object modes_result(const ModesResult& r, const std::vector<double>& exact) {
-  py::dict d(py::arg("values") = array_of(r.values), py::arg("dofs") = r.dofs,
-             py::arg("assembly_seconds") = r.assembly_seconds, py::arg("solve_seconds") = r.solve_seconds);
-  d["exact"] = exact.empty() ? py::object(py::none())
-                             : py::object(py::array_t<double>(static_cast<py::ssize_t>(exact.size()), exact.data()));
-  auto vectors = new_array({r.vectors.cols(), r.vectors.rows()});
-  for (Eigen::Index c = 0; c < r.vectors.cols(); ++c)
-    std::copy_n(r.vectors.col(c).data(), r.vectors.rows(), vectors.mutable_data() + c * r.vectors.rows());
-  d["vectors"] = vectors;
-  return namespace_of(d);
-}
-
 // Linear elasticity on one patch: clamped on the given parametric faces (direction, side), under a body force.
 template <int D>
 py::object elasticity_on(const TensorSpline<D>& geometry, const std::vector<std::pair<int, int>>& clamp,
@@ -175,6 +163,18 @@ MultipatchSpace<3> unit_cube(int degree, int elements) {
 }
 
 }  // namespace
+
+py::object modes_result(const ModesResult& r, const std::vector<double>& exact) {
+  py::dict d(py::arg("values") = array_of(r.values), py::arg("dofs") = r.dofs,
+             py::arg("assembly_seconds") = r.assembly_seconds, py::arg("solve_seconds") = r.solve_seconds);
+  d["exact"] = exact.empty() ? py::object(py::none())
+                             : py::object(py::array_t<double>(static_cast<py::ssize_t>(exact.size()), exact.data()));
+  auto vectors = new_array({r.vectors.cols(), r.vectors.rows()});
+  for (Eigen::Index c = 0; c < r.vectors.cols(); ++c)
+    std::copy_n(r.vectors.col(c).data(), r.vectors.rows(), vectors.mutable_data() + c * r.vectors.rows());
+  d["vectors"] = vectors;
+  return namespace_of(d);
+}
 
 void bind_solve(py::module_& m) {
   m.def(

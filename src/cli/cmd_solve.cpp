@@ -18,6 +18,7 @@
 #include "trivar/iga/benchmark_problems.hpp"
 #include "trivar/iga/adaptive_loop.hpp"
 #include "trivar/iga/cell_materials.hpp"
+#include "trivar/iga/side_faces.hpp"
 #include "trivar/iga/multipatch_space.hpp"
 #include "trivar/iga/convergence_table.hpp"
 #include "trivar/iga/elasticity.hpp"
@@ -147,32 +148,14 @@ FileSpace<D> space_from_file(const SolveArgs& a, const FileInput& in) {
   return f;
 }
 
-// The boundary faces lying in the plane of one side of the bounding box of the control points ("x-" is
-// x = min x, "z+" is z = max z): the supports of --clamp.
+// The supports of --clamp (iga/side_faces.hpp), with the option named in messages.
 template <int D>
 std::vector<Face> faces_on_side(const MultipatchSpace<D>& space, const std::string& side) {
-  const int axis = side[0] - 'x';
-  require(axis < D, "solve: --clamp " + side + " on a 2-D domain (x or y only)");
-  double lo = 1e300, hi = -1e300, x[D];
-  for (const auto& p : space.patches)
-    for (int i = 0; i < p.num_basis(); ++i) {
-      p.geometry.control_point(i, x);
-      lo = std::min(lo, x[axis]);
-      hi = std::max(hi, x[axis]);
-    }
-  const double plane = side[1] == '-' ? lo : hi, tol = 1e-9 * std::max(1.0, hi - lo);
-  std::vector<Face> faces;
-  for (const Face& f : space.boundary) {
-    const TensorSpace<D>& p = space.patches[static_cast<std::size_t>(f.patch)];
-    bool in_plane = true;
-    for (int i : face_basis(p, f)) {
-      p.geometry.control_point(i, x);
-      in_plane = in_plane && std::abs(x[axis] - plane) <= tol;
-    }
-    if (in_plane) faces.push_back(f);
+  try {
+    return faces_in_side_plane(space, side);
+  } catch (const Error& e) {
+    throw Error(std::string("solve: --") + e.what());
   }
-  require(!faces.empty(), "solve: no boundary face lies in the plane of --clamp " + side);
-  return faces;
 }
 
 // The --out folder, under the rules of trivar/core/output_folder.hpp; files are staged until commit().
