@@ -63,3 +63,39 @@ def test_lr_surface_fullspan():
         lr.refine(elements=[0], strategy="sideways")
     with pytest.raises(trivar.Error, match="either"):
         lr.refine()
+
+
+def test_lr_volume_from_raw_arrays(rng):
+    """The LRsplines file's B-splines parsed here (local knots, coefficients, gammas) build the same volume."""
+    path = os.path.join(DATA, "io", "lr_volume_lrsplines.lr")
+    degrees, knots, coefs, gammas = read_lrsplines_volume(path)
+    lr = trivar.LRVolume(degrees, knots, coefs, gammas)
+    (ref,) = trivar.read(path)
+    assert lr.num_basis == ref.num_basis and lr.num_elements == ref.num_elements and not lr.rational
+    u = rng.uniform(0, 1, size=(200, 3))
+    assert np.max(np.abs(lr(u) - ref(u))) < 1e-12
+    # Properties give the arrays back (in the spline's id order): they rebuild it again.
+    again = trivar.LRVolume(lr.degrees, lr.knots, lr.coefficients, lr.gammas)
+    assert [k.shape for k in lr.knots] == [(2684, p + 2) for p in degrees] and lr.coefficients.shape == (2684, 3)
+    assert np.max(np.abs(again(u) - ref(u))) < 1e-12
+    # B-splines that do not sum to one are refused with the library's message.
+    with pytest.raises(trivar.Error):
+        trivar.LRVolume(degrees, knots, coefs, np.ones(len(gammas)))
+    with pytest.raises(trivar.Error, match="knots"):
+        trivar.LRVolume(degrees, knots[:2], coefs)
+
+
+def test_rational_lr_surface_from_arrays(rng):
+    """A quarter circle as one rational B-spline patch, given as LR B-splines with homogeneous coefficients."""
+    s = 1 / np.sqrt(2)
+    # Degree 2 x 1: (1, 0), (1, 1) w = s, (0, 1) at radius 1 and 2.
+    T = np.array([[0, 0, 0, 1], [0, 0, 1, 1], [0, 1, 1, 1]] * 2, dtype=float)
+    V = np.array([[0, 0, 1]] * 3 + [[0, 1, 1]] * 3, dtype=float)
+    xyw = []
+    for r in (1.0, 2.0):
+        xyw += [[r, 0, 1], [r * s, r * s, s], [0, r, 1]]
+    lr = trivar.LRSurface([2, 1], [T, V], np.array(xyw), rational=True)
+    assert lr.rational and lr.dim == 2
+    uv = rng.uniform(0, 1, size=(300, 2))
+    x = lr(uv)
+    assert np.max(np.abs(np.linalg.norm(x, axis=1) - (1 + uv[:, 1]))) < 1e-14

@@ -3,6 +3,7 @@ through the returned fields, eigenvalues against pi^2 (i^2 + j^2 + k^2)."""
 import math
 
 import numpy as np
+import pytest
 
 import trivar
 
@@ -113,3 +114,44 @@ def test_adaptive_lr_beats_the_uniform_rate_on_the_l_shape():
     assert abs(a.field(uv)[0, 0] - r ** (2 / 3) * np.sin(2 * t / 3)) < 0.02
     thb = trivar.solve_poisson_adaptive("sine-square", degree=2, refine=4, steps=2, space="thb")
     assert thb.geometry is None and thb.h1_error[1] < thb.h1_error[0]
+
+
+def two_cell_bar():
+    a = trivar.block(1, 1, [1.0, 1.0, 1.0])
+    return trivar.VModel([a, a.transform(np.eye(3), [1.0, 0, 0])])
+
+
+def test_elasticity_on_a_two_material_model_is_exact():
+    """An axial body force f along a bar clamped at x = 0, Poisson ratio 0: sigma = f (L - x) whatever the
+    materials, u(x) = int_0^x f (L - s) / E(s) ds, piecewise quadratic, which the C0 multipatch space holds."""
+    m = two_cell_bar()
+    m.set_attribute("youngs_modulus", value=[1000.0], cells=[0])
+    m.set_attribute("youngs_modulus", value=[250.0], cells=[1])
+    r = trivar.solve_elasticity_on(m, clamp="x-", body_force=[1, 0, 0], degree=2, refine=2, poisson_ratio=0.0)
+    assert len(r.fields) == 2 and r.dofs > 0 and r.coefficients.ndim == 1 and len(r.coefficients) >= r.dofs
+    u = np.random.default_rng(5).uniform(0, 1, size=(50, 3))
+    x = u[:, 0]
+    L = 2.0
+    d0 = r.fields[0](u)
+    d1 = r.fields[1](u)
+    assert np.max(np.abs(d0[:, 0] - (L * x - x * x / 2) / 1000)) < 1e-9
+    assert np.max(np.abs(d1[:, 0] - (1.5 / 1000 + ((L * (1 + x) - (1 + x) ** 2 / 2) - 1.5) / 250))) < 1e-9
+    assert np.max(np.abs(d0[:, 1:])) < 1e-9 and np.max(np.abs(d1[:, 1:])) < 1e-9
+    with pytest.raises(trivar.Error, match="a side is x-"):
+        trivar.solve_elasticity_on(m, clamp="w-")
+
+
+def test_modes_on_models_and_patches():
+    # Dirichlet Laplace on [0, 2] x [0, 1]^2: pi^2 (i^2 / 4 + j^2 + k^2) = 2.25, 3, 4.25 (x pi^2).
+    r = trivar.solve_modes_on(two_cell_bar(), physics="laplace", modes=3, degree=2, refine=4)
+    assert np.max(np.abs(r.values / math.pi ** 2 - [2.25, 3.0, 4.25]) / [2.25, 3.0, 4.25]) < 3e-3
+    assert r.exact is None and r.vectors.shape == (3, r.vectors.shape[1])
+    # A free elastic cube: six rigid-body modes at zero, then a positive pair (the cube's symmetry).
+    e = trivar.solve_modes_on(trivar.block(1, 1, [1.0, 1.0, 1.0]), physics="elastic", clamp="none", modes=8, refine=2)
+    assert np.max(np.abs(e.values[:6])) < 1e-8 * e.values[6] and abs(e.values[7] - e.values[6]) < 1e-8 * e.values[6]
+    # A planar rectangle [0, 2] x [0, 1]: pi^2 (i^2 / 4 + j^2) = 1.25, 2.
+    rect = trivar.Surface([[0, 0, 1, 1], [0, 0, 1, 1]], 1, np.array([[0, 0], [2, 0], [0, 1], [2, 1.0]]))
+    p = trivar.solve_modes_on(rect, physics="laplace", modes=2, degree=3, refine=8)
+    assert np.max(np.abs(p.values / math.pi ** 2 - [1.25, 2.0]) / [1.25, 2.0]) < 1e-4
+    with pytest.raises(trivar.Error, match="laplace or elastic"):
+        trivar.solve_modes_on(rect, physics="heat")
