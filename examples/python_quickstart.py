@@ -4,7 +4,8 @@
     PYTHONPATH=build/release/python /usr/bin/python3 examples/python_quickstart.py [OUT_DIR]
 
 Builds an exact NURBS ring and a graded 7-cell ball, evaluates, refines, certifies, inverts, meshes, slices
-and solves, printing what it checks, and writes its files to OUT_DIR (default out/python-quickstart, which
+and solves; cuts a pocket by a Boolean, fits scattered points by an LR surface and refines a THB surface,
+printing what it checks, and writes its files to OUT_DIR (default out/python-quickstart, which
 must be new or empty)."""
 import math
 import os
@@ -58,6 +59,28 @@ for n in (4, 8):
     print(f"Poisson sine-cube, {n}^3 elements: {s.dofs} dofs, L2 error {s.l2_error:.3e}, H1 error {s.h1_error:.3e}")
 print("u at the centre:", s.field(np.array([0.5, 0.5, 0.5]))[0], "exact 1")
 
+# A block with a spherical pocket: a V-model Boolean, the density blended where the operands overlap.
+block = trivar.box(size=[2, 2, 2])
+block.set_attribute("density", value=[1.0])
+pocket = trivar.boolean(block, trivar.ball(radius=1.0), op="difference")
+print(f"box minus ball octant: volume {pocket.model.volume():.9f}, exact {8 - math.pi / 6:.9f},",
+      f"{pocket.cells} trimmed cell(s), {pocket.pieces} pieces")
+
+# Terrain from scattered points: an LR surface refined only where the bump needs it.
+xy = rng.uniform(0, 1, size=(3000, 2))
+z = np.exp(-40 * ((xy[:, 0] - 0.5) ** 2 + (xy[:, 1] - 0.4) ** 2))
+fit = trivar.fit(xy, z, tolerance=1e-3, height_field=True)
+for level, n, e in zip(fit.iterations.level, fit.iterations.coefficients, fit.iterations.max_error):
+    print(f"fit level {level}: {n} coefficients, max error {e:.2e}")
+
+# A hierarchical (THB) surface: local refinement that keeps the surface exactly.
+thb = trivar.HierarchicalSurface(profile.refine(2), basis="thb")
+before = thb(u[:, :2])
+thb.refine(elements=[0, 1])
+print(thb, "max change", np.abs(thb(u[:, :2]) - before).max())
+
+trivar.write(os.path.join(out, "thb.xml"), thb)
+trivar.write(os.path.join(out, "terrain.lr"), fit.spline)
 trivar.write(os.path.join(out, "ring.json"), ring)
 trivar.write(os.path.join(out, "ring.stp"), ring)
 trivar.write(os.path.join(out, "ball.json"), ball)
