@@ -100,6 +100,7 @@ VModel trimmed_model(std::shared_ptr<const TrimmedSolid> solid);
 py::object modes_result(const ModesResult& r, const std::vector<double>& exact);
 
 void bind_solve_model(py::module_& m);
+void bind_solve_refined(py::module_& m);
 void bind_knot_vector(py::module_& m);
 void bind_tensor_splines(py::module_& m);
 void bind_constructors(py::module_& m);

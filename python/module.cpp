@@ -27,4 +27,5 @@ PYBIND11_MODULE(trivar, m) {
   bind_hierarchical(m);
   bind_boolean(m);
   bind_fit(m);
+  bind_solve_refined(m);
 }

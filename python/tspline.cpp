@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "bindings.hpp"
+#include "t_spline_object.hpp"
 #include "trivar/io/lr_format.hpp"
 #include "trivar/io/lr_g2_format.hpp"
 #include "trivar/io/spline_file.hpp"
@@ -15,7 +16,6 @@
 #include "trivar/io/step/t_spline_step.hpp"
 #include "trivar/io/t_spline_json.hpp"
 #include "trivar/io/t_spline_vtk.hpp"
-#include "trivar/io/tsm_format.hpp"
 #include "trivar/lr/knot_line_mesh.hpp"
 #include "trivar/lr/lr_spline.hpp"
 #include "trivar/tspline/classification.hpp"
@@ -25,23 +25,6 @@
 #include "trivar/tspline/t_spline_tessellation.hpp"
 
 namespace trivar::python {
-
-// A T-spline as read: its three layers when the file has them, and its evaluator (or, with star points, the
-// per-face evaluator of its mesh).
-struct PyTSpline {
-  std::string format;
-  std::optional<TSpline> layers;
-  std::optional<io::TsmReport> tsm;
-  std::string part42_type;  // locally_refined_spline_type when read from the Part 42 form
-  std::shared_ptr<const TSplineSurface> surface;
-  std::shared_ptr<const TMeshSurface> mesh;
-
-  const TSplineSurface& spline(const char* what) const {
-    require(surface != nullptr, std::string(what) +
-                                    ": this T-spline has star points and no global (s, t); use evaluate_face");
-    return *surface;
-  }
-};
 
 namespace {
 

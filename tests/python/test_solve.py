@@ -1,11 +1,13 @@
 """Analysis: convergence rates from theory (L2 error O(h^(p+1)), H1 O(h^p)), the exact solutions evaluated
 through the returned fields, eigenvalues against pi^2 (i^2 + j^2 + k^2)."""
 import math
+import os
 
 import numpy as np
 import pytest
 
 import trivar
+from conftest import DATA
 
 
 def test_poisson_sine_cube_rates_and_field():
@@ -155,3 +157,55 @@ def test_modes_on_models_and_patches():
     assert np.max(np.abs(p.values / math.pi ** 2 - [1.25, 2.0]) / [1.25, 2.0]) < 1e-4
     with pytest.raises(trivar.Error, match="laplace or elastic"):
         trivar.solve_modes_on(rect, physics="heat")
+
+
+def square_poisson(x, y, terms=301):
+    """-lap u = 1 on the unit square, u = 0 on its sides: the double sine series (odd m, n)."""
+    m = np.arange(1, terms + 1, 2, dtype=float)
+    sx = np.sin(np.pi * np.multiply.outer(x, m))
+    sy = np.sin(np.pi * np.multiply.outer(y, m))
+    c = 16 / (np.pi ** 4 * np.multiply.outer(m, m) * np.add.outer(m * m, m * m))
+    return np.einsum("pm,mn,pn->p", sx, c, sy)
+
+
+def unit_square(elements):
+    square = trivar.block_surface(2, elements, [1.0, 1.0])
+    return trivar.Surface(square.knots, square.degrees, square.control_points[:, :2])
+
+
+def test_poisson_on_lr_and_hierarchical_surfaces_against_the_series():
+    u = np.random.default_rng(9).uniform(0.05, 0.95, size=(60, 2))
+    ref = square_poisson(u[:, 0], u[:, 1])
+    lr = trivar.LRSurface(unit_square(8))
+    lr.refine(elements=[0, 1, 8, 9])
+    r = trivar.solve_poisson_on(lr)
+    assert r.dofs < lr.num_basis and isinstance(r.field, trivar.LRSurface)
+    assert np.max(np.abs(r.field(u)[:, 0] - ref)) < 2e-4
+    for basis in ("thb", "hb"):
+        h = trivar.HierarchicalSurface(unit_square(8), basis=basis)
+        h.refine(elements=[0, 1, 8, 9])
+        s = trivar.solve_poisson_on(h)
+        assert isinstance(s.field, trivar.HierarchicalSurface) and s.field.num_basis == h.num_basis
+        assert np.max(np.abs(s.field(u)[:, 0] - ref)) < 2e-4
+
+
+def test_poisson_on_a_planar_t_spline(tmp_path):
+    """The bicubic Bezier patch of bezier_patch.tsm made planar (z = 0, weights 1) is the square [0, 3]^2 with
+    x = 3 s: the same space as a one-element bicubic tensor patch, so the same discrete solution."""
+    lines = []
+    for line in open(os.path.join(DATA, "tsm", "bezier_patch.tsm")):
+        f = line.split()
+        lines.append(f"0g {f[1]} {f[2]} 0 1\n" if f and f[0] == "0g" else line)
+    path = tmp_path / "planar.tsm"
+    path.write_text("".join(lines))
+    [t] = trivar.read(str(path))
+    r = trivar.solve_poisson_on(t)
+    tensor = trivar.solve_poisson_on(trivar.Surface([[0, 0, 1, 1]] * 2, 1, np.array([[0, 0], [3, 0], [0, 3], [3, 3.0]])),
+                                     degree=3, refine=1)
+    st = np.random.default_rng(2).uniform(0, 1, size=(40, 2))
+    xyu = r.field(st)
+    assert isinstance(r.field, trivar.TSplineSurface) and r.dofs == tensor.dofs == 4
+    assert np.max(np.abs(xyu[:, :2] - 3 * st)) < 1e-12
+    assert np.max(np.abs(xyu[:, 2] - tensor.field(st)[:, 0])) < 1e-10
+    # The series on [0, 3]^2: u(x, y) = 9 u_1(x / 3, y / 3); four dofs, so only a coarse match (6 % of the max).
+    assert np.max(np.abs(xyu[:, 2] - 9 * square_poisson(st[:, 0], st[:, 1]))) < 0.06 * 9 * 0.0737
