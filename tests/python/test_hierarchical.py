@@ -85,5 +85,15 @@ def test_admissible_volume_refinement_and_files(rng, tmp_path):
     trivar.write(str(tmp_path / "h.vtu"), h)
     trivar.write(str(tmp_path / "h.stp"), [h])
     assert os.path.getsize(tmp_path / "h.vtu") > 0 and os.path.getsize(tmp_path / "h.stp") > 0
+    # STEP holds the HB form as a Part 42 locally refined volume, read back only when it is an LR spline too
+    # (HB B-splines of a local refinement do not sum to one): refused with the reader's reason.
+    with pytest.raises(trivar.Error, match="sum to one"):
+        trivar.read(str(tmp_path / "h.stp"))
+    # Refined everywhere, the HB basis is a tensor one: it reads back as an LR volume with the same values.
+    full = trivar.HierarchicalVolume(v, basis="hb")
+    full.refine(elements=list(range(full.num_elements)))
+    trivar.write(str(tmp_path / "full.stp"), full)
+    [lr] = trivar.read(str(tmp_path / "full.stp"))
+    assert isinstance(lr, trivar.LRVolume) and lr.num_basis == full.num_basis and np.max(np.abs(lr(u) - ref)) < 1e-12
     with pytest.raises(trivar.Error, match="hierarchical"):
         trivar.write(str(tmp_path / "h.lr"), h)
