@@ -16,9 +16,8 @@
 #include "trivar/io/step/t_spline_step.hpp"
 #include "trivar/io/t_spline_json.hpp"
 #include "trivar/io/t_spline_vtk.hpp"
-#include "trivar/lr/knot_line_mesh.hpp"
-#include "trivar/lr/lr_spline.hpp"
 #include "trivar/tspline/classification.hpp"
+#include "trivar/tspline/lr_form.hpp"
 #include "trivar/tspline/t_mesh_surface.hpp"
 #include "trivar/tspline/t_mesh_tessellation.hpp"
 #include "trivar/tspline/t_spline_surface.hpp"
@@ -128,21 +127,12 @@ py::object tessellate_tspline(const PyTSpline& t, double tolerance, int max_per_
   return namespace_of(d);
 }
 
-// The T-spline as an LR spline (its blending functions with gamma 1 over the mesh of their knot lines); the LR
-// construction refuses blending functions that do not sum to one (trivar.Error with the reason).
+// The T-spline as an LR spline (tspline/lr_form.hpp); trivar.Error with the reason when it is none.
 LRSpline<2> to_lr(const PyTSpline& t) {
-  const TSplineSurface& s = t.spline("to_lr");
-  bool rational = false;
-  for (const auto& b : s.basis()) rational = rational || b.coef[3] != 1.0;
-  std::vector<LRBSpline<2>> basis(s.basis().begin(), s.basis().end());
-  if (!rational)
-    for (auto& b : basis) b.coef.resize(3);
-  auto mesh = knot_line_mesh<2>(basis);
-  try {
-    return LRSpline<2>(s.degrees(), 3, rational, std::move(basis), std::move(mesh));
-  } catch (const Error& e) {
-    throw Error(std::string("to_lr: the blending functions are no LR spline (") + e.what() + ")");
-  }
+  std::string why;
+  auto lr = lr_form(t.spline("to_lr"), why);
+  require(lr.has_value(), "to_lr: the blending functions are no LR spline (" + why + ")");
+  return std::move(*lr);
 }
 
 void write_tspline(const PyTSpline& t, const std::string& path, const std::string& step_form) {

@@ -24,10 +24,10 @@
 #include "trivar/io/t_spline_json.hpp"
 #include "trivar/io/t_spline_vtk.hpp"
 #include "trivar/io/tsm_format.hpp"
-#include "trivar/lr/knot_line_mesh.hpp"
 #include "trivar/model/triangle_mesh.hpp"
 #include "trivar/tspline/bezier_patches.hpp"
 #include "trivar/tspline/classification.hpp"
+#include "trivar/tspline/lr_form.hpp"
 #include "trivar/tspline/t_mesh_surface.hpp"
 #include "trivar/tspline/t_mesh_tessellation.hpp"
 #include "trivar/tspline/t_spline_surface.hpp"
@@ -90,23 +90,6 @@ Loaded load(const std::string& path) {
   }
   if (!l.surface) l.surface = std::make_unique<TSplineSurface>(*l.layers);
   return l;
-}
-
-// The T-spline as an LR spline (its blending functions with gamma 1 over the mesh of their knot lines), when
-// the LR construction accepts them (they must sum to one); otherwise empty with the reason in `why`.
-std::optional<LRSpline<2>> lr_form(const TSplineSurface& surf, std::string& why) {
-  bool rational = false;
-  for (const auto& b : surf.basis()) rational = rational || b.coef[3] != 1.0;
-  std::vector<LRBSpline<2>> basis(surf.basis().begin(), surf.basis().end());
-  if (!rational)
-    for (auto& b : basis) b.coef.resize(3);
-  auto mesh = knot_line_mesh<2>(basis);
-  try {
-    return LRSpline<2>(surf.degrees(), 3, rational, std::move(basis), std::move(mesh));
-  } catch (const Error& e) {
-    why = e.what();
-    return std::nullopt;
-  }
 }
 
 void write_triangulation(const std::string& out, const TSplineTriangulation& m, double tol) {
