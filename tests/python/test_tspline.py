@@ -145,6 +145,10 @@ def test_star_points_are_evaluated_per_face(tmp_path):
     m = s.tessellate(tolerance=0.05)
     assert len(m.triangles) > 100 and m.params.shape == (len(m.vertices), 2)
     assert m.params.min() >= 0 and m.params.max() <= 1
+    # A closed surface of genus 0: every edge in two triangles, V - E + F = 2.
+    edges = np.sort(np.concatenate([m.triangles[:, [0, 1]], m.triangles[:, [1, 2]], m.triangles[:, [2, 0]]]), axis=1)
+    unique, counts = np.unique(edges, axis=0, return_counts=True)
+    assert np.all(counts == 2) and len(m.vertices) - len(unique) + len(m.triangles) == 2
     s.write(str(tmp_path / "s.tsm"))
     [back] = trivar.read(str(tmp_path / "s.tsm"))
     assert np.allclose(back.evaluate_face(0, uv), d, atol=1e-12)
