@@ -237,6 +237,43 @@ void append_step_t_splines(py::list& out, std::vector<io::step::StepTSpline>& sp
   for (io::step::StepTSpline& s : splines) out.append(py::cast(from_step(s)));
 }
 
+namespace {
+
+// What `trivar info` prints: the layers' sizes, the .tsm report (units, deleted slots, repeated-knot nodes,
+// skipped records) and, with star points, the faces by evaluation method.
+py::dict info(const PyTSpline& t) {
+  py::dict d(py::arg("format") = t.format);
+  if (!t.part42_type.empty()) d["part42_type"] = t.part42_type;
+  if (t.layers) {
+    const TSpline& ts = *t.layers;
+    d["t_image"] = py::dict(py::arg("vertices") = ts.image.vertices.size(), py::arg("edges") = ts.image.edges.size(),
+                            py::arg("links") = ts.image.links.size(), py::arg("faces") = ts.image.faces.size(),
+                            py::arg("edge_conditions") = ts.image.conditions.size());
+    d["t_connect_nodes"] = ts.connect.nodes.size();
+    d["t_pointset_points"] = ts.pointset.points.size();
+  }
+  if (t.tsm) {
+    const io::TsmReport& r = *t.tsm;
+    d["units"] = r.units;
+    d["tolerance"] = r.tolerance;
+    d["version"] = r.version;
+    d["deleted_slots"] = r.deleted;
+    d["deleted_faces"] = r.holes;
+    d["t_junctions"] = r.t_junctions;
+    d["star_points"] = r.star_points;
+    d["repeated_knot_nodes"] = r.repeated_knot_nodes;
+    d["skipped_records"] = r.skipped_records;
+  }
+  if (t.mesh) {
+    d["faces_exact"] = t.mesh->count(FaceMethod::exact);
+    d["faces_catmull_clark"] = t.mesh->count(FaceMethod::bicubic) + t.mesh->count(FaceMethod::star);
+    d["faces_at_star_points"] = t.mesh->count(FaceMethod::star);
+  }
+  return d;
+}
+
+}  // namespace
+
 bool is_t_spline(const py::handle& o) { return py::isinstance<PyTSpline>(o); }
 
 void write_t_spline_file(const std::string& path, const py::handle& o, const std::string& step_form) {
@@ -290,6 +327,10 @@ void bind_tspline(py::module_& m) {
       .def_property_readonly("partition_of_unity", &partition_of_unity,
                              "Sum of the blending functions: min_sum, max_sum (Bezier bounds), sampled_min, sampled_max,\n"
                              "max_defect (max |Bernstein coefficient - 1|, 0 for a partition of unity), elements_off.")
+      .def("info", &info,
+           "What `trivar info` reports beyond the properties: format, T-image / T-connect / T-pointset sizes, the\n"
+           ".tsm report (units, tolerance, version, deleted_slots, deleted_faces, t_junctions, star_points,\n"
+           "repeated_knot_nodes, skipped_records) and, with star points, the faces by evaluation method.")
       .def("classify", &classification, py::arg("exact") = true,
            "Analysis-suitability as `trivar info`: t_junctions, analysis_suitable, crossing_extensions,\n"
            "dual_compatible, standard, semi_standard, linear_independence, part42_type (exact: the exact rank test\n"

@@ -83,6 +83,10 @@ def test_partition_of_unity_and_classification():
     assert c.t_junctions == 0 and c.analysis_suitable and c.dual_compatible and c.standard
     assert not c.semi_standard and c.linear_independence == "independent"
     assert t.analysis_suitable
+    i = t.info()
+    assert i["t_image"]["faces"] == 1 and i["t_image"]["vertices"] == 4 and i["t_connect_nodes"] == 16
+    assert i["units"] == "1 millimeters" and i["tolerance"] == 1e-5 and i["star_points"] == 0
+    assert i["repeated_knot_nodes"] == 12 and i["skipped_records"] == {"100001uv": 1}
 
 
 def test_tessellation_points_lie_on_the_surface():
