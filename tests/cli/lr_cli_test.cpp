@@ -64,8 +64,12 @@ protected:
   nlohmann::json info(const std::string& args) const {
     return nlohmann::json::parse(ok("info --json " + args).out).at("objects").at(0);
   }
+  // The value and first derivatives at one parameter, as `eval` prints them (one CLI run for every label).
+  std::string evaluation(const std::string& file, const std::string& params) const {
+    return ok("eval " + file + " " + params + " --derivs 1").out;
+  }
   std::vector<double> eval(const std::string& file, const std::string& params, const std::string& label = "S") const {
-    return numbers_after(ok("eval " + file + " " + params + " --derivs 1").out, label);
+    return numbers_after(evaluation(file, params), label);
   }
 };
 
@@ -134,8 +138,9 @@ TEST_F(LRCli, RefinedTensorSplineEvaluatesAsTheTensor) {
   ok("refine plate2.json -o plate.g2 --strategy structured --segment 0 0 1 1 --levels 2");
   for (const char* p : {"0 0 0", "0.3 0.45 0.9", "0.55 0.125 0.25", "1 1 1", "0.7 0.3 0.05"}) {
     SCOPED_TRACE(p);
+    const std::string want_out = evaluation("rev.json", p), got_out = evaluation("rev.lr", p);
     for (const char* label : {"S ", "S_u", "S_v", "S_w"}) {
-      const std::vector<double> want = eval("rev.json", p, label), got = eval("rev.lr", p, label);
+      const std::vector<double> want = numbers_after(want_out, label), got = numbers_after(got_out, label);
       ASSERT_EQ(want.size(), 3u);
       ASSERT_EQ(got.size(), 3u);
       for (int d = 0; d < 3; ++d) EXPECT_NEAR(got[d], want[d], 1e-12 * (1 + std::abs(want[d]))) << label;
@@ -143,8 +148,9 @@ TEST_F(LRCli, RefinedTensorSplineEvaluatesAsTheTensor) {
   }
   for (const char* p : {"0 0", "0.2 0.7", "0.05 0.95", "1 1", "0.5 0.5"}) {
     SCOPED_TRACE(p);
+    const std::string want_out = evaluation("plate2.json", p), got_out = evaluation("plate.g2", p);
     for (const char* label : {"S ", "S_u", "S_v"}) {
-      const std::vector<double> want = eval("plate2.json", p, label), got = eval("plate.g2", p, label);
+      const std::vector<double> want = numbers_after(want_out, label), got = numbers_after(got_out, label);
       ASSERT_EQ(want.size(), 3u);
       ASSERT_EQ(got.size(), 3u);
       for (int d = 0; d < 3; ++d) EXPECT_NEAR(got[d], want[d], 1e-12 * (1 + std::abs(want[d]))) << label;
@@ -203,8 +209,9 @@ TEST_F(LRCli, ConversionsRoundTrip) {
   // JSON is lossless; g2 stores gamma-scaled Cartesian coefficients, so values agree to rounding.
   ok("convert r.json again.lr");
   EXPECT_EQ(slurp(work_ / "r.lr"), slurp(work_ / "again.lr"));
+  const std::string want_out = evaluation("r.lr", "0.3 0.6 0.9"), got_out = evaluation("back.lr", "0.3 0.6 0.9");
   for (const char* label : {"S ", "S_u", "S_w"}) {
-    const std::vector<double> want = eval("r.lr", "0.3 0.6 0.9", label), got = eval("back.lr", "0.3 0.6 0.9", label);
+    const std::vector<double> want = numbers_after(want_out, label), got = numbers_after(got_out, label);
     ASSERT_EQ(got.size(), 3u);
     for (int d = 0; d < 3; ++d) EXPECT_NEAR(got[d], want[d], 1e-14 * (1 + std::abs(want[d]))) << label;
   }
