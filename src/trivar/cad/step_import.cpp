@@ -8,11 +8,11 @@
 #include <BRepGProp.hxx>
 #include <BRepLib.hxx>
 #include <BRepMesh_IncrementalMesh.hxx>
-#include <Geom_Plane.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Tool.hxx>
 #include <Bnd_Box.hxx>
 #include <GProp_GProps.hxx>
+#include <Geom_Plane.hxx>
 #include <Interface_Static.hxx>
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
@@ -24,7 +24,10 @@
 #include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
+#include <TopTools_ShapeMapHasher.hxx>
 #include <TopoDS.hxx>
+#include <TransferBRep.hxx>
+#include <Transfer_TransientProcess.hxx>
 #include <XSControl_TransferReader.hxx>
 #include <XSControl_WorkSession.hxx>
 
@@ -32,8 +35,8 @@
 #include <exception>
 #include <filesystem>
 #include <future>
-#include <optional>
 #include <map>
+#include <optional>
 
 #include "trivar/cad/brep_mapping.hpp"
 #include "trivar/core/error.hpp"
@@ -79,25 +82,48 @@ std::string step_keyword(const char* type_name) {
   return r;
 }
 
+// STEP instance names of transferred shapes. The kernel's own lookup (EntityFromShapeResult) scans every
+// transfer result per call, quadratic in the faces of a part; the same answer comes from one scan: the first
+// result equal to the shape (orientation included), else the last one that is the same shape.
 class Namer {
 public:
-  explicit Namer(const STEPControl_Reader& reader) : reader_(reader) {}
+  explicit Namer(const STEPControl_Reader& reader) {
+    const Handle(XSControl_WorkSession) ws = reader.WS();
+    if (ws.IsNull() || ws->TransferReader().IsNull()) return;
+    const Handle(Transfer_TransientProcess) tp = ws->TransferReader()->TransientProcess();
+    model_ = Handle(StepData_StepModel)::DownCast(ws->Model());
+    if (tp.IsNull() || model_.IsNull()) return;
+    for (int i = 1; i <= tp->NbMapped(); ++i) {
+      const Handle(Standard_Transient) e = tp->Mapped(i);
+      const TopoDS_Shape sh = TransferBRep::ShapeResult(tp, e);
+      if (sh.IsNull()) continue;
+      Found* f = found_.ChangeSeek(sh);
+      if (f == nullptr) f = found_.Bound(sh, Found{});
+      Handle(Standard_Transient)& exact = f->by_orientation[static_cast<int>(sh.Orientation())];
+      if (exact.IsNull()) exact = e;
+      f->same = e;
+    }
+  }
   // "#812 ADVANCED_FACE", or `fallback` when the shape has no STEP instance.
   std::string operator()(const TopoDS_Shape& s, const std::string& fallback) const {
-    const Handle(XSControl_WorkSession) ws = reader_.WS();
-    if (ws.IsNull() || ws->TransferReader().IsNull()) return fallback;
-    const Handle(Standard_Transient) e = ws->TransferReader()->EntityFromShapeResult(s, 1);
-    const Handle(StepData_StepModel) model = Handle(StepData_StepModel)::DownCast(ws->Model());
-    if (e.IsNull() || model.IsNull()) return fallback;
+    const Found* f = found_.Seek(s);
+    if (f == nullptr) return fallback;
+    const Handle(Standard_Transient)& exact = f->by_orientation[static_cast<int>(s.Orientation())];
+    const Handle(Standard_Transient)& e = exact.IsNull() ? f->same : exact;
     std::string n = "#";
-    n += std::to_string(model->IdentLabel(e));
+    n += std::to_string(model_->IdentLabel(e));
     n += ' ';
     n += step_keyword(e->DynamicType()->Name());
     return n;
   }
 
 private:
-  const STEPControl_Reader& reader_;
+  struct Found {
+    Handle(Standard_Transient) by_orientation[4];
+    Handle(Standard_Transient) same;
+  };
+  Handle(StepData_StepModel) model_;
+  NCollection_DataMap<TopoDS_Shape, Found, TopTools_ShapeMapHasher> found_;
 };
 
 int count_unique(const TopoDS_Shape& s, TopAbs_ShapeEnum kind) {
