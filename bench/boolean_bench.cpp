@@ -1,11 +1,12 @@
 // Booleans of V-models with tens of cells (cad/boolean): a 4 x 4 x 2 lattice of 32 box cells minus a 7-cell
 // ball, and the union of the lattice with the ball, attributes blended by formula; and a 7-cell ball minus a
-// 5-cell cylinder (curved faces only).
+// 5-cell cylinder (curved faces only); the lattice split by a tilted plane.
 #include <benchmark/benchmark.h>
 
 #include <Eigen/Core>
 
 #include "trivar/cad/boolean.hpp"
+#include "trivar/cad/split.hpp"
 #include "trivar/model/ball.hpp"
 #include "trivar/model/cylinder.hpp"
 #include "trivar/model/primitives.hpp"
@@ -70,6 +71,16 @@ void BM_BallMinusCylinder(benchmark::State& state) {
   state.counters["cells_out"] = rep.cells;
 }
 BENCHMARK(BM_BallMinusCylinder)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+void BM_LatticeSplitByPlane(benchmark::State& state) {
+  const VModel a = lattice(4, 4, 2);
+  const cad::SplitPlane plane{{2, 2, 1}, {1, 0.5, 2}};
+  cad::BooleanReport rep;
+  for (auto _ : state) benchmark::DoNotOptimize(cad::split(a, plane, {}, &rep));
+  state.counters["cells_in"] = a.num_cells();
+  state.counters["cells_out"] = rep.cells;
+}
+BENCHMARK(BM_LatticeSplitByPlane)->Unit(benchmark::kMillisecond)->Iterations(3);
 
 }  // namespace
 

@@ -189,6 +189,17 @@ TEST(BooleanCli, BallMinusCylinder) {
   const CliRun solve = run("solve poisson " + d + "cavity.json --refine 2", dir);
   ASSERT_EQ(solve.code, 0) << solve.err;
   EXPECT_NE(solve.out.find("trimmed cell"), std::string::npos) << solve.out;
+  // Split by a plane: the ball cut at z = 0.5, the cap above pi h^2 (3 - h) / 3 with h = 0.5.
+  const CliRun split = run("boolean " + d + "ball.json --split plane:0,0,0.5,0,0,1 -o " + d + "parts.json --json", dir);
+  ASSERT_EQ(split.code, 0) << split.err;
+  const nlohmann::json js = nlohmann::json::parse(split.out);
+  EXPECT_EQ(js["operation"].get<std::string>(), "split");
+  EXPECT_NEAR(js["volume"]["result"].get<double>(), 4 * pi / 3, 1e-8 * 4 * pi / 3);
+  EXPECT_GT(js["cells"]["result"].get<int>(), 7);
+  EXPECT_TRUE(js["boundary_mesh"]["watertight"].get<bool>());
+  EXPECT_EQ(run("boolean " + d + "ball.json --split plane:0,0,0.5 -o " + d + "p2.json", dir).code, 1);
+  EXPECT_EQ(run("boolean " + d + "ball.json " + d + "cyl.json --split plane:0,0,0.5,0,0,1 -o " + d + "p3.json", dir).code, 1);
+  EXPECT_FALSE(std::filesystem::exists(d + "p2.json"));
   const CliRun bad = run("boolean " + d + "ball.json " + d + "cyl.json --op xor -o " + d + "x.json", dir);
   EXPECT_NE(bad.code, 0);
   const CliRun empty = run("boolean " + d + "cyl.json " + d + "cyl.json --op difference -o " + d + "e.json", dir);

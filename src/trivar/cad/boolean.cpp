@@ -234,7 +234,7 @@ VModel boolean(const VModel& a, const VModel& b, BooleanOp op, const BooleanOpti
       rep.pieces_a_only += ia && !ib;
       rep.pieces_b_only += ib && !ia;
       rep.pieces_both += ia && ib;
-      p.kept = op == BooleanOp::unite ? (ia || ib) : op == BooleanOp::subtract ? (ia && !ib) : (ia && ib);
+      p.kept = op == BooleanOp::unite ? (ia || ib) : op == BooleanOp::subtract ? (ia && !ib) : op == BooleanOp::split ? ia : (ia && ib);
     }
     require(std::any_of(pieces.begin(), pieces.end(), [](const Piece& p) { return p.kept; }),
             std::string("Boolean: the ") + (op == BooleanOp::subtract ? "difference" : "intersection") +
@@ -330,7 +330,7 @@ VModel boolean(const VModel& a, const VModel& b, BooleanOp op, const BooleanOpti
       std::map<std::string, int> names;
       if (ca)
         for (const auto& kv : ca->attributes()) names[kv.first] |= 1;
-      if (cb)
+      if (cb && op != BooleanOp::split)
         for (const auto& kv : cb->attributes()) names[kv.first] |= 2;
       for (const auto& [name, which] : names) {
         const auto rit = options.rules.find(name);

@@ -20,7 +20,9 @@
 
 namespace trivar::cad {
 
-enum class BooleanOp { unite, subtract, intersect };
+// split: every piece of A, inside and outside B, becomes a cell of its own with A's attributes (B is the tool
+// of split.hpp and contributes nothing but the cut).
+enum class BooleanOp { unite, subtract, intersect, split };
 
 // How an attribute is valued in the overlap of a cell of A and a cell of B.
 enum class BlendRule {

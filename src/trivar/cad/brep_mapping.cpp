@@ -8,6 +8,7 @@
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepGProp.hxx>
 #include <BRepLib.hxx>
+#include <BRepTools.hxx>
 #include <BRepTools_WireExplorer.hxx>
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
@@ -100,9 +101,13 @@ std::string SolidMapper::add_face(const TopoDS_Face& face, const std::string& ki
   if (bs.IsNull()) return "the surface (" + std::string(surf->DynamicType()->Name()) + ") has no exact NURBS form";
   tf.surface = to_spline(*bs);
   const TopoDS_Face fwd = TopoDS::Face(face.Oriented(TopAbs_FORWARD));
+  // The face's parameter box once: the wire explorer would otherwise compute it over all loops for each loop.
+  double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
+  BRepTools::UVBounds(fwd, u0, u1, v0, v1);
   for (TopExp_Explorer w(fwd, TopAbs_WIRE); w.More(); w.Next()) {
     TrimLoop loop;
-    for (BRepTools_WireExplorer we(TopoDS::Wire(w.Current()), fwd); we.More(); we.Next()) {
+    BRepTools_WireExplorer we;
+    for (we.Init(TopoDS::Wire(w.Current()), fwd, u0, u1, v0, v1); we.More(); we.Next()) {
       const TopoDS_Edge& e = we.Current();
       double f = 0, l = 0;
       const Handle(Geom2d_Curve) pc = BRep_Tool::CurveOnSurface(e, fwd, f, l);

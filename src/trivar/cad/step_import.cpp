@@ -6,11 +6,13 @@
 #include <BRepBuilderAPI_NurbsConvert.hxx>
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepGProp.hxx>
+#include <BRepLib.hxx>
 #include <BRepMesh_IncrementalMesh.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Tool.hxx>
 #include <Bnd_Box.hxx>
 #include <GProp_GProps.hxx>
+#include <Geom_Plane.hxx>
 #include <Interface_Static.hxx>
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
@@ -22,13 +24,19 @@
 #include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
+#include <TopTools_ShapeMapHasher.hxx>
 #include <TopoDS.hxx>
+#include <TransferBRep.hxx>
+#include <Transfer_TransientProcess.hxx>
 #include <XSControl_TransferReader.hxx>
 #include <XSControl_WorkSession.hxx>
 
 #include <cmath>
+#include <exception>
 #include <filesystem>
+#include <future>
 #include <map>
+#include <optional>
 
 #include "trivar/cad/brep_mapping.hpp"
 #include "trivar/core/error.hpp"
@@ -74,25 +82,48 @@ std::string step_keyword(const char* type_name) {
   return r;
 }
 
+// STEP instance names of transferred shapes. The kernel's own lookup (EntityFromShapeResult) scans every
+// transfer result per call, quadratic in the faces of a part; the same answer comes from one scan: the first
+// result equal to the shape (orientation included), else the last one that is the same shape.
 class Namer {
 public:
-  explicit Namer(const STEPControl_Reader& reader) : reader_(reader) {}
+  explicit Namer(const STEPControl_Reader& reader) {
+    const Handle(XSControl_WorkSession) ws = reader.WS();
+    if (ws.IsNull() || ws->TransferReader().IsNull()) return;
+    const Handle(Transfer_TransientProcess) tp = ws->TransferReader()->TransientProcess();
+    model_ = Handle(StepData_StepModel)::DownCast(ws->Model());
+    if (tp.IsNull() || model_.IsNull()) return;
+    for (int i = 1; i <= tp->NbMapped(); ++i) {
+      const Handle(Standard_Transient) e = tp->Mapped(i);
+      const TopoDS_Shape sh = TransferBRep::ShapeResult(tp, e);
+      if (sh.IsNull()) continue;
+      Found* f = found_.ChangeSeek(sh);
+      if (f == nullptr) f = found_.Bound(sh, Found{});
+      Handle(Standard_Transient)& exact = f->by_orientation[static_cast<int>(sh.Orientation())];
+      if (exact.IsNull()) exact = e;
+      f->same = e;
+    }
+  }
   // "#812 ADVANCED_FACE", or `fallback` when the shape has no STEP instance.
   std::string operator()(const TopoDS_Shape& s, const std::string& fallback) const {
-    const Handle(XSControl_WorkSession) ws = reader_.WS();
-    if (ws.IsNull() || ws->TransferReader().IsNull()) return fallback;
-    const Handle(Standard_Transient) e = ws->TransferReader()->EntityFromShapeResult(s, 1);
-    const Handle(StepData_StepModel) model = Handle(StepData_StepModel)::DownCast(ws->Model());
-    if (e.IsNull() || model.IsNull()) return fallback;
+    const Found* f = found_.Seek(s);
+    if (f == nullptr) return fallback;
+    const Handle(Standard_Transient)& exact = f->by_orientation[static_cast<int>(s.Orientation())];
+    const Handle(Standard_Transient)& e = exact.IsNull() ? f->same : exact;
     std::string n = "#";
-    n += std::to_string(model->IdentLabel(e));
+    n += std::to_string(model_->IdentLabel(e));
     n += ' ';
     n += step_keyword(e->DynamicType()->Name());
     return n;
   }
 
 private:
-  const STEPControl_Reader& reader_;
+  struct Found {
+    Handle(Standard_Transient) by_orientation[4];
+    Handle(Standard_Transient) same;
+  };
+  Handle(StepData_StepModel) model_;
+  NCollection_DataMap<TopoDS_Shape, Found, TopTools_ShapeMapHasher> found_;
 };
 
 int count_unique(const TopoDS_Shape& s, TopAbs_ShapeEnum kind) {
@@ -141,11 +172,61 @@ std::vector<std::string> outside_solids(const TopoDS_Shape& shape) {
   return out;
 }
 
+// An edge on a plane may come without its parameter-space curve (STEP writers often omit them: the kernel
+// projects the 3D curve whenever one is asked for). A face with hundreds of hole loops asks for each of them
+// once per pair of loops in the validity check and again in the NURBS conversion; projected once and stored,
+// they cost a linear pass. The projection onto a plane is exact, so the solid is unchanged.
+void store_plane_pcurves(const TopoDS_Shape& solid) {
+  for (TopExp_Explorer f(solid, TopAbs_FACE); f.More(); f.Next()) {
+    const TopoDS_Face& face = TopoDS::Face(f.Current());
+    TopLoc_Location loc;
+    if (Handle(Geom_Plane)::DownCast(BRep_Tool::Surface(face, loc)).IsNull()) continue;
+    for (TopExp_Explorer e(face, TopAbs_EDGE); e.More(); e.Next()) BRepLib::BuildPCurveForEdgeOnPlane(TopoDS::Edge(e.Current()), face);
+  }
+}
+
 // The kernel's fixed Gauss rule: a cross-check for reports, a fifth of the adaptive rule's time.
 double kernel_volume(const TopoDS_Shape& s) {
   GProp_GProps props;
   BRepGProp::VolumeProperties(s, props, true);
   return props.Mass();
+}
+
+// The solid's faces as exact NURBS patches with their loops and the kernel's tessellation, or the faces that
+// could not be mapped.
+struct MappedSolid {
+  SolidMapper mapper;
+  std::vector<UnmappedFace> unmapped;
+};
+
+MappedSolid map_solid(const TopoDS_Shape& solid, const Namer& name, const std::string& sname, double chordal, double angular) {
+  BRepBuilderAPI_NurbsConvert conv(solid, true);
+  const TopoDS_Shape nurbs = conv.Shape();
+  // Delaunay by Delabella: a planar face carrying hundreds of hole loops took most of the import with the
+  // default (Watson) algorithm.
+  IMeshTools_Parameters mp;
+  mp.Deflection = chordal;
+  mp.Angle = angular;
+  mp.InParallel = true;
+  mp.MeshAlgo = IMeshTools_MeshAlgoType_Delabella;
+  BRepMesh_IncrementalMesh mesh(nurbs, mp);
+  MappedSolid out{SolidMapper(nurbs, chordal), {}};
+  // Faces as they sit in the converted solid (with their orientation there), named after the faces read.
+  TopTools_IndexedMapOfShape converted;
+  std::vector<TopoDS_Face> originals;
+  for (TopExp_Explorer f(solid, TopAbs_FACE); f.More(); f.Next()) {
+    const TopoDS_Shape mod = conv.ModifiedShape(f.Current());
+    if (converted.Add(mod) > static_cast<int>(originals.size())) originals.push_back(TopoDS::Face(f.Current()));
+  }
+  int fi = 0;
+  for (TopExp_Explorer f(nurbs, TopAbs_FACE); f.More(); f.Next(), ++fi) {
+    const TopoDS_Face& face = TopoDS::Face(f.Current());
+    const int oi = converted.FindIndex(face);
+    const TopoDS_Face orig = oi > 0 ? originals[static_cast<std::size_t>(oi - 1)] : face;
+    const std::string fname = name(orig, sname + " face " + std::to_string(fi));
+    if (std::string why = out.mapper.add_face(face, surface_kind(orig), fname); !why.empty()) out.unmapped.push_back({fname, why});
+  }
+  return out;
 }
 
 }  // namespace
@@ -187,44 +268,42 @@ StepImport import_step(const std::string& path, const ImportOptions& opts) {
       TopoDS_Shape solid = x.Current();
       const std::string sname = name(solid, "solid " + std::to_string(index));
       ImportedSolid imported{sname, nullptr, 0};
-      if (!BRepCheck_Analyzer(solid).IsValid()) {
+      store_plane_pcurves(solid);
+      // The validity check and the kernel's volume run beside the conversion, which reads the same solid and
+      // builds a copy; an invalid solid discards the conversion and is converted again after repair.
+      auto checked = std::async(std::launch::async, [&solid] {
+        const bool valid = BRepCheck_Analyzer(solid).IsValid();
+        return std::make_pair(valid, valid ? kernel_volume(solid) : 0.0);
+      });
+      std::optional<MappedSolid> mapped;
+      std::exception_ptr failure;
+      try {
+        mapped = map_solid(solid, name, sname, chordal, opts.angular_tolerance);
+      } catch (...) {
+        failure = std::current_exception();
+      }
+      auto [valid, volume] = checked.get();
+      if (!valid) {
         ShapeFix_Shape fix(solid);
         fix.Perform();
         solid = fix.Shape();
-        require(BRepCheck_Analyzer(solid).IsValid(), path + ": " + sname + " is not a valid solid and could not be repaired");
+        require(BRepCheck_Analyzer(solid, true, true).IsValid(), path + ": " + sname + " is not a valid solid and could not be repaired");
         r.repairs.push_back(sname + ": invalid as read (e.g. missing parameter-space curves, tolerances); repaired by shape healing");
+        volume = kernel_volume(solid);
+        failure = nullptr;
+        mapped.reset();
       }
       if (const int fe = free_edges(solid); fe > 0)
         throw Error(path + ": " + sname + " is not closed (" + plural(fe, "free edge") + ")");
-      imported.kernel_volume = kernel_volume(solid);
+      imported.kernel_volume = volume;
       require(imported.kernel_volume > 0, path + ": " + sname + " is inside out or encloses nothing (volume " +
                                               std::to_string(imported.kernel_volume) + ")");
-      BRepBuilderAPI_NurbsConvert conv(solid, true);
-      const TopoDS_Shape nurbs = conv.Shape();
-      BRepMesh_IncrementalMesh mesh(nurbs, chordal, false, opts.angular_tolerance, true);
-      SolidMapper mapper(nurbs, chordal);
-      // Faces as they sit in the converted solid (with their orientation there), named after the faces read.
-      TopTools_IndexedMapOfShape converted;
-      std::vector<TopoDS_Face> originals;
-      for (TopExp_Explorer f(solid, TopAbs_FACE); f.More(); f.Next()) {
-        const TopoDS_Shape mod = conv.ModifiedShape(f.Current());
-        if (converted.Add(mod) > static_cast<int>(originals.size())) originals.push_back(TopoDS::Face(f.Current()));
-      }
-      int fi = 0;
-      bool complete = true;
-      for (TopExp_Explorer f(nurbs, TopAbs_FACE); f.More(); f.Next(), ++fi) {
-        const TopoDS_Face& face = TopoDS::Face(f.Current());
-        const int oi = converted.FindIndex(face);
-        const TopoDS_Face orig = oi > 0 ? originals[static_cast<std::size_t>(oi - 1)] : face;
-        const std::string fname = name(orig, sname + " face " + std::to_string(fi));
-        if (std::string why = mapper.add_face(face, surface_kind(orig), fname); !why.empty()) {
-          r.unmapped.push_back({fname, why});
-          complete = false;
-        }
-      }
-      if (complete) {
+      if (failure) std::rethrow_exception(failure);
+      if (!mapped) mapped = map_solid(solid, name, sname, chordal, opts.angular_tolerance);
+      for (UnmappedFace& u : mapped->unmapped) r.unmapped.push_back(std::move(u));
+      if (mapped->unmapped.empty()) {
         try {
-          imported.solid = std::make_shared<const TrimmedSolid>(mapper.take());
+          imported.solid = std::make_shared<const TrimmedSolid>(mapped->mapper.take());
         } catch (const Error& e) {
           throw Error(path + ": " + sname + ": " + e.what());
         }
