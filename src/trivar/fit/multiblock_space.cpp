@@ -138,7 +138,16 @@ std::vector<std::pair<std::vector<double>, int>> traces(const std::vector<LRSpli
   for (int id : side_row(S, f.side[k], 0)) {
     std::vector<double> t = S.basis_function(id).knots[static_cast<std::size_t>(a)];
     if (t.back() <= lo || t.front() >= hi) continue;
-    for (double& x : t) x = map_param(f, k, std::clamp(x, lo, hi));
+    // Clamping the knots to the segment gives the restriction only where the support ends there or is C0 there.
+    for (double e : {lo, hi})
+      require(!(t.front() < e && e < t.back()) || std::count(t.begin(), t.end(), e) >= S.degree(a), [&] {
+        return "multiblock: " + where(f.block[k], f.side[k]) + " has a B-spline crossing the end of its interface with block " +
+               std::to_string(f.block[1 - k]) + " without a C0 knot there";
+      });
+    for (double& x : t) {
+      x = std::clamp(x, lo, hi);
+      if (k == 1) x = map_param(f, 1, x);
+    }
     if (t.front() > t.back()) std::reverse(t.begin(), t.end());
     out.emplace_back(std::move(t), id);
   }
