@@ -196,6 +196,30 @@ TEST(PatchStitching, HalvesOfOneSurfaceMergeBackIntoIt) {
     }
 }
 
+// An LR patch refined locally inside (away from the seam rows) stitches the same way; its refinement stays.
+TEST(PatchStitching, LocallyRefinedPatch) {
+  const Pair in = make_pair_();
+  LRSpline<2> a(in.a);
+  ASSERT_TRUE(a.insert(MeshRectangle<2>::make(0, 0.3, {0.3, 0.0}, {0.3, 0.5})));
+  ASSERT_TRUE(a.insert(MeshRectangle<2>::make(1, 0.4, {0.0, 0.4}, {0.6, 0.4})));
+  const Stitched s = stitch(a, LRSpline<2>(in.b), {Continuity::C1});
+  EXPECT_LT(max_jump(s, 0), 1e-12);
+  EXPECT_LT(max_jump(s, 1), 1e-10);
+  const LRSpline<2> merged = merge(s);
+  double x[3], y[3];
+  for (double u : {0.25, 0.35, 0.5, 1.2})
+    for (double v : {0.3, 0.45}) {
+      (u < 1.0 ? s.first : s.second).eval({u, v}, x);
+      merged.eval({u, v}, y);
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(x[c], y[c], 1e-12);
+      if (u < 0.6) {
+        a.eval({u, v}, y);
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(x[c], y[c], 1e-12);
+      }
+    }
+  EXPECT_GT(merged.num_elements(), s.first.num_elements());
+}
+
 void expect_error(const LRSpline<2>& a, const LRSpline<2>& b, const std::string& part) {
   try {
     stitch(a, b);
