@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "trivar/core/error.hpp"
+#include "trivar/core/number_format.hpp"
 
 namespace trivar {
 
@@ -237,7 +238,7 @@ MultiblockSpace multiblock_space(std::vector<LRSpline<2>> blocks, double toleran
         const double* e = control.data() + 2 * n;
         require(std::hypot(d[0] - e[0], d[1] - e[1]) <= tol, [&] {
           return "multiblock: block " + std::to_string(b) + " does not meet its neighbour continuously (control points of "
-                 "one interface function differ by " + std::to_string(std::hypot(d[0] - e[0], d[1] - e[1])) + ")";
+                 "one interface function differ by " + format_number(std::hypot(d[0] - e[0], d[1] - e[1])) + ")";
         });
       }
       g.push_back(n);

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "trivar/core/error.hpp"
+#include "trivar/core/number_format.hpp"
 
 namespace trivar {
 
@@ -180,10 +181,10 @@ Stitched stitch(const LRSpline<2>& first, const LRSpline<2>& second, const Stitc
   require(m.gap <= tol, [&] {
     if (m.ends_gap <= tol)
       return "stitch: the sides " + std::string(side_name(m.a)) + " of the first patch and " + side_name(m.b) +
-             " of the second meet at both ends but differ in between by " + std::to_string(m.gap) +
+             " of the second meet at both ends but differ in between by " + format_number(m.gap) +
              " (different curves, or parametrisations that do not correspond linearly)";
-    return "stitch: the patches share no side (closest sides differ by " + std::to_string(m.gap) +
-           ", tolerance " + std::to_string(tol) + ")";
+    return "stitch: the patches share no side (closest sides differ by " + format_number(m.gap) +
+           ", tolerance " + format_number(tol) + ")";
   });
   const int pa = first.degree(m.a.along()), pb = second.degree(m.b.along());
   const int qa = first.degree(m.a.dir), qb = second.degree(m.b.dir);
