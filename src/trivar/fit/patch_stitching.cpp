@@ -60,11 +60,15 @@ Canonical canonical(DomainSide seam) {
   return c;
 }
 
+bool identity(const Canonical& c) { return c.src[0] == 0 && !c.negate[0] && !c.negate[1]; }
+
 LRSpline<2> to_canonical(const LRSpline<2>& s, const Canonical& c) {
+  if (identity(c)) return s;
   return remap(s, c.src, c.negate, [&](int k, double x) { return c.negate[static_cast<std::size_t>(k)] ? -x : x; });
 }
 
 LRSpline<2> from_canonical(const LRSpline<2>& s, const Canonical& c) {
+  if (identity(c)) return s;
   std::array<int, 2> src{};
   std::array<bool, 2> negate{};
   for (int k = 0; k < 2; ++k) {
@@ -218,28 +222,35 @@ Stitched stitch(const LRSpline<2>& first, const LRSpline<2>& second, const Stitc
       return b_start_at_c0 ? lerp_exact(x, slo, shi, c0, c1) : lerp_exact(x, slo, shi, c1, c0);
     });
   };
-  LRSpline<2> B = place(len);
+  // lambda: the factor by which the second patch's derivative across the seam (in its own parameter, at
+  // canonical v) must be scaled to best match the first's; the second is then placed with length len / lambda.
+  double lambda = 1.0;
   {
     constexpr int n = 17;
     const int dim = A.dim();
+    const double slo = second.domain().lo[ba], shi = second.domain().hi[ba];
     std::vector<double> da(3 * static_cast<std::size_t>(dim)), db(da.size());
     double ab = 0, bb = 0;
     for (int i = 0; i < n; ++i) {
-      const double v = c0 + (c1 - c0) * i / (n - 1);
-      A.eval_first_derivatives({a1, v}, da.data());
-      B.eval_first_derivatives({a1, v}, db.data());
+      const double f = static_cast<double>(i) / (n - 1);
+      A.eval_first_derivatives({a1, c0 + (c1 - c0) * f}, da.data());
+      second.eval_first_derivatives(side_param(second, m.b, b_start_at_c0 ? slo + (shi - slo) * f : shi - (shi - slo) * f),
+                                    db.data());
+      const double sign = across_reversed ? -1.0 : 1.0;
       for (int j = 0; j < dim; ++j) {
-        ab += da[static_cast<std::size_t>(dim + j)] * db[static_cast<std::size_t>(dim + j)];
-        bb += db[static_cast<std::size_t>(dim + j)] * db[static_cast<std::size_t>(dim + j)];
+        const double x = da[static_cast<std::size_t>(dim + j)], y = sign * db[static_cast<std::size_t>((1 + bd) * dim + j)];
+        ab += x * y;
+        bb += y * y;
       }
     }
-    const double lambda = ab / bb;
+    lambda = ab / bb;
     const bool usable = bb > 0 && std::isfinite(lambda) && lambda > 0;
     require(usable || options.continuity == Continuity::C0,
             "stitch: the derivatives across the shared side point against each other (the patches fold back "
             "onto each other); C1 stitching is impossible, C0 is not");
-    if (usable) B = place(len / lambda);
+    if (!usable) lambda = 1.0;
   }
+  LRSpline<2> B = place(len / lambda);
 
   // Adapt the knot lines of each side to the other's over the rows the continuity involves.
   const int rows = options.continuity == Continuity::C1 ? 2 : 1;
