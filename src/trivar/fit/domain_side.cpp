@@ -61,7 +61,7 @@ std::vector<std::pair<double, int>> side_trace_knots(const LRSpline<2>& s, Domai
 int insert_side_knot_lines(LRSpline<2>& s, DomainSide side, std::span<const std::pair<double, int>> knots, int rows) {
   const int a = side.along();
   // The depth of the first rows: the innermost end of their supports across the side.
-  double depth = side.value(s);
+  double depth = rows > 0 ? side.value(s) : (side.end == 0 ? s.domain().hi[side.dir] : s.domain().lo[side.dir]);
   for (int row = 0; row < rows; ++row)
     for (int id : side_row(s, side, row)) {
       const auto& t = s.basis_function(id).knots[static_cast<std::size_t>(side.dir)];

@@ -36,9 +36,9 @@ std::vector<int> side_row(const LRSpline<2>& s, DomainSide side, int row);
 std::vector<std::pair<double, int>> side_trace_knots(const LRSpline<2>& s, DomainSide side);
 
 // Inserts, for each (value, multiplicity) strictly inside the side's range, a knot line segment across the side
-// from the side inwards over the supports of rows 0 .. rows - 1 (LR refinement, the geometry is unchanged).
-// Returns the number of segments that changed the spline. Throws trivar::Error (from the LR refinement) when a
-// segment would end inside an element.
+// from the side inwards over the supports of rows 0 .. rows - 1 (LR refinement, the geometry is unchanged);
+// rows <= 0: lines across the whole domain (a tensor spline stays one). Returns the number of segments that
+// changed the spline. Throws trivar::Error (from the LR refinement) when a segment would end inside an element.
 int insert_side_knot_lines(LRSpline<2>& s, DomainSide side, std::span<const std::pair<double, int>> knots, int rows);
 
 }  // namespace trivar

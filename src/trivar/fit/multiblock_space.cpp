@@ -1,6 +1,7 @@
 #include "trivar/fit/multiblock_space.hpp"
 
 #include <algorithm>
+#include <map>
 #include <cmath>
 #include <numeric>
 #include <string>
@@ -158,7 +159,7 @@ std::vector<std::pair<std::vector<double>, int>> traces(const std::vector<LRSpli
 
 }  // namespace
 
-MultiblockSpace multiblock_space(std::vector<LRSpline<2>> blocks, double tolerance) {
+MultiblockSpace multiblock_space(std::vector<LRSpline<2>> blocks, const MultiblockOptions& options) {
   const int nb = static_cast<int>(blocks.size());
   require(nb >= 1, "multiblock: no blocks");
   double diag = 0;
@@ -174,7 +175,7 @@ MultiblockSpace multiblock_space(std::vector<LRSpline<2>> blocks, double toleran
     });
     diag = std::max(diag, control_net_diagonal(s));
   }
-  const double tol = tolerance > 0 ? tolerance : 1e-8 * diag;
+  const double tol = options.tolerance > 0 ? options.tolerance : 1e-8 * diag;
 
   MultiblockSpace out;
   for (int i = 0; i < nb; ++i)
@@ -192,7 +193,7 @@ MultiblockSpace multiblock_space(std::vector<LRSpline<2>> blocks, double toleran
     for (const BlockInterface& f : out.interfaces)
       for (int to = 0; to < 2; ++to) {
         const auto k = knots_for(blocks, f, to);
-        changed += insert_side_knot_lines(blocks[static_cast<std::size_t>(f.block[to])], f.side[to], k, 1);
+        changed += insert_side_knot_lines(blocks[static_cast<std::size_t>(f.block[to])], f.side[to], k, options.whole_lines ? 0 : 1);
       }
     if (changed == 0) break;
     require(round < 16, "multiblock: the interface knot lines did not settle");
@@ -287,6 +288,11 @@ MultiblockSpace multiblock_space(std::vector<LRSpline<2>> blocks, double toleran
             covered.emplace_back(std::min(f.lo[k], f.hi[k]), std::max(f.lo[k], f.hi[k]));
       std::sort(covered.begin(), covered.end());
       const double eps = 1e-12 * (hi_along(s, side) - lo_along(s, side));
+      double reach = lo_along(s, side);  // how far from the side's start the interfaces cover it
+      for (const auto& [c0, c1] : covered)
+        if (c0 <= reach + eps && c1 > reach) reach = c1;
+      if (covered.empty()) out.boundary_sides.push_back({b, side});
+      else if (reach < hi_along(s, side) - eps) out.partial_sides.push_back({b, side});
       for (int id : side_row(s, side, 0)) {
         const auto& t = s.basis_function(id).knots[static_cast<std::size_t>(side.along())];
         double at = t.front();  // walk the support, skipping covered parts
@@ -298,6 +304,67 @@ MultiblockSpace multiblock_space(std::vector<LRSpline<2>> blocks, double toleran
   for (int i = 0; i < sp.num_basis; ++i)
     if (on_boundary[static_cast<std::size_t>(i)]) out.boundary.push_back(i);
   out.blocks = std::move(blocks);
+  return out;
+}
+
+namespace {
+
+// The tensor spline of an LR spline whose mesh lines all cross the whole domain (written by hand: the LR layer
+// converts tensor to LR only). lr_id[tensor index] is the LR B-spline of each tensor one.
+TensorSpline<2> as_tensor(const LRSpline<2>& s, int block, std::vector<int>& lr_id) {
+  auto fail = [&] { return "multiblock: block " + std::to_string(block) + " is locally refined, not a tensor spline"; };
+  std::array<KnotVector, 2> kv;
+  std::array<std::map<std::vector<double>, int>, 2> index;  // local knot vector -> B-spline index
+  for (int k = 0; k < 2; ++k) {
+    std::map<double, int> mult;
+    for (const MeshRectangle<2>& r : s.mesh())
+      if (r.dir == k) {
+        Box<2> whole = s.domain();
+        require(r.contains_across(whole), fail);
+        mult[r.value] = std::max(mult[r.value], r.multiplicity);
+      }
+    std::vector<double> t;
+    for (const auto& [value, m] : mult) t.insert(t.end(), static_cast<std::size_t>(m), value);
+    kv[static_cast<std::size_t>(k)] = KnotVector(s.degree(k), t);
+    const auto p2 = static_cast<std::ptrdiff_t>(s.degree(k) + 2);
+    for (int i = 0; i < kv[static_cast<std::size_t>(k)].size(); ++i)
+      index[static_cast<std::size_t>(k)][std::vector<double>(t.begin() + i, t.begin() + i + p2)] = i;
+  }
+  const int nu = kv[0].size();
+  require(s.num_basis() == nu * kv[1].size(), fail);
+  std::vector<double> coefs(static_cast<std::size_t>(s.num_basis() * s.dim()));
+  lr_id.assign(static_cast<std::size_t>(s.num_basis()), -1);
+  for (int id = 0; id < s.num_basis(); ++id) {
+    const LRBSpline<2>& f = s.basis_function(id);
+    const auto i = index[0].find(f.knots[0]), j = index[1].find(f.knots[1]);
+    // gamma is 1 up to the rounding of the splits that made the B-spline; gamma * c is its tensor coefficient.
+    require(i != index[0].end() && j != index[1].end() && std::abs(f.gamma - 1.0) <= 1e-12, fail);
+    const int t = i->second + nu * j->second;
+    lr_id[static_cast<std::size_t>(t)] = id;
+    for (int c = 0; c < s.dim(); ++c)
+      coefs[static_cast<std::size_t>(t * s.dim() + c)] = f.gamma * f.coef[static_cast<std::size_t>(c)];
+  }
+  require(std::find(lr_id.begin(), lr_id.end(), -1) == lr_id.end(), fail);
+  return TensorSpline<2>(kv, s.dim(), false, std::move(coefs));
+}
+
+}  // namespace
+
+MultipatchSpace<2> tensor_multipatch(const MultiblockSpace& m) {
+  require(m.partial_sides.empty(), [&] {
+    return "multiblock: block " + std::to_string(m.partial_sides[0].first) +
+           " has a side partly on interfaces and partly on the boundary, which a tensor multipatch space cannot "
+           "describe";
+  });
+  MultipatchSpace<2> out;
+  for (std::size_t b = 0; b < m.blocks.size(); ++b) {
+    std::vector<int> lr_id;
+    out.patches.push_back(TensorSpace<2>{as_tensor(m.blocks[b], static_cast<int>(b), lr_id)});
+    std::vector<int>& g = out.global.emplace_back();
+    for (int id : lr_id) g.push_back(m.global[b][static_cast<std::size_t>(id)]);
+  }
+  out.num_basis = m.space.num_basis;
+  for (const auto& [b, side] : m.boundary_sides) out.boundary.push_back(Face{side.dir, side.end, b});
   return out;
 }
 

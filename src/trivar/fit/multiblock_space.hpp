@@ -15,9 +15,11 @@
 // moved into their control points), which makes the traces of identified functions equal, so the space is C0 and
 // conforming across every interface.
 #include <array>
+#include <utility>
 #include <vector>
 
 #include "trivar/fit/domain_side.hpp"
+#include "trivar/iga/multipatch_space.hpp"
 #include "trivar/iga/refined_space.hpp"
 #include "trivar/lr/lr_spline.hpp"
 
@@ -37,12 +39,27 @@ struct MultiblockSpace {
   RefinedSpace<2> space;                      // all blocks' elements, global ids; no locator, no face lists
   std::vector<int> element_block;             // per element of `space`: its block
   std::vector<int> boundary;                  // global functions non-zero on the boundary of the union, ascending
+  std::vector<std::pair<int, DomainSide>> boundary_sides;  // (block, side) not on any interface
+  std::vector<std::pair<int, DomainSide>> partial_sides;   // (block, side) partly on interfaces, partly not
+};
+
+struct MultiblockOptions {
+  // Distance at which points coincide; 0: 1e-8 times the largest control-net diagonal.
+  double tolerance = 0.0;
+  // Knot lines across whole blocks instead of the first row only: tensor blocks stay tensor splines (every
+  // B-spline crossing a T-joint's line splits, not only the transition ones), as tensor_multipatch needs.
+  bool whole_lines = false;
 };
 
 // Throws trivar::Error with one line for blocks that are not planar polynomial surfaces of equal degrees, sides
 // that meet along a segment with parametrisations that do not correspond linearly or with different degrees
-// along it, geometry that differs across an interface, or traces that still differ after matching. tolerance:
-// distance at which points coincide; 0: 1e-8 times the largest control-net diagonal.
-MultiblockSpace multiblock_space(std::vector<LRSpline<2>> blocks, double tolerance = 0.0);
+// along it, geometry that differs across an interface, or traces that still differ after matching.
+MultiblockSpace multiblock_space(std::vector<LRSpline<2>> blocks, const MultiblockOptions& options = {});
+
+// The same model as the tensor multipatch space of iga (MultipatchSpace: one TensorSpace per block and the
+// local-to-global map), for its assembler, Dirichlet projection, Poisson and elasticity solvers and error norms.
+// Needs blocks that are tensor splines (multiblock_space with whole_lines and tensor inputs) and block sides that
+// are either wholly on interfaces or wholly on the boundary; throws trivar::Error naming the block otherwise.
+MultipatchSpace<2> tensor_multipatch(const MultiblockSpace& m);
 
 }  // namespace trivar
