@@ -75,6 +75,21 @@ TensorSpline<2> rotated(const TensorSpline<2>& s, double u0, double u1, double v
   return TensorSpline<2>::from_cartesian(kv, 3, pts);
 }
 
+// s with its parameter directions swapped and the new v reversed: (u, v) -> (v, 1 - u), a quarter turn (the
+// orientation is kept).
+TensorSpline<2> quarter_turn(const TensorSpline<2>& s) {
+  const auto& tu = s.knots(0).knots();
+  std::vector<double> nv;
+  for (auto it = tu.rbegin(); it != tu.rend(); ++it) nv.push_back(tu.front() + tu.back() - *it);
+  std::array<KnotVector, 2> kv{s.knots(1), KnotVector(p, nv)};
+  std::vector<double> pts;
+  const int nu = s.count(0), nw = s.count(1);
+  for (int j = 0; j < nu; ++j)
+    for (int i = 0; i < nw; ++i)
+      for (int c = 0; c < 3; ++c) pts.push_back(s.coefs()[static_cast<std::size_t>(3 * s.linear_index({nu - 1 - j, i}) + c)]);
+  return TensorSpline<2>::from_cartesian(kv, 3, pts);
+}
+
 struct Pair {
   TensorSpline<2> a, b;  // a on [0, 1]^2; b continues it beyond u = 1 but is given rotated onto [2, 5] x [-1, 1]
 };
@@ -155,6 +170,22 @@ TEST(PatchStitching, C1AcrossTheSeamAndUnchangedElsewhere) {
       (u < 1.0 ? s.first : s.second).eval({u, v}, x);
       merged.eval({u, v}, y);
       for (int c = 0; c < 3; ++c) EXPECT_NEAR(x[c], y[c], 1e-12) << u << " " << v;
+    }
+}
+
+// The second patch given with its directions swapped (a quarter turn) stitches to the same result.
+TEST(PatchStitching, QuarterTurnedSecondPatch) {
+  const Pair in = make_pair_();
+  const Stitched s = stitch(LRSpline<2>(in.a), LRSpline<2>(quarter_turn(in.b)), {Continuity::C1});
+  const Stitched r = stitch(LRSpline<2>(in.a), LRSpline<2>(in.b), {Continuity::C1});
+  EXPECT_LT(max_jump(s, 1), 1e-10);
+  EXPECT_NEAR(s.second.domain().hi[0], r.second.domain().hi[0], 1e-12);
+  double x[3], y[3];
+  for (double u : {1.0, 1.2, 1.5, s.second.domain().hi[0]})
+    for (double v : {0.0, 0.4, 1.0}) {
+      s.second.eval({u, v}, x);
+      r.second.eval({u, v}, y);
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(x[c], y[c], 1e-12);
     }
 }
 
