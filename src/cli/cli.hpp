@@ -78,6 +78,8 @@ void add_demo_command(CLI::App& app, Context& ctx);
 void add_solve_command(CLI::App& app, Context& ctx);
 // fit POINTS: an LR spline approximating scattered data (cmd_fit.cpp).
 void add_fit_command(CLI::App& app, Context& ctx);
+// stitch A B [C ...]: surfaces sharing sides joined C0 or C1 (cmd_stitch.cpp).
+void add_stitch_command(CLI::App& app, Context& ctx);
 void add_boolean_command(CLI::App& app, Context& ctx);
 
 // True for ISO 10303-21 files: .stp, .step, .p21 (case-insensitive).

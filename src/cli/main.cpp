@@ -66,6 +66,7 @@ int main(int argc, char** argv) {
   add_demo_command(app, ctx);
   add_solve_command(app, ctx);
   add_fit_command(app, ctx);
+  add_stitch_command(app, ctx);
   add_boolean_command(app, ctx);
 
   trivar::install_interrupt_cleanup();

@@ -1,0 +1,90 @@
+// Stitching and multi-block matching. BM_StitchC1: two bicubic patches of n x n B-splines with different knot
+// lines along their common side (the second rotated by 180 degrees), stitched C1 (side search, re-parametrisation,
+// knot line segments, continuity on the two seam rows) and merged into one LR spline. BM_MultiblockTJoint: three
+// biquadratic blocks with a T-joint made conforming and turned into the analysis space. Figures in bench/README.md.
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <vector>
+
+#include "trivar/fit/multiblock_space.hpp"
+#include "trivar/fit/patch_stitching.hpp"
+
+using namespace trivar;
+
+namespace {
+
+// Degree-p patch over [x0, x0 + 1] x [0, 1]: n x n B-splines, interior knots shifted by `shift` along v; the
+// heights a smooth function of x, y (so the side u = 0 of one patch and u = 1 of the previous are one curve only
+// up to their knots: the test uses the same curve by sharing v knots where it matters).
+LRSpline<2> patch(int n, int p, double x0, double shift, bool rotated, int dim) {
+  std::vector<double> u(static_cast<std::size_t>(p), 0.0), v = u;
+  for (int i = 0; i <= n - p; ++i) {
+    u.push_back(static_cast<double>(i) / (n - p));
+    const double t = static_cast<double>(i) / (n - p);
+    v.push_back(i == 0 || i == n - p ? t : t + shift / (n - p));
+  }
+  u.insert(u.end(), static_cast<std::size_t>(p), 1.0);
+  v.insert(v.end(), static_cast<std::size_t>(p), 1.0);
+  const KnotVector ku(p, u), kv(p, v);
+  std::vector<double> pts;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      double g[2] = {0, 0};
+      for (int k = 1; k <= p; ++k) {
+        g[0] += u[static_cast<std::size_t>(i + k)] / p;
+        g[1] += v[static_cast<std::size_t>(j + k)] / p;
+      }
+      const double x = rotated ? x0 + 1 - g[0] : x0 + g[0], y = rotated ? 1 - g[1] : g[1];
+      pts.push_back(x);
+      pts.push_back(y);
+      if (dim == 3) pts.push_back(0.0);
+    }
+  return LRSpline<2>(TensorSpline<2>::from_cartesian({ku, kv}, dim, pts));
+}
+
+void BM_StitchC1(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const LRSpline<2> a = patch(n, 3, 0.0, 0.0, false, 3), b = patch(n, 3, 1.0, 0.3, true, 3);
+  int coefs = 0;
+  for (auto _ : state) {
+    const Stitched s = stitch(a, b, {Continuity::C1});
+    const LRSpline<2> m = merge(s);
+    coefs = m.num_basis();
+    benchmark::DoNotOptimize(coefs);
+  }
+  state.counters["coefficients"] = coefs;
+}
+BENCHMARK(BM_StitchC1)->Arg(16)->Arg(64)->Arg(256)->Unit(benchmark::kMillisecond);
+
+void BM_MultiblockTJoint(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  // Long block [0, 2] x [0, 1] (2n x n), two blocks [0, 1] x [1, 2] and [1, 2] x [1, 2] above it.
+  auto block = [&](double x0, double y0, double w, int nu, double shift) {
+    std::vector<double> u(2, 0.0), v(2, 0.0);
+    for (int i = 0; i <= nu - 2; ++i) u.push_back(i == 0 || i == nu - 2 ? double(i) / (nu - 2) : (i + shift) / (nu - 2));
+    for (int i = 0; i <= n - 2; ++i) v.push_back(static_cast<double>(i) / (n - 2));
+    u.insert(u.end(), 2, 1.0);
+    v.insert(v.end(), 2, 1.0);
+    std::vector<double> pts;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < nu; ++i) {
+        pts.push_back(x0 + w * (u[static_cast<std::size_t>(i + 1)] + u[static_cast<std::size_t>(i + 2)]) / 2);
+        pts.push_back(y0 + (v[static_cast<std::size_t>(j + 1)] + v[static_cast<std::size_t>(j + 2)]) / 2);
+      }
+    return LRSpline<2>(TensorSpline<2>::from_cartesian({KnotVector(2, u), KnotVector(2, v)}, 2, pts));
+  };
+  const std::vector<LRSpline<2>> blocks{block(0, 0, 2, 2 * n + 1, 0.5), block(0, 1, 1, n, 0.25), block(1, 1, 1, n, 0.7)};
+  int functions = 0;
+  for (auto _ : state) {
+    const MultiblockSpace m = multiblock_space(blocks);
+    functions = m.space.num_basis;
+    benchmark::DoNotOptimize(functions);
+  }
+  state.counters["functions"] = functions;
+}
+BENCHMARK(BM_MultiblockTJoint)->Arg(16)->Arg(64)->Arg(128)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

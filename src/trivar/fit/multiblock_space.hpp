@@ -1,0 +1,65 @@
+#pragma once
+// Multi-block LR models with T-joints (seed 004, "multi-block T-joints"): planar LR (or B-spline) blocks whose
+// sides meet along common segments that need not be whole sides (a side of one block may border several blocks,
+// so a block corner can lie inside a neighbour's side: a T-joint). The blocks are made conforming by
+//   1. matching the parametrisation: every common segment is found geometrically and must correspond linearly
+//      on both sides;
+//   2. adjusting the side knot lines: each block receives its neighbours' knot lines along the segment, and at a
+//      T-joint the joint's parameter with multiplicity p, as knot line segments over the first row only;
+//   3. identifying the transition B-splines: the B-splines of the first rows that split at a T-joint are those
+//      whose support the joint's line crosses; after the split each one's trace on a segment equals one
+//      neighbour B-spline's trace there, and those are identified as one global function (a B-spline at a
+//      T-joint is identified with one function of each block meeting there).
+// The result is an analysis space for the element loop of iga/refined_assembly (RefinedSpace): every block's
+// Bezier elements with global function ids. Global functions are the unscaled B-splines (LR scaling factors
+// moved into their control points), which makes the traces of identified functions equal, so the space is C0 and
+// conforming across every interface.
+#include <array>
+#include <utility>
+#include <vector>
+
+#include "trivar/fit/domain_side.hpp"
+#include "trivar/iga/multipatch_space.hpp"
+#include "trivar/iga/refined_space.hpp"
+#include "trivar/lr/lr_spline.hpp"
+
+namespace trivar {
+
+// A common segment of two block sides: parameter lo[0] of side[0] meets lo[1] of side[1], hi likewise.
+struct BlockInterface {
+  std::array<int, 2> block{};
+  std::array<DomainSide, 2> side{};
+  std::array<double, 2> lo{}, hi{};
+};
+
+struct MultiblockSpace {
+  std::vector<LRSpline<2>> blocks;            // the blocks after matching (refined near their interfaces)
+  std::vector<BlockInterface> interfaces;
+  std::vector<std::vector<int>> global;       // per block: B-spline id -> global function
+  RefinedSpace<2> space;                      // all blocks' elements, global ids; no locator, no face lists
+  std::vector<int> element_block;             // per element of `space`: its block
+  std::vector<int> boundary;                  // global functions non-zero on the boundary of the union, ascending
+  std::vector<std::pair<int, DomainSide>> boundary_sides;  // (block, side) not on any interface
+  std::vector<std::pair<int, DomainSide>> partial_sides;   // (block, side) partly on interfaces, partly not
+};
+
+struct MultiblockOptions {
+  // Distance at which points coincide; 0: 1e-8 times the largest control-net diagonal.
+  double tolerance = 0.0;
+  // Knot lines across whole blocks instead of the first row only: tensor blocks stay tensor splines (every
+  // B-spline crossing a T-joint's line splits, not only the transition ones), as tensor_multipatch needs.
+  bool whole_lines = false;
+};
+
+// Throws trivar::Error with one line for blocks that are not planar polynomial surfaces of equal degrees, sides
+// that meet along a segment with parametrisations that do not correspond linearly or with different degrees
+// along it, geometry that differs across an interface, or traces that still differ after matching.
+MultiblockSpace multiblock_space(std::vector<LRSpline<2>> blocks, const MultiblockOptions& options = {});
+
+// The same model as the tensor multipatch space of iga (MultipatchSpace: one TensorSpace per block and the
+// local-to-global map), for its assembler, Dirichlet projection, Poisson and elasticity solvers and error norms.
+// Needs blocks that are tensor splines (multiblock_space with whole_lines and tensor inputs) and block sides that
+// are either wholly on interfaces or wholly on the boundary; throws trivar::Error naming the block otherwise.
+MultipatchSpace<2> tensor_multipatch(const MultiblockSpace& m);
+
+}  // namespace trivar

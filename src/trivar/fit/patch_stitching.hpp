@@ -1,0 +1,47 @@
+#pragma once
+// C0 and C1 stitching of two B-spline or LR surfaces that share a side (seed 004, "C1 stitching of 2-variate
+// B-splines"): the shared side is found geometrically (any side of either patch, either direction along it), the
+// second patch is re-parametrised to continue the first across that side, the knot lines of each patch's side
+// are inserted into the other as short segments over the first rows only (LR refinement, geometry unchanged),
+// and continuity is enforced on the first rows alone:
+//   C0: the two copies of every seam control point become their average;
+//   C1: additionally the control points of row 1 on both sides move, as little as possible (least squares),
+//       onto the line through the seam point in the ratio of the two seam-adjacent knot spans, which makes the
+//       derivative across the seam equal on both sides.
+// Every other control point keeps its value bit for bit. The two patches then merge into one LR spline whose
+// seam line has multiplicity p (C0) or p - 1 (C1). The second patch's parameter length across the seam is scaled
+// so that its cross-seam derivative best matches the first's before the adjustment, so patches that are already
+// tangent-continuous (in any parametrisation speed) move by rounding only.
+#include "trivar/fit/domain_side.hpp"
+#include "trivar/lr/lr_spline.hpp"
+
+namespace trivar {
+
+enum class Continuity { C0, C1 };
+
+struct StitchOptions {
+  Continuity continuity = Continuity::C1;
+  // Largest distance at which the two sides count as one curve; 0: 1e-8 times the larger bounding-box diagonal
+  // of the two control nets.
+  double tolerance = 0.0;
+};
+
+struct Stitched {
+  LRSpline<2> first;   // the first patch in its own parametrisation, knot lines adapted, continuity enforced
+  LRSpline<2> second;  // the second patch re-parametrised beyond first's seam side, adapted likewise
+  DomainSide seam;     // the side of first's domain that the second patch continues
+  Continuity continuity = Continuity::C1;
+  double seam_gap = 0.0;  // largest distance between the two sides before stitching (sampled)
+  double moved = 0.0;     // largest change of a control point
+};
+
+// Throws trivar::Error with one line when the patches are rational, of another parametric or control dimension or
+// degree, share no side, meet along a side with parametrisations that do not correspond linearly, or when the
+// second patch would have to be mirrored to continue the first (opposite orientation: its normal points the
+// other way); for C1 also when the cross-seam derivatives point against each other (the patches fold back).
+Stitched stitch(const LRSpline<2>& first, const LRSpline<2>& second, const StitchOptions& options = {});
+
+// The two stitched patches as one LR spline on the union of their domains (first's parametrisation).
+LRSpline<2> merge(const Stitched& s);
+
+}  // namespace trivar

@@ -1,0 +1,84 @@
+// trivar stitch: two and three B-spline surfaces joined C1 into one LR spline (seam derivative jump reported and
+// checked by evaluating the result against the inputs), --separate, and bad pairs refused with one line.
+#include "cli/cli_fixture.hpp"
+
+#include "trivar/io/spline_file.hpp"
+#include "trivar/spline/tensor_spline.hpp"
+
+namespace cli_test {
+namespace {
+
+// A bicubic patch over [x0, x0 + 1] x [0, 1] in x, y with heights h(i, j); column 0 the given points if any.
+trivar::TensorSpline<2> patch(double x0, double tilt, std::vector<double> v, const std::vector<double>& first = {}) {
+  const trivar::KnotVector ku(3, {0, 0, 0, 0, 0.25, 0.5, 0.75, 1, 1, 1, 1}), kv(3, std::move(v));
+  std::vector<double> pts;
+  for (int j = 0; j < kv.size(); ++j)
+    for (int i = 0; i < ku.size(); ++i) {
+      if (i == 0 && !first.empty()) {
+        pts.insert(pts.end(), first.begin() + 3 * j, first.begin() + 3 * j + 3);
+        continue;
+      }
+      pts.insert(pts.end(), {x0 + i / 6.0, j / (kv.size() - 1.0), tilt * 0.05 * ((i + 2 * j) % 3)});
+    }
+  return trivar::TensorSpline<2>::from_cartesian({ku, kv}, 3, pts);
+}
+
+std::vector<double> last_column(const trivar::TensorSpline<2>& s) {
+  std::vector<double> out;
+  for (int j = 0; j < s.count(1); ++j)
+    for (int c = 0; c < 3; ++c) out.push_back(s.coefs()[static_cast<std::size_t>(3 * s.linear_index({s.count(0) - 1, j}) + c)]);
+  return out;
+}
+
+class StitchCli : public Cli {
+protected:
+  void SetUp() override {
+    Cli::SetUp();
+    const std::vector<double> v{0, 0, 0, 0, 0.5, 1, 1, 1, 1};
+    a_ = patch(0, 1, v);
+    b_ = patch(1, -1, v, last_column(a_));
+    c_ = patch(2, 0.5, v, last_column(b_));
+    trivar::io::write_spline_file((work_ / "a.g2").string(), {a_});
+    trivar::io::write_spline_file((work_ / "b.g2").string(), {b_});
+    trivar::io::write_spline_file((work_ / "c.json").string(), {c_});
+  }
+  trivar::TensorSpline<2> a_, b_, c_;
+};
+
+TEST_F(StitchCli, ThreePatchesC1IntoOneLRSpline) {
+  const Result r = ok("stitch a.g2 b.g2 c.json --continuity C1 -o abc.lr");
+  const auto l = lines(r.out);
+  ASSERT_EQ(l.size(), 2u) << r.out;
+  for (const std::string& line : l) {
+    EXPECT_NE(line.find("side u = hi"), std::string::npos) << line;
+    const auto at = line.find("derivative jump ");
+    ASSERT_NE(at, std::string::npos) << line;
+    EXPECT_LT(std::stod(line.substr(at + 16)), 1e-10) << line;
+  }
+  const nlohmann::json info = nlohmann::json::parse(ok("info abc.lr --json").out).at("objects").at(0);
+  EXPECT_EQ(info.at("kind"), "lr_surface");
+  EXPECT_DOUBLE_EQ(info.at("domain")[0][0].get<double>(), 0.0);
+  EXPECT_GT(info.at("domain")[0][1].get<double>(), 2.0);
+  // Away from the two rows next to the first seam, the first patch is unchanged.
+  double x[3];
+  a_.eval({0.3, 0.6}, x);
+  const std::vector<double> p = numbers_after(ok("eval abc.lr 0.3 0.6").out, "S");
+  ASSERT_GE(p.size(), 3u);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(p[static_cast<std::size_t>(c)], x[c], 1e-12);
+}
+
+TEST_F(StitchCli, SeparatePatchesAndC0) {
+  const Result r = ok("stitch a.g2 b.g2 --continuity C0 --separate -o ab.g2");
+  EXPECT_NE(r.out.find("derivative jump"), std::string::npos);
+  const nlohmann::json info = nlohmann::json::parse(ok("info ab.g2 --json").out);
+  EXPECT_EQ(info.at("objects").size(), 2u);
+}
+
+TEST_F(StitchCli, BadInputIsRefusedWithOneLine) {
+  fails("stitch a.g2 c.json -o ac.lr");  // no common side
+  fails("stitch a.g2 b.g2 --separate c.json -o x.lr");
+  fails("stitch a.g2 b.g2 -o ab.stl");
+}
+
+}  // namespace
+}  // namespace cli_test
