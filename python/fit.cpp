@@ -47,7 +47,7 @@ py::object fit(const Array& points, const Array& values, const ApproximationOpti
   const auto ns = py::module_::import("types").attr("SimpleNamespace");
   py::object spline;
   if constexpr (D == 2) {
-    spline = data.dim == 1 && !height_field ? py::cast(graph_surface(r.spline)) : py::cast(r.spline);
+    spline = data.dim == 1 && !height_field ? py::cast(graph_surface(r.spline, r.parameters)) : py::cast(r.spline);
   } else {
     spline = py::cast(r.spline);
   }

@@ -65,7 +65,7 @@ void run(const FitArgs& a, const PointTable& table) {
   const LRSpline<D>& s = fit.spline;
   AnyLRSpline result = s;
   if constexpr (D == 2)
-    if (data.dim == 1 && !a.height_field) result = graph_surface(s);
+    if (data.dim == 1 && !a.height_field) result = graph_surface(s, fit.parameters);
   for (const std::string& out : a.out) {
     if (is_step_file(out)) {
       io::step::GeometryFileOptions options;

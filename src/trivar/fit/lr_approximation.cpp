@@ -66,14 +66,26 @@ LRSpline<D> initial_space(const Box<D>& box, const ApproximationOptions& o, int 
   double longest = 0.0;
   for (int k = 0; k < D; ++k) longest = std::max(longest, box.hi[k] - box.lo[k]);
   std::array<KnotVector, D> knots;
-  std::size_t count = 1;
+  std::array<std::vector<double>, D> greville;
   for (int k = 0; k < D; ++k) {
     const int n = std::max(1, static_cast<int>(std::lround(o.initial_elements * (box.hi[k] - box.lo[k]) / longest)))
                   << refinements;
     knots[k] = KnotVector::open_uniform(o.degree, n, box.lo[k], box.hi[k]);
-    count *= static_cast<std::size_t>(n + o.degree);
+    greville[k] = knots[k].greville();
   }
-  return LRSpline<D>(TensorSpline<D>(std::move(knots), 1, false, std::vector<double>(count, 0.0)));
+  std::size_t count = 1;
+  for (int k = 0; k < D; ++k) count *= greville[k].size();
+  // Control point i = (greville_0[i_0], ..., greville_{D-1}[i_{D-1}]), first index fastest.
+  std::vector<double> coefs(count * D);
+  for (std::size_t i = 0; i < count; ++i) {
+    std::size_t rest = i;
+    for (int k = 0; k < D; ++k) {
+      const std::size_t n = greville[k].size();
+      coefs[i * D + static_cast<std::size_t>(k)] = greville[k][rest % n];
+      rest /= n;
+    }
+  }
+  return LRSpline<D>(TensorSpline<D>(std::move(knots), D, false, std::move(coefs)));
 }
 
 template <int D>
@@ -151,8 +163,8 @@ Approximation<D> approximate(const ScatteredData<D>& data, const ApproximationOp
   const bool converged = reports.back().outside == 0;
   std::vector<double> errors(data.size());
   for (std::size_t i = 0; i < order.size(); ++i) errors[order[i]] = fit.errors[i];
-  return Approximation<D>{with_coefficients(space, data.dim, fit.coefs), std::move(reports), std::move(errors),
-                          converged, stop};
+  LRSpline<D> fitted = with_coefficients(space, data.dim, fit.coefs);
+  return Approximation<D>{std::move(fitted), std::move(space), std::move(reports), std::move(errors), converged, stop};
 }
 
 template LRSpline<2> initial_space(const Box<2>&, const ApproximationOptions&, int);

@@ -44,6 +44,9 @@ struct IterationReport {
 template <int D>
 struct Approximation {
   LRSpline<D> spline;           // data.dim values per coefficient
+  // The same B-splines with the identity map as coefficients (u, v[, w] exactly): carried through every
+  // refinement from the initial tensor spline, because Greville abscissae reproduce the parameters only there.
+  LRSpline<D> parameters;
   std::vector<IterationReport> iterations;
   std::vector<double> errors;   // per point, the final error
   bool converged = false;       // every point within the tolerance
@@ -55,7 +58,8 @@ template <int D>
 Approximation<D> approximate(const ScatteredData<D>& data, const ApproximationOptions& options,
                              const std::function<void(const IterationReport&)>& progress = {});
 
-// The coarse tensor spline the loop starts from (degree and element counts of `options`), dim 1, zero values.
+// The coarse tensor spline the loop starts from (degree and element counts of `options`): the identity map of
+// the box, D values per B-spline (its Greville abscissae).
 template <int D>
 LRSpline<D> initial_space(const Box<D>& box, const ApproximationOptions& options, int refinements = 0);
 
