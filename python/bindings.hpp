@@ -63,6 +63,21 @@ std::span<T> span_of(py::array_t<T>& a) {
   return {a.mutable_data(), static_cast<std::size_t>(a.size())};
 }
 
+// Values (N, dim) at an (N, D) parameter array, or (dim,) at one (D,) point, written by `batch(params, out)` (a
+// spline's batch evaluation) with the GIL released.
+template <int D, class Batch>
+py::array evaluate_batch(const Array& u, int dim, const Batch& batch) {
+  bool single = false;
+  const auto params = params_of<D>(u, single);
+  auto out = new_array({static_cast<py::ssize_t>(params.size()), dim});
+  {
+    py::gil_scoped_release release;
+    batch(params, span_of(out));
+  }
+  if (single) return out.attr("reshape")(dim);
+  return out;
+}
+
 // The (D, 2) array of a box's bounds.
 template <int D>
 py::array_t<double> box_array(const Box<D>& b) {

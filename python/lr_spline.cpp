@@ -12,15 +12,7 @@ namespace {
 
 template <int D>
 py::array evaluate(const LRSpline<D>& s, const Array& u, int threads) {
-  bool single = false;
-  const auto params = params_of<D>(u, single);
-  auto out = new_array({static_cast<py::ssize_t>(params.size()), s.dim()});
-  {
-    py::gil_scoped_release release;
-    s.eval_many(params, span_of(out), threads);
-  }
-  if (single) return out.attr("reshape")(s.dim());
-  return out;
+  return evaluate_batch<D>(u, s.dim(), [&](auto params, auto out) { s.eval_many(params, out, threads); });
 }
 
 template <int D>

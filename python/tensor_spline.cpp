@@ -99,15 +99,7 @@ TensorSpline<D> make(const std::vector<Array>& knots, const py::object& degrees,
 
 template <int D>
 py::array evaluate(const TensorSpline<D>& s, const Array& u, int threads) {
-  bool single = false;
-  const auto params = params_of<D>(u, single);
-  auto out = new_array({static_cast<py::ssize_t>(params.size()), s.dim()});
-  {
-    py::gil_scoped_release release;
-    s.eval_batch(params, span_of(out), threads);
-  }
-  if (single) return out.attr("reshape")(s.dim());
-  return out;
+  return evaluate_batch<D>(u, s.dim(), [&](auto params, auto out) { s.eval_batch(params, out, threads); });
 }
 
 template <int D>
