@@ -23,6 +23,9 @@ def test_fit_refines_until_the_tolerance(rng):
     f = r.spline(p)[:, 0]
     assert np.max(np.abs(np.abs(f - h) - r.errors)) < 1e-13 and r.errors.max() <= 1e-3
     assert r.spline.num_basis == it.coefficients[-1]
+    # The same fit as a graph (x, y, h): after local refinement x and y are still the parameters themselves.
+    g = trivar.fit(p, h, tolerance=1e-3).spline(p)
+    assert np.max(np.abs(g[:, :2] - p)) < 1e-13 and np.max(np.abs(g[:, 2] - f)) < 1e-13
 
 
 def test_fit_reproduces_a_quadratic_and_makes_a_graph(rng):
