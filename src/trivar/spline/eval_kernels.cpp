@@ -13,13 +13,79 @@ namespace {
 #define TRIVAR_KERNEL_INLINE [[gnu::always_inline]] inline
 
 // Degrees: P in directions 0..D-2 and Q in the last (P == Q for curves), which covers equal degrees and the
-// mixed cells of exact models (sphere and torus shells of degree 4 x 4 x 1). kWidth: the basis arrays' length.
+// mixed cells of exact models (sphere and torus shells of degree 4 x 4 x 1). kWidth: the basis arrays' length,
+// p + 1 rounded up to a vector width (the basis of a direction is computed as one vector).
 template <int P, int Q>
-inline constexpr int kWidth = (P > Q ? P : Q) + 1;
+inline constexpr int kWidth = (P > Q ? P : Q) < 2 ? 2 : (P > Q ? P : Q) < 4 ? 4 : 8;
 
 template <int P, int Q, int D>
 constexpr int degree_of(int k) {
   return D > 1 && k == D - 1 ? Q : P;
+}
+
+// W doubles as one value (GCC vector extension): the row contraction is written in these so it is vector code
+// in every build: W = 2 for generic x86-64 (SSE2), 4 for AVX2 and AVX-512 (see the kernel sets below).
+// (GCC drops vector_size in an alias template with a dependent size, hence one explicit type per width.)
+template <int W>
+struct VecOf;
+template <>
+struct VecOf<1> {
+  typedef double type __attribute__((vector_size(8)));
+};
+template <>
+struct VecOf<2> {
+  typedef double type __attribute__((vector_size(16)));
+};
+template <>
+struct VecOf<4> {
+  typedef double type __attribute__((vector_size(32)));
+};
+template <>
+struct VecOf<8> {
+  typedef double type __attribute__((vector_size(64)));
+};
+template <int W>
+using Vec = typename VecOf<W>::type;
+// Vec never crosses a call boundary (everything is inlined into the entry points), so the ABI note about
+// passing wide vectors without AVX does not apply.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+template <int W>
+TRIVAR_KERNEL_INLINE Vec<W> load(const double* p) {
+  Vec<W> v;
+  __builtin_memcpy(&v, p, sizeof v);
+  return v;
+}
+
+// The span of u (clamped to the domain) and its basis functions of degree PK, with kD1 also their derivatives:
+// Horner's rule on the span's power form (KnotVector::span_power_form), vectors over the p + 1 functions. On
+// uniform knots the span comes from one multiplication, without the search's corrections: a local coordinate a
+// rounding outside [0, 1] evaluates the neighbouring span's polynomial, equal there to rounding.
+template <int PK, int W, bool kD1>
+TRIVAR_KERNEL_INLINE int power_basis(const KnotVector& kv, double u, double* N, double* dN) {
+  constexpr int L = PK + 1, kBlock = KnotVector::power_form_block(PK);
+  const double uk = std::clamp(u, kv.start(), kv.end());
+  const int first = kv.first_span();
+  int s;
+  if (const double inv_h = kv.uniform_inverse_spacing(); inv_h > 0.0)
+    s = first + static_cast<int>(std::clamp((uk - kv[first]) * inv_h, 0.0, static_cast<double>(kv.last_span() - first)));
+  else
+    s = kv.find_span(uk);
+  const double* b = kv.power_forms() + static_cast<std::size_t>(s - first) * kBlock;
+  const double x = (uk - b[0]) * b[1];
+  const double* C = b + 2;
+  Vec<W> n = load<W>(C + PK * L);
+#pragma GCC unroll 4
+  for (int m = PK - 1; m >= 0; --m) n = n * x + load<W>(C + m * L);
+  __builtin_memcpy(N, &n, sizeof n);
+  if constexpr (kD1) {
+    const double* Dm = C + L * L;
+    Vec<W> d = load<W>(Dm + (PK - 1) * L);
+#pragma GCC unroll 4
+    for (int m = PK - 2; m >= 0; --m) d = d * x + load<W>(Dm + m * L);
+    __builtin_memcpy(dN, &d, sizeof d);
+  }
+  return s;
 }
 
 // Span, basis functions (or with kD1 also their derivatives) in every direction and the offset of the active
@@ -31,16 +97,9 @@ TRIVAR_KERNEL_INLINE std::size_t locate(const std::array<KnotVector, D>& knots, 
 #pragma GCC unroll 4
   for (int k = 0; k < D; ++k) {
     const KnotVector& kv = knots[k];
-    const double uk = std::clamp(u[k], kv.start(), kv.end());
-    const int s = kv.find_span(uk);
-    const bool last = degree_of<P, Q, D>(k) != P;
-    if constexpr (kD1) {
-      if (last) basis_values_first_derivatives<Q>(kv, s, uk, N[k], dN[k]);
-      else basis_values_first_derivatives<P>(kv, s, uk, N[k], dN[k]);
-    } else {
-      if (last) basis_values<Q>(kv, s, uk, N[k]);
-      else basis_values<P>(kv, s, uk, N[k]);
-    }
+    constexpr int W = kWidth<P, Q>;
+    const int s = degree_of<P, Q, D>(k) != P ? power_basis<Q, W, kD1>(kv, u[k], N[k], kD1 ? dN[k] : nullptr)
+                                             : power_basis<P, W, kD1>(kv, u[k], N[k], kD1 ? dN[k] : nullptr);
     step[k] = stride_k;
     offset += static_cast<std::size_t>(s - degree_of<P, Q, D>(k)) * stride_k;
     stride_k *= static_cast<std::size_t>(kv.size());
@@ -93,40 +152,6 @@ TRIVAR_KERNEL_INLINE void row_weights(const double (*N)[kWidth<P, Q>], const dou
     }
     n *= pk + 1;
   }
-}
-
-// W doubles as one value (GCC vector extension): the row contraction is written in these so it is vector code
-// in every build: W = 2 for generic x86-64 (SSE2), 4 for AVX2 and AVX-512 (see the kernel sets below).
-// (GCC drops vector_size in an alias template with a dependent size, hence one explicit type per width.)
-template <int W>
-struct VecOf;
-template <>
-struct VecOf<1> {
-  typedef double type __attribute__((vector_size(8)));
-};
-template <>
-struct VecOf<2> {
-  typedef double type __attribute__((vector_size(16)));
-};
-template <>
-struct VecOf<4> {
-  typedef double type __attribute__((vector_size(32)));
-};
-template <>
-struct VecOf<8> {
-  typedef double type __attribute__((vector_size(64)));
-};
-template <int W>
-using Vec = typename VecOf<W>::type;
-// Vec never crosses a call boundary (everything is inlined into the entry points), so the ABI note about
-// passing wide vectors without AVX does not apply.
-#pragma GCC diagnostic ignored "-Wpsabi"
-
-template <int W>
-TRIVAR_KERNEL_INLINE Vec<W> load(const double* p) {
-  Vec<W> v;
-  __builtin_memcpy(&v, p, sizeof v);
-  return v;
 }
 
 // sums[t][X0..L) = sum_r W[t][r] * row_r[X0..L) for T weight sets at once (the value and, for first
@@ -214,8 +239,8 @@ TRIVAR_KERNEL_INLINE void first_body(const std::array<KnotVector, D>& knots, con
 
 // The Bernstein basis of a Bezier element block: steps of a dense (P + 1)^D block, offset 0.
 template <int P, int ST, int D, bool kD1>
-TRIVAR_KERNEL_INLINE std::size_t locate_bezier(const Param<D>& t, const Param<D>& scale, double (*N)[P + 1],
-                                               double (*dN)[P + 1], std::size_t* step) {
+TRIVAR_KERNEL_INLINE std::size_t locate_bezier(const Param<D>& t, const Param<D>& scale, double (*N)[kWidth<P, P>],
+                                               double (*dN)[kWidth<P, P>], std::size_t* step) {
   std::size_t stride_k = ST;
 #pragma GCC unroll 4
   for (int k = 0; k < D; ++k) {
