@@ -57,49 +57,54 @@ TRIVAR_KERNEL_INLINE Vec<W> load(const double* p) {
   return v;
 }
 
+// N[a] = sum_{m <= M} c[m * L + a] x^m for a < L, in pieces no wider than the instruction set's vectors (VW;
+// wider GCC vectors than the target's registers go through memory): L rounded up to 2 or VW values are written.
+template <int M, int L, int VW>
+TRIVAR_KERNEL_INLINE void horner(const double* c, double x, double* N) {
+  constexpr int V = L <= 2 ? 2 : VW;
+#pragma GCC unroll 4
+  for (int j = 0; j < L; j += V) {
+    Vec<V> n = load<V>(c + M * L + j);
+#pragma GCC unroll 4
+    for (int m = M - 1; m >= 0; --m) n = n * x + load<V>(c + m * L + j);
+    __builtin_memcpy(N + j, &n, sizeof n);
+  }
+}
+
 // The span of u (clamped to the domain) and its basis functions of degree PK, with kD1 also their derivatives:
 // Horner's rule on the span's power form (KnotVector::span_power_form), vectors over the p + 1 functions. On
 // uniform knots the span comes from one multiplication, without the search's corrections: a local coordinate a
 // rounding outside [0, 1] evaluates the neighbouring span's polynomial, equal there to rounding.
-template <int PK, int W, bool kD1>
+template <int PK, int VW, bool kD1>
 TRIVAR_KERNEL_INLINE int power_basis(const KnotVector& kv, double u, double* N, double* dN) {
   constexpr int L = PK + 1, kBlock = KnotVector::power_form_block(PK);
   const double uk = std::clamp(u, kv.start(), kv.end());
   const int first = kv.first_span();
   int s;
   if (const double inv_h = kv.uniform_inverse_spacing(); inv_h > 0.0)
-    s = first + static_cast<int>(std::clamp((uk - kv[first]) * inv_h, 0.0, static_cast<double>(kv.last_span() - first)));
+    s = first +
+        static_cast<int>(std::clamp((uk - kv[first]) * inv_h, 0.0, static_cast<double>(kv.last_span() - first)));
   else
     s = kv.find_span(uk);
   const double* b = kv.power_forms() + static_cast<std::size_t>(s - first) * kBlock;
   const double x = (uk - b[0]) * b[1];
   const double* C = b + 2;
-  Vec<W> n = load<W>(C + PK * L);
-#pragma GCC unroll 4
-  for (int m = PK - 1; m >= 0; --m) n = n * x + load<W>(C + m * L);
-  __builtin_memcpy(N, &n, sizeof n);
-  if constexpr (kD1) {
-    const double* Dm = C + L * L;
-    Vec<W> d = load<W>(Dm + (PK - 1) * L);
-#pragma GCC unroll 4
-    for (int m = PK - 2; m >= 0; --m) d = d * x + load<W>(Dm + m * L);
-    __builtin_memcpy(dN, &d, sizeof d);
-  }
+  horner<PK, L, VW>(C, x, N);
+  if constexpr (kD1) horner<PK - 1, L, VW>(C + L * L, x, dN);
   return s;
 }
 
 // Span, basis functions (or with kD1 also their derivatives) in every direction and the offset of the active
 // control block; step[k] is the distance between neighbouring control values in direction k.
-template <int P, int Q, int ST, int D, bool kD1>
+template <int VW, int P, int Q, int ST, int D, bool kD1>
 TRIVAR_KERNEL_INLINE std::size_t locate(const std::array<KnotVector, D>& knots, const Param<D>& u,
                                         double (*N)[kWidth<P, Q>], double (*dN)[kWidth<P, Q>], std::size_t* step) {
   std::size_t offset = 0, stride_k = ST;
 #pragma GCC unroll 4
   for (int k = 0; k < D; ++k) {
     const KnotVector& kv = knots[k];
-    constexpr int W = kWidth<P, Q>;
-    const int s = degree_of<P, Q, D>(k) != P ? power_basis<Q, W, kD1>(kv, u[k], N[k], kD1 ? dN[k] : nullptr)
-                                             : power_basis<P, W, kD1>(kv, u[k], N[k], kD1 ? dN[k] : nullptr);
+    const int s = degree_of<P, Q, D>(k) != P ? power_basis<Q, VW, kD1>(kv, u[k], N[k], kD1 ? dN[k] : nullptr)
+                                             : power_basis<P, VW, kD1>(kv, u[k], N[k], kD1 ? dN[k] : nullptr);
     step[k] = stride_k;
     offset += static_cast<std::size_t>(s - degree_of<P, Q, D>(k)) * stride_k;
     stride_k *= static_cast<std::size_t>(kv.size());
@@ -226,15 +231,16 @@ template <int VW, int P, int Q, int ST, int D>
 TRIVAR_KERNEL_INLINE void value_body(const std::array<KnotVector, D>& knots, const double* coefs, const Param<D>& u,
                                      double* h) {
   value_from<VW, P, Q, ST, D>(
-      coefs, [&](auto N, auto dN, std::size_t* step) { return locate<P, Q, ST, D, false>(knots, u, N, dN, step); },
-      h);
+      coefs,
+      [&](auto N, auto dN, std::size_t* step) { return locate<VW, P, Q, ST, D, false>(knots, u, N, dN, step); }, h);
 }
 
 template <int VW, int P, int Q, int ST, int D>
 TRIVAR_KERNEL_INLINE void first_body(const std::array<KnotVector, D>& knots, const double* coefs, const Param<D>& u,
                                      double* h) {
   first_from<VW, P, Q, ST, D>(
-      coefs, [&](auto N, auto dN, std::size_t* step) { return locate<P, Q, ST, D, true>(knots, u, N, dN, step); }, h);
+      coefs,
+      [&](auto N, auto dN, std::size_t* step) { return locate<VW, P, Q, ST, D, true>(knots, u, N, dN, step); }, h);
 }
 
 // The Bernstein basis of a Bezier element block: steps of a dense (P + 1)^D block, offset 0.
