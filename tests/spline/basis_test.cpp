@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "support/spline_fixtures.hpp"
@@ -93,4 +94,45 @@ TEST(Basis, PrecomputedAndFirstDerivativeVariantsMatchTheTriangularScheme) {
       }
     }
   }
+}
+
+// The power form the evaluation kernels use (KnotVector::span_power_form), evaluated here by plain Horner's
+// rule, against the triangular scheme: on random knots, on knots graded by a factor 10^4 from span to span,
+// with a double interior knot, and on uniform knots; at the ends of every span and inside it.
+TEST(Basis, SpanPowerFormMatchesTheTriangularScheme) {
+  std::mt19937 rng(29);
+  for (int p = 1; p <= KnotVector::kMaxPowerFormDegree; ++p) {
+    std::vector<double> graded(p + 1, 0.0);
+    for (double h = 1e-4; h < 2.0; h *= 10.0) graded.push_back(graded.back() + h);
+    for (double h = 1.0; h > 1e-5; h /= 10.0) graded.push_back(graded.back() + h);
+    graded.insert(graded.end(), p, graded.back());
+    std::vector<double> doubled = test::random_knots(p, 5, rng).knots();
+    if (p >= 2) doubled.insert(doubled.begin() + p + 2, doubled[p + 2]);
+    for (const KnotVector& kv : {test::random_knots(p, 6, rng, -1.0, 2.0), KnotVector(p, graded),
+                                 KnotVector(p, doubled), KnotVector::open_uniform(p, 7, -0.5, 3.0)}) {
+      ASSERT_EQ(kv.span_power_form(kv.first_span()), kv.power_forms());
+      for (int s = kv.first_span(); s <= kv.last_span(); ++s) {
+        if (kv[s] == kv[s + 1]) continue;
+        const double* b = kv.span_power_form(s);
+        ASSERT_EQ(b[0], kv[s]);
+        for (int q = 0; q <= 16; ++q) {
+          const double u = q == 16 ? std::nextafter(kv[s + 1], kv[s]) : kv[s] + (kv[s + 1] - kv[s]) * q / 16.0;
+          const double x = (u - b[0]) * b[1];
+          std::vector<double> ref(p + 1), dref(2 * (p + 1));
+          basis_values(kv.data(), p, s, u, ref.data());
+          basis_derivatives(kv.data(), p, s, u, 1, dref.data());
+          double dmax = 0.0;
+          for (int a = 0; a <= p; ++a) dmax = std::max(dmax, std::abs(dref[p + 1 + a]));
+          for (int a = 0; a <= p; ++a) {
+            double n = 0.0, d = 0.0;
+            for (int m = p; m >= 0; --m) n = n * x + b[2 + m * (p + 1) + a];
+            for (int m = p - 1; m >= 0; --m) d = d * x + b[2 + (p + 1) * (p + 1) + m * (p + 1) + a];
+            EXPECT_NEAR(n, ref[a], 1e-14) << "degree " << p << " span " << s << " u " << u;
+            EXPECT_NEAR(d, dref[p + 1 + a], 1e-13 * dmax) << "degree " << p << " span " << s << " u " << u;
+          }
+        }
+      }
+    }
+  }
+  EXPECT_EQ(KnotVector::open_uniform(5, 3).power_forms(), nullptr);  // no kernel of degree 5
 }

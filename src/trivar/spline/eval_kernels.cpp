@@ -13,34 +13,98 @@ namespace {
 #define TRIVAR_KERNEL_INLINE [[gnu::always_inline]] inline
 
 // Degrees: P in directions 0..D-2 and Q in the last (P == Q for curves), which covers equal degrees and the
-// mixed cells of exact models (sphere and torus shells of degree 4 x 4 x 1). kWidth: the basis arrays' length.
+// mixed cells of exact models (sphere and torus shells of degree 4 x 4 x 1). kWidth: the basis arrays' length,
+// p + 1 rounded up to a vector width (the basis of a direction is computed as one vector).
 template <int P, int Q>
-inline constexpr int kWidth = (P > Q ? P : Q) + 1;
+inline constexpr int kWidth = (P > Q ? P : Q) < 2 ? 2 : (P > Q ? P : Q) < 4 ? 4 : 8;
 
 template <int P, int Q, int D>
 constexpr int degree_of(int k) {
   return D > 1 && k == D - 1 ? Q : P;
 }
 
+// W doubles as one value (GCC vector extension): the row contraction is written in these so it is vector code
+// in every build: W = 2 for generic x86-64 (SSE2), 4 for AVX2 and AVX-512 (see the kernel sets below).
+// (GCC drops vector_size in an alias template with a dependent size, hence one explicit type per width.)
+template <int W>
+struct VecOf;
+template <>
+struct VecOf<1> {
+  typedef double type __attribute__((vector_size(8)));
+};
+template <>
+struct VecOf<2> {
+  typedef double type __attribute__((vector_size(16)));
+};
+template <>
+struct VecOf<4> {
+  typedef double type __attribute__((vector_size(32)));
+};
+template <>
+struct VecOf<8> {
+  typedef double type __attribute__((vector_size(64)));
+};
+template <int W>
+using Vec = typename VecOf<W>::type;
+// Vec never crosses a call boundary (everything is inlined into the entry points), so the ABI note about
+// passing wide vectors without AVX does not apply.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+template <int W>
+TRIVAR_KERNEL_INLINE Vec<W> load(const double* p) {
+  Vec<W> v;
+  __builtin_memcpy(&v, p, sizeof v);
+  return v;
+}
+
+// N[a] = sum_{m <= M} c[m * L + a] x^m for a < L, in pieces no wider than the instruction set's vectors (VW;
+// wider GCC vectors than the target's registers go through memory): L rounded up to 2 or VW values are written.
+template <int M, int L, int VW>
+TRIVAR_KERNEL_INLINE void horner(const double* c, double x, double* N) {
+  constexpr int V = L <= 2 ? 2 : VW;
+#pragma GCC unroll 4
+  for (int j = 0; j < L; j += V) {
+    Vec<V> n = load<V>(c + M * L + j);
+#pragma GCC unroll 4
+    for (int m = M - 1; m >= 0; --m) n = n * x + load<V>(c + m * L + j);
+    __builtin_memcpy(N + j, &n, sizeof n);
+  }
+}
+
+// The span of u (clamped to the domain) and its basis functions of degree PK, with kD1 also their derivatives:
+// Horner's rule on the span's power form (KnotVector::span_power_form), vectors over the p + 1 functions. On
+// uniform knots the span comes from one multiplication, without the search's corrections: a local coordinate a
+// rounding outside [0, 1] evaluates the neighbouring span's polynomial, equal there to rounding.
+template <int PK, int VW, bool kD1>
+TRIVAR_KERNEL_INLINE int power_basis(const KnotVector& kv, double u, double* N, double* dN) {
+  constexpr int L = PK + 1, kBlock = KnotVector::power_form_block(PK);
+  const double uk = std::clamp(u, kv.start(), kv.end());
+  const int first = kv.first_span();
+  int s;
+  if (const double inv_h = kv.uniform_inverse_spacing(); inv_h > 0.0)
+    s = first +
+        static_cast<int>(std::clamp((uk - kv[first]) * inv_h, 0.0, static_cast<double>(kv.last_span() - first)));
+  else
+    s = kv.find_span(uk);
+  const double* b = kv.power_forms() + static_cast<std::size_t>(s - first) * kBlock;
+  const double x = (uk - b[0]) * b[1];
+  const double* C = b + 2;
+  horner<PK, L, VW>(C, x, N);
+  if constexpr (kD1) horner<PK - 1, L, VW>(C + L * L, x, dN);
+  return s;
+}
+
 // Span, basis functions (or with kD1 also their derivatives) in every direction and the offset of the active
 // control block; step[k] is the distance between neighbouring control values in direction k.
-template <int P, int Q, int ST, int D, bool kD1>
+template <int VW, int P, int Q, int ST, int D, bool kD1>
 TRIVAR_KERNEL_INLINE std::size_t locate(const std::array<KnotVector, D>& knots, const Param<D>& u,
                                         double (*N)[kWidth<P, Q>], double (*dN)[kWidth<P, Q>], std::size_t* step) {
   std::size_t offset = 0, stride_k = ST;
 #pragma GCC unroll 4
   for (int k = 0; k < D; ++k) {
     const KnotVector& kv = knots[k];
-    const double uk = std::clamp(u[k], kv.start(), kv.end());
-    const int s = kv.find_span(uk);
-    const bool last = degree_of<P, Q, D>(k) != P;
-    if constexpr (kD1) {
-      if (last) basis_values_first_derivatives<Q>(kv, s, uk, N[k], dN[k]);
-      else basis_values_first_derivatives<P>(kv, s, uk, N[k], dN[k]);
-    } else {
-      if (last) basis_values<Q>(kv, s, uk, N[k]);
-      else basis_values<P>(kv, s, uk, N[k]);
-    }
+    const int s = degree_of<P, Q, D>(k) != P ? power_basis<Q, VW, kD1>(kv, u[k], N[k], kD1 ? dN[k] : nullptr)
+                                             : power_basis<P, VW, kD1>(kv, u[k], N[k], kD1 ? dN[k] : nullptr);
     step[k] = stride_k;
     offset += static_cast<std::size_t>(s - degree_of<P, Q, D>(k)) * stride_k;
     stride_k *= static_cast<std::size_t>(kv.size());
@@ -93,40 +157,6 @@ TRIVAR_KERNEL_INLINE void row_weights(const double (*N)[kWidth<P, Q>], const dou
     }
     n *= pk + 1;
   }
-}
-
-// W doubles as one value (GCC vector extension): the row contraction is written in these so it is vector code
-// in every build: W = 2 for generic x86-64 (SSE2), 4 for AVX2 and AVX-512 (see the kernel sets below).
-// (GCC drops vector_size in an alias template with a dependent size, hence one explicit type per width.)
-template <int W>
-struct VecOf;
-template <>
-struct VecOf<1> {
-  typedef double type __attribute__((vector_size(8)));
-};
-template <>
-struct VecOf<2> {
-  typedef double type __attribute__((vector_size(16)));
-};
-template <>
-struct VecOf<4> {
-  typedef double type __attribute__((vector_size(32)));
-};
-template <>
-struct VecOf<8> {
-  typedef double type __attribute__((vector_size(64)));
-};
-template <int W>
-using Vec = typename VecOf<W>::type;
-// Vec never crosses a call boundary (everything is inlined into the entry points), so the ABI note about
-// passing wide vectors without AVX does not apply.
-#pragma GCC diagnostic ignored "-Wpsabi"
-
-template <int W>
-TRIVAR_KERNEL_INLINE Vec<W> load(const double* p) {
-  Vec<W> v;
-  __builtin_memcpy(&v, p, sizeof v);
-  return v;
 }
 
 // sums[t][X0..L) = sum_r W[t][r] * row_r[X0..L) for T weight sets at once (the value and, for first
@@ -201,21 +231,22 @@ template <int VW, int P, int Q, int ST, int D>
 TRIVAR_KERNEL_INLINE void value_body(const std::array<KnotVector, D>& knots, const double* coefs, const Param<D>& u,
                                      double* h) {
   value_from<VW, P, Q, ST, D>(
-      coefs, [&](auto N, auto dN, std::size_t* step) { return locate<P, Q, ST, D, false>(knots, u, N, dN, step); },
-      h);
+      coefs,
+      [&](auto N, auto dN, std::size_t* step) { return locate<VW, P, Q, ST, D, false>(knots, u, N, dN, step); }, h);
 }
 
 template <int VW, int P, int Q, int ST, int D>
 TRIVAR_KERNEL_INLINE void first_body(const std::array<KnotVector, D>& knots, const double* coefs, const Param<D>& u,
                                      double* h) {
   first_from<VW, P, Q, ST, D>(
-      coefs, [&](auto N, auto dN, std::size_t* step) { return locate<P, Q, ST, D, true>(knots, u, N, dN, step); }, h);
+      coefs,
+      [&](auto N, auto dN, std::size_t* step) { return locate<VW, P, Q, ST, D, true>(knots, u, N, dN, step); }, h);
 }
 
 // The Bernstein basis of a Bezier element block: steps of a dense (P + 1)^D block, offset 0.
 template <int P, int ST, int D, bool kD1>
-TRIVAR_KERNEL_INLINE std::size_t locate_bezier(const Param<D>& t, const Param<D>& scale, double (*N)[P + 1],
-                                               double (*dN)[P + 1], std::size_t* step) {
+TRIVAR_KERNEL_INLINE std::size_t locate_bezier(const Param<D>& t, const Param<D>& scale, double (*N)[kWidth<P, P>],
+                                               double (*dN)[kWidth<P, P>], std::size_t* step) {
   std::size_t stride_k = ST;
 #pragma GCC unroll 4
   for (int k = 0; k < D; ++k) {

@@ -11,6 +11,46 @@
 
 namespace trivar {
 
+namespace {
+
+// The power-form block of span s (layout in knot_vector.hpp): the triangular scheme of basis.hpp run on
+// polynomials of x, with u - t_k = (t_s - t_k) + h x and t_k - u = (t_k - t_s) - h x, so the coefficients come
+// from the knots without sampling or solving.
+void append_power_form(const std::vector<double>& t, int p, int s, std::vector<double>& out) {
+  constexpr int kW = KnotVector::kMaxPowerFormDegree + 1;
+  const double h = t[s + 1] - t[s];
+  double N[kW][kW] = {};  // N[r][m]: coefficient of x^m
+  N[0][0] = 1.0;
+  for (int j = 1; j <= p; ++j) {
+    double saved[kW] = {};
+    for (int r = 0; r < j; ++r) {
+      const double inv = 1.0 / (t[s + 1 + r] - t[s + 1 - j + r]);
+      const double right0 = t[s + 1 + r] - t[s], left0 = t[s] - t[s + 1 - j + r];
+      double next[kW] = {}, left[kW] = {};
+      for (int m = 0; m < j; ++m) {
+        const double tmp = N[r][m] * inv;
+        next[m] += right0 * tmp;
+        next[m + 1] -= h * tmp;
+        left[m] += left0 * tmp;
+        left[m + 1] += h * tmp;
+      }
+      for (int m = 0; m <= j; ++m) {
+        N[r][m] = saved[m] + next[m];
+        saved[m] = left[m];
+      }
+    }
+    for (int m = 0; m <= j; ++m) N[j][m] = saved[m];
+  }
+  out.push_back(t[s]);
+  out.push_back(1.0 / h);
+  for (int m = 0; m <= p; ++m)
+    for (int a = 0; a <= p; ++a) out.push_back(N[a][m]);
+  for (int m = 0; m < p; ++m)
+    for (int a = 0; a <= p; ++a) out.push_back((m + 1) * N[a][m + 1] / h);
+}
+
+}  // namespace
+
 KnotVector::KnotVector(int degree, std::vector<double> knots) : p_(degree), t_(std::move(knots)) {
   require(p_ >= 0 && p_ <= kMaxDegree, "knot vector: degree " + std::to_string(p_) + " is outside [0, " +
                                            std::to_string(kMaxDegree) + "]");
@@ -65,6 +105,14 @@ KnotVector::KnotVector(int degree, std::vector<double> knots) : p_(degree), t_(s
     for (int j = 1; j <= p_; ++j)
       for (int r = 0; r < j; ++r)
         inv_diff_.push_back(t_[sp] < t_[sp + 1] ? 1.0 / (t_[sp + 1 + r] - t_[sp + 1 - j + r]) : 0.0);
+  if (p_ >= 1 && p_ <= kMaxPowerFormDegree) {
+    power_form_.reserve(static_cast<std::size_t>(last_span_ - first_span_ + 1) * power_form_block(p_) + 8);
+    for (int sp = first_span_; sp <= last_span_; ++sp) {
+      if (t_[sp] < t_[sp + 1]) append_power_form(t_, p_, sp, power_form_);
+      else power_form_.resize(power_form_.size() + power_form_block(p_), 0.0);
+    }
+    power_form_.resize(power_form_.size() + 8, 0.0);  // the kernels' vector loads past the last row
+  }
 }
 
 KnotVector KnotVector::open_uniform(int degree, int elements, double a, double b) {

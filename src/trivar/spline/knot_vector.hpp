@@ -52,6 +52,27 @@ public:
     return inv_diff_.data() + static_cast<std::size_t>(span - first_span_) * (p_ * (p_ + 1) / 2);
   }
 
+  // The B-splines of span s as polynomials of the local coordinate x = (u - t_s) / (t_{s+1} - t_s) in [0, 1]
+  // (degrees 1 to kMaxPowerFormDegree, the degrees of the evaluation kernels; null otherwise): the block holds
+  // t_s, 1 / (t_{s+1} - t_s), then the power coefficients C[m][a] of x^m in B_{s-p+a} (m, a = 0..p, a fastest),
+  // then D[m][a] = (m + 1) C[m + 1][a] / (t_{s+1} - t_s) (m = 0..p-1), the coefficients of the derivatives with
+  // respect to u. The kernels evaluate the basis of a direction by Horner's rule, p fused multiply-adds of
+  // vectors over a, instead of the triangular scheme; loads of up to 8 values past any row stay inside the
+  // table. On a local coordinate the coefficients stay bounded for any knot spacing (the polynomials are
+  // bounded by 1 on [0, 1]), so the values agree with the triangular scheme to a few units in the last place.
+  static constexpr int kMaxPowerFormDegree = 4;
+  static constexpr int power_form_block(int p) { return 2 + (2 * p + 1) * (p + 1); }
+  // The blocks of spans first_span() .. last_span() in order (empty spans have zero blocks).
+  const double* power_forms() const { return power_form_.empty() ? nullptr : power_form_.data(); }
+  const double* span_power_form(int span) const {
+    return power_forms() + static_cast<std::size_t>(span - first_span_) * power_form_block(p_);
+  }
+  // The first and last non-empty spans, and 1 / (span length) when the spans between them are equal (0
+  // otherwise), which lets the kernels find the span of u by one multiplication.
+  int first_span() const { return first_span_; }
+  int last_span() const { return last_span_; }
+  double uniform_inverse_spacing() const { return uniform_inv_h_; }
+
   bool operator==(const KnotVector& o) const { return p_ == o.p_ && t_ == o.t_; }
 
 private:
@@ -62,6 +83,7 @@ private:
   // Set when the interior knots are simple and equally spaced: find_span is then O(1).
   double uniform_inv_h_ = 0.0;
   std::vector<double> inv_diff_;
+  std::vector<double> power_form_;
 };
 
 inline int KnotVector::find_span(double u) const {
