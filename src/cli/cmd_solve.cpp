@@ -244,10 +244,11 @@ void write_parallel(const SolveArgs& a, const std::string& stem, const Multipatc
   std::unique_ptr<OutputFolder> out;
   std::string staging;
   const std::vector<std::string> names = parallel_vtu_files(stem, rank_partition().parts);
-  if (rank_partition().part == 0) {
+  on_every_rank([&] {
+    if (rank_partition().part != 0) return;
     out = prepare_out(a);
     for (const std::string& n : names) staging = out->path(n).parent_path().string();
-  }
+  });
   write_parallel_vtu<D>(broadcast_from_rank0(staging), stem, space, fields);
   if (out) out->commit();
 }
@@ -403,6 +404,12 @@ void run_adaptive(const SolveArgs& a, const PoissonBenchmark<D>& b) {
   require(a.admissible == 0 || (a.admissible >= 2 && a.space != "lr"),
           "solve: --admissible takes a class m >= 2 and applies to --space hb or thb");
   o.solver = a.solver;
+  RefinedPoissonSolve<D> solve;
+  if (distributed(a))
+    solve = [&a](const RefinedSpace<D>& s, const PoissonProblem<D>& p) { return petsc_solve_poisson(s, p, petsc_options(a)); };
+  // With the PETSc back end every rank runs the loop; rank 0 alone writes the (serial) outputs, after the last
+  // collective call.
+  const bool writes = !a.out.empty() && (!distributed(a) || rank_partition().part == 0);
   Eigen::VectorXd coefs;
   const auto print = [](const ConvergenceRow& r) {
     std::printf("step %d: dofs %d, elements %d, L2 error %s, H1 error %s, estimate %s, assembly %s s, solve %s s\n",
@@ -411,8 +418,9 @@ void run_adaptive(const SolveArgs& a, const PoissonBenchmark<D>& b) {
   };
   if (a.space != "lr") {
     HierarchicalSpline<D> h(b.space.geometry, a.space == "hb" ? HierarchicalBasis::hb : HierarchicalBasis::thb);
-    const auto rows = adaptive_poisson<D>(h, b.problem, b.exact, o, print, &coefs, a.threads);
-    if (!a.out.empty()) {
+    const auto rows = adaptive_poisson<D>(h, b.problem, b.exact, o, print, &coefs, a.threads, solve);
+    if (distributed(a)) print_ranks();
+    if (writes) {
       const auto out = prepare_out(a);
       write_convergence_csv(out->path("convergence.csv").string(), rows, D);
       write_convergence_svg(out->path("convergence.svg").string(), rows);
@@ -423,8 +431,9 @@ void run_adaptive(const SolveArgs& a, const PoissonBenchmark<D>& b) {
     return;
   }
   LRSpline<D> lr(b.space.geometry);
-  const auto rows = adaptive_poisson<D>(lr, b.problem, b.exact, o, print, &coefs, a.threads);
-  if (!a.out.empty()) {
+  const auto rows = adaptive_poisson<D>(lr, b.problem, b.exact, o, print, &coefs, a.threads, solve);
+  if (distributed(a)) print_ranks();
+  if (writes) {
     const auto out = prepare_out(a);
     write_convergence_csv(out->path("convergence.csv").string(), rows, D);
     write_convergence_svg(out->path("convergence.svg").string(), rows);
@@ -616,8 +625,8 @@ void run(const SolveArgs& a) {
   require(a.problem.empty() != a.file.empty(), "solve: give either a model/spline file or --problem NAME");
   require(a.modes >= 1, "solve: --modes must be at least 1, got " + std::to_string(a.modes));
   if (!a.out.empty()) check_output_folder(a.out, out_options(a));
-  require(!distributed(a) || (!a.adaptive && !is_t_spline_file(a.file)),
-          "solve: --backend petsc solves tensor and multipatch spaces (not --adaptive, not T-splines)");
+  require(!distributed(a) || !is_t_spline_file(a.file),
+          "solve: --backend petsc solves tensor, multipatch and --adaptive (LR, HB, THB) spaces, not T-splines");
   require(!distributed(a) || !a.study || a.out.empty(),
           "solve: --study writes its convergence table with the serial back end only");
   if (a.problem.empty()) {
@@ -737,13 +746,17 @@ void add_solve_command(CLI::App& app, Context& ctx) {
   cmd->add_flag("--force", a->force, "Write into a non-empty folder trivar did not write (only trivar's file names are replaced)");
   cmd->callback([a, &ctx] {
     a->threads = ctx.threads;
-    std::optional<PetscSession> mpi;
-    if (distributed(*a)) {
-      mpi.emplace();
-      // Rank 0 speaks for all: every rank computes the same summary lines.
-      if (mpi->rank() > 0) require(std::freopen("/dev/null", "w", stdout) != nullptr, "solve: cannot silence rank output");
+    if (!distributed(*a)) return run(*a);
+    PetscSession mpi;
+    // Rank 0 speaks for all: every rank computes the same summary lines, and every rank agrees on a failure
+    // (the phases one rank can fail alone agree inside), which rank 0 reports as the one error line.
+    if (mpi.rank() > 0) require(std::freopen("/dev/null", "w", stdout) != nullptr, "solve: cannot silence rank output");
+    try {
+      on_every_rank([&] { run(*a); });
+    } catch (...) {
+      if (mpi.rank() > 0) static_cast<void>(std::freopen("/dev/null", "w", stderr));
+      throw;
     }
-    run(*a);
   });
 }
 

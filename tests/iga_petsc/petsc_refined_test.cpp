@@ -3,10 +3,12 @@
 #include <cmath>
 
 #include "iga/iga_test_support.hpp"
+#include "trivar/iga/adaptive_loop.hpp"
 #include "trivar/iga/benchmark_problems.hpp"
 #include "trivar/iga/refined_elasticity.hpp"
 #include "trivar/iga/refined_poisson.hpp"
 #include "trivar/iga_petsc/petsc_problems.hpp"
+#include "trivar/hier/hierarchical_spline.hpp"
 #include "trivar/lr/lr_spline.hpp"
 
 // Locally refined (LR) spaces on the ranks against the serial solve (CHOLMOD): the same errors to 1e-10.
@@ -62,4 +64,34 @@ TEST(PetscRefined, ElasticityOnALocallyRefinedBeamMatchesTheSerialSolve) {
   const SolveResult d = petsc_solve_elasticity(space, pb, tight("gamg"));
   EXPECT_EQ(d.dofs, s.dofs);
   EXPECT_LE((d.coefs - s.coefs).norm(), 1e-10 * s.coefs.norm());
+}
+
+// The adaptive loop with the distributed solve in each step: the same meshes (dofs, elements) and errors as the
+// serial loop on every step, on LR and THB spaces (every rank runs the estimate and the refinement).
+template <class Geometry>
+void expect_same_adaptive_loop(const PoissonBenchmark<2>& b, Geometry serial_geometry) {
+  Geometry distributed_geometry = serial_geometry;
+  AdaptiveOptions o;
+  o.steps = 3;
+  o.beta = 0.3;
+  const auto serial = adaptive_poisson<2>(serial_geometry, b.problem, b.exact, o);
+  const auto distributed = adaptive_poisson<2>(
+      distributed_geometry, b.problem, b.exact, o, {}, nullptr, 1,
+      [](const RefinedSpace<2>& s, const PoissonProblem<2>& p) { return petsc_solve_poisson(s, p, tight("mumps")); });
+  ASSERT_EQ(distributed.size(), serial.size());
+  for (std::size_t i = 0; i < serial.size(); ++i) {
+    SCOPED_TRACE(i);
+    EXPECT_EQ(distributed[i].dofs, serial[i].dofs);
+    EXPECT_EQ(distributed[i].elements, serial[i].elements);
+    EXPECT_LE(std::abs(distributed[i].l2 - serial[i].l2), 1e-10 * serial[i].l2);
+    EXPECT_LE(std::abs(distributed[i].h1 - serial[i].h1), 1e-10 * serial[i].h1);
+    EXPECT_LE(std::abs(distributed[i].estimate - serial[i].estimate), 1e-10 * serial[i].estimate);
+  }
+  EXPECT_GT(serial.back().elements, serial.front().elements);
+}
+
+TEST(PetscRefined, AdaptiveLoopOnTheLShapeMatchesTheSerialLoop) {
+  const PoissonBenchmark<2> b = l_shape(2, 4);
+  expect_same_adaptive_loop(b, LRSpline<2>(b.space.geometry));
+  expect_same_adaptive_loop(b, HierarchicalSpline<2>(b.space.geometry, HierarchicalBasis::thb));
 }

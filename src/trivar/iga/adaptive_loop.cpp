@@ -28,14 +28,14 @@ template <class Geometry, int D>
 std::vector<ConvergenceRow> adaptive(Geometry& g, const PoissonProblem<D>& problem,
                                              const ExactSolution<D>& exact, const AdaptiveOptions& o,
                                              const std::function<void(const ConvergenceRow&)>& report,
-                                             Eigen::VectorXd* coefs, int threads) {
+                                             Eigen::VectorXd* coefs, int threads,
+                                             const RefinedPoissonSolve<D>& solve) {
   require(o.steps >= 1, "adaptive: --steps must be at least 1, got " + std::to_string(o.steps));
   require(o.beta > 0 && o.beta <= 1, "adaptive: --beta must lie in (0, 1], got " + std::to_string(o.beta));
   std::vector<ConvergenceRow> rows;
   for (int step = 0; step < o.steps; ++step) {
     const RefinedSpace<D> space = refined_space(g, threads);
-    auto solver = make_solver(o.solver);
-    const SolveResult r = solve_poisson(space, problem, *solver, threads);
+    const SolveResult r = solve ? solve(space, problem) : solve_poisson(space, problem, *make_solver(o.solver), threads);
     ConvergenceRow row;
     row.step = step;
     row.elements = space.num_elements();
@@ -76,23 +76,25 @@ template <int D>
 std::vector<ConvergenceRow> adaptive_poisson(LRSpline<D>& g, const PoissonProblem<D>& problem, const ExactSolution<D>& exact,
                                              const AdaptiveOptions& o,
                                              const std::function<void(const ConvergenceRow&)>& report,
-                                             Eigen::VectorXd* coefs, int threads) {
-  return adaptive<LRSpline<D>, D>(g, problem, exact, o, report, coefs, threads);
+                                             Eigen::VectorXd* coefs, int threads,
+                                             const RefinedPoissonSolve<D>& solve) {
+  return adaptive<LRSpline<D>, D>(g, problem, exact, o, report, coefs, threads, solve);
 }
 
 template <int D>
 std::vector<ConvergenceRow> adaptive_poisson(HierarchicalSpline<D>& g, const PoissonProblem<D>& problem,
                                              const ExactSolution<D>& exact, const AdaptiveOptions& o,
                                              const std::function<void(const ConvergenceRow&)>& report,
-                                             Eigen::VectorXd* coefs, int threads) {
-  return adaptive<HierarchicalSpline<D>, D>(g, problem, exact, o, report, coefs, threads);
+                                             Eigen::VectorXd* coefs, int threads,
+                                             const RefinedPoissonSolve<D>& solve) {
+  return adaptive<HierarchicalSpline<D>, D>(g, problem, exact, o, report, coefs, threads, solve);
 }
 
 #define TRIVAR_INSTANTIATE(G, D)                                                                                  \
   template std::vector<ConvergenceRow> adaptive_poisson(G<D>&, const PoissonProblem<D>&, const ExactSolution<D>&, \
                                                         const AdaptiveOptions&,                                   \
                                                         const std::function<void(const ConvergenceRow&)>&,        \
-                                                        Eigen::VectorXd*, int);
+                                                        Eigen::VectorXd*, int, const RefinedPoissonSolve<D>&);
 TRIVAR_INSTANTIATE(LRSpline, 2)
 TRIVAR_INSTANTIATE(LRSpline, 3)
 TRIVAR_INSTANTIATE(HierarchicalSpline, 2)

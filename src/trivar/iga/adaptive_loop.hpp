@@ -25,6 +25,15 @@ struct AdaptiveOptions {
   int admissible = 0;
 };
 
+template <int D>
+struct RefinedSpace;
+
+// The linear solve of each step. Null: solve_poisson with options.solver on this process. The distributed back
+// end passes petsc_solve_poisson (iga_petsc/): every rank then runs the whole loop with the gathered solution,
+// so their estimates, markings and refinements are the same.
+template <int D>
+using RefinedPoissonSolve = std::function<SolveResult(const RefinedSpace<D>&, const PoissonProblem<D>&)>;
+
 // geometry: the initial space (refined in place: on return it is the space of the last solve, whose
 // coefficients go to *coefs when given). exact may be null (errors then reported as -1). Calls report(row)
 // after each solve when given. Throws trivar::Error for steps < 1 or beta outside (0, 1].
@@ -32,11 +41,13 @@ template <int D>
 std::vector<ConvergenceRow> adaptive_poisson(LRSpline<D>& geometry, const PoissonProblem<D>& problem,
                                              const ExactSolution<D>& exact, const AdaptiveOptions& options,
                                              const std::function<void(const ConvergenceRow&)>& report = {},
-                                             Eigen::VectorXd* coefs = nullptr, int threads = 0);
+                                             Eigen::VectorXd* coefs = nullptr, int threads = 0,
+                                             const RefinedPoissonSolve<D>& solve = {});
 template <int D>
 std::vector<ConvergenceRow> adaptive_poisson(HierarchicalSpline<D>& geometry, const PoissonProblem<D>& problem,
                                              const ExactSolution<D>& exact, const AdaptiveOptions& options,
                                              const std::function<void(const ConvergenceRow&)>& report = {},
-                                             Eigen::VectorXd* coefs = nullptr, int threads = 0);
+                                             Eigen::VectorXd* coefs = nullptr, int threads = 0,
+                                             const RefinedPoissonSolve<D>& solve = {});
 
 }  // namespace trivar

@@ -11,6 +11,7 @@
 #include "trivar/core/error.hpp"
 #include "trivar/iga/solution_field.hpp"
 #include "trivar/iga_petsc/petsc_problems.hpp"
+#include "trivar/iga_petsc/petsc_session.hpp"
 #include "trivar/io/vtk_writer.hpp"
 #include "trivar/spline/split.hpp"
 
@@ -93,18 +94,21 @@ void write_parallel_vtu(const std::filesystem::path& folder, const std::string& 
   }
   const std::vector<std::string> names = parallel_vtu_files(stem, part.parts);
   int wrote = pieces.empty() ? 0 : 1;
-  if (wrote) io::write_vtu((folder / names[static_cast<std::size_t>(part.part) + 1]).string(), pieces, {}, vtk);
+  // A piece or the index that cannot be written (disk full, permissions) fails every rank, not just its writer.
+  on_every_rank([&] {
+    if (wrote) io::write_vtu((folder / names[static_cast<std::size_t>(part.part) + 1]).string(), pieces, {}, vtk);
+  });
   std::vector<int> all(static_cast<std::size_t>(part.parts));
   MPI_Gather(&wrote, 1, MPI_INT, all.data(), 1, MPI_INT, 0, PETSC_COMM_WORLD);
-  if (part.part == 0) {
+  on_every_rank([&] {
+    if (part.part != 0) return;
     std::vector<std::string> written;
     for (int r = 0; r < part.parts; ++r)
       if (all[static_cast<std::size_t>(r)]) written.push_back(names[static_cast<std::size_t>(r) + 1]);
     require(!written.empty(), "vtk: no rank has elements to write");
     const std::string index = pvtu_index(folder / written.front(), written);
     write_file_atomically((folder / names[0]).string(), [&](std::ostream& os) { os << index; });
-  }
-  MPI_Barrier(PETSC_COMM_WORLD);
+  });
 }
 
 template void write_parallel_vtu(const std::filesystem::path&, const std::string&, const MultipatchSpace<2>&,

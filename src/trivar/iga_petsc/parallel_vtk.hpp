@@ -2,7 +2,8 @@
 // Parallel VTK output of a distributed solution: every rank writes the elements it assembled (its slab of each
 // patch, ElementPartition) as `<stem>_<rank>.vtu` (io/vtk_writer.hpp, Bezier cells, one piece per patch
 // slab), and rank 0 writes `<stem>.pvtu`, the index ParaView opens to load all pieces. The folder must be the
-// same on every rank (a shared file system, as MPI-IO output assumes). Collective.
+// same on every rank (a shared file system, as MPI-IO output assumes). Collective: a file one rank cannot write
+// makes every rank throw (petsc_session.hpp, agree_on_failure).
 #include <filesystem>
 #include <string>
 #include <vector>

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <ctime>
+#include <tuple>
 
 #include <petscksp.h>
 #include <slepceps.h>
@@ -180,10 +181,13 @@ SolveResult solve_distributed(const MultipatchSpace<D>& space, SparseMatrix& loc
                               const std::vector<DirichletCondition<D>>& conditions, const PetscSolverOptions& o,
                               Clock::time_point t0) {
   const ElementPartition part = rank_partition();
-  Eigen::VectorXd b_local = f ? assemble_load<D>(space, m, f, o.threads, part)
-                              : Eigen::VectorXd::Zero(static_cast<Eigen::Index>(space.num_basis) * m);
-  if (part.part == 0 && g && !faces.empty()) add_face_load<D>(space, faces, m, g, b_local);
-  const FixedDofs fixed = project_dirichlet(space, m, conditions);
+  Eigen::VectorXd b_local = on_every_rank([&] {
+    Eigen::VectorXd b = f ? assemble_load<D>(space, m, f, o.threads, part)
+                          : Eigen::VectorXd::Zero(static_cast<Eigen::Index>(space.num_basis) * m);
+    if (part.part == 0 && g && !faces.empty()) add_face_load<D>(space, faces, m, g, b);
+    return b;
+  });
+  const FixedDofs fixed = on_every_rank([&] { return project_dirichlet(space, m, conditions); });
   std::function<void(Mat, const DofLayout&)> near_null;
   if (m == D && m > 1) near_null = [&](Mat A, const DofLayout& L) { set_rigid_body_modes<D>(A, space, L); };
   return solve_assembled(local, b_local, fixed, space.num_basis, m, space.num_patches() == 1, near_null, o, t0);
@@ -323,7 +327,8 @@ SolveResult petsc_solve_poisson(const MultipatchSpace<D>& space, const PoissonPr
   check_preconditioner(o);
   const auto t0 = Clock::now();
   const BilinearForm<D> form = poisson_form(problem);
-  SparseMatrix local = assemble_matrix<D>(space, [&](int) { return form; }, o.threads, rank_partition());
+  SparseMatrix local =
+      on_every_rank([&] { return assemble_matrix<D>(space, [&](int) { return form; }, o.threads, rank_partition()); });
   std::function<void(const double*, double*)> f;
   if (problem.source) f = [&](const double* x, double* out) { out[0] = problem.source(x); };
   std::function<void(const double*, const double*, double*)> g;
@@ -336,7 +341,7 @@ SolveResult petsc_solve_elasticity(const MultipatchSpace<D>& space, const Elasti
                                    const PetscSolverOptions& o) {
   check_preconditioner(o);
   const auto t0 = Clock::now();
-  SparseMatrix local = elastic_stiffness(space, problem, o.threads, rank_partition());
+  SparseMatrix local = on_every_rank([&] { return elastic_stiffness(space, problem, o.threads, rank_partition()); });
   return solve_distributed<D>(space, local, D, problem.body_force, problem.traction_faces, problem.traction,
                               problem.displacement, o, t0);
 }
@@ -347,9 +352,11 @@ ModesResult petsc_laplace_modes(const MultipatchSpace<D>& space, const std::vect
   check_preconditioner(o);
   const auto t0 = Clock::now();
   const BilinearForm<D> stiffness = poisson_form(PoissonProblem<D>{}), mass = scalar_mass_form<D>();
-  SparseMatrix K = assemble_matrix<D>(space, [&](int) { return stiffness; }, o.threads, rank_partition());
-  SparseMatrix M = assemble_matrix<D>(space, [&](int) { return mass; }, o.threads, rank_partition());
-  const FixedDofs fixed = project_dirichlet<D>(space, 1, {{dirichlet, {}, nullptr}});
+  auto [K, M, fixed] = on_every_rank([&] {
+    return std::tuple{assemble_matrix<D>(space, [&](int) { return stiffness; }, o.threads, rank_partition()),
+                      assemble_matrix<D>(space, [&](int) { return mass; }, o.threads, rank_partition()),
+                      project_dirichlet<D>(space, 1, {{dirichlet, {}, nullptr}})};
+  });
   return modes_distributed(K, M, space.num_basis, space.num_patches() == 1, 1, fixed, count, false, o, t0);
 }
 
@@ -358,16 +365,19 @@ ModesResult petsc_elastic_modes(const MultipatchSpace<D>& space, const Elasticit
                                 const PetscSolverOptions& o) {
   check_preconditioner(o);
   const auto t0 = Clock::now();
-  SparseMatrix K = elastic_stiffness(space, problem, o.threads, rank_partition());
-  SparseMatrix M = elastic_mass(space, problem, o.threads, rank_partition());
-  const FixedDofs fixed = project_dirichlet(space, D, problem.displacement);
+  auto [K, M, fixed] = on_every_rank([&] {
+    return std::tuple{elastic_stiffness(space, problem, o.threads, rank_partition()),
+                      elastic_mass(space, problem, o.threads, rank_partition()),
+                      project_dirichlet(space, D, problem.displacement)};
+  });
   return modes_distributed(K, M, space.num_basis, space.num_patches() == 1, D, fixed, count, true, o, t0);
 }
 
 template <int D>
 ErrorNorms petsc_error_norms(const MultipatchSpace<D>& space, const Eigen::VectorXd& coefs, int components,
                              const ExactSolution<D>& exact, int threads) {
-  return sum_over_ranks(error_norms(space, coefs, components, exact, threads, rank_partition()));
+  return sum_over_ranks(
+      on_every_rank([&] { return error_norms(space, coefs, components, exact, threads, rank_partition()); }));
 }
 
 template <int D>
@@ -375,8 +385,8 @@ SolveResult petsc_solve_poisson(const RefinedSpace<D>& space, const PoissonProbl
                                 const PetscSolverOptions& o) {
   check_preconditioner(o);
   const auto t0 = Clock::now();
-  auto [A, b] = poisson_system(space, problem, o.threads, rank_partition());
-  return solve_assembled(A, b, refined_fixed_dofs(space, 1, problem.dirichlet), space.num_basis, 1, false, nullptr, o,
+  auto [A, b] = on_every_rank([&] { return poisson_system(space, problem, o.threads, rank_partition()); });
+  return solve_assembled(A, b, on_every_rank([&] { return refined_fixed_dofs(space, 1, problem.dirichlet); }), space.num_basis, 1, false, nullptr, o,
                          t0);
 }
 
@@ -385,15 +395,16 @@ SolveResult petsc_solve_elasticity(const RefinedSpace<D>& space, const Elasticit
                                    const PetscSolverOptions& o) {
   check_preconditioner(o);
   const auto t0 = Clock::now();
-  auto [A, b] = elasticity_system(space, problem, o.threads, rank_partition());
-  return solve_assembled(A, b, refined_fixed_dofs(space, D, problem.displacement), space.num_basis, D, false, nullptr,
+  auto [A, b] = on_every_rank([&] { return elasticity_system(space, problem, o.threads, rank_partition()); });
+  return solve_assembled(A, b, on_every_rank([&] { return refined_fixed_dofs(space, D, problem.displacement); }), space.num_basis, D, false, nullptr,
                          o, t0);
 }
 
 template <int D>
 ErrorNorms petsc_error_norms(const RefinedSpace<D>& space, const Eigen::VectorXd& coefs, int components,
                              const ExactSolution<D>& exact, int threads) {
-  return sum_over_ranks(error_norms(space, coefs, components, exact, threads, rank_partition()));
+  return sum_over_ranks(
+      on_every_rank([&] { return error_norms(space, coefs, components, exact, threads, rank_partition()); }));
 }
 
 #define TRIVAR_INSTANTIATE(D)                                                                                    \

@@ -2,6 +2,9 @@
 
 #include <sys/resource.h>
 
+#include <climits>
+#include <new>
+
 #include <slepcsys.h>
 
 #include "trivar/core/error.hpp"
@@ -45,13 +48,42 @@ std::vector<double> peak_memory_per_rank() {
   return all;
 }
 
-std::string broadcast_from_rank0(const std::string& text) {
+namespace {
+
+std::string broadcast_text(const std::string& text, int root) {
   unsigned long size = text.size();
-  MPI_Bcast(&size, 1, MPI_UNSIGNED_LONG, 0, PETSC_COMM_WORLD);
+  MPI_Bcast(&size, 1, MPI_UNSIGNED_LONG, root, PETSC_COMM_WORLD);
   std::string out = text;
   out.resize(size);
-  MPI_Bcast(out.data(), static_cast<int>(size), MPI_CHAR, 0, PETSC_COMM_WORLD);
+  MPI_Bcast(out.data(), static_cast<int>(size), MPI_CHAR, root, PETSC_COMM_WORLD);
   return out;
+}
+
+}  // namespace
+
+std::string broadcast_from_rank0(const std::string& text) { return broadcast_text(text, 0); }
+
+void agree_on_failure(const std::exception_ptr& failure) {
+  int rank = 0;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  int first = failure ? rank : INT_MAX;
+  MPI_Allreduce(MPI_IN_PLACE, &first, 1, MPI_INT, MPI_MIN, PETSC_COMM_WORLD);
+  if (first == INT_MAX) return;
+  std::string message;
+  if (rank == first) {
+    try {
+      std::rethrow_exception(failure);
+    } catch (const std::bad_alloc&) {
+      message = "out of memory on rank " + std::to_string(rank) + " (the request is larger than the memory available)";
+    } catch (const std::exception& e) {
+      message = e.what();
+    } catch (...) {
+      message = "rank " + std::to_string(rank) + " failed";
+    }
+  }
+  message = broadcast_text(message, first);
+  if (rank == first) std::rethrow_exception(failure);
+  throw Error(message);
 }
 
 double max_over_ranks(double x) {

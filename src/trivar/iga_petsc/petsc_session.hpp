@@ -2,7 +2,10 @@
 // The process's MPI / PETSc / SLEPc run time. One session per process, alive while any distributed solve runs:
 // it starts MPI (under mpirun: one process per rank) and PETSc with SLEPc, and finalises them when destroyed.
 // Options for PETSc's own objects may be given in the environment variable PETSC_OPTIONS.
+#include <exception>
+#include <optional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace trivar {
@@ -30,6 +33,36 @@ std::vector<double> peak_memory_per_rank();
 
 // Rank 0's text on every rank; collective.
 std::string broadcast_from_rank0(const std::string& text);
+
+// Every rank's verdict on a phase that may fail on some ranks only (their elements, their files): when
+// `failure` is set on any rank, every rank throws, the lowest failing rank its own exception and the others
+// trivar::Error with its message, so no rank is left waiting in a later collective call. Collective.
+void agree_on_failure(const std::exception_ptr& failure);
+
+// Runs `phase` on this rank and agrees on its outcome with the others (agree_on_failure); its result on
+// success. Collective.
+template <class Phase>
+std::invoke_result_t<Phase> on_every_rank(Phase&& phase) {
+  using Result = std::invoke_result_t<Phase>;
+  std::exception_ptr failure;
+  if constexpr (std::is_void_v<Result>) {
+    try {
+      phase();
+    } catch (...) {
+      failure = std::current_exception();
+    }
+    agree_on_failure(failure);
+  } else {
+    std::optional<Result> result;
+    try {
+      result.emplace(phase());
+    } catch (...) {
+      failure = std::current_exception();
+    }
+    agree_on_failure(failure);
+    return std::move(*result);
+  }
+}
 
 // The largest of every rank's x, on every rank; collective. Wall times of a distributed step are the slowest
 // rank's.
