@@ -74,9 +74,7 @@ py::object poisson_on_model(const VModel& model, int degree, int refine, const s
     py::gil_scoped_release release;
     auto s = make_solver(solver);
     r = solve_poisson(space, pb, *s, threads);
-    for (int p = 0; p < space.num_patches(); ++p)
-      fields.push_back(
-          solution_field(space.patches[static_cast<std::size_t>(p)], patch_coefs(space, p, r.coefs, 1), 1));
+    fields = solution_fields(space, r.coefs, 1);
   }
   return namespace_of(py::dict(py::arg("dofs") = r.dofs, py::arg("coefficients") = array_of(r.coefs),
                                py::arg("fields") = fields, py::arg("assembly_seconds") = r.assembly_seconds,

@@ -49,9 +49,7 @@ py::object elasticity_on_model(const VModel& model, const std::string& clamp, co
     py::gil_scoped_release release;
     auto s = make_solver(solver);
     r = solve_elasticity(space, pb, *s, threads);
-    for (int p = 0; p < space.num_patches(); ++p)
-      fields.push_back(
-          solution_field(space.patches[static_cast<std::size_t>(p)], patch_coefs(space, p, r.coefs, 3), 3));
+    fields = solution_fields(space, r.coefs, 3);
   }
   py::dict d(py::arg("dofs") = r.dofs,
              py::arg("coefficients") = py::array_t<double>(r.coefs.size(), r.coefs.data()),

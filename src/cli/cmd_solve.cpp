@@ -192,17 +192,6 @@ io::VtkPointField spline_field(const std::string& name, const std::vector<Tensor
           }};
 }
 
-// The solution on every patch as a spline field (solution_field.hpp).
-template <int D>
-std::vector<TensorSpline<D>> patch_fields(const MultipatchSpace<D>& space, const Eigen::VectorXd& coefs,
-                                          int components) {
-  std::vector<TensorSpline<D>> fields;
-  for (int p = 0; p < space.num_patches(); ++p)
-    fields.push_back(solution_field(space.patches[static_cast<std::size_t>(p)],
-                                    patch_coefs(space, p, coefs, components), components));
-  return fields;
-}
-
 // One discretisation of a static problem: its space, how to solve it, the exact solution when known.
 template <int D>
 struct Discretisation {
@@ -255,7 +244,7 @@ void write_parallel(const SolveArgs& a, const std::string& stem, const Multipatc
 
 template <int D>
 void write_solution(const std::filesystem::path& path, const Discretisation<D>& d, const Eigen::VectorXd& coefs) {
-  const std::vector<TensorSpline<D>> fields = patch_fields(d.space, coefs, d.components);
+  const std::vector<TensorSpline<D>> fields = solution_fields(d.space, coefs, d.components);
   std::vector<io::VtkPointField> vtk{spline_field<D>(d.components == 1 ? "u" : "displacement", fields)};
   if (d.material)
     vtk.push_back({"von_mises", 1, [&](int piece, std::span<const double> u, std::span<double> out) {
@@ -503,7 +492,7 @@ void modes(const SolveArgs& a, const MultipatchSpace<D>& space, const Elasticity
   } else if (!a.out.empty()) {
     const int components = elastic ? D : 1;
     std::vector<std::vector<TensorSpline<D>>> fields;
-    for (int i = 0; i < a.modes; ++i) fields.push_back(patch_fields(space, r.vectors.col(i), components));
+    for (int i = 0; i < a.modes; ++i) fields.push_back(solution_fields(space, r.vectors.col(i), components));
     std::vector<io::VtkPointField> vtk;
     for (int i = 0; i < a.modes; ++i)
       vtk.push_back(spline_field<D>("mode_" + std::to_string(i + 1), fields[static_cast<std::size_t>(i)]));
