@@ -743,8 +743,9 @@ void add_solve_command(CLI::App& app, Context& ctx) {
     try {
       on_every_rank([&] { run(*a); });
     } catch (...) {
-      if (mpi.rank() > 0) static_cast<void>(std::freopen("/dev/null", "w", stderr));
-      throw;
+      // Rank 0 reports the failure and gives the exit status; the other ranks end quietly with status 0, because
+      // mpiexec stops the whole job when a rank exits non-zero and could stop rank 0 before its line is written.
+      if (mpi.rank() == 0) throw;
     }
   });
 }
