@@ -3,6 +3,8 @@
 // attribute blends.
 #include <gtest/gtest.h>
 
+#include <numbers>
+
 #include <Eigen/Core>
 
 #include "trivar/am/layer_slicer.hpp"
@@ -21,7 +23,7 @@ using cad::BooleanOp;
 
 namespace {
 
-const double kPi = 3.14159265358979323846;
+using std::numbers::pi;
 
 VModel model_of(const CellComplex& cells, const Eigen::Vector3d& shift = Eigen::Vector3d::Zero()) {
   VModel m;
@@ -66,7 +68,7 @@ TEST(Boolean, BallMinusCylinderIsTheNapkinRing) {
   const VModel cyl = model_of(make_cylinder({r, 3}), {0, 0, -1.5});
   cad::BooleanReport rep;
   const VModel ring = cad::boolean(b, cyl, BooleanOp::subtract, {}, &rep);
-  const double exact = 4.0 / 3 * kPi * std::pow(R * R - r * r, 1.5);
+  const double exact = 4.0 / 3 * pi * std::pow(R * R - r * r, 1.5);
   EXPECT_NEAR(ring.volume(), exact, 1e-8 * exact);
   EXPECT_EQ(rep.cells_a, 7);
   EXPECT_EQ(rep.cells, rep.pieces_a_only);
@@ -79,11 +81,11 @@ TEST(Boolean, BallMinusCylinderIsTheNapkinRing) {
 TEST(Boolean, OverlappingBallsLensAndUnion) {
   const double R = 1, d = 1;
   const VModel a = ball(R), b = ball(R, {d, 0, 0});
-  const double lens = kPi * (4 * R + d) * (2 * R - d) * (2 * R - d) / 12;
+  const double lens = pi * (4 * R + d) * (2 * R - d) * (2 * R - d) / 12;
   cad::BooleanReport rep;
   const VModel u = cad::boolean(a, b, BooleanOp::unite, {}, &rep);
   EXPECT_NEAR(u.volume(), a.volume() + b.volume() - lens, 1e-8 * u.volume());
-  EXPECT_NEAR(a.volume(), 4.0 / 3 * kPi, 1e-10);
+  EXPECT_NEAR(a.volume(), 4.0 / 3 * pi, 1e-10);
   EXPECT_EQ(rep.cells, rep.pieces);
   EXPECT_GT(rep.pieces_both, 0);
   EXPECT_EQ(boundary_euler(u), 2);
@@ -99,7 +101,7 @@ TEST(Boolean, TorusMinusBox) {
   const VModel t = model_of(make_torus({R, r}));
   const VModel q = box({0, 0, -1}, {3, 3, 2});
   const VModel cut = cad::boolean(t, q, BooleanOp::subtract);
-  const double exact = 0.75 * 2 * kPi * kPi * R * r * r;
+  const double exact = 0.75 * 2 * pi * pi * R * r * r;
   EXPECT_NEAR(cut.volume(), exact, 1e-8 * exact);
   EXPECT_EQ(boundary_euler(cut), 2);
 }
@@ -127,7 +129,7 @@ TEST(Boolean, TangentContact) {
   cad::BooleanReport rep;
   const VModel u = cad::boolean(b, c, BooleanOp::unite, {}, &rep);
   EXPECT_EQ(rep.pieces_both, 0);
-  EXPECT_NEAR(u.volume(), 4.0 / 3 * kPi + 8, 1e-8 * u.volume());
+  EXPECT_NEAR(u.volume(), 4.0 / 3 * pi + 8, 1e-8 * u.volume());
   const VModel d = cad::boolean(c, b, BooleanOp::subtract);
   EXPECT_NEAR(d.volume(), 8, 1e-10);
   EXPECT_EQ(boundary_euler(d), 2);
@@ -139,7 +141,7 @@ TEST(Boolean, OneInsideTheOther) {
   const double r = 0.3;
   const VModel c = box({-1, -1, -1}, {2, 2, 2});
   const VModel b = ball(r);
-  const double vb = 4.0 / 3 * kPi * r * r * r;
+  const double vb = 4.0 / 3 * pi * r * r * r;
   const VModel d = cad::boolean(c, b, BooleanOp::subtract);
   EXPECT_NEAR(d.volume(), 8 - vb, 1e-8 * 8);
   EXPECT_EQ(boundary_euler(d), 4);
@@ -174,7 +176,7 @@ TEST(Boolean, DisjointOperands) {
 TEST(Boolean, ResultsAreOperandsAgain) {
   const VModel two = cad::boolean(box({0, 0, 0}, {1, 1, 1}), box({1, 0, 0}, {1, 1, 1}), BooleanOp::unite);
   const VModel back = io::vmodel_from_json(io::to_json(two), "two");
-  const double r = 0.3, hole = kPi * r * r;
+  const double r = 0.3, hole = pi * r * r;
   cad::BooleanReport rep;
   const VModel d = cad::boolean(back, model_of(make_cylinder({r, 2}), {1, 0.5, -0.5}), BooleanOp::subtract, {}, &rep);
   EXPECT_EQ(rep.cells, 2);
@@ -317,7 +319,7 @@ TEST(Boolean, SlicingABlendedUnion) {
     // Cross-section of the union of two unit disks of radius rho one apart: 2 pi rho^2 - lens.
     const double rho2 = 1 - L.z * L.z, rho = std::sqrt(rho2);
     const double lens = 2 * rho2 * std::acos(0.5 / rho) - 0.5 * std::sqrt(4 * rho2 - 1);
-    const double area = 2 * kPi * rho2 - lens;
+    const double area = 2 * pi * rho2 - lens;
     EXPECT_NEAR(static_cast<double>(in_layer) * g.dx * g.dy, area, 0.01 * area);
   }
   EXPECT_GT(checked, 1000);

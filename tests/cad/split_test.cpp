@@ -2,6 +2,8 @@
 // the cut shared by the cells on both sides, attributes carried, and the errors.
 #include <gtest/gtest.h>
 
+#include <numbers>
+
 #include <Eigen/Core>
 
 #include "trivar/cad/split.hpp"
@@ -10,19 +12,13 @@
 #include "trivar/model/primitives.hpp"
 #include "trivar/model/trimmed_integral.hpp"
 #include "trivar/model/trimmed_tessellation.hpp"
+#include "support/model_fixtures.hpp"
 
 using namespace trivar;
 
 namespace {
 
-const double kPi = 3.14159265358979323846;
-
-VModel model_of(const CellComplex& cells) {
-  VModel m;
-  for (const SplineVolume& c : cells) m.add_cell(VCell(c));
-  m.glue();
-  return m;
-}
+using std::numbers::pi;
 
 // Volume of the result cells on the positive side of the plane n.x = d, each cell's side told by the sign of its
 // mean n.x - d (every cell of a split lies on one side of the cut): int (n.x - d) dV by the exact-boundary rule,
@@ -43,11 +39,11 @@ double volume_on_positive_side(const VModel& m, const std::array<double, 3>& n, 
 // The unit ball (7 cells) cut by z = 0.3: the cap above is pi h^2 (3R - h) / 3 with h = 0.7, every cell the
 // plane crosses becomes two, and the cut faces are shared by the cells on both sides.
 TEST(Split, BallByAPlaneGivesTheSphericalCap) {
-  VModel ball = model_of(make_ball({1.0, Eigen::Vector3d::Zero()}));
+  VModel ball = test::glued(make_ball({1.0, Eigen::Vector3d::Zero()}));
   for (int c = 0; c < ball.num_cells(); ++c) ball.cell(c).set_attribute("density", Attribute::constant({2.5}));
   cad::BooleanReport rep;
   const VModel parts = cad::split(ball, cad::SplitPlane{{0, 0, 0.3}, {0, 0, 2}}, {}, &rep);
-  const double h = 0.7, cap = kPi * h * h * (3 - h) / 3, whole = 4 * kPi / 3;
+  const double h = 0.7, cap = pi * h * h * (3 - h) / 3, whole = 4 * pi / 3;
   EXPECT_NEAR(parts.volume(), whole, 1e-8 * whole);
   EXPECT_NEAR(volume_on_positive_side(parts, {0, 0, 1}, 0.3), cap, 1e-8 * cap);
   EXPECT_EQ(rep.cells, rep.pieces_a_only + rep.pieces_both);
@@ -67,7 +63,7 @@ TEST(Split, BallByAPlaneGivesTheSphericalCap) {
 // The unit cube cut by the quadratic graph z = 0.3 + 0.4 x (1 - x) (a Bezier surface over [-0.5, 1.5]^2, its
 // normal upwards): the part below is 0.3 + 0.4 / 6.
 TEST(Split, CubeByABsplineSurface) {
-  const VModel cube = model_of(make_box({Eigen::Vector3d(1, 1, 1), Eigen::Vector3d::Zero()}));
+  const VModel cube = test::glued(make_box({Eigen::Vector3d(1, 1, 1), Eigen::Vector3d::Zero()}));
   // Control points by blossoming z(x) at x in {-0.5, 1.5}: f(-.5,-.5) = 0, f(-.5, 1.5) = 0.8, f(1.5, 1.5) = 0.
   std::vector<double> pts;
   for (double y : {-0.5, 1.5})
@@ -86,7 +82,7 @@ TEST(Split, CubeByABsplineSurface) {
 }
 
 TEST(Split, BadInputIsOneLineError) {
-  const VModel cube = model_of(make_box({Eigen::Vector3d(1, 1, 1), Eigen::Vector3d::Zero()}));
+  const VModel cube = test::glued(make_box({Eigen::Vector3d(1, 1, 1), Eigen::Vector3d::Zero()}));
   EXPECT_THROW(cad::split(cube, cad::SplitPlane{{0, 0, 5}, {0, 0, 1}}), Error);  // misses the model
   EXPECT_THROW(cad::split(cube, cad::SplitPlane{{0, 0, 0.5}, {0, 0, 0}}), Error);
   EXPECT_THROW(cad::parse_split_plane("0,0,1"), Error);

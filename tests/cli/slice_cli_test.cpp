@@ -8,7 +8,7 @@ using namespace cli_test;
 
 namespace {
 
-std::vector<std::string> files_in(const fs::path& dir) {
+std::vector<std::string> layer_files(const fs::path& dir) {
   std::vector<std::string> names;
   for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
   std::sort(names.begin(), names.end());
@@ -34,7 +34,7 @@ TEST_F(SliceCli, GradedBallSlicesToPalettePngsWithAManifest) {
   EXPECT_EQ(summary("inside pixels"), m.at("statistics").at("inside_pixels").get<double>());
   EXPECT_EQ(numbers_after(r.out, "output: slices (").at(0), m.at("layers").get<double>());
   const int layers = m.at("layers").get<int>();
-  const auto names = files_in(work_ / "slices");
+  const auto names = layer_files(work_ / "slices");
   ASSERT_EQ(names.size(), static_cast<std::size_t>(layers) + 2);  // the layers, the manifest and the file list
   EXPECT_EQ(names.front(), ".trivar-files");
   EXPECT_EQ(names[1], "layer_00000.png");
@@ -55,7 +55,7 @@ TEST_F(SliceCli, ThreadCountDoesNotChangeTheFiles) {
   ok("make cylinder --radius 1 --height 0.5 --materials 3 --blend axial -o cyl.json");
   ok("--threads 1 slice cyl.json --out one --layer 0.1 --dpi 100x50 --mode per-material");
   ok("--threads 2 slice cyl.json --out two --layer 0.1 --dpi 100x50 --mode per-material");
-  const auto a = files_in(work_ / "one"), b = files_in(work_ / "two");
+  const auto a = layer_files(work_ / "one"), b = layer_files(work_ / "two");
   ASSERT_EQ(a, b);
   EXPECT_NE(std::find(a.begin(), a.end(), "layer_00000_M3.png"), a.end());
   for (const std::string& f : a) {

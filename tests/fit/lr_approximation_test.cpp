@@ -1,6 +1,10 @@
 // Scattered-data approximation by LR splines: reproduction of splines in the space, the tolerance met at every
 // point (checked by evaluating the result with the LR spline's own evaluator, not the fit's Bernstein path),
 // local refinement around a crater rim, noise, volumes and material fractions, the three strategies.
+#include <gtest/gtest.h>
+
+#include <random>
+
 #include "trivar/core/error.hpp"
 #include "trivar/fit/graph_surface.hpp"
 #include "trivar/fit/least_squares.hpp"

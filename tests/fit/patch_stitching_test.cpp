@@ -18,13 +18,13 @@
 namespace trivar {
 namespace {
 
-constexpr int p = 3;
+constexpr int kDegree = 3;
 
 // A cubic surface over the knots, control points over a grid in x in [x0, x1], y in [0, 1] with random heights;
 // column `fixed` (if >= 0) takes the given edge points instead.
 TensorSpline<2> surface(std::vector<double> u, std::vector<double> v, double x0, double x1, unsigned seed,
                         const std::vector<double>& edge = {}, int fixed = -1) {
-  std::array<KnotVector, 2> kv{KnotVector(p, std::move(u)), KnotVector(p, std::move(v))};
+  std::array<KnotVector, 2> kv{KnotVector(kDegree, std::move(u)), KnotVector(kDegree, std::move(v))};
   const int nu = kv[0].size(), nv = kv[1].size();
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> h(-0.2, 0.2);
@@ -64,7 +64,7 @@ TensorSpline<2> rotated(const TensorSpline<2>& s, double u0, double u1, double v
       n.push_back(lo[k] + (hi[k] - lo[k]) * (flip ? 1 - x01 : x01));
     }
     if (flip) std::reverse(n.begin(), n.end());
-    kv[static_cast<std::size_t>(k)] = KnotVector(p, n);
+    kv[static_cast<std::size_t>(k)] = KnotVector(kDegree, n);
   }
   std::vector<double> pts;
   for (int j = 0; j < s.count(1); ++j)
@@ -81,7 +81,7 @@ TensorSpline<2> quarter_turn(const TensorSpline<2>& s) {
   const auto& tu = s.knots(0).knots();
   std::vector<double> nv;
   for (auto it = tu.rbegin(); it != tu.rend(); ++it) nv.push_back(tu.front() + tu.back() - *it);
-  std::array<KnotVector, 2> kv{s.knots(1), KnotVector(p, nv)};
+  std::array<KnotVector, 2> kv{s.knots(1), KnotVector(kDegree, nv)};
   std::vector<double> pts;
   const int nu = s.count(0), nw = s.count(1);
   for (int j = 0; j < nu; ++j)
@@ -146,7 +146,7 @@ TEST(PatchStitching, C1AcrossTheSeamAndUnchangedElsewhere) {
   const auto joined = by_knots(merged);
   int kept = 0;
   for (const auto& [knots, coef] : before) {
-    if (std::count(knots[0].begin(), knots[0].end(), 1.0) >= p) continue;
+    if (std::count(knots[0].begin(), knots[0].end(), 1.0) >= kDegree) continue;
     ASSERT_TRUE(after.count(knots));
     EXPECT_EQ(after.at(knots), coef);
     ASSERT_TRUE(joined.count(knots));

@@ -17,7 +17,7 @@ using namespace trivar;
 
 namespace {
 
-PetscSolverOptions tight(const std::string& pc) {
+PetscSolverOptions tight_options(const std::string& pc) {
   PetscSolverOptions o;
   o.preconditioner = pc;
   o.tolerance = 1e-13;
@@ -39,7 +39,7 @@ TEST(PetscRefined, PoissonOnALocallyRefinedSineCubeMatchesTheSerialSolve) {
   const ErrorNorms es = error_norms(space, s.coefs, 1, b.exact);
   for (const char* pc : {"gamg", "bjacobi"}) {
     SCOPED_TRACE(pc);
-    const SolveResult d = petsc_solve_poisson(space, b.problem, tight(pc));
+    const SolveResult d = petsc_solve_poisson(space, b.problem, tight_options(pc));
     EXPECT_EQ(d.dofs, s.dofs);
     const ErrorNorms ed = petsc_error_norms(space, d.coefs, 1, b.exact);
     EXPECT_LE(std::abs(ed.l2 - es.l2), 1e-10 * es.l2);
@@ -61,7 +61,7 @@ TEST(PetscRefined, ElasticityOnALocallyRefinedBeamMatchesTheSerialSolve) {
   pb.traction = [](const double* x, const double*, double* t) { t[0] = 0, t[1] = -x[1]; };
   auto serial = make_solver("cholmod");
   const SolveResult s = solve_elasticity(space, pb, *serial);
-  const SolveResult d = petsc_solve_elasticity(space, pb, tight("gamg"));
+  const SolveResult d = petsc_solve_elasticity(space, pb, tight_options("gamg"));
   EXPECT_EQ(d.dofs, s.dofs);
   EXPECT_LE((d.coefs - s.coefs).norm(), 1e-10 * s.coefs.norm());
 }
@@ -77,7 +77,7 @@ void expect_same_adaptive_loop(const PoissonBenchmark<2>& b, Geometry serial_geo
   const auto serial = adaptive_poisson<2>(serial_geometry, b.problem, b.exact, o);
   const auto distributed = adaptive_poisson<2>(
       distributed_geometry, b.problem, b.exact, o, {}, nullptr, 1,
-      [](const RefinedSpace<2>& s, const PoissonProblem<2>& p) { return petsc_solve_poisson(s, p, tight("mumps")); });
+      [](const RefinedSpace<2>& s, const PoissonProblem<2>& p) { return petsc_solve_poisson(s, p, tight_options("mumps")); });
   ASSERT_EQ(distributed.size(), serial.size());
   for (std::size_t i = 0; i < serial.size(); ++i) {
     SCOPED_TRACE(i);

@@ -15,7 +15,7 @@ using namespace trivar;
 
 namespace {
 
-MaterialTable two_materials() {
+MaterialTable amf_materials() {
   return MaterialTable({{"A<1>", {255, 0, 51, 255}}, {"B", {0, 102, 255, 0}}});
 }
 
@@ -33,7 +33,7 @@ TEST(AmfWriter, GradedVolumeWithFormulasAndVertexColours) {
   test::TempDir dir;
   const double s = 0.1;
   const auto mesh = test::octahedron(s);
-  const auto materials = two_materials();
+  const auto materials = amf_materials();
   std::vector<double> f;
   for (const auto& p : mesh.vertices) f.insert(f.end(), {(p[2] + s) / (2 * s), 1 - (p[2] + s) / (2 * s)});
   const io::AmfGrading grading{0, {"(z+0.1)/0.2", "1-(z+0.1)/0.2"}};
@@ -84,7 +84,7 @@ TEST(AmfWriter, GradedVolumeWithFormulasAndVertexColours) {
 
 TEST(AmfWriter, SingleMaterialVolumeWithoutColours) {
   test::TempDir dir;
-  io::write_amf(dir.file("p.amf"), test::octahedron(), two_materials(), io::AmfGrading{1, {}});
+  io::write_amf(dir.file("p.amf"), test::octahedron(), amf_materials(), io::AmfGrading{1, {}});
   const std::string xml = test::read_binary(dir.file("p.amf"));
   ASSERT_TRUE(test::well_formed(xml));
   EXPECT_EQ(test::elements(xml, "material").size(), 2u);
@@ -97,8 +97,8 @@ TEST(AmfWriter, ZippedFileHoldsTheSameDocument) {
   test::TempDir dir;
   const auto mesh = test::octahedron(2);
   const io::AmfGrading grading{0, {"x*x", "1"}};
-  io::write_amf(dir.file("plain.amf"), mesh, two_materials(), grading);
-  io::write_amf(dir.file("zipped.amf"), mesh, two_materials(), grading, {}, {.zip = true});
+  io::write_amf(dir.file("plain.amf"), mesh, amf_materials(), grading);
+  io::write_amf(dir.file("zipped.amf"), mesh, amf_materials(), grading, {}, {.zip = true});
   const auto zip = test::read_zip(dir.file("zipped.amf"));
   ASSERT_EQ(zip.size(), 1u);
   EXPECT_EQ(zip.at("zipped.amf"), test::read_binary(dir.file("plain.amf")));
@@ -108,7 +108,7 @@ TEST(AmfWriter, BadInputThrowsAndWritesNothing) {
   test::TempDir dir;
   const auto path = dir.file("bad.amf");
   const auto mesh = test::octahedron();
-  const auto mats = two_materials();
+  const auto mats = amf_materials();
   EXPECT_THROW(io::write_amf(path, mesh, MaterialTable{}, {}), Error);
   EXPECT_THROW(io::write_amf(path, TriangleMesh{}, mats, {}), Error);
   EXPECT_THROW(io::write_amf(path, mesh, mats, io::AmfGrading{2, {}}), Error);

@@ -2,11 +2,17 @@
 // Support for the io tests: a temporary directory per test, random object lists and exact comparison.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "support/spline_fixtures.hpp"
 #include "support/temp_dir.hpp"
+#include "trivar/lr/any_lr_spline.hpp"
 #include "trivar/spline/any_spline.hpp"
 
 namespace trivar::test {
@@ -39,6 +45,43 @@ inline void expect_identical(const AnySpline& a, const AnySpline& b) {
         }
       },
       a);
+}
+
+// The spline of a reader's result whose dimension the test knows.
+template <int D>
+const LRSpline<D>& as(const AnyLRSpline& s) {
+  return std::get<LRSpline<D>>(s);
+}
+
+// A distinct interior knot of direction k (partial rectangles must end on mesh lines).
+template <int D>
+double mid_knot(const TensorSpline<D>& t, int k) {
+  std::vector<double> v = t.knots(k).knots();
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+  return v[v.size() / 2];
+}
+
+// s with the first occurrence of `from` replaced by `to` (a failure when there is none).
+inline std::string replaced(std::string s, const std::string& from, const std::string& to) {
+  const std::size_t at = s.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return s.replace(at, from.size(), to);
+}
+
+// The whole file, byte for byte.
+inline std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Bernstein polynomial i of degree p at t, from its closed form (the reference the writers' Bezier points are
+// checked against).
+inline double bernstein(int p, int i, double t) {
+  double c = 1;
+  for (int k = 1; k <= i; ++k) c = c * (p - i + k) / k;
+  return c * std::pow(t, i) * std::pow(1 - t, p - i);
 }
 
 }  // namespace trivar::test

@@ -11,10 +11,15 @@
 #include "support/temp_dir.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/io/step/step_file.hpp"
+#include "io/io_test_support.hpp"
 
 using namespace trivar;
 
 namespace {
+
+using test::as;
+using test::mid_knot;
+using test::replaced;
 
 // The unit cube as IFEM's unit tests spell it (orders 2, the identity map), written by LRsplines.
 constexpr const char* kCube =
@@ -64,11 +69,6 @@ constexpr const char* kSplitSquare =
     "1 [2] : (0.5, 0) x (1, 1)    {11, 12, 14, 15}\n";
 
 template <int D>
-const LRSpline<D>& as(const AnyLRSpline& s) {
-  return std::get<LRSpline<D>>(s);
-}
-
-template <int D>
 std::vector<Param<D>> grid_params(int n) {
   std::vector<Param<D>> out;
   std::mt19937 rng(7);
@@ -81,19 +81,13 @@ std::vector<Param<D>> grid_params(int n) {
   return out;
 }
 
-std::string text_of(const AnyLRSpline& s) {
+std::string lr_text(const AnyLRSpline& s) {
   std::ostringstream os;
   io::write_lr(os, s);
   return os.str();
 }
 
 // A distinct interior knot of direction k (partial rectangles must end on mesh lines).
-double mid_knot(const TensorSpline<3>& t, int k) {
-  std::vector<double> v = t.knots(k).knots();
-  v.erase(std::unique(v.begin(), v.end()), v.end());
-  return v[v.size() / 2];
-}
-
 // A refined cubic LR volume: a random tensor spline with three local insertions.
 LRSpline<3> refined_volume(bool rational) {
   const TensorSpline<3> t = test::random_spline<3>({3, 2, 3}, {3, 2, 2}, 3, rational, 3);
@@ -121,7 +115,7 @@ void expect_identical(const LRSpline<D>& a, const LRSpline<D>& b) {
   }
 }
 
-void expect_error(const std::string& text, const std::string& fragment) {
+void expect_lr_error(const std::string& text, const std::string& fragment) {
   try {
     io::parse_lr(text, "bad.lr");
     ADD_FAILURE() << "no error for:\n" << text;
@@ -131,12 +125,6 @@ void expect_error(const std::string& text, const std::string& fragment) {
     EXPECT_NE(m.find(fragment), std::string::npos) << m;
     EXPECT_EQ(m.find('\n'), std::string::npos) << m;
   }
-}
-
-std::string replaced(std::string s, const std::string& from, const std::string& to) {
-  const std::size_t at = s.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  return s.replace(at, from.size(), to);
 }
 
 }  // namespace
@@ -171,7 +159,7 @@ TEST(LrFormat, ReadsHandSplitSquareWithArbitraryIds) {
 TEST(LrFormat, SeveralBlocksRoundTripExactly) {
   const LRSpline<3> poly = refined_volume(false), rat = refined_volume(true);
   const AnyLRSpline square = io::parse_lr(kSplitSquare, "square.lr").at(0);
-  const std::string text = text_of(poly) + text_of(square) + text_of(rat);
+  const std::string text = lr_text(poly) + lr_text(square) + lr_text(rat);
   const auto back = io::parse_lr(text, "three.lr");
   ASSERT_EQ(back.size(), 3u);
   expect_identical(poly, as<3>(back[0]));
@@ -179,12 +167,12 @@ TEST(LrFormat, SeveralBlocksRoundTripExactly) {
   expect_identical(rat, as<3>(back[2]));
   EXPECT_TRUE(as<3>(back[2]).is_rational());
   // Writing what was read gives the same text: ids, order and reals are reproduced exactly.
-  EXPECT_EQ(text_of(back[0]) + text_of(back[1]) + text_of(back[2]), text);
+  EXPECT_EQ(lr_text(back[0]) + lr_text(back[1]) + lr_text(back[2]), text);
 }
 
 TEST(LrFormat, TensorSplineThroughTheFormatEvaluatesAsTheTensorSpline) {
   const TensorSpline<2> t = test::random_spline<2>({3, 2}, {4, 3}, 3, true, 11);
-  const auto back = io::parse_lr(text_of(LRSpline<2>(t)), "t.lr");
+  const auto back = io::parse_lr(lr_text(LRSpline<2>(t)), "t.lr");
   double a[3], b[3];
   for (const Param<2>& u : test::random_params(t, 200, 5)) {
     as<2>(back.at(0)).eval(u, a);
@@ -195,7 +183,7 @@ TEST(LrFormat, TensorSplineThroughTheFormatEvaluatesAsTheTensorSpline) {
 
 TEST(LrFormat, MalformedInputFailsWithLineAndReason) {
   const std::string cube = kCube;
-  expect_error("", "no LR spline");
+  expect_lr_error("", "no LR spline");
   // A knot 1e121 times the domain length (found by the fuzzer): the mesh's cell lookup must not overflow int.
   try {
     io::read_lr(TRIVAR_TEST_DATA "/io/malformed/lr_element_far_outside.lr");
@@ -206,23 +194,23 @@ TEST(LrFormat, MalformedInputFailsWithLineAndReason) {
               std::string::npos)
         << e.what();
   }
-  expect_error("# LRSPLINE CURVE\n", "unsupported LR spline kind 'CURVE'");
-  expect_error("# comment\n1 2 3\n", "7 values for a surface, 8 for a volume");
-  expect_error(cube.substr(0, cube.size() / 2), "expected");
-  expect_error(replaced(cube, "\t3\t0\n", "\t3\t2\n"), "rational flag");
-  expect_error(replaced(cube, "\t2\t2\t2\t8", "\t0\t2\t2\t8"), "order");
-  expect_error(replaced(cube, "3: [0 1 1 ]", "3: [0 1 1 1 ]"), "after a local knot vector");
-  expect_error(replaced(cube, "5: [0 1 1 ] x [0 0 1 ] x [0 1 1 ] 1 0 1 (1)", "5: [0 1 1 ] x [0 0 1 ] x [0 1 1 ] 1 0 (1)"),
+  expect_lr_error("# LRSPLINE CURVE\n", "unsupported LR spline kind 'CURVE'");
+  expect_lr_error("# comment\n1 2 3\n", "7 values for a surface, 8 for a volume");
+  expect_lr_error(cube.substr(0, cube.size() / 2), "expected");
+  expect_lr_error(replaced(cube, "\t3\t0\n", "\t3\t2\n"), "rational flag");
+  expect_lr_error(replaced(cube, "\t2\t2\t2\t8", "\t0\t2\t2\t8"), "order");
+  expect_lr_error(replaced(cube, "3: [0 1 1 ]", "3: [0 1 1 1 ]"), "after a local knot vector");
+  expect_lr_error(replaced(cube, "5: [0 1 1 ] x [0 0 1 ] x [0 1 1 ] 1 0 1 (1)", "5: [0 1 1 ] x [0 0 1 ] x [0 1 1 ] 1 0 (1)"),
                "expected control value");
-  expect_error(replaced(cube, "7: [", "6: ["), "appears twice");
-  expect_error(replaced(cube, "{0, 1, 2, 3, 4, 5, 6, 7}", "{0, 1, 2, 3, 4, 5, 6, 9}"), "unknown basis function 9");
-  expect_error(replaced(cube, "[0, 1] x [0, 1] x [1, 1] (2)", "[0, 1] x [1, 1] x [1, 1] (2)"), "two directions");
-  expect_error(replaced(cube, "[0, 1] x [0, 0] x [0, 1] (2)", "[1, 0] x [0, 0] x [0, 1] (2)"), "reversed");
-  expect_error(replaced(cube, "0 0 0 (1)", "0 0 0 (nan)"), "scaling factor");
-  expect_error(replaced(cube, "\t8\t6\t1\t3", "\t8\t6\t2\t3"), "expected element id");
+  expect_lr_error(replaced(cube, "7: [", "6: ["), "appears twice");
+  expect_lr_error(replaced(cube, "{0, 1, 2, 3, 4, 5, 6, 7}", "{0, 1, 2, 3, 4, 5, 6, 9}"), "unknown basis function 9");
+  expect_lr_error(replaced(cube, "[0, 1] x [0, 1] x [1, 1] (2)", "[0, 1] x [1, 1] x [1, 1] (2)"), "two directions");
+  expect_lr_error(replaced(cube, "[0, 1] x [0, 0] x [0, 1] (2)", "[1, 0] x [0, 0] x [0, 1] (2)"), "reversed");
+  expect_lr_error(replaced(cube, "0 0 0 (1)", "0 0 0 (nan)"), "scaling factor");
+  expect_lr_error(replaced(cube, "\t8\t6\t1\t3", "\t8\t6\t2\t3"), "expected element id");
   // Semantic errors come from the LRSpline constructor, with the file position in front.
-  expect_error(replaced(cube, "0 0 0 (1)", "0 0 0 (0)"), "bad.lr:");
-  expect_error(replaced(cube, "0: [0 0 1 ]", "0: [0 0 2 ]"), "bad.lr:");
+  expect_lr_error(replaced(cube, "0 0 0 (1)", "0 0 0 (0)"), "bad.lr:");
+  expect_lr_error(replaced(cube, "0: [0 0 1 ]", "0: [0 0 2 ]"), "bad.lr:");
 }
 
 // An LR volume written by the LRsplines library (degrees 2 3 2, 2684 B-splines, 2478 elements, 73 mesh
@@ -285,9 +273,9 @@ TEST(LrFormat, ElementIdsAreTheBlockOrder) {
   const LRSpline<2>& lr = as<2>(s[0]);
   EXPECT_EQ(lr.element(0).lo, (Param<2>{0.5, 0}));
   EXPECT_EQ(lr.element(1).lo, (Param<2>{0, 0}));
-  const std::string text = text_of(s[0]);
+  const std::string text = lr_text(s[0]);
   EXPECT_LT(text.find("0 [2] : (0.5, 0) x (1, 1)"), text.find("1 [2] : (0, 0) x (0.5, 1)")) << text;
-  EXPECT_EQ(text_of(io::parse_lr(text, "again.lr")[0]), text);
+  EXPECT_EQ(lr_text(io::parse_lr(text, "again.lr")[0]), text);
 }
 
 // The literature's cross (cubic, 10 x 10 B-splines, lines u = 3.5 and v = 3.5 over [1, 5]): a block that lists
@@ -296,17 +284,17 @@ TEST(LrFormat, ElementIdsAreTheBlockOrder) {
 TEST(LrFormat, ElementBlockMustListTheMeshElements) {
   const auto kv = KnotVector::open_uniform(3, 7, 0.0, 7.0);
   LRSpline<2> cross(TensorSpline<2>({kv, kv}, 1, false, std::vector<double>(100, 1.0)));
-  const std::string tensor = text_of(cross);
+  const std::string tensor = lr_text(cross);
   cross.insert(MeshRectangle<2>::make(0, 3.5, {0, 1}, {0, 5}));
   cross.insert(MeshRectangle<2>::make(1, 3.5, {1, 0}, {5, 0}));
-  const std::string text = text_of(cross);
+  const std::string text = lr_text(cross);
   const auto objects = io::parse_lr(text, "cross.lr");
   const LRSpline<2>& back = as<2>(objects[0]);
   EXPECT_EQ(back.num_basis(), 103);
   EXPECT_EQ(back.num_elements(), 58);
   // The cross's mesh and B-splines with the tensor mesh's element block.
   const std::string stale = text.substr(0, text.find("# Elements:")) + tensor.substr(tensor.find("# Elements:"));
-  expect_error(replaced(stale, "\t103\t18\t58\t", "\t103\t18\t49\t"),
+  expect_lr_error(replaced(stale, "\t103\t18\t58\t", "\t103\t18\t49\t"),
                "of the block, (3, 1) x (4, 2), is not an element of the mesh (the mesh has 58 elements, the block "
                "lists 49");
 }
@@ -314,5 +302,5 @@ TEST(LrFormat, ElementBlockMustListTheMeshElements) {
 TEST(LrFormat, DeletedBasisFunctionIsRefused) {
   std::string text = replaced(kSplitSquare, "14: [0 0.5 1 ] x [0 1 1 ] 1 1 (1)\n", "");
   text = replaced(replaced(text, "{10, 11, 13, 14}", "{10, 11, 13}"), "{11, 12, 14, 15}", "{11, 12, 15}");
-  expect_error(replaced(text, "\t6\t5\t2", "\t5\t5\t2"), "do not sum to one on element [0, 0.5] x [0, 1]");
+  expect_lr_error(replaced(text, "\t6\t5\t2", "\t5\t5\t2"), "do not sum to one on element [0, 0.5] x [0, 1]");
 }

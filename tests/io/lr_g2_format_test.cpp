@@ -16,6 +16,10 @@ using namespace trivar;
 
 namespace {
 
+using test::as;
+using test::mid_knot;
+using test::replaced;
+
 // A biquadratic-by-linear LR surface on [0, 3] x [0, 2] written by hand in GoTools' LRSplineSurface stream
 // format: u-knots 0 1 2 3 (degree 2, clamped), v-knots 0 1 2 (degree 1), and the mesh line u = 1.5 for v in
 // [0, 1] only (a T-junction at (1.5, 1)). The line splits the three u-functions crossing 1.5 times the
@@ -61,7 +65,7 @@ constexpr const char* kTSurface =
 
 // The unit cube as a trilinear LRSplineVolume (one element), identity map; GoTools' 3D mesh rectangles are
 // index boxes in the cyclic direction pairs (v, w), (w, u), (u, v). Written with two auxiliary header values.
-constexpr const char* kCube =
+constexpr const char* kG2Cube =
     "793 1 0 2 0 0\n"
     "0 1e-08\n"
     "2 0 1\n2 0 1\n2 0 1\n"
@@ -79,11 +83,6 @@ constexpr const char* kCube =
     "3 0\n1 1 1 1 1\n3 0 1 1\n3 0 1 1\n3 0 1 1\n";
 
 template <int D>
-const LRSpline<D>& as(const AnyLRSpline& s) {
-  return std::get<LRSpline<D>>(s);
-}
-
-template <int D>
 std::vector<Param<D>> params_in(const Box<D>& box, int n, unsigned seed) {
   std::mt19937 rng(seed);
   std::vector<Param<D>> out(static_cast<std::size_t>(n));
@@ -92,7 +91,7 @@ std::vector<Param<D>> params_in(const Box<D>& box, int n, unsigned seed) {
   return out;
 }
 
-std::string text_of(const AnyLRSpline& s) {
+std::string g2_text(const AnyLRSpline& s) {
   std::ostringstream os;
   io::write_lr_g2(os, s);
   return os.str();
@@ -100,14 +99,7 @@ std::string text_of(const AnyLRSpline& s) {
 
 // A distinct interior knot of direction k (partial rectangles must end on mesh lines).
 template <int D>
-double mid_knot(const TensorSpline<D>& t, int k) {
-  std::vector<double> v = t.knots(k).knots();
-  v.erase(std::unique(v.begin(), v.end()), v.end());
-  return v[v.size() / 2];
-}
-
-template <int D>
-LRSpline<D> refined(bool rational, unsigned seed) {
+LRSpline<D> refined_g2_case(bool rational, unsigned seed) {
   Ints<D> degrees, elements;
   for (int k = 0; k < D; ++k) {
     degrees[k] = 2 + (k % 2);
@@ -154,7 +146,7 @@ void expect_equivalent(const LRSpline<D>& a, const LRSpline<D>& b) {
   }
 }
 
-void expect_error(const std::string& text, const std::string& fragment) {
+void expect_g2_error(const std::string& text, const std::string& fragment) {
   try {
     io::parse_lr_g2(text, "bad.g2");
     ADD_FAILURE() << "no error for:\n" << text;
@@ -164,12 +156,6 @@ void expect_error(const std::string& text, const std::string& fragment) {
     EXPECT_NE(m.find(fragment), std::string::npos) << m;
     EXPECT_EQ(m.find('\n'), std::string::npos) << m;
   }
-}
-
-std::string replaced(std::string s, const std::string& from, const std::string& to) {
-  const std::size_t at = s.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  return s.replace(at, from.size(), to);
 }
 
 }  // namespace
@@ -191,7 +177,7 @@ TEST(LrG2Format, HandWrittenTJunctionSurfaceIsTheIdentity) {
 }
 
 TEST(LrG2Format, HandWrittenCubeWithAuxiliaryHeaderValues) {
-  const auto objects = io::parse_lr_g2(kCube, "cube.g2");
+  const auto objects = io::parse_lr_g2(kG2Cube, "cube.g2");
   const LRSpline<3>& cube = as<3>(objects.at(0));
   EXPECT_EQ(cube.num_basis(), 8);
   EXPECT_EQ(cube.num_elements(), 1);
@@ -220,14 +206,14 @@ TEST(LrG2Format, RationalConventionWeightIncludesGamma) {
     EXPECT_NEAR(x[1], 2 * u[1] / (1 + u[1]), 1e-15);
   }
   // Written back, the weights and points are GoTools' again.
-  EXPECT_EQ(text_of(objects[0]).substr(text.find("\n4\n")), text.substr(text.find("\n4\n")));
+  EXPECT_EQ(g2_text(objects[0]).substr(text.find("\n4\n")), text.substr(text.find("\n4\n")));
 }
 
 TEST(LrG2Format, RefinedSplinesRoundTripToRounding) {
   for (bool rational : {false, true}) {
-    const LRSpline<2> s = refined<2>(rational, 4);
-    const LRSpline<3> v = refined<3>(rational, 5);
-    const auto back = io::parse_lr_g2(text_of(s) + text_of(v), "two.g2");
+    const LRSpline<2> s = refined_g2_case<2>(rational, 4);
+    const LRSpline<3> v = refined_g2_case<3>(rational, 5);
+    const auto back = io::parse_lr_g2(g2_text(s) + g2_text(v), "two.g2");
     ASSERT_EQ(back.size(), 2u);
     expect_equivalent(s, as<2>(back[0]));
     expect_equivalent(v, as<3>(back[1]));
@@ -239,7 +225,7 @@ TEST(LrG2Format, RefinedSplinesRoundTripToRounding) {
 
 TEST(LrG2Format, FileRoundTripAndAtomicFailure) {
   test::TempDir dir;
-  const std::vector<AnyLRSpline> objects = {refined<3>(true, 6), io::parse_lr_g2(kTSurface, "t.g2").at(0)};
+  const std::vector<AnyLRSpline> objects = {refined_g2_case<3>(true, 6), io::parse_lr_g2(kTSurface, "t.g2").at(0)};
   io::write_lr_g2(dir.file("a.g2"), objects);
   const auto back = io::read_lr_g2(dir.file("a.g2"));
   ASSERT_EQ(back.size(), 2u);
@@ -251,18 +237,18 @@ TEST(LrG2Format, FileRoundTripAndAtomicFailure) {
 
 TEST(LrG2Format, MalformedInputFailsWithLineAndReason) {
   const std::string t = kTSurface;
-  expect_error("", "no LR spline");
-  expect_error("200 1 0 0\n", "unsupported class type 200");
-  expect_error(replaced(t, "293 1 0 0", "293 2 0 0"), "major version");
-  expect_error(t.substr(0, t.size() / 2), "end of file");
-  expect_error(replaced(t, "5 0 1 1.5 2 3", "5 0 1 1.5 1.5 3"), "increase strictly");
-  expect_error(replaced(t, "2 0 1 1 0", "2 0 1 5 0"), "out of range");
-  expect_error(replaced(t, "2 0\n0 1 1 1\n", "2 1\n0 1 1 1\n"), "rational flag");
-  expect_error(replaced(t, "2 0\n0 1 1 1\n", "3 0\n0 1 0 1 1\n"), "dimension 3");
-  expect_error(replaced(t, "4 0 0 1 3\n3 0 1 2\n", "3 0 0 1\n3 0 1 2\n"), "degree 1");
-  expect_error(replaced(t, "0.5 1 1 1", "0.5 1 0 1"), "gamma must be positive");
-  expect_error(replaced(t, "0.5 1 1 1", "0.5 1 1 x"), "expected weight");
-  expect_error(replaced(t, "4 0 0 0 1\n3 0 0 1", "4 0 0 0 9\n3 0 0 1"), "knot index 9");
+  expect_g2_error("", "no LR spline");
+  expect_g2_error("200 1 0 0\n", "unsupported class type 200");
+  expect_g2_error(replaced(t, "293 1 0 0", "293 2 0 0"), "major version");
+  expect_g2_error(t.substr(0, t.size() / 2), "end of file");
+  expect_g2_error(replaced(t, "5 0 1 1.5 2 3", "5 0 1 1.5 1.5 3"), "increase strictly");
+  expect_g2_error(replaced(t, "2 0 1 1 0", "2 0 1 5 0"), "out of range");
+  expect_g2_error(replaced(t, "2 0\n0 1 1 1\n", "2 1\n0 1 1 1\n"), "rational flag");
+  expect_g2_error(replaced(t, "2 0\n0 1 1 1\n", "3 0\n0 1 0 1 1\n"), "dimension 3");
+  expect_g2_error(replaced(t, "4 0 0 1 3\n3 0 1 2\n", "3 0 0 1\n3 0 1 2\n"), "degree 1");
+  expect_g2_error(replaced(t, "0.5 1 1 1", "0.5 1 0 1"), "gamma must be positive");
+  expect_g2_error(replaced(t, "0.5 1 1 1", "0.5 1 1 x"), "expected weight");
+  expect_g2_error(replaced(t, "4 0 0 0 1\n3 0 0 1", "4 0 0 0 9\n3 0 0 1"), "knot index 9");
   // The LRSpline constructor's verdict comes with the position of the object's header.
-  expect_error(replaced(t, "2 0 1 1 0", "1 0 0"), "bad.g2:1:");
+  expect_g2_error(replaced(t, "2 0 1 1 0", "1 0 0"), "bad.g2:1:");
 }

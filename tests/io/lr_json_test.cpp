@@ -14,16 +14,11 @@ using nlohmann::json;
 
 namespace {
 
+using test::mid_knot;
+
 // A distinct interior knot of direction k (partial rectangles must end on mesh lines).
 template <int D>
-double mid_knot(const TensorSpline<D>& t, int k) {
-  std::vector<double> v = t.knots(k).knots();
-  v.erase(std::unique(v.begin(), v.end()), v.end());
-  return v[v.size() / 2];
-}
-
-template <int D>
-LRSpline<D> refined(bool rational, unsigned seed) {
+LRSpline<D> refined_json_case(bool rational, unsigned seed) {
   Ints<D> degrees, elements;
   for (int k = 0; k < D; ++k) {
     degrees[k] = 2 + (k % 2);
@@ -75,7 +70,7 @@ void expect_bit_identical(const LRSpline<D>& a, const LRSpline<D>& b) {
   }
 }
 
-void expect_error(const json& j, const std::string& fragment) {
+void expect_json_error(const json& j, const std::string& fragment) {
   try {
     io::lr_spline_from_json(j, "f.json");
     ADD_FAILURE() << "no error for " << j.dump();
@@ -115,8 +110,8 @@ TEST(LrJson, SchemaOfAHandWrittenBilinearSquare) {
 
 TEST(LrJson, FilesRoundTripBitExactly) {
   test::TempDir dir;
-  const LRSpline<2> s = refined<2>(true, 1);
-  const LRSpline<3> v = refined<3>(false, 2), w = refined<3>(true, 3);
+  const LRSpline<2> s = refined_json_case<2>(true, 1);
+  const LRSpline<3> v = refined_json_case<3>(false, 2), w = refined_json_case<3>(true, 3);
   io::write_lr_json(dir.file("one.json"), {AnyLRSpline(w)});
   io::write_lr_json(dir.file("three.json"), {AnyLRSpline(s), AnyLRSpline(v), AnyLRSpline(w)});
   const auto one = io::read_lr_json(dir.file("one.json"));
@@ -132,38 +127,38 @@ TEST(LrJson, FilesRoundTripBitExactly) {
 }
 
 TEST(LrJson, ErrorsNameTheJsonPath) {
-  const json good = io::to_json(AnyLRSpline(refined<2>(false, 4)));
+  const json good = io::to_json(AnyLRSpline(refined_json_case<2>(false, 4)));
   json j = good;
   j["basis"][1]["knots"][0][2] = "x";
-  expect_error(j, "basis[1].knots[0][2]: expected a number, got string");
+  expect_json_error(j, "basis[1].knots[0][2]: expected a number, got string");
   j = good;
   j["basis"][2]["knots"][1].push_back(1.0);
-  expect_error(j, "basis[2].knots[1]: expected 5 entries, got 6");
+  expect_json_error(j, "basis[2].knots[1]: expected 5 entries, got 6");
   j = good;
   j["basis"][0]["coef"].push_back(1.0);
-  expect_error(j, "basis[0].coef: expected 2 entries, got 3");
+  expect_json_error(j, "basis[0].coef: expected 2 entries, got 3");
   j = good;
   j["basis"][0]["color"] = 1;
-  expect_error(j, "basis[0]: unexpected key \"color\"");
+  expect_json_error(j, "basis[0]: unexpected key \"color\"");
   j = good;
   j["mesh"][3]["multiplicity"] = 0;
-  expect_error(j, "mesh[3].multiplicity: expected an integer in [1, 65], got 0");
+  expect_json_error(j, "mesh[3].multiplicity: expected an integer in [1, 65], got 0");
   j = good;
   j["mesh"][0]["lo"][static_cast<std::size_t>(j["mesh"][0]["dir"].get<int>())] = 0.123;
-  expect_error(j, "mesh[0]: lo and hi must equal");
+  expect_json_error(j, "mesh[0]: lo and hi must equal");
   j = good;
   j["kind"] = "surface";
-  expect_error(j, "kind: expected \"lr_surface\" or \"lr_volume\"");
+  expect_json_error(j, "kind: expected \"lr_surface\" or \"lr_volume\"");
   j = good;
   j.erase("mesh");
-  expect_error(j, "missing key \"mesh\"");
+  expect_json_error(j, "missing key \"mesh\"");
   j = good;
   j["basis"][0]["gamma"] = 0.0;  // rejected by the LRSpline constructor, after the file name
-  expect_error(j, "f.json: ");
+  expect_json_error(j, "f.json: ");
   // One B-spline deleted: the rest no longer sums to one on the elements of its support.
   j = good;
   j["basis"].erase(7);
-  expect_error(j, "do not sum to one on element [");
+  expect_json_error(j, "do not sum to one on element [");
 }
 
 TEST(LrJson, DocumentLevelErrors) {

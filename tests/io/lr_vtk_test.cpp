@@ -14,6 +14,8 @@ using namespace trivar;
 
 namespace {
 
+using test::bernstein;
+
 // The identity map on [0, 2] x [0, 1] (bilinear, coefficients = Greville abscissae) refined by u = 1 over the
 // whole domain and v = 0.5 for u in [0, 1]: three elements, with supports of 4 B-splines each.
 LRSpline<2> identity_surface() {
@@ -23,12 +25,6 @@ LRSpline<2> identity_surface() {
   s.insert(MeshRectangle<2>::make(0, 1.0, {0, 0}, {0, 1}));
   s.insert(MeshRectangle<2>::make(1, 0.5, {0, 0}, {1, 0}));
   return s;
-}
-
-double bernstein(int p, int i, double t) {
-  double c = 1;
-  for (int k = 1; k <= i; ++k) c = c * (p - i + k) / k;
-  return c * std::pow(t, i) * std::pow(1 - t, p - i);
 }
 
 }  // namespace

@@ -15,12 +15,7 @@ using namespace trivar;
 
 namespace {
 
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::slurp;
 
 // Deletes, duplicates, replaces or inserts bytes, drawing replacements from characters that matter to the
 // formats (digits, signs, separators, brackets) as well as arbitrary bytes.

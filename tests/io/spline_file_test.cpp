@@ -12,6 +12,8 @@ using namespace trivar;
 
 namespace {
 
+using test::slurp;
+
 struct Malformed {
   const char* file;
   const char* message;  // expected right after "<path>"
@@ -58,13 +60,6 @@ const Malformed kMalformed[] = {
     {"json_zero_dim.json", ": dim: expected an integer >= 1, got 0"},
     {"json_overflow.json", ": invalid JSON: number overflow parsing '1e999'"},
 };
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 }  // namespace
 

@@ -17,7 +17,7 @@ using namespace trivar;
 
 namespace {
 
-MaterialTable two_materials() {
+MaterialTable threemf_materials() {
   return MaterialTable({{"hard & stiff", {200, 30, 40, 255}}, {"soft", {10, 220, 30, 100}}});
 }
 
@@ -46,7 +46,7 @@ int integer(const test::XmlElement& e, const std::string& key) { return std::sto
 TEST(ThreeMfWriter, PackageHasTheOpcParts) {
   test::TempDir dir;
   const auto mesh = test::octahedron();
-  io::write_3mf(dir.file("part.3mf"), mesh, two_materials(), z_gradient(mesh, 1));
+  io::write_3mf(dir.file("part.3mf"), mesh, threemf_materials(), z_gradient(mesh, 1));
   const auto zip = test::read_zip(dir.file("part.3mf"));
   ASSERT_EQ(zip.size(), 3u);
   const auto& types = zip.at("[Content_Types].xml");
@@ -67,7 +67,7 @@ TEST(ThreeMfWriter, ModelCarriesMaterialsCompositesAndExactGeometry) {
   const double s = 1.0 / 3.0;  // coordinates with no short decimal form test the shortest round trip
   const auto mesh = test::octahedron(s);
   const auto fractions = z_gradient(mesh, s);
-  const auto materials = two_materials();
+  const auto materials = threemf_materials();
   io::write_3mf(dir.file("part.3mf"), mesh, materials, fractions);
   const std::string xml = test::read_zip(dir.file("part.3mf")).at("3D/3dmodel.model");
   ASSERT_TRUE(test::well_formed(xml));
@@ -162,8 +162,8 @@ TEST(ThreeMfWriter, FractionsAreNormalisedAndNegativesRejected) {
 TEST(ThreeMfWriter, OutputIsDeterministic) {
   test::TempDir dir;
   const auto mesh = test::octahedron(2.5);
-  io::write_3mf(dir.file("a.3mf"), mesh, two_materials(), z_gradient(mesh, 2.5));
-  io::write_3mf(dir.file("b.3mf"), mesh, two_materials(), z_gradient(mesh, 2.5));
+  io::write_3mf(dir.file("a.3mf"), mesh, threemf_materials(), z_gradient(mesh, 2.5));
+  io::write_3mf(dir.file("b.3mf"), mesh, threemf_materials(), z_gradient(mesh, 2.5));
   EXPECT_EQ(test::read_binary(dir.file("a.3mf")), test::read_binary(dir.file("b.3mf")));
 }
 
@@ -173,19 +173,19 @@ TEST(ThreeMfWriter, BadInputThrowsAndWritesNothing) {
   const auto mesh = test::octahedron();
   const auto f = z_gradient(mesh, 1);
   EXPECT_THROW(io::write_3mf(path, mesh, MaterialTable{}, {}), Error);
-  EXPECT_THROW(io::write_3mf(path, TriangleMesh{}, two_materials(), {}), Error);
-  EXPECT_THROW(io::write_3mf(path, mesh, two_materials(), std::span(f).first(f.size() - 1)), Error);
+  EXPECT_THROW(io::write_3mf(path, TriangleMesh{}, threemf_materials(), {}), Error);
+  EXPECT_THROW(io::write_3mf(path, mesh, threemf_materials(), std::span(f).first(f.size() - 1)), Error);
   auto zero = f;
   zero[4] = zero[5] = 0;
-  EXPECT_THROW(io::write_3mf(path, mesh, two_materials(), zero), Error);
+  EXPECT_THROW(io::write_3mf(path, mesh, threemf_materials(), zero), Error);
   auto nan = f;
   nan[3] = std::nan("");
-  EXPECT_THROW(io::write_3mf(path, mesh, two_materials(), nan), Error);
+  EXPECT_THROW(io::write_3mf(path, mesh, threemf_materials(), nan), Error);
   auto bad_mesh = mesh;
   bad_mesh.triangles[2][1] = 6;
-  EXPECT_THROW(io::write_3mf(path, bad_mesh, two_materials(), f), Error);
+  EXPECT_THROW(io::write_3mf(path, bad_mesh, threemf_materials(), f), Error);
   bad_mesh = mesh;
   bad_mesh.vertices[1][0] = INFINITY;
-  EXPECT_THROW(io::write_3mf(path, bad_mesh, two_materials(), f), Error);
+  EXPECT_THROW(io::write_3mf(path, bad_mesh, threemf_materials(), f), Error);
   EXPECT_EQ(dir.entries(), 0);
 }

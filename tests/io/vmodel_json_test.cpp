@@ -39,7 +39,7 @@ std::filesystem::path temp(const char* name) { return std::filesystem::temp_dire
 
 VModel from_text(const std::string& text) { return io::vmodel_from_json(json::parse(text), "m.json"); }
 
-void expect_error(const std::string& text, const std::string& fragment) {
+void expect_vmodel_error(const std::string& text, const std::string& fragment) {
   try {
     from_text(text);
     ADD_FAILURE() << "no error for " << text;
@@ -121,20 +121,20 @@ TEST(VModelJson, MalformedModelsFailWithTheirPath) {
     edit(j);
     return j.dump();
   };
-  expect_error(R"({"trivar": 1, "kind": "volume"})", "vmodel");
-  expect_error(with([](json& j) { j.erase("cells"); }), "missing key \"cells\"");
-  expect_error(with([](json& j) { j["cells"] = json::array(); }), "cells");
-  expect_error(with([](json& j) { j["colour"] = 1; }), "unexpected key \"colour\"");
-  expect_error(with([](json& j) { j["glue"]["samples"] = 1; }), "glue: samples");
-  expect_error(with([](json& j) { j["materials"][0]["color"] = "#12345"; }), "materials[0]: color");
-  expect_error(with([](json& j) { j["materials"][1]["name"] = "VeroCyan"; }), "materials[1]");
-  expect_error(with([](json& j) { j["cells"][2]["attributes"]["density"]["kind"] = "table"; }),
+  expect_vmodel_error(R"({"trivar": 1, "kind": "volume"})", "vmodel");
+  expect_vmodel_error(with([](json& j) { j.erase("cells"); }), "missing key \"cells\"");
+  expect_vmodel_error(with([](json& j) { j["cells"] = json::array(); }), "cells");
+  expect_vmodel_error(with([](json& j) { j["colour"] = 1; }), "unexpected key \"colour\"");
+  expect_vmodel_error(with([](json& j) { j["glue"]["samples"] = 1; }), "glue: samples");
+  expect_vmodel_error(with([](json& j) { j["materials"][0]["color"] = "#12345"; }), "materials[0]: color");
+  expect_vmodel_error(with([](json& j) { j["materials"][1]["name"] = "VeroCyan"; }), "materials[1]");
+  expect_vmodel_error(with([](json& j) { j["cells"][2]["attributes"]["density"]["kind"] = "table"; }),
                "cells[2]: attributes: density: kind");
-  expect_error(with([](json& j) { j["cells"][1]["attributes"]["temperature"]["components"][0] = "x +"; }),
+  expect_vmodel_error(with([](json& j) { j["cells"][1]["attributes"]["temperature"]["components"][0] = "x +"; }),
                "cells[1]: attributes: temperature");
-  expect_error(with([](json& j) { j["cells"][0]["attributes"]["density"]["values"] = json::array(); }),
+  expect_vmodel_error(with([](json& j) { j["cells"][0]["attributes"]["density"]["values"] = json::array(); }),
                "cells[0]: attributes: density: values");
-  expect_error(with([](json& j) { j["cells"][3]["geometry"]["kind"] = "surface"; }), "cells[3]: geometry");
-  expect_error(with([](json& j) { j["cells"][3]["geometry"]["control_points"][0][0] = "a"; }),
+  expect_vmodel_error(with([](json& j) { j["cells"][3]["geometry"]["kind"] = "surface"; }), "cells[3]: geometry");
+  expect_vmodel_error(with([](json& j) { j["cells"][3]["geometry"]["control_points"][0][0] = "a"; }),
                "cells[3]: geometry");
 }

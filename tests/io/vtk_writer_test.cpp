@@ -15,15 +15,11 @@ using namespace trivar;
 
 namespace {
 
+using test::bernstein;
+
 using Vtu = test::VtuPiece;
 
 Vtu parse_vtu(const std::string& path) { return test::read_vtu(path); }
-
-double bernstein(int p, int i, double t) {
-  double c = 1;
-  for (int k = 1; k <= i; ++k) c = c * (p - i + k) / k;
-  return c * std::pow(t, i) * std::pow(1 - t, p - i);
-}
 
 template <int D>
 std::array<int, D> element_index(const TensorSpline<D>& s, int e) {

@@ -149,7 +149,7 @@ struct LR2 {
   }
 };
 
-MeshRectangle<2> line(int dir, double value, double a, double b) {
+MeshRectangle<2> knot_line(int dir, double value, double a, double b) {
   Param<2> lo{}, hi{};
   lo[1 - dir] = a;
   hi[1 - dir] = b;
@@ -186,8 +186,8 @@ struct SeedExample {
     }
     std::vector<MeshRectangle<2>> todo;
     for (const auto& [x, y] : shown) {
-      for (double v : x) todo.push_back(line(0, v, y.front(), y.back()));
-      for (double v : y) todo.push_back(line(1, v, x.front(), x.back()));
+      for (double v : x) todo.push_back(knot_line(0, v, y.front(), y.back()));
+      for (double v : y) todo.push_back(knot_line(1, v, x.front(), x.back()));
     }
     // A line that splits nothing yet may split something after others; lines already in the mesh are dropped.
     for (int round = 0; round < 10 && !todo.empty(); ++round) {
@@ -348,7 +348,8 @@ namespace {
 LR2 refined_bicubic() {
   const std::vector<double> t{0, 0, 0, 0, 1, 2, 3, 4, 5, 6, 6, 6, 6};
   LR2 lr{{3, 3}, {t, t}};
-  for (const auto& m : {line(0, 2.5, 0, 5), line(1, 2.5, 0, 5), line(0, 3.5, 1, 6), line(1, 3.5, 1, 6)})
+  for (const auto& m :
+       {knot_line(0, 2.5, 0, 5), knot_line(1, 2.5, 0, 5), knot_line(0, 3.5, 1, 6), knot_line(1, 3.5, 1, 6)})
     EXPECT_TRUE(lr.insert(m));
   return lr;
 }
@@ -423,9 +424,9 @@ TEST(LinearIndependence, BezierExtractionOfRefinedCollectionReproducesTheSpline)
   // (i, j, i j) on the tensor grid); the element Bezier nets must evaluate to it.
   const std::vector<double> tu{0, 0, 0, 1, 2, 3, 4, 4, 4}, tv{0, 0, 0, 0, 1, 2, 3, 3, 3, 3};
   LR2 lr{{2, 3}, {tu, tv}};
-  ASSERT_TRUE(lr.insert(line(0, 1.5, 0, 2)));
-  ASSERT_TRUE(lr.insert(line(1, 1.5, 0, 3)));
-  ASSERT_TRUE(lr.insert(line(0, 2.5, 1, 3)));
+  ASSERT_TRUE(lr.insert(knot_line(0, 1.5, 0, 2)));
+  ASSERT_TRUE(lr.insert(knot_line(1, 1.5, 0, 3)));
+  ASSERT_TRUE(lr.insert(knot_line(0, 2.5, 1, 3)));
   const auto basis = lr.functions();
   const auto elements = lr.elements();
   const auto nets = bezier_elements<2>({2, 3}, basis, elements, 3, false);

@@ -246,7 +246,7 @@ TEST(LRRefinement, InvalidOptionsAndIds) {
 namespace {
 
 template <int D>
-void expect_same_spline(const LRSpline<D>& a, const LRSpline<D>& b) {
+void expect_same_lr_spline(const LRSpline<D>& a, const LRSpline<D>& b) {
   ASSERT_EQ(a.num_basis(), b.num_basis());
   ASSERT_EQ(a.num_elements(), b.num_elements());
   ASSERT_EQ(a.mesh().size(), b.mesh().size());
@@ -302,7 +302,7 @@ void check_batch_equals_one_by_one(Strategy strategy, int multiplicity, const In
     int one_by_one = 0;
     for (const auto& r : rects) one_by_one += single.insert(std::span<const MeshRectangle<D>>(&r, 1));
     EXPECT_EQ(inserted, one_by_one);
-    expect_same_spline(batch, single);
+    expect_same_lr_spline(batch, single);
     EXPECT_LE(value_deviation(batch, s, test::random_params(s, 100, seed + 2)), 1e-12);
   }
 }

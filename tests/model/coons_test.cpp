@@ -14,18 +14,12 @@
 
 using namespace trivar;
 
-namespace {
-
-std::array<SplineSurface, 6> faces_of(const SplineVolume& v) { return boundary_faces(v); }
-
-}  // namespace
-
 TEST(CoonsVolume, ReproducesAffineVolume) {
   const auto block = make_block<3>({2, 3, 2}, {2, 1, 3}, {1.0, 2.0, 1.5});
   Eigen::MatrixXd A(3, 3);
   A << 1.0, 0.3, -0.2, 0.1, 0.9, 0.4, -0.3, 0.2, 1.1;
   const auto vol = transform(block, A, Eigen::Vector3d(0.5, -1.0, 2.0));
-  const auto c = coons_volume(faces_of(vol));
+  const auto c = coons_volume(boundary_faces(vol));
   EXPECT_LT(test::max_deviation(vol, c, test::random_params(vol, 500, 1)), 1e-12);
 }
 
@@ -35,14 +29,14 @@ TEST(CoonsVolume, ReproducesTrilinearVolumeInAnotherBasis) {
   vol = elevate_degree(vol, {1, 2, 0});
   const std::vector<double> knots{0.3, 0.7};
   vol = insert_knots(vol, 2, knots);
-  const auto c = coons_volume(faces_of(vol));
+  const auto c = coons_volume(boundary_faces(vol));
   EXPECT_LT(test::max_deviation(vol, c, test::random_params(vol, 500, 3)), 1e-12);
 }
 
 TEST(CoonsVolume, BoundaryFacesMatchInputFaces) {
   for (bool rational : {false, true}) {
     const auto vol = test::random_spline<3>({2, 3, 2}, {3, 2, 2}, 3, rational, 4);
-    const auto faces = faces_of(vol);
+    const auto faces = boundary_faces(vol);
     const auto c = coons_volume(faces);
     const auto out = boundary_faces(c);
     for (int f = 0; f < 6; ++f)
@@ -53,7 +47,7 @@ TEST(CoonsVolume, BoundaryFacesMatchInputFaces) {
 
 TEST(CoonsVolume, MismatchedEdgeThrowsNamingFaces) {
   const auto vol = test::random_spline<3>({2, 2, 2}, {2, 2, 2}, 3, false, 6);
-  auto faces = faces_of(vol);
+  auto faces = boundary_faces(vol);
   // Face u=0 is parametrised by (v, w); its control point (v index 0, interior w index) lies only on the edge
   // shared with face v=0.
   const int j = faces[0].count(1) / 2;

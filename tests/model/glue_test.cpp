@@ -11,22 +11,17 @@
 #include "trivar/spline/iso_extraction.hpp"
 #include "trivar/spline/reparametrization.hpp"
 #include "trivar/spline/split.hpp"
+#include "support/model_fixtures.hpp"
 
 using namespace trivar;
 
 namespace {
 
-// The block [x, x + sx] x [y, y + sy] x [z, z + sz], trilinear unless degrees / elements say otherwise.
-TensorSpline<3> block_at(double x, double y, double z, Param<3> size = {1, 1, 1}, Ints<3> degrees = {1, 1, 1},
-                         Ints<3> elements = {1, 1, 1}) {
-  return transform(make_block<3>(degrees, elements, size), Eigen::Matrix3d::Identity(), Eigen::Vector3d(x, y, z));
-}
-
 VModel blocks_2x2x2() {
   VModel m;
   for (int k = 0; k < 2; ++k)
     for (int j = 0; j < 2; ++j)
-      for (int i = 0; i < 2; ++i) m.add_cell(VCell(block_at(i, j, k)));
+      for (int i = 0; i < 2; ++i) m.add_cell(VCell(test::block_at(i, j, k)));
   m.glue();
   return m;
 }
@@ -99,9 +94,9 @@ TEST(Glue, LShapeCounts) {
   // Three unit cubes at (0,0), (1,0), (0,1): per layer 8 lattice points (3 + 3 + 2), 5 x-edges and 5 y-edges;
   // 8 vertical edges. 16 points, 28 curves, 2 shared + 14 boundary faces; Euler 16 - 28 + 16 - 3 = 1.
   VModel m;
-  m.add_cell(VCell(block_at(0, 0, 0)));
-  m.add_cell(VCell(block_at(1, 0, 0)));
-  m.add_cell(VCell(block_at(0, 1, 0)));
+  m.add_cell(VCell(test::block_at(0, 0, 0)));
+  m.add_cell(VCell(test::block_at(1, 0, 0)));
+  m.add_cell(VCell(test::block_at(0, 1, 0)));
   const VTopology& t = m.glue();
   EXPECT_EQ(t.points.size(), 16u);
   EXPECT_EQ(t.curves.size(), 28u);
@@ -117,10 +112,10 @@ TEST(Glue, DetectsTheOrientationOfReparametrisedNeighbours) {
   // Cell 1 on [1, 2] x [0, 1]^2 with u reversed and v, w swapped: B(u, v, w) = (2 - u, w, v). Its face u1 lies
   // on x = 1 with (s', t') = (v, w) at the point (1, t', s'); cell 0's face u1 has (s, t) at (1, s, t), so
   // s' = t, t' = s: swap, no flips. Reversing B's v as well gives (1, t', 1 - s'): s' = 1 - t, a flip of s'.
-  const TensorSpline<3> b = swap_directions(reverse(block_at(1, 0, 0), 0), 1, 2);
+  const TensorSpline<3> b = swap_directions(reverse(test::block_at(1, 0, 0), 0), 1, 2);
   for (int variant = 0; variant < 2; ++variant) {
     VModel m;
-    m.add_cell(VCell(block_at(0, 0, 0, {1, 1, 1}, {2, 1, 3}, {2, 3, 1})));
+    m.add_cell(VCell(test::block_at(0, 0, 0, {1, 1, 1}, {2, 1, 3}, {2, 3, 1})));
     m.add_cell(VCell(variant ? reverse(b, 1) : b));
     const VTopology& t = m.glue();
     const HalfVSurface& h = t.halves[6 * 0 + 1];
@@ -149,9 +144,9 @@ TEST(Glue, DetectsTheOrientationOfReparametrisedNeighbours) {
 }
 
 TEST(Glue, ConformingNeighboursWithRotatedParametrisationAreNotReported) {
-  const TensorSpline<3> b = reverse(swap_directions(block_at(0, 0, 1), 0, 1), 2);  // shares z = 1 via its w1 face
+  const TensorSpline<3> b = reverse(swap_directions(test::block_at(0, 0, 1), 0, 1), 2);  // shares z = 1 via its w1 face
   VModel m;
-  m.add_cell(VCell(block_at(0, 0, 0)));
+  m.add_cell(VCell(test::block_at(0, 0, 0)));
   m.add_cell(VCell(b));
   const VTopology& t = m.glue();
   EXPECT_EQ(t.num_shared_surfaces(), 1);
@@ -162,8 +157,8 @@ TEST(Glue, ConformingNeighboursWithRotatedParametrisationAreNotReported) {
 
 TEST(Glue, DifferentKnotsOnTheSharedFaceAreReportedNotThrown) {
   VModel m;
-  m.add_cell(VCell(block_at(0, 0, 0)));
-  m.add_cell(VCell(block_at(1, 0, 0, {1, 1, 1}, {1, 1, 1}, {1, 2, 3})));
+  m.add_cell(VCell(test::block_at(0, 0, 0)));
+  m.add_cell(VCell(test::block_at(1, 0, 0, {1, 1, 1}, {1, 1, 1}, {1, 2, 3})));
   const VTopology& t = m.glue();
   ASSERT_EQ(t.non_conforming.size(), 1u);
   const auto& nf = t.non_conforming[0];
@@ -179,8 +174,8 @@ TEST(Glue, DifferentKnotsOnTheSharedFaceAreReportedNotThrown) {
 TEST(Glue, PartialOverlapIsReportedAndLeftOnTheBoundary) {
   // A T-junction: cell 1 covers only y in [0, 0.5] of cell 0's face x = 1.
   VModel m;
-  m.add_cell(VCell(block_at(0, 0, 0)));
-  m.add_cell(VCell(block_at(1, 0, 0, {1, 0.5, 1})));
+  m.add_cell(VCell(test::block_at(0, 0, 0)));
+  m.add_cell(VCell(test::block_at(1, 0, 0, {1, 0.5, 1})));
   const VTopology& t = m.glue();
   EXPECT_EQ(t.num_shared_surfaces(), 0);
   ASSERT_EQ(t.non_conforming.size(), 1u);
@@ -189,8 +184,8 @@ TEST(Glue, PartialOverlapIsReportedAndLeftOnTheBoundary) {
   EXPECT_EQ(t.non_conforming[0].face_b, 0);
   // Touching along an edge only (cells at a right angle) is not an overlap.
   VModel diagonal;
-  diagonal.add_cell(VCell(block_at(0, 0, 0)));
-  diagonal.add_cell(VCell(block_at(1, 1, 0)));
+  diagonal.add_cell(VCell(test::block_at(0, 0, 0)));
+  diagonal.add_cell(VCell(test::block_at(1, 1, 0)));
   EXPECT_TRUE(diagonal.glue().non_conforming.empty());
   EXPECT_EQ(diagonal.relation(0, 1), CellRelation::curve);
 }
@@ -230,11 +225,11 @@ TEST(Glue, RingOfFourRevolvedCells) {
 
 TEST(Glue, RejectsBadOptions) {
   VModel m;
-  m.add_cell(VCell(block_at(0, 0, 0)));
+  m.add_cell(VCell(test::block_at(0, 0, 0)));
   EXPECT_THROW(m.glue({.samples = 1}), Error);
   EXPECT_THROW(m.glue({.relative_tolerance = 0}), Error);
   VModel fresh;
-  fresh.add_cell(VCell(block_at(0, 0, 0)));
+  fresh.add_cell(VCell(test::block_at(0, 0, 0)));
   EXPECT_THROW(fresh.topology(), Error);
   // A cell needs a trivariate in 3-space.
   const auto planar = transform(make_block<3>({1, 1, 1}, {1, 1, 1}, {1, 1, 1}), Eigen::MatrixXd::Identity(2, 3),
@@ -258,7 +253,7 @@ std::string glue_error(VModel m, const GlueOptions& o = {}) {
 // A tolerance near the model's size would merge every corner of a cell and leave no boundary.
 TEST(Glue, TolerancesNearTheModelSizeAreRejected) {
   VModel m;
-  m.add_cell(VCell(block_at(0, 0, 0, {3, 4, 12})));  // diagonal 13
+  m.add_cell(VCell(test::block_at(0, 0, 0, {3, 4, 12})));  // diagonal 13
   EXPECT_EQ(glue_error(m, {.relative_tolerance = 1e308}),
             "glue: relative tolerance 1e+308 is larger than 0.001 of the model's size (bounding-box diagonal 13)");
   EXPECT_EQ(glue_error(m, {.absolute_tolerance = 0.014}),
@@ -270,13 +265,13 @@ TEST(Glue, TolerancesNearTheModelSizeAreRejected) {
 // an interior face. Neither is a solid: both are errors naming the cells.
 TEST(Glue, DuplicatedCellsAreRejected) {
   VModel twice;
-  twice.add_cell(VCell(block_at(0, 0, 0)));
-  twice.add_cell(VCell(block_at(0, 0, 0)));
+  twice.add_cell(VCell(test::block_at(0, 0, 0)));
+  twice.add_cell(VCell(test::block_at(0, 0, 0)));
   EXPECT_EQ(glue_error(twice), "glue: cells 0 and 1 coincide (every face of one is glued to the other)");
   VModel three;
-  three.add_cell(VCell(block_at(0, 0, 0)));
-  three.add_cell(VCell(block_at(1, 0, 0)));
-  three.add_cell(VCell(block_at(1, 0, 0)));
+  three.add_cell(VCell(test::block_at(0, 0, 0)));
+  three.add_cell(VCell(test::block_at(1, 0, 0)));
+  three.add_cell(VCell(test::block_at(1, 0, 0)));
   // Face 1 (u = 1) of cell 0 pairs with face 0 of cell 1; face 0 of cell 2 is the third face there.
   EXPECT_EQ(glue_error(three),
             "glue: face 0 of cell 2 coincides with the face shared by cells 0 and 1: a face of more than two cells");
@@ -284,14 +279,14 @@ TEST(Glue, DuplicatedCellsAreRejected) {
 
 TEST(Glue, CollapsedCellsAreRejected) {
   VModel m;
-  m.add_cell(VCell(block_at(0, 0, 0)));
+  m.add_cell(VCell(test::block_at(0, 0, 0)));
   const Eigen::Matrix3d flatten = Eigen::Vector3d(1, 1, 0).asDiagonal();  // zero thickness in z
   m.add_cell(VCell(transform(make_block<3>({1, 1, 1}, {1, 1, 1}, {1, 1, 1}), flatten, Eigen::Vector3d(1, 0, 0))));
   EXPECT_EQ(glue_error(m), "glue: cell 1 is collapsed: volume 0 is no more than the tolerance 2.449489742783178e-07 "
                            "times its extent 1 x 1");
   // A thin but solid cell (a thousandth of the model) is a cell.
   VModel thin;
-  thin.add_cell(VCell(block_at(0, 0, 0)));
-  thin.add_cell(VCell(block_at(1, 0, 0, {1, 1, 1e-3})));
+  thin.add_cell(VCell(test::block_at(0, 0, 0)));
+  thin.add_cell(VCell(test::block_at(1, 0, 0, {1, 1, 1e-3})));
   EXPECT_EQ(glue_error(thin), "no error");
 }

@@ -9,14 +9,11 @@
 #include "trivar/model/block.hpp"
 #include "trivar/spline/affine_transform.hpp"
 #include "trivar/spline/reparametrization.hpp"
+#include "support/model_fixtures.hpp"
 
 using namespace trivar;
 
 namespace {
-
-TensorSpline<3> block_at(double x, double y, double z, Param<3> size = {1, 1, 1}) {
-  return transform(make_block<3>({1, 1, 1}, {1, 1, 1}, size), Eigen::Matrix3d::Identity(), Eigen::Vector3d(x, y, z));
-}
 
 // 2 x 2 x 2 blocks; cell 5 with a left-handed parametrisation (u reversed) and cell 6 with v, w swapped.
 VModel blocks(bool mixed) {
@@ -24,7 +21,7 @@ VModel blocks(bool mixed) {
   for (int k = 0; k < 2; ++k)
     for (int j = 0; j < 2; ++j)
       for (int i = 0; i < 2; ++i) {
-        TensorSpline<3> b = block_at(i, j, k);
+        TensorSpline<3> b = test::block_at(i, j, k);
         const int c = i + 2 * j + 4 * k;
         if (mixed && c == 5) b = reverse(b, 0);
         if (mixed && c == 6) b = swap_directions(b, 1, 2);
@@ -66,8 +63,8 @@ TEST(ModelBoundary, EdgeContactIsNotAClosedManifold) {
   // Two blocks touching along one edge only: every edge is used exactly twice except the contact edge, which
   // four boundary faces use, so the boundary is not a closed 2-manifold.
   VModel m;
-  m.add_cell(VCell(block_at(0, 0, 0)));
-  m.add_cell(VCell(block_at(1, 1, 0)));
+  m.add_cell(VCell(test::block_at(0, 0, 0)));
+  m.add_cell(VCell(test::block_at(1, 1, 0)));
   m.glue();
   const ModelBoundary b = model_boundary(m);
   EXPECT_EQ(b.faces.size(), 12u);
@@ -76,7 +73,7 @@ TEST(ModelBoundary, EdgeContactIsNotAClosedManifold) {
   for (const auto& e : b.edges) four += e.uses.size() == 4 ? 1 : 0;
   EXPECT_EQ(four, 1);
   VModel unglued;
-  unglued.add_cell(VCell(block_at(0, 0, 0)));
+  unglued.add_cell(VCell(test::block_at(0, 0, 0)));
   EXPECT_THROW(model_boundary(unglued), Error);
 }
 
@@ -109,8 +106,8 @@ TEST(AttributeBlend, OverlappingBlocksBlendByBoundaryDistances) {
   // V1 = [0, 2] x [0, 1]^2 with A1 = 1, V2 = [1, 3] x [0, 1]^2 with A2 = 0. At x = (1.25, 0.5, 0.5): distance to
   // the boundary of V1 is min(0.75, 0.5) = 0.5 and to V2's 0.25, so A = 0.5 / 0.75 = 2/3.
   VModel m1, m2;
-  m1.add_cell(VCell(block_at(0, 0, 0, {2, 1, 1})));
-  m2.add_cell(VCell(block_at(1, 0, 0, {2, 1, 1})));
+  m1.add_cell(VCell(test::block_at(0, 0, 0, {2, 1, 1})));
+  m2.add_cell(VCell(test::block_at(1, 0, 0, {2, 1, 1})));
   m1.cell(0).set_attribute("c", Attribute::constant({1}));
   m2.cell(0).set_attribute("c", Attribute::constant({0}));
   m1.glue();

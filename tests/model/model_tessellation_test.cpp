@@ -8,17 +8,11 @@
 #include "trivar/core/error.hpp"
 #include "trivar/model/ball.hpp"
 #include "trivar/model/torus.hpp"
+#include "support/model_fixtures.hpp"
 
 using namespace trivar;
 
 namespace {
-
-VModel glued(const CellComplex& cells) {
-  VModel m;
-  for (const auto& c : cells) m.add_cell(VCell(c));
-  m.glue();
-  return m;
-}
 
 // Every vertex is the cell's geometry at the recorded parameters.
 void expect_traceable(const VModel& m, const ModelTessellation& t) {
@@ -34,7 +28,7 @@ void expect_traceable(const VModel& m, const ModelTessellation& t) {
 
 TEST(ModelTessellation, BallBoundaryIsTheExactSphereAndClosed) {
   const double R = 1.5;
-  const VModel ball = glued(make_ball({.radius = R}));
+  const VModel ball = test::glued(make_ball({.radius = R}));
   const double exact = 4.0 / 3.0 * std::numbers::pi * R * R * R;
   double previous = 1.0;
   for (double tol : {1e-2, 1e-3}) {
@@ -53,7 +47,7 @@ TEST(ModelTessellation, BallBoundaryIsTheExactSphereAndClosed) {
 
 TEST(ModelTessellation, TorusVerticesLieOnTheTube) {
   const double R = 2.0, r = 0.5;
-  const VModel torus = glued(make_torus({.major_radius = R, .minor_radius = r}));
+  const VModel torus = test::glued(make_torus({.major_radius = R, .minor_radius = r}));
   const ModelTessellation t = tessellate_boundary(torus, {.chordal_tolerance = 1e-3});
   EXPECT_TRUE(is_watertight(t.mesh));
   for (const auto& x : t.mesh.vertices) EXPECT_NEAR(std::hypot(std::hypot(x[0], x[1]) - R, x[2]), r, 1e-12);

@@ -10,16 +10,13 @@
 #include "trivar/spline/affine_transform.hpp"
 #include "trivar/spline/reparametrization.hpp"
 #include "trivar/spline/split.hpp"
+#include "support/model_fixtures.hpp"
 
 using namespace trivar;
 
 namespace {
 
-constexpr double pi = std::numbers::pi;
-
-TensorSpline<3> block_at(double x, double y, double z, Param<3> size = {1, 1, 1}, Ints<3> elements = {1, 1, 1}) {
-  return transform(make_block<3>({1, 1, 1}, elements, size), Eigen::Matrix3d::Identity(), Eigen::Vector3d(x, y, z));
-}
+using std::numbers::pi;
 
 // The disk r <= 1, z in [0, 1], revolved and cut into `pieces` wedges of equal angle: each wedge has its v0
 // face collapsed onto the axis.
@@ -44,7 +41,7 @@ TEST(Multipatch, BlocksHaveRegularValencesAndOrientedLinks) {
   for (int k = 0; k < 2; ++k)
     for (int j = 0; j < 2; ++j)
       for (int i = 0; i < 2; ++i) {
-        TensorSpline<3> b = block_at(i, j, k);
+        TensorSpline<3> b = test::block_at(i, j, k);
         if (i + 2 * j + 4 * k == 1) b = swap_directions(reverse(b, 0), 1, 2);
         m.add_cell(VCell(b));
       }
@@ -102,7 +99,7 @@ TEST(Multipatch, WatertightnessReportsParametricGapsOfNonConformingFaces) {
     for (double y : {0.0, 0.0, 1.0})  // y(v) = v^2
       for (double x : {1.0, 2.0}) pts.insert(pts.end(), {x, y, z});
   VModel m;
-  m.add_cell(VCell(block_at(0, 0, 0)));
+  m.add_cell(VCell(test::block_at(0, 0, 0)));
   m.add_cell(VCell(TensorSpline<3>::from_cartesian({k1, k2, k1}, 3, pts)));
   m.glue();
   ASSERT_EQ(m.topology().num_shared_surfaces(), 1);

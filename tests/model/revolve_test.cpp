@@ -16,7 +16,7 @@ using namespace trivar;
 
 namespace {
 
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 
 struct Axis {
   Eigen::Vector3d point, dir;

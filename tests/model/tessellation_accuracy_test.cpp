@@ -17,6 +17,7 @@
 #include "trivar/model/model_tessellation.hpp"
 #include "trivar/model/torus.hpp"
 #include "trivar/spline/iso_extraction.hpp"
+#include "support/model_fixtures.hpp"
 
 using namespace trivar;
 
@@ -24,13 +25,6 @@ namespace {
 
 using Vec = std::array<double, 3>;
 using Vec2 = std::array<double, 2>;
-
-VModel glued(const CellComplex& cells) {
-  VModel m;
-  for (const auto& c : cells) m.add_cell(VCell(c));
-  m.glue();
-  return m;
-}
 
 double length(const Vec& a) { return std::hypot(a[0], a[1], a[2]); }
 Vec sub(const Vec& a, const Vec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
@@ -147,7 +141,7 @@ constexpr double kMinAngle = 10.0;
 
 TEST(TessellationAccuracy, BallStaysWithinTheToleranceOfTheSphere) {
   for (double R : {1.0, 2.0}) {
-    const VModel ball = glued(make_ball({.radius = R}));
+    const VModel ball = test::glued(make_ball({.radius = R}));
     for (double tol : {0.02, 0.01, 0.005, 0.002}) {
       const ModelTessellation t = tessellate_boundary(ball, {.chordal_tolerance = tol});
       double worst = 0;
@@ -165,7 +159,7 @@ TEST(TessellationAccuracy, BallStaysWithinTheToleranceOfTheSphere) {
 TEST(TessellationAccuracy, TriangleCountDoublesWhenTheToleranceHalves) {
   // On a sphere of radius R, triangles of diameter h deviate by about h^2 / (8 R) from it: the count,
   // area / h^2, grows like 1 / tolerance.
-  const VModel ball = glued(make_ball({.radius = 1.0}));
+  const VModel ball = test::glued(make_ball({.radius = 1.0}));
   double previous = 0;
   for (double tol = 0.04; tol > 0.0007; tol /= 2) {
     const auto n = static_cast<double>(tessellate_boundary(ball, {.chordal_tolerance = tol}).mesh.triangles.size());
@@ -179,7 +173,7 @@ TEST(TessellationAccuracy, TriangleCountDoublesWhenTheToleranceHalves) {
 
 TEST(TessellationAccuracy, CylinderSideWithinToleranceAndCapsCoarse) {
   const double R = 1.0, H = 2.0;
-  const VModel cyl = glued(make_cylinder({.radius = R, .height = H}));
+  const VModel cyl = test::glued(make_cylinder({.radius = R, .height = H}));
   double previous_caps = 0, previous_side = 0;
   for (double tol : {0.004, 0.002, 0.001, 0.0005}) {
     const ModelTessellation t = tessellate_boundary(cyl, {.chordal_tolerance = tol});
@@ -209,7 +203,7 @@ TEST(TessellationAccuracy, CylinderSideWithinToleranceAndCapsCoarse) {
 
 TEST(TessellationAccuracy, TorusStaysWithinTheToleranceOfTheTube) {
   const double R = 2.0, r = 0.5;
-  const VModel torus = glued(make_torus({.major_radius = R, .minor_radius = r}));
+  const VModel torus = test::glued(make_torus({.major_radius = R, .minor_radius = r}));
   for (double tol : {0.01, 0.003}) {
     const ModelTessellation t = tessellate_boundary(torus, {.chordal_tolerance = tol});
     EXPECT_TRUE(is_watertight(t.mesh));
@@ -239,7 +233,7 @@ TEST(TessellationAccuracy, FlatFacesDoNotDependOnTheTolerance) {
 }
 
 TEST(TessellationAccuracy, ToleranceBeyondMemoryIsRefusedByName) {
-  const VModel ball = glued(make_ball({.radius = 1.0}));
+  const VModel ball = test::glued(make_ball({.radius = 1.0}));
   try {
     tessellate_boundary(ball, {.chordal_tolerance = 1e-9});
     FAIL() << "expected a refusal";

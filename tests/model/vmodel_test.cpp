@@ -8,17 +8,13 @@
 #include "trivar/model/revolve.hpp"
 #include "trivar/spline/affine_transform.hpp"
 #include "trivar/spline/split.hpp"
+#include "support/model_fixtures.hpp"
 
 using namespace trivar;
 
 namespace {
 
-constexpr double pi = std::numbers::pi;
-
-TensorSpline<3> block_at(double x, double y, double z, Param<3> size = {1, 1, 1}, Ints<3> degrees = {1, 1, 1},
-                         Ints<3> elements = {1, 1, 1}) {
-  return transform(make_block<3>(degrees, elements, size), Eigen::Matrix3d::Identity(), Eigen::Vector3d(x, y, z));
-}
+using std::numbers::pi;
 
 // The field u * v * w on [0, 1]^3 with its own knots (degree 2, 3 elements): coefficients at the Greville
 // abscissae reproduce the trilinear product exactly.
@@ -38,7 +34,7 @@ TEST(VModel, VolumeMassAndBoxOfBlocks) {
   VModel m;
   for (int k = 0; k < 2; ++k)
     for (int j = 0; j < 2; ++j)
-      for (int i = 0; i < 2; ++i) m.add_cell(VCell(block_at(i, j, k, {1, 1, 1}, {2, 1, 3}, {1, 2, 2})));
+      for (int i = 0; i < 2; ++i) m.add_cell(VCell(test::block_at(i, j, k, {1, 1, 1}, {2, 1, 3}, {1, 2, 2})));
   EXPECT_NEAR(m.volume(), 8.0, 1e-13);
   // Density 1 + x over [0, 2]^3: 8 + 4 * (integral of x over [0, 2]) = 8 + 4 * 2 = 16.
   for (int c = 0; c < 8; ++c) m.cell(c).set_attribute("density", Attribute::expression({"1 + x"}, Attribute::Space::model));
@@ -58,7 +54,7 @@ TEST(VModel, MassWithASplineDensityFieldOnItsOwnKnots) {
   // Cell x = 2u, y = v, z = w (det J = 2) with density u v w: mass = 2 / 8. The stretched cell has 2 elements
   // in u, the field 3: the quadrature uses the union of the spans.
   VModel m;
-  m.add_cell(VCell(block_at(0, 0, 0, {2, 1, 1}, {1, 1, 1}, {2, 1, 1})));
+  m.add_cell(VCell(test::block_at(0, 0, 0, {2, 1, 1}, {1, 1, 1}, {2, 1, 1})));
   m.cell(0).set_attribute("rho", Attribute::field(uvw_field()));
   EXPECT_NEAR(m.mass("rho"), 0.25, 1e-14);
 }
@@ -87,10 +83,10 @@ TEST(VModel, RingVolumeAndMassAreExact) {
 
 TEST(VModel, AddingACellDropsTheTopology) {
   VModel m;
-  m.add_cell(VCell(block_at(0, 0, 0)));
+  m.add_cell(VCell(test::block_at(0, 0, 0)));
   m.glue();
   EXPECT_TRUE(m.is_glued());
-  m.add_cell(VCell(block_at(1, 0, 0)));
+  m.add_cell(VCell(test::block_at(1, 0, 0)));
   EXPECT_FALSE(m.is_glued());
   EXPECT_THROW(m.relation(0, 1), Error);
   m.glue();

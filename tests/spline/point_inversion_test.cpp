@@ -14,7 +14,7 @@ using namespace trivar;
 
 namespace {
 
-const double kH = std::sqrt(0.5);
+const double kInvSqrt2 = std::sqrt(0.5);
 
 // Exact quarter annulus r in [1, 2], theta in [0, pi/2] (rational quadratic arcs), extruded over z in [0, 1]
 // when D = 3; then elevated to cubic and refined so it has several curved rational elements.
@@ -25,7 +25,7 @@ TensorSpline<D> quarter_annulus() {
   kv[1] = KnotVector(2, {0, 0, 0, 1, 1, 1});
   if constexpr (D == 3) kv[2] = KnotVector(1, {0, 0, 1, 1});
   const double arc[3][2] = {{1, 0}, {1, 1}, {0, 1}};
-  const double warc[3] = {1, kH, 1};
+  const double warc[3] = {1, kInvSqrt2, 1};
   std::vector<double> pts, w;
   for (int k = 0; k < (D == 3 ? 2 : 1); ++k)
     for (int j = 0; j < 3; ++j)

@@ -76,7 +76,7 @@ TEST(Tsm, GripBlocksAreReadInTheVertexFrame) {
   expect_patch(crlf);
 }
 
-void expect_error(const std::string& text, const std::string& fragment) {
+void expect_tsm_error(const std::string& text, const std::string& fragment) {
   try {
     io::parse_tsm(text, "bad.tsm");
     ADD_FAILURE() << "no error for " << fragment;
@@ -161,16 +161,16 @@ l 12 16 10 1 -1 8 1
 
 TEST(Tsm, MalformedFilesGiveOneLineErrors) {
   const std::string p = patch_text();
-  expect_error(replaced(p, "#TS0200", "#TS0100"), "#TS0200");
-  expect_error(replaced(p, "l 3 1 4 0 0 0 0", "l 3 1 44 0 0 0 0"), "does not exist");     // dangling id
-  expect_error(replaced(p, "l 3 1 4 0 0 0 0", "l 3 1 5 0 0 0 0"), "inconsistent links");  // opp not mutual
-  expect_error(replaced(p, "l 0 2 5 1 0 1 0", "l 0 2 5 1 0 1 1"), "not rectangular");     // three corners
-  expect_error(replaced(p, "l 0 2 5 1 0 1 0", "l 0 2 5 1 0 1 2"), "not rectangular");     // reflex corner
-  expect_error(replaced(p, "e 1 1", "e 1 2"), "contradictory knot intervals");
-  expect_error(replaced(p, "e 1 1", "e 1 x"), "bad knot interval");
-  expect_error(replaced(p, "0m cg 0 4 1 0 0 1 4 5 6", "0m cg 0 4 1 0 0 1 4 5"), "grip block");
-  expect_error(replaced(p, "0m gvp 3", "0m gv 3"), "neither a primary grip nor in a grip block");
-  expect_error(replaced(p, "f 0 0", "f 9 0"), "does not exist");
+  expect_tsm_error(replaced(p, "#TS0200", "#TS0100"), "#TS0200");
+  expect_tsm_error(replaced(p, "l 3 1 4 0 0 0 0", "l 3 1 44 0 0 0 0"), "does not exist");     // dangling id
+  expect_tsm_error(replaced(p, "l 3 1 4 0 0 0 0", "l 3 1 5 0 0 0 0"), "inconsistent links");  // opp not mutual
+  expect_tsm_error(replaced(p, "l 0 2 5 1 0 1 0", "l 0 2 5 1 0 1 1"), "not rectangular");     // three corners
+  expect_tsm_error(replaced(p, "l 0 2 5 1 0 1 0", "l 0 2 5 1 0 1 2"), "not rectangular");     // reflex corner
+  expect_tsm_error(replaced(p, "e 1 1", "e 1 2"), "contradictory knot intervals");
+  expect_tsm_error(replaced(p, "e 1 1", "e 1 x"), "bad knot interval");
+  expect_tsm_error(replaced(p, "0m cg 0 4 1 0 0 1 4 5 6", "0m cg 0 4 1 0 0 1 4 5"), "grip block");
+  expect_tsm_error(replaced(p, "0m gvp 3", "0m gv 3"), "neither a primary grip nor in a grip block");
+  expect_tsm_error(replaced(p, "f 0 0", "f 9 0"), "does not exist");
 }
 
 }  // namespace

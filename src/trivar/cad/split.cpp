@@ -4,16 +4,14 @@
 #include <sstream>
 
 #include "trivar/core/error.hpp"
+#include "trivar/core/vec3.hpp"
 #include "trivar/model/extrude.hpp"
 
 namespace trivar::cad {
 
 namespace {
 
-using Vec = std::array<double, 3>;
-
-Vec cross(const Vec& a, const Vec& b) { return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}; }
-double norm(const Vec& a) { return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]); }
+using Vec = Vec3;
 
 // The model and the tool swept from `surface` by `sweep`: every piece of the model is kept.
 VModel split_by_tool(const VModel& model, const TensorSpline<2>& surface, const Vec& sweep, const BooleanOptions& options,

@@ -24,4 +24,11 @@ inline void require(bool condition, MakeMessage&& make_message) {
   if (!condition) throw Error(make_message());
 }
 
+// Throws unless dir is a parametric direction of a D-variate object, naming the operation `what`.
+inline void require_direction(int dir, int D, const char* what) {
+  require(dir >= 0 && dir < D, [&] {
+    return std::string(what) + ": direction " + std::to_string(dir) + " out of range [0, " + std::to_string(D) + ")";
+  });
+}
+
 }  // namespace trivar

@@ -12,6 +12,7 @@
 #include "trivar/core/atomic_file.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/core/number_format.hpp"
+#include "trivar/io/read_limits.hpp"
 #include "trivar/lr/lr_mesh.hpp"
 
 namespace trivar::io {
@@ -119,8 +120,6 @@ private:
 
 // Orders are read as ints; degrees above this are not splines anyone writes and would only blow up memory.
 constexpr long kMaxOrder = 64;
-// Counts beyond this are rejected before any allocation sized by them.
-constexpr long kMaxCount = 100'000'000;
 
 template <int D>
 std::string box_text(const Box<D>& b) {

@@ -12,6 +12,7 @@
 #include "trivar/core/atomic_file.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/core/number_format.hpp"
+#include "trivar/io/read_limits.hpp"
 
 namespace trivar::io {
 
@@ -19,9 +20,6 @@ namespace {
 
 constexpr int kSurfaceClass = 293;
 constexpr int kVolumeClass = 793;
-// Counts beyond this are rejected before any allocation sized by them.
-constexpr long kMaxCount = 100'000'000;
-constexpr long kMaxDegree = 64;
 constexpr const char* kDirNames = "uvw";
 
 // Whitespace-separated tokens with their line numbers.

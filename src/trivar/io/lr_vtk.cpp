@@ -19,10 +19,6 @@ namespace trivar::io {
 
 namespace {
 
-constexpr std::uint8_t kVtkQuad = 9;
-constexpr std::uint8_t kVtkHexahedron = 12;
-constexpr std::uint8_t kVtkBezierQuadrilateral = 77;
-constexpr std::uint8_t kVtkBezierHexahedron = 79;
 constexpr std::array<const char*, 3> kReservedPointNames = {"param", "higher_components", "RationalWeights"};
 constexpr std::array<const char*, 3> kReservedCellNames = {"element", "support", "HigherOrderDegrees"};
 
@@ -73,7 +69,7 @@ void add_linear_cells(Piece& p, const Ints<D>& n, std::int64_t base) {
       p.connectivity.push_back(base + node_linear<D>(i, n));
     }
     p.offsets.push_back(static_cast<std::int64_t>(p.connectivity.size()));
-    p.types.push_back(D == 2 ? kVtkQuad : kVtkHexahedron);
+    p.types.push_back(kVtkLinearCell[D - 1]);
   });
 }
 
@@ -176,7 +172,7 @@ Piece build_piece(const Spline& s, int piece, const LRVtkOptions& opts,
     if (bezier) {
       p.connectivity.insert(p.connectivity.end(), conn.begin(), conn.end());
       p.offsets.push_back(static_cast<std::int64_t>(p.connectivity.size()));
-      p.types.push_back(D == 2 ? kVtkBezierQuadrilateral : kVtkBezierHexahedron);
+      p.types.push_back(kVtkBezierCell[D - 1]);
       for (int k = 0; k < 3; ++k) p.degrees.push_back(k < D ? n[k] : 0);
       // The field values at this element's nodes become its Bezier coefficients (points are not shared).
       for (std::size_t f = 0; f < point_fields.size(); ++f) {

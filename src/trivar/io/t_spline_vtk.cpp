@@ -11,13 +11,6 @@
 
 namespace trivar::io {
 
-namespace {
-
-constexpr std::uint8_t kVtkTriangle = 5;
-constexpr std::uint8_t kVtkBezierQuadrilateral = 77;
-
-}  // namespace
-
 void write_t_spline_vtu(const std::string& path, const TSplineSurface& surface) {
   const auto& nets = surface.bezier_elements();
   const int p = surface.degrees()[0], q = surface.degrees()[1];
@@ -38,7 +31,7 @@ void write_t_spline_vtu(const std::string& path, const TSplineSurface& surface) 
       }
     for (int k = 0; k < per; ++k) conn.push_back(static_cast<std::int64_t>(base) + k);
     offsets.push_back(static_cast<std::int64_t>(conn.size()));
-    types.push_back(kVtkBezierQuadrilateral);
+    types.push_back(kVtkBezierCell[1]);
     degrees.insert(degrees.end(), {p, q, 0});
     element.push_back(static_cast<std::int64_t>(e));
     functions.push_back(static_cast<std::int64_t>(surface.element_supports()[static_cast<int>(e)].size()));

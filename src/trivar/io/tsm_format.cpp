@@ -25,9 +25,9 @@ struct RawLink {
   int prev, next, opp, vertex, face, edge, flag;
 };
 
-class Reader {
+class TsmReader {
 public:
-  Reader(std::string_view text, std::string name) : name_(std::move(name)) { split(text); }
+  TsmReader(std::string_view text, std::string name) : name_(std::move(name)) { split(text); }
 
   TsmModel build();
 
@@ -110,7 +110,7 @@ int direction_of(std::string_view w) {
   return -1;
 }
 
-TsmModel Reader::build() {
+TsmModel TsmReader::build() {
   TsmModel out;
   TsmReport& rep = out.report;
   static const std::vector<std::string> geometry{"degree", "cap-type", "star-smoothness", "units",
@@ -375,7 +375,7 @@ TsmModel Reader::build() {
 
 }  // namespace
 
-TsmModel parse_tsm(std::string_view text, const std::string& name) { return Reader(text, name).build(); }
+TsmModel parse_tsm(std::string_view text, const std::string& name) { return TsmReader(text, name).build(); }
 
 TsmModel read_tsm(const std::string& path) {
   std::ifstream f(path, std::ios::binary);

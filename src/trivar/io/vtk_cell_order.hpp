@@ -1,8 +1,15 @@
 #pragma once
-// Point order of VTK's higher-order (Lagrange and Bezier) curves, quadrilaterals and hexahedra.
+// VTK's cell type numbers and the point order of its higher-order (Lagrange and Bezier) curves, quadrilaterals
+// and hexahedra.
 #include <array>
+#include <cstdint>
 
 namespace trivar::io {
+
+// VTK cell type numbers (vtkCellType.h), indexed by the cell's dimension - 1.
+inline constexpr std::array<std::uint8_t, 3> kVtkLinearCell = {3, 9, 12};    // VTK_LINE, _QUAD, _HEXAHEDRON
+inline constexpr std::array<std::uint8_t, 3> kVtkBezierCell = {75, 77, 79};  // VTK_BEZIER_CURVE, _QUADRILATERAL, _HEXAHEDRON
+inline constexpr std::uint8_t kVtkTriangle = 5;
 
 // Position of Bezier node i (0 <= i_k <= p_k) in VTK's higher-order cell point order: corners, then edge
 // interiors, then face interiors, then the body, with VTK's edge and face numbering (vtkHigherOrder*

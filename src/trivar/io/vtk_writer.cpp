@@ -20,15 +20,11 @@ namespace trivar::io {
 
 namespace {
 
-// VTK cell type numbers (vtkCellType.h).
-constexpr std::array<int, 3> kLinearCell = {3, 9, 12};    // VTK_LINE, VTK_QUAD, VTK_HEXAHEDRON
-constexpr std::array<int, 3> kBezierCell = {75, 77, 79};  // VTK_BEZIER_CURVE, _QUADRILATERAL, _HEXAHEDRON
-constexpr int kVtkLine = 3;
 constexpr std::array<const char*, 5> kReservedNames = {"param", "RationalWeights", "higher_components", "element",
                                                        "direction"};
 
 // One <Piece>: everything per point and per cell, already in VTK layout.
-struct Piece {
+struct SplinePiece {
   std::vector<double> points;   // 3 per point
   std::vector<double> params;   // 3 per point
   std::vector<double> weights;  // 1 per point, Bezier mode only
@@ -101,7 +97,7 @@ void check_size(const std::array<int, D>& n, const std::string& path, int per_po
 }
 
 template <int D>
-void add_sampled(Piece& piece, const TensorSpline<D>& s, int n, int extra, int field_values, const std::string& path) {
+void add_sampled(SplinePiece& piece, const TensorSpline<D>& s, int n, int extra, int field_values, const std::string& path) {
   // Per direction: sample parameters and, per element, the index of its first sample.
   std::array<std::vector<double>, D> u;
   std::array<std::vector<int>, D> first;
@@ -145,12 +141,12 @@ void add_sampled(Piece& piece, const TensorSpline<D>& s, int n, int extra, int f
       for (int k = 0; k < D; ++k) g[k] = lo[k] + kCorner[q][k];
       piece.connectivity.push_back(base + linear<D>(g, nu));
     }
-    piece.end_cell(kLinearCell[D - 1], linear<D>(e, ne));
+    piece.end_cell(kVtkLinearCell[D - 1], linear<D>(e, ne));
   });
 }
 
 template <int D>
-void add_bezier(Piece& piece, const TensorSpline<D>& s, int extra, int field_values, const std::string& path) {
+void add_bezier(SplinePiece& piece, const TensorSpline<D>& s, int extra, int field_values, const std::string& path) {
   // Per direction: global Bezier node index of each element's first node; shared across continuous joins.
   std::array<std::vector<int>, D> first;
   std::array<std::vector<double>, D> bp;
@@ -209,7 +205,7 @@ void add_bezier(Piece& piece, const TensorSpline<D>& s, int extra, int field_val
       conn[vtk_node_index<D>(i, p)] = base + static_cast<std::int64_t>(G);
     });
     piece.connectivity.insert(piece.connectivity.end(), conn.begin(), conn.end());
-    piece.end_cell(kBezierCell[D - 1], linear<D>(e, ne));
+    piece.end_cell(kVtkBezierCell[D - 1], linear<D>(e, ne));
     for (int k = 0; k < 3; ++k) piece.degrees.push_back(k < D ? p[k] : 0);
     if (l == 0) piece.element_degrees.assign(p.begin(), p.end());
   }
@@ -218,7 +214,7 @@ void add_bezier(Piece& piece, const TensorSpline<D>& s, int extra, int field_val
 }
 
 template <int D>
-void add_control_net(Piece& piece, const TensorSpline<D>& s, int extra) {
+void add_control_net(SplinePiece& piece, const TensorSpline<D>& s, int extra) {
   const std::int64_t base = piece.num_points();
   std::array<std::vector<double>, D> greville;
   for (int k = 0; k < D; ++k) greville[k] = s.knots(k).greville();
@@ -236,7 +232,7 @@ void add_control_net(Piece& piece, const TensorSpline<D>& s, int extra) {
       ++j[k];
       piece.connectivity.push_back(base + l);
       piece.connectivity.push_back(base + s.linear_index(j));
-      piece.end_cell(kVtkLine, k);
+      piece.end_cell(kVtkLinearCell[0], k);
     }
   });
 }
@@ -245,7 +241,7 @@ void add_control_net(Piece& piece, const TensorSpline<D>& s, int extra) {
 // get the same coefficients from every element holding them, since a face's coefficients depend only on the
 // values and weights on that face.
 template <int D>
-std::vector<double> bezier_coefficients(const Piece& piece, const std::vector<double>& at_nodes, int components) {
+std::vector<double> bezier_coefficients(const SplinePiece& piece, const std::vector<double>& at_nodes, int components) {
   Ints<D> p;
   for (int k = 0; k < D; ++k) p[k] = piece.element_degrees[static_cast<std::size_t>(k)];
   BernsteinInterpolation<D> interpolation(p);
@@ -268,7 +264,7 @@ std::vector<double> bezier_coefficients(const Piece& piece, const std::vector<do
   return out;
 }
 
-VtuPiece vtu_piece(const Piece& p, VtkCells mode, bool rational, const std::vector<VtkPointField>& fields, int extra) {
+VtuPiece vtu_piece(const SplinePiece& p, VtkCells mode, bool rational, const std::vector<VtkPointField>& fields, int extra) {
   const bool bezier = mode == VtkCells::bezier;
   VtuPiece v;
   v.num_points = p.num_points();
@@ -306,14 +302,14 @@ void write_vtu(const std::string& path, const std::vector<AnySpline>& objects, c
   for (const VtkPointField& f : fields) field_values += f.components;
   for (const auto& o : objects) extra = std::max(extra, std::visit([](const auto& s) { return s.dim(); }, o) - 3);
 
-  std::vector<Piece> pieces(objects.size());
+  std::vector<SplinePiece> pieces(objects.size());
   for (std::size_t i = 0; i < objects.size(); ++i) {
     const std::string where = objects.size() > 1 ? path + ": object " + std::to_string(i + 1) : path;
     std::visit(
         [&](const auto& s) {
           constexpr int D = std::decay_t<decltype(s)>::kDim;
           require(s.dim() >= 1, where + ": cannot write an empty spline (no control points)");
-          Piece& piece = pieces[i];
+          SplinePiece& piece = pieces[i];
           switch (mode) {
             case VtkCells::sampled:
               add_sampled(piece, s, opts.samples_per_element, extra, field_values, where);
@@ -339,11 +335,11 @@ void write_vtu(const std::string& path, const std::vector<AnySpline>& objects, c
 
   // RationalWeights in every piece or none, so ParaView merges the pieces into one data set.
   bool rational = false;
-  for (const Piece& p : pieces) rational = rational || p.rational;
+  for (const SplinePiece& p : pieces) rational = rational || p.rational;
   std::vector<VtuPiece> out;
-  for (Piece& p : pieces) {
+  for (SplinePiece& p : pieces) {
     out.push_back(vtu_piece(p, mode, rational, fields, extra));
-    p = Piece{};  // the compressed copy is all that is needed from here on
+    p = SplinePiece{};  // the compressed copy is all that is needed from here on
   }
   write_vtu_file(path, out);
 }

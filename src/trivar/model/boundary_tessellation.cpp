@@ -9,12 +9,13 @@
 
 #include "trivar/core/error.hpp"
 #include "trivar/core/memory_budget.hpp"
+#include "trivar/core/vec3.hpp"
 
 namespace trivar {
 
 namespace {
 
-using Vec = std::array<double, 3>;
+using Vec = Vec3;
 using Coord = std::int64_t;
 
 // Cell corners are lattice indices in fixed point: kFrac bits below one lattice step leave room for that
@@ -28,13 +29,6 @@ constexpr double kSnap = 1e-12;
 // for vector growth.
 constexpr double kBytesPerTriangle = 120;
 
-Vec sub(const Vec& a, const Vec& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-double norm(const double* a) { return std::sqrt(dot(a, a)); }
-Vec cross(const double* a, const double* b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-double distance(const Vec& a, const Vec& b) { return norm(sub(a, b).data()); }
 
 Vec at(const TensorSpline<2>& s, const Param<2>& u) {
   Vec x;
@@ -98,19 +92,20 @@ CellMeasure measure(const TensorSpline<2>& s, const Param<2>& lo, const Param<2>
   // bends the triangles away from it (a flat face in any parametrisation needs no refinement). The normal
   // turns over the cell: the projection on the centre normal is widened by the largest turning angle times
   // the whole second derivative.
-  const Vec nc = cross(d[4].data() + 3, d[4].data() + 6);
-  const double ncl = norm(nc.data());
+  const auto vec = [](const double* x) { return Vec{x[0], x[1], x[2]}; };
+  const Vec nc = cross(vec(d[4].data() + 3), vec(d[4].data() + 6));
+  const double ncl = norm(nc);
   double turn = ncl > 0 ? 0.0 : 1.0;
   for (const auto& p : d) {
-    const Vec n = cross(p.data() + 3, p.data() + 6);
-    const double nl = norm(n.data());
-    if (ncl > 0 && nl > 0) turn = std::max(turn, norm(cross(n.data(), nc.data()).data()) / (nl * ncl));
+    const Vec n = cross(vec(p.data() + 3), vec(p.data() + 6));
+    const double nl = norm(n);
+    if (ncl > 0 && nl > 0) turn = std::max(turn, norm(cross(n, nc)) / (nl * ncl));
   }
   std::array<double, 3> q{};  // bounds of |n . x_uu|, |n . x_uv|, |n . x_vv|
   for (const auto& p : d)
     for (int k = 0; k < 3; ++k) {
-      const double* x2 = p.data() + 9 + 3 * k;
-      const double normal = ncl > 0 ? std::abs(dot(x2, nc.data())) / ncl : 0.0;
+      const Vec x2 = vec(p.data() + 9 + 3 * k);
+      const double normal = ncl > 0 ? std::abs(dot(x2, nc)) / ncl : 0.0;
       q[k] = std::max(q[k], normal + turn * norm(x2));
     }
   // a du^2 + 2 b du dv + c dv^2 <= (a + b) du^2 + (b + c) dv^2.

@@ -7,14 +7,13 @@
 
 #include "trivar/core/error.hpp"
 #include "trivar/core/gauss_legendre.hpp"
+#include "trivar/core/vec3.hpp"
 
 namespace trivar {
 
 namespace {
 
-using Vec = std::array<double, 3>;
-
-double distance(const Vec& a, const Vec& b) { return std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]); }
+using Vec = Vec3;
 
 constexpr std::array<double, 3> kProbes{0.25, 0.5, 0.75};
 

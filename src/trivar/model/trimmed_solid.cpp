@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "trivar/core/error.hpp"
+#include "trivar/core/vec3.hpp"
 #include "trivar/model/triangle_mesh.hpp"
 #include "trivar/model/trimmed_integral.hpp"
 
@@ -27,10 +28,7 @@ int edge_sign(const P2& p, const P2& q, const P2& x) {
   return canonical ? s : -s;
 }
 
-using P3 = std::array<double, 3>;
-
-P3 sub(const P3& a, const P3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const P3& a, const P3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+using P3 = Vec3;
 
 // All control points (Cartesian) within rounding of the plane through the first one, the one farthest from
 // it and the one farthest from their line: the face is a plane, which the mesh reproduces exactly.
@@ -38,9 +36,6 @@ bool is_flat(const TensorSpline<2>& s) {
   const int n = s.num_coefs();
   std::vector<P3> x(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) s.control_point(i, x[static_cast<std::size_t>(i)].data());
-  const auto cross = [](const P3& u, const P3& v) {
-    return P3{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-  };
   P3 far{0, 0, 0};
   for (const P3& p : x)
     if (dot(sub(p, x[0]), sub(p, x[0])) > dot(far, far)) far = sub(p, x[0]);

@@ -15,7 +15,7 @@ namespace trivar {
 namespace {
 
 template <int D>
-struct Node {
+struct InversionNode {
   Box<D> domain;
   double diagonal = 0;  // of the model-space bounding box
   int depth = 0;
@@ -26,7 +26,7 @@ struct Node {
 template <int D>
 struct Workspace {
   std::vector<double> arena;
-  std::vector<Node<D>> stack;
+  std::vector<InversionNode<D>> stack;
   std::vector<std::pair<double, int>> candidates;
 };
 
@@ -195,7 +195,7 @@ InversionResult<D> PointInverter<D>::invert(const double* x) const {
   const bool rational = s_.is_rational();
   bool inside_box = false;  // some node shrank below tolerance (or depth) still containing x
   while (!ws.stack.empty()) {
-    const Node<D> n = ws.stack.back();
+    const InversionNode<D> n = ws.stack.back();
     ws.stack.pop_back();
     const std::size_t off = ws.arena.size() - ns;
     InversionResult<D> r = newton(x, n.domain.center());
@@ -219,7 +219,7 @@ InversionResult<D> PointInverter<D>::invert(const double* x) const {
     double* parent = ws.arena.data() + off;
     double* halves[2] = {parent + ns, parent + 2 * ns};
     split_bezier_net<D>(degrees, s_.stride(), parent, dir, 0.5, halves[0], halves[1]);
-    Node<D> child[2] = {n, n};
+    InversionNode<D> child[2] = {n, n};
     const double mid = 0.5 * (n.domain.lo[dir] + n.domain.hi[dir]);
     child[0].domain.hi[dir] = mid;
     child[1].domain.lo[dir] = mid;

@@ -10,11 +10,6 @@ namespace trivar {
 
 namespace {
 
-void check_direction(int dir, int D, const char* what) {
-  require(dir >= 0 && dir < D, std::string(what) + ": direction " + std::to_string(dir) + " out of range [0, " +
-                                   std::to_string(D) + ")");
-}
-
 // Knot vector with every knot mapped by the monotone map f whose domain image is [a, b]. The domain ends are
 // pinned to a and b exactly and the rest clamped to the correct side of them, so rounding can neither move the
 // domain nor break the ordering.
@@ -35,7 +30,7 @@ KnotVector map_knots(const KnotVector& kv, double a, double b, F&& f) {
 
 template <int D>
 TensorSpline<D> reverse(const TensorSpline<D>& s, int dir) {
-  check_direction(dir, D, "reverse");
+  require_direction(dir, D, "reverse");
   const KnotVector& kv = s.knots(dir);
   const double a = kv.start(), b = kv.end();
   // Mirroring t -> a + b - t turns an increasing sequence into a decreasing one; reverse the order afterwards.
@@ -67,8 +62,8 @@ TensorSpline<D> reverse(const TensorSpline<D>& s, int dir) {
 
 template <int D>
 TensorSpline<D> swap_directions(const TensorSpline<D>& s, int a, int b) {
-  check_direction(a, D, "swap directions");
-  check_direction(b, D, "swap directions");
+  require_direction(a, D, "swap directions");
+  require_direction(b, D, "swap directions");
   if (a == b) return s;
   auto knots = s.knot_vectors();
   std::swap(knots[a], knots[b]);
@@ -87,7 +82,7 @@ TensorSpline<D> swap_directions(const TensorSpline<D>& s, int a, int b) {
 
 template <int D>
 TensorSpline<D> reparametrize(const TensorSpline<D>& s, int dir, double a, double b) {
-  check_direction(dir, D, "reparametrize");
+  require_direction(dir, D, "reparametrize");
   require(std::isfinite(a) && std::isfinite(b) && a < b, "reparametrize: target interval [" + std::to_string(a) +
                                                              ", " + std::to_string(b) + "] of direction " +
                                                              std::to_string(dir) + " is empty or not finite");

@@ -51,16 +51,11 @@ TensorSpline<D> restrict_to(const TensorSpline<D>& s, int dir, double a, double 
   return TensorSpline<D>(std::move(knots), r.dim(), r.is_rational(), std::move(c));
 }
 
-void check_direction(int dir, int D, const char* what) {
-  require(dir >= 0 && dir < D, std::string(what) + ": direction " + std::to_string(dir) + " out of range [0, " +
-                                   std::to_string(D) + ")");
-}
-
 }  // namespace
 
 template <int D>
 std::pair<TensorSpline<D>, TensorSpline<D>> split_at(const TensorSpline<D>& s, int dir, double u) {
-  check_direction(dir, D, "split");
+  require_direction(dir, D, "split");
   const KnotVector& kv = s.knots(dir);
   const double c = snap_to_knot(kv, u);
   require(c > kv.start() && c < kv.end(), "split: parameter " + std::to_string(u) + " in direction " +

@@ -7,6 +7,7 @@
 #include <unordered_map>
 
 #include "trivar/core/error.hpp"
+#include "trivar/io/step/bspline_entity_names.hpp"
 #include "trivar/lr/knot_line_mesh.hpp"
 #include "trivar/spline/knot_refinement.hpp"
 
@@ -14,15 +15,10 @@ namespace trivar::io::step {
 
 namespace {
 
-constexpr std::array<const char*, 3> kBase = {"B_SPLINE_CURVE", "B_SPLINE_SURFACE", "B_SPLINE_VOLUME"};
-constexpr std::array<const char*, 3> kWithKnots = {"B_SPLINE_CURVE_WITH_KNOTS", "B_SPLINE_SURFACE_WITH_KNOTS",
-                                                   "B_SPLINE_VOLUME_WITH_KNOTS"};
 constexpr std::array<const char*, 3> kBezier = {"BEZIER_CURVE", "BEZIER_SURFACE", "BEZIER_VOLUME"};
 constexpr std::array<const char*, 3> kUniform = {"UNIFORM_CURVE", "UNIFORM_SURFACE", "UNIFORM_VOLUME"};
 constexpr std::array<const char*, 3> kQuasi = {"QUASI_UNIFORM_CURVE", "QUASI_UNIFORM_SURFACE",
                                                "QUASI_UNIFORM_VOLUME"};
-constexpr std::array<const char*, 3> kRational = {"RATIONAL_B_SPLINE_CURVE", "RATIONAL_B_SPLINE_SURFACE",
-                                                  "RATIONAL_B_SPLINE_VOLUME"};
 constexpr std::array<const char*, 3> kLR = {"LOCALLY_REFINED_SPLINE_CURVE", "LOCALLY_REFINED_SPLINE_SURFACE",
                                             "LOCALLY_REFINED_SPLINE_VOLUME"};
 constexpr std::array<const char*, 3> kRationalLR = {"RATIONAL_LOCALLY_REFINED_SPLINE_CURVE",

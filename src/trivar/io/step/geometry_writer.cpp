@@ -7,16 +7,11 @@
 #include <tuple>
 
 #include "trivar/core/error.hpp"
+#include "trivar/io/step/bspline_entity_names.hpp"
 
 namespace trivar::io::step {
 
 namespace {
-
-constexpr std::array<const char*, 3> kBase = {"B_SPLINE_CURVE", "B_SPLINE_SURFACE", "B_SPLINE_VOLUME"};
-constexpr std::array<const char*, 3> kWithKnots = {"B_SPLINE_CURVE_WITH_KNOTS", "B_SPLINE_SURFACE_WITH_KNOTS",
-                                                   "B_SPLINE_VOLUME_WITH_KNOTS"};
-constexpr std::array<const char*, 3> kRational = {"RATIONAL_B_SPLINE_CURVE", "RATIONAL_B_SPLINE_SURFACE",
-                                                  "RATIONAL_B_SPLINE_VOLUME"};
 
 Parameter unknown() { return enumeration("U"); }
 
