@@ -1,0 +1,183 @@
+#include "trivar/spline/element_polynomials.hpp"
+
+#include <algorithm>
+#include <cstring>
+
+#include "trivar/spline/simd_level.hpp"
+
+namespace trivar {
+
+namespace element_polynomials {
+
+// Four lanes: x, y, z and the weight (or zeros), one 256-bit vector with AVX2, two SSE2 vectors otherwise.
+typedef double V4 __attribute__((vector_size(32)));
+// V4 never crosses a call boundary (the body is inlined into each entry point).
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+[[gnu::always_inline]] inline V4 load4(const double* p) {
+  V4 v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+// Horner's rule in x0 on each row of the block, then in x1 over the rows, then in x2: the (P1+1)(P2+1) rows
+// are independent, so only the two outer chains are serial.
+template <int P0, int P1, int P2>
+[[gnu::always_inline]] inline void horner3(const double* c, const double* x, double* h) {
+  V4 acc2{};
+#pragma GCC unroll 8
+  for (int m2 = P2; m2 >= 0; --m2) {
+    V4 acc1{};
+#pragma GCC unroll 8
+    for (int m1 = P1; m1 >= 0; --m1) {
+      const double* row = c + static_cast<std::size_t>((m2 * (P1 + 1) + m1) * (P0 + 1)) * 4;
+      V4 acc0 = load4(row + 4 * P0);
+#pragma GCC unroll 8
+      for (int m0 = P0 - 1; m0 >= 0; --m0) acc0 = acc0 * x[0] + load4(row + 4 * m0);
+      acc1 = m1 == P1 ? acc0 : acc1 * x[1] + acc0;
+    }
+    acc2 = m2 == P2 ? acc1 : acc2 * x[2] + acc1;
+  }
+  std::memcpy(h, &acc2, sizeof acc2);
+}
+
+}  // namespace element_polynomials
+
+// The point kernels: locate the element (on uniform knots by one multiplication, as the B-spline kernels do),
+// Horner's rule on its block, divide by the weight lane.
+template <int P, int Q>
+struct ElementKernel {
+  [[gnu::always_inline]] static void body(const ElementPolynomials& e, const Param<3>& u, double* out) {
+    double x[3];
+    std::size_t offset = 0;
+#pragma GCC unroll 3
+    for (int k = 0; k < 3; ++k) {
+      const ElementPolynomials::Axis& a = e.axes_[k];
+      const double uk = std::clamp(u[k], a.lo, a.hi);
+      const int s = a.inv_h > 0.0 ? static_cast<int>(std::clamp((uk - a.lo) * a.inv_h, 0.0, a.last)) : e.search(k, uk);
+      const double* b = e.local_.data() + a.local + 2 * static_cast<std::size_t>(s);
+      x[k] = (uk - b[0]) * b[1];
+      offset += static_cast<std::size_t>(s) * a.step;
+    }
+    double h[4];
+    element_polynomials::horner3<P, P, Q>(e.coefs_.data() + offset, x, h);
+    const double inv = 1.0 / h[3];
+    for (int d = 0; d < e.dim_; ++d) out[d] = h[d] * inv;
+  }
+  static void generic(const ElementPolynomials& e, const Param<3>& u, double* out) { body(e, u, out); }
+#if defined(__x86_64__)
+  [[gnu::target("avx2,fma")]] static void avx2(const ElementPolynomials& e, const Param<3>& u, double* out) {
+    body(e, u, out);
+  }
+#endif
+  static ElementPolynomials::Kernel at(SimdLevel level) {
+#if defined(__x86_64__)
+    if (level != SimdLevel::generic) return &avx2;
+#endif
+    (void)level;
+    return &generic;
+  }
+};
+
+namespace element_polynomials {
+
+template <int P>
+ElementPolynomials::Kernel kernel_for_last(int q, SimdLevel level) {
+  switch (q) {
+    case 1: return ElementKernel<P, 1>::at(level);
+    case 2: return ElementKernel<P, 2>::at(level);
+    case 3: return ElementKernel<P, 3>::at(level);
+    case 4: return ElementKernel<P, 4>::at(level);
+    default: return nullptr;
+  }
+}
+
+ElementPolynomials::Kernel kernel_for(int p, int q, SimdLevel level) {
+  switch (p) {
+    case 1: return kernel_for_last<1>(q, level);
+    case 2: return kernel_for_last<2>(q, level);
+    case 3: return kernel_for_last<3>(q, level);
+    case 4: return kernel_for_last<4>(q, level);
+    default: return nullptr;
+  }
+}
+
+}  // namespace element_polynomials
+
+ElementPolynomials::ElementPolynomials(const TensorSpline<3>& s, std::size_t max_bytes) {
+  using namespace element_polynomials;
+  const int p0 = s.degree(0), p1 = s.degree(1), p2 = s.degree(2);
+  if (p0 != p1 || s.dim() > 3 || s.stride() > 4) return;
+  for (int k = 0; k < 3; ++k)
+    if (s.knots(k).power_forms() == nullptr) return;
+  const Kernel kernel = kernel_for(p0, p2, simd_level());
+  if (!kernel) return;
+  const int L[3] = {p0 + 1, p1 + 1, p2 + 1};
+  const std::size_t block = static_cast<std::size_t>(4 * L[0] * L[1] * L[2]);
+  int spans[3];
+  std::size_t elements = 1;
+  for (int k = 0; k < 3; ++k) {
+    spans[k] = s.knots(k).last_span() - s.knots(k).first_span() + 1;
+    elements *= static_cast<std::size_t>(spans[k]);
+  }
+  if (elements > max_bytes / sizeof(double) / block) return;
+  knots_ = s.knot_vectors();
+  std::size_t step = block;
+  for (int k = 0; k < 3; ++k) {
+    const KnotVector& kv = knots_[k];
+    axes_[k] = {kv.start(), kv.end(), kv.uniform_inverse_spacing(), static_cast<double>(spans[k] - 1), local_.size(), step};
+    step *= static_cast<std::size_t>(spans[k]);
+    for (int sp = kv.first_span(); sp <= kv.last_span(); ++sp)
+      local_.insert(local_.end(), kv.span_power_form(sp), kv.span_power_form(sp) + 2);
+  }
+  dim_ = s.dim();
+  coefs_.assign(elements * block, 0.0);
+  const int st = s.stride(), n0 = s.count(0), n1 = s.count(1);
+  const auto cs = s.coefs();
+  // Per element, direction by direction: T0[c][b][m0] = sum_a C0[m0][a] P[a][b][c], then direction 1, then 2,
+  // where Ck[m][a] is the coefficient of x^m in the span's B-spline a (4 lanes per entry).
+  std::vector<double> t0(static_cast<std::size_t>(4 * L[0] * L[1] * L[2])), t1(t0.size());
+  std::size_t e = 0;
+  for (int e2 = 0; e2 < spans[2]; ++e2)
+    for (int e1 = 0; e1 < spans[1]; ++e1)
+      for (int e0 = 0; e0 < spans[0]; ++e0, ++e) {
+        const int sp[3] = {knots_[0].first_span() + e0, knots_[1].first_span() + e1, knots_[2].first_span() + e2};
+        const double* C[3];
+        for (int k = 0; k < 3; ++k) C[k] = knots_[k].span_power_form(sp[k]) + 2;
+        std::fill(t0.begin(), t0.end(), 0.0);
+        std::fill(t1.begin(), t1.end(), 0.0);
+        // t0 index ((c * L1 + b) * L0 + m0) * 4 + lane
+        for (int c = 0; c < L[2]; ++c)
+          for (int b = 0; b < L[1]; ++b)
+            for (int a = 0; a < L[0]; ++a) {
+              const std::size_t ctrl = static_cast<std::size_t>((sp[0] - p0 + a) + n0 * ((sp[1] - p1 + b) + n1 * (sp[2] - p2 + c)));
+              const double* v = cs.data() + ctrl * static_cast<std::size_t>(st);
+              // Coordinates in lanes 0 .. dim-1, the weight (1 when polynomial) in lane 3.
+              const double lanes[4] = {dim_ > 0 ? v[0] : 0.0, dim_ > 1 ? v[1] : 0.0, dim_ > 2 ? v[2] : 0.0,
+                                       s.is_rational() ? v[dim_] : 1.0};
+              for (int m0 = 0; m0 < L[0]; ++m0)
+                for (int d = 0; d < 4; ++d)
+                  t0[static_cast<std::size_t>(((c * L[1] + b) * L[0] + m0) * 4 + d)] += C[0][m0 * L[0] + a] * lanes[d];
+            }
+        // t1 index ((c * L1 + m1) * L0 + m0) * 4 + lane
+        for (int c = 0; c < L[2]; ++c)
+          for (int m1 = 0; m1 < L[1]; ++m1)
+            for (int b = 0; b < L[1]; ++b)
+              for (int q = 0; q < 4 * L[0]; ++q)
+                t1[static_cast<std::size_t>((c * L[1] + m1) * L[0] * 4 + q)] +=
+                    C[1][m1 * L[1] + b] * t0[static_cast<std::size_t>((c * L[1] + b) * L[0] * 4 + q)];
+        // block index ((m2 * L1 + m1) * L0 + m0) * 4 + lane
+        double* out = coefs_.data() + e * block;
+        for (int m2 = 0; m2 < L[2]; ++m2)
+          for (int c = 0; c < L[2]; ++c)
+            for (int q = 0; q < 4 * L[0] * L[1]; ++q)
+              out[static_cast<std::size_t>(m2 * L[1] * L[0] * 4 + q)] +=
+                  C[2][m2 * L[2] + c] * t1[static_cast<std::size_t>(c * L[1] * L[0] * 4 + q)];
+        // A polynomial's weight lane: exactly the constant 1 (the contraction gives it to rounding).
+        if (!s.is_rational())
+          for (std::size_t q = 0; q < block / 4; ++q) out[4 * q + 3] = q == 0 ? 1.0 : 0.0;
+      }
+  value_ = kernel;
+}
+
+}  // namespace trivar
