@@ -51,6 +51,14 @@ void expect_reproduces(const TensorSpline<3>& s, const std::string& name) {
       for (int d = 0; d < s.dim(); ++d)
         ASSERT_NEAR(x[d], ref[d], kTolerance * (1.0 + std::abs(ref[d])))
             << name << " " << simd_level_name(level) << " at (" << u[0] << ", " << u[1] << ", " << u[2] << ")";
+      // First derivatives against the B-spline derivative kernels (checked against finite differences in
+      // tensor_spline_test), scaled by the parameter lengths the local coordinates divide by.
+      double f[12], g[12];
+      e.eval_first(u, f);
+      s.eval_derivs(u, 1, g);
+      for (int d = 0; d < s.dim(); ++d) ASSERT_EQ(f[d], x[d]) << name;
+      for (int i = s.dim(); i < 4 * s.dim(); ++i)
+        ASSERT_NEAR(f[i], g[i], 10 * kTolerance * (1.0 + std::abs(g[i]))) << name << " derivative entry " << i;
     }
     // Outside the domain: the value at the clamped parameter, as TensorSpline::eval gives it.
     const Box<3> dom = s.domain();

@@ -34,9 +34,13 @@ constexpr int kChordSteps = 3;
 // to where the Jacobian was taken, and a refresh costs about two value evaluations.
 constexpr int kChordRefresh = 16;
 
-bool jacobian_inverse(const TensorSpline<3>& s, const Param<3>& u, Eigen::Matrix3d& inv) {
+bool jacobian_inverse(const TensorSpline<3>& s, const ElementPolynomials& poly, const Param<3>& u,
+                      Eigen::Matrix3d& inv) {
   double d[12];
-  s.eval_derivs(u, 1, d);
+  if (poly.available())
+    poly.eval_first(u, d);
+  else
+    s.eval_derivs(u, 1, d);
   Eigen::Matrix3d J;
   for (int k = 0; k < 3; ++k)
     for (int r = 0; r < 3; ++r) J(r, k) = d[3 * (1 + k) + r];
@@ -360,7 +364,10 @@ SliceLayer LayerSlicer::slice(int k) const {
         continue;
       }
       if (along_row && (newton_used || c != chord_cell || ++chord_age >= kChordRefresh)) {
-        chord_cell = jacobian_inverse(inverters_[static_cast<std::size_t>(c)].spline(), r.param, chord_inverse) ? c : -1;
+        chord_cell = jacobian_inverse(inverters_[static_cast<std::size_t>(c)].spline(),
+                                      polynomials_[static_cast<std::size_t>(c)], r.param, chord_inverse)
+                         ? c
+                         : -1;
         chord_age = 0;
       }
       row[i] = c;

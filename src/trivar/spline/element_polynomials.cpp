@@ -41,14 +41,57 @@ template <int P0, int P1, int P2>
   std::memcpy(h, &acc2, sizeof acc2);
 }
 
+// The same with the partial derivatives in x0, x1, x2: h gets 4 lanes of the value, then 4 per derivative.
+template <int P0, int P1, int P2>
+[[gnu::always_inline]] inline void horner3_first(const double* c, const double* x, double* h) {
+  V4 v2{}, d20{}, d21{}, d22{};
+#pragma GCC unroll 8
+  for (int m2 = P2; m2 >= 0; --m2) {
+    V4 v1{}, d10{}, d11{};
+#pragma GCC unroll 8
+    for (int m1 = P1; m1 >= 0; --m1) {
+      const double* row = c + static_cast<std::size_t>((m2 * (P1 + 1) + m1) * (P0 + 1)) * 4;
+      V4 v0 = load4(row + 4 * P0), d00{};
+#pragma GCC unroll 8
+      for (int m0 = P0 - 1; m0 >= 0; --m0) {
+        d00 = m0 == P0 - 1 ? v0 : d00 * x[0] + v0;
+        v0 = v0 * x[0] + load4(row + 4 * m0);
+      }
+      if (m1 == P1) {
+        v1 = v0;
+        d10 = d00;
+      } else {
+        d11 = m1 == P1 - 1 ? v1 : d11 * x[1] + v1;
+        v1 = v1 * x[1] + v0;
+        d10 = d10 * x[1] + d00;
+      }
+    }
+    if (m2 == P2) {
+      v2 = v1;
+      d20 = d10;
+      d21 = d11;
+    } else {
+      d22 = m2 == P2 - 1 ? v2 : d22 * x[2] + v2;
+      v2 = v2 * x[2] + v1;
+      d20 = d20 * x[2] + d10;
+      d21 = d21 * x[2] + d11;
+    }
+  }
+  std::memcpy(h, &v2, sizeof v2);
+  std::memcpy(h + 4, &d20, sizeof d20);
+  std::memcpy(h + 8, &d21, sizeof d21);
+  std::memcpy(h + 12, &d22, sizeof d22);
+}
+
 }  // namespace element_polynomials
 
 // The point kernels: locate the element (on uniform knots by one multiplication, as the B-spline kernels do),
 // Horner's rule on its block, divide by the weight lane.
 template <int P, int Q>
 struct ElementKernel {
-  [[gnu::always_inline]] static void body(const ElementPolynomials& e, const Param<3>& u, double* out) {
-    double x[3];
+  // The element's coefficient block; x gets the local coordinates, scale d x_k / d u_k.
+  [[gnu::always_inline]] static const double* locate(const ElementPolynomials& e, const Param<3>& u, double* x,
+                                                     double* scale) {
     std::size_t offset = 0;
 #pragma GCC unroll 3
     for (int k = 0; k < 3; ++k) {
@@ -57,48 +100,70 @@ struct ElementKernel {
       const int s = a.inv_h > 0.0 ? static_cast<int>(std::clamp((uk - a.lo) * a.inv_h, 0.0, a.last)) : e.search(k, uk);
       const double* b = e.local_.data() + a.local + 2 * static_cast<std::size_t>(s);
       x[k] = (uk - b[0]) * b[1];
+      scale[k] = b[1];
       offset += static_cast<std::size_t>(s) * a.step;
     }
-    double h[4];
-    element_polynomials::horner3<P, P, Q>(e.coefs_.data() + offset, x, h);
+    return e.coefs_.data() + offset;
+  }
+  [[gnu::always_inline]] static void value(const ElementPolynomials& e, const Param<3>& u, double* out) {
+    double x[3], scale[3], h[4];
+    element_polynomials::horner3<P, P, Q>(locate(e, u, x, scale), x, h);
     const double inv = 1.0 / h[3];
     for (int d = 0; d < e.dim_; ++d) out[d] = h[d] * inv;
   }
-  static void generic(const ElementPolynomials& e, const Param<3>& u, double* out) { body(e, u, out); }
+  // Quotient rule on the homogeneous value and derivatives (the weight lane of a polynomial is 1, its
+  // derivatives 0).
+  [[gnu::always_inline]] static void first(const ElementPolynomials& e, const Param<3>& u, double* out) {
+    double x[3], scale[3], h[16];
+    element_polynomials::horner3_first<P, P, Q>(locate(e, u, x, scale), x, h);
+    const double inv = 1.0 / h[3];
+    const int dim = e.dim_;
+    for (int d = 0; d < dim; ++d) out[d] = h[d] * inv;
+    for (int k = 0; k < 3; ++k)
+      for (int d = 0; d < dim; ++d)
+        out[(k + 1) * dim + d] = (h[4 * (k + 1) + d] - out[d] * h[4 * (k + 1) + 3]) * inv * scale[k];
+  }
+  static void generic_value(const ElementPolynomials& e, const Param<3>& u, double* out) { value(e, u, out); }
+  static void generic_first(const ElementPolynomials& e, const Param<3>& u, double* out) { first(e, u, out); }
 #if defined(__x86_64__)
-  [[gnu::target("avx2,fma")]] static void avx2(const ElementPolynomials& e, const Param<3>& u, double* out) {
-    body(e, u, out);
+  [[gnu::target("avx2,fma")]] static void avx2_value(const ElementPolynomials& e, const Param<3>& u, double* out) {
+    value(e, u, out);
+  }
+  [[gnu::target("avx2,fma")]] static void avx2_first(const ElementPolynomials& e, const Param<3>& u, double* out) {
+    first(e, u, out);
   }
 #endif
-  static ElementPolynomials::Kernel at(SimdLevel level) {
+  static std::array<ElementPolynomials::Kernel, 2> at(SimdLevel level) {
 #if defined(__x86_64__)
-    if (level != SimdLevel::generic) return &avx2;
+    if (level != SimdLevel::generic) return {&avx2_value, &avx2_first};
 #endif
     (void)level;
-    return &generic;
+    return {&generic_value, &generic_first};
   }
 };
 
 namespace element_polynomials {
 
+using Kernels = std::array<ElementPolynomials::Kernel, 2>;
+
 template <int P>
-ElementPolynomials::Kernel kernel_for_last(int q, SimdLevel level) {
+Kernels kernel_for_last(int q, SimdLevel level) {
   switch (q) {
     case 1: return ElementKernel<P, 1>::at(level);
     case 2: return ElementKernel<P, 2>::at(level);
     case 3: return ElementKernel<P, 3>::at(level);
     case 4: return ElementKernel<P, 4>::at(level);
-    default: return nullptr;
+    default: return {};
   }
 }
 
-ElementPolynomials::Kernel kernel_for(int p, int q, SimdLevel level) {
+Kernels kernel_for(int p, int q, SimdLevel level) {
   switch (p) {
     case 1: return kernel_for_last<1>(q, level);
     case 2: return kernel_for_last<2>(q, level);
     case 3: return kernel_for_last<3>(q, level);
     case 4: return kernel_for_last<4>(q, level);
-    default: return nullptr;
+    default: return {};
   }
 }
 
@@ -110,8 +175,8 @@ ElementPolynomials::ElementPolynomials(const TensorSpline<3>& s, std::size_t max
   if (p0 != p1 || s.dim() > 3 || s.stride() > 4) return;
   for (int k = 0; k < 3; ++k)
     if (s.knots(k).power_forms() == nullptr) return;
-  const Kernel kernel = kernel_for(p0, p2, simd_level());
-  if (!kernel) return;
+  const auto kernels = kernel_for(p0, p2, simd_level());
+  if (!kernels[0]) return;
   const int L[3] = {p0 + 1, p1 + 1, p2 + 1};
   const std::size_t block = static_cast<std::size_t>(4 * L[0] * L[1] * L[2]);
   int spans[3];
@@ -177,7 +242,8 @@ ElementPolynomials::ElementPolynomials(const TensorSpline<3>& s, std::size_t max
         if (!s.is_rational())
           for (std::size_t q = 0; q < block / 4; ++q) out[4 * q + 3] = q == 0 ? 1.0 : 0.0;
       }
-  value_ = kernel;
+  value_ = kernels[0];
+  first_ = kernels[1];
 }
 
 }  // namespace trivar

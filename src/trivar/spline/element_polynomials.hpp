@@ -15,6 +15,7 @@
 // Degrees 1 to 4 with the first two equal (equal degrees, and the 4 x 4 x 1 and 2 x 2 x 1 shells of exact
 // spheres and tori); other degrees, dimensions above 3 and tables over the size cap are not available(), and
 // callers keep TensorSpline::eval.
+#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -35,6 +36,9 @@ public:
   bool available() const { return value_ != nullptr; }
   // The dim Cartesian values at u, clamped to the domain like TensorSpline::eval. Requires available().
   void eval(const Param<3>& u, double* out) const { value_(*this, u, out); }
+  // The value and the first partial derivatives in u, v, w, (1 + 3) * dim values in the order of
+  // TensorSpline::eval_derivs(u, 1, out). Requires available().
+  void eval_first(const Param<3>& u, double* out) const { first_(*this, u, out); }
 
   // Per direction: domain, 1 / span length on uniform knots (else 0), last span index (first_span() is 0),
   // offset of the spans' (first knot, 1 / length) pairs in local_, distance between elements in coefs_.
@@ -54,7 +58,7 @@ public:
   // lanes: the dim coordinates (homogeneous when rational), zeros, and in the last lane the weight (the
   // constant 1 for a polynomial spline, so that one path divides by it exactly).
   std::vector<double> coefs_;
-  Kernel value_ = nullptr;
+  Kernel value_ = nullptr, first_ = nullptr;
 
   template <int P, int Q>
   friend struct ElementKernel;
