@@ -20,62 +20,63 @@ typedef double V4 __attribute__((vector_size(32)));
   return v;
 }
 
-// Horner's rule in x0 on each row of the block, then in x1 over the rows, then in x2: the (P1+1)(P2+1) rows
-// are independent, so only the two outer chains are serial.
-template <int P0, int P1, int P2>
-[[gnu::always_inline]] inline void horner3(const double* c, const double* x, double* h) {
-  V4 acc2{};
+// Horner's rule in x0 on each of the P1 + 1 rows of one x2 slice of the block (independent chains), then in x1
+// over the rows. The slices are combined by Horner's rule in x2 with the run-time last degree (a loop of at
+// most 5 steps around the unrolled slice), which keeps the kernels to one per (P0, P1) pair.
+template <int P0, int P1>
+[[gnu::always_inline]] inline V4 slice_value(const double* c, const double* x) {
+  V4 acc1{};
 #pragma GCC unroll 8
-  for (int m2 = P2; m2 >= 0; --m2) {
-    V4 acc1{};
+  for (int m1 = P1; m1 >= 0; --m1) {
+    const double* row = c + m1 * (P0 + 1) * 4;
+    V4 acc0 = load4(row + 4 * P0);
 #pragma GCC unroll 8
-    for (int m1 = P1; m1 >= 0; --m1) {
-      const double* row = c + static_cast<std::size_t>((m2 * (P1 + 1) + m1) * (P0 + 1)) * 4;
-      V4 acc0 = load4(row + 4 * P0);
-#pragma GCC unroll 8
-      for (int m0 = P0 - 1; m0 >= 0; --m0) acc0 = acc0 * x[0] + load4(row + 4 * m0);
-      acc1 = m1 == P1 ? acc0 : acc1 * x[1] + acc0;
-    }
-    acc2 = m2 == P2 ? acc1 : acc2 * x[2] + acc1;
+    for (int m0 = P0 - 1; m0 >= 0; --m0) acc0 = acc0 * x[0] + load4(row + 4 * m0);
+    acc1 = m1 == P1 ? acc0 : acc1 * x[1] + acc0;
   }
+  return acc1;
+}
+
+template <int P0, int P1>
+[[gnu::always_inline]] inline void horner3(const double* c, int p2, const double* x, double* h) {
+  constexpr int kSlice = (P0 + 1) * (P1 + 1) * 4;
+  V4 acc2 = slice_value<P0, P1>(c + p2 * kSlice, x);
+  for (int m2 = p2 - 1; m2 >= 0; --m2) acc2 = acc2 * x[2] + slice_value<P0, P1>(c + m2 * kSlice, x);
   std::memcpy(h, &acc2, sizeof acc2);
 }
 
-// The same with the partial derivatives in x0, x1, x2: h gets 4 lanes of the value, then 4 per derivative.
-template <int P0, int P1, int P2>
-[[gnu::always_inline]] inline void horner3_first(const double* c, const double* x, double* h) {
-  V4 v2{}, d20{}, d21{}, d22{};
+// The same with the partial derivatives in x0, x1 (and x2): Horner's rule carries each derivative beside the
+// value (d = d x + v before v = v x + c). h gets 4 lanes of the value, then 4 per derivative.
+template <int P0, int P1>
+[[gnu::always_inline]] inline void slice_first(const double* c, const double* x, V4& v1, V4& d10, V4& d11) {
+  v1 = d10 = d11 = V4{};
 #pragma GCC unroll 8
-  for (int m2 = P2; m2 >= 0; --m2) {
-    V4 v1{}, d10{}, d11{};
+  for (int m1 = P1; m1 >= 0; --m1) {
+    const double* row = c + m1 * (P0 + 1) * 4;
+    V4 v0 = load4(row + 4 * P0), d00{};
 #pragma GCC unroll 8
-    for (int m1 = P1; m1 >= 0; --m1) {
-      const double* row = c + static_cast<std::size_t>((m2 * (P1 + 1) + m1) * (P0 + 1)) * 4;
-      V4 v0 = load4(row + 4 * P0), d00{};
-#pragma GCC unroll 8
-      for (int m0 = P0 - 1; m0 >= 0; --m0) {
-        d00 = m0 == P0 - 1 ? v0 : d00 * x[0] + v0;
-        v0 = v0 * x[0] + load4(row + 4 * m0);
-      }
-      if (m1 == P1) {
-        v1 = v0;
-        d10 = d00;
-      } else {
-        d11 = m1 == P1 - 1 ? v1 : d11 * x[1] + v1;
-        v1 = v1 * x[1] + v0;
-        d10 = d10 * x[1] + d00;
-      }
+    for (int m0 = P0 - 1; m0 >= 0; --m0) {
+      d00 = d00 * x[0] + v0;
+      v0 = v0 * x[0] + load4(row + 4 * m0);
     }
-    if (m2 == P2) {
-      v2 = v1;
-      d20 = d10;
-      d21 = d11;
-    } else {
-      d22 = m2 == P2 - 1 ? v2 : d22 * x[2] + v2;
-      v2 = v2 * x[2] + v1;
-      d20 = d20 * x[2] + d10;
-      d21 = d21 * x[2] + d11;
-    }
+    d11 = d11 * x[1] + v1;
+    v1 = v1 * x[1] + v0;
+    d10 = d10 * x[1] + d00;
+  }
+}
+
+template <int P0, int P1>
+[[gnu::always_inline]] inline void horner3_first(const double* c, int p2, const double* x, double* h) {
+  constexpr int kSlice = (P0 + 1) * (P1 + 1) * 4;
+  V4 v2, d20, d21, d22{};
+  slice_first<P0, P1>(c + p2 * kSlice, x, v2, d20, d21);
+  for (int m2 = p2 - 1; m2 >= 0; --m2) {
+    V4 v1, d10, d11;
+    slice_first<P0, P1>(c + m2 * kSlice, x, v1, d10, d11);
+    d22 = d22 * x[2] + v2;
+    v2 = v2 * x[2] + v1;
+    d20 = d20 * x[2] + d10;
+    d21 = d21 * x[2] + d11;
   }
   std::memcpy(h, &v2, sizeof v2);
   std::memcpy(h + 4, &d20, sizeof d20);
@@ -87,7 +88,7 @@ template <int P0, int P1, int P2>
 
 // The point kernels: locate the element (on uniform knots by one multiplication, as the B-spline kernels do),
 // Horner's rule on its block, divide by the weight lane.
-template <int P, int Q>
+template <int P0, int P1>
 struct ElementKernel {
   // The element's coefficient block; x gets the local coordinates, scale d x_k / d u_k.
   [[gnu::always_inline]] static const double* locate(const ElementPolynomials& e, const Param<3>& u, double* x,
@@ -107,7 +108,7 @@ struct ElementKernel {
   }
   [[gnu::always_inline]] static void value(const ElementPolynomials& e, const Param<3>& u, double* out) {
     double x[3], scale[3], h[4];
-    element_polynomials::horner3<P, P, Q>(locate(e, u, x, scale), x, h);
+    element_polynomials::horner3<P0, P1>(locate(e, u, x, scale), e.last_degree_, x, h);
     const double inv = 1.0 / h[3];
     for (int d = 0; d < e.dim_; ++d) out[d] = h[d] * inv;
   }
@@ -115,7 +116,7 @@ struct ElementKernel {
   // derivatives 0).
   [[gnu::always_inline]] static void first(const ElementPolynomials& e, const Param<3>& u, double* out) {
     double x[3], scale[3], h[16];
-    element_polynomials::horner3_first<P, P, Q>(locate(e, u, x, scale), x, h);
+    element_polynomials::horner3_first<P0, P1>(locate(e, u, x, scale), e.last_degree_, x, h);
     const double inv = 1.0 / h[3];
     const int dim = e.dim_;
     for (int d = 0; d < dim; ++d) out[d] = h[d] * inv;
@@ -146,23 +147,20 @@ namespace element_polynomials {
 
 using Kernels = std::array<ElementPolynomials::Kernel, 2>;
 
+// Degrees (P, P) and (P, 1) in the first two directions.
 template <int P>
-Kernels kernel_for_last(int q, SimdLevel level) {
-  switch (q) {
-    case 1: return ElementKernel<P, 1>::at(level);
-    case 2: return ElementKernel<P, 2>::at(level);
-    case 3: return ElementKernel<P, 3>::at(level);
-    case 4: return ElementKernel<P, 4>::at(level);
-    default: return {};
-  }
+Kernels kernel_for_second(int p1, SimdLevel level) {
+  if (p1 == P) return ElementKernel<P, P>::at(level);
+  if (p1 == 1) return ElementKernel<P, 1>::at(level);
+  return {};
 }
 
-Kernels kernel_for(int p, int q, SimdLevel level) {
-  switch (p) {
-    case 1: return kernel_for_last<1>(q, level);
-    case 2: return kernel_for_last<2>(q, level);
-    case 3: return kernel_for_last<3>(q, level);
-    case 4: return kernel_for_last<4>(q, level);
+Kernels kernel_for(int p0, int p1, SimdLevel level) {
+  switch (p0) {
+    case 1: return kernel_for_second<1>(p1, level);
+    case 2: return kernel_for_second<2>(p1, level);
+    case 3: return kernel_for_second<3>(p1, level);
+    case 4: return kernel_for_second<4>(p1, level);
     default: return {};
   }
 }
@@ -172,10 +170,10 @@ Kernels kernel_for(int p, int q, SimdLevel level) {
 ElementPolynomials::ElementPolynomials(const TensorSpline<3>& s, std::size_t max_bytes) {
   using namespace element_polynomials;
   const int p0 = s.degree(0), p1 = s.degree(1), p2 = s.degree(2);
-  if (p0 != p1 || s.dim() > 3 || s.stride() > 4) return;
+  if (p2 < 1 || p2 > KnotVector::kMaxPowerFormDegree || s.dim() > 3 || s.stride() > 4) return;
   for (int k = 0; k < 3; ++k)
     if (s.knots(k).power_forms() == nullptr) return;
-  const auto kernels = kernel_for(p0, p2, simd_level());
+  const auto kernels = kernel_for(p0, p1, simd_level());
   if (!kernels[0]) return;
   const int L[3] = {p0 + 1, p1 + 1, p2 + 1};
   const std::size_t block = static_cast<std::size_t>(4 * L[0] * L[1] * L[2]);
@@ -196,6 +194,7 @@ ElementPolynomials::ElementPolynomials(const TensorSpline<3>& s, std::size_t max
       local_.insert(local_.end(), kv.span_power_form(sp), kv.span_power_form(sp) + 2);
   }
   dim_ = s.dim();
+  last_degree_ = p2;
   coefs_.assign(elements * block, 0.0);
   const int st = s.stride(), n0 = s.count(0), n1 = s.count(1);
   const auto cs = s.coefs();

@@ -12,9 +12,9 @@
 // the binomial factors of the basis change), not bit for bit: for iterations whose tolerance is far above that
 // (point inversion to 1e-9 of a cell's size), not for results that must equal eval().
 //
-// Degrees 1 to 4 with the first two equal (equal degrees, and the 4 x 4 x 1 and 2 x 2 x 1 shells of exact
-// spheres and tori); other degrees, dimensions above 3 and tables over the size cap are not available(), and
-// callers keep TensorSpline::eval.
+// Degrees 1 to 4, the second equal to the first or 1 (equal degrees; the 4 x 4 x 1, 2 x 2 x 1, 2 x 1 x 1 and
+// 2 x 1 x 2 cells of exact spheres, cylinders and tori); other degrees, dimensions above 3 and tables over the
+// size cap are not available(), and callers keep TensorSpline::eval.
 #include <array>
 #include <cstddef>
 #include <vector>
@@ -54,13 +54,14 @@ public:
   std::vector<double> local_;
   std::array<KnotVector, 3> knots_{};
   int dim_ = 0;
+  int last_degree_ = 0;
   // Elements with direction 0 fastest; in an element's block the powers of x0 fastest, then x1, x2, each entry 4
   // lanes: the dim coordinates (homogeneous when rational), zeros, and in the last lane the weight (the
   // constant 1 for a polynomial spline, so that one path divides by it exactly).
   std::vector<double> coefs_;
   Kernel value_ = nullptr, first_ = nullptr;
 
-  template <int P, int Q>
+  template <int P0, int P1>
   friend struct ElementKernel;
 };
 
