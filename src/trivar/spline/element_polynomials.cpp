@@ -1,7 +1,9 @@
 #include "trivar/spline/element_polynomials.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <limits>
 
 #include "trivar/spline/simd_level.hpp"
 
@@ -108,7 +110,7 @@ struct ElementKernel {
   }
   [[gnu::always_inline]] static void value(const ElementPolynomials& e, const Param<3>& u, double* out) {
     double x[3], scale[3], h[4];
-    element_polynomials::horner3<P0, P1>(locate(e, u, x, scale), e.last_degree_, x, h);
+    element_polynomials::horner3<P0, P1>(locate(e, u, x, scale), e.degrees_[2], x, h);
     const double inv = 1.0 / h[3];
     for (int d = 0; d < e.dim_; ++d) out[d] = h[d] * inv;
   }
@@ -116,7 +118,7 @@ struct ElementKernel {
   // derivatives 0).
   [[gnu::always_inline]] static void first(const ElementPolynomials& e, const Param<3>& u, double* out) {
     double x[3], scale[3], h[16];
-    element_polynomials::horner3_first<P0, P1>(locate(e, u, x, scale), e.last_degree_, x, h);
+    element_polynomials::horner3_first<P0, P1>(locate(e, u, x, scale), e.degrees_[2], x, h);
     const double inv = 1.0 / h[3];
     const int dim = e.dim_;
     for (int d = 0; d < dim; ++d) out[d] = h[d] * inv;
@@ -169,13 +171,11 @@ Kernels kernel_for(int p0, int p1, SimdLevel level) {
 
 ElementPolynomials::ElementPolynomials(const TensorSpline<3>& s, std::size_t max_bytes) {
   using namespace element_polynomials;
-  const int p0 = s.degree(0), p1 = s.degree(1), p2 = s.degree(2);
-  if (p2 < 1 || p2 > KnotVector::kMaxPowerFormDegree || s.dim() > 3 || s.stride() > 4) return;
+  const int p[3] = {s.degree(0), s.degree(1), s.degree(2)};
+  if (s.dim() > 3 || s.stride() > 4) return;
   for (int k = 0; k < 3; ++k)
-    if (s.knots(k).power_forms() == nullptr) return;
-  const auto kernels = kernel_for(p0, p1, simd_level());
-  if (!kernels[0]) return;
-  const int L[3] = {p0 + 1, p1 + 1, p2 + 1};
+    if (p[k] < 1 || p[k] > KnotVector::kMaxPowerFormDegree || s.knots(k).power_forms() == nullptr) return;
+  const int L[3] = {p[0] + 1, p[1] + 1, p[2] + 1};
   const std::size_t block = static_cast<std::size_t>(4 * L[0] * L[1] * L[2]);
   int spans[3];
   std::size_t elements = 1;
@@ -183,9 +183,86 @@ ElementPolynomials::ElementPolynomials(const TensorSpline<3>& s, std::size_t max
     spans[k] = s.knots(k).last_span() - s.knots(k).first_span() + 1;
     elements *= static_cast<std::size_t>(spans[k]);
   }
-  if (elements > max_bytes / sizeof(double) / block) return;
+  // Twice the table while the degrees are reduced (values and their rounding bounds).
+  if (elements > max_bytes / sizeof(double) / block / 2) return;
+  const int st = s.stride(), n0 = s.count(0), n1 = s.count(1);
+  const auto cs = s.coefs();
+  const bool rational = s.is_rational();
+  // One element's block, direction by direction: t0[c][b][m0] = sum_a C0[m0][a] P[a][b][c], then direction 1,
+  // then 2, where Ck[m][a] is the coefficient of x^m in the span's B-spline a (4 lanes per entry: coordinates
+  // in lanes 0 .. dim-1, the weight in lane 3). With `absolute`, the same sums of absolute values: they bound
+  // the rounding error of each coefficient.
+  std::vector<double> t0(block), t1(block);
+  auto contract = [&](const int* sp, bool absolute, double* out) {
+    const double* C[3];
+    for (int k = 0; k < 3; ++k) C[k] = s.knots(k).span_power_form(sp[k]) + 2;
+    auto f = [absolute](double v) { return absolute ? std::abs(v) : v; };
+    std::fill(t0.begin(), t0.end(), 0.0);
+    std::fill(t1.begin(), t1.end(), 0.0);
+    for (int c = 0; c < L[2]; ++c)
+      for (int b = 0; b < L[1]; ++b)
+        for (int a = 0; a < L[0]; ++a) {
+          const std::size_t ctrl =
+              static_cast<std::size_t>((sp[0] - p[0] + a) + n0 * ((sp[1] - p[1] + b) + n1 * (sp[2] - p[2] + c)));
+          const double* v = cs.data() + ctrl * static_cast<std::size_t>(st);
+          const double lanes[4] = {dim_ > 0 ? v[0] : 0.0, dim_ > 1 ? v[1] : 0.0, dim_ > 2 ? v[2] : 0.0,
+                                   rational ? v[dim_] : 1.0};
+          for (int m0 = 0; m0 < L[0]; ++m0)
+            for (int d = 0; d < 4; ++d)
+              t0[static_cast<std::size_t>(((c * L[1] + b) * L[0] + m0) * 4 + d)] += f(C[0][m0 * L[0] + a]) * f(lanes[d]);
+        }
+    for (int c = 0; c < L[2]; ++c)
+      for (int m1 = 0; m1 < L[1]; ++m1)
+        for (int b = 0; b < L[1]; ++b)
+          for (int q = 0; q < 4 * L[0]; ++q)
+            t1[static_cast<std::size_t>((c * L[1] + m1) * L[0] * 4 + q)] +=
+                f(C[1][m1 * L[1] + b]) * t0[static_cast<std::size_t>((c * L[1] + b) * L[0] * 4 + q)];
+    // out index ((m2 * L1 + m1) * L0 + m0) * 4 + lane
+    for (int m2 = 0; m2 < L[2]; ++m2)
+      for (int c = 0; c < L[2]; ++c)
+        for (int q = 0; q < 4 * L[0] * L[1]; ++q)
+          out[static_cast<std::size_t>(m2 * L[1] * L[0] * 4 + q)] +=
+              f(C[2][m2 * L[2] + c]) * t1[static_cast<std::size_t>(c * L[1] * L[0] * 4 + q)];
+    // A polynomial's weight lane: exactly the constant 1 (the contraction gives it to rounding).
+    if (!rational)
+      for (std::size_t q = 0; q < block / 4; ++q) out[4 * q + 3] = q == 0 ? 1.0 : 0.0;
+  };
+  dim_ = s.dim();
+  std::vector<double> full(elements * block, 0.0), bound(elements * block, 0.0);
+  // Exact degree reduction: a power whose coefficients are all within their rounding bounds of zero (in every
+  // element and lane) is absent, as in a trilinear cube stored at degree 4 (the ball's core); dropping them
+  // changes values by no more than the contraction's own rounding.
+  constexpr double kNoise = 40 * std::numeric_limits<double>::epsilon();
+  int r[3] = {1, 1, 1};
+  std::size_t e = 0;
+  for (int e2 = 0; e2 < spans[2]; ++e2)
+    for (int e1 = 0; e1 < spans[1]; ++e1)
+      for (int e0 = 0; e0 < spans[0]; ++e0, ++e) {
+        const int sp[3] = {s.knots(0).first_span() + e0, s.knots(1).first_span() + e1, s.knots(2).first_span() + e2};
+        double* v = full.data() + e * block;
+        double* w = bound.data() + e * block;
+        contract(sp, false, v);
+        contract(sp, true, w);
+        for (int m2 = 0; m2 < L[2]; ++m2)
+          for (int m1 = 0; m1 < L[1]; ++m1)
+            for (int m0 = 0; m0 < L[0]; ++m0)
+              for (int d = 0; d < 4; ++d) {
+                const std::size_t q = static_cast<std::size_t>(((m2 * L[1] + m1) * L[0] + m0) * 4 + d);
+                if (std::abs(v[q]) > kNoise * w[q]) {
+                  r[0] = std::max(r[0], m0);
+                  r[1] = std::max(r[1], m1);
+                  r[2] = std::max(r[2], m2);
+                }
+              }
+      }
+  // Kernels exist for a second degree equal to the first or 1; otherwise both take the larger.
+  if (r[1] != 1 && r[1] != r[0]) r[0] = r[1] = std::max(r[0], r[1]);
+  const auto kernels = kernel_for(r[0], r[1], simd_level());
+  if (!kernels[0]) return;
+  const int R[3] = {r[0] + 1, r[1] + 1, r[2] + 1};
+  const std::size_t reduced = static_cast<std::size_t>(4 * R[0] * R[1] * R[2]);
   knots_ = s.knot_vectors();
-  std::size_t step = block;
+  std::size_t step = reduced;
   for (int k = 0; k < 3; ++k) {
     const KnotVector& kv = knots_[k];
     axes_[k] = {kv.start(), kv.end(), kv.uniform_inverse_spacing(), static_cast<double>(spans[k] - 1), local_.size(), step};
@@ -193,54 +270,16 @@ ElementPolynomials::ElementPolynomials(const TensorSpline<3>& s, std::size_t max
     for (int sp = kv.first_span(); sp <= kv.last_span(); ++sp)
       local_.insert(local_.end(), kv.span_power_form(sp), kv.span_power_form(sp) + 2);
   }
-  dim_ = s.dim();
-  last_degree_ = p2;
-  coefs_.assign(elements * block, 0.0);
-  const int st = s.stride(), n0 = s.count(0), n1 = s.count(1);
-  const auto cs = s.coefs();
-  // Per element, direction by direction: T0[c][b][m0] = sum_a C0[m0][a] P[a][b][c], then direction 1, then 2,
-  // where Ck[m][a] is the coefficient of x^m in the span's B-spline a (4 lanes per entry).
-  std::vector<double> t0(static_cast<std::size_t>(4 * L[0] * L[1] * L[2])), t1(t0.size());
-  std::size_t e = 0;
-  for (int e2 = 0; e2 < spans[2]; ++e2)
-    for (int e1 = 0; e1 < spans[1]; ++e1)
-      for (int e0 = 0; e0 < spans[0]; ++e0, ++e) {
-        const int sp[3] = {knots_[0].first_span() + e0, knots_[1].first_span() + e1, knots_[2].first_span() + e2};
-        const double* C[3];
-        for (int k = 0; k < 3; ++k) C[k] = knots_[k].span_power_form(sp[k]) + 2;
-        std::fill(t0.begin(), t0.end(), 0.0);
-        std::fill(t1.begin(), t1.end(), 0.0);
-        // t0 index ((c * L1 + b) * L0 + m0) * 4 + lane
-        for (int c = 0; c < L[2]; ++c)
-          for (int b = 0; b < L[1]; ++b)
-            for (int a = 0; a < L[0]; ++a) {
-              const std::size_t ctrl = static_cast<std::size_t>((sp[0] - p0 + a) + n0 * ((sp[1] - p1 + b) + n1 * (sp[2] - p2 + c)));
-              const double* v = cs.data() + ctrl * static_cast<std::size_t>(st);
-              // Coordinates in lanes 0 .. dim-1, the weight (1 when polynomial) in lane 3.
-              const double lanes[4] = {dim_ > 0 ? v[0] : 0.0, dim_ > 1 ? v[1] : 0.0, dim_ > 2 ? v[2] : 0.0,
-                                       s.is_rational() ? v[dim_] : 1.0};
-              for (int m0 = 0; m0 < L[0]; ++m0)
-                for (int d = 0; d < 4; ++d)
-                  t0[static_cast<std::size_t>(((c * L[1] + b) * L[0] + m0) * 4 + d)] += C[0][m0 * L[0] + a] * lanes[d];
-            }
-        // t1 index ((c * L1 + m1) * L0 + m0) * 4 + lane
-        for (int c = 0; c < L[2]; ++c)
-          for (int m1 = 0; m1 < L[1]; ++m1)
-            for (int b = 0; b < L[1]; ++b)
-              for (int q = 0; q < 4 * L[0]; ++q)
-                t1[static_cast<std::size_t>((c * L[1] + m1) * L[0] * 4 + q)] +=
-                    C[1][m1 * L[1] + b] * t0[static_cast<std::size_t>((c * L[1] + b) * L[0] * 4 + q)];
-        // block index ((m2 * L1 + m1) * L0 + m0) * 4 + lane
-        double* out = coefs_.data() + e * block;
-        for (int m2 = 0; m2 < L[2]; ++m2)
-          for (int c = 0; c < L[2]; ++c)
-            for (int q = 0; q < 4 * L[0] * L[1]; ++q)
-              out[static_cast<std::size_t>(m2 * L[1] * L[0] * 4 + q)] +=
-                  C[2][m2 * L[2] + c] * t1[static_cast<std::size_t>(c * L[1] * L[0] * 4 + q)];
-        // A polynomial's weight lane: exactly the constant 1 (the contraction gives it to rounding).
-        if (!s.is_rational())
-          for (std::size_t q = 0; q < block / 4; ++q) out[4 * q + 3] = q == 0 ? 1.0 : 0.0;
-      }
+  // The powers kept; a degree raised to the other direction's has zero coefficients above the spline's.
+  coefs_.assign(elements * reduced, 0.0);
+  for (e = 0; e < elements; ++e)
+    for (int m2 = 0; m2 < R[2]; ++m2)
+      for (int m1 = 0; m1 < std::min(R[1], L[1]); ++m1)
+        for (int m0 = 0; m0 < std::min(R[0], L[0]); ++m0)
+          for (int d = 0; d < 4; ++d)
+            coefs_[e * reduced + static_cast<std::size_t>(((m2 * R[1] + m1) * R[0] + m0) * 4 + d)] =
+                full[e * block + static_cast<std::size_t>(((m2 * L[1] + m1) * L[0] + m0) * 4 + d)];
+  degrees_ = {r[0], r[1], r[2]};
   value_ = kernels[0];
   first_ = kernels[1];
 }

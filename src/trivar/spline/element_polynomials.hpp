@@ -12,9 +12,11 @@
 // the binomial factors of the basis change), not bit for bit: for iterations whose tolerance is far above that
 // (point inversion to 1e-9 of a cell's size), not for results that must equal eval().
 //
-// Degrees 1 to 4, the second equal to the first or 1 (equal degrees; the 4 x 4 x 1, 2 x 2 x 1, 2 x 1 x 1 and
-// 2 x 1 x 2 cells of exact spheres, cylinders and tori); other degrees, dimensions above 3 and tables over the
-// size cap are not available(), and callers keep TensorSpline::eval.
+// Spline degrees 1 to 4 in every direction. The evaluated degrees (after the exact reduction of degrees()) take
+// kernels for a second degree equal to the first or 1 (equal degrees; the 4 x 4 x 1, 2 x 2 x 1, 2 x 1 x 1 and
+// 2 x 1 x 2 cells of exact spheres, cylinders and tori), other pairs the larger of the two in both (zero
+// coefficients). Other degrees, dimensions above 3 and tables over the size cap are not available(), and
+// callers keep TensorSpline::eval.
 #include <array>
 #include <cstddef>
 #include <vector>
@@ -34,6 +36,9 @@ public:
   explicit ElementPolynomials(const TensorSpline<3>& s, std::size_t max_bytes = kDefaultMaxBytes);
 
   bool available() const { return value_ != nullptr; }
+  // The degrees the polynomials have (at most the spline's): a power whose coefficients vanish in every element
+  // (to their rounding) is dropped, so a trilinear map stored at degree 4 is evaluated as trilinear.
+  const std::array<int, 3>& degrees() const { return degrees_; }
   // The dim Cartesian values at u, clamped to the domain like TensorSpline::eval. Requires available().
   void eval(const Param<3>& u, double* out) const { value_(*this, u, out); }
   // The value and the first partial derivatives in u, v, w, (1 + 3) * dim values in the order of
@@ -54,7 +59,7 @@ public:
   std::vector<double> local_;
   std::array<KnotVector, 3> knots_{};
   int dim_ = 0;
-  int last_degree_ = 0;
+  std::array<int, 3> degrees_{};
   // Elements with direction 0 fastest; in an element's block the powers of x0 fastest, then x1, x2, each entry 4
   // lanes: the dim coordinates (homogeneous when rational), zeros, and in the last lane the weight (the
   // constant 1 for a polynomial spline, so that one path divides by it exactly).
