@@ -112,6 +112,12 @@ struct ElementKernel {
     double x[3], scale[3], h[4];
     element_polynomials::horner3<P0, P1>(locate(e, u, x, scale), e.degrees_[2], x, h);
     const double inv = 1.0 / h[3];
+    if (e.dim_ == 3) {  // the common case without the loop's vectorised prologue and epilogue
+      out[0] = h[0] * inv;
+      out[1] = h[1] * inv;
+      out[2] = h[2] * inv;
+      return;
+    }
     for (int d = 0; d < e.dim_; ++d) out[d] = h[d] * inv;
   }
   // Quotient rule on the homogeneous value and derivatives (the weight lane of a polynomial is 1, its
