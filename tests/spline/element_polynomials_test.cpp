@@ -85,8 +85,8 @@ TEST(ElementPolynomials, ReproduceTheSplineOnEverySupportedDegreeTriple) {
           const auto s = test::random_spline<3>({p, p1, q}, {3, 2, 2}, 3, rational, 7u * p + q);
           expect_reproduces(s, name);
           // Random control values have every power: nothing is reduced.
-          EXPECT_EQ(ElementPolynomials(s).degrees(), (std::array<int, 3>{std::max(p, p1 == 1 ? 1 : p1), p1 == 1 ? 1 : std::max(p, p1), q}))
-              << name;
+          const int first = std::max(p, p1 == 1 ? 1 : p1), second = p1 == 1 ? 1 : std::max(p, p1);
+          EXPECT_EQ(ElementPolynomials(s).degrees(), (std::array<int, 3>{first, second, q})) << name;
         }
 }
 

@@ -215,7 +215,8 @@ ElementPolynomials::ElementPolynomials(const TensorSpline<3>& s, std::size_t max
                                    rational ? v[dim_] : 1.0};
           for (int m0 = 0; m0 < L[0]; ++m0)
             for (int d = 0; d < 4; ++d)
-              t0[static_cast<std::size_t>(((c * L[1] + b) * L[0] + m0) * 4 + d)] += f(C[0][m0 * L[0] + a]) * f(lanes[d]);
+              t0[static_cast<std::size_t>(((c * L[1] + b) * L[0] + m0) * 4 + d)] +=
+                  f(C[0][m0 * L[0] + a]) * f(lanes[d]);
         }
     for (int c = 0; c < L[2]; ++c)
       for (int m1 = 0; m1 < L[1]; ++m1)
@@ -271,7 +272,8 @@ ElementPolynomials::ElementPolynomials(const TensorSpline<3>& s, std::size_t max
   std::size_t step = reduced;
   for (int k = 0; k < 3; ++k) {
     const KnotVector& kv = knots_[k];
-    axes_[k] = {kv.start(), kv.end(), kv.uniform_inverse_spacing(), static_cast<double>(spans[k] - 1), local_.size(), step};
+    axes_[k] = {kv.start(), kv.end(), kv.uniform_inverse_spacing(), static_cast<double>(spans[k] - 1),
+                local_.size(), step};
     step *= static_cast<std::size_t>(spans[k]);
     for (int sp = kv.first_span(); sp <= kv.last_span(); ++sp)
       local_.insert(local_.end(), kv.span_power_form(sp), kv.span_power_form(sp) + 2);
