@@ -28,6 +28,7 @@
 #include "trivar/tspline/bezier_patches.hpp"
 #include "trivar/tspline/classification.hpp"
 #include "trivar/tspline/lr_form.hpp"
+#include "trivar/tspline/t_mesh_patches.hpp"
 #include "trivar/tspline/t_mesh_surface.hpp"
 #include "trivar/tspline/t_mesh_tessellation.hpp"
 #include "trivar/tspline/t_spline_surface.hpp"
@@ -286,8 +287,25 @@ void convert_tspline(const std::string& in, const std::string& out, const TSplin
       io::write_tsm(out, l.mesh->mesh());
       return;
     }
+    if (ext == ".g2" || ext == ".json" || ext == ".xml" || is_step_file(out)) {
+      // Bezier patches: exact away from the corners at the star points, those within the tolerance.
+      TMeshPatchOptions po;
+      po.tolerance = o.tolerance;
+      const TMeshPatches p = t_mesh_patches(*l.mesh, po);
+      std::vector<AnySpline> patches;
+      for (const FacePatch& f : p.patches) patches.emplace_back(f.surface);
+      if (is_step_file(out))
+        io::step::write_step(out, patches, {});
+      else
+        io::write_spline_file(out, patches);
+      std::printf("%s: %zu Bezier patches (%d exact, %d corner patches at star points after %d subdivision levels, "
+                  "%s from the limit surface, tolerance %s); C0, G1 at star points\n",
+                  out.c_str(), p.patches.size(), p.exact_patches, p.corner_patches, p.levels, fmt(p.deviation).c_str(),
+                  fmt(p.tolerance).c_str());
+      return;
+    }
     require(ext == ".stl" || ext == ".obj" || ext == ".vtu",
-            "convert: " + in + " has star points (no global (s, t), no exact spline form around them); it converts to .tsm, or to .stl, .obj or .vtu triangles, not '" + ext + "'");
+            "convert: " + in + " has star points (no global (s, t)); it converts to .tsm, to Bezier patches (.g2, .json, .xml, .stp), or to .stl, .obj or .vtu triangles, not '" + ext + "'");
     double tol = o.tolerance;
     if (tol <= 0) {
       Box<3> b = Box<3>::empty();

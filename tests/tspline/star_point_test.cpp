@@ -5,6 +5,7 @@
 #include <map>
 #include <random>
 
+#include "face_continuity.hpp"
 #include "star_mesh_tsm.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/io/tsm_format.hpp"
@@ -90,77 +91,6 @@ TEST(CatmullClark, ApproachesTheLimitPointOfHalsteadAtTheStarPoint) {
   }
 }
 
-// Positions, normals and cross-edge first derivatives from the two faces of every interior edge, at 9 points
-// strictly inside the edge; normals also at the edge ends that are not star points.
-struct Continuity {
-  double gap = 0, normal_angle = 0, c1 = 0;
-  int edges = 0;
-};
-
-// The face-local (u, v) of position sigma along side k of a face (sides counter-clockwise from the first
-// corner) and the face's inward derivative direction there.
-std::array<double, 2> side_uv(int k, double sigma) {
-  switch (k) {
-    case 0: return {sigma, 0};
-    case 1: return {1, sigma};
-    case 2: return {1 - sigma, 1};
-    default: return {0, 1 - sigma};
-  }
-}
-
-P3 normal(const double* o) {
-  const P3 n{o[4] * o[8] - o[5] * o[7], o[5] * o[6] - o[3] * o[8], o[3] * o[7] - o[4] * o[6]};
-  const double l = std::hypot(n[0], n[1], n[2]);
-  return {n[0] / l, n[1] / l, n[2] / l};
-}
-
-// The side of face f holding link l (quad faces and faces whose sides are single links).
-int side_of(const TMesh& m, int f, int l) {
-  const auto& loop = m.faces[static_cast<std::size_t>(f)];
-  const auto first = std::find(loop.begin(), loop.end(), m.first_corner(f));
-  int k = -1;
-  for (std::size_t i = 0; i < loop.size(); ++i) {
-    const int x = loop[(static_cast<std::size_t>(first - loop.begin()) + i) % loop.size()];
-    if (m.links[static_cast<std::size_t>(x)].flag == 0) ++k;
-    if (x == l) return k;
-  }
-  return -1;
-}
-
-Continuity continuity(const TMeshSurface& s) {
-  const TMesh& m = s.mesh();
-  Continuity c;
-  for (int l = 0; l < static_cast<int>(m.links.size()); ++l) {
-    const TMeshLink& a = m.links[static_cast<std::size_t>(l)];
-    const TMeshLink& b = m.links[static_cast<std::size_t>(a.opp)];
-    if (a.face < 0 || b.face < 0 || l > a.opp) continue;
-    if (m.faces[static_cast<std::size_t>(a.face)].size() != 4 || m.faces[static_cast<std::size_t>(b.face)].size() != 4) continue;
-    ++c.edges;
-    const int ka = side_of(m, a.face, l), kb = side_of(m, b.face, a.opp);
-    for (int i = 1; i <= 9; ++i) {
-      const double t = i / 10.0;
-      const auto ua = side_uv(ka, t), ub = side_uv(kb, 1 - t);
-      double x[9], y[9];
-      s.eval(a.face, ua[0], ua[1], x);
-      s.eval(b.face, ub[0], ub[1], y);
-      c.gap = std::max(c.gap, dist({x[0], x[1], x[2]}, y));
-      const P3 na = normal(x), nb = normal(y);
-      c.normal_angle = std::max(c.normal_angle, std::hypot(na[1] * nb[2] - na[2] * nb[1], na[2] * nb[0] - na[0] * nb[2], na[0] * nb[1] - na[1] * nb[0]));
-      // Inward derivatives: side 0 +v, 1 -u, 2 -v, 3 +u; C1 when they are opposite.
-      const auto inward = [](int k, const double* o, int comp) {
-        return k == 0 ? o[6 + comp] : k == 1 ? -o[3 + comp] : k == 2 ? -o[6 + comp] : o[3 + comp];
-      };
-      double d = 0, size = 0;
-      for (int comp = 0; comp < 3; ++comp) {
-        d = std::max(d, std::abs(inward(ka, x, comp) + inward(kb, y, comp)));
-        size = std::max(size, std::abs(inward(ka, x, comp)));
-      }
-      c.c1 = std::max(c.c1, d / size);
-    }
-  }
-  return c;
-}
-
 void expect_watertight_closed(const TSplineTriangulation& t, bool closed) {
   std::map<std::array<int, 2>, int> use;
   for (const auto& tri : t.triangles)
@@ -209,7 +139,7 @@ TEST(StarPoints, ClosedCubeOfEightValenceThreeStarPoints) {
       }
   }
   EXPECT_EQ(centres, 6);
-  const Continuity c = continuity(s);
+  const test::Continuity c = test::continuity(s.mesh(), [&](int f, double u, double v, double* o) { s.eval(f, u, v, o); });
   EXPECT_EQ(c.edges, 108);
   std::printf("cube: %d edges, position gap %.2e, normal defect (sin) %.2e, C1 defect %.2e\n", c.edges, c.gap,
               c.normal_angle, c.c1);
@@ -228,7 +158,7 @@ TEST(StarPoints, ClosedCubeOfEightValenceThreeStarPoints) {
     const auto& x = at[static_cast<std::size_t>(k)];
     s.eval(f, x[0], x[1], o);
     s.eval(f, std::abs(x[0] - 1e-6), std::abs(x[1] - 1e-6), near);
-    const P3 n0 = normal(o), n1 = normal(near);
+    const P3 n0 = test::unit_normal(o), n1 = test::unit_normal(near);
     // By symmetry the cube corner's normal is (+-1, +-1, +-1) / sqrt 3.
     for (int j = 0; j < 3; ++j) EXPECT_NEAR(std::abs(n0[static_cast<std::size_t>(j)]), 1 / std::sqrt(3.0), 1e-12);
     const double angle = std::acos(std::min(1.0, n0[0] * n1[0] + n0[1] * n1[1] + n0[2] * n1[2]));
@@ -251,7 +181,7 @@ TEST(StarPoints, PlanarFanAroundAValenceFiveStarPoint) {
   EXPECT_EQ(s.count(FaceMethod::bicubic), 5 * 25 - 5);
   EXPECT_EQ(s.count(FaceMethod::exact), 5 * 39);
   // An exact face with uniform knots is the uniform bicubic patch of its 4 x 4 control points.
-  const Continuity c = continuity(s);
+  const test::Continuity c = test::continuity(s.mesh(), [&](int f, double u, double v, double* o) { s.eval(f, u, v, o); });
   EXPECT_LT(c.gap, 1e-12);
   EXPECT_LT(c.normal_angle, 1e-10);
   EXPECT_LT(c.c1, 1e-10);

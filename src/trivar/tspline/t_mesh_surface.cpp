@@ -21,6 +21,14 @@ const char* face_method_name(FaceMethod m) {
   return "?";
 }
 
+CornerFrame corner_frame(int corner) {
+  static constexpr std::array<CornerFrame, 4> frames{{{{0, 0}, {1, 0}, {0, 1}},
+                                                      {{1, 0}, {0, 1}, {-1, 0}},
+                                                      {{1, 1}, {-1, 0}, {0, -1}},
+                                                      {{0, 1}, {0, -1}, {1, 0}}}};
+  return frames[static_cast<std::size_t>(corner)];
+}
+
 namespace {
 
 struct Gather {
@@ -325,18 +333,12 @@ void TMeshSurface::eval(int face, double u, double v, double* out) const {
     }
     return;
   }
-  std::vector<std::array<double, 3>> p(f.points.size());
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const RationalPoint& q = mesh_.points[static_cast<std::size_t>(mesh_.vertices[static_cast<std::size_t>(f.points[i])].primary)];
-    p[i] = q.xyz;
-  }
+  const std::vector<std::array<double, 3>> p = patch_points(face);
   // The patch's frame: (u', v') from the corner along the next and the previous corner.
-  static constexpr std::array<std::array<double, 2>, 4> origin{{{0, 0}, {1, 0}, {1, 1}, {0, 1}}};
-  static constexpr std::array<std::array<double, 2>, 4> axis_a{{{1, 0}, {0, 1}, {-1, 0}, {0, -1}}};
-  static constexpr std::array<std::array<double, 2>, 4> axis_b{{{0, 1}, {-1, 0}, {0, -1}, {1, 0}}};
-  const auto& o = origin[static_cast<std::size_t>(f.corner)];
-  const auto& a = axis_a[static_cast<std::size_t>(f.corner)];
-  const auto& b = axis_b[static_cast<std::size_t>(f.corner)];
+  const CornerFrame fr = corner_frame(f.corner);
+  const auto& o = fr.origin;
+  const auto& a = fr.a;
+  const auto& b = fr.b;
   const double up = a[0] * (u - o[0]) + a[1] * (v - o[1]), vp = b[0] * (u - o[0]) + b[1] * (v - o[1]);
   double q[9];
   if (f.method == FaceMethod::bicubic) {
@@ -350,6 +352,22 @@ void TMeshSurface::eval(int face, double u, double v, double* out) const {
     out[3 + c] = a[0] * q[3 + c] + b[0] * q[6 + c];
     out[6 + c] = a[1] * q[3 + c] + b[1] * q[6 + c];
   }
+}
+
+TMeshSurface::ChartFrame TMeshSurface::chart_frame(int face) const {
+  const Face& f = faces_[static_cast<std::size_t>(face)];
+  require(f.method == FaceMethod::exact, [&] { return "T-mesh: face " + std::to_string(face) + " is not an exact face"; });
+  return {charts_[static_cast<std::size_t>(f.chart)].get(), f.origin, f.axis_u, f.axis_v};
+}
+
+std::vector<std::array<double, 3>> TMeshSurface::patch_points(int face) const {
+  const Face& f = faces_[static_cast<std::size_t>(face)];
+  require(f.method == FaceMethod::bicubic || f.method == FaceMethod::star,
+          [&] { return "T-mesh: face " + std::to_string(face) + " is not a Catmull-Clark face"; });
+  std::vector<std::array<double, 3>> p(f.points.size());
+  for (std::size_t i = 0; i < p.size(); ++i)
+    p[i] = mesh_.points[static_cast<std::size_t>(mesh_.vertices[static_cast<std::size_t>(f.points[i])].primary)].xyz;
+  return p;
 }
 
 }  // namespace trivar

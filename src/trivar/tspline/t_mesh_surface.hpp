@@ -32,6 +32,13 @@ namespace trivar {
 enum class FaceMethod { none, exact, bicubic, star };
 const char* face_method_name(FaceMethod m);
 
+// The frame of a Catmull-Clark patch starting at corner c (0..3, counter-clockwise from the face's first corner)
+// in the face's (u, v): (u, v) = origin + u' a + v' b with a, b orthonormal (so u' = a . ((u, v) - origin)).
+struct CornerFrame {
+  std::array<double, 2> origin, a, b;
+};
+CornerFrame corner_frame(int corner);
+
 class TMeshSurface {
 public:
   // threads for the charts' builds (parallel_for; <= 0: all).
@@ -49,6 +56,18 @@ public:
   std::array<int, 4> corners(int face) const;
   // Value, d/du, d/dv (9 values) at (u, v) in [0, 1]^2 of the face.
   void eval(int face, double u, double v, double* out) const;
+
+  // An exact face: the chart's T-spline and the face in it, (u, v) -> origin + u axis_u + v axis_v.
+  struct ChartFrame {
+    const TSplineSurface* chart = nullptr;
+    std::array<double, 2> origin{}, axis_u{}, axis_v{};
+  };
+  ChartFrame chart_frame(int face) const;
+  // A bicubic or star face: its control points in the catmull_clark_patch layout (a bicubic face: 16, the
+  // regular case) and the corner of the face they start at; the patch's (u', v') maps to the face's (u, v) by
+  // corner_frame.
+  std::vector<std::array<double, 3>> patch_points(int face) const;
+  int patch_corner(int face) const { return faces_[static_cast<std::size_t>(face)].corner; }
 
 private:
   struct Face {
