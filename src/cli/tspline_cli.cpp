@@ -14,6 +14,7 @@
 #include "trivar/core/error.hpp"
 #include "trivar/iga/refined_poisson.hpp"
 #include "trivar/iga/solver.hpp"
+#include "trivar/iga/t_mesh_space.hpp"
 #include "trivar/iga/tensor_space.hpp"
 #include "trivar/io/g2_format.hpp"
 #include "trivar/io/lr_format.hpp"
@@ -376,9 +377,52 @@ void convert_tspline(const std::string& in, const std::string& out, const TSplin
   write_triangulation(out, tessellate(surf, tol), tol);
 }
 
-void solve_tspline_poisson(const std::string& path, const std::string& solver, const std::string& vtu, int threads) {
+namespace {
+
+// A planar T-mesh with star points: the C0 multipatch space of its face patches, each face refine x refine
+// elements.
+void solve_t_mesh_poisson(const std::string& path, const TMeshSurface& mesh, const std::string& solver,
+                          const std::string& vtu, int threads, int refine) {
+  TMeshSpaceReport rep;
+  MultipatchSpace<2> space;
+  try {
+    space = t_mesh_space(mesh, refine, &rep);
+  } catch (const Error& e) {
+    throw Error("solve: " + path + ": " + e.what());
+  }
+  PoissonProblem<2> pb;
+  pb.source = [](const double*) { return 1.0; };
+  pb.dirichlet.push_back({space.boundary, {}, nullptr});
+  auto s = make_solver(solver);
+  const SolveResult r = solve_poisson(space, pb, *s, threads);
+  std::printf("T-mesh multipatch space (C0 across faces): %d faces, %d corner patches at star points (%s from the limit "
+              "surface), %d x %d bicubic elements per face, %d functions\n",
+              rep.faces, rep.corner_patches, fmt(rep.deviation).c_str(), refine, refine, space.num_basis);
+  std::printf("dofs %d, assembly %.3f s, solve %.3f s\n", r.dofs, r.assembly_seconds, r.solve_seconds);
+  std::printf("u: max %s\n", fmt(r.coefs.maxCoeff()).c_str());
+  if (vtu.empty()) return;
+  // The solution as surfaces (x, y, u) on the patches' own functions.
+  std::vector<AnySpline> out;
+  for (int p = 0; p < space.num_patches(); ++p) {
+    const TensorSpline<2>& g = space.patches[static_cast<std::size_t>(p)].geometry;
+    std::vector<double> c;
+    for (int i = 0; i < g.num_coefs(); ++i) {
+      const double* q = g.coef(i);
+      const double w = g.weight(i);
+      c.insert(c.end(), {q[0], q[1], w * r.coefs[space.global[static_cast<std::size_t>(p)][static_cast<std::size_t>(i)]]});
+      if (g.is_rational()) c.push_back(w);
+    }
+    out.emplace_back(TensorSpline<2>(g.knot_vectors(), 3, g.is_rational(), std::move(c)));
+  }
+  io::write_spline_file(vtu, out);
+}
+
+}  // namespace
+
+void solve_tspline_poisson(const std::string& path, const std::string& solver, const std::string& vtu, int threads,
+                           int refine) {
   const Loaded l = load(path);
-  require(l.surface != nullptr, "solve: " + path + " has star points; analysis on T-splines with star points is not built");
+  if (l.mesh) return solve_t_mesh_poisson(path, *l.mesh, solver, vtu, threads, refine);
   const TSplineSurface& surf = *l.surface;
   RefinedSpace<2> space;
   try {

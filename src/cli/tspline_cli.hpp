@@ -27,7 +27,10 @@ struct TSplineConvertOptions {
 void convert_tspline(const std::string& in, const std::string& out, const TSplineConvertOptions& options);
 
 // Poisson -lap u = 1, u = 0 on the boundary, on a planar T-spline domain (its Bezier extraction as the analysis
-// space): prints the space and the solve; with `vtu` non-empty writes the solution as a surface (x, y, u).
-void solve_tspline_poisson(const std::string& path, const std::string& solver, const std::string& vtu, int threads);
+// space; a model with star points: the C0 multipatch space of its face patches, t_mesh_space, with refine x
+// refine elements per face): prints the space and the solve; with `vtu` non-empty writes the solution as a
+// surface (x, y, u).
+void solve_tspline_poisson(const std::string& path, const std::string& solver, const std::string& vtu, int threads,
+                           int refine);
 
 }  // namespace trivar::cli
