@@ -187,7 +187,8 @@ void print_tspline_info(const std::string& path, bool json) {
                     {"edge_conditions", ts.image.conditions.size()}};
     j["t_connect"] = {{"nodes", ts.connect.nodes.size()}};
     j["t_pointset"] = {{"points", ts.pointset.points.size()}};
-    j["classification"] = {{"t_junctions", cls->t_junctions}, {"analysis_suitable", as},
+    j["classification"] = {{"t_junctions", cls->t_junctions}, {"gap_t_junctions", cls->gap_junctions},
+                           {"analysis_suitable", as},
                            {"crossing_extensions", cls->crossing_extensions},
                            {"dual_compatible", cls->dual.compatible},
                            {"dual_incompatible_pairs", cls->dual.failing_pairs},
@@ -230,9 +231,11 @@ void print_tspline_info(const std::string& path, bool json) {
               fmt(pu.sampled_min).c_str(), fmt(pu.sampled_max).c_str(), fmt(pu.min_sum).c_str(), fmt(pu.max_sum).c_str(),
               pu.elements_off, pu.elements_off == 1 ? "" : "s");
   if (cls)
-    std::printf("  classification: %d T-junctions, analysis-suitable %s (%d crossing extensions, dual-compatible %s%s), "
+    std::printf("  classification: %d T-junctions%s, analysis-suitable %s (%d crossing extensions, dual-compatible %s%s), "
                 "standard %s, semi-standard %s, blending functions %s; Part 42 type %s\n",
-                cls->t_junctions, as.c_str(), cls->crossing_extensions, cls->dual.compatible ? "yes" : "no",
+                cls->t_junctions,
+                cls->gap_junctions ? (" (" + std::to_string(cls->gap_junctions) + " facing each other across gaps no ray crosses: no extension)").c_str() : "",
+                as.c_str(), cls->crossing_extensions, cls->dual.compatible ? "yes" : "no",
                 cls->rectangular_domain ? "" : "; the domain is not a rectangle", cls->standard ? "yes" : "no",
                 cls->semi_standard ? "yes" : "no", to_string(cls->independence), cls->part42_type().c_str());
   if (l.tsm && !l.tsm->skipped_records.empty()) {
