@@ -288,6 +288,27 @@ void expect_error(const std::string& text, const std::string& fragment) {
   }
 }
 
+// A star point 7 faces from the boundary (8 were needed without the fallback): the faces within 5 rings of it
+// whose 2-ring neighbourhood reaches the boundary (its Bezier end conditions) are not Catmull-Clark faces; from 4
+// rings out they are the T-spline of a chart without star points (3 rings around them: their blending
+// functions' supports), which meets the Catmull-Clark faces C2. With 6 faces the ring-3 faces are neither.
+TEST(StarPoints, FacesNearStarPointsAndTheBoundaryFallBackToCharts) {
+  expect_error(tsm_text(test::fan_mesh(5, 6, height)), "boundary vertex");
+  const io::TsmModel model = io::parse_tsm(tsm_text(test::fan_mesh(5, 7, height)), "fan.tsm");
+  const TMeshSurface s(model.mesh, 1);
+  EXPECT_EQ(s.count(FaceMethod::star), 5);
+  // Catmull-Clark: the faces [i, i + 1] x [j, j + 1] of a sector whose 2 rings stay off the boundary (i, j <= 3);
+  // exact: the rest (ring 4 in charts of 3 rings, beyond as before).
+  EXPECT_EQ(s.count(FaceMethod::bicubic), 5 * 16 - 5);
+  EXPECT_EQ(s.count(FaceMethod::exact), 5 * 33);
+  const test::Continuity c = test::continuity(s.mesh(), [&](int f, double u, double v, double* o) { s.eval(f, u, v, o); });
+  EXPECT_LT(c.gap, 1e-12);
+  EXPECT_LT(c.normal_angle, 1e-10);
+  EXPECT_LT(c.c1, 1e-10);
+  std::printf("valence-5 fan, 7 faces to the boundary: %d edges, position gap %.2e, normal defect (sin) %.2e, C1 defect %.2e\n",
+              c.edges, c.gap, c.normal_angle, c.c1);
+}
+
 TEST(StarPoints, WhatTheCatmullClarkRegionDoesNotHoldIsRefused) {
   // Boundary too close, unequal knot intervals, a face with two star points.
   expect_error(tsm_text(test::fan_mesh(5, 4, height)), "boundary vertex");

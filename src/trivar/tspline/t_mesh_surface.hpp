@@ -13,7 +13,10 @@
 //                  evaluated exactly (catmull_clark_patch, Stam 1998).
 // The faces within p + 2 rings of a star point (bicubic and star) need, and are checked to have, degree 3,
 // equal knot intervals, no T-junction and no boundary within (p + 1) / 2 rings of them, control points of
-// weight 1 without repeated-knot nodes, and at most one star corner per face; the
+// weight 1 without repeated-knot nodes, and at most one star corner per face. A face more than p rings from
+// the star points' faces that fails these (a boundary, a T-junction or unequal intervals nearby) is exact
+// instead when a chart of p up to (its distance - 1) rings around it holds its knot vectors (so a star point
+// needs 7 faces to the boundary, not 8); otherwise the face's reason is the error. The
 // surface there is then the Catmull-Clark limit surface of the control mesh, which on faces without a star
 // corner is the uniform bicubic B-spline = the T-spline. Continuity: C2 across every edge away from star points
 // (T-spline and uniform B-spline pieces meet as one spline); C1 across the edges at a star point except at the
