@@ -172,6 +172,17 @@ TEST(StarPoints, ClosedCubeOfEightValenceThreeStarPoints) {
 
 double height(double x, double y) { return 0.05 * x * x - 0.03 * x * y + 0.2 * std::sin(0.4 * y); }
 
+// Exact and Catmull-Clark faces of a fan meet as one C2 surface (an exact face with uniform knots is the
+// uniform bicubic patch of its 4 x 4 control points).
+void expect_one_smooth_surface(const TMeshSurface& s, const char* name) {
+  const test::Continuity c = test::continuity(s.mesh(), [&](int f, double u, double v, double* o) { s.eval(f, u, v, o); });
+  EXPECT_LT(c.gap, 1e-12) << name;
+  EXPECT_LT(c.normal_angle, 1e-10) << name;
+  EXPECT_LT(c.c1, 1e-10) << name;
+  std::printf("%s: %d edges, position gap %.2e, normal defect (sin) %.2e, C1 defect %.2e\n", name, c.edges, c.gap,
+              c.normal_angle, c.c1);
+}
+
 TEST(StarPoints, PlanarFanAroundAValenceFiveStarPoint) {
   const io::TsmModel model = io::parse_tsm(tsm_text(test::fan_mesh(5, 8, height)), "fan.tsm");
   EXPECT_EQ(model.report.star_points, 1);
@@ -180,17 +191,11 @@ TEST(StarPoints, PlanarFanAroundAValenceFiveStarPoint) {
   // Within 5 face rings of the star point (max(i, j) < 5 in each sector): Catmull-Clark; beyond: exact.
   EXPECT_EQ(s.count(FaceMethod::bicubic), 5 * 25 - 5);
   EXPECT_EQ(s.count(FaceMethod::exact), 5 * 39);
-  // An exact face with uniform knots is the uniform bicubic patch of its 4 x 4 control points.
-  const test::Continuity c = test::continuity(s.mesh(), [&](int f, double u, double v, double* o) { s.eval(f, u, v, o); });
-  EXPECT_LT(c.gap, 1e-12);
-  EXPECT_LT(c.normal_angle, 1e-10);
-  EXPECT_LT(c.c1, 1e-10);
+  expect_one_smooth_surface(s, "valence-5 fan");
   const TSplineTriangulation t = tessellate(s, 1e-2);
   expect_watertight_closed(t, false);
   for (const auto& p : t.points) ASSERT_TRUE(std::isfinite(p[0] + p[1] + p[2]));  // the boundary too (end conditions)
   EXPECT_GT(t.triangles.size(), 500u);
-  std::printf("valence-5 fan: %d edges, position gap %.2e, normal defect (sin) %.2e, C1 defect %.2e\n", c.edges,
-              c.gap, c.normal_angle, c.c1);
 }
 
 // T-meshes without star points through the charts, face by face against the global T-spline: T-junctions,
@@ -301,12 +306,7 @@ TEST(StarPoints, FacesNearStarPointsAndTheBoundaryFallBackToCharts) {
   // exact: the rest (ring 4 in charts of 3 rings, beyond as before).
   EXPECT_EQ(s.count(FaceMethod::bicubic), 5 * 16 - 5);
   EXPECT_EQ(s.count(FaceMethod::exact), 5 * 33);
-  const test::Continuity c = test::continuity(s.mesh(), [&](int f, double u, double v, double* o) { s.eval(f, u, v, o); });
-  EXPECT_LT(c.gap, 1e-12);
-  EXPECT_LT(c.normal_angle, 1e-10);
-  EXPECT_LT(c.c1, 1e-10);
-  std::printf("valence-5 fan, 7 faces to the boundary: %d edges, position gap %.2e, normal defect (sin) %.2e, C1 defect %.2e\n",
-              c.edges, c.gap, c.normal_angle, c.c1);
+  expect_one_smooth_surface(s, "valence-5 fan, 7 faces to the boundary");
 }
 
 TEST(StarPoints, WhatTheCatmullClarkRegionDoesNotHoldIsRefused) {
