@@ -193,7 +193,8 @@ py::object classification(const PyTSpline& t, bool exact) {
     c = classify(*t.layers, *t.surface, exact);
   }
   return namespace_of(py::dict(
-      py::arg("t_junctions") = c.t_junctions, py::arg("analysis_suitable") = c.analysis_suitable,
+      py::arg("t_junctions") = c.t_junctions, py::arg("gap_t_junctions") = c.gap_junctions,
+      py::arg("analysis_suitable") = c.analysis_suitable,
       py::arg("crossing_extensions") = c.crossing_extensions, py::arg("dual_compatible") = c.dual.compatible,
       py::arg("dual_incompatible_pairs") = c.dual.failing_pairs, py::arg("rectangular_domain") = c.rectangular_domain,
       py::arg("standard") = c.standard, py::arg("semi_standard") = c.semi_standard,
@@ -332,7 +333,8 @@ void bind_tspline(py::module_& m) {
            ".tsm report (units, tolerance, version, deleted_slots, deleted_faces, t_junctions, star_points,\n"
            "repeated_knot_nodes, skipped_records) and, with star points, the faces by evaluation method.")
       .def("classify", &classification, py::arg("exact") = true,
-           "Analysis-suitability as `trivar info`: t_junctions, analysis_suitable, crossing_extensions,\n"
+           "Analysis-suitability as `trivar info`: t_junctions, gap_t_junctions (of those, facing each other across\n"
+           "gaps no ray crosses: no extension), analysis_suitable, crossing_extensions,\n"
            "dual_compatible, standard, semi_standard, linear_independence, part42_type (exact: the exact rank test\n"
            "when peeling is inconclusive).")
       .def_property_readonly(
