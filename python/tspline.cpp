@@ -18,6 +18,7 @@
 #include "trivar/io/t_spline_vtk.hpp"
 #include "trivar/tspline/classification.hpp"
 #include "trivar/tspline/lr_form.hpp"
+#include "trivar/tspline/t_mesh_patches.hpp"
 #include "trivar/tspline/t_mesh_surface.hpp"
 #include "trivar/tspline/t_mesh_tessellation.hpp"
 #include "trivar/tspline/t_spline_surface.hpp"
@@ -140,9 +141,18 @@ void write_tspline(const PyTSpline& t, const std::string& path, const std::strin
           "write: step_form is t-spline or part42, not '" + step_form + "'");
   const std::string ext = io::file_extension(path);
   if (t.mesh) {
-    require(ext == ".tsm", "write: a T-spline with star points is written as .tsm (or tessellated), not '" + ext + "'");
+    const bool patches = ext == ".g2" || ext == ".json" || ext == ".xml" || ext == ".stp" || ext == ".step";
+    require(ext == ".tsm" || patches, "write: a T-spline with star points is written as .tsm or as Bezier patches (.g2, "
+                                      ".json, .xml, .stp), or tessellated, not '" + ext + "'");
     py::gil_scoped_release release;
-    io::write_tsm(path, t.mesh->mesh());
+    if (!patches) return io::write_tsm(path, t.mesh->mesh());
+    // Exact except one corner patch per face at a star point, within 1e-6 of the size (t_mesh_patches).
+    std::vector<AnySpline> out;
+    for (FacePatch& f : t_mesh_patches(*t.mesh).patches) out.emplace_back(std::move(f.surface));
+    if (ext == ".stp" || ext == ".step")
+      io::step::write_step(path, out, {});
+    else
+      io::write_spline_file(path, out);
     return;
   }
   const auto need_layers = [&](const char* what) {
