@@ -197,19 +197,17 @@ TEST_F(TSplineCli, StarPointModel) {
 }
 
 // -lap u = 1, u = 0 on the boundary of the planar valence-3 fan of 3 x 8 x 8 faces (star point at the origin):
-// the C0 multipatch space of its face patches; the maximum of u settles under refinement of the faces.
+// the C0 multipatch space of its face patches. The domain lies in the disk of radius 8 around the star point and
+// holds the disk of radius 6.5 (its boundary lies 6.78 to 7.84 from it), so by comparison with the disks' solutions
+// (R^2 - r^2) / 4 the maximum lies between 10.56 and 16 (12.973 measured; 12.951 with 4 x 4 elements per face).
 TEST_F(TSplineCli, SolvePoissonAroundAStarPoint) {
   std::ofstream((work_ / "fan.tsm").string()) << trivar::test::tsm_text(trivar::test::fan_mesh(3, 8, [](double, double) { return 0.0; }));
-  std::vector<double> umax;
-  for (int n : {1, 2}) {
-    const Result r = ok("solve poisson fan.tsm --solver cholmod --refine " + std::to_string(n) + (n == 2 ? " --out sol" : ""));
-    EXPECT_NE(r.out.find("192 faces, 3 corner patches"), std::string::npos) << r.out;
-    const auto u = numbers_after(r.out, "u: max");
-    ASSERT_FALSE(u.empty()) << r.out;
-    umax.push_back(u[0]);
-  }
-  EXPECT_GT(umax[1], 1.0);
-  EXPECT_NEAR(umax[0], umax[1], 2e-3 * umax[1]);  // 12.973 and 12.955 (12.951 with 4 x 4 per face)
+  const Result r = ok("solve poisson fan.tsm --solver cholmod --refine 1 --out sol");
+  EXPECT_NE(r.out.find("192 faces, 3 corner patches"), std::string::npos) << r.out;
+  const auto u = numbers_after(r.out, "u: max");
+  ASSERT_FALSE(u.empty()) << r.out;
+  EXPECT_GT(u[0], 6.5 * 6.5 / 4);
+  EXPECT_LT(u[0], 16.0);
   EXPECT_TRUE(fs::exists(work_ / "sol" / "solution.vtu"));
   fs::copy_file(std::string(TRIVAR_TEST_DATA) + "/tsm/star_cube.tsm", work_ / "cube.tsm");
   fails("solve poisson cube.tsm");  // not planar
