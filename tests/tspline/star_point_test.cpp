@@ -309,6 +309,63 @@ TEST(StarPoints, FacesNearStarPointsAndTheBoundaryFallBackToCharts) {
   expect_one_smooth_surface(s, "valence-5 fan, 7 faces to the boundary");
 }
 
+// Unequal knot intervals near a star point: in the valence-5 fan of 8 x 8 faces per sector, the strip of edges
+// between the sector rows r and r + 1 (across sector 0 and on into sector 4) gets interval 2.
+//   r = 7: the faces of ring 4 keep the uniform patch (a blending function's first span does not depend on its
+//          last knot), all within 5 rings are Catmull-Clark faces;
+//   r = 6: the faces of ring 4 that see the strip within 2 rings are taken from charts (3 rings, no star point);
+//   r = 5: the faces of ring 3 that see it are neither, and the file is refused.
+// Either way the surface is one smooth surface (positions and normals; face-local derivatives differ by the
+// ratio of the intervals).
+TEST(StarPoints, UnequalIntervalsNearAStarPoint) {
+  const auto strip = [](int row) {
+    io::TsmModel model = io::parse_tsm(tsm_text(test::fan_mesh(5, 8, height)), "fan.tsm");
+    TMesh& m = model.mesh;
+    const double c = std::cos(2 * std::numbers::pi / 5), s = std::sin(2 * std::numbers::pi / 5);
+    // Sector coordinates of a point in sector 0 (axes 0 and 72 degrees) and in sector 4 (axes 288 and 0 degrees).
+    const auto sector0 = [&](const std::array<double, 3>& x) { return std::array<double, 2>{x[0] - x[1] * c / s, x[1] / s}; };
+    const auto sector4 = [&](const std::array<double, 3>& x) { return std::array<double, 2>{-x[1] / s, x[0] + x[1] * c / s}; };
+    const auto near = [](double a, double b) { return std::abs(a - b) < 1e-9; };
+    int changed = 0;
+    for (std::size_t l = 0; l < m.links.size(); ++l) {
+      const TMeshLink& k = m.links[l];
+      if (k.vertex < 0 || static_cast<int>(l) > k.opp) continue;
+      const auto& p = m.points[static_cast<std::size_t>(m.vertices[static_cast<std::size_t>(k.vertex)].primary)].xyz;
+      const auto& q = m.points[static_cast<std::size_t>(m.vertices[static_cast<std::size_t>(m.links[static_cast<std::size_t>(k.opp)].vertex)].primary)].xyz;
+      const auto a0 = sector0(p), b0 = sector0(q), a4 = sector4(p), b4 = sector4(q);
+      const bool in0 = near(a0[1], b0[1]) && a0[1] > -1e-9 && near(std::min(a0[0], b0[0]), row) && near(std::max(a0[0], b0[0]), row + 1);
+      const bool in4 = near(a4[0], b4[0]) && a4[0] > -1e-9 && near(std::min(a4[1], b4[1]), row) && near(std::max(a4[1], b4[1]), row + 1);
+      if (in0 || in4) {
+        m.intervals[static_cast<std::size_t>(k.edge)] = 2;
+        ++changed;
+      }
+    }
+    EXPECT_EQ(changed, 17);  // 9 edges across sector 0, 8 more across sector 4
+    return m;
+  };
+  for (int row : {7, 6}) {
+    const TMeshSurface s(strip(row), 1);
+    EXPECT_EQ(s.count(FaceMethod::star), 5);
+    if (row == 7) {
+      EXPECT_EQ(s.count(FaceMethod::bicubic), 5 * 25 - 5);
+    } else {
+      EXPECT_LT(s.count(FaceMethod::bicubic), 5 * 25 - 5);
+    }
+    const test::Continuity c = test::continuity(s.mesh(), [&](int f, double u, double v, double* o) { s.eval(f, u, v, o); });
+    EXPECT_LT(c.gap, 1e-12) << row;
+    EXPECT_LT(c.normal_angle, 1e-10) << row;
+    std::printf("valence-5 fan, interval 2 between rows %d and %d: %d Catmull-Clark faces, position gap %.2e, normal "
+                "defect (sin) %.2e\n", row, row + 1, s.count(FaceMethod::bicubic) + s.count(FaceMethod::star), c.gap,
+                c.normal_angle);
+  }
+  try {
+    TMeshSurface bad(strip(5), 1);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("knot interval"), std::string::npos) << e.what();
+  }
+}
+
 TEST(StarPoints, WhatTheCatmullClarkRegionDoesNotHoldIsRefused) {
   // Boundary too close, unequal knot intervals, a face with two star points.
   expect_error(tsm_text(test::fan_mesh(5, 4, height)), "boundary vertex");
