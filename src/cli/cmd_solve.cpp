@@ -625,7 +625,7 @@ void run(const SolveArgs& a) {
       require(a.kind == "poisson", "solve: on a T-spline (" + a.file + ") only poisson is available");
       std::unique_ptr<OutputFolder> out;
       if (!a.out.empty()) out = prepare_out(a);
-      solve_tspline_poisson(a.file, a.solver, out ? out->path("solution.vtu").string() : "", a.threads);
+      solve_tspline_poisson(a.file, a.solver, out ? out->path("solution.vtu").string() : "", a.threads, a.refine);
       if (out) out->commit();
       return;
     }
