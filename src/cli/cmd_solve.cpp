@@ -555,7 +555,7 @@ void run_refined_file(const SolveArgs& a, const Geometry& g) {
     }
   }
   std::vector<std::pair<std::string, Eigen::VectorXd>> fields;
-  int components = a.kind == "poisson" || (a.kind == "modes" && a.physics == "laplace") ? 1 : D;
+  const int components = a.kind == "poisson" || (a.kind == "modes" && a.physics == "laplace") ? 1 : D;
   if (a.kind == "modes") {
     const ModesResult r = a.physics == "laplace"
                               ? (distributed(a) ? petsc_laplace_modes(space, boundary, a.modes, petsc_options(a))

@@ -137,6 +137,8 @@ with tempfile.TemporaryDirectory() as tmp:
         (["solve", "poisson", os.path.join(tmp, "missing.json")], None),
         (["solve", "poisson", "--problem", "sine-cube", "--degree", "0"], None),
         (["solve", "modes", "--problem", "cube-modes", "--degree", "2", "--refine", "2", "--modes", "50"], None),
+        (["solve", "elasticity", thb_file, "--clamp", "none"], None),
+        (["solve", "elasticity", thb_file, "--clamp", "z-"], None),
         (["solve", "poisson", "--problem", "sine-cube", "--refine", "2", "--pc", "jacobi"], foreign),
     ]):
         out = out or os.path.join(tmp, "out%d" % i)
