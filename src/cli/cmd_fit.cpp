@@ -28,7 +28,7 @@ struct FitArgs {
   std::vector<std::string> out;
   double tolerance = 0.0, relative = 0.0;
   bool volume = false, height_field = false, report = false, no_check = false;
-  std::string report_json, image, error_image, strategy = "fullspan";
+  std::string report_json, image, error_image, strategy = "fullspan", method = "ls";
   int image_width = 1024;
   ApproximationOptions opts;
 };
@@ -50,6 +50,7 @@ void run(const FitArgs& a, const PointTable& table) {
   const ScatteredData<D> data = scattered_data<D>(table, a.in);
   ApproximationOptions o = a.opts;
   o.strategy = parse_strategy(a.strategy);
+  o.method = parse_fit_method(a.method);
   o.check_independence = !a.no_check;
   double lo = data.values.front(), hi = lo;
   for (double v : data.values) lo = std::min(lo, v), hi = std::max(hi, v);
@@ -84,6 +85,7 @@ void run(const FitArgs& a, const PointTable& table) {
                           {"points", data.size()},
                           {"tolerance", o.tolerance},
                           {"strategy", a.strategy},
+                          {"method", a.method},
                           {"converged", fit.converged},
                           {"stop_reason", fit.stop_reason},
                           {"iterations", nlohmann::json::array()}};
@@ -118,6 +120,14 @@ void add_fit_command(CLI::App& app, Context& ctx) {
       ->capture_default_str();
   cmd->add_option("--strategy", a->strategy, "Refinement: fullspan, minspan or structured")
       ->check(CLI::IsMember({"fullspan", "minspan", "structured"}))
+      ->capture_default_str();
+  cmd->add_option("--method", a->method,
+                  "Fit of each round: ls (penalised least squares) or mba (multilevel B-spline approximation, "
+                  "no linear system: for millions of points)")
+      ->check(CLI::IsMember({"ls", "mba"}))
+      ->capture_default_str();
+  cmd->add_option("--mba-passes", a->opts.mba_passes, "MBA passes per refinement round")
+      ->check(CLI::Range(1, 100))
       ->capture_default_str();
   cmd->add_option("--smoothing", a->opts.smoothing, "Weight of the thin-plate smoothing term (dimensionless)")
       ->check(at_least(0))

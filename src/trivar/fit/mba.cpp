@@ -1,0 +1,130 @@
+#include "trivar/fit/mba.hpp"
+
+#include <Eigen/Core>
+
+#include "trivar/core/error.hpp"
+#include "trivar/core/parallel.hpp"
+#include "trivar/fit/element_bernstein.hpp"
+#include "trivar/lr/lr_bezier_extraction.hpp"
+
+namespace trivar {
+namespace mba_detail {
+
+// Per element: for each of its B-splines the sums sum_i w^3 r_i / sum_k w_k^2 (dim values) and sum_i w^2.
+template <int D, int P>
+void accumulate_wishes(const Ints<D>& deg, const Box<D>& box, const Eigen::MatrixXd& C, const ScatteredData<D>& data,
+                       std::span<const int> points, std::span<const double> residuals, double* num, double* den) {
+  const Param<D> inv_h = fit_kernel::reciprocal_sides(box);
+  const auto nids = C.rows();
+  const int m = data.dim;
+  double b[256];
+  Eigen::VectorXd w(nids);
+  for (int i : points) {
+    fit_kernel::tensor_bernstein<D, P>(deg, box.lo, inv_h, data.params[static_cast<std::size_t>(i)], b);
+    w.noalias() = C * Eigen::Map<const Eigen::VectorXd>(b, C.cols());
+    const double s = w.squaredNorm();
+    if (!(s > 0.0)) continue;
+    const double* r = residuals.data() + static_cast<std::size_t>(i) * static_cast<std::size_t>(m);
+    for (Eigen::Index j = 0; j < nids; ++j) {
+      const double w2 = w[j] * w[j];
+      den[j] += w2;
+      const double f = w2 * w[j] / s;
+      for (int c = 0; c < m; ++c) num[j * m + c] += f * r[c];
+    }
+  }
+}
+
+// Subtracts the correction's Bezier net (nb x m, column-major) at each point of the element from its residual.
+template <int D, int P>
+void subtract_correction(const Ints<D>& deg, const Box<D>& box, const double* net, int nb, const ScatteredData<D>& data,
+                         std::span<const int> points, std::span<double> residuals) {
+  const Param<D> inv_h = fit_kernel::reciprocal_sides(box);
+  const int m = data.dim;
+  double b[256];
+  for (int i : points) {
+    fit_kernel::tensor_bernstein<D, P>(deg, box.lo, inv_h, data.params[static_cast<std::size_t>(i)], b);
+    double* r = residuals.data() + static_cast<std::size_t>(i) * static_cast<std::size_t>(m);
+    for (int c = 0; c < m; ++c) {
+      double v = 0.0;
+      for (int q = 0; q < nb; ++q) v += net[c * nb + q] * b[q];
+      r[c] -= v;
+    }
+  }
+}
+
+}  // namespace mba_detail
+
+template <int D>
+void mba_update(const LRSpline<D>& lr, const ScatteredData<D>& data, const PointsByElement& where,
+                std::span<double> coefs, std::span<double> residuals, int threads) {
+  const int m = data.dim;
+  const int n = lr.num_basis();
+  const int ne = lr.num_elements();
+  require(coefs.size() == static_cast<std::size_t>(n) * static_cast<std::size_t>(m) &&
+              residuals.size() == data.size() * static_cast<std::size_t>(m),
+          "fit: MBA needs " + std::to_string(n) + " x " + std::to_string(m) + " coefficients and " +
+              std::to_string(data.size()) + " x " + std::to_string(m) + " residuals");
+  const Ints<D>& deg = lr.degrees();
+  int nb = 1;
+  for (int k = 0; k < D; ++k) nb *= deg[k] + 1;
+  // Per element one block: nids * m wishes, then nids weights (summed per B-spline after the parallel loop).
+  std::vector<std::size_t> start(static_cast<std::size_t>(ne) + 1, 0);
+  for (int e = 0; e < ne; ++e)
+    start[static_cast<std::size_t>(e) + 1] =
+        start[static_cast<std::size_t>(e)] + lr.element_support(e).size() * static_cast<std::size_t>(m + 1);
+  std::vector<double> local(start.back(), 0.0);
+  parallel_for(ne, threads, [&](std::ptrdiff_t ei) {
+    const int e = static_cast<int>(ei);
+    const std::span<const int> pts = fit_kernel::points_of(where, e);
+    if (pts.empty()) return;
+    const Box<D>& box = lr.element(e);
+    const std::span<const int> ids = lr.element_support(e);
+    const Eigen::MatrixXd C = extraction_operator(deg, lr.basis_functions(), ids, box);
+    double* num = local.data() + start[static_cast<std::size_t>(e)];
+    double* den = num + ids.size() * static_cast<std::size_t>(m);
+    fit_kernel::with_degree<D>(deg, [&](auto P) {
+      mba_detail::accumulate_wishes<D, P()>(deg, box, C, data, pts, residuals, num, den);
+    });
+  });
+  std::vector<double> num(static_cast<std::size_t>(n) * static_cast<std::size_t>(m), 0.0), den(static_cast<std::size_t>(n), 0.0);
+  for (int e = 0; e < ne; ++e) {
+    const std::span<const int> ids = lr.element_support(e);
+    const double* a = local.data() + start[static_cast<std::size_t>(e)];
+    const double* w = a + ids.size() * static_cast<std::size_t>(m);
+    for (std::size_t r = 0; r < ids.size(); ++r) {
+      const auto id = static_cast<std::size_t>(ids[r]);
+      den[id] += w[r];
+      for (int c = 0; c < m; ++c) num[id * static_cast<std::size_t>(m) + static_cast<std::size_t>(c)] += a[r * static_cast<std::size_t>(m) + static_cast<std::size_t>(c)];
+    }
+  }
+  // delta_j in num; B-splines without points keep their coefficient.
+  for (std::size_t j = 0; j < den.size(); ++j)
+    for (int c = 0; c < m; ++c) {
+      double& d = num[j * static_cast<std::size_t>(m) + static_cast<std::size_t>(c)];
+      d = den[j] > 0.0 ? d / den[j] : 0.0;
+      coefs[j * static_cast<std::size_t>(m) + static_cast<std::size_t>(c)] += d;
+    }
+  parallel_for(ne, threads, [&](std::ptrdiff_t ei) {
+    const int e = static_cast<int>(ei);
+    const std::span<const int> pts = fit_kernel::points_of(where, e);
+    if (pts.empty()) return;
+    const Box<D>& box = lr.element(e);
+    const std::span<const int> ids = lr.element_support(e);
+    const Eigen::MatrixXd C = extraction_operator(deg, lr.basis_functions(), ids, box);
+    Eigen::MatrixXd delta(static_cast<Eigen::Index>(ids.size()), m);
+    for (std::size_t r = 0; r < ids.size(); ++r)
+      for (int c = 0; c < m; ++c)
+        delta(static_cast<Eigen::Index>(r), c) = num[static_cast<std::size_t>(ids[r]) * static_cast<std::size_t>(m) + static_cast<std::size_t>(c)];
+    const Eigen::MatrixXd net = C.transpose() * delta;  // nb x m
+    fit_kernel::with_degree<D>(deg, [&](auto P) {
+      mba_detail::subtract_correction<D, P()>(deg, box, net.data(), nb, data, pts, residuals);
+    });
+  });
+}
+
+template void mba_update(const LRSpline<2>&, const ScatteredData<2>&, const PointsByElement&, std::span<double>,
+                         std::span<double>, int);
+template void mba_update(const LRSpline<3>&, const ScatteredData<3>&, const PointsByElement&, std::span<double>,
+                         std::span<double>, int);
+
+}  // namespace trivar
