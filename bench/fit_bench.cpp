@@ -64,11 +64,13 @@ void fit(benchmark::State& state, bool uniform, int levels, FitMethod method = F
 void BM_FitTerrainLR(benchmark::State& state) { fit(state, false, 12); }
 void BM_FitTerrainMBA(benchmark::State& state) { fit(state, false, 16, FitMethod::mba); }
 void BM_FitTerrainUniform6Levels(benchmark::State& state) { fit(state, true, 6); }
+void BM_FitTerrainUniformMBA6Levels(benchmark::State& state) { fit(state, true, 6, FitMethod::mba); }
 
 }  // namespace
 
 BENCHMARK(BM_FitTerrainLR)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_FitTerrainMBA)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_FitTerrainUniform6Levels)->Arg(1000000)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_FitTerrainUniformMBA6Levels)->Arg(1000000)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 BENCHMARK_MAIN();
