@@ -4,13 +4,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <map>
 #include <numeric>
 
 #include "trivar/core/error.hpp"
 #include "trivar/fit/least_squares.hpp"
 #include "trivar/fit/mba.hpp"
 #include "trivar/lr/linear_independence.hpp"
+#include "trivar/lr/tensor_expansion.hpp"
 #include "trivar/spline/knot_insertion.hpp"
 #include "trivar/spline/knot_vector.hpp"
 
@@ -89,50 +89,6 @@ LRSpline<D> split_joined(const LRSpline<D>& both, int dim, std::vector<double>& 
     std::copy_n(basis[i].coef.begin() + D, dim, coefs.begin() + static_cast<std::ptrdiff_t>(i) * dim);
   }
   return with_coefficients(both, D, identity);
-}
-
-// The tensor spline that an LR spline without partial mesh lines is (every round of a uniform fit): per direction
-// the knot values with the largest multiplicity any B-spline holds, and B-spline i's index from where its first
-// local knot sits in that knot vector (first position + copies there - copies it holds).
-template <int D>
-TensorSpline<D> tensor_form(const LRSpline<D>& lr) {
-  std::array<KnotVector, D> knots;
-  for (int k = 0; k < D; ++k) {
-    std::map<double, int> mult;
-    for (const LRBSpline<D>& b : lr.basis_functions()) {
-      const auto& t = b.knots[static_cast<std::size_t>(k)];
-      for (std::size_t i = 0; i < t.size();) {
-        std::size_t j = i;
-        while (j < t.size() && t[j] == t[i]) ++j;
-        int& m = mult[t[i]];
-        m = std::max(m, static_cast<int>(j - i));
-        i = j;
-      }
-    }
-    std::vector<double> t;
-    for (const auto& [value, m] : mult) t.insert(t.end(), static_cast<std::size_t>(m), value);
-    knots[static_cast<std::size_t>(k)] = KnotVector(lr.degree(k), std::move(t));
-  }
-  std::size_t count = 1;
-  std::array<std::size_t, D> n{};
-  for (int k = 0; k < D; ++k) count *= n[static_cast<std::size_t>(k)] = knots[static_cast<std::size_t>(k)].knots().size() - static_cast<std::size_t>(lr.degree(k)) - 1;
-  require(count == static_cast<std::size_t>(lr.num_basis()), "fit: the LR spline is not a tensor spline");
-  const auto dim = static_cast<std::size_t>(lr.dim());
-  std::vector<double> coefs(count * dim);
-  for (const LRBSpline<D>& b : lr.basis_functions()) {
-    std::size_t index = 0, stride = 1;
-    for (int k = 0; k < D; ++k) {
-      const auto& t = knots[static_cast<std::size_t>(k)].knots();
-      const auto& local = b.knots[static_cast<std::size_t>(k)];
-      const auto first = std::lower_bound(t.begin(), t.end(), local.front());
-      const auto in_t = std::upper_bound(t.begin(), t.end(), local.front()) - first;
-      const auto in_local = std::upper_bound(local.begin(), local.end(), local.front()) - local.begin();
-      index += static_cast<std::size_t>((first - t.begin()) + in_t - in_local) * stride;
-      stride *= n[static_cast<std::size_t>(k)];
-    }
-    std::copy(b.coef.begin(), b.coef.end(), coefs.begin() + static_cast<std::ptrdiff_t>(index * dim));
-  }
-  return TensorSpline<D>(std::move(knots), lr.dim(), false, std::move(coefs));
 }
 
 }  // namespace
@@ -244,7 +200,7 @@ Approximation<D> approximate(const ScatteredData<D>& data, const ApproximationOp
       } else if (o.uniform) {  // every element halved by knot insertion on the tensor form, both maps kept
         Ints<D> two;
         two.fill(2);
-        next = LRSpline<D>(refine_uniform(tensor_form(next), two));
+        next = LRSpline<D>(refine_uniform(tensor_expansion(next), two));
       } else {
         refine_elements(next, std::span<const int>(marked), RefineOptions{o.strategy, 1, 0.0});
         if (o.check_independence) {
