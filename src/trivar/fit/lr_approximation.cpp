@@ -130,12 +130,18 @@ LRSpline<D> initial_space(const Box<D>& box, const ApproximationOptions& o, int 
 
 template <int D>
 Approximation<D> approximate(const ScatteredData<D>& data, const ApproximationOptions& o,
-                             const std::function<void(const IterationReport&)>& progress) {
+                             const std::function<void(const IterationReport&)>& progress, const Box<D>* domain) {
   check_options(o);
   validate(data, "fit");
   using Clock = std::chrono::steady_clock;
   require(data.size() < (std::size_t{1} << 31), "fit: more than 2^31 points");
-  const Box<D> box = data.bounding_box();
+  const Box<D> box = domain ? *domain : data.bounding_box();
+  if (domain) {
+    const Box<D> points = data.bounding_box();
+    for (int k = 0; k < D; ++k)
+      require(box.lo[k] < box.hi[k] && box.lo[k] <= points.lo[k] && points.hi[k] <= box.hi[k],
+              "fit: the points reach beyond the given domain in direction " + std::to_string(k));
+  }
   const auto [sorted, order] = spatially_sorted(data, box);
   LRSpline<D> space = initial_space(box, o);
   std::string status = "independent";  // a tensor basis
@@ -234,8 +240,8 @@ Approximation<D> approximate(const ScatteredData<D>& data, const ApproximationOp
 template LRSpline<2> initial_space(const Box<2>&, const ApproximationOptions&, int);
 template LRSpline<3> initial_space(const Box<3>&, const ApproximationOptions&, int);
 template Approximation<2> approximate(const ScatteredData<2>&, const ApproximationOptions&,
-                                      const std::function<void(const IterationReport&)>&);
+                                      const std::function<void(const IterationReport&)>&, const Box<2>*);
 template Approximation<3> approximate(const ScatteredData<3>&, const ApproximationOptions&,
-                                      const std::function<void(const IterationReport&)>&);
+                                      const std::function<void(const IterationReport&)>&, const Box<3>*);
 
 }  // namespace trivar

@@ -67,9 +67,11 @@ struct Approximation {
 const char* to_string(FitMethod method);
 FitMethod parse_fit_method(const std::string& word);
 
+// domain: the box the spline is built on (it must hold every point); null: the points' bounding box.
 template <int D>
 Approximation<D> approximate(const ScatteredData<D>& data, const ApproximationOptions& options,
-                             const std::function<void(const IterationReport&)>& progress = {});
+                             const std::function<void(const IterationReport&)>& progress = {},
+                             const Box<D>* domain = nullptr);
 
 // The coarse tensor spline the loop starts from (degree and element counts of `options`): the identity map of
 // the box, D values per B-spline (its Greville abscissae).
