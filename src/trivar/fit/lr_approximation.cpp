@@ -10,8 +10,6 @@
 #include "trivar/fit/least_squares.hpp"
 #include "trivar/fit/mba.hpp"
 #include "trivar/lr/linear_independence.hpp"
-#include "trivar/lr/tensor_expansion.hpp"
-#include "trivar/spline/knot_insertion.hpp"
 #include "trivar/spline/knot_vector.hpp"
 
 namespace trivar {
@@ -203,10 +201,8 @@ Approximation<D> approximate(const ScatteredData<D>& data, const ApproximationOp
       LRSpline<D> next = start();
       if (o.uniform && !mba) {
         next = initial_space(box, o, level + 1);
-      } else if (o.uniform) {  // every element halved by knot insertion on the tensor form, both maps kept
-        Ints<D> two;
-        two.fill(2);
-        next = LRSpline<D>(refine_uniform(tensor_expansion(next), two));
+      } else if (o.uniform) {  // FULLSPAN on every element halves each: the next dyadic tensor spline, both maps kept
+        refine_elements(next, std::span<const int>(marked), RefineOptions{Strategy::fullspan, 1, 0.0});
       } else {
         refine_elements(next, std::span<const int>(marked), RefineOptions{o.strategy, 1, 0.0});
         if (o.check_independence) {
