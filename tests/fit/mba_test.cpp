@@ -116,7 +116,7 @@ TEST(Mba, OnePassIsTheWeightedMeanOfThePointsWishes) {
 }
 
 TEST(Mba, CraterMeetsTheToleranceWithLocalRefinement) {
-  ScatteredData<2> d = sample<2>(15000, 2, [](const Param<2>& p) { return crater(p[0], p[1]); });
+  ScatteredData<2> d = sample<2>(10000, 2, [](const Param<2>& p) { return crater(p[0], p[1]); });
   for (int k = 0; k < 4; ++k) {  // the corners, so the initial elements are 1/16 wide
     d.params[static_cast<std::size_t>(k)] = {double(k & 1), double(k >> 1)};
     d.values[static_cast<std::size_t>(k)] = crater(k & 1, k >> 1);
@@ -128,7 +128,7 @@ TEST(Mba, CraterMeetsTheToleranceWithLocalRefinement) {
   o.max_levels = 16;
   const Approximation<2> a = approximate(d, o);
   EXPECT_TRUE(a.converged) << a.stop_reason;
-  EXPECT_LT(a.spline.num_basis(), 2400);  // least squares: 1784 (3 passes per round: 1979; 1 pass: 3112)
+  EXPECT_LT(a.spline.num_basis(), 2400);  // least squares on the 15000 points of lr_approximation_test: 1784
   const std::vector<double> e = evaluator_errors(a.spline, d);
   double worst = 0.0, diff = 0.0;
   for (std::size_t i = 0; i < e.size(); ++i) {
