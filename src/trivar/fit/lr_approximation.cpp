@@ -152,7 +152,7 @@ Approximation<D> approximate(const ScatteredData<D>& data, const ApproximationOp
     const auto t0 = Clock::now();
     const PointsByElement where = locate_points(space, std::span<const Param<D>>(sorted.params), o.threads);
     if (mba && level > 0) {
-      for (int pass = 0; pass < o.mba_passes; ++pass) mba_update(space, sorted, where, std::span<double>(coefs), std::span<double>(residuals), o.threads);
+      mba_update(space, sorted, where, std::span<double>(coefs), std::span<double>(residuals), o.mba_passes, o.threads);
       for (std::size_t i = 0; i < errors.size(); ++i) {
         double e = 0.0;
         for (int c = 0; c < data.dim; ++c) e = std::max(e, std::abs(residuals[i * static_cast<std::size_t>(data.dim) + static_cast<std::size_t>(c)]));

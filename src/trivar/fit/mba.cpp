@@ -75,7 +75,8 @@ void subtract_correction(const Ints<D>& deg, const Box<D>& box, const double* ne
 
 template <int D>
 void mba_update(const LRSpline<D>& lr, const ScatteredData<D>& data, const PointsByElement& where,
-                std::span<double> coefs, std::span<double> residuals, int threads) {
+                std::span<double> coefs, std::span<double> residuals, int passes, int threads) {
+  require(passes >= 1, "fit: MBA needs at least one pass");
   const int m = data.dim;
   const int n = lr.num_basis();
   const int ne = lr.num_elements();
@@ -91,59 +92,80 @@ void mba_update(const LRSpline<D>& lr, const ScatteredData<D>& data, const Point
   for (int e = 0; e < ne; ++e)
     start[static_cast<std::size_t>(e) + 1] =
         start[static_cast<std::size_t>(e)] + lr.element_support(e).size() * static_cast<std::size_t>(m + 1);
-  std::vector<double> local(start.back(), 0.0);
-  parallel_for(ne, threads, [&](std::ptrdiff_t ei) {
-    const int e = static_cast<int>(ei);
-    const std::span<const int> pts = fit_kernel::points_of(where, e);
-    if (pts.empty()) return;
-    const Box<D>& box = lr.element(e);
-    const std::span<const int> ids = lr.element_support(e);
-    const Eigen::MatrixXd C = extraction_operator(deg, lr.basis_functions(), ids, box);
-    double* num = local.data() + start[static_cast<std::size_t>(e)];
-    double* den = num + ids.size() * static_cast<std::size_t>(m);
-    fit_kernel::with_degree<D>(deg, [&](auto P) {
-      mba_detail::accumulate_wishes<D, P()>(deg, box, C, data, pts, residuals, num, den);
+  // The elements' extraction operators, built once for all sweeps of all passes while they take at most 256 MB
+  // (a quarter of MBA's instructions at 10^5 points went into rebuilding them), else rebuilt per sweep.
+  double cache_bytes = 0.0;
+  for (int e = 0; e < ne; ++e)
+    if (!fit_kernel::points_of(where, e).empty())
+      cache_bytes += 8.0 * static_cast<double>(lr.element_support(e).size()) * nb;
+  const bool cached = cache_bytes <= 256e6;
+  std::vector<Eigen::MatrixXd> operators(cached ? static_cast<std::size_t>(ne) : 0);
+  // Each element is visited by one thread per loop, so filling its slot on first use does not race.
+  const auto extraction = [&](int e, Eigen::MatrixXd& scratch) -> const Eigen::MatrixXd& {
+    Eigen::MatrixXd& C = cached ? operators[static_cast<std::size_t>(e)] : scratch;
+    if (!cached || C.size() == 0) C = extraction_operator(deg, lr.basis_functions(), lr.element_support(e), lr.element(e));
+    return C;
+  };
+  std::vector<double> local(start.back());
+  std::vector<double> num(static_cast<std::size_t>(n) * static_cast<std::size_t>(m)), den(static_cast<std::size_t>(n));
+  for (int pass = 0; pass < passes; ++pass) {
+    std::fill(local.begin(), local.end(), 0.0);
+    parallel_for(ne, threads, [&](std::ptrdiff_t ei) {
+      const int e = static_cast<int>(ei);
+      const std::span<const int> pts = fit_kernel::points_of(where, e);
+      if (pts.empty()) return;
+      const Box<D>& box = lr.element(e);
+      const std::span<const int> ids = lr.element_support(e);
+      Eigen::MatrixXd scratch;
+      const Eigen::MatrixXd& C = extraction(e, scratch);
+      double* wishes = local.data() + start[static_cast<std::size_t>(e)];
+      double* weights = wishes + ids.size() * static_cast<std::size_t>(m);
+      fit_kernel::with_degree<D>(deg, [&](auto P) {
+        mba_detail::accumulate_wishes<D, P()>(deg, box, C, data, pts, residuals, wishes, weights);
+      });
     });
-  });
-  std::vector<double> num(static_cast<std::size_t>(n) * static_cast<std::size_t>(m), 0.0), den(static_cast<std::size_t>(n), 0.0);
-  for (int e = 0; e < ne; ++e) {
-    const std::span<const int> ids = lr.element_support(e);
-    const double* a = local.data() + start[static_cast<std::size_t>(e)];
-    const double* w = a + ids.size() * static_cast<std::size_t>(m);
-    for (std::size_t r = 0; r < ids.size(); ++r) {
-      const auto id = static_cast<std::size_t>(ids[r]);
-      den[id] += w[r];
-      for (int c = 0; c < m; ++c) num[id * static_cast<std::size_t>(m) + static_cast<std::size_t>(c)] += a[r * static_cast<std::size_t>(m) + static_cast<std::size_t>(c)];
+    std::fill(num.begin(), num.end(), 0.0);
+    std::fill(den.begin(), den.end(), 0.0);
+    for (int e = 0; e < ne; ++e) {
+      const std::span<const int> ids = lr.element_support(e);
+      const double* a = local.data() + start[static_cast<std::size_t>(e)];
+      const double* w = a + ids.size() * static_cast<std::size_t>(m);
+      for (std::size_t r = 0; r < ids.size(); ++r) {
+        const auto id = static_cast<std::size_t>(ids[r]);
+        den[id] += w[r];
+        for (int c = 0; c < m; ++c) num[id * static_cast<std::size_t>(m) + static_cast<std::size_t>(c)] += a[r * static_cast<std::size_t>(m) + static_cast<std::size_t>(c)];
+      }
     }
+    // delta_j in num; B-splines without points keep their coefficient.
+    for (std::size_t j = 0; j < den.size(); ++j)
+      for (int c = 0; c < m; ++c) {
+        double& d = num[j * static_cast<std::size_t>(m) + static_cast<std::size_t>(c)];
+        d = den[j] > 0.0 ? d / den[j] : 0.0;
+        coefs[j * static_cast<std::size_t>(m) + static_cast<std::size_t>(c)] += d;
+      }
+    parallel_for(ne, threads, [&](std::ptrdiff_t ei) {
+      const int e = static_cast<int>(ei);
+      const std::span<const int> pts = fit_kernel::points_of(where, e);
+      if (pts.empty()) return;
+      const Box<D>& box = lr.element(e);
+      const std::span<const int> ids = lr.element_support(e);
+      Eigen::MatrixXd scratch;
+      const Eigen::MatrixXd& C = extraction(e, scratch);
+      Eigen::MatrixXd delta(static_cast<Eigen::Index>(ids.size()), m);
+      for (std::size_t r = 0; r < ids.size(); ++r)
+        for (int c = 0; c < m; ++c)
+          delta(static_cast<Eigen::Index>(r), c) = num[static_cast<std::size_t>(ids[r]) * static_cast<std::size_t>(m) + static_cast<std::size_t>(c)];
+      const Eigen::MatrixXd net = C.transpose() * delta;  // nb x m
+      fit_kernel::with_degree<D>(deg, [&](auto P) {
+        mba_detail::subtract_correction<D, P()>(deg, box, net.data(), nb, data, pts, residuals);
+      });
+    });
   }
-  // delta_j in num; B-splines without points keep their coefficient.
-  for (std::size_t j = 0; j < den.size(); ++j)
-    for (int c = 0; c < m; ++c) {
-      double& d = num[j * static_cast<std::size_t>(m) + static_cast<std::size_t>(c)];
-      d = den[j] > 0.0 ? d / den[j] : 0.0;
-      coefs[j * static_cast<std::size_t>(m) + static_cast<std::size_t>(c)] += d;
-    }
-  parallel_for(ne, threads, [&](std::ptrdiff_t ei) {
-    const int e = static_cast<int>(ei);
-    const std::span<const int> pts = fit_kernel::points_of(where, e);
-    if (pts.empty()) return;
-    const Box<D>& box = lr.element(e);
-    const std::span<const int> ids = lr.element_support(e);
-    const Eigen::MatrixXd C = extraction_operator(deg, lr.basis_functions(), ids, box);
-    Eigen::MatrixXd delta(static_cast<Eigen::Index>(ids.size()), m);
-    for (std::size_t r = 0; r < ids.size(); ++r)
-      for (int c = 0; c < m; ++c)
-        delta(static_cast<Eigen::Index>(r), c) = num[static_cast<std::size_t>(ids[r]) * static_cast<std::size_t>(m) + static_cast<std::size_t>(c)];
-    const Eigen::MatrixXd net = C.transpose() * delta;  // nb x m
-    fit_kernel::with_degree<D>(deg, [&](auto P) {
-      mba_detail::subtract_correction<D, P()>(deg, box, net.data(), nb, data, pts, residuals);
-    });
-  });
 }
 
 template void mba_update(const LRSpline<2>&, const ScatteredData<2>&, const PointsByElement&, std::span<double>,
-                         std::span<double>, int);
+                         std::span<double>, int, int);
 template void mba_update(const LRSpline<3>&, const ScatteredData<3>&, const PointsByElement&, std::span<double>,
-                         std::span<double>, int);
+                         std::span<double>, int, int);
 
 }  // namespace trivar

@@ -15,10 +15,11 @@
 
 namespace trivar {
 
-// One MBA pass: adds the corrections to `coefs` (num_basis * data.dim, B-spline-major) and subtracts their values
-// from `residuals` (data.size() * data.dim, point-major, f - s on entry), so `residuals` stays f - s exactly.
+// `passes` MBA passes, each fitting what the last left: adds the corrections to `coefs` (num_basis * data.dim,
+// B-spline-major) and subtracts their values from `residuals` (data.size() * data.dim, point-major, f - s on
+// entry), so `residuals` stays f - s exactly.
 template <int D>
 void mba_update(const LRSpline<D>& lr, const ScatteredData<D>& data, const PointsByElement& where,
-                std::span<double> coefs, std::span<double> residuals, int threads = 1);
+                std::span<double> coefs, std::span<double> residuals, int passes = 1, int threads = 1);
 
 }  // namespace trivar
