@@ -1,6 +1,6 @@
 // Scattered-data approximation of terrain: N random points of rolling hills with a crater whose rim is a sharp
 // ridge (the local detail), fitted to 0.5 % of the height range with one thread. The LR fit runs to the tolerance;
-// the uniform tensor fit runs a fixed number of levels (the full uniform run to the tolerance needs about a million
+// the MBA fit (least squares on the start spline, then MBA passes) likewise; the uniform tensor fit runs a fixed number of levels (the full uniform run to the tolerance needs about a million
 // coefficients and minutes: its figures from `trivar fit --uniform` are in bench/README.md). Counters: coefficients,
 // elements, refinement levels, points outside the tolerance, largest error. Figures are in bench/README.md.
 #include <benchmark/benchmark.h>
@@ -41,13 +41,14 @@ const ScatteredData<2>& points(std::size_t n) {
   return d;
 }
 
-void fit(benchmark::State& state, bool uniform, int levels) {
+void fit(benchmark::State& state, bool uniform, int levels, FitMethod method = FitMethod::least_squares) {
   const ScatteredData<2>& d = points(static_cast<std::size_t>(state.range(0)));
   double lo = d.values[0], hi = lo;
   for (double v : d.values) lo = std::min(lo, v), hi = std::max(hi, v);
   ApproximationOptions o;
   o.tolerance = 0.005 * (hi - lo);
   o.uniform = uniform;
+  o.method = method;
   o.max_levels = levels;
   o.threads = 1;
   for (auto _ : state) {
@@ -61,11 +62,15 @@ void fit(benchmark::State& state, bool uniform, int levels) {
 }
 
 void BM_FitTerrainLR(benchmark::State& state) { fit(state, false, 12); }
+void BM_FitTerrainMBA(benchmark::State& state) { fit(state, false, 16, FitMethod::mba); }
 void BM_FitTerrainUniform6Levels(benchmark::State& state) { fit(state, true, 6); }
+void BM_FitTerrainUniformMBA6Levels(benchmark::State& state) { fit(state, true, 6, FitMethod::mba); }
 
 }  // namespace
 
 BENCHMARK(BM_FitTerrainLR)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_FitTerrainMBA)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(BM_FitTerrainUniform6Levels)->Arg(1000000)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(BM_FitTerrainUniformMBA6Levels)->Arg(1000000)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 BENCHMARK_MAIN();

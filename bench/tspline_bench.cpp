@@ -7,7 +7,8 @@
 // Star points: the closed cube of 3 x 3 faces per side (eight valence-3 star points) and the valence-5 fan of
 // 5 x 10 x 10 faces (tests/tspline/star_mesh_tsm.hpp): parse + per-face surface build, evaluation on a 16 x 16
 // grid per face (all faces, and the faces at star points alone: the Catmull-Clark subdivision path), and the
-// watertight tessellation.
+// watertight tessellation; their Bezier patches (t_mesh_patches); Poisson on the planar valence-5 fan of
+// 5 x 8 x 8 faces in the C0 multipatch space of its faces (t_mesh_space).
 #include <benchmark/benchmark.h>
 
 #include <cstdlib>
@@ -17,10 +18,12 @@
 
 #include "trivar/iga/refined_poisson.hpp"
 #include "trivar/iga/solver.hpp"
+#include "trivar/iga/t_mesh_space.hpp"
 #include "trivar/iga/tensor_space.hpp"
 #include "trivar/io/tsm_format.hpp"
 #include "../tests/tspline/star_mesh_tsm.hpp"
 #include "trivar/tspline/local_knots.hpp"
+#include "trivar/tspline/t_mesh_patches.hpp"
 #include "trivar/tspline/t_mesh_surface.hpp"
 #include "trivar/tspline/t_mesh_tessellation.hpp"
 #include "trivar/tspline/t_mesh_builder.hpp"
@@ -159,6 +162,53 @@ void star_tessellate(benchmark::State& state) {
   state.counters["triangles"] = static_cast<double>(triangles);
 }
 BENCHMARK(star_tessellate)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+// Bezier patches of the star models at the default tolerance (1e-6 of the size): the level search at the star
+// points, the exact pieces, the chart elements.
+void star_patches(benchmark::State& state) {
+  const trivar::TMeshSurface s(trivar::io::parse_tsm(star_model(static_cast<int>(state.range(0))), "star.tsm").mesh, 1);
+  std::size_t patches = 0;
+  int levels = 0;
+  for (auto _ : state) {
+    const auto p = trivar::t_mesh_patches(s);
+    patches = p.patches.size();
+    levels = p.levels;
+    benchmark::DoNotOptimize(p.patches.data());
+  }
+  state.counters["patches"] = static_cast<double>(patches);
+  state.counters["levels"] = levels;
+}
+BENCHMARK(star_patches)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+// Poisson (f = 1, u = 0) on the planar valence-5 fan of 5 x 8 x 8 faces in the C0 multipatch space of its faces,
+// n x n elements per face: space build (patches, refinement, side matching) and assembly + solve.
+std::string planar_fan() {
+  return trivar::test::tsm_text(trivar::test::fan_mesh(5, 8, [](double, double) { return 0.0; }));
+}
+
+void star_poisson_space(benchmark::State& state) {
+  const trivar::TMeshSurface s(trivar::io::parse_tsm(planar_fan(), "fan.tsm").mesh, 1);
+  for (auto _ : state) {
+    const auto space = trivar::t_mesh_space(s, static_cast<int>(state.range(0)));
+    benchmark::DoNotOptimize(space.num_basis);
+  }
+}
+BENCHMARK(star_poisson_space)->Arg(2)->Arg(8)->Unit(benchmark::kMillisecond);
+
+void star_poisson_solve(benchmark::State& state) {
+  const trivar::TMeshSurface s(trivar::io::parse_tsm(planar_fan(), "fan.tsm").mesh, 1);
+  const auto space = trivar::t_mesh_space(s, static_cast<int>(state.range(0)));
+  trivar::PoissonProblem<2> pb;
+  pb.source = [](const double*) { return 1.0; };
+  pb.dirichlet.push_back({space.boundary, {}, nullptr});
+  for (auto _ : state) {
+    auto solver = trivar::make_solver("cholmod");
+    const auto r = trivar::solve_poisson(space, pb, *solver, 1);
+    benchmark::DoNotOptimize(r.coefs.data());
+  }
+  state.counters["functions"] = space.num_basis;
+}
+BENCHMARK(star_poisson_solve)->Arg(2)->Arg(8)->Unit(benchmark::kMillisecond);
 
 int register_models() {
   std::vector<std::string> files{std::string(TRIVAR_SOURCE_DIR) + "/tests/data/tsm/bezier_patch.tsm"};

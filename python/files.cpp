@@ -253,7 +253,8 @@ void bind_files(py::module_& m) {
         py::arg("step_form") = "t-spline",
         "Writes by extension: splines to .json, .g2, .xml, .vtu, .stp; LR splines to .lr, .g2, .json, .vtu,\n"
         ".stp; hierarchical splines to .xml (with tensor splines), .vtu, .stp (their HB form); a TSplineSurface\n"
-        "to .tsm, .json, .vtu, .lr, .g2, .stp (step_form 't-spline' or 'part42'); a VModel to .json, .vtu or .stl\n"
+        "to .tsm, .json, .vtu, .lr, .g2, .stp (step_form 't-spline' or 'part42'; one with star points to .tsm or\n"
+        "as Bezier patches to .g2, .json, .xml, .stp); a VModel to .json, .vtu or .stl\n"
         "(watertight boundary within `tolerance`). Nothing is written on error; existing files are replaced\n"
         "atomically.");
   m.def("write_mesh", &write_mesh, py::arg("path"), py::arg("vertices"), py::arg("triangles"),

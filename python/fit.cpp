@@ -64,7 +64,7 @@ py::object fit(const Array& points, const Array& values, const ApproximationOpti
 
 py::object fit_any(const Array& points, const Array& values, double tolerance, double relative_tolerance,
                    int degree, int initial_elements, int levels, int max_coefs, const std::string& strategy,
-                   double smoothing, bool uniform, bool check_independence, bool height_field, int threads) {
+                   const std::string& method, int mba_passes, double smoothing, bool uniform, bool check_independence, bool height_field, int threads) {
   require(points.ndim() == 2 && (points.shape(1) == 2 || points.shape(1) == 3),
           "fit: points must have shape (N, 2) (a surface) or (N, 3) (a volume)");
   ApproximationOptions o;
@@ -82,6 +82,8 @@ py::object fit_any(const Array& points, const Array& values, double tolerance, d
   o.max_levels = levels;
   o.max_coefficients = max_coefs;
   o.strategy = parse_strategy(strategy);
+  o.method = parse_fit_method(method);
+  o.mba_passes = mba_passes;
   o.smoothing = smoothing;
   o.uniform = uniform;
   o.check_independence = check_independence;
@@ -95,11 +97,13 @@ void bind_fit(py::module_& m) {
   m.def("fit", &fit_any, py::arg("points"), py::arg("values"), py::arg("tolerance") = 0.0,
         py::arg("relative_tolerance") = 0.0, py::arg("degree") = 2, py::arg("initial_elements") = 4,
         py::arg("levels") = 10, py::arg("max_coefs") = 0, py::arg("strategy") = "fullspan",
-        py::arg("smoothing") = 1e-9, py::arg("uniform") = false, py::arg("check_independence") = true,
+        py::arg("method") = "ls", py::arg("mba_passes") = 3, py::arg("smoothing") = 1e-9, py::arg("uniform") = false,
+        py::arg("check_independence") = true,
         py::arg("height_field") = false, py::arg("threads") = 1,
         "Adaptive LR approximation of scattered data as `trivar fit` (Skytt, Barrowclough and Dokken 2015):\n"
         "points (N, 2) or (N, 3) are the parameters, values (N,) or (N, m) what is fitted; refines where a point\n"
-        "is off by more than `tolerance` (or relative_tolerance times the value range) up to `levels` rounds.\n"
+        "is off by more than `tolerance` (or relative_tolerance times the value range) up to `levels` rounds;\n"
+        "method 'ls' (penalised least squares) or 'mba' (multilevel B-spline approximation, mba_passes per round).\n"
         "Returns a namespace: spline (an LRSurface: the graph (x, y, h) for one value per 2-D point unless\n"
         "height_field, else the field itself; an LRVolume for 3-D points), iterations (arrays per round: level,\n"
         "coefficients, elements, max_error, mean_error, rms_error, outside, seconds, independence), errors per\n"

@@ -18,6 +18,7 @@
 #include "trivar/io/t_spline_vtk.hpp"
 #include "trivar/tspline/classification.hpp"
 #include "trivar/tspline/lr_form.hpp"
+#include "trivar/tspline/t_mesh_patches.hpp"
 #include "trivar/tspline/t_mesh_surface.hpp"
 #include "trivar/tspline/t_mesh_tessellation.hpp"
 #include "trivar/tspline/t_spline_surface.hpp"
@@ -140,9 +141,18 @@ void write_tspline(const PyTSpline& t, const std::string& path, const std::strin
           "write: step_form is t-spline or part42, not '" + step_form + "'");
   const std::string ext = io::file_extension(path);
   if (t.mesh) {
-    require(ext == ".tsm", "write: a T-spline with star points is written as .tsm (or tessellated), not '" + ext + "'");
+    const bool patches = ext == ".g2" || ext == ".json" || ext == ".xml" || ext == ".stp" || ext == ".step";
+    require(ext == ".tsm" || patches, "write: a T-spline with star points is written as .tsm or as Bezier patches (.g2, "
+                                      ".json, .xml, .stp), or tessellated, not '" + ext + "'");
     py::gil_scoped_release release;
-    io::write_tsm(path, t.mesh->mesh());
+    if (!patches) return io::write_tsm(path, t.mesh->mesh());
+    // Exact except one corner patch per face at a star point, within 1e-6 of the size (t_mesh_patches).
+    std::vector<AnySpline> out;
+    for (FacePatch& f : t_mesh_patches(*t.mesh).patches) out.emplace_back(std::move(f.surface));
+    if (ext == ".stp" || ext == ".step")
+      io::step::write_step(path, out, {});
+    else
+      io::write_spline_file(path, out);
     return;
   }
   const auto need_layers = [&](const char* what) {
@@ -193,7 +203,8 @@ py::object classification(const PyTSpline& t, bool exact) {
     c = classify(*t.layers, *t.surface, exact);
   }
   return namespace_of(py::dict(
-      py::arg("t_junctions") = c.t_junctions, py::arg("analysis_suitable") = c.analysis_suitable,
+      py::arg("t_junctions") = c.t_junctions, py::arg("gap_t_junctions") = c.gap_junctions,
+      py::arg("analysis_suitable") = c.analysis_suitable,
       py::arg("crossing_extensions") = c.crossing_extensions, py::arg("dual_compatible") = c.dual.compatible,
       py::arg("dual_incompatible_pairs") = c.dual.failing_pairs, py::arg("rectangular_domain") = c.rectangular_domain,
       py::arg("standard") = c.standard, py::arg("semi_standard") = c.semi_standard,
@@ -332,7 +343,8 @@ void bind_tspline(py::module_& m) {
            ".tsm report (units, tolerance, version, deleted_slots, deleted_faces, t_junctions, star_points,\n"
            "repeated_knot_nodes, skipped_records) and, with star points, the faces by evaluation method.")
       .def("classify", &classification, py::arg("exact") = true,
-           "Analysis-suitability as `trivar info`: t_junctions, analysis_suitable, crossing_extensions,\n"
+           "Analysis-suitability as `trivar info`: t_junctions, gap_t_junctions (of those, facing each other across\n"
+           "gaps no ray crosses: no extension), analysis_suitable, crossing_extensions,\n"
            "dual_compatible, standard, semi_standard, linear_independence, part42_type (exact: the exact rank test\n"
            "when peeling is inconclusive).")
       .def_property_readonly(

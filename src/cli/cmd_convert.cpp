@@ -60,7 +60,8 @@ void add_convert_command(CLI::App& app, Context&) {
                   "(an ISO 10303-42 locally refined surface of T-spline type)")
       ->check(CLI::IsMember({"t-spline", "part42"}));
   cmd->add_option("--tolerance", a->t_spline.tolerance,
-                  "T-spline to .stl/.obj (and .vtu with --triangles): chordal tolerance (default 1e-3 of the size)")
+                  "T-spline to .stl/.obj (and .vtu with --triangles): chordal tolerance (default 1e-3 of the size); T-spline with "
+                  "star points to patches: largest deviation from the limit surface (default 1e-6 of the size)")
       ->check(CLI::PositiveNumber);
   cmd->add_flag("--triangles", a->t_spline.triangles, "T-spline to .vtu: the tessellation instead of exact Bezier cells");
   cmd->callback([a] {

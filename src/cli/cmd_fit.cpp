@@ -12,12 +12,14 @@
 #include "lr_cli.hpp"
 #include "trivar/core/atomic_file.hpp"
 #include "trivar/core/error.hpp"
+#include "trivar/fit/cell_field.hpp"
 #include "trivar/fit/graph_surface.hpp"
 #include "trivar/fit/height_image.hpp"
 #include "trivar/fit/lr_approximation.hpp"
 #include "trivar/fit/point_file.hpp"
 #include "trivar/io/png_writer.hpp"
 #include "trivar/io/spline_file.hpp"
+#include "trivar/io/vmodel_json.hpp"
 #include "trivar/io/step/step_file.hpp"
 
 namespace trivar::cli {
@@ -28,7 +30,9 @@ struct FitArgs {
   std::vector<std::string> out;
   double tolerance = 0.0, relative = 0.0;
   bool volume = false, height_field = false, report = false, no_check = false;
-  std::string report_json, image, error_image, strategy = "fullspan";
+  std::string report_json, image, error_image, strategy = "fullspan", method = "ls";
+  std::string into, attribute = "material";  // --into: the model whose cell receives the fitted field
+  int cell = 0;
   int image_width = 1024;
   ApproximationOptions opts;
 };
@@ -50,6 +54,7 @@ void run(const FitArgs& a, const PointTable& table) {
   const ScatteredData<D> data = scattered_data<D>(table, a.in);
   ApproximationOptions o = a.opts;
   o.strategy = parse_strategy(a.strategy);
+  o.method = parse_fit_method(a.method);
   o.check_independence = !a.no_check;
   double lo = data.values.front(), hi = lo;
   for (double v : data.values) lo = std::min(lo, v), hi = std::max(hi, v);
@@ -84,6 +89,7 @@ void run(const FitArgs& a, const PointTable& table) {
                           {"points", data.size()},
                           {"tolerance", o.tolerance},
                           {"strategy", a.strategy},
+                          {"method", a.method},
                           {"converged", fit.converged},
                           {"stop_reason", fit.stop_reason},
                           {"iterations", nlohmann::json::array()}};
@@ -94,6 +100,37 @@ void run(const FitArgs& a, const PointTable& table) {
   std::printf("%s: LR %s, %d coefficients, %d elements, max error %s (tolerance %s), %zu point%s outside: %s\n",
               a.out.front().c_str(), kind_name(D), s.num_basis(), s.num_elements(), fmt(last.max_error).c_str(),
               fmt(o.tolerance).c_str(), last.outside, last.outside == 1 ? "" : "s", fit.stop_reason.c_str());
+}
+
+// --into: the samples (x y z values) fitted over one cell of a V-model and attached to it as a field attribute.
+void run_into(const FitArgs& a, const PointTable& table, ApproximationOptions o) {
+  const ScatteredData<3> samples = scattered_data<3>(table, a.in);
+  VModel model = read_model(a.into, "fit");
+  require(a.cell >= 0 && a.cell < model.num_cells(), "fit: " + a.into + " has " + std::to_string(model.num_cells()) +
+                                                         " cells, no cell " + std::to_string(a.cell));
+  double lo = samples.values.front(), hi = lo;
+  for (double v : samples.values) lo = std::min(lo, v), hi = std::max(hi, v);
+  o.tolerance = a.tolerance > 0.0 ? a.tolerance : a.relative * (hi - lo);
+  require(o.tolerance > 0.0, "fit: " + a.in + ": the values are constant, so a relative tolerance is 0; give --tolerance");
+  CellFieldOptions co;
+  co.fit = o;
+  co.fractions = a.attribute == "material";
+  if (co.fractions && !model.materials().empty())
+    require(samples.dim == model.materials().size(), "fit: " + a.in + " has " + std::to_string(samples.dim) +
+                                                         " fractions per sample but " + a.into + " lists " +
+                                                         std::to_string(model.materials().size()) + " materials");
+  const CellField f = fit_cell_field(model.cell(a.cell), samples, co);
+  if (a.report)
+    for (const IterationReport& r : f.fit.iterations) print_row(r);
+  model.cell(a.cell).set_attribute(a.attribute, f.attribute);
+  io::write_vmodel(a.out.front(), model);
+  const TensorSpline<3>& field = *f.attribute.spline();
+  std::printf("%s: cell %d attribute '%s' (%d value%s): %zu samples in the cell, %zu outside; LR fit %d coefficients, "
+              "%s; field %d tensor coefficients, max error at the samples %s (tolerance %s)%s\n",
+              a.out.front().c_str(), a.cell, a.attribute.c_str(), samples.dim, samples.dim == 1 ? "" : "s", f.used,
+              f.outside, f.fit.spline.num_basis(), f.fit.stop_reason.c_str(), field.num_coefs(), fmt(f.max_error).c_str(),
+              fmt(o.tolerance).c_str(),
+              f.clamped > 0 ? (", negative fractions up to " + fmt(f.clamped) + " raised to 0").c_str() : "");
 }
 
 }  // namespace
@@ -119,6 +156,14 @@ void add_fit_command(CLI::App& app, Context& ctx) {
   cmd->add_option("--strategy", a->strategy, "Refinement: fullspan, minspan or structured")
       ->check(CLI::IsMember({"fullspan", "minspan", "structured"}))
       ->capture_default_str();
+  cmd->add_option("--method", a->method,
+                  "Fit of each round: ls (penalised least squares) or mba (multilevel B-spline approximation, "
+                  "no linear system: for millions of points)")
+      ->check(CLI::IsMember({"ls", "mba"}))
+      ->capture_default_str();
+  cmd->add_option("--mba-passes", a->opts.mba_passes, "MBA passes per refinement round")
+      ->check(CLI::Range(1, 100))
+      ->capture_default_str();
   cmd->add_option("--smoothing", a->opts.smoothing, "Weight of the thin-plate smoothing term (dimensionless)")
       ->check(at_least(0))
       ->capture_default_str();
@@ -126,6 +171,13 @@ void add_fit_command(CLI::App& app, Context& ctx) {
       ->check(at_least(0));
   cmd->add_flag("--uniform", a->opts.uniform,
                 "Refine every element (a uniform tensor spline), to compare with the local refinement");
+  cmd->add_option("--into", a->into,
+                  "V-model (.json) whose cell receives the fitted field as an attribute (with --volume; samples are model "
+                  "points x y z with values; -o names the model written)");
+  cmd->add_option("--cell", a->cell, "With --into: the cell's index")->check(at_least(0))->capture_default_str();
+  cmd->add_option("--attribute", a->attribute,
+                  "With --into: the attribute's name; 'material' fits material fractions (kept >= 0 everywhere)")
+      ->capture_default_str();
   cmd->add_flag("--volume", a->volume, "The first three columns are x y z (an LR volume), the rest values");
   cmd->add_flag("--height-field", a->height_field, "Terrain: write the height z(x, y) instead of the surface (x, y, z)");
   cmd->add_flag("--no-independence-check", a->no_check, "Skip the linear-independence test after each refinement");
@@ -136,6 +188,19 @@ void add_fit_command(CLI::App& app, Context& ctx) {
   cmd->add_option("--image-width", a->image_width, "Width of the pictures in pixels")->check(CLI::Range(1, 16384))->capture_default_str();
   cmd->callback([a, &ctx] {
     require(a->tolerance > 0.0 || a->relative > 0.0, "fit: give --tolerance or --relative-tolerance");
+    if (!a->into.empty()) {
+      require(a->volume, "fit: --into fits a field over a cell: give --volume (samples x y z values)");
+      require(a->out.size() == 1 && io::file_extension(a->out.front()) == ".json",
+              "fit: with --into, -o names the one V-model .json file written");
+      require(a->image.empty() && a->error_image.empty(), "fit: --image and --error-image picture terrain, not cells");
+      a->opts.threads = ctx.threads;
+      ApproximationOptions o = a->opts;
+      o.strategy = parse_strategy(a->strategy);
+      o.method = parse_fit_method(a->method);
+      o.check_independence = !a->no_check;
+      run_into(*a, read_point_file(a->in), o);
+      return;
+    }
     for (const std::string& out : a->out)
       require(is_step_file(out) || lr_output_extension(out),
               "fit: cannot write '" + out + "' (use .lr, .g2, .json, .vtu, .stp or .step)");

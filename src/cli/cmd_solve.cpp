@@ -13,6 +13,8 @@
 #include <variant>
 
 #include "cli.hpp"
+#include "hier_cli.hpp"
+#include "lr_cli.hpp"
 #include "tspline_cli.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/iga/benchmark_problems.hpp"
@@ -28,6 +30,7 @@
 #include "trivar/iga/refined_poisson.hpp"
 #include "trivar/iga/refined_quadrature.hpp"
 #include "trivar/iga/refined_elasticity.hpp"
+#include "trivar/iga/refined_modes.hpp"
 #include "trivar/iga/refined_space.hpp"
 #include "trivar/iga/trimmed_space.hpp"
 #include "trivar/iga/lr_solution_field.hpp"
@@ -513,6 +516,133 @@ void file_modes(const SolveArgs& a, const FileInput& in) {
   }
 }
 
+// A field with `components` components at a parameter of a locally refined space (coefficients component-major),
+// from the element containing it.
+template <int D>
+std::function<void(const Param<D>&, double*)> refined_field(const RefinedSpace<D>& space, const Eigen::VectorXd& coefs,
+                                                            int components) {
+  return [&space, &coefs, components](const Param<D>& u, double* out) {
+    const RefinedElement<D>& el = space.elements[static_cast<std::size_t>(space.locate(u))];
+    RefinedPoint<D> p;
+    refined_point(space, el, u, p);
+    for (int c = 0; c < components; ++c) {
+      out[c] = 0;
+      for (std::size_t l = 0; l < el.ids.size(); ++l) out[c] += coefs[c * space.num_basis + el.ids[l]] * p.R[l];
+    }
+  };
+}
+
+// A locally refined file (an LR spline, or a G+Smo HB / THB geometry) solved on its own space: Poisson with f = 1
+// and u = 0 on the whole boundary, elasticity clamped on --clamp under a unit body force along -z (-y in 2-D), or
+// eigenmodes (elastic with --clamp, or Laplace with u = 0 on the boundary). The solution or the modes go to
+// solution.vtu / modes.vtu on the geometry's mesh (with --backend petsc rank 0 writes them after the solve).
+template <int D, class Geometry>
+void run_refined_file(const SolveArgs& a, const Geometry& g) {
+  const RefinedSpace<D> space = refined_space(g, a.threads);
+  std::vector<Face> boundary;
+  for (int dir = 0; dir < D; ++dir)
+    for (int side = 0; side < 2; ++side) boundary.push_back(Face{dir, side, 0});
+  ElasticityProblem<D> elastic;
+  elastic.material = {a.youngs, a.poisson, a.density};
+  require(a.kind == "poisson" || a.physics == "laplace" || elastic.material.valid(),
+          "solve: --youngs and --density must be positive, --poisson-ratio in (-1, 0.5)");
+  const bool elastic_kind = a.kind == "elasticity" || (a.kind == "modes" && a.physics == "elastic");
+  if (elastic_kind && a.clamp != "none") {
+    try {
+      elastic.displacement.push_back({faces_in_side_plane(space, a.clamp), {}, nullptr});
+    } catch (const Error& e) {
+      throw Error(std::string("solve: --") + e.what());
+    }
+  }
+  std::vector<std::pair<std::string, Eigen::VectorXd>> fields;
+  const int components = a.kind == "poisson" || (a.kind == "modes" && a.physics == "laplace") ? 1 : D;
+  if (a.kind == "modes") {
+    const ModesResult r = a.physics == "laplace"
+                              ? (distributed(a) ? petsc_laplace_modes(space, boundary, a.modes, petsc_options(a))
+                                                : laplace_modes(space, boundary, a.modes, a.threads))
+                              : (distributed(a) ? petsc_elastic_modes(space, elastic, a.modes, petsc_options(a))
+                                                : elastic_modes(space, elastic, a.modes, a.threads));
+    for (int i = 0; i < a.modes; ++i) {
+      std::string line = "mode " + std::to_string(i + 1) + ": " + (components == 1 ? "lambda " : "omega^2 ") + sci(r.values[i]);
+      if (components > 1) line += ", frequency " + sci(std::sqrt(std::max(0.0, r.values[i])) / (2 * M_PI));
+      std::printf("%s\n", line.c_str());
+      fields.emplace_back("mode_" + std::to_string(i + 1), r.vectors.col(i));
+    }
+    std::printf("dofs %d, assembly %s s, solve %s s\n", r.dofs, secs(r.assembly_seconds).c_str(),
+                secs(r.solve_seconds).c_str());
+  } else {
+    SolveResult r;
+    if (a.kind == "poisson") {
+      PoissonProblem<D> pb;
+      pb.source = [](const double*) { return 1.0; };
+      pb.dirichlet.push_back({boundary, {}, nullptr});
+      r = distributed(a) ? petsc_solve_poisson(space, pb, petsc_options(a)) : solve_poisson(space, pb, *make_solver(a.solver), a.threads);
+    } else {
+      require(a.clamp != "none", "solve: static elasticity needs supports (--clamp)");
+      elastic.body_force = [](const double*, double* b) {
+        for (int k = 0; k < D; ++k) b[k] = k == D - 1 ? -1.0 : 0.0;
+      };
+      r = distributed(a) ? petsc_solve_elasticity(space, elastic, petsc_options(a))
+                         : solve_elasticity(space, elastic, *make_solver(a.solver), a.threads);
+    }
+    std::string line = "dofs " + std::to_string(r.dofs) + ", elements " + std::to_string(space.num_elements());
+    double umax = 0;
+    for (int i = 0; i < space.num_basis; ++i) {
+      double norm2 = 0;
+      for (int c = 0; c < components; ++c) norm2 += r.coefs[c * space.num_basis + i] * r.coefs[c * space.num_basis + i];
+      umax = std::max(umax, std::sqrt(norm2));
+    }
+    line += std::string(", max |") + (components == 1 ? "u" : "displacement") + "| coefficient " + sci(umax) +
+            ", assembly " + secs(r.assembly_seconds) + " s, solve " + secs(r.solve_seconds) + " s";
+    if (r.stats.iterations > 0) line += " (" + std::to_string(r.stats.iterations) + " " + solver_name(a) + " iterations)";
+    std::printf("%s\n", line.c_str());
+    fields.emplace_back(components == 1 ? "u" : "displacement", r.coefs);
+  }
+  if (distributed(a)) print_ranks();
+  if (a.out.empty() || (distributed(a) && rank_partition().part != 0)) return;
+  const auto out = prepare_out(a);
+  std::vector<std::function<void(const Param<D>&, double*)>> at;
+  std::vector<io::VtkPointField> vtk;
+  for (const auto& [name, coefs] : fields) at.push_back(refined_field<D>(space, coefs, components));
+  for (std::size_t i = 0; i < fields.size(); ++i)
+    vtk.push_back({fields[i].first, components, [&at, i](int, std::span<const double> u, std::span<double> v) {
+                     at[i](param_of<D>(u), v.data());
+                   }});
+  const std::string file = out->path(a.kind == "modes" ? "modes.vtu" : "solution.vtu").string();
+  if constexpr (std::is_same_v<Geometry, LRSpline<D>>)
+    io::write_lr_vtu(file, AnyLRSpline(g), {}, vtk);
+  else
+    io::write_hierarchical_vtu(file, {AnyHierarchicalSpline(g)}, {}, vtk);
+  out->commit();
+}
+
+template <int D>
+void run_refined_geometry(const SolveArgs& a, const LRSpline<D>& g) {
+  run_refined_file<D>(a, g);
+}
+template <int D>
+void run_refined_geometry(const SolveArgs& a, const HierarchicalSpline<D>& g) {
+  run_refined_file<D>(a, g);
+}
+
+// The single locally refined geometry of a file, solved by run_refined_file; false for any other file.
+bool run_if_refined(const SolveArgs& a) {
+  const auto single = [&](const auto& objects) {
+    require(objects.size() == 1, "solve: " + a.file + " holds " + std::to_string(objects.size()) +
+                                     " objects; analysis takes one locally refined spline");
+    return objects.front();
+  };
+  if (const auto lr = read_lr_if_any(a.file)) {
+    std::visit([&](const auto& g) { run_refined_geometry(a, g); }, single(*lr));
+    return true;
+  }
+  if (const auto h = read_hierarchical_if_any(a.file)) {
+    std::visit([&](const auto& g) { run_refined_geometry(a, g); }, single(*h));
+    return true;
+  }
+  return false;
+}
+
 bool has_trimmed_cells(const FileInput& in) {
   if (!in.model) return false;
   for (const VCell& c : in.model->cells())
@@ -564,16 +694,8 @@ void run_trimmed(const SolveArgs& a, const VModel& m) {
     r = solve_elasticity(space, pb, *solver, a.threads);
   }
   const int components = a.kind == "poisson" ? 1 : 3;
-  // The field at a parameter of the box (the identity: a point), from the element containing it.
-  const auto field = [&](const Param<3>& u, double* out) {
-    const RefinedElement<3>& el = space.elements[static_cast<std::size_t>(space.locate(u))];
-    RefinedPoint<3> p;
-    refined_point(space, el, u, p);
-    for (int c = 0; c < components; ++c) {
-      out[c] = 0;
-      for (std::size_t l = 0; l < el.ids.size(); ++l) out[c] += r.coefs[c * space.num_basis + el.ids[l]] * p.R[l];
-    }
-  };
+  // The field at a parameter of the box (the identity: a point).
+  const auto field = refined_field<3>(space, r.coefs, components);
   double volume = 0, mean = 0;
   for (const RefinedElement<3>& el : space.elements)
     for_each_element_point<3>(el, a.degree + 2, [&](const Param<3>& u, double w) {
@@ -625,10 +747,11 @@ void run(const SolveArgs& a) {
       require(a.kind == "poisson", "solve: on a T-spline (" + a.file + ") only poisson is available");
       std::unique_ptr<OutputFolder> out;
       if (!a.out.empty()) out = prepare_out(a);
-      solve_tspline_poisson(a.file, a.solver, out ? out->path("solution.vtu").string() : "", a.threads);
+      solve_tspline_poisson(a.file, a.solver, out ? out->path("solution.vtu").string() : "", a.threads, a.refine);
       if (out) out->commit();
       return;
     }
+    if (run_if_refined(a)) return;
     const FileInput in = read_input(a);
     if (has_trimmed_cells(in)) {
       require(!distributed(a), "solve: --backend petsc does not take trimmed cells");

@@ -11,6 +11,7 @@
 #include "cli.hpp"
 #include "lr_cli.hpp"
 #include "trivar/core/error.hpp"
+#include "trivar/fit/multiblock_space.hpp"
 #include "trivar/fit/patch_stitching.hpp"
 
 namespace trivar::cli {
@@ -43,6 +44,43 @@ double derivative_jump(const Stitched& s) {
   return jump;
 }
 
+const char* side_name(DomainSide s) {
+  static const char* sides[2][2] = {{"u = lo", "u = hi"}, {"v = lo", "v = hi"}};
+  return sides[s.dir][s.end];
+}
+
+// --multiblock: the blocks made conforming across interfaces that need not match one to one (T-joints), written
+// as separate LR surfaces, with the interfaces found and the functions identified across them.
+void run_multiblock(const std::vector<std::string>& in, const std::string& out, double tolerance, bool whole_lines) {
+  std::vector<LRSpline<2>> blocks;
+  int before = 0;
+  for (const std::string& path : in) {
+    blocks.push_back(read_surface(path));
+    before += blocks.back().num_basis();
+  }
+  const MultiblockSpace m = multiblock_space(std::move(blocks), MultiblockOptions{tolerance, whole_lines});
+  std::vector<AnyLRSpline> objects(m.blocks.begin(), m.blocks.end());
+  write_lr_file(out, objects, "stitch");
+  int after = 0;
+  for (const LRSpline<2>& b : m.blocks) after += b.num_basis();
+  std::printf("%s: %zu blocks, %zu interfaces; B-splines %d before matching, %d after, %d global functions "
+              "(%d on the boundary)\n",
+              out.c_str(), m.blocks.size(), m.interfaces.size(), before, after, m.space.num_basis,
+              static_cast<int>(m.boundary.size()));
+  for (const BlockInterface& f : m.interfaces) {
+    const auto whole = [&](int k) {
+      const LRSpline<2>& b = m.blocks[static_cast<std::size_t>(f.block[static_cast<std::size_t>(k)])];
+      const int a = f.side[static_cast<std::size_t>(k)].along();
+      const double lo = std::min(f.lo[static_cast<std::size_t>(k)], f.hi[static_cast<std::size_t>(k)]);
+      const double hi = std::max(f.lo[static_cast<std::size_t>(k)], f.hi[static_cast<std::size_t>(k)]);
+      return lo == b.domain().lo[a] && hi == b.domain().hi[a];
+    };
+    std::printf("  block %d side %s [%s, %s] - block %d side %s [%s, %s]%s\n", f.block[0], side_name(f.side[0]),
+                fmt(f.lo[0]).c_str(), fmt(f.hi[0]).c_str(), f.block[1], side_name(f.side[1]), fmt(f.lo[1]).c_str(),
+                fmt(f.hi[1]).c_str(), whole(0) && whole(1) ? "" : " (part of a side: T-joint)");
+  }
+}
+
 }  // namespace
 
 void add_stitch_command(CLI::App& app, Context&) {
@@ -51,7 +89,7 @@ void add_stitch_command(CLI::App& app, Context&) {
     std::vector<std::string> in;
     std::string out, continuity = "C1";
     double tolerance = 0.0;
-    bool separate = false;
+    bool separate = false, multiblock = false, whole_lines = false;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("FILES", a->in, "Surfaces (B-spline or LR: .g2, .json, .lr), each sharing a side with the union of "
@@ -68,8 +106,19 @@ void add_stitch_command(CLI::App& app, Context&) {
   cmd->add_flag("--separate", a->separate,
                 "Write the two stitched patches as two LR objects with matching seams instead of merging them (two "
                 "inputs only)");
+  cmd->add_flag("--multiblock", a->multiblock,
+                "Make planar blocks whose sides meet along common segments (T-joints allowed) conforming: adapt the "
+                "knot lines along every interface, identify the B-splines across it, write the matched blocks");
+  cmd->add_flag("--whole-lines", a->whole_lines,
+                "With --multiblock: knot lines across whole blocks, so tensor blocks stay tensor splines");
   cmd->callback([a] {
     require(!a->separate || a->in.size() == 2, "stitch: --separate takes exactly two surfaces");
+    require(!(a->multiblock && a->separate), "stitch: --multiblock and --separate exclude each other");
+    require(a->multiblock || !a->whole_lines, "stitch: --whole-lines needs --multiblock");
+    if (a->multiblock) {
+      run_multiblock(a->in, a->out, a->tolerance, a->whole_lines);
+      return;
+    }
     StitchOptions opts;
     opts.continuity = (a->continuity == "C0" || a->continuity == "c0") ? Continuity::C0 : Continuity::C1;
     opts.tolerance = a->tolerance;
@@ -85,8 +134,7 @@ void add_stitch_command(CLI::App& app, Context&) {
           throw Error(std::string(e.what()) + " (" + a->in[i] + ")");
         }
       }();
-      static const char* sides[2][2] = {{"u = lo", "u = hi"}, {"v = lo", "v = hi"}};
-      report.push_back(a->in[i] + ": side " + sides[s.seam.dir][s.seam.end] + ", gap " + fmt(s.seam_gap) +
+      report.push_back(a->in[i] + ": side " + side_name(s.seam) + ", gap " + fmt(s.seam_gap) +
                        ", control points moved up to " + fmt(s.moved) + ", derivative jump " +
                        fmt(derivative_jump(s)));
       if (a->separate) {

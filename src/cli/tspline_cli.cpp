@@ -14,6 +14,7 @@
 #include "trivar/core/error.hpp"
 #include "trivar/iga/refined_poisson.hpp"
 #include "trivar/iga/solver.hpp"
+#include "trivar/iga/t_mesh_space.hpp"
 #include "trivar/iga/tensor_space.hpp"
 #include "trivar/io/g2_format.hpp"
 #include "trivar/io/lr_format.hpp"
@@ -28,6 +29,7 @@
 #include "trivar/tspline/bezier_patches.hpp"
 #include "trivar/tspline/classification.hpp"
 #include "trivar/tspline/lr_form.hpp"
+#include "trivar/tspline/t_mesh_patches.hpp"
 #include "trivar/tspline/t_mesh_surface.hpp"
 #include "trivar/tspline/t_mesh_tessellation.hpp"
 #include "trivar/tspline/t_spline_surface.hpp"
@@ -185,7 +187,8 @@ void print_tspline_info(const std::string& path, bool json) {
                     {"edge_conditions", ts.image.conditions.size()}};
     j["t_connect"] = {{"nodes", ts.connect.nodes.size()}};
     j["t_pointset"] = {{"points", ts.pointset.points.size()}};
-    j["classification"] = {{"t_junctions", cls->t_junctions}, {"analysis_suitable", as},
+    j["classification"] = {{"t_junctions", cls->t_junctions}, {"gap_t_junctions", cls->gap_junctions},
+                           {"analysis_suitable", as},
                            {"crossing_extensions", cls->crossing_extensions},
                            {"dual_compatible", cls->dual.compatible},
                            {"dual_incompatible_pairs", cls->dual.failing_pairs},
@@ -228,9 +231,11 @@ void print_tspline_info(const std::string& path, bool json) {
               fmt(pu.sampled_min).c_str(), fmt(pu.sampled_max).c_str(), fmt(pu.min_sum).c_str(), fmt(pu.max_sum).c_str(),
               pu.elements_off, pu.elements_off == 1 ? "" : "s");
   if (cls)
-    std::printf("  classification: %d T-junctions, analysis-suitable %s (%d crossing extensions, dual-compatible %s%s), "
+    std::printf("  classification: %d T-junctions%s, analysis-suitable %s (%d crossing extensions, dual-compatible %s%s), "
                 "standard %s, semi-standard %s, blending functions %s; Part 42 type %s\n",
-                cls->t_junctions, as.c_str(), cls->crossing_extensions, cls->dual.compatible ? "yes" : "no",
+                cls->t_junctions,
+                cls->gap_junctions ? (" (" + std::to_string(cls->gap_junctions) + " facing each other across gaps no ray crosses: no extension)").c_str() : "",
+                as.c_str(), cls->crossing_extensions, cls->dual.compatible ? "yes" : "no",
                 cls->rectangular_domain ? "" : "; the domain is not a rectangle", cls->standard ? "yes" : "no",
                 cls->semi_standard ? "yes" : "no", to_string(cls->independence), cls->part42_type().c_str());
   if (l.tsm && !l.tsm->skipped_records.empty()) {
@@ -286,8 +291,25 @@ void convert_tspline(const std::string& in, const std::string& out, const TSplin
       io::write_tsm(out, l.mesh->mesh());
       return;
     }
+    if (ext == ".g2" || ext == ".json" || ext == ".xml" || is_step_file(out)) {
+      // Bezier patches: exact away from the corners at the star points, those within the tolerance.
+      TMeshPatchOptions po;
+      po.tolerance = o.tolerance;
+      const TMeshPatches p = t_mesh_patches(*l.mesh, po);
+      std::vector<AnySpline> patches;
+      for (const FacePatch& f : p.patches) patches.emplace_back(f.surface);
+      if (is_step_file(out))
+        io::step::write_step(out, patches, {});
+      else
+        io::write_spline_file(out, patches);
+      std::printf("%s: %zu Bezier patches (%d exact, %d corner patches at star points after %d subdivision levels, "
+                  "%s from the limit surface, tolerance %s); C0, G1 at star points\n",
+                  out.c_str(), p.patches.size(), p.exact_patches, p.corner_patches, p.levels, fmt(p.deviation).c_str(),
+                  fmt(p.tolerance).c_str());
+      return;
+    }
     require(ext == ".stl" || ext == ".obj" || ext == ".vtu",
-            "convert: " + in + " has star points (no global (s, t), no exact spline form around them); it converts to .tsm, or to .stl, .obj or .vtu triangles, not '" + ext + "'");
+            "convert: " + in + " has star points (no global (s, t)); it converts to .tsm, to Bezier patches (.g2, .json, .xml, .stp), or to .stl, .obj or .vtu triangles, not '" + ext + "'");
     double tol = o.tolerance;
     if (tol <= 0) {
       Box<3> b = Box<3>::empty();
@@ -358,9 +380,52 @@ void convert_tspline(const std::string& in, const std::string& out, const TSplin
   write_triangulation(out, tessellate(surf, tol), tol);
 }
 
-void solve_tspline_poisson(const std::string& path, const std::string& solver, const std::string& vtu, int threads) {
+namespace {
+
+// A planar T-mesh with star points: the C0 multipatch space of its face patches, each face refine x refine
+// elements.
+void solve_t_mesh_poisson(const std::string& path, const TMeshSurface& mesh, const std::string& solver,
+                          const std::string& vtu, int threads, int refine) {
+  TMeshSpaceReport rep;
+  MultipatchSpace<2> space;
+  try {
+    space = t_mesh_space(mesh, refine, &rep);
+  } catch (const Error& e) {
+    throw Error("solve: " + path + ": " + e.what());
+  }
+  PoissonProblem<2> pb;
+  pb.source = [](const double*) { return 1.0; };
+  pb.dirichlet.push_back({space.boundary, {}, nullptr});
+  auto s = make_solver(solver);
+  const SolveResult r = solve_poisson(space, pb, *s, threads);
+  std::printf("T-mesh multipatch space (C0 across faces): %d faces, %d corner patches at star points (%s from the limit "
+              "surface), %d x %d bicubic elements per face, %d functions\n",
+              rep.faces, rep.corner_patches, fmt(rep.deviation).c_str(), refine, refine, space.num_basis);
+  std::printf("dofs %d, assembly %.3f s, solve %.3f s\n", r.dofs, r.assembly_seconds, r.solve_seconds);
+  std::printf("u: max %s\n", fmt(r.coefs.maxCoeff()).c_str());
+  if (vtu.empty()) return;
+  // The solution as surfaces (x, y, u) on the patches' own functions.
+  std::vector<AnySpline> out;
+  for (int p = 0; p < space.num_patches(); ++p) {
+    const TensorSpline<2>& g = space.patches[static_cast<std::size_t>(p)].geometry;
+    std::vector<double> c;
+    for (int i = 0; i < g.num_coefs(); ++i) {
+      const double* q = g.coef(i);
+      const double w = g.weight(i);
+      c.insert(c.end(), {q[0], q[1], w * r.coefs[space.global[static_cast<std::size_t>(p)][static_cast<std::size_t>(i)]]});
+      if (g.is_rational()) c.push_back(w);
+    }
+    out.emplace_back(TensorSpline<2>(g.knot_vectors(), 3, g.is_rational(), std::move(c)));
+  }
+  io::write_spline_file(vtu, out);
+}
+
+}  // namespace
+
+void solve_tspline_poisson(const std::string& path, const std::string& solver, const std::string& vtu, int threads,
+                           int refine) {
   const Loaded l = load(path);
-  require(l.surface != nullptr, "solve: " + path + " has star points; analysis on T-splines with star points is not built");
+  if (l.mesh) return solve_t_mesh_poisson(path, *l.mesh, solver, vtu, threads, refine);
   const TSplineSurface& surf = *l.surface;
   RefinedSpace<2> space;
   try {

@@ -16,15 +16,21 @@ void eval_tspline(const std::string& path, const std::vector<double>& params, in
 
 struct TSplineConvertOptions {
   std::string step_form = "t-spline";  // STEP output: t-spline (seed-002 entities) or part42
-  double tolerance = 0;                // tessellations: chordal tolerance; 0: 1e-3 of the bounding box diagonal
+  double tolerance = 0;                // tessellations: chordal tolerance; 0: 1e-3 of the bounding box diagonal;
+                                       // patches of a model with star points: largest deviation at the star
+                                       // points; 0: 1e-6 of the diagonal
   bool triangles = false;              // .vtu: the tessellation instead of exact Bezier cells
 };
 // To .stp/.step, .tsm, .lr (when the T-spline is an LR spline), .g2 (the LR spline, else per-element rational
-// Bezier patches), .json, .vtu, .stl, .obj.
+// Bezier patches), .json, .vtu, .stl, .obj. A model with star points: to .tsm, to Bezier patches (t_mesh_patches:
+// .g2, .json, .xml, .stp) or to triangles.
 void convert_tspline(const std::string& in, const std::string& out, const TSplineConvertOptions& options);
 
 // Poisson -lap u = 1, u = 0 on the boundary, on a planar T-spline domain (its Bezier extraction as the analysis
-// space): prints the space and the solve; with `vtu` non-empty writes the solution as a surface (x, y, u).
-void solve_tspline_poisson(const std::string& path, const std::string& solver, const std::string& vtu, int threads);
+// space; a model with star points: the C0 multipatch space of its face patches, t_mesh_space, with refine x
+// refine elements per face): prints the space and the solve; with `vtu` non-empty writes the solution as a
+// surface (x, y, u).
+void solve_tspline_poisson(const std::string& path, const std::string& solver, const std::string& vtu, int threads,
+                           int refine);
 
 }  // namespace trivar::cli

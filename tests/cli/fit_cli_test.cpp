@@ -90,3 +90,51 @@ TEST_F(FitCli, BadPointFilesAreOneLineErrors) {
 
 }  // namespace
 }  // namespace cli_test
+
+namespace cli_test {
+namespace {
+
+// The unit cube as a one-cell V-model of materials A and B, evenly mixed.
+std::string even_cube() {
+  nlohmann::json cell{{"geometry", nlohmann::json::parse(unit_cube_json(false))}};
+  cell["geometry"].erase("trivar");
+  cell["attributes"]["material"] = {{"kind", "constant"}, {"values", {0.5, 0.5}}};
+  const nlohmann::json materials = {{{"name", "A"}, {"color", "#FF0000"}}, {{"name", "B"}, {"color", "#0000FF"}}};
+  return nlohmann::json{{"trivar", 1}, {"kind", "vmodel"}, {"materials", materials}, {"cells", {cell}}}.dump();
+}
+
+TEST_F(FitCli, SampledFractionsBecomeTheCellsMaterialFieldAndSlice) {
+  write("cube.json", even_cube());
+  // Fraction of A = x^2 at 8^3 sample points (a quadratic: the fit reproduces it), B the rest.
+  std::ostringstream s;
+  s.precision(17);
+  for (int k = 0; k < 8; ++k)
+    for (int j = 0; j < 8; ++j)
+      for (int i = 0; i < 8; ++i) {
+        const double x = i / 7.0, y = j / 7.0, z = k / 7.0;
+        s << x << ' ' << y << ' ' << z << ' ' << x * x << ' ' << 1 - x * x << '\n';
+      }
+  s << "3 3 3 0.5 0.5\n";  // outside the cube: skipped
+  write("samples.txt", s.str());
+  const Result r = ok("fit samples.txt --volume --into cube.json --tolerance 1e-9 --smoothing 0 --initial-elements 2 -o graded.json");
+  EXPECT_NE(r.out.find("512 samples in the cell, 1 outside"), std::string::npos) << r.out;
+  const nlohmann::json cell = nlohmann::json::parse(slurp(work_ / "graded.json")).at("cells").at(0);
+  EXPECT_EQ(cell.at("attributes").at("material").at("kind"), "field") << cell.dump();
+  // Sliced: the share of A's pixels is the mean of x^2 over the cube, 1/3 (error diffusion keeps the mean).
+  ok("slice graded.json --out slices --layer 0.25 --dpi 1270");
+  const auto m = nlohmann::json::parse(slurp(work_ / "slices" / "manifest.json"));
+  const double a = m.at("materials").at(0).at("pixels").get<double>(), b = m.at("materials").at(1).at("pixels").get<double>();
+  EXPECT_NEAR(a / (a + b), 1.0 / 3.0, 0.02) << a << " " << b;
+
+  // Three fractions per sample for a model of two materials, --into without --volume: one line, nothing written.
+  write("three.txt", "0 0 0 1 0 0\n1 0 0 0 1 0\n0 1 0 0 0 1\n0 0 1 1 0 0\n1 1 1 0 1 0\n");
+  const Result bad = run("fit three.txt --volume --into cube.json --tolerance 0.1 -o bad.json");
+  EXPECT_EQ(bad.code, 1);
+  EXPECT_NE(bad.err.find("3 fractions per sample but cube.json lists 2 materials"), std::string::npos) << bad.err;
+  const Result flat = run("fit samples.txt --into cube.json --tolerance 0.1 -o bad.json");
+  EXPECT_NE(flat.err.find("give --volume"), std::string::npos) << flat.err;
+  EXPECT_FALSE(exists("bad.json"));
+}
+
+}  // namespace
+}  // namespace cli_test

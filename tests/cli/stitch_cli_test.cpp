@@ -2,6 +2,7 @@
 // checked by evaluating the result against the inputs), --separate, and bad pairs refused with one line.
 #include "cli/cli_fixture.hpp"
 
+#include "trivar/io/lr_format.hpp"
 #include "trivar/io/spline_file.hpp"
 #include "trivar/spline/tensor_spline.hpp"
 
@@ -78,6 +79,58 @@ TEST_F(StitchCli, BadInputIsRefusedWithOneLine) {
   fails("stitch a.g2 c.json -o ac.lr");  // no common side
   fails("stitch a.g2 b.g2 --separate c.json -o x.lr");
   fails("stitch a.g2 b.g2 -o ab.stl");
+}
+
+}  // namespace
+}  // namespace cli_test
+
+namespace cli_test {
+namespace {
+
+// A biquadratic planar block: origin + s a + t b over the knots' range, control points at the Greville points.
+trivar::TensorSpline<2> block(std::vector<double> ku, std::vector<double> kv, std::array<double, 2> o,
+                              std::array<double, 2> a, std::array<double, 2> b) {
+  const trivar::KnotVector u(2, std::move(ku)), v(2, std::move(kv));
+  const std::vector<double> gu = u.greville(), gv = v.greville();
+  std::vector<double> pts;
+  for (double t : gv)
+    for (double s : gu) pts.insert(pts.end(), {o[0] + s * a[0] + t * b[0], o[1] + s * a[1] + t * b[1]});
+  return trivar::TensorSpline<2>::from_cartesian({u, v}, 2, pts);
+}
+
+class MultiblockCli : public Cli {};
+
+// Block 0 spans [0, 2] x [0, 1]; blocks 1 ([0, 1] x [1, 2]) and 2 ([1, 2] x [1, 2], reversed axes) sit on its top
+// side, so their common corner (1, 1) lies inside block 0's side: a T-joint. Knots differ along every interface.
+TEST_F(MultiblockCli, TJointBlocksBecomeConforming) {
+  const std::vector<trivar::TensorSpline<2>> in = {
+      block({0, 0, 0, 0.3, 0.7, 1, 1, 1}, {0, 0, 0, 0.5, 1, 1, 1}, {0, 0}, {2, 0}, {0, 1}),
+      block({0, 0, 0, 0.25, 0.5, 1, 1, 1}, {0, 0, 0, 0.5, 1, 1, 1}, {0, 1}, {1, 0}, {0, 1}),
+      block({0, 0, 0, 0.4, 1, 1, 1}, {0, 0, 0, 0.6, 1, 1, 1}, {2, 2}, {-1, 0}, {0, -1})};
+  for (std::size_t i = 0; i < in.size(); ++i)
+    trivar::io::write_spline_file((work_ / ("b" + std::to_string(i) + ".g2")).string(), {in[i]});
+  const Result r = ok("stitch --multiblock b0.g2 b1.g2 b2.g2 -o blocks.lr");
+  EXPECT_NE(r.out.find("3 blocks, 3 interfaces"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("(part of a side: T-joint)"), std::string::npos) << r.out;
+  const std::vector<trivar::AnyLRSpline> out = trivar::io::read_lr((work_ / "blocks.lr").string());
+  ASSERT_EQ(out.size(), 3u);
+  // Geometry unchanged, and along block 0's top side each point's trace equals the neighbour's (C0, conforming).
+  for (std::size_t i = 0; i < 3; ++i) {
+    const auto& s = std::get<trivar::LRSpline<2>>(out[i]);
+    for (double x : {0.1, 0.37, 0.5, 0.81, 0.99})
+      for (double y : {0.0, 0.45, 1.0}) {
+        double p[2], q[2];
+        s.eval({x, y}, p);
+        in[i].eval({x, y}, q);
+        EXPECT_NEAR(p[0], q[0], 1e-13);
+        EXPECT_NEAR(p[1], q[1], 1e-13);
+      }
+  }
+  // Bad: --whole-lines alone, --multiblock with --separate; one line, nothing written.
+  const Result bad = run("stitch b0.g2 b1.g2 --whole-lines -o x.lr");
+  EXPECT_EQ(bad.code, 1);
+  EXPECT_NE(bad.err.find("--whole-lines needs --multiblock"), std::string::npos) << bad.err;
+  EXPECT_FALSE(exists("x.lr"));
 }
 
 }  // namespace

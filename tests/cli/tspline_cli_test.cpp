@@ -4,6 +4,8 @@
 #include <map>
 
 #include "cli_fixture.hpp"
+#include "trivar/io/spline_file.hpp"
+#include "tspline/star_mesh_tsm.hpp"
 #include "trivar/io/g2_format.hpp"
 #include "trivar/io/tsm_format.hpp"
 #include "trivar/tspline/t_spline_surface.hpp"
@@ -152,10 +154,31 @@ TEST_F(TSplineCli, StarPointModel) {
   fails("eval cube.tsm 3 1.5 0.5");
   ok("convert cube.tsm cube.stl --tolerance 1e-3");
   ok("convert cube.tsm cube.obj");
-  fails("convert cube.tsm cube.stp");
   ok("convert cube.tsm cube2.tsm");
   EXPECT_EQ(numbers_after(ok("eval cube2.tsm 4 0.5 0.5").out, "S"), p);
-  EXPECT_FALSE(fs::exists(work_ / "cube.stp"));
+  // Bezier patches (t_mesh_patches): exact pieces and one corner patch per face at a star point.
+  const Result g2 = ok("convert cube.tsm cube.g2 --tolerance 1e-4");
+  EXPECT_NE(g2.out.find("24 corner patches at star points"), std::string::npos) << g2.out;
+  const auto counts = numbers_after(g2.out, "cube.g2:");
+  ASSERT_FALSE(counts.empty()) << g2.out;
+  const std::vector<trivar::AnySpline> from_g2 = trivar::io::read_spline_file((work_ / "cube.g2").string());
+  EXPECT_EQ(static_cast<double>(from_g2.size()), counts[0]);
+  ok("convert cube.tsm cube.stp --tolerance 1e-4");
+  ok("convert cube.tsm cube.json --tolerance 1e-4");
+  for (const char* f : {"cube.stp", "cube.json"}) {
+    const std::vector<trivar::AnySpline> back = trivar::io::read_spline_file((work_ / f).string());
+    ASSERT_EQ(back.size(), from_g2.size()) << f;
+    double worst = 0;
+    for (std::size_t i = 0; i < back.size(); ++i) {
+      const auto& a = std::get<trivar::TensorSpline<2>>(from_g2[i]);
+      const auto& b = std::get<trivar::TensorSpline<2>>(back[i]);
+      ASSERT_EQ(a.coefs().size(), b.coefs().size());
+      for (std::size_t k = 0; k < a.coefs().size(); ++k) worst = std::max(worst, std::abs(a.coefs()[k] - b.coefs()[k]));
+    }
+    EXPECT_LT(worst, 1e-13) << f;
+  }
+  fails("convert cube.tsm cube.lr");
+  fails("convert cube.tsm cube.g2 --tolerance 1e-40");  // beyond the subdivision levels
   // The OBJ is closed: every edge in two triangles.
   std::ifstream obj(work_ / "cube.obj");
   std::map<std::pair<long, long>, int> edges;
@@ -171,6 +194,23 @@ TEST_F(TSplineCli, StarPointModel) {
   }
   ASSERT_FALSE(edges.empty());
   for (const auto& [k, n] : edges) ASSERT_EQ(n, 2);
+}
+
+// -lap u = 1, u = 0 on the boundary of the planar valence-3 fan of 3 x 8 x 8 faces (star point at the origin):
+// the C0 multipatch space of its face patches. The domain lies in the disk of radius 8 around the star point and
+// holds the disk of radius 6.5 (its boundary lies 6.78 to 7.84 from it), so by comparison with the disks' solutions
+// (R^2 - r^2) / 4 the maximum lies between 10.56 and 16 (12.973 measured; 12.951 with 4 x 4 elements per face).
+TEST_F(TSplineCli, SolvePoissonAroundAStarPoint) {
+  std::ofstream((work_ / "fan.tsm").string()) << trivar::test::tsm_text(trivar::test::fan_mesh(3, 8, [](double, double) { return 0.0; }));
+  const Result r = ok("solve poisson fan.tsm --solver cholmod --refine 1 --out sol");
+  EXPECT_NE(r.out.find("192 faces, 3 corner patches"), std::string::npos) << r.out;
+  const auto u = numbers_after(r.out, "u: max");
+  ASSERT_FALSE(u.empty()) << r.out;
+  EXPECT_GT(u[0], 6.5 * 6.5 / 4);
+  EXPECT_LT(u[0], 16.0);
+  EXPECT_TRUE(fs::exists(work_ / "sol" / "solution.vtu"));
+  fs::copy_file(std::string(TRIVAR_TEST_DATA) + "/tsm/star_cube.tsm", work_ / "cube.tsm");
+  fails("solve poisson cube.tsm");  // not planar
 }
 
 }  // namespace

@@ -273,5 +273,69 @@ TEST(PatchStitching, BadPairsGiveOneLineErrors) {
   expect_error(LRSpline<2>(in.a), LRSpline<2>(b), "opposite orientation");
 }
 
+// Quarter cylinders x^2 + y^2 = 1, z in [0, 1]: the exact rational quadratic arc (weights 1, sqrt(2)/2, 1) across,
+// linear in z along. The second spans 90..180 degrees with every weight tripled (the same surface) and other knots
+// in z, so C0 stitching must scale its weights to meet the first's and exchange knot lines along the seam; the
+// stitched and merged surface is still exactly the half cylinder.
+TensorSpline<2> quarter_cylinder(double angle0, double weight_scale, std::vector<double> z_knots) {
+  std::array<KnotVector, 2> kv{KnotVector(2, {0, 0, 0, 1, 1, 1}), KnotVector(1, std::move(z_knots))};
+  const double a1 = angle0 + std::numbers::pi / 2, w1 = std::sqrt(0.5);
+  const std::array<std::array<double, 3>, 3> arc = {{{std::cos(angle0), std::sin(angle0), 1.0},
+                                                     {std::cos(angle0) + std::cos(a1), std::sin(angle0) + std::sin(a1), w1},
+                                                     {std::cos(a1), std::sin(a1), 1.0}}};
+  const std::vector<double> g = kv[1].greville();
+  std::vector<double> h;
+  for (double z : g)
+    for (const auto& q : arc) {
+      const double w = q[2] * weight_scale;
+      h.insert(h.end(), {w * q[0], w * q[1], w * z, w});
+    }
+  return TensorSpline<2>(kv, 3, true, std::move(h));
+}
+
+TEST(PatchStitching, RationalCylinderPiecesStayExact) {
+  const TensorSpline<2> a = quarter_cylinder(0.0, 1.0, {0, 0, 0.5, 1, 1});
+  const TensorSpline<2> b = quarter_cylinder(std::numbers::pi / 2, 3.0, {0, 0, 0.3, 1, 1});
+  const Stitched s = stitch(LRSpline<2>(a), LRSpline<2>(b), {Continuity::C0});
+  EXPECT_TRUE(s.first.is_rational() && s.second.is_rational());
+  EXPECT_LT(s.moved, 1e-13);  // the seam points were equal once the weights were scaled
+  const LRSpline<2> merged = merge(s);
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<double> r(0.0, 1.0);
+  const Box<2> dom = merged.domain();
+  double worst_radius = 0, worst_jump = 0, worst_first = 0;
+  for (int i = 0; i < 300; ++i) {
+    const Param<2> u{dom.lo[0] + r(rng) * (dom.hi[0] - dom.lo[0]), r(rng)};
+    double x[3];
+    merged.eval(u, x);
+    worst_radius = std::max(worst_radius, std::abs(std::hypot(x[0], x[1]) - 1.0));
+    EXPECT_GE(x[2], -1e-14);
+    EXPECT_LE(x[2], 1 + 1e-14);
+  }
+  for (int i = 0; i < 100; ++i) {  // the first patch unchanged (its parametrisation is kept)
+    const Param<2> u{r(rng), r(rng)};
+    double x[3], y[3];
+    s.first.eval(u, x);
+    a.eval(u, y);
+    for (int k = 0; k < 3; ++k) worst_first = std::max(worst_first, std::abs(x[k] - y[k]));
+  }
+  // The arcs meet tangentially with equal speeds at 90 degrees, and the stitch keeps both: the derivative across
+  // the seam from either side (each patch on its own domain) agrees.
+  const double seam = s.seam.value(s.first);
+  for (int i = 0; i <= 50; ++i) {
+    double da[9], db[9];
+    s.first.eval_first_derivatives({seam, i / 50.0}, da);
+    s.second.eval_first_derivatives({seam, i / 50.0}, db);
+    for (int k = 0; k < 3; ++k) worst_jump = std::max(worst_jump, std::abs(da[3 + k] - db[3 + k]));
+  }
+  EXPECT_LT(worst_radius, 1e-14);
+  EXPECT_LT(worst_first, 1e-14);
+  EXPECT_LT(worst_jump, 1e-10);
+  // C1 on rational patches, a rational patch and a polynomial one: refused.
+  EXPECT_THROW(stitch(LRSpline<2>(a), LRSpline<2>(b), {Continuity::C1}), Error);
+  TensorSpline<2> flat = surface({0, 0, 0, 0, 1, 1, 1, 1}, {0, 0, 0, 0, 1, 1, 1, 1}, 0, 1, 3);
+  expect_error(LRSpline<2>(a), LRSpline<2>(flat), "one patch is rational");
+}
+
 }  // namespace
 }  // namespace trivar

@@ -4,6 +4,7 @@ eigenvalues), its parallel VTK output read back (every element in exactly one ra
 each piece and declaring its arrays), and its refusals. Arguments: trivar, mpiexec, tests/support folder."""
 import os
 import re
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -85,6 +86,42 @@ for space in ["lr", "thb"]:
     check(len(want) == 3 and want == got, "adaptive %s: serial %s, petsc %s" % (space, want, got))
     check(re.search(r"ranks 2, CPU per rank", petsc.stdout), "adaptive %s: no per-rank line" % space)
 
+# Locally refined files: the LR volume LRsplines wrote (2,684 B-splines on 2,478 elements), the THB square in
+# G+Smo's layout, and a beam refined here towards its clamped end (T-junctions). Elasticity and modes on the
+# ranks against the serial solve: the same printed digits (petsc_refined_test.cpp checks 1e-10 relative).
+lr_file = os.path.join(support, "..", "data", "io", "lr_volume_lrsplines.lr")
+thb_file = os.path.join(support, "..", "data", "gismo", "thb_simple_leaf_boxes.xml")
+work = tempfile.mkdtemp()
+beam = os.path.join(work, "beam.lr")
+made = run(["make", "box", "--degree", "2", "--elements", "4", "4", "4", "--size", "2", "1", "1", "-o",
+            os.path.join(work, "box.json")])
+refined = run(["refine", os.path.join(work, "box.json"), "--strategy", "minspan", "--box", "0", "0", "0", "0.5", "0.5",
+               "0.5", "-o", beam])
+check(made.returncode == 0 and refined.returncode == 0, "beam.lr: %s %s" % (made.stderr, refined.stderr))
+static = r"(dofs \d+, elements \d+, max \|displacement\| coefficient \S+)"
+for args, pattern in [
+    (["solve", "elasticity", beam, "--clamp", "x-"], static),
+    (["solve", "modes", beam, "--clamp", "x-", "--modes", "3"], r"omega\^2 (\S+)"),
+    (["solve", "modes", lr_file, "--physics", "laplace", "--modes", "3"], r"lambda (\S+)"),
+    (["solve", "modes", thb_file, "--physics", "laplace", "--modes", "4"], r"lambda (\S+)"),
+    (["solve", "elasticity", thb_file, "--clamp", "x-"], static),
+]:
+    serial = run(args + ["--solver", "cholmod"])
+    petsc = run(args + ["--backend", "petsc", "--pc", "mumps"], ranks=2)
+    check(serial.returncode == 0 and petsc.returncode == 0, "%s exits %d / %d: %s %s" % (
+        args[1:3], serial.returncode, petsc.returncode, serial.stderr, petsc.stderr))
+    want, got = numbers(serial.stdout, pattern), numbers(petsc.stdout, pattern)
+    check(want and want == got, "%s: serial %s, petsc %s" % (args[1:3], want, got))
+with tempfile.TemporaryDirectory() as tmp:
+    out = os.path.join(tmp, "out")
+    r = run(["solve", "modes", beam, "--clamp", "x-", "--modes", "2", "--backend", "petsc", "--pc", "mumps",
+             "--out", out], ranks=2)
+    check(r.returncode == 0 and "modes.vtu" in os.listdir(out), "LR modes output: %s %s" % (r.stderr, os.listdir(out) if os.path.isdir(out) else None))
+    if r.returncode == 0:
+        names = [name for piece in read_vtu.read(os.path.join(out, "modes.vtu")) for name, _, _ in piece["arrays"]]
+        check("mode_1" in names and "mode_2" in names, "modes.vtu arrays %s" % names)
+shutil.rmtree(work)
+
 r = run(["solve", "poisson", "tensor.tsm", "--backend", "petsc"], ranks=2)
 check(r.returncode != 0 and "T-splines" in r.stderr, "T-spline with petsc: %d %s" % (r.returncode, r.stderr))
 
@@ -100,6 +137,8 @@ with tempfile.TemporaryDirectory() as tmp:
         (["solve", "poisson", os.path.join(tmp, "missing.json")], None),
         (["solve", "poisson", "--problem", "sine-cube", "--degree", "0"], None),
         (["solve", "modes", "--problem", "cube-modes", "--degree", "2", "--refine", "2", "--modes", "50"], None),
+        (["solve", "elasticity", thb_file, "--clamp", "none"], None),
+        (["solve", "elasticity", thb_file, "--clamp", "z-"], None),
         (["solve", "poisson", "--problem", "sine-cube", "--refine", "2", "--pc", "jacobi"], foreign),
     ]):
         out = out or os.path.join(tmp, "out%d" % i)

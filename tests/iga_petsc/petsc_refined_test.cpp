@@ -6,6 +6,7 @@
 #include "trivar/iga/adaptive_loop.hpp"
 #include "trivar/iga/benchmark_problems.hpp"
 #include "trivar/iga/refined_elasticity.hpp"
+#include "trivar/iga/refined_modes.hpp"
 #include "trivar/iga/refined_poisson.hpp"
 #include "trivar/iga_petsc/petsc_problems.hpp"
 #include "trivar/hier/hierarchical_spline.hpp"
@@ -94,4 +95,37 @@ TEST(PetscRefined, AdaptiveLoopOnTheLShapeMatchesTheSerialLoop) {
   const PoissonBenchmark<2> b = l_shape(2, 4);
   expect_same_adaptive_loop(b, LRSpline<2>(b.space.geometry));
   expect_same_adaptive_loop(b, HierarchicalSpline<2>(b.space.geometry, HierarchicalBasis::thb));
+}
+
+// Eigenmodes on locally refined spaces (T-junctions, so ranks share functions of several sizes): the serial
+// eigenvalues to 1e-10, Laplace on an LR cube and free vibration on a THB plate clamped on one side.
+TEST(PetscRefined, ModesOnLocallyRefinedSpacesMatchTheSerialEigenvalues) {
+  LRSpline<3> cube(box_geometry<3>({0, 0, 0}, {1, 1, 1}, 2, 4));
+  iga_test::refine_corner(cube, 0.5);
+  iga_test::refine_corner(cube, 0.25);
+  ASSERT_TRUE(iga_test::has_t_junction(cube));
+  const RefinedSpace<3> lr = refined_space(cube);
+  std::vector<Face> sides;
+  for (int k = 0; k < 3; ++k) sides.push_back({k, 0}), sides.push_back({k, 1});
+  const ModesResult s = laplace_modes(lr, sides, 4);
+  const ModesResult d = petsc_laplace_modes(lr, sides, 4, tight("mumps"));
+  EXPECT_EQ(d.dofs, s.dofs);
+  for (int i = 0; i < 4; ++i) EXPECT_NEAR(d.values[i], s.values[i], 1e-10 * s.values[i]) << i;
+
+  HierarchicalSpline<2> plate(box_geometry<2>({0, 0}, {2, 1}, 2, 4), HierarchicalBasis::thb);
+  std::vector<int> corner;
+  for (int e = 0; e < plate.space().num_elements(); ++e)
+    if (plate.space().element_box(e).hi[0] <= 1.0) corner.push_back(e);
+  plate.refine_elements(corner);
+  const RefinedSpace<2> thb = refined_space(plate);
+  ElasticityProblem<2> pb;
+  pb.material = {1000.0, 0.3, 2.0};
+  pb.displacement = {{{Face{0, 0, 0}}, {}, nullptr}};
+  const ModesResult es = elastic_modes(thb, pb, 4);
+  for (const char* pc : {"mumps", "gamg"}) {
+    SCOPED_TRACE(pc);
+    const ModesResult ed = petsc_elastic_modes(thb, pb, 4, tight(pc));
+    EXPECT_EQ(ed.dofs, es.dofs);
+    for (int i = 0; i < 4; ++i) EXPECT_NEAR(ed.values[i], es.values[i], 1e-10 * es.values[i]) << i;
+  }
 }

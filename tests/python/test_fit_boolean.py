@@ -26,6 +26,11 @@ def test_fit_refines_until_the_tolerance(rng):
     # The same fit as a graph (x, y, h): after local refinement x and y are still the parameters themselves.
     g = trivar.fit(p, h, tolerance=1e-3).spline(p)
     assert np.max(np.abs(g[:, :2] - p)) < 1e-13 and np.max(np.abs(g[:, 2] - f)) < 1e-13
+    # MBA: the same tolerance; its carried errors are those of the spline returned.
+    m = trivar.fit(p, h, tolerance=1e-3, height_field=True, method="mba")
+    assert m.converged and np.max(np.abs(np.abs(m.spline(p)[:, 0] - h) - m.errors)) < 1e-13
+    with pytest.raises(trivar.Error, match="unknown method"):
+        trivar.fit(p, h, tolerance=1e-3, method="kriging")
 
 
 def test_fit_reproduces_a_quadratic_and_makes_a_graph(rng):

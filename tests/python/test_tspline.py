@@ -156,6 +156,10 @@ def test_star_points_are_evaluated_per_face(tmp_path):
     s.write(str(tmp_path / "s.tsm"))
     [back] = trivar.read(str(tmp_path / "s.tsm"))
     assert np.allclose(back.evaluate_face(0, uv), d, atol=1e-12)
+    # Bezier patches: the cube's 54 faces, 24 of them at star points subdivided towards the corner.
+    s.write(str(tmp_path / "s.g2"))
+    patches = trivar.read(str(tmp_path / "s.g2"))
+    assert len(patches) > 54 and all(list(p.degrees) == [3, 3] for p in patches)
 
 
 def test_malformed_tsm(tmp_path):

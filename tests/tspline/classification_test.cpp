@@ -57,6 +57,57 @@ TEST(Classification, CrossingExtensionsAreNotAnalysisSuitable) {
   EXPECT_GT(c.dual.failing_pairs, 0);
 }
 
+// Rhino's fan model in small: on a 6 x 6 grid the line s = 3 misses t in (1, 2) and (4, 5), the line t = 3
+// misses s in (2, 3) and (4, 5). Eight T-junctions face each other in pairs; their closed extensions all meet at
+// the vertex (3, 3), yet no ray crosses a gap (no anchor strictly inside one), so every local knot vector is
+// the full grid's: the blending functions are the tensor-product B-splines, dual-compatible and independent.
+// The gaps are recognised and the mesh is analysis-suitable. With one more line t = 1.5 a ray crosses the first
+// gap: its two T-junctions count again, and their extensions cross.
+TEST(Classification, TJunctionsFacingAcrossAGapNoRayCrossesAreLeftOut) {
+  std::vector<KnotSegment> g;
+  for (int i = 0; i <= 6; ++i) {
+    if (i == 3) {
+      for (const auto& [a, b] : {std::pair{0.0, 2.0}, {3.0, 4.0}, {5.0, 6.0}}) g.push_back({{a, 3.0}, {b, 3.0}});
+      for (const auto& [a, b] : {std::pair{0.0, 1.0}, {2.0, 4.0}, {5.0, 6.0}}) g.push_back({{3.0, a}, {3.0, b}});
+      continue;
+    }
+    g.push_back({{0.0, double(i)}, {6.0, double(i)}});
+    g.push_back({{double(i), 0.0}, {double(i), 6.0}});
+  }
+  const TSpline ts = t_spline_from_segments({3, 3}, g, plane);
+  int gaps = 0;
+  EXPECT_TRUE(t_junction_extensions(ts, &gaps).empty());
+  EXPECT_EQ(gaps, 8);
+  const TSplineSurface surf(ts);
+  const TSplineClass c = classify(ts, surf);
+  EXPECT_EQ(c.t_junctions, 8);
+  EXPECT_EQ(c.gap_junctions, 8);
+  EXPECT_EQ(c.crossing_extensions, 0);
+  EXPECT_TRUE(c.analysis_suitable);
+  EXPECT_TRUE(c.dual.compatible);
+  // The blending functions are those of the full 6 x 6 grid.
+  std::vector<KnotSegment> full;
+  for (int i = 0; i <= 6; ++i) {
+    full.push_back({{0.0, double(i)}, {6.0, double(i)}});
+    full.push_back({{double(i), 0.0}, {double(i), 6.0}});
+  }
+  const TSplineSurface tensor(t_spline_from_segments({3, 3}, full, plane));
+  ASSERT_EQ(surf.basis().size(), tensor.basis().size());
+  std::vector<std::array<std::vector<double>, 2>> a, b;
+  for (const auto& f : surf.basis()) a.push_back(f.knots);
+  for (const auto& f : tensor.basis()) b.push_back(f.knots);
+  std::sort(a.begin(), a.end());
+  std::sort(b.begin(), b.end());
+  EXPECT_EQ(a, b);
+  // A line t = 1.5 crossing s = 3 from the left boundary to s = 4: rays at t = 1.5 cross the gap (1, 2).
+  g.push_back({{0.0, 1.5}, {4.0, 1.5}});
+  const TSpline crossed = t_spline_from_segments({3, 3}, g, plane);
+  const TSplineClass cc = classify(crossed, TSplineSurface(crossed));
+  EXPECT_LT(cc.gap_junctions, 8);
+  EXPECT_GT(cc.crossing_extensions, 0);
+  EXPECT_FALSE(cc.analysis_suitable);
+}
+
 // Any degree (Beirao da Veiga, Buffa, Sangalli, Vazquez 2013): extensions cross ceil(p / 2) knot lines on the
 // missing edge's side and floor(p / 2) on the other, and a T-mesh on a rectangle is analysis-suitable exactly
 // when it is dual-compatible, which is tested here from the blending functions' local knot vectors alone. The

@@ -5,6 +5,7 @@
 #include <map>
 #include <random>
 
+#include "face_continuity.hpp"
 #include "star_mesh_tsm.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/io/tsm_format.hpp"
@@ -90,77 +91,6 @@ TEST(CatmullClark, ApproachesTheLimitPointOfHalsteadAtTheStarPoint) {
   }
 }
 
-// Positions, normals and cross-edge first derivatives from the two faces of every interior edge, at 9 points
-// strictly inside the edge; normals also at the edge ends that are not star points.
-struct Continuity {
-  double gap = 0, normal_angle = 0, c1 = 0;
-  int edges = 0;
-};
-
-// The face-local (u, v) of position sigma along side k of a face (sides counter-clockwise from the first
-// corner) and the face's inward derivative direction there.
-std::array<double, 2> side_uv(int k, double sigma) {
-  switch (k) {
-    case 0: return {sigma, 0};
-    case 1: return {1, sigma};
-    case 2: return {1 - sigma, 1};
-    default: return {0, 1 - sigma};
-  }
-}
-
-P3 normal(const double* o) {
-  const P3 n{o[4] * o[8] - o[5] * o[7], o[5] * o[6] - o[3] * o[8], o[3] * o[7] - o[4] * o[6]};
-  const double l = std::hypot(n[0], n[1], n[2]);
-  return {n[0] / l, n[1] / l, n[2] / l};
-}
-
-// The side of face f holding link l (quad faces and faces whose sides are single links).
-int side_of(const TMesh& m, int f, int l) {
-  const auto& loop = m.faces[static_cast<std::size_t>(f)];
-  const auto first = std::find(loop.begin(), loop.end(), m.first_corner(f));
-  int k = -1;
-  for (std::size_t i = 0; i < loop.size(); ++i) {
-    const int x = loop[(static_cast<std::size_t>(first - loop.begin()) + i) % loop.size()];
-    if (m.links[static_cast<std::size_t>(x)].flag == 0) ++k;
-    if (x == l) return k;
-  }
-  return -1;
-}
-
-Continuity continuity(const TMeshSurface& s) {
-  const TMesh& m = s.mesh();
-  Continuity c;
-  for (int l = 0; l < static_cast<int>(m.links.size()); ++l) {
-    const TMeshLink& a = m.links[static_cast<std::size_t>(l)];
-    const TMeshLink& b = m.links[static_cast<std::size_t>(a.opp)];
-    if (a.face < 0 || b.face < 0 || l > a.opp) continue;
-    if (m.faces[static_cast<std::size_t>(a.face)].size() != 4 || m.faces[static_cast<std::size_t>(b.face)].size() != 4) continue;
-    ++c.edges;
-    const int ka = side_of(m, a.face, l), kb = side_of(m, b.face, a.opp);
-    for (int i = 1; i <= 9; ++i) {
-      const double t = i / 10.0;
-      const auto ua = side_uv(ka, t), ub = side_uv(kb, 1 - t);
-      double x[9], y[9];
-      s.eval(a.face, ua[0], ua[1], x);
-      s.eval(b.face, ub[0], ub[1], y);
-      c.gap = std::max(c.gap, dist({x[0], x[1], x[2]}, y));
-      const P3 na = normal(x), nb = normal(y);
-      c.normal_angle = std::max(c.normal_angle, std::hypot(na[1] * nb[2] - na[2] * nb[1], na[2] * nb[0] - na[0] * nb[2], na[0] * nb[1] - na[1] * nb[0]));
-      // Inward derivatives: side 0 +v, 1 -u, 2 -v, 3 +u; C1 when they are opposite.
-      const auto inward = [](int k, const double* o, int comp) {
-        return k == 0 ? o[6 + comp] : k == 1 ? -o[3 + comp] : k == 2 ? -o[6 + comp] : o[3 + comp];
-      };
-      double d = 0, size = 0;
-      for (int comp = 0; comp < 3; ++comp) {
-        d = std::max(d, std::abs(inward(ka, x, comp) + inward(kb, y, comp)));
-        size = std::max(size, std::abs(inward(ka, x, comp)));
-      }
-      c.c1 = std::max(c.c1, d / size);
-    }
-  }
-  return c;
-}
-
 void expect_watertight_closed(const TSplineTriangulation& t, bool closed) {
   std::map<std::array<int, 2>, int> use;
   for (const auto& tri : t.triangles)
@@ -209,7 +139,7 @@ TEST(StarPoints, ClosedCubeOfEightValenceThreeStarPoints) {
       }
   }
   EXPECT_EQ(centres, 6);
-  const Continuity c = continuity(s);
+  const test::Continuity c = test::continuity(s.mesh(), [&](int f, double u, double v, double* o) { s.eval(f, u, v, o); });
   EXPECT_EQ(c.edges, 108);
   std::printf("cube: %d edges, position gap %.2e, normal defect (sin) %.2e, C1 defect %.2e\n", c.edges, c.gap,
               c.normal_angle, c.c1);
@@ -228,7 +158,7 @@ TEST(StarPoints, ClosedCubeOfEightValenceThreeStarPoints) {
     const auto& x = at[static_cast<std::size_t>(k)];
     s.eval(f, x[0], x[1], o);
     s.eval(f, std::abs(x[0] - 1e-6), std::abs(x[1] - 1e-6), near);
-    const P3 n0 = normal(o), n1 = normal(near);
+    const P3 n0 = test::unit_normal(o), n1 = test::unit_normal(near);
     // By symmetry the cube corner's normal is (+-1, +-1, +-1) / sqrt 3.
     for (int j = 0; j < 3; ++j) EXPECT_NEAR(std::abs(n0[static_cast<std::size_t>(j)]), 1 / std::sqrt(3.0), 1e-12);
     const double angle = std::acos(std::min(1.0, n0[0] * n1[0] + n0[1] * n1[1] + n0[2] * n1[2]));
@@ -242,6 +172,17 @@ TEST(StarPoints, ClosedCubeOfEightValenceThreeStarPoints) {
 
 double height(double x, double y) { return 0.05 * x * x - 0.03 * x * y + 0.2 * std::sin(0.4 * y); }
 
+// Exact and Catmull-Clark faces of a fan meet as one C2 surface (an exact face with uniform knots is the
+// uniform bicubic patch of its 4 x 4 control points).
+void expect_one_smooth_surface(const TMeshSurface& s, const char* name) {
+  const test::Continuity c = test::continuity(s.mesh(), [&](int f, double u, double v, double* o) { s.eval(f, u, v, o); });
+  EXPECT_LT(c.gap, 1e-12) << name;
+  EXPECT_LT(c.normal_angle, 1e-10) << name;
+  EXPECT_LT(c.c1, 1e-10) << name;
+  std::printf("%s: %d edges, position gap %.2e, normal defect (sin) %.2e, C1 defect %.2e\n", name, c.edges, c.gap,
+              c.normal_angle, c.c1);
+}
+
 TEST(StarPoints, PlanarFanAroundAValenceFiveStarPoint) {
   const io::TsmModel model = io::parse_tsm(tsm_text(test::fan_mesh(5, 8, height)), "fan.tsm");
   EXPECT_EQ(model.report.star_points, 1);
@@ -250,17 +191,11 @@ TEST(StarPoints, PlanarFanAroundAValenceFiveStarPoint) {
   // Within 5 face rings of the star point (max(i, j) < 5 in each sector): Catmull-Clark; beyond: exact.
   EXPECT_EQ(s.count(FaceMethod::bicubic), 5 * 25 - 5);
   EXPECT_EQ(s.count(FaceMethod::exact), 5 * 39);
-  // An exact face with uniform knots is the uniform bicubic patch of its 4 x 4 control points.
-  const Continuity c = continuity(s);
-  EXPECT_LT(c.gap, 1e-12);
-  EXPECT_LT(c.normal_angle, 1e-10);
-  EXPECT_LT(c.c1, 1e-10);
+  expect_one_smooth_surface(s, "valence-5 fan");
   const TSplineTriangulation t = tessellate(s, 1e-2);
   expect_watertight_closed(t, false);
   for (const auto& p : t.points) ASSERT_TRUE(std::isfinite(p[0] + p[1] + p[2]));  // the boundary too (end conditions)
   EXPECT_GT(t.triangles.size(), 500u);
-  std::printf("valence-5 fan: %d edges, position gap %.2e, normal defect (sin) %.2e, C1 defect %.2e\n", c.edges,
-              c.gap, c.normal_angle, c.c1);
 }
 
 // T-meshes without star points through the charts, face by face against the global T-spline: T-junctions,
@@ -355,6 +290,79 @@ void expect_error(const std::string& text, const std::string& fragment) {
     const std::string msg = e.what();
     EXPECT_NE(msg.find(fragment), std::string::npos) << msg;
     EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+  }
+}
+
+// A star point 7 faces from the boundary (8 were needed without the fallback): the faces within 5 rings of it
+// whose 2-ring neighbourhood reaches the boundary (its Bezier end conditions) are not Catmull-Clark faces; from 4
+// rings out they are the T-spline of a chart without star points (3 rings around them: their blending
+// functions' supports), which meets the Catmull-Clark faces C2. With 6 faces the ring-3 faces are neither.
+TEST(StarPoints, FacesNearStarPointsAndTheBoundaryFallBackToCharts) {
+  expect_error(tsm_text(test::fan_mesh(5, 6, height)), "boundary vertex");
+  const io::TsmModel model = io::parse_tsm(tsm_text(test::fan_mesh(5, 7, height)), "fan.tsm");
+  const TMeshSurface s(model.mesh, 1);
+  EXPECT_EQ(s.count(FaceMethod::star), 5);
+  // Catmull-Clark: the faces [i, i + 1] x [j, j + 1] of a sector whose 2 rings stay off the boundary (i, j <= 3);
+  // exact: the rest (ring 4 in charts of 3 rings, beyond as before).
+  EXPECT_EQ(s.count(FaceMethod::bicubic), 5 * 16 - 5);
+  EXPECT_EQ(s.count(FaceMethod::exact), 5 * 33);
+  expect_one_smooth_surface(s, "valence-5 fan, 7 faces to the boundary");
+}
+
+// Unequal knot intervals near a star point: in the valence-5 fan of 8 x 8 faces per sector, the strip of edges
+// between the sector rows r and r + 1 (across sector 0 and on into sector 4) gets interval 2.
+//   r = 7: the faces of ring 4 keep the uniform patch (a blending function's first span does not depend on its
+//          last knot), all within 5 rings are Catmull-Clark faces;
+//   r = 6: the faces of ring 4 that see the strip within 2 rings are taken from charts (3 rings, no star point);
+//   r = 5: the faces of ring 3 that see it are neither, and the file is refused.
+// Either way the surface is one smooth surface (positions and normals; face-local derivatives differ by the
+// ratio of the intervals).
+TEST(StarPoints, UnequalIntervalsNearAStarPoint) {
+  const auto strip = [](int row) {
+    io::TsmModel model = io::parse_tsm(tsm_text(test::fan_mesh(5, 8, height)), "fan.tsm");
+    TMesh& m = model.mesh;
+    const double c = std::cos(2 * std::numbers::pi / 5), s = std::sin(2 * std::numbers::pi / 5);
+    // Sector coordinates of a point in sector 0 (axes 0 and 72 degrees) and in sector 4 (axes 288 and 0 degrees).
+    const auto sector0 = [&](const std::array<double, 3>& x) { return std::array<double, 2>{x[0] - x[1] * c / s, x[1] / s}; };
+    const auto sector4 = [&](const std::array<double, 3>& x) { return std::array<double, 2>{-x[1] / s, x[0] + x[1] * c / s}; };
+    const auto near = [](double a, double b) { return std::abs(a - b) < 1e-9; };
+    int changed = 0;
+    for (std::size_t l = 0; l < m.links.size(); ++l) {
+      const TMeshLink& k = m.links[l];
+      if (k.vertex < 0 || static_cast<int>(l) > k.opp) continue;
+      const auto& p = m.points[static_cast<std::size_t>(m.vertices[static_cast<std::size_t>(k.vertex)].primary)].xyz;
+      const auto& q = m.points[static_cast<std::size_t>(m.vertices[static_cast<std::size_t>(m.links[static_cast<std::size_t>(k.opp)].vertex)].primary)].xyz;
+      const auto a0 = sector0(p), b0 = sector0(q), a4 = sector4(p), b4 = sector4(q);
+      const bool in0 = near(a0[1], b0[1]) && a0[1] > -1e-9 && near(std::min(a0[0], b0[0]), row) && near(std::max(a0[0], b0[0]), row + 1);
+      const bool in4 = near(a4[0], b4[0]) && a4[0] > -1e-9 && near(std::min(a4[1], b4[1]), row) && near(std::max(a4[1], b4[1]), row + 1);
+      if (in0 || in4) {
+        m.intervals[static_cast<std::size_t>(k.edge)] = 2;
+        ++changed;
+      }
+    }
+    EXPECT_EQ(changed, 17);  // 9 edges across sector 0, 8 more across sector 4
+    return m;
+  };
+  for (int row : {7, 6}) {
+    const TMeshSurface s(strip(row), 1);
+    EXPECT_EQ(s.count(FaceMethod::star), 5);
+    if (row == 7) {
+      EXPECT_EQ(s.count(FaceMethod::bicubic), 5 * 25 - 5);
+    } else {
+      EXPECT_LT(s.count(FaceMethod::bicubic), 5 * 25 - 5);
+    }
+    const test::Continuity c = test::continuity(s.mesh(), [&](int f, double u, double v, double* o) { s.eval(f, u, v, o); });
+    EXPECT_LT(c.gap, 1e-12) << row;
+    EXPECT_LT(c.normal_angle, 1e-10) << row;
+    std::printf("valence-5 fan, interval 2 between rows %d and %d: %d Catmull-Clark faces, position gap %.2e, normal "
+                "defect (sin) %.2e\n", row, row + 1, s.count(FaceMethod::bicubic) + s.count(FaceMethod::star), c.gap,
+                c.normal_angle);
+  }
+  try {
+    TMeshSurface bad(strip(5), 1);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("knot interval"), std::string::npos) << e.what();
   }
 }
 

@@ -34,9 +34,13 @@ constexpr int kChordSteps = 3;
 // to where the Jacobian was taken, and a refresh costs about two value evaluations.
 constexpr int kChordRefresh = 16;
 
-bool jacobian_inverse(const TensorSpline<3>& s, const Param<3>& u, Eigen::Matrix3d& inv) {
+bool jacobian_inverse(const TensorSpline<3>& s, const ElementPolynomials& poly, const Param<3>& u,
+                      Eigen::Matrix3d& inv) {
   double d[12];
-  s.eval_derivs(u, 1, d);
+  if (poly.available())
+    poly.eval_first(u, d);
+  else
+    s.eval_derivs(u, 1, d);
   Eigen::Matrix3d J;
   for (int k = 0; k < 3; ++k)
     for (int r = 0; r < 3; ++r) J(r, k) = d[3 * (1 + k) + r];
@@ -50,11 +54,13 @@ bool jacobian_inverse(const TensorSpline<3>& s, const Param<3>& u, Eigen::Matrix
 // (a root outside it belongs to another cell, or to none). `next` gets one more chord step from the accepted
 // u, taken without evaluating: a better start for the following pixels than u itself, whose error is up to
 // the tolerance and would be amplified by extrapolation. p gets s(u), for the material attribute.
-bool chord_solve(const TensorSpline<3>& s, const Box<3>& dom, const Eigen::Matrix3d& inv, const double* x, double tol,
+// `value(u, p)` evaluates the cell's geometry.
+template <class Value>
+bool chord_solve(const Value& value, const Box<3>& dom, const Eigen::Matrix3d& inv, const double* x, double tol,
                  Param<3>& u, double& residual, Param<3>& next, double* p) {
   for (int k = 0; k < 3; ++k) u[k] = std::clamp(u[k], dom.lo[k], dom.hi[k]);
   for (int it = 0;; ++it) {
-    s.eval(u, p);
+    value(u, p);
     const Eigen::Vector3d r(x[0] - p[0], x[1] - p[1], x[2] - p[2]);
     residual = r.norm();
     const Eigen::Vector3d du = inv * r;
@@ -158,6 +164,7 @@ LayerSlicer::LayerSlicer(const VModel& model, const SliceOptions& options)
     const VCell& cell = model.cell(c);
     sections_.emplace_back(cell.geometry(), so);
     inverters_.emplace_back(cell.geometry(), options.inversion);
+    polynomials_.emplace_back(cell.geometry());
     Box<3> b;
     cell.geometry().control_bounds(b.lo.data(), b.hi.data());
     boxes_.push_back(b);
@@ -311,7 +318,9 @@ SliceLayer LayerSlicer::slice(int k) const {
             for (int d = 0; d < 3; ++d) guess[d] += kExtrapolation[run - 1][q] * cur[ui - 1 - static_cast<std::size_t>(q)][d];
           if (chord_cell == c) {
             r.param = guess;
-            ok = chord_solve(geo, domains_[static_cast<std::size_t>(c)], chord_inverse, x, inv.absolute_tolerance(),
+            const ElementPolynomials& poly = polynomials_[static_cast<std::size_t>(c)];
+            auto value = [&](const Param<3>& u, double* p) { poly.available() ? poly.eval(u, p) : geo.eval(u, p); };
+            ok = chord_solve(value, domains_[static_cast<std::size_t>(c)], chord_inverse, x, inv.absolute_tolerance(),
                              r.param, r.residual, next, point);
           }
           next_set = ok;
@@ -355,7 +364,10 @@ SliceLayer LayerSlicer::slice(int k) const {
         continue;
       }
       if (along_row && (newton_used || c != chord_cell || ++chord_age >= kChordRefresh)) {
-        chord_cell = jacobian_inverse(inverters_[static_cast<std::size_t>(c)].spline(), r.param, chord_inverse) ? c : -1;
+        chord_cell = jacobian_inverse(inverters_[static_cast<std::size_t>(c)].spline(),
+                                      polynomials_[static_cast<std::size_t>(c)], r.param, chord_inverse)
+                         ? c
+                         : -1;
         chord_age = 0;
       }
       row[i] = c;

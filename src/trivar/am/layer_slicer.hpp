@@ -18,16 +18,20 @@
 // Tracing (per row, left to right; SliceOptions::tracing selects the sources): Newton starts from the
 // parameters of the pixels to the left in the same cell, extrapolated (quadratically from three, linearly from
 // two) and refined by chord steps that reuse the last solved pixel's inverse Jacobian (one value evaluation
-// per step); where the row enters the cell, from the parameters of the outline crossing there; else from the
-// pixel below or the nearest pixel of the cell on the previous row. The robust subdivision search
-// (PointInverter::invert) runs only when these fail or none exists. Rows are processed bottom-up within a
-// layer and no state crosses layers, so layers are independent.
+// per step, on the cell's element polynomials where its degrees have them, spline/element_polynomials.hpp:
+// they differ from TensorSpline::eval by about 1e-12 of the cell's size, far below the inversion tolerance,
+// so a fraction can differ from the B-spline path's in its last float bit); where the row enters the cell,
+// from the parameters of the outline crossing there; else from the pixel below or the nearest pixel of the
+// cell on the previous row. The robust subdivision search (PointInverter::invert) runs only when these fail
+// or none exists. Rows are processed bottom-up within a layer and no state crosses layers, so layers are
+// independent.
 #include <vector>
 
 #include "trivar/am/cell_section.hpp"
 #include "trivar/am/slice_layer.hpp"
 #include "trivar/am/slice_options.hpp"
 #include "trivar/model/vmodel.hpp"
+#include "trivar/spline/element_polynomials.hpp"
 #include "trivar/spline/point_inversion.hpp"
 
 namespace trivar::am {
@@ -56,6 +60,7 @@ private:
   SliceGrid grid_;
   std::vector<CellSection> sections_;
   std::vector<PointInverter<3>> inverters_;
+  std::vector<ElementPolynomials> polynomials_;   // per cell, for the chord steps' value evaluations
   std::vector<Box<3>> boxes_;                     // control-point box per cell, for the correction search
   std::vector<Box<3>> domains_;                 // parameter domain per cell
   std::vector<std::array<bool, 6>> model_face_;   // face on the model boundary (no twin)

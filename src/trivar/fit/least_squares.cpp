@@ -10,12 +10,17 @@
 #include "trivar/core/gauss_legendre.hpp"
 #include "trivar/core/memory_budget.hpp"
 #include "trivar/core/parallel.hpp"
+#include "trivar/fit/element_bernstein.hpp"
 #include "trivar/iga/solver.hpp"
 #include "trivar/lr/lr_bezier_extraction.hpp"
 #include "trivar/spline/basis.hpp"
 
 namespace trivar {
 namespace {
+
+using fit_kernel::points_of;
+using fit_kernel::tensor_bernstein;
+using fit_kernel::with_degree;
 
 // Bernstein values of degree q at t with their first and second derivatives in t (q >= 0).
 void bernstein_with_derivatives(int p, double t, double* B, double* d1, double* d2) {
@@ -88,25 +93,6 @@ Eigen::MatrixXd element_energy(const std::array<BernsteinGram, D>& gram, const P
   return K;
 }
 
-// Tensor Bernstein values (direction 0 fastest) at u of the element with lower corner lo and reciprocal sides
-// inv_h. P >= 0: every degree is P, known at compile time (the common case, a third of the fit's time otherwise).
-template <int D, int P>
-void tensor_bernstein(const Ints<D>& deg, const Param<D>& lo, const Param<D>& inv_h, const Param<D>& u, double* out) {
-  double b[D][kMaxDegree + 1];
-  for (int k = 0; k < D; ++k) {
-    const double t = std::clamp((u[k] - lo[k]) * inv_h[k], 0.0, 1.0);
-    bernstein_values<P>(deg[k], t, 1.0, b[k], nullptr);
-  }
-  int n = (P >= 0 ? P : deg[0]) + 1;
-  std::copy(b[0], b[0] + n, out);
-  for (int k = 1; k < D; ++k) {
-    const int m = (P >= 0 ? P : deg[k]) + 1;
-    for (int i = m - 1; i >= 0; --i)
-      for (int j = 0; j < n; ++j) out[i * n + j] = b[k][i] * out[j];
-    n *= m;
-  }
-}
-
 // Bernstein Gram matrix (lower triangle of G, nb x nb column-major) and moments g (nb x m) of an element's points.
 template <int D, int P>
 void accumulate(const Ints<D>& deg, const Box<D>& box, const ScatteredData<D>& data, std::span<const int> points,
@@ -116,8 +102,7 @@ void accumulate(const Ints<D>& deg, const Box<D>& box, const ScatteredData<D>& d
     for (int k = 0; k < D; ++k) n *= (P >= 0 ? P : deg[k]) + 1;
     return n;
   }();
-  Param<D> inv_h;
-  for (int k = 0; k < D; ++k) inv_h[k] = 1.0 / (box.hi[k] - box.lo[k]);
+  const Param<D> inv_h = fit_kernel::reciprocal_sides(box);
   double b[256];
   for (int i : points) {
     tensor_bernstein<D, P>(deg, box.lo, inv_h, data.params[static_cast<std::size_t>(i)], b);
@@ -136,8 +121,7 @@ void accumulate(const Ints<D>& deg, const Box<D>& box, const ScatteredData<D>& d
 template <int D, int P>
 void element_errors(const Ints<D>& deg, const Box<D>& box, const ScatteredData<D>& data, std::span<const int> points,
                     const double* net, int nb, std::vector<double>& errors) {
-  Param<D> inv_h;
-  for (int k = 0; k < D; ++k) inv_h[k] = 1.0 / (box.hi[k] - box.lo[k]);
+  const Param<D> inv_h = fit_kernel::reciprocal_sides(box);
   double b[256];
   for (int i : points) {
     tensor_bernstein<D, P>(deg, box.lo, inv_h, data.params[static_cast<std::size_t>(i)], b);
@@ -150,22 +134,6 @@ void element_errors(const Ints<D>& deg, const Box<D>& box, const ScatteredData<D
     }
     errors[static_cast<std::size_t>(i)] = err;
   }
-}
-
-// Calls f with std::integral_constant<int, P>: P the common degree when it is 1, 2 or 3, else -1.
-template <int D, class F>
-void with_degree(const Ints<D>& deg, F&& f) {
-  const bool equal = std::all_of(deg.begin(), deg.end(), [&](int p) { return p == deg[0]; });
-  if (equal && deg[0] == 1) f(std::integral_constant<int, 1>());
-  else if (equal && deg[0] == 2) f(std::integral_constant<int, 2>());
-  else if (equal && deg[0] == 3) f(std::integral_constant<int, 3>());
-  else f(std::integral_constant<int, -1>());
-}
-
-std::span<const int> points_of(const PointsByElement& where, int e) {
-  const auto first = static_cast<std::size_t>(where.offsets[static_cast<std::size_t>(e)]);
-  const auto last = static_cast<std::size_t>(where.offsets[static_cast<std::size_t>(e) + 1]);
-  return {where.points.data() + first, last - first};
 }
 
 }  // namespace

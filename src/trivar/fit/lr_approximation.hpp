@@ -7,6 +7,11 @@
 // each refinement the basis is checked for linear independence (peeling, then the exact rank where peeling is
 // inconclusive); a dependent refinement is undone and replaced by FULLSPAN on the same elements, and when that is
 // dependent too the loop stops with the last independent spline (seed 004: discard the problematic refinement).
+// The fit of each round is either the penalised least squares on the whole space, or (FitMethod::mba, after a
+// least-squares fit of the coarse start spline, as LRSurfApprox switches methods) one multilevel B-spline
+// approximation pass (mba.hpp) that adds to the previous round's function, kept exactly through the refinement,
+// a correction of the residual: no linear system however many coefficients, at the price of more coefficients
+// or rounds for the same tolerance.
 // The same code fits surfaces (D = 2: terrain heights over x, y) and volumes (D = 3: scalar fields, material
 // fractions over x, y, z).
 #include <functional>
@@ -18,14 +23,18 @@
 
 namespace trivar {
 
+enum class FitMethod { least_squares, mba };
+
 struct ApproximationOptions {
+  FitMethod method = FitMethod::least_squares;
+  int mba_passes = 3;           // MBA passes per round, each fitting what the last left (fewer coefficients than 1)
   double tolerance = 0.0;       // absolute, > 0, on the largest component error of every point
   int degree = 2;               // in every direction, 1..5
   int initial_elements = 4;     // along the longest side of the box; other sides in proportion (at least 1)
   int max_levels = 10;          // refinement rounds after the first fit
   int max_coefficients = 0;     // stop before a refinement would exceed it (0: no limit)
   Strategy strategy = Strategy::fullspan;
-  double smoothing = 1e-9;      // dimensionless weight of the thin-plate energy (least_squares.hpp)
+  double smoothing = 1e-9;      // dimensionless weight of the thin-plate energy (least_squares.hpp; not MBA)
   bool check_independence = true;
   bool uniform = false;         // refine every element (a uniform tensor spline, for comparison)
   int threads = 1;
@@ -54,9 +63,15 @@ struct Approximation {
 };
 
 // Throws trivar::Error for bad options or data (validate) before any work.
+// "ls" or "mba" (what the CLI and reports print); parse_fit_method throws trivar::Error naming other words.
+const char* to_string(FitMethod method);
+FitMethod parse_fit_method(const std::string& word);
+
+// domain: the box the spline is built on (it must hold every point); null: the points' bounding box.
 template <int D>
 Approximation<D> approximate(const ScatteredData<D>& data, const ApproximationOptions& options,
-                             const std::function<void(const IterationReport&)>& progress = {});
+                             const std::function<void(const IterationReport&)>& progress = {},
+                             const Box<D>* domain = nullptr);
 
 // The coarse tensor spline the loop starts from (degree and element counts of `options`): the identity map of
 // the box, D values per B-spline (its Greville abscissae).

@@ -168,13 +168,19 @@ std::vector<LRBSpline<2>> basis_copy(const LRSpline<2>& s) {
 }
 
 LRSpline<2> rebuilt(const LRSpline<2>& s, std::vector<LRBSpline<2>> basis) {
-  return LRSpline<2>(s.degrees(), s.dim(), false, std::move(basis), s.mesh());
+  return LRSpline<2>(s.degrees(), s.dim(), s.is_rational(), std::move(basis), s.mesh());
 }
 
 }  // namespace
 
 Stitched stitch(const LRSpline<2>& first, const LRSpline<2>& second, const StitchOptions& options) {
-  require(!first.is_rational() && !second.is_rational(), "stitch: rational patches are not supported");
+  require(first.is_rational() == second.is_rational(),
+          "stitch: one patch is rational and the other is not (give both as NURBS, weights 1 where polynomial)");
+  // C1 of the homogeneous surfaces is not C1 of the rational ones (two exact circular arcs meeting tangentially
+  // have opposite weight derivatives at the joint), and enforcing it would move the geometry; a Moebius
+  // reparametrisation that matches the weight derivatives first would be needed.
+  require(!first.is_rational() || options.continuity == Continuity::C0,
+          "stitch: C1 stitching of rational patches is not supported (C0 is)");
   require(first.dim() == second.dim(), [&] {
     return "stitch: the patches have " + std::to_string(first.dim()) + " and " + std::to_string(second.dim()) +
            " coordinates";
@@ -263,20 +269,47 @@ Stitched stitch(const LRSpline<2>& first, const LRSpline<2>& second, const Stitc
 
   const std::vector<Column> cols = seam_columns(A, B, rows);
   std::vector<LRBSpline<2>> ba_ = basis_copy(A), bb_ = basis_copy(B);
-  const int dim = A.dim();
+  // Rational patches (C0): equal homogeneous (w x, w) seam values give equal rational ones, and a rational
+  // surface keeps its geometry when all its weights are scaled by one factor; so the second patch's weights are
+  // first scaled to meet the first's along the seam (least squares over the seam B-splines; the same curve has
+  // proportional weights), then the seam values are averaged in homogeneous form.
+  const int dim = A.dim(), stride = dim + (A.is_rational() ? 1 : 0);
+  if (A.is_rational()) {
+    double ab = 0, bb = 0, wmax = 0;
+    for (const Column& c : cols) {
+      const LRBSpline<2>& Ea = ba_[static_cast<std::size_t>(c.a[0])];
+      const LRBSpline<2>& Eb = bb_[static_cast<std::size_t>(c.b[0])];
+      const double wa = Ea.gamma * Ea.coef[static_cast<std::size_t>(dim)], wb = Eb.gamma * Eb.coef[static_cast<std::size_t>(dim)];
+      ab += wa * wb;
+      bb += wb * wb;
+      wmax = std::max(wmax, std::abs(wa));
+    }
+    const double factor = ab / bb;
+    for (const Column& c : cols) {
+      const LRBSpline<2>& Ea = ba_[static_cast<std::size_t>(c.a[0])];
+      const LRBSpline<2>& Eb = bb_[static_cast<std::size_t>(c.b[0])];
+      const double wa = Ea.gamma * Ea.coef[static_cast<std::size_t>(dim)], wb = Eb.gamma * Eb.coef[static_cast<std::size_t>(dim)];
+      require(std::abs(wa - factor * wb) <= 1e-8 * wmax, [&] {
+        return "stitch: the weights along the shared side are not proportional (" + format_number(wa) + " against " +
+               format_number(factor * wb) + " after scaling): the sides are different rational curves";
+      });
+    }
+    for (LRBSpline<2>& f : bb_)
+      for (double& x : f.coef) x *= factor;
+  }
   double moved = 0;
   auto set = [&](LRBSpline<2>& f, const std::vector<double>& d) {  // d: gamma-weighted values
-    for (int j = 0; j < dim; ++j) {
+    for (int j = 0; j < stride; ++j) {
       const double c = d[static_cast<std::size_t>(j)] / f.gamma;
       moved = std::max(moved, std::abs(c - f.coef[static_cast<std::size_t>(j)]));
       f.coef[static_cast<std::size_t>(j)] = c;
     }
   };
-  std::vector<double> dE(static_cast<std::size_t>(dim)), dFa(dE.size()), dFb(dE.size());
+  std::vector<double> dE(static_cast<std::size_t>(stride)), dFa(dE.size()), dFb(dE.size());
   for (const Column& c : cols) {
     LRBSpline<2>& Ea = ba_[static_cast<std::size_t>(c.a[0])];
     LRBSpline<2>& Eb = bb_[static_cast<std::size_t>(c.b[0])];
-    for (int j = 0; j < dim; ++j)
+    for (int j = 0; j < stride; ++j)
       dE[static_cast<std::size_t>(j)] = 0.5 * (Ea.gamma * Ea.coef[static_cast<std::size_t>(j)] +
                                                Eb.gamma * Eb.coef[static_cast<std::size_t>(j)]);
     set(Ea, dE);
@@ -286,7 +319,7 @@ Stitched stitch(const LRSpline<2>& first, const LRSpline<2>& second, const Stitc
     LRBSpline<2>& Fb = bb_[static_cast<std::size_t>(c.b[1])];
     const double hA = a1 - Ea.knots[0].front(), hB = Eb.knots[0].back() - a1;
     const double al = hB / (hA + hB), be = hA / (hA + hB), n = al * al + be * be;
-    for (int j = 0; j < dim; ++j) {
+    for (int j = 0; j < stride; ++j) {
       const auto J = static_cast<std::size_t>(j);
       const double fa = Fa.gamma * Fa.coef[J], fb = Fb.gamma * Fb.coef[J];
       const double r = dE[J] - al * fa - be * fb;
@@ -353,7 +386,7 @@ LRSpline<2> merge(const Stitched& s) {
   const int seam_mult = rows == 1 ? p : p - 1;
   if (seam_mult > 0)
     mesh.push_back(MeshRectangle<2>::make(0, a1, {a1, A.domain().lo[1]}, {a1, A.domain().hi[1]}, seam_mult));
-  return from_canonical(LRSpline<2>(A.degrees(), A.dim(), false, std::move(basis), std::move(mesh)), ca);
+  return from_canonical(LRSpline<2>(A.degrees(), A.dim(), A.is_rational(), std::move(basis), std::move(mesh)), ca);
 }
 
 }  // namespace trivar

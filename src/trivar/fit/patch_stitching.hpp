@@ -35,9 +35,14 @@ struct Stitched {
   double moved = 0.0;     // largest change of a control point
 };
 
-// Throws trivar::Error with one line when the patches are rational, of another parametric or control dimension or
-// degree, share no side, meet along a side with parametrisations that do not correspond linearly, or when the
-// second patch would have to be mirrored to continue the first (opposite orientation: its normal points the
+// Rational patches (NURBS, rational LR) are stitched C0 in homogeneous coordinates after the second patch's
+// weights are scaled to meet the first's along the seam (which leaves its geometry unchanged); `moved` is then
+// measured in homogeneous values.
+// Throws trivar::Error with one line when one patch is rational and the other not, for C1 on rational patches,
+// when they are of another
+// parametric or control dimension or degree, share no side, meet along a side with parametrisations that do not
+// correspond linearly or with weights that are not proportional along it, or when the second patch would have to
+// be mirrored to continue the first (opposite orientation: its normal points the
 // other way); for C1 also when the cross-seam derivatives point against each other (the patches fold back).
 Stitched stitch(const LRSpline<2>& first, const LRSpline<2>& second, const StitchOptions& options = {});
 

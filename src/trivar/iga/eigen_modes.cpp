@@ -92,19 +92,14 @@ ModesResult lowest_modes(const SparseMatrix& K, const SparseMatrix& M, const Fix
   return r;
 }
 
-namespace {
-
-template <int D>
-ModesResult timed_modes(std::chrono::steady_clock::time_point t0, const SparseMatrix& K, const SparseMatrix& M,
-                        const FixedDofs& fixed, int count, double sigma) {
+ModesResult timed_lowest_modes(std::chrono::steady_clock::time_point assembly_start, const SparseMatrix& K,
+                               const SparseMatrix& M, const FixedDofs& fixed, int count, double sigma) {
   const auto t1 = std::chrono::steady_clock::now();
   ModesResult r = lowest_modes(K, M, fixed, count, sigma);
-  r.assembly_seconds = std::chrono::duration<double>(t1 - t0).count();
+  r.assembly_seconds = std::chrono::duration<double>(t1 - assembly_start).count();
   r.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
   return r;
 }
-
-}  // namespace
 
 template <int D>
 ModesResult laplace_modes(const MultipatchSpace<D>& space, const std::vector<Face>& dirichlet, int count,
@@ -114,7 +109,7 @@ ModesResult laplace_modes(const MultipatchSpace<D>& space, const std::vector<Fac
   const SparseMatrix K = assemble_matrix<D>(space, [&](int) { return stiffness; }, threads);
   const SparseMatrix M = assemble_matrix<D>(space, [&](int) { return mass; }, threads);
   const FixedDofs fixed = project_dirichlet<D>(space, 1, {{dirichlet, {}, nullptr}});
-  return timed_modes<D>(t0, K, M, fixed, count, 0.0);
+  return timed_lowest_modes(t0, K, M, fixed, count, 0.0);
 }
 
 template <int D>
@@ -129,7 +124,7 @@ ModesResult elastic_modes(const MultipatchSpace<D>& space, const ElasticityProbl
   const SparseMatrix K = elastic_stiffness(space, problem, threads);
   const SparseMatrix M = elastic_mass(space, problem, threads);
   const FixedDofs fixed = project_dirichlet(space, D, problem.displacement);
-  return timed_modes<D>(t0, K, M, fixed, count, rigid_body_shift(K.diagonal().sum(), M.diagonal().sum()));
+  return timed_lowest_modes(t0, K, M, fixed, count, rigid_body_shift(K.diagonal().sum(), M.diagonal().sum()));
 }
 
 // A body held by too few conditions has rigid-body modes (lambda = 0, K singular): a shift below zero keeps

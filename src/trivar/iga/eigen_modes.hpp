@@ -2,6 +2,7 @@
 // Generalised symmetric eigenproblems K x = lambda M x (free vibration, Laplace eigenvalues): the lowest
 // modes by Spectra's Lanczos iteration in shift-invert mode, (K - sigma M)^{-1} M, with the shifted matrix
 // factorised once by CHOLMOD.
+#include <chrono>
 #include <vector>
 
 #include <Eigen/Core>
@@ -27,6 +28,10 @@ struct ModesResult {
 // 1 .. free dofs - 1 or when the iteration does not converge.
 ModesResult lowest_modes(const SparseMatrix& K, const SparseMatrix& M, const FixedDofs& fixed, int count,
                          double sigma = 0.0);
+
+// lowest_modes, timed: assembly_seconds from assembly_start to the call, solve_seconds the eigensolve.
+ModesResult timed_lowest_modes(std::chrono::steady_clock::time_point assembly_start, const SparseMatrix& K,
+                               const SparseMatrix& M, const FixedDofs& fixed, int count, double sigma);
 
 // The mass form integral of u v of a scalar unknown.
 template <int D>

@@ -9,11 +9,19 @@
 
 namespace trivar {
 
+template <int D>
+struct RefinedSpace;
+
 // Throws trivar::Error for a side that is not x-, x+, y-, y+, z-, z+ (z only in 3-D) or has no face.
 template <int D>
 std::vector<Face> faces_in_side_plane(const MultipatchSpace<D>& space, const std::string& side);
 
+// The same on a locally refined space (refined_space.hpp), whose faces are Face{dir, side, 0}.
+template <int D>
+std::vector<Face> faces_in_side_plane(const RefinedSpace<D>& space, const std::string& side);
 extern template std::vector<Face> faces_in_side_plane(const MultipatchSpace<2>&, const std::string&);
 extern template std::vector<Face> faces_in_side_plane(const MultipatchSpace<3>&, const std::string&);
+extern template std::vector<Face> faces_in_side_plane(const RefinedSpace<2>&, const std::string&);
+extern template std::vector<Face> faces_in_side_plane(const RefinedSpace<3>&, const std::string&);
 
 }  // namespace trivar

@@ -103,22 +103,18 @@ void set_up_blocks(KSP ksp, const PetscSolverOptions& o) {
   }
 }
 
-// The rigid-body modes of the owned blocks (coordinates: the basis functions' control points) as GAMG's near
-// null space of an elasticity matrix.
+// The rigid-body modes of the owned blocks as GAMG's near null space of an elasticity matrix; coordinates: the
+// basis functions' control points (D per global function).
 template <int D>
-void set_rigid_body_modes(Mat A, const MultipatchSpace<D>& space, const DofLayout& L) {
+void set_rigid_body_modes(Mat A, const DofLayout& L, const std::vector<double>& control) {
   Vec coords;
   petsc_check(VecCreateMPI(PETSC_COMM_WORLD, L.local_rows(), L.size, &coords), "VecCreateMPI");
   petsc_check(VecSetBlockSize(coords, D), "VecSetBlockSize");
-  double x[D];
-  for (int p = 0; p < space.num_patches(); ++p) {
-    const std::vector<int>& g = space.global[static_cast<std::size_t>(p)];
-    for (std::size_t i = 0; i < g.size(); ++i) {
-      const PetscInt row = L.row(g[i]);
-      if (row < L.begin || row >= L.end) continue;
-      space.patches[static_cast<std::size_t>(p)].geometry.control_point(static_cast<int>(i), x);
-      for (int k = 0; k < D; ++k) petsc_check(VecSetValue(coords, row + k, x[k], INSERT_VALUES), "VecSetValue");
-    }
+  for (int G = 0; G < L.num_basis; ++G) {
+    const PetscInt row = L.row(G);
+    if (row < L.begin || row >= L.end) continue;
+    for (int k = 0; k < D; ++k)
+      petsc_check(VecSetValue(coords, row + k, control[static_cast<std::size_t>(D * G + k)], INSERT_VALUES), "VecSetValue");
   }
   petsc_check(VecAssemblyBegin(coords), "VecAssemblyBegin");
   petsc_check(VecAssemblyEnd(coords), "VecAssemblyEnd");
@@ -127,6 +123,19 @@ void set_rigid_body_modes(Mat A, const MultipatchSpace<D>& space, const DofLayou
   petsc_check(MatSetNearNullSpace(A, modes), "MatSetNearNullSpace");
   petsc_check(MatNullSpaceDestroy(&modes), "MatNullSpaceDestroy");
   petsc_check(VecDestroy(&coords), "VecDestroy");
+}
+
+// The control points of a multipatch space's global functions (D per function).
+template <int D>
+std::vector<double> global_control_points(const MultipatchSpace<D>& space) {
+  std::vector<double> control(static_cast<std::size_t>(space.num_basis) * D);
+  for (int p = 0; p < space.num_patches(); ++p) {
+    const std::vector<int>& g = space.global[static_cast<std::size_t>(p)];
+    for (std::size_t i = 0; i < g.size(); ++i)
+      space.patches[static_cast<std::size_t>(p)].geometry.control_point(static_cast<int>(i),
+                                                                          &control[static_cast<std::size_t>(D * g[i])]);
+  }
+  return control;
 }
 
 // The static problems' common end (solve_constrained in poisson.cpp, distributed): this rank's rows `local` of
@@ -189,7 +198,8 @@ SolveResult solve_distributed(const MultipatchSpace<D>& space, SparseMatrix& loc
   });
   const FixedDofs fixed = on_every_rank([&] { return project_dirichlet(space, m, conditions); });
   std::function<void(Mat, const DofLayout&)> near_null;
-  if (m == D && m > 1) near_null = [&](Mat A, const DofLayout& L) { set_rigid_body_modes<D>(A, space, L); };
+  if (m == D && m > 1)
+    near_null = [&](Mat A, const DofLayout& L) { set_rigid_body_modes<D>(A, L, global_control_points(space)); };
   return solve_assembled(local, b_local, fixed, space.num_basis, m, space.num_patches() == 1, near_null, o, t0);
 }
 
@@ -396,8 +406,27 @@ SolveResult petsc_solve_elasticity(const RefinedSpace<D>& space, const Elasticit
   check_preconditioner(o);
   const auto t0 = Clock::now();
   auto [A, b] = on_every_rank([&] { return elasticity_system(space, problem, o.threads, rank_partition()); });
-  return solve_assembled(A, b, on_every_rank([&] { return refined_fixed_dofs(space, D, problem.displacement); }), space.num_basis, D, false, nullptr,
-                         o, t0);
+  const FixedDofs fixed = on_every_rank([&] { return refined_fixed_dofs(space, D, problem.displacement); });
+  return solve_assembled(A, b, fixed, space.num_basis, D, false,
+                         [&](Mat M, const DofLayout& L) { set_rigid_body_modes<D>(M, L, space.control); }, o, t0);
+}
+
+template <int D>
+ModesResult petsc_laplace_modes(const RefinedSpace<D>& space, const std::vector<Face>& dirichlet, int count,
+                                const PetscSolverOptions& o) {
+  check_preconditioner(o);
+  const auto t0 = Clock::now();
+  ModesPencil p = on_every_rank([&] { return laplace_pencil(space, dirichlet, o.threads, rank_partition()); });
+  return modes_distributed(p.K, p.M, space.num_basis, false, 1, p.fixed, count, false, o, t0);
+}
+
+template <int D>
+ModesResult petsc_elastic_modes(const RefinedSpace<D>& space, const ElasticityProblem<D>& problem, int count,
+                                const PetscSolverOptions& o) {
+  check_preconditioner(o);
+  const auto t0 = Clock::now();
+  ModesPencil p = on_every_rank([&] { return elastic_pencil(space, problem, o.threads, rank_partition()); });
+  return modes_distributed(p.K, p.M, space.num_basis, false, D, p.fixed, count, true, o, t0);
 }
 
 template <int D>
@@ -414,6 +443,10 @@ ErrorNorms petsc_error_norms(const RefinedSpace<D>& space, const Eigen::VectorXd
                                               const PetscSolverOptions&);                                        \
   template ErrorNorms petsc_error_norms(const RefinedSpace<D>&, const Eigen::VectorXd&, int,                     \
                                         const ExactSolution<D>&, int);                                           \
+  template ModesResult petsc_laplace_modes(const RefinedSpace<D>&, const std::vector<Face>&, int,                 \
+                                           const PetscSolverOptions&);                                           \
+  template ModesResult petsc_elastic_modes(const RefinedSpace<D>&, const ElasticityProblem<D>&, int,              \
+                                           const PetscSolverOptions&);                                           \
   template SolveResult petsc_solve_poisson(const MultipatchSpace<D>&, const PoissonProblem<D>&,                   \
                                            const PetscSolverOptions&);                                           \
   template SolveResult petsc_solve_elasticity(const MultipatchSpace<D>&, const ElasticityProblem<D>&,             \

@@ -15,6 +15,7 @@
 #include "trivar/iga/element_partition.hpp"
 #include "trivar/iga/error_norms.hpp"
 #include "trivar/iga/poisson.hpp"
+#include "trivar/iga/refined_modes.hpp"
 #include "trivar/iga/refined_space.hpp"
 
 namespace trivar {
@@ -48,8 +49,8 @@ SolveResult petsc_solve_elasticity(const MultipatchSpace<D>& space, const Elasti
                                    const PetscSolverOptions& options);
 
 // On a locally refined space (LR, HB, THB; refined_space.hpp): each rank assembles a contiguous run of the
-// space's elements, and the matrix is preallocated from all ranks' patterns (MATPREALLOCATOR). No rigid-body
-// near null space is given to GAMG there.
+// space's elements, and the matrix is preallocated from all ranks' patterns (MATPREALLOCATOR). GAMG gets the
+// rigid-body modes of elasticity from the control points, as on tensor spaces.
 template <int D>
 SolveResult petsc_solve_poisson(const RefinedSpace<D>& space, const PoissonProblem<D>& problem,
                                 const PetscSolverOptions& options);
@@ -65,6 +66,14 @@ ModesResult petsc_laplace_modes(const MultipatchSpace<D>& space, const std::vect
                                 const PetscSolverOptions& options);
 template <int D>
 ModesResult petsc_elastic_modes(const MultipatchSpace<D>& space, const ElasticityProblem<D>& problem, int count,
+                                const PetscSolverOptions& options);
+
+// On a locally refined space (refined_modes.hpp): each rank assembles a contiguous run of the elements.
+template <int D>
+ModesResult petsc_laplace_modes(const RefinedSpace<D>& space, const std::vector<Face>& dirichlet, int count,
+                                const PetscSolverOptions& options);
+template <int D>
+ModesResult petsc_elastic_modes(const RefinedSpace<D>& space, const ElasticityProblem<D>& problem, int count,
                                 const PetscSolverOptions& options);
 
 // error_norms (error_norms.hpp) with each rank integrating its own elements, the squares summed over ranks.

@@ -3,6 +3,7 @@
 #include <sys/resource.h>
 
 #include <climits>
+#include <cstdio>
 #include <new>
 
 #include <slepcsys.h>
@@ -14,6 +15,16 @@ namespace trivar {
 namespace {
 
 bool active = false, started_once = false;
+
+// The message of the PETSc error being raised: PETSc calls the handler where the error starts (INITIAL) and again
+// in every PETSc caller it returns through (REPEAT); the first call says what went wrong.
+std::string petsc_message;
+
+PetscErrorCode record_error(MPI_Comm, int, const char* function, const char*, PetscErrorCode code, PetscErrorType type,
+                            const char* message, void*) {
+  if (type == PETSC_ERROR_INITIAL) petsc_message = std::string(function) + ": " + (message ? message : "");
+  return code;
+}
 
 }  // namespace
 
@@ -28,9 +39,12 @@ PetscSession::PetscSession() {
   started_once = active = true;
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank_);
   MPI_Comm_size(PETSC_COMM_WORLD, &ranks_);
+  // Instead of PETSc's traceback (many lines per rank): the message, kept for petsc_failure.
+  PetscPushErrorHandler(record_error, nullptr);
 }
 
 PetscSession::~PetscSession() {
+  PetscPopErrorHandler();
   SlepcFinalize();
   active = false;
 }
@@ -84,6 +98,23 @@ void agree_on_failure(const std::exception_ptr& failure) {
   message = broadcast_text(message, first);
   if (rank == first) std::rethrow_exception(failure);
   throw Error(message);
+}
+
+void petsc_failure(int code, const char* call) {
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  MPI_Comm_size(PETSC_COMM_WORLD, &ranks);
+  std::string message = std::string("petsc: ") + call + " failed";
+  if (ranks > 1) message += " on rank " + std::to_string(rank);
+  message += " (PETSc error " + std::to_string(code) + (petsc_message.empty() ? "" : ": " + petsc_message) + ")";
+  petsc_message.clear();
+  for (char& c : message)
+    if (c == '\n' || c == '\r') c = ' ';
+  if (ranks == 1) throw Error(message);
+  std::fprintf(stderr, "trivar: error: %s\n", message.c_str());
+  std::fflush(stderr);
+  MPI_Abort(PETSC_COMM_WORLD, 1);
+  throw Error(message);  // not reached: MPI_Abort ends every rank
 }
 
 double max_over_ranks(double x) {

@@ -64,6 +64,13 @@ std::invoke_result_t<Phase> on_every_rank(Phase&& phase) {
   }
 }
 
+// A PETSc or SLEPc call `call` returned the error `code` on this rank. PETSc raises many errors on one rank only,
+// while the others wait inside the same collective call, from which no message can free them: with several
+// ranks this rank writes the one line "trivar: error: petsc: <call> failed on rank R (PETSc error N: <PETSc's
+// message>)" to stderr and ends the job (MPI_Abort, exit status 1; mpiexec stops the other ranks, whose
+// interrupt handlers remove their temporary files). On one rank it throws trivar::Error with that message.
+[[noreturn]] void petsc_failure(int code, const char* call);
+
 // The largest of every rank's x, on every rank; collective. Wall times of a distributed step are the slowest
 // rank's.
 double max_over_ranks(double x);

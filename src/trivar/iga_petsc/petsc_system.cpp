@@ -4,11 +4,12 @@
 #include <string>
 
 #include "trivar/core/error.hpp"
+#include "trivar/iga_petsc/petsc_session.hpp"
 
 namespace trivar {
 
 void petsc_check(PetscErrorCode code, const char* what) {
-  require(code == 0, std::string("petsc: ") + what + " failed (PETSc error " + std::to_string(code) + ")");
+  if (code != 0) petsc_failure(code, what);
 }
 
 DofLayout dof_layout(const SparseMatrix& local, int num_basis, int components) {

@@ -23,7 +23,8 @@
 
 namespace trivar {
 
-// Throws trivar::Error naming `what` for a non-zero PETSc error code.
+// petsc_failure (petsc_session.hpp) for a non-zero PETSc error code: on several ranks the job ends with one error
+// line, on one rank trivar::Error naming `what` is thrown.
 void petsc_check(PetscErrorCode code, const char* what);
 
 struct DofLayout {

@@ -8,9 +8,24 @@
 
 namespace trivar {
 
-std::vector<TJunctionExtension> t_junction_extensions(const TSpline& ts) {
+std::vector<TJunctionExtension> t_junction_extensions(const TSpline& ts, int* gap_junctions) {
   const KnotRays rays(ts.image);
   std::vector<TJunctionExtension> out;
+  // The anchors' extents per axis: a ray along one axis starts at an anchor's coordinate on the other.
+  std::array<std::vector<std::array<double, 2>>, 2> anchors;
+  for (const TNode& n : ts.connect.nodes) {
+    Box<2> b;
+    if (n.kind == TAnchorKind::vertex) {
+      const TVertex& x = ts.image.vertices[static_cast<std::size_t>(n.anchor)];
+      b = {{x.s, x.t}, {x.s, x.t}};
+    } else if (n.kind == TAnchorKind::link) {
+      b = ts.image.edge_box(ts.image.links[static_cast<std::size_t>(n.anchor)].edge);
+    } else {
+      b = ts.image.face_box(n.anchor);
+    }
+    for (std::size_t k = 0; k < 2; ++k) anchors[k].push_back({b.lo[k], b.hi[k]});
+  }
+  if (gap_junctions) *gap_junctions = 0;
   for (int v = 0; v < static_cast<int>(ts.image.vertices.size()); ++v) {
     const TVertex& x = ts.image.vertices[static_cast<std::size_t>(v)];
     int present = 0;
@@ -26,6 +41,20 @@ std::vector<TJunctionExtension> t_junction_extensions(const TSpline& ts) {
       mid[k] = 0.5 * (at + next);
       mid[1 - k] = line;
       if (next == at || !rays.inside(mid[0], mid[1])) continue;  // a boundary vertex, not a T-junction
+      // A gap: the missing edge ends at a vertex that misses the edge back, and no anchor lies strictly between
+      // (so no ray crosses the gap: every ray near it meets the two vertices). The blending functions are
+      // those of the T-mesh with the edge, which has neither T-junction; their extensions are left out.
+      const bool gap = std::any_of(ts.image.vertices.begin(), ts.image.vertices.end(), [&](const TVertex& w) {
+        const double wc[2] = {w.s, w.t};
+        return wc[k] == next && wc[1 - k] == line && w.links[static_cast<std::size_t>((d + 2) % 4)] < 0;
+      }) && std::none_of(anchors[static_cast<std::size_t>(k)].begin(), anchors[static_cast<std::size_t>(k)].end(),
+                         [&](const std::array<double, 2>& r) {
+                           return r[0] < std::max(at, next) && r[1] > std::min(at, next);
+                         });
+      if (gap) {
+        if (gap_junctions) ++*gap_junctions;
+        continue;
+      }
       const int p = ts.degrees[static_cast<std::size_t>(k)];
       const auto walk = [&](int dir_sign, int steps) {
         double y = at;
@@ -98,8 +127,8 @@ std::string TSplineClass::part42_type() const {
 
 TSplineClass classify(const TSpline& ts, const TSplineSurface& surface, bool exact) {
   TSplineClass c;
-  const auto ext = t_junction_extensions(ts);
-  c.t_junctions = static_cast<int>(ext.size());
+  const auto ext = t_junction_extensions(ts, &c.gap_junctions);
+  c.t_junctions = static_cast<int>(ext.size()) + c.gap_junctions;
   double area = 0;
   for (int f = 0; f < static_cast<int>(ts.image.faces.size()); ++f) {
     const Box<2> b = ts.image.face_box(f);

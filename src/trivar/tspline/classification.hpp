@@ -36,8 +36,14 @@ struct TJunctionExtension {
   double lo = 0, hi = 0;
 };
 
-// Every T-junction (a vertex with a missing edge whose continuation lies inside a face) and its extension.
-std::vector<TJunctionExtension> t_junction_extensions(const TSpline& ts);
+// Every T-junction (a vertex with a missing edge whose continuation lies inside a face) and its extension,
+// except the pairs of T-junctions facing each other across a gap that no ray crosses (the missing edge ends at a
+// vertex missing the edge back, and no T-node's anchor lies strictly between the two): the blending functions
+// are then those of the T-mesh with the edge, which has neither T-junction, so the extensions of the pair say
+// nothing about them (the Rhino fan model: four such gaps on two crossing lines, whose closed extensions all
+// meet at one vertex, over blending functions that are the tensor-product B-splines). `gap_junctions` counts
+// the T-junctions left out.
+std::vector<TJunctionExtension> t_junction_extensions(const TSpline& ts, int* gap_junctions = nullptr);
 
 struct DualCompatibility {
   bool compatible = true;
@@ -48,6 +54,7 @@ DualCompatibility dual_compatibility(const TSplineSurface& surface);
 
 struct TSplineClass {
   int t_junctions = 0;
+  int gap_junctions = 0;                  // of those, facing each other across gaps no ray crosses (no extension)
   bool analysis_suitable = false;
   int crossing_extensions = 0;            // pairs of an s- and a t-extension that meet
   bool rectangular_domain = true;         // the faces fill their bounding box

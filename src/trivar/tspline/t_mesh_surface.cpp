@@ -21,6 +21,14 @@ const char* face_method_name(FaceMethod m) {
   return "?";
 }
 
+CornerFrame corner_frame(int corner) {
+  static constexpr std::array<CornerFrame, 4> frames{{{{0, 0}, {1, 0}, {0, 1}},
+                                                      {{1, 0}, {0, 1}, {-1, 0}},
+                                                      {{1, 1}, {-1, 0}, {0, -1}},
+                                                      {{0, 1}, {0, -1}, {1, 0}}}};
+  return frames[static_cast<std::size_t>(corner)];
+}
+
 namespace {
 
 struct Gather {
@@ -122,6 +130,9 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(mesh), stars_
     return all;
   };
   const int depth = m.degree + 1;
+  // The face rings the supports of the blending functions on a face span on a uniform quad mesh: their anchors
+  // lie (p - 1) / 2 rings out and their supports (p + 1) / 2 further.
+  const int reach = m.degree;
   std::vector<int> star_dist(static_cast<std::size_t>(nf), INT_MAX);
   {
     std::vector<int> front;
@@ -134,6 +145,11 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(mesh), stars_
     rings(front, depth + 5, star_dist);  // far enough to size the clusters below
   }
   std::vector<int> exact;
+  struct NearExact {
+    int face;
+    std::string why;  // why it is not a Catmull-Clark face
+  };
+  std::vector<NearExact> near_exact;
   std::vector<char> is_star(static_cast<std::size_t>(nv), 0);
   for (int s : stars_) is_star[static_cast<std::size_t>(s)] = 1;
   for (int f = 0; f < nf; ++f) {
@@ -148,26 +164,41 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(mesh), stars_
     // patch is the T-spline there when the (p + 1) / 2 rings around it are uniform quadrilaterals inside the
     // mesh: its 16 nodes are the corners of the first ring and their rays cross (p + 1) / 2 lines.
     const int cc_depth = (m.degree + 1) / 2;
-    std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX);
-    dist[static_cast<std::size_t>(f)] = 0;
-    const std::vector<int> hood = rings({f}, cc_depth, dist);
+    const std::string why = [&]() -> std::string {
+      if (m.degree != 3) return "star points are evaluated for degree 3, not " + std::to_string(m.degree);
+      std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX);
+      dist[static_cast<std::size_t>(f)] = 0;
+      const std::vector<int> hood = rings({f}, cc_depth, dist);
+      const double d0 = m.intervals[static_cast<std::size_t>(L(m.faces[static_cast<std::size_t>(f)].front()).edge)];
+      for (int g : hood)
+        for (int l : m.faces[static_cast<std::size_t>(g)]) {
+          if (m.faces[static_cast<std::size_t>(g)].size() != 4)
+            return "face " + std::to_string(g) + " nearby has a T-junction; the Catmull-Clark evaluation around star points needs none within " + std::to_string(cc_depth) + " rings";
+          if (boundary[static_cast<std::size_t>(L(l).vertex)])
+            return "boundary vertex " + std::to_string(L(l).vertex) + " is within " + std::to_string(cc_depth) + " rings; the Catmull-Clark evaluation around star points needs none";
+          const double d = m.intervals[static_cast<std::size_t>(L(l).edge)];
+          if (std::abs(d - d0) > 1e-12 * d0)
+            return "edge " + std::to_string(L(l).edge) + " nearby has knot interval " + std::to_string(d) + ", not " + std::to_string(d0) + "; the Catmull-Clark evaluation around star points needs equal intervals";
+        }
+      return {};
+    }();
     const auto where = [&] { return "T-mesh: face " + std::to_string(f) + " (within " + std::to_string(depth + 1) + " face rings of a star point): "; };
-    require(m.degree == 3, [&] { return where() + "star points are evaluated for degree 3, not " + std::to_string(m.degree); });
-    const double d0 = m.intervals[static_cast<std::size_t>(L(m.faces[static_cast<std::size_t>(f)].front()).edge)];
-    for (int g : hood)
-      for (int l : m.faces[static_cast<std::size_t>(g)]) {
-        require(m.faces[static_cast<std::size_t>(g)].size() == 4, [&] { return where() + "face " + std::to_string(g) + " nearby has a T-junction; the Catmull-Clark evaluation around star points needs none within " + std::to_string(cc_depth) + " rings"; });
-        require(!boundary[static_cast<std::size_t>(L(l).vertex)], [&] { return where() + "boundary vertex " + std::to_string(L(l).vertex) + " is within " + std::to_string(cc_depth) + " rings; the Catmull-Clark evaluation around star points needs none"; });
-        const double d = m.intervals[static_cast<std::size_t>(L(l).edge)];
-        require(std::abs(d - d0) <= 1e-12 * d0, [&] { return where() + "edge " + std::to_string(L(l).edge) + " nearby has knot interval " + std::to_string(d) + ", not " + std::to_string(d0) + "; the Catmull-Clark evaluation around star points needs equal intervals"; });
-      }
     const auto& loop = m.faces[static_cast<std::size_t>(f)];
     int corner = 0, star_corners = 0;
-    for (int c = 0; c < 4; ++c)
+    for (int c = 0; c < static_cast<int>(loop.size()) && c < 4; ++c)
       if (is_star[static_cast<std::size_t>(L(loop[static_cast<std::size_t>(c)]).vertex)]) {
         corner = c;
         ++star_corners;
       }
+    if (!why.empty()) {
+      // A face beyond the reach of its blending functions' supports from the star points' faces may still be
+      // the T-spline of a chart that holds no star point (a boundary, a T-junction or unequal intervals nearby):
+      // tried below, else this reason.
+      require(star_dist[static_cast<std::size_t>(f)] > reach, [&] { return where() + why; });
+      face.method = FaceMethod::exact;
+      near_exact.push_back({f, where() + why});
+      continue;
+    }
     require(star_corners <= 1, [&] { return where() + "it has " + std::to_string(star_corners) + " star corners; subdivide the control mesh once so that every face has at most one"; });
     Gather gth = gather(m, loop[static_cast<std::size_t>(corner)]);
     require(gth.error.empty(), [&] { return where() + gth.error; });
@@ -188,8 +219,11 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(mesh), stars_
   struct Cluster {
     int centre, rings;
     std::vector<int> members;
+    std::string why;  // a face near a star point: why it is not a Catmull-Clark face
   };
   std::vector<Cluster> clusters;
+  // Faces near star points alone, from `reach` rings up to the ring before the star points' faces.
+  for (NearExact& n : near_exact) clusters.push_back({n.face, reach, {n.face}, std::move(n.why)});
   {
     std::vector<char> served(static_cast<std::size_t>(nf), 0);
     for (int f : exact) {
@@ -197,7 +231,7 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(mesh), stars_
       const int k = std::min(4, star_dist[static_cast<std::size_t>(f)] == INT_MAX ? 4 : star_dist[static_cast<std::size_t>(f)] - depth - 1);
       std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX);
       dist[static_cast<std::size_t>(f)] = 0;
-      Cluster c{f, depth + k, {}};
+      Cluster c{f, depth + k, {}, {}};
       for (int g : rings({f}, k, dist))
         if (faces_[static_cast<std::size_t>(g)].method == FaceMethod::exact && !served[static_cast<std::size_t>(g)]) {
           served[static_cast<std::size_t>(g)] = 1;
@@ -262,8 +296,10 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(mesh), stars_
             return sb.lo[0] < b.hi[0] && b.lo[0] < sb.hi[0] && sb.lo[1] < b.hi[1] && b.lo[1] < sb.hi[1];
           });
           if (!on_member) continue;
+          // A border edge through the support's interior cuts it; one along its side does not (the rays that
+          // end there meet that edge in the chart as in the mesh).
           cut = std::any_of(border.begin(), border.end(), [&](const Box<2>& e) {
-            return e.lo[0] <= sb.hi[0] && sb.lo[0] <= e.hi[0] && e.lo[1] <= sb.hi[1] && sb.lo[1] <= e.hi[1];
+            return e.lo[0] < sb.hi[0] && sb.lo[0] < e.hi[0] && e.lo[1] < sb.hi[1] && sb.lo[1] < e.hi[1];
           });
           if (cut) break;
         }
@@ -277,7 +313,9 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(mesh), stars_
         break;
       }
     } catch (const Error& e) {
-      errors[static_cast<std::size_t>(i)] = "T-mesh: face " + std::to_string(cl.centre) + ": its chart: " + e.what();
+      errors[static_cast<std::size_t>(i)] =
+          cl.why.empty() ? "T-mesh: face " + std::to_string(cl.centre) + ": its chart: " + e.what()
+                         : cl.why + " (nor is it the T-spline of a chart without star points: " + e.what() + ")";
     }
   });
   for (const std::string& e : errors) require(e.empty(), e);
@@ -325,18 +363,12 @@ void TMeshSurface::eval(int face, double u, double v, double* out) const {
     }
     return;
   }
-  std::vector<std::array<double, 3>> p(f.points.size());
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const RationalPoint& q = mesh_.points[static_cast<std::size_t>(mesh_.vertices[static_cast<std::size_t>(f.points[i])].primary)];
-    p[i] = q.xyz;
-  }
+  const std::vector<std::array<double, 3>> p = patch_points(face);
   // The patch's frame: (u', v') from the corner along the next and the previous corner.
-  static constexpr std::array<std::array<double, 2>, 4> origin{{{0, 0}, {1, 0}, {1, 1}, {0, 1}}};
-  static constexpr std::array<std::array<double, 2>, 4> axis_a{{{1, 0}, {0, 1}, {-1, 0}, {0, -1}}};
-  static constexpr std::array<std::array<double, 2>, 4> axis_b{{{0, 1}, {-1, 0}, {0, -1}, {1, 0}}};
-  const auto& o = origin[static_cast<std::size_t>(f.corner)];
-  const auto& a = axis_a[static_cast<std::size_t>(f.corner)];
-  const auto& b = axis_b[static_cast<std::size_t>(f.corner)];
+  const CornerFrame fr = corner_frame(f.corner);
+  const auto& o = fr.origin;
+  const auto& a = fr.a;
+  const auto& b = fr.b;
   const double up = a[0] * (u - o[0]) + a[1] * (v - o[1]), vp = b[0] * (u - o[0]) + b[1] * (v - o[1]);
   double q[9];
   if (f.method == FaceMethod::bicubic) {
@@ -350,6 +382,22 @@ void TMeshSurface::eval(int face, double u, double v, double* out) const {
     out[3 + c] = a[0] * q[3 + c] + b[0] * q[6 + c];
     out[6 + c] = a[1] * q[3 + c] + b[1] * q[6 + c];
   }
+}
+
+TMeshSurface::ChartFrame TMeshSurface::chart_frame(int face) const {
+  const Face& f = faces_[static_cast<std::size_t>(face)];
+  require(f.method == FaceMethod::exact, [&] { return "T-mesh: face " + std::to_string(face) + " is not an exact face"; });
+  return {charts_[static_cast<std::size_t>(f.chart)].get(), f.origin, f.axis_u, f.axis_v};
+}
+
+std::vector<std::array<double, 3>> TMeshSurface::patch_points(int face) const {
+  const Face& f = faces_[static_cast<std::size_t>(face)];
+  require(f.method == FaceMethod::bicubic || f.method == FaceMethod::star,
+          [&] { return "T-mesh: face " + std::to_string(face) + " is not a Catmull-Clark face"; });
+  std::vector<std::array<double, 3>> p(f.points.size());
+  for (std::size_t i = 0; i < p.size(); ++i)
+    p[i] = mesh_.points[static_cast<std::size_t>(mesh_.vertices[static_cast<std::size_t>(f.points[i])].primary)].xyz;
+  return p;
 }
 
 }  // namespace trivar

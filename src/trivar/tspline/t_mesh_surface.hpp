@@ -13,7 +13,10 @@
 //                  evaluated exactly (catmull_clark_patch, Stam 1998).
 // The faces within p + 2 rings of a star point (bicubic and star) need, and are checked to have, degree 3,
 // equal knot intervals, no T-junction and no boundary within (p + 1) / 2 rings of them, control points of
-// weight 1 without repeated-knot nodes, and at most one star corner per face; the
+// weight 1 without repeated-knot nodes, and at most one star corner per face. A face more than p rings from
+// the star points' faces that fails these (a boundary, a T-junction or unequal intervals nearby) is exact
+// instead when a chart of p up to (its distance - 1) rings around it holds its knot vectors (so a star point
+// needs 7 faces to the boundary, not 8); otherwise the face's reason is the error. The
 // surface there is then the Catmull-Clark limit surface of the control mesh, which on faces without a star
 // corner is the uniform bicubic B-spline = the T-spline. Continuity: C2 across every edge away from star points
 // (T-spline and uniform B-spline pieces meet as one spline); C1 across the edges at a star point except at the
@@ -32,6 +35,13 @@ namespace trivar {
 enum class FaceMethod { none, exact, bicubic, star };
 const char* face_method_name(FaceMethod m);
 
+// The frame of a Catmull-Clark patch starting at corner c (0..3, counter-clockwise from the face's first corner)
+// in the face's (u, v): (u, v) = origin + u' a + v' b with a, b orthonormal (so u' = a . ((u, v) - origin)).
+struct CornerFrame {
+  std::array<double, 2> origin, a, b;
+};
+CornerFrame corner_frame(int corner);
+
 class TMeshSurface {
 public:
   // threads for the charts' builds (parallel_for; <= 0: all).
@@ -49,6 +59,18 @@ public:
   std::array<int, 4> corners(int face) const;
   // Value, d/du, d/dv (9 values) at (u, v) in [0, 1]^2 of the face.
   void eval(int face, double u, double v, double* out) const;
+
+  // An exact face: the chart's T-spline and the face in it, (u, v) -> origin + u axis_u + v axis_v.
+  struct ChartFrame {
+    const TSplineSurface* chart = nullptr;
+    std::array<double, 2> origin{}, axis_u{}, axis_v{};
+  };
+  ChartFrame chart_frame(int face) const;
+  // A bicubic or star face: its control points in the catmull_clark_patch layout (a bicubic face: 16, the
+  // regular case) and the corner of the face they start at; the patch's (u', v') maps to the face's (u, v) by
+  // corner_frame.
+  std::vector<std::array<double, 3>> patch_points(int face) const;
+  int patch_corner(int face) const { return faces_[static_cast<std::size_t>(face)].corner; }
 
 private:
   struct Face {

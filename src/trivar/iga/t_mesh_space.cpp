@@ -1,0 +1,132 @@
+#include "trivar/iga/t_mesh_space.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <string>
+
+#include "trivar/core/error.hpp"
+#include "trivar/tspline/t_mesh_patches.hpp"
+
+namespace trivar {
+
+MultipatchSpace<2> t_mesh_space(const TMeshSurface& surface, int subdivisions, TMeshSpaceReport* report) {
+  require(subdivisions >= 1, "T-mesh space: subdivisions must be at least 1, got " + std::to_string(subdivisions));
+  TMeshPatchOptions po;
+  po.levels = 0;
+  const TMeshPatches patches = t_mesh_patches(surface, po);
+  Box<3> box = Box<3>::empty();
+  for (const RationalPoint& p : surface.mesh().points) box.extend(p.xyz.data());
+  const double size = box.diagonal();
+  require(box.extent(2) <= 1e-12 * size, [&] {
+    return "T-mesh space: the control points span " + std::to_string(box.extent(2)) + " in z; analysis needs a planar mesh (z constant)";
+  });
+  MultipatchSpace<2> out;
+  std::vector<int> face_of;
+  for (const FacePatch& f : patches.patches) {
+    require(face_of.empty() || face_of.back() != f.face, [&] {
+      return "T-mesh space: face " + std::to_string(f.face) + " is several Bezier elements (T-junction extensions cross it); the multipatch space needs one per face";
+    });
+    face_of.push_back(f.face);
+    // The plane's (x, y): drop z, keep the weights.
+    const TensorSpline<2>& s = f.surface;
+    std::vector<double> c;
+    for (int i = 0; i < s.num_coefs(); ++i) {
+      const double* q = s.coef(i);
+      c.insert(c.end(), {q[0], q[1]});
+      if (s.is_rational()) c.push_back(q[3]);
+    }
+    out.patches.push_back(make_tensor_space(TensorSpline<2>(s.knot_vectors(), 2, s.is_rational(), std::move(c)), 3, subdivisions));
+  }
+  // Shared sides: sides whose control points coincide (within 1e-10 of the size) in the same or reversed order;
+  // their functions are identified in that order (corners through the chains of sides, so the N corners at a
+  // star point become one function). Matching whole sides, not single points, keeps apart the coincident
+  // control points of a degenerate side (a Bezier end condition whose nodes sit on the vertex).
+  struct Side {
+    int patch;
+    Face face;
+    std::vector<int> ids;
+    std::vector<std::array<double, 2>> x;
+    std::array<double, 2> mid{};
+    int partner = -1;
+  };
+  std::vector<Side> sides;
+  for (int p = 0; p < out.num_patches(); ++p) {
+    const TensorSpace<2>& space = out.patches[static_cast<std::size_t>(p)];
+    for (const Face& f : all_faces<2>()) {
+      Side sd{p, Face{f.dir, f.side, p}, face_basis(space, f), {}, {}, -1};
+      for (int i : sd.ids) {
+        std::array<double, 2> x{};
+        space.geometry.control_point(i, x.data());
+        sd.x.push_back(x);
+        sd.mid[0] += x[0] / static_cast<double>(sd.ids.size());
+        sd.mid[1] += x[1] / static_cast<double>(sd.ids.size());
+      }
+      sides.push_back(std::move(sd));
+    }
+  }
+  std::vector<std::size_t> order(sides.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return sides[a].mid[0] < sides[b].mid[0]; });
+  const double tol = 1e-10 * size;
+  const auto near = [&](const std::array<double, 2>& a, const std::array<double, 2>& b) {
+    return std::abs(a[0] - b[0]) <= tol && std::abs(a[1] - b[1]) <= tol;
+  };
+  std::vector<int> parent;
+  std::vector<int> base(static_cast<std::size_t>(out.num_patches()) + 1, 0);  // local function -> union-find slot
+  for (int p = 0; p < out.num_patches(); ++p)
+    base[static_cast<std::size_t>(p) + 1] = base[static_cast<std::size_t>(p)] + out.patches[static_cast<std::size_t>(p)].num_basis();
+  parent.resize(static_cast<std::size_t>(base.back()));
+  std::iota(parent.begin(), parent.end(), 0);
+  const auto find = [&](int i) {
+    while (parent[static_cast<std::size_t>(i)] != i) i = parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
+    return i;
+  };
+  for (std::size_t a = 0; a < order.size(); ++a)
+    for (std::size_t b = a + 1; b < order.size() && sides[order[b]].mid[0] - sides[order[a]].mid[0] <= tol; ++b) {
+      Side& s = sides[order[a]];
+      Side& t = sides[order[b]];
+      if (s.patch == t.patch || s.ids.size() != t.ids.size() || !near(s.mid, t.mid)) continue;
+      const std::size_t n = s.ids.size();
+      bool fwd = true, rev = true;
+      for (std::size_t k = 0; k < n; ++k) {
+        fwd = fwd && near(s.x[k], t.x[k]);
+        rev = rev && near(s.x[k], t.x[n - 1 - k]);
+      }
+      if (!fwd && !rev) continue;
+      require(s.partner < 0 && t.partner < 0, [&] {
+        return "T-mesh space: a side of face " + std::to_string(face_of[static_cast<std::size_t>(s.patch)]) + " is shared by more than two faces";
+      });
+      s.partner = t.patch;
+      t.partner = s.patch;
+      for (std::size_t k = 0; k < n; ++k) {
+        const int i = base[static_cast<std::size_t>(s.patch)] + s.ids[k];
+        const int j = base[static_cast<std::size_t>(t.patch)] + t.ids[fwd ? k : n - 1 - k];
+        parent[static_cast<std::size_t>(find(j))] = find(i);
+      }
+    }
+  // The unshared sides must be the mesh's boundary edges, one each: any other unshared side meets its
+  // neighbours only in part (a T-junction), which a conforming multipatch space cannot hold.
+  int boundary_edges = 0;
+  for (const TMeshLink& k : surface.mesh().links)
+    boundary_edges += k.vertex >= 0 && k.face < 0 && k.opp >= 0 && surface.mesh().links[static_cast<std::size_t>(k.opp)].face >= 0;
+  for (const Side& sd : sides)
+    if (sd.partner < 0) out.boundary.push_back(sd.face);
+  require(static_cast<int>(out.boundary.size()) == boundary_edges, [&] {
+    return "T-mesh space: " + std::to_string(out.boundary.size()) + " face sides have no neighbour but the mesh has " +
+           std::to_string(boundary_edges) + " boundary edges: faces do not conform (T-junctions)";
+  });
+  std::vector<int> number(parent.size(), -1);
+  for (int p = 0; p < out.num_patches(); ++p) {
+    std::vector<int>& g = out.global.emplace_back();
+    for (int i = 0; i < out.patches[static_cast<std::size_t>(p)].num_basis(); ++i) {
+      int& n = number[static_cast<std::size_t>(find(base[static_cast<std::size_t>(p)] + i))];
+      if (n < 0) n = out.num_basis++;
+      g.push_back(n);
+    }
+  }
+  if (report) *report = {out.num_patches(), patches.corner_patches, patches.deviation};
+  return out;
+}
+
+}  // namespace trivar

@@ -1,0 +1,276 @@
+#include "trivar/tspline/t_mesh_patches.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <string>
+
+#include "trivar/core/error.hpp"
+#include "trivar/tspline/catmull_clark_patch.hpp"
+
+namespace trivar {
+
+namespace t_mesh_patches_detail {
+
+using P3 = std::array<double, 3>;
+using Net = std::array<P3, 16>;  // bicubic Bezier net, index i + 4 j
+
+// The cubic Bezier coefficients of the cubic through f(0), f(1/3), f(2/3), f(1) (the inverse Bernstein
+// Vandermonde matrix; its first and last rows are exact, so shared end values stay bit-identical).
+std::array<P3, 4> interpolate(const std::array<P3, 4>& f) {
+  std::array<P3, 4> b{};
+  for (std::size_t c = 0; c < 3; ++c) {
+    b[0][c] = f[0][c];
+    b[1][c] = (-5 * f[0][c] + 18 * f[1][c] - 9 * f[2][c] + 2 * f[3][c]) / 6;
+    b[2][c] = (2 * f[0][c] - 9 * f[1][c] + 18 * f[2][c] - 5 * f[3][c]) / 6;
+    b[3][c] = f[3][c];
+  }
+  return b;
+}
+
+// A bicubic polynomial on [x0, x0 + w] x [y0, y0 + w] (value at (x, y) into out[0..2]) as its Bezier net.
+Net interpolate_patch(const std::function<void(double, double, double*)>& f, double x0, double y0, double w) {
+  Net vals{};
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) {
+      double o[9];
+      f(x0 + w * i / 3.0, y0 + w * j / 3.0, o);
+      vals[static_cast<std::size_t>(i + 4 * j)] = {o[0], o[1], o[2]};
+    }
+  Net rows{}, net{};
+  for (std::size_t j = 0; j < 4; ++j) {
+    const auto b = interpolate({vals[4 * j], vals[4 * j + 1], vals[4 * j + 2], vals[4 * j + 3]});
+    for (std::size_t i = 0; i < 4; ++i) rows[i + 4 * j] = b[i];
+  }
+  for (std::size_t i = 0; i < 4; ++i) {
+    const auto b = interpolate({rows[i], rows[i + 4], rows[i + 8], rows[i + 12]});
+    for (std::size_t j = 0; j < 4; ++j) net[i + 4 * j] = b[j];
+  }
+  return net;
+}
+
+P3 eval_net(const Net& n, double s, double t) {
+  const auto bern = [](double x) {
+    const double y = 1 - x;
+    return std::array<double, 4>{y * y * y, 3 * x * y * y, 3 * x * x * y, x * x * x};
+  };
+  const auto bs = bern(s), bt = bern(t);
+  P3 x{};
+  for (std::size_t j = 0; j < 4; ++j)
+    for (std::size_t i = 0; i < 4; ++i)
+      for (std::size_t c = 0; c < 3; ++c) x[c] += bs[i] * bt[j] * n[i + 4 * j][c];
+  return x;
+}
+
+// A Bezier net of degree p given over the source rectangle [lo, hi], stride values per point, as a patch of
+// the face, whose (u, v) = map(source point) for an axis-aligned similarity map: the piece is the image of the
+// rectangle, the net reindexed so that its first index runs with u.
+FacePatch to_face(int face, int p, const Box<2>& src, int stride, bool rational, const double* coefs,
+                  const std::function<std::array<double, 2>(double, double)>& map, bool exact) {
+  const int n = p + 1;
+  std::vector<std::array<double, 2>> q(static_cast<std::size_t>(n * n));
+  Box<2> piece = Box<2>::empty();
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const auto x = map(src.lo[0] + (src.hi[0] - src.lo[0]) * i / p, src.lo[1] + (src.hi[1] - src.lo[1]) * j / p);
+      q[static_cast<std::size_t>(i + n * j)] = x;
+      piece.extend(x.data());
+    }
+  const int out_stride = rational ? 4 : 3;
+  std::vector<double> out(static_cast<std::size_t>(n * n * out_stride));
+  for (int k = 0; k < n * n; ++k) {
+    const auto& x = q[static_cast<std::size_t>(k)];
+    const int i = static_cast<int>(std::lround(p * (x[0] - piece.lo[0]) / (piece.hi[0] - piece.lo[0])));
+    const int j = static_cast<int>(std::lround(p * (x[1] - piece.lo[1]) / (piece.hi[1] - piece.lo[1])));
+    const double* c = coefs + static_cast<std::ptrdiff_t>(k) * stride;
+    double* o = out.data() + static_cast<std::ptrdiff_t>(i + n * j) * out_stride;
+    if (rational)
+      std::copy(c, c + 4, o);
+    else
+      for (int d = 0; d < 3; ++d) o[d] = stride == 4 ? c[d] / c[3] : c[d];
+  }
+  std::array<KnotVector, 2> knots;
+  for (int k = 0; k < 2; ++k) {
+    std::vector<double> t(static_cast<std::size_t>(2 * n), piece.lo[k]);
+    std::fill(t.begin() + n, t.end(), piece.hi[k]);
+    knots[static_cast<std::size_t>(k)] = KnotVector(p, std::move(t));
+  }
+  return {face, piece, TensorSpline<2>(knots, 3, rational, std::move(out)), exact};
+}
+
+FacePatch net_to_face(int face, const Net& net, const Box<2>& src, const CornerFrame& fr, bool exact) {
+  const auto map = [&](double x, double y) {
+    return std::array<double, 2>{fr.origin[0] + x * fr.a[0] + y * fr.b[0], fr.origin[1] + x * fr.a[1] + y * fr.b[1]};
+  };
+  return to_face(face, 3, src, 3, false, net[0].data(), map, exact);
+}
+
+// The exact faces: the chart's Bezier elements inside the face.
+void exact_face(const TMeshSurface& s, int face, std::vector<FacePatch>& out) {
+  const TMeshSurface::ChartFrame f = s.chart_frame(face);
+  const TSplineSurface& chart = *f.chart;
+  const auto& o = f.origin;
+  const auto& au = f.axis_u;
+  const auto& av = f.axis_v;
+  const double lu = au[0] * au[0] + au[1] * au[1], lv = av[0] * av[0] + av[1] * av[1];
+  const auto map = [&](double x, double y) {
+    const double dx = x - o[0], dy = y - o[1];
+    return std::array<double, 2>{(dx * au[0] + dy * au[1]) / lu, (dx * av[0] + dy * av[1]) / lv};
+  };
+  double area = 0;
+  for (std::size_t e = 0; e < chart.elements().size(); ++e) {
+    const Box<2>& b = chart.elements()[e];
+    const auto c = map(0.5 * (b.lo[0] + b.hi[0]), 0.5 * (b.lo[1] + b.hi[1]));
+    if (c[0] <= 0 || c[0] >= 1 || c[1] <= 0 || c[1] >= 1) continue;
+    const BezierElement<2>& z = chart.bezier_elements()[e];
+    require(z.degrees[0] == z.degrees[1], [&] { return "T-mesh patches: face " + std::to_string(face) + ": unequal degrees"; });
+    const int st = z.stride();
+    bool unit = true;
+    for (std::size_t k = static_cast<std::size_t>(st - 1); k < z.coefs.size(); k += static_cast<std::size_t>(st))
+      unit = unit && std::abs(z.coefs[k] - 1) <= 1e-14;
+    out.push_back(to_face(face, z.degrees[0], b, st, !unit, z.coefs.data(), map, true));
+    area += out.back().piece.extent(0) * out.back().piece.extent(1);
+  }
+  require(std::abs(area - 1) <= 1e-9, [&] {
+    return "T-mesh patches: the Bezier elements of face " + std::to_string(face) + " cover " + std::to_string(area) +
+           " of it, not all";
+  });
+}
+
+// The corner patch [0, h]^2 (patch frame) of a star face; see the header.
+Net corner_patch(const CatmullClarkPatch& cc, const std::vector<P3>& pts, double h) {
+  const auto f = [&](double x, double y, double* o) { cc.eval(pts, x, y, o); };
+  double o[9];
+  f(0, 0, o);
+  const P3 b00{o[0], o[1], o[2]};
+  const auto unit = [](const double* d) {
+    const double l = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    return P3{d[0] / l, d[1] / l, d[2] / l};
+  };
+  const P3 tu = unit(o + 3), tv = unit(o + 6);
+  Net b{};
+  const auto at = [&](int i, int j) -> P3& { return b[static_cast<std::size_t>(i + 4 * j)]; };
+  // The sides away from the star point and their cross-derivatives, sampled at the thirds.
+  std::array<P3, 4> side_u{}, side_v{}, du{}, dv{};
+  for (int k = 0; k < 4; ++k) {
+    f(h, h * k / 3.0, o);
+    side_u[static_cast<std::size_t>(k)] = {o[0], o[1], o[2]};
+    du[static_cast<std::size_t>(k)] = {o[3], o[4], o[5]};
+    f(h * k / 3.0, h, o);
+    side_v[static_cast<std::size_t>(k)] = {o[0], o[1], o[2]};
+    dv[static_cast<std::size_t>(k)] = {o[6], o[7], o[8]};
+  }
+  const auto su = interpolate(side_u), sv = interpolate(side_v), cu = interpolate(du), cv = interpolate(dv);
+  for (int k = 0; k < 4; ++k) {
+    at(3, k) = su[static_cast<std::size_t>(k)];
+    at(k, 3) = sv[static_cast<std::size_t>(k)];
+  }
+  at(3, 3) = su[3];
+  // The edges out of the star point: from the limit point along the limit tangent to the exact end.
+  for (std::size_t c = 0; c < 3; ++c) at(0, 0)[c] = b00[c];
+  const auto edge = [&](const P3& end, const P3& t, const P3& d_end, P3& b1, P3& b2) {
+    const double chord = std::sqrt((end[0] - b00[0]) * (end[0] - b00[0]) + (end[1] - b00[1]) * (end[1] - b00[1]) +
+                                   (end[2] - b00[2]) * (end[2] - b00[2]));
+    for (std::size_t c = 0; c < 3; ++c) {
+      b1[c] = b00[c] + chord / 3 * t[c];
+      b2[c] = end[c] - h / 3 * d_end[c];
+    }
+  };
+  // d/du at (h, 0) is the first coefficient's value of the sampled cross-derivative (its end values are exact).
+  edge(at(3, 0), tu, du[0], at(1, 0), at(2, 0));
+  edge(at(0, 3), tv, dv[0], at(0, 1), at(0, 2));
+  for (std::size_t c = 0; c < 3; ++c) {
+    at(1, 1)[c] = at(1, 0)[c] + at(0, 1)[c] - b00[c];
+    at(2, 1)[c] = at(3, 1)[c] - h / 3 * cu[1][c];
+    at(1, 2)[c] = at(1, 3)[c] - h / 3 * cv[1][c];
+    at(2, 2)[c] = 0.5 * (at(3, 2)[c] - h / 3 * cu[2][c] + at(2, 3)[c] - h / 3 * cv[2][c]);
+  }
+  return b;
+}
+
+double corner_deviation(const CatmullClarkPatch& cc, const std::vector<P3>& pts, const Net& net, double h) {
+  double worst = 0;
+  for (int j = 0; j <= 8; ++j)
+    for (int i = 0; i <= 8; ++i) {
+      double o[9];
+      cc.eval(pts, h * i / 8.0, h * j / 8.0, o);
+      const P3 x = eval_net(net, i / 8.0, j / 8.0);
+      worst = std::max(worst, std::hypot(x[0] - o[0], x[1] - o[1], x[2] - o[2]));
+    }
+  return worst;
+}
+
+}  // namespace t_mesh_patches_detail
+
+TMeshPatches t_mesh_patches(const TMeshSurface& s, const TMeshPatchOptions& options) {
+  using namespace t_mesh_patches_detail;
+  require(options.max_levels >= 0 && options.max_levels <= 60 && options.levels <= 60,
+          "T-mesh patches: levels above 60 (2^-60 of a face) are refused");
+  TMeshPatches r;
+  r.tolerance = options.tolerance;
+  if (r.tolerance <= 0) {
+    Box<3> b = Box<3>::empty();
+    for (const RationalPoint& p : s.mesh().points) b.extend(p.xyz.data());
+    r.tolerance = 1e-6 * b.diagonal();
+  }
+  // Star faces: the corner patches for a growing number of levels until they meet the tolerance.
+  struct Star {
+    int face;
+    std::vector<P3> points;
+    const CatmullClarkPatch* cc;
+    Net corner;
+  };
+  std::vector<Star> stars;
+  for (int f = 0; f < s.num_faces(); ++f)
+    if (s.method(f) == FaceMethod::star) {
+      std::vector<P3> p = s.patch_points(f);
+      const int n = static_cast<int>((p.size() - 8) / 2);
+      stars.push_back({f, std::move(p), &catmull_clark_patch(n), {}});
+    }
+  for (int k = options.levels >= 0 ? options.levels : 0;; ++k) {
+    const double h = std::ldexp(1.0, -k);
+    double dev = 0;
+    for (Star& st : stars) {
+      st.corner = corner_patch(*st.cc, st.points, h);
+      dev = std::max(dev, corner_deviation(*st.cc, st.points, st.corner, h));
+    }
+    r.levels = k;
+    r.deviation = dev;
+    if (options.levels >= 0 || dev <= r.tolerance) break;
+    require(k < options.max_levels, [&] {
+      return "T-mesh patches: corner patches at star points deviate " + std::to_string(dev) + " from the limit surface after " +
+             std::to_string(k) + " levels, above the tolerance " + std::to_string(r.tolerance);
+    });
+  }
+  std::size_t next_star = 0;
+  for (int f = 0; f < s.num_faces(); ++f) {
+    switch (s.method(f)) {
+      case FaceMethod::none: break;
+      case FaceMethod::exact: exact_face(s, f, r.patches); break;
+      case FaceMethod::bicubic: {
+        const auto g = regular_grid(s.patch_points(f));
+        const Net net = interpolate_patch([&](double x, double y, double* o) { eval_uniform_bicubic(g, x, y, o); }, 0, 0, 1);
+        r.patches.push_back(net_to_face(f, net, {{0, 0}, {1, 1}}, corner_frame(s.patch_corner(f)), true));
+        break;
+      }
+      case FaceMethod::star: {
+        const Star& st = stars[next_star++];
+        const CornerFrame fr = corner_frame(s.patch_corner(f));
+        const auto ev = [&](double x, double y, double* o) { st.cc->eval(st.points, x, y, o); };
+        for (int j = 1; j <= r.levels; ++j) {
+          const double h = std::ldexp(1.0, -j);
+          for (const auto& lo : {std::array<double, 2>{h, 0}, std::array<double, 2>{h, h}, std::array<double, 2>{0, h}})
+            r.patches.push_back(net_to_face(f, interpolate_patch(ev, lo[0], lo[1], h),
+                                            {{lo[0], lo[1]}, {lo[0] + h, lo[1] + h}}, fr, true));
+        }
+        const double h = std::ldexp(1.0, -r.levels);
+        r.patches.push_back(net_to_face(f, st.corner, {{0, 0}, {h, h}}, fr, false));
+        break;
+      }
+    }
+  }
+  for (const FacePatch& p : r.patches) ++(p.exact ? r.exact_patches : r.corner_patches);
+  return r;
+}
+
+}  // namespace trivar
