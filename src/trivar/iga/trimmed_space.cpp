@@ -164,7 +164,14 @@ RefinedSpace<3> trimmed_space(const std::vector<TrimmedPart>& parts, const Box<3
       vol.clear();
       surf.clear();
     }
-    el.outside = !inside && vol.empty() && surf.empty();
+    // An element's empty rule means its whole box: a cut element without inside points (the boundary only grazes
+    // it, or a part's faces pass through where another part's volume was not found) is outside, with its few
+    // boundary points, rather than wholly inside.
+    el.outside = !inside && vol.empty();
+    if (el.outside) {
+      surf.clear();
+      holding.clear();
+    }
     for (const VolumePoint& v : vol) el.rule.push_back({v.x, v.weight});
     for (const SurfacePoint& sp : surf) el.trim_sides.push_back({sp.x, sp.normal, sp.weight});
     if (element_parts) (*element_parts)[static_cast<std::size_t>(e)] = std::move(holding);
