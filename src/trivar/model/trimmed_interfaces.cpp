@@ -90,7 +90,6 @@ TrimmedInterfaces trimmed_interfaces(const VModel& model) {
         r.non_conforming.push_back(self);
       } else {
         r.twin[static_cast<std::size_t>(c)][f] = other[f];
-        r.neighbours[static_cast<std::size_t>(c)].push_back(other[f].cell);
       }
     }
   }
@@ -105,6 +104,7 @@ TrimmedInterfaces trimmed_interfaces(const VModel& model) {
         o = {};
         continue;
       }
+      r.neighbours[static_cast<std::size_t>(c)].push_back(o.cell);
       if (c < o.cell) {
         r.surfaces.push_back({TrimmedFaceRef{c, static_cast<int>(f)}, o});
         ++r.shared;
