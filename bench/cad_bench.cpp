@@ -139,7 +139,7 @@ void BM_TrimmedSpace(benchmark::State& state) {
   state.counters["points_per_cut"] = cut ? static_cast<double>(points) / static_cast<double>(cut) : 0.0;
   state.SetItemsProcessed(state.iterations() * cut);
 }
-BENCHMARK(BM_TrimmedSpace)->Arg(8)->Arg(16)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_TrimmedSpace)->Arg(4)->Arg(8)->Arg(16)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

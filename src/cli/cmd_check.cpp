@@ -1,5 +1,6 @@
 // trivar check FILE: certified Jacobian validity of planar surfaces and volumes, and of the cells of a V-model,
 // with the validity of the trimming boundaries of trimmed cells.
+#include <algorithm>
 #include <cstdio>
 #include <string>
 #include <variant>
@@ -7,6 +8,8 @@
 #include "cli.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/model/trimmed_check.hpp"
+#include "trivar/model/trimmed_interfaces.hpp"
+#include "trivar/model/trimmed_tessellation.hpp"
 #include "trivar/spline/jacobian.hpp"
 
 namespace trivar::cli {
@@ -44,6 +47,22 @@ int check_trimmed(const TrimmedSolid& solid) {
   return t.valid ? kSuccess : kInvalid;
 }
 
+// The cells of a model of several trimmed cells against one another: every face two cells share is whole on both
+// sides (exactly two cells), and the model's boundary (the shared faces left out) is closed.
+int check_trimmed_interfaces(const VModel& m) {
+  const TrimmedInterfaces t = trimmed_interfaces(m);
+  const TriangleMesh b = trimmed_boundary_mesh(m).mesh;
+  const bool closed = is_watertight(b);
+  std::printf("trimming faces: %d shared by two cells, %d on the boundary, %zu non-conforming\n", t.shared, t.boundary,
+              t.non_conforming.size());
+  std::printf("model boundary mesh: %s, Euler characteristic %d\n", closed ? "watertight" : "not watertight",
+              euler_characteristic(b));
+  for (const TrimmedFaceRef& f : t.non_conforming)
+    std::printf("defect: face %d of cell %d is only partly shared with another cell\n", f.face, f.cell);
+  if (!closed) std::printf("defect: the model's boundary mesh is not closed\n");
+  return t.non_conforming.empty() && closed ? kSuccess : kInvalid;
+}
+
 int worse(int a, int b) { return (b == kInvalid || (b == kUndecided && a == kSuccess)) ? b : a; }
 
 }  // namespace
@@ -71,6 +90,8 @@ void add_check_command(CLI::App& app, Context& ctx) {
         worst = worse(worst, check(c.geometry(), a->opts));
         if (c.is_trimmed()) worst = worse(worst, check_trimmed(*c.trim()));
       }
+      if (m->num_cells() > 1 && std::all_of(m->cells().begin(), m->cells().end(), [](const VCell& c) { return c.is_trimmed(); }))
+        worst = worse(worst, check_trimmed_interfaces(*m));
       ctx.exit_code = worst;
       return;
     }

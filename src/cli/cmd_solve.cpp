@@ -32,7 +32,7 @@
 #include "trivar/iga/refined_elasticity.hpp"
 #include "trivar/iga/refined_modes.hpp"
 #include "trivar/iga/refined_space.hpp"
-#include "trivar/iga/trimmed_space.hpp"
+#include "trivar/iga/trimmed_model_space.hpp"
 #include "trivar/iga/lr_solution_field.hpp"
 #include "trivar/iga/poisson.hpp"
 #include "trivar/iga/solution_field.hpp"
@@ -650,31 +650,28 @@ bool has_trimmed_cells(const FileInput& in) {
   return false;
 }
 
-// A trimmed cell (one-cell model): the tensor space on the box around the solid with detrimmed quadrature
-// (iga/trimmed_space.hpp). The sides of the box that hold faces of the solid carry the strong conditions
-// (Poisson: u = 0 there; elasticity: --clamp names one of them); the trimming boundary is free (natural).
+// Trimmed cells (an imported part, a Boolean's result): one tensor space on the box around all cells with
+// detrimmed quadrature (iga/trimmed_model_space.hpp), continuous across the faces the cells share. The sides of
+// the box that hold faces of a cell carry the strong conditions (Poisson: u = 0 there; elasticity: --clamp
+// names one of them); the rest of the model's boundary is free (natural). Elasticity takes each cell's
+// material attributes.
 void run_trimmed(const SolveArgs& a, const VModel& m) {
-  require(m.num_cells() == 1, "solve: " + a.file + " has " + std::to_string(m.num_cells()) +
-                                  " cells; analysis on trimmed cells takes a model of one cell");
   require(a.kind != "modes", "solve: eigenmodes of trimmed cells are not supported (poisson and elasticity are)");
-  const VCell& cell = m.cell(0);
-  const TrimmedSolid& solid = *cell.trim();
-  const Box<3> box = analysis_box(solid);
-  const std::vector<Face> sides = box_sides_with_faces(solid, box);
   const auto t0 = std::chrono::steady_clock::now();
-  const RefinedSpace<3> space = trimmed_space(solid, box, a.degree, a.refine, a.threads);
+  const TrimmedModelSpace tm = trimmed_model_space(m, a.degree, a.refine, a.threads);
+  const RefinedSpace<3>& space = tm.space;
+  const std::vector<Face>& sides = tm.sides;
   const double build = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  int cut = 0, outside = 0;
-  for (const RefinedElement<3>& el : space.elements) {
-    cut += !el.rule.empty();
-    outside += el.outside;
-  }
-  std::printf("trimmed cell: %d elements (%d cut, %d outside), quadrature %s s\n", space.num_elements(), cut, outside,
-              secs(build).c_str());
+  if (m.num_cells() == 1)
+    std::printf("trimmed cell: %d elements (%d cut, %d outside), quadrature %s s\n", space.num_elements(), tm.cut,
+                tm.outside, secs(build).c_str());
+  else
+    std::printf("trimmed cells: %d, sharing %d faces; %d elements (%d cut, %d outside), quadrature %s s\n",
+                m.num_cells(), tm.interfaces.shared, space.num_elements(), tm.cut, tm.outside, secs(build).c_str());
   auto solver = make_solver(a.solver);
   SolveResult r;
   if (a.kind == "poisson") {
-    require(!sides.empty(), "solve: " + a.file + ": no face of the trimmed solid lies on a side of its bounding box, "
+    require(!sides.empty(), "solve: " + a.file + ": no face of the trimmed model lies on a side of its bounding box, "
                                 "so there is nowhere to hold u = 0");
     PoissonProblem<3> pb;
     pb.source = [](const double*) { return 1.0; };
@@ -684,11 +681,12 @@ void run_trimmed(const SolveArgs& a, const VModel& m) {
     require(a.clamp != "none", "solve: static elasticity needs supports (--clamp)");
     const Face clamp{a.clamp[0] - 'x', a.clamp[1] == '-' ? 0 : 1, 0};
     require(std::any_of(sides.begin(), sides.end(), [&](const Face& f) { return f.dir == clamp.dir && f.side == clamp.side; }),
-            "solve: --clamp " + a.clamp + ": no face of the trimmed solid lies in that side plane of its bounding box");
+            "solve: --clamp " + a.clamp + ": no face of the trimmed model lies in that side plane of its bounding box");
     ElasticityProblem<3> pb;
     pb.material = {a.youngs, a.poisson, a.density};
     require(pb.material.valid(), "solve: --youngs and --density must be positive, --poisson-ratio in (-1, 0.5)");
-    pb.material_at = cell_materials(m, pb.material);
+    const auto materials = cell_materials(m, pb.material);
+    pb.material_at = [&tm, materials](int, const double* x) { return materials(std::max(tm.cell_at(x), 0), x); };
     pb.displacement.push_back({{clamp}, {}, nullptr});
     pb.body_force = [](const double*, double* b) { b[0] = b[1] = 0, b[2] = -1; };
     r = solve_elasticity(space, pb, *solver, a.threads);
@@ -708,16 +706,17 @@ void run_trimmed(const SolveArgs& a, const VModel& m) {
                      secs(r.solve_seconds) + " s";
   if (r.stats.iterations > 0) line += " (" + std::to_string(r.stats.iterations) + " " + a.solver + " iterations)";
   std::printf("%s\n", line.c_str());
-  std::printf("volume %s (exact boundary %s), mean %s %s\n", fmt(volume).c_str(), fmt(solid.volume()).c_str(),
+  std::printf("volume %s (exact boundary %s), mean %s %s\n", fmt(volume).c_str(), fmt(m.volume()).c_str(),
               components == 1 ? "u" : "z-displacement", fmt(mean / volume).c_str());
   if (!a.out.empty()) {
     const auto out = prepare_out(a);
-    const TensorSpline<3> geometry = identity_geometry(box, a.degree, a.refine);
+    const TensorSpline<3> geometry = identity_geometry(tm.box, a.degree, a.refine);
     std::vector<io::VtkPointField> vtk{
         {components == 1 ? "u" : "displacement", components,
          [&](int, std::span<const double> u, std::span<double> v) { field(param_of<3>(u), v.data()); }},
         {"inside", 1, [&](int, std::span<const double> u, std::span<double> v) {
-           v[0] = solid.contains(param_of<3>(u)) ? 1.0 : 0.0;
+           const Param<3> x = param_of<3>(u);
+           v[0] = std::any_of(m.cells().begin(), m.cells().end(), [&](const VCell& c) { return c.trim()->contains(x); }) ? 1.0 : 0.0;
          }}};
     io::write_vtu(out->path("solution.vtu").string(), {AnySpline(geometry)}, {}, vtk);
     out->commit();

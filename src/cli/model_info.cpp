@@ -9,6 +9,7 @@
 #include "cli.hpp"
 #include "trivar/model/material_fractions.hpp"
 #include "trivar/model/model_boundary.hpp"
+#include "trivar/model/trimmed_interfaces.hpp"
 #include "trivar/model/trimmed_tessellation.hpp"
 #include "trivar/spline/jacobian.hpp"
 
@@ -59,6 +60,21 @@ nlohmann::json describe(const VModel& m) {
     j["attributes"][name] = e;
   }
   for (const NonConformingFace& f : t.non_conforming) j["non_conforming"].push_back(f.describe());
+  if (std::all_of(m.cells().begin(), m.cells().end(), [](const VCell& c) { return c.is_trimmed(); })) {
+    // The V-topology across the trimming faces: shared faces, boundary faces, neighbours, and the boundary mesh
+    // of the whole model (the shared faces left out).
+    const TrimmedInterfaces ti = trimmed_interfaces(m);
+    const ModelTessellation b = trimmed_boundary_mesh(m);
+    nlohmann::json nc = nlohmann::json::array();
+    for (const TrimmedFaceRef& f : ti.non_conforming) nc.push_back({{"cell", f.cell}, {"face", f.face}});
+    j["trimmed_topology"] = {{"shared_faces", ti.shared},
+                             {"boundary_faces", ti.boundary},
+                             {"non_conforming_faces", nc},
+                             {"neighbours", ti.neighbours},
+                             {"boundary_mesh", {{"triangles", b.mesh.triangles.size()},
+                                                {"watertight", is_watertight(b.mesh)},
+                                                {"euler_characteristic", euler_characteristic(b.mesh)}}}};
+  }
   for (int i = 0; i < m.num_cells(); ++i) {
     const TensorSpline<3>& g = m.cell(i).geometry();
     const JacobianReport<3> r = check_jacobian(g);
@@ -97,6 +113,15 @@ void print_model_info(const std::string& path, const VModel& m, bool json) {
   std::printf("  boundary: %s\n", d["boundary_closed"].get<bool>() ? "closed" : "open");
   std::printf("  non-conforming faces: %zu\n", d["non_conforming_faces"].get<std::size_t>());
   for (const auto& s : d.value("non_conforming", nlohmann::json::array())) std::printf("    %s\n", s.get<std::string>().c_str());
+  if (d.contains("trimmed_topology")) {
+    const nlohmann::json& t = d["trimmed_topology"];
+    const nlohmann::json& b = t["boundary_mesh"];
+    std::printf("  trimming faces: %d shared by two cells, %d on the boundary, %zu non-conforming; boundary mesh %zu "
+                "triangles, %s, Euler characteristic %d\n",
+                t["shared_faces"].get<int>(), t["boundary_faces"].get<int>(), t["non_conforming_faces"].size(),
+                b["triangles"].get<std::size_t>(), b["watertight"].get<bool>() ? "watertight" : "NOT watertight",
+                b["euler_characteristic"].get<int>());
+  }
   std::printf("  volume: %s\n", fmt(d["volume"].get<double>()).c_str());
   const Box<3> box = m.bounding_box();
   std::printf("  control bounding box: [%s, %s] x [%s, %s] x [%s, %s]\n", fmt(box.lo[0]).c_str(), fmt(box.hi[0]).c_str(),
@@ -110,6 +135,8 @@ void print_model_info(const std::string& path, const VModel& m, bool json) {
                 c["degrees"].dump().c_str(), c["counts"].dump().c_str(), c["rational"].get<bool>() ? "rational" : "polynomial",
                 c["jacobian"].get<std::string>().c_str(), fmt(c["min_det_j_lower_bound"].get<double>()).c_str());
     if (!c.contains("trim")) continue;
+    if (d.contains("trimmed_topology") && m.num_cells() > 1)
+      std::printf("    neighbours across shared faces: %s\n", d["trimmed_topology"]["neighbours"][static_cast<std::size_t>(i)].dump().c_str());
     const nlohmann::json& t = c["trim"];
     std::string kinds;
     for (const auto& [k, n] : t["faces_by_kind"].items()) kinds += (kinds.empty() ? "" : ", ") + std::to_string(n.get<int>()) + " " + k;

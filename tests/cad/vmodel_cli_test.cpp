@@ -189,6 +189,20 @@ TEST(BooleanCli, BallMinusCylinder) {
   const CliRun solve = run("solve poisson " + d + "cavity.json --refine 2", dir);
   ASSERT_EQ(solve.code, 0) << solve.err;
   EXPECT_NE(solve.out.find("trimmed cell"), std::string::npos) << solve.out;
+  // The cube with a corner ball removed, split through the notch at x = 1.5: two cells sharing the cut face,
+  // solved as one model (elasticity clamped on x = 0); info and check report the face they share.
+  ASSERT_EQ(run("make ball --radius 0.8 --center 2 2 2 -o " + d + "corner.json", dir).code, 0);
+  ASSERT_EQ(run("boolean " + d + "cube.json " + d + "corner.json --op difference -o " + d + "notched.json", dir).code, 0);
+  ASSERT_EQ(run("boolean " + d + "notched.json --split plane:1.5,1,1,1,0,0 -o " + d + "halves.json", dir).code, 0);
+  const CliRun two = run("solve elasticity " + d + "halves.json --refine 2 --clamp x-", dir);
+  ASSERT_EQ(two.code, 0) << two.err;
+  EXPECT_NE(two.out.find("trimmed cells: 2, sharing 1 faces"), std::string::npos) << two.out;
+  const CliRun hi = run("info " + d + "halves.json", dir);
+  EXPECT_NE(hi.out.find("trimming faces: 1 shared by two cells"), std::string::npos) << hi.out;
+  EXPECT_NE(hi.out.find("watertight, Euler characteristic 2"), std::string::npos) << hi.out;
+  const CliRun hc = run("check " + d + "halves.json", dir);
+  EXPECT_EQ(hc.code, 0) << hc.out;
+  EXPECT_NE(hc.out.find("0 non-conforming"), std::string::npos) << hc.out;
   // Split by a plane: the ball cut at z = 0.5, the cap above pi h^2 (3 - h) / 3 with h = 0.5.
   const CliRun split = run("boolean " + d + "ball.json --split plane:0,0,0.5,0,0,1 -o " + d + "parts.json --json", dir);
   ASSERT_EQ(split.code, 0) << split.err;

@@ -36,6 +36,22 @@ TensorSpline<3> identity_geometry(const Box<3>& box, int degree, int elements);
 RefinedSpace<3> trimmed_space(const TrimmedSolid& solid, const Box<3>& box, int degree, int elements, int threads = 0,
                               const TrimmedSpaceOptions& opts = {});
 
+// One part of a domain made of several trimmed solids that meet only on their faces (the cells of a Boolean):
+// the solid and the faces of it that are not trimming boundary (faces in a side plane of the box, faces shared
+// with another part), per face of its boundary (empty: none).
+struct TrimmedPart {
+  const TrimmedSolid* solid = nullptr;
+  std::vector<char> skip_faces;
+};
+
+// The space on the union of the parts: an element inside one part keeps its Gauss rule; otherwise its rule is
+// the parts' detrimmed rules together (each part integrates its own piece of the element) and its trimming
+// boundary points those of the parts' faces not skipped. `element_parts` (when given) receives per element the
+// parts holding its quadrature points (ascending; empty outside). Throws as the one-solid form.
+RefinedSpace<3> trimmed_space(const std::vector<TrimmedPart>& parts, const Box<3>& box, int degree, int elements,
+                              int threads = 0, const TrimmedSpaceOptions& opts = {},
+                              std::vector<std::vector<int>>* element_parts = nullptr);
+
 // The faces of the solid that lie in a side plane of the box (all their mesh vertices there): sides of the
 // domain rather than trimming boundary.
 std::vector<int> faces_on_box_sides(const TrimmedSolid& solid, const Box<3>& box);

@@ -77,58 +77,47 @@ void for_each_line(const TrimmedSolid& s, const Box<3>& box, int a, const Quadra
   }
 }
 
-// Inside intervals of the lines along the transversal axis, Gauss on each.
-void volume_leaf(const TrimmedSolid& s, const Box<3>& box, const QuadratureRule& r, std::vector<VolumePoint>& out) {
-  const int a = s.transversal_axis(box);
-  std::vector<double> cuts;
-  for_each_line(s, box, a, r, [&](std::array<double, 3> p, double w, const std::vector<LineCrossing>& cs) {
-    cuts.clear();
-    for (const LineCrossing& c : cs) cuts.push_back(c.t);
-    finish(cuts, box.lo[a], box.hi[a]);
-    for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
-      const double lo = cuts[k], len = cuts[k + 1] - lo;
-      if (len <= 0) continue;
-      // Whether the interval is inside is asked of its midpoint, not read off the crossings' directions, so a
-      // crossing lost at a silhouette costs accuracy but never flips a whole interval.
-      p[a] = lo + len / 2;
-      if (!s.contains(p)) continue;
-      for (std::size_t q = 0; q < r.nodes.size(); ++q) {
-        p[a] = lo + len * r.nodes[q];
-        out.push_back({p, w * len * r.weights[q]});
-      }
+// The inside intervals of one line along axis a (crossings cs, base weight w), Gauss on each.
+void volume_line(const TrimmedSolid& s, const Box<3>& box, int a, const QuadratureRule& r, std::array<double, 3> p,
+                 double w, const std::vector<LineCrossing>& cs, std::vector<double>& cuts, std::vector<VolumePoint>& out) {
+  cuts.clear();
+  for (const LineCrossing& c : cs) cuts.push_back(c.t);
+  finish(cuts, box.lo[a], box.hi[a]);
+  for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+    const double lo = cuts[k], len = cuts[k + 1] - lo;
+    if (len <= 0) continue;
+    // Whether the interval is inside is asked of its midpoint, not read off the crossings' directions, so a
+    // crossing lost at a silhouette costs accuracy but never flips a whole interval.
+    p[a] = lo + len / 2;
+    if (!s.contains(p)) continue;
+    for (std::size_t q = 0; q < r.nodes.size(); ++q) {
+      p[a] = lo + len * r.nodes[q];
+      out.push_back({p, w * len * r.weights[q]});
     }
-  });
+  }
 }
 
-// The boundary in a cut leaf: with the partition of unity w_a = n_a^4 / (n_x^4 + n_y^4 + n_z^4) over the
-// axes, the surface integral is the sum over a of the integrals of w_a dS = w_a / |n_a| db dc over the base of
-// the a-lines, one point per crossing. Faces parallel to a line contribute nothing to that axis's term, and
-// near silhouettes the weight |n_a|^3 / sum n^4 vanishes smoothly instead of blowing up (so a crossing the
-// mesh misses within the chordal tolerance of a silhouette costs next to nothing).
-void surface_leaf(const TrimmedSolid& s, const Box<3>& box, const QuadratureRule& r, const std::vector<char>& skip,
-                  std::vector<SurfacePoint>& out) {
+// The boundary on one line along axis a: with the partition of unity w_a = n_a^4 / (n_x^4 + n_y^4 + n_z^4) over
+// the axes, the surface integral is the sum over a of the integrals of w_a dS = w_a / |n_a| db dc over the base
+// of the a-lines, one point per crossing. Faces parallel to a line contribute nothing to that axis's term, and
+// near silhouettes the weight |n_a|^3 / sum n^4 vanishes smoothly instead of blowing up (so a crossing the mesh
+// misses within the chordal tolerance of a silhouette costs next to nothing).
+void surface_line(const TrimmedSolid& s, int a, std::array<double, 3> p, double w, const std::vector<LineCrossing>& cs,
+                  const std::vector<char>& skip, std::vector<SurfacePoint>& out) {
   const TrimmedBoundary& bd = s.boundary();
-  for (int a = 0; a < 3; ++a)
-    for_each_line(s, box, a, r, [&](std::array<double, 3> p, double w, const std::vector<LineCrossing>& cs) {
-      for (const LineCrossing& c : cs) {
-        if (!skip.empty() && skip[static_cast<std::size_t>(c.face)]) continue;
-        const TrimmedFace& f = bd.faces[static_cast<std::size_t>(c.face)];
-        double d[9];
-        f.surface.eval_derivs(c.uv, 1, d);
-        std::array<double, 3> n{d[4] * d[8] - d[5] * d[7], d[5] * d[6] - d[3] * d[8], d[3] * d[7] - d[4] * d[6]};
-        const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-        if (len == 0) continue;
-        for (double& x : n) x *= (f.reversed ? -1 : 1) / len;
-        p[a] = c.t;
-        const double n4 = n[0] * n[0] * n[0] * n[0] + n[1] * n[1] * n[1] * n[1] + n[2] * n[2] * n[2] * n[2];
-        out.push_back({p, n, w * std::pow(std::abs(n[a]), 3) / n4});
-      }
-    });
-}
-
-BoxPlacement place(const TrimmedSolid& s, const Box<3>& b) {
-  if (s.boundary_meets(b)) return BoxPlacement::cut;
-  return s.contains(b.center()) ? BoxPlacement::inside : BoxPlacement::outside;
+  for (const LineCrossing& c : cs) {
+    if (!skip.empty() && skip[static_cast<std::size_t>(c.face)]) continue;
+    const TrimmedFace& f = bd.faces[static_cast<std::size_t>(c.face)];
+    double d[9];
+    f.surface.eval_derivs(c.uv, 1, d);
+    std::array<double, 3> n{d[4] * d[8] - d[5] * d[7], d[5] * d[6] - d[3] * d[8], d[3] * d[7] - d[4] * d[6]};
+    const double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (len == 0) continue;
+    for (double& x : n) x *= (f.reversed ? -1 : 1) / len;
+    p[a] = c.t;
+    const double n4 = n[0] * n[0] * n[0] * n[0] + n[1] * n[1] * n[1] * n[1] + n[2] * n[2] * n[2] * n[2];
+    out.push_back({p, n, w * std::pow(std::abs(n[a]), 3) / n4});
+  }
 }
 
 struct Sink {
@@ -137,10 +126,28 @@ struct Sink {
   const std::vector<char>& skip;
 };
 
+// A cut leaf: the volume on the lines along the transversal axis, the faces (when asked for) on the lines along
+// every axis. The transversal axis's lines serve both, so their crossings are computed once.
+void leaf(const TrimmedSolid& s, const Box<3>& box, const QuadratureRule& r, Sink& out) {
+  const int t = s.transversal_axis(box);
+  std::vector<double> cuts;
+  for (int a = 0; a < 3; ++a) {
+    if (a != t && !out.surface) continue;
+    for_each_line(s, box, a, r, [&](const std::array<double, 3>& p, double w, const std::vector<LineCrossing>& cs) {
+      if (a == t) volume_line(s, box, a, r, p, w, cs, cuts, out.volume);
+      if (out.surface) surface_line(s, a, p, w, cs, out.skip, *out.surface);
+    });
+  }
+}
+
+BoxPlacement place(const TrimmedSolid& s, const Box<3>& b) {
+  if (s.boundary_meets(b)) return BoxPlacement::cut;
+  return s.contains(b.center()) ? BoxPlacement::inside : BoxPlacement::outside;
+}
+
 void subdivide(const TrimmedSolid& s, const Box<3>& b, const QuadratureRule& r, int depth, Sink& out) {
   if (depth == 0) {
-    volume_leaf(s, b, r, out.volume);
-    if (out.surface) surface_leaf(s, b, r, out.skip, *out.surface);
+    leaf(s, b, r, out);
     return;
   }
   const auto c = b.center();

@@ -7,7 +7,7 @@
 // every inside interval, the lines' base split where the boundary meets the leaf's faces (where the inside
 // length has kinks). The rule converges at high order wherever the boundary is a smooth graph over the leaf's
 // other two axes, and algebraically (in the depth) across sharp edges and silhouettes. The faces inside a cut
-// leaf are integrated on the same lines (one point per crossing, see surface_leaf), so surface rules respect
+// leaf are integrated on the same lines (one point per crossing, see surface_line), so surface rules respect
 // element boundaries too.
 #include <array>
 #include <vector>

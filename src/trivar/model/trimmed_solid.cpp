@@ -296,6 +296,11 @@ void TrimmedSolid::mesh_crossings(int axis, const std::array<double, 3>& p, std:
     const auto& tri = bd.mesh.triangles[t];
     P2 q[3];
     for (int m = 0; m < 3; ++m) q[m] = {bd.mesh.vertices[tri[m]][g.b], bd.mesh.vertices[tri[m]][g.c]};
+    // Most triangles of the cell miss the line: a point strictly outside the projected triangle's box is outside
+    // the triangle for the perturbed point too (the perturbation is infinitesimal), so the edge signs agree.
+    if ((x[0] < q[0][0] && x[0] < q[1][0] && x[0] < q[2][0]) || (x[0] > q[0][0] && x[0] > q[1][0] && x[0] > q[2][0]) ||
+        (x[1] < q[0][1] && x[1] < q[1][1] && x[1] < q[2][1]) || (x[1] > q[0][1] && x[1] > q[1][1] && x[1] > q[2][1]))
+      continue;
     const int s0 = edge_sign(q[1], q[2], x), s1 = edge_sign(q[2], q[0], x), s2 = edge_sign(q[0], q[1], x);
     if (s0 == 0 || s0 != s1 || s1 != s2) continue;
     // Barycentric weights from the unperturbed edge functions (the point may lie on an edge: weights >= 0).

@@ -4,6 +4,7 @@
 #include <map>
 
 #include "trivar/core/error.hpp"
+#include "trivar/model/trimmed_interfaces.hpp"
 
 namespace trivar {
 
@@ -12,71 +13,34 @@ bool has_trimmed_cells(const VModel& model) {
 }
 
 ModelTessellation trimmed_boundary_mesh(const VModel& model) {
-  // Vertices are merged by their exact coordinates: cells cut from one another by a Boolean share the
-  // triangulation of every face between them, so a shared face's triangles appear in both cells with the same
-  // corners and opposite orientations. Such pairs are inside the model and cancel.
-  std::map<std::array<double, 3>, int> ids;
-  std::vector<std::array<double, 3>> vertices;
-  std::vector<int> vertex_cell;
-  struct Tri {
-    std::array<int, 3> v;
-    int cell;
-  };
-  std::vector<Tri> tris;
-  for (int ci = 0; ci < model.num_cells(); ++ci) {
-    const VCell& c = model.cell(ci);
-    require(c.is_trimmed(), [&] {
+  for (int ci = 0; ci < model.num_cells(); ++ci)
+    require(model.cell(ci).is_trimmed(), [&] {
       return "trimmed boundary: cell " + std::to_string(ci) + " is not trimmed (models mixing trimmed and untrimmed "
              "cells have no boundary mesh)";
     });
-    const TriangleMesh& m = c.trim()->boundary().mesh;
-    std::vector<int> local(m.vertices.size());
-    for (std::size_t i = 0; i < m.vertices.size(); ++i) {
-      auto [it, fresh] = ids.try_emplace(m.vertices[i], static_cast<int>(vertices.size()));
-      if (fresh) {
-        vertices.push_back(m.vertices[i]);
-        vertex_cell.push_back(ci);
-      }
-      local[i] = it->second;
-    }
-    for (const auto& tri : m.triangles) tris.push_back({{local[tri[0]], local[tri[1]], local[tri[2]]}, ci});
-  }
-  // A triangle by its corners in rotation-normalised order; the opposite orientation has the last two swapped.
-  const auto key = [](std::array<int, 3> v) {
-    std::rotate(v.begin(), std::min_element(v.begin(), v.end()), v.end());
-    return v;
-  };
-  std::map<std::array<int, 3>, std::vector<std::size_t>> by_key;
-  for (std::size_t t = 0; t < tris.size(); ++t) by_key[key(tris[t].v)].push_back(t);
-  std::vector<char> inside(tris.size(), 0);
-  for (std::size_t t = 0; t < tris.size(); ++t) {
-    if (inside[t]) continue;
-    const auto& v = tris[t].v;
-    const auto it = by_key.find(key({v[0], v[2], v[1]}));
-    if (it == by_key.end()) continue;
-    for (std::size_t o : it->second)
-      if (!inside[o] && tris[o].cell != tris[t].cell) {
-        inside[t] = inside[o] = 1;
-        break;
-      }
-  }
+  // Triangles a face between two cells gives both of them are inside the model and drop out.
+  std::vector<long> first;
+  const std::vector<long> twin = paired_trimming_triangles(model, first);
+  // Vertices are merged by their exact coordinates (the first cell using one names it).
+  std::map<std::array<double, 3>, int> ids;
   ModelTessellation t;
-  std::vector<int> used(vertices.size(), -1);
-  for (std::size_t k = 0; k < tris.size(); ++k) {
-    if (inside[k]) continue;
-    std::array<int, 3> out;
-    for (int c = 0; c < 3; ++c) {
-      int& u = used[static_cast<std::size_t>(tris[k].v[c])];
-      if (u < 0) {
-        u = static_cast<int>(t.mesh.vertices.size());
-        const auto& x = vertices[static_cast<std::size_t>(tris[k].v[c])];
-        t.mesh.vertices.push_back(x);
-        t.cell.push_back(vertex_cell[static_cast<std::size_t>(tris[k].v[c])]);
-        t.param.push_back(x);
+  for (int ci = 0; ci < model.num_cells(); ++ci) {
+    const TriangleMesh& m = model.cell(ci).trim()->boundary().mesh;
+    for (std::size_t k = 0; k < m.triangles.size(); ++k) {
+      if (twin[static_cast<std::size_t>(first[static_cast<std::size_t>(ci)]) + k] >= 0) continue;
+      std::array<int, 3> out;
+      for (int c = 0; c < 3; ++c) {
+        const auto& x = m.vertices[static_cast<std::size_t>(m.triangles[k][c])];
+        const auto [it, fresh] = ids.try_emplace(x, static_cast<int>(t.mesh.vertices.size()));
+        if (fresh) {
+          t.mesh.vertices.push_back(x);
+          t.cell.push_back(ci);
+          t.param.push_back(x);
+        }
+        out[c] = it->second;
       }
-      out[c] = u;
+      t.mesh.triangles.push_back(out);
     }
-    t.mesh.triangles.push_back(out);
   }
   return t;
 }
