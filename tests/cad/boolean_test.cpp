@@ -17,6 +17,7 @@
 #include "trivar/model/torus.hpp"
 #include "trivar/model/trimmed_tessellation.hpp"
 #include "trivar/spline/affine_transform.hpp"
+#include "support/model_fixtures.hpp"
 
 using namespace trivar;
 using cad::BooleanOp;
@@ -25,16 +26,9 @@ namespace {
 
 using std::numbers::pi;
 
-VModel model_of(const CellComplex& cells, const Eigen::Vector3d& shift = Eigen::Vector3d::Zero()) {
-  VModel m;
-  for (const SplineVolume& c : cells) m.add_cell(VCell(transform(c, Eigen::Matrix3d::Identity(), shift)));
-  m.glue();
-  return m;
-}
+VModel box(const Eigen::Vector3d& lo, const Eigen::Vector3d& size) { return test::glued(make_box({size, lo})); }
 
-VModel box(const Eigen::Vector3d& lo, const Eigen::Vector3d& size) { return model_of(make_box({size, lo})); }
-
-VModel ball(double r, const Eigen::Vector3d& c = Eigen::Vector3d::Zero()) { return model_of(make_ball({r, c})); }
+VModel ball(double r, const Eigen::Vector3d& c = Eigen::Vector3d::Zero()) { return test::glued(make_ball({r, c})); }
 
 void set_constant(VModel& m, const std::string& name, std::vector<double> v) {
   for (int c = 0; c < m.num_cells(); ++c) m.cell(c).set_attribute(name, Attribute::constant(v));
@@ -65,7 +59,7 @@ void expect_symmetric_neighbours(const cad::BooleanReport& r) {
 TEST(Boolean, BallMinusCylinderIsTheNapkinRing) {
   const double R = 1, r = 0.4;
   const VModel b = ball(R);
-  const VModel cyl = model_of(make_cylinder({r, 3}), {0, 0, -1.5});
+  const VModel cyl = test::glued(make_cylinder({r, 3}), {0, 0, -1.5});
   cad::BooleanReport rep;
   const VModel ring = cad::boolean(b, cyl, BooleanOp::subtract, {}, &rep);
   const double exact = 4.0 / 3 * pi * std::pow(R * R - r * r, 1.5);
@@ -98,7 +92,7 @@ TEST(Boolean, OverlappingBallsLensAndUnion) {
 // A torus with a quadrant removed by a box: three quarters of 2 pi^2 R r^2, one sphere-like boundary.
 TEST(Boolean, TorusMinusBox) {
   const double R = 2, r = 0.5;
-  const VModel t = model_of(make_torus({R, r}));
+  const VModel t = test::glued(make_torus({R, r}));
   const VModel q = box({0, 0, -1}, {3, 3, 2});
   const VModel cut = cad::boolean(t, q, BooleanOp::subtract);
   const double exact = 0.75 * 2 * pi * pi * R * r * r;
@@ -178,7 +172,7 @@ TEST(Boolean, ResultsAreOperandsAgain) {
   const VModel back = io::vmodel_from_json(io::to_json(two), "two");
   const double r = 0.3, hole = pi * r * r;
   cad::BooleanReport rep;
-  const VModel d = cad::boolean(back, model_of(make_cylinder({r, 2}), {1, 0.5, -0.5}), BooleanOp::subtract, {}, &rep);
+  const VModel d = cad::boolean(back, test::glued(make_cylinder({r, 2}), {1, 0.5, -0.5}), BooleanOp::subtract, {}, &rep);
   EXPECT_EQ(rep.cells, 2);
   EXPECT_EQ(rep.neighbours[0], std::vector<int>{1});  // across the holed face (one or more kernel faces)
   EXPECT_NEAR(d.volume(), 2 - hole, 1e-7 * 2);

@@ -21,19 +21,14 @@
 #include "trivar/model/primitives.hpp"
 #include "trivar/model/trimmed_tessellation.hpp"
 #include "trivar/spline/affine_transform.hpp"
+#include "support/model_fixtures.hpp"
+#include "cad/manufactured_solution.hpp"
 
 using namespace trivar;
 
-namespace trimmed_model_test {
+namespace {
 
-VModel model_of(const CellComplex& cells, const Eigen::Vector3d& shift = Eigen::Vector3d::Zero()) {
-  VModel m;
-  for (const SplineVolume& c : cells) m.add_cell(VCell(transform(c, Eigen::Matrix3d::Identity(), shift)));
-  m.glue();
-  return m;
-}
-
-VModel block(const Eigen::Vector3d& lo, const Eigen::Vector3d& size) { return model_of(make_box({size, lo})); }
+VModel block(const Eigen::Vector3d& lo, const Eigen::Vector3d& size) { return test::glued(make_box({size, lo})); }
 
 // The box faces as Dirichlet sides.
 std::vector<Face> all_sides() {
@@ -45,10 +40,10 @@ std::vector<Face> all_sides() {
 
 // The unit cube less a cylinder of radius 0.3 along z through (0.45, 0.55), written to STEP by OpenCASCADE and
 // imported as a one-cell V-model.
-constexpr double kRadius = 0.3;
-VModel cube_with_hole() {
+constexpr double kHoleRadius = 0.3;
+VModel imported_cube_with_hole() {
   const TopoDS_Shape s = BRepAlgoAPI_Cut(BRepPrimAPI_MakeBox(1, 1, 1).Shape(),
-                                         BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0.45, 0.55, -1), gp_Dir(0, 0, 1)), kRadius, 3).Shape())
+                                         BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0.45, 0.55, -1), gp_Dir(0, 0, 1)), kHoleRadius, 3).Shape())
                              .Shape();
   const auto dir = test::temp_dir("trimmed_model");
   const cad::StepImport im = cad::import_step(test::write_step(s, dir, "cube_hole"));
@@ -59,34 +54,23 @@ VModel cube_with_hole() {
   return m;
 }
 
-// u = sin(2x + 0.3) cos(y) e^z: -lap u = 4 u.
-void exact(const double* x, double* u, double* g) {
-  const double s = std::sin(2 * x[0] + 0.3), c = std::cos(2 * x[0] + 0.3), e = std::exp(x[2]);
-  u[0] = s * std::cos(x[1]) * e;
-  if (g) {
-    g[0] = 2 * c * std::cos(x[1]) * e;
-    g[1] = -s * std::sin(x[1]) * e;
-    g[2] = u[0];
-  }
-}
-
 // The manufactured problem with Dirichlet data on the given sides and the exact flux on the trimming boundary.
 ErrorNorms manufactured_error(const TrimmedModelSpace& tm, const std::vector<Face>& sides) {
   PoissonProblem<3> pb;
   pb.source = [](const double* x) {
     double u;
-    exact(x, &u, nullptr);
+    test::sine_exp_solution(x, &u, nullptr);
     return 4 * u;
   };
-  pb.dirichlet.push_back({sides, {}, [](const double* x, double* out) { exact(x, out, nullptr); }});
+  pb.dirichlet.push_back({sides, {}, [](const double* x, double* out) { test::sine_exp_solution(x, out, nullptr); }});
   pb.flux = [](const double* x, const double* n) {
     double u, g[3];
-    exact(x, &u, g);
+    test::sine_exp_solution(x, &u, g);
     return g[0] * n[0] + g[1] * n[1] + g[2] * n[2];
   };
   auto solver = make_solver("cholmod");
   const SolveResult r = solve_poisson(tm.space, pb, *solver);
-  return error_norms(tm.space, r.coefs, 1, [](const double* x, double* u, double* g) { exact(x, u, g); });
+  return error_norms(tm.space, r.coefs, 1, test::sine_exp_solution);
 }
 
 // Sum of the trimming-boundary weights (area) and of the volume weights times x y.
@@ -104,9 +88,7 @@ VModel stepped_block(cad::BooleanReport* rep = nullptr) {
   return cad::boolean(block({0, 0, 0}, {1, 1, 1}), block({0.6, 0, 0}, {1, 1, 0.45}), cad::BooleanOp::unite, {}, rep);
 }
 
-}  // namespace trimmed_model_test
-
-using namespace trimmed_model_test;
+}  // namespace
 
 // The faces found shared by their triangles are the kernel's faces between pieces, each shared by exactly two
 // cells; the boundary mesh without them is one closed sphere-like surface.
@@ -131,7 +113,7 @@ TEST(TrimmedInterfaces, BooleanCellsShareWholeFaces) {
   EXPECT_TRUE(is_watertight(b.mesh));
   EXPECT_EQ(euler_characteristic(b.mesh), 2);
   // A one-cell model has only boundary faces.
-  const TrimmedInterfaces one = trimmed_interfaces(cube_with_hole());
+  const TrimmedInterfaces one = trimmed_interfaces(imported_cube_with_hole());
   EXPECT_EQ(one.shared, 0);
   EXPECT_EQ(one.boundary, static_cast<int>(one.surfaces.size()));
 }
@@ -211,16 +193,16 @@ TEST(TrimmedModelSpace, ElasticLayersWithTheirOwnMaterials) {
 // the same volume, moment and hole area as the uncut part, and the manufactured solution to the uncut part's
 // accuracy.
 TEST(TrimmedModelSpace, SplitCubeWithHoleSolvesAsTheUncutPart) {
-  const VModel whole = cube_with_hole();
+  const VModel whole = imported_cube_with_hole();
   const VModel halves = cad::split(whole, cad::SplitPlane{{0.5, 0, 0}, {1, 0, 0}});
   ASSERT_EQ(halves.num_cells(), 2);
   const TrimmedModelSpace a = trimmed_model_space(whole, 2, 4), b = trimmed_model_space(halves, 2, 4);
   EXPECT_EQ(b.interfaces.shared, 2);
-  const double r2 = kRadius * kRadius;
+  const double r2 = kHoleRadius * kHoleRadius;
   for (const TrimmedModelSpace* s : {&a, &b}) {
     EXPECT_NEAR(s->volume(), 1 - test::kPi * r2, 1e-9);
     const auto am = area_and_moment(*s);
-    EXPECT_NEAR(am[0], 2 * test::kPi * kRadius, 2e-5);
+    EXPECT_NEAR(am[0], 2 * test::kPi * kHoleRadius, 2e-5);
     EXPECT_NEAR(am[1], 0.25 - test::kPi * r2 * 0.45 * 0.55, 1e-9);
   }
   const ErrorNorms ea = manufactured_error(a, all_sides()), eb = manufactured_error(b, all_sides());
@@ -231,7 +213,7 @@ TEST(TrimmedModelSpace, SplitCubeWithHoleSolvesAsTheUncutPart) {
 
 // The split cube with a hole (two cells) under h-refinement: L2 rate near p + 1 = 3, H1 near 2.
 TEST(TrimmedModelSpace, SplitCubeWithHoleConvergesAtTheOptimalRate) {
-  const VModel halves = cad::split(cube_with_hole(), cad::SplitPlane{{0.5, 0, 0}, {1, 0, 0}});
+  const VModel halves = cad::split(imported_cube_with_hole(), cad::SplitPlane{{0.5, 0, 0}, {1, 0, 0}});
   std::vector<ErrorNorms> e;
   for (int n : {4, 8}) e.push_back(manufactured_error(trimmed_model_space(halves, 2, n), all_sides()));
   const double l2 = std::log2(e[0].l2 / e[1].l2), h1 = std::log2(e[0].h1 / e[1].h1);
@@ -248,9 +230,9 @@ TEST(TrimmedModelSpace, SplitCubeWithHoleConvergesAtTheOptimalRate) {
 // show as O(1). Degree 1 on 4 elements per direction, octree depth 2. (The manufactured solution of the convergence tests converges here at L2 rate 3.02 and H1 rate
 // 2.07 from 4 to 8 elements per direction with octree depth 3, 4 minutes on this machine: measured, not a test.)
 TEST(TrimmedModelSpace, BallMinusCylinderReproducesALinearSolution) {
-  const VModel disc = cad::boolean(model_of(make_ball({1.0, Eigen::Vector3d::Zero()})), block({-2, -2, -0.3}, {4, 4, 0.6}),
+  const VModel disc = cad::boolean(test::glued(make_ball({1.0, Eigen::Vector3d::Zero()})), block({-2, -2, -0.3}, {4, 4, 0.6}),
                                    cad::BooleanOp::intersect);
-  const VModel slab = cad::boolean(disc, model_of(make_cylinder({0.4, 3}), {0.1, 0.05, -1.5}), cad::BooleanOp::subtract);
+  const VModel slab = cad::boolean(disc, test::glued(make_cylinder({0.4, 3}), {0.1, 0.05, -1.5}), cad::BooleanOp::subtract);
   ASSERT_EQ(slab.num_cells(), 6);
   const TrimmedModelSpace tm = trimmed_model_space(slab, 1, 4);
   ASSERT_EQ(tm.sides.size(), 2u);  // the planes z = -0.3 and z = 0.3

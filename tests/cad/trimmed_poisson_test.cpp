@@ -17,6 +17,7 @@
 #include "trivar/iga/refined_quadrature.hpp"
 #include "trivar/iga/solver.hpp"
 #include "trivar/iga/trimmed_space.hpp"
+#include "cad/manufactured_solution.hpp"
 
 using namespace trivar;
 
@@ -42,31 +43,20 @@ std::shared_ptr<const TrimmedSolid> cube_with_hole() {
 
 double solid_volume() { return 1 - test::kPi * kRadius * kRadius; }
 
-// u = sin(2x + 0.3) cos(y) e^z: -lap u = 4 u.
-void exact(const double* x, double* u, double* g) {
-  const double s = std::sin(2 * x[0] + 0.3), c = std::cos(2 * x[0] + 0.3), e = std::exp(x[2]);
-  u[0] = s * std::cos(x[1]) * e;
-  if (g) {
-    g[0] = 2 * c * std::cos(x[1]) * e;
-    g[1] = -s * std::sin(x[1]) * e;
-    g[2] = u[0];
-  }
-}
-
 PoissonProblem<3> manufactured(const RefinedSpace<3>&) {
   PoissonProblem<3> pb;
   pb.source = [](const double* x) {
     double u;
-    exact(x, &u, nullptr);
+    test::sine_exp_solution(x, &u, nullptr);
     return 4 * u;
   };
   std::vector<Face> box;
   for (int d = 0; d < 3; ++d)
     for (int s = 0; s < 2; ++s) box.push_back({d, s, 0});
-  pb.dirichlet.push_back({box, {}, [](const double* x, double* out) { exact(x, out, nullptr); }});
+  pb.dirichlet.push_back({box, {}, [](const double* x, double* out) { test::sine_exp_solution(x, out, nullptr); }});
   pb.flux = [](const double* x, const double* n) {
     double u, g[3];
-    exact(x, &u, g);
+    test::sine_exp_solution(x, &u, g);
     return g[0] * n[0] + g[1] * n[1] + g[2] * n[2];
   };
   return pb;
@@ -79,7 +69,7 @@ ErrorNorms solve_at(int degree, int elements, int depth) {
   const auto t1 = std::chrono::steady_clock::now();
   auto solver = make_solver("cholmod");
   const SolveResult r = solve_poisson(space, manufactured(space), *solver);
-  const ErrorNorms e = error_norms(space, r.coefs, 1, [](const double* x, double* u, double* g) { exact(x, u, g); });
+  const ErrorNorms e = error_norms(space, r.coefs, 1, test::sine_exp_solution);
   std::printf("p %d, %d elements per direction, depth %d: %d dofs, L2 %.3e, H1 %.3e (quadrature %.2f s, assembly %.2f s, "
               "solve %.2f s)\n", degree, elements, depth, r.dofs, e.l2, e.h1,
               std::chrono::duration<double>(t1 - t0).count(), r.assembly_seconds, r.solve_seconds);

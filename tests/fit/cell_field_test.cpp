@@ -3,6 +3,11 @@
 // parameter box and the tensor expansion are all exact), samples outside the cell are skipped, and material
 // fractions with a sharp transition stay >= 0 everywhere while meeting the tolerance at the samples.
 #include "trivar/fit/cell_field.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
 #include "trivar/model/material_fractions.hpp"
 #include "trivar/model/vmodel.hpp"
 #include "trivar/spline/knot_vector.hpp"

@@ -16,10 +16,10 @@ inline TensorSpline<3> block_at(double x, double y, double z, Param<3> size = {1
   return transform(make_block<3>(degrees, elements, size), Eigen::Matrix3d::Identity(), Eigen::Vector3d(x, y, z));
 }
 
-// The cells as one V-model, glued.
-inline VModel glued(const CellComplex& cells) {
+// The cells, moved by `shift`, as one V-model, glued.
+inline VModel glued(const CellComplex& cells, const Eigen::Vector3d& shift = Eigen::Vector3d::Zero()) {
   VModel m;
-  for (const auto& c : cells) m.add_cell(VCell(c));
+  for (const auto& c : cells) m.add_cell(VCell(transform(c, Eigen::Matrix3d::Identity(), shift)));
   m.glue();
   return m;
 }
