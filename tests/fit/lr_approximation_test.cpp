@@ -11,6 +11,7 @@
 #include "trivar/fit/lr_approximation.hpp"
 #include "trivar/lr/linear_independence.hpp"
 #include "trivar/lr/refinement.hpp"
+#include "fit/crater.hpp"
 
 namespace trivar {
 namespace {
@@ -23,14 +24,10 @@ double franke(double x, double y) {
          0.2 * std::exp(-std::pow(9 * x - 4, 2) - std::pow(9 * y - 7, 2));
 }
 
-// A tilted plane with a crater: a bowl of radius R around c whose rim is a sharp ridge (a kink at r = R).
-constexpr double kCx = 0.3, kCy = 0.6, kR = 0.12;
-double crater(double x, double y) {
-  const double r = std::hypot(x - kCx, y - kCy);
-  const double plane = 0.1 * x + 0.05 * y;
-  if (r < kR) return plane - 0.2 * (1 - (r / kR) * (r / kR)) + 0.08 * (r / kR) * (r / kR) * (r / kR);
-  return plane + 0.08 * std::exp(-(r - kR) / 0.02);
-}
+using test::crater;
+using test::kCx;
+using test::kCy;
+using test::kR;
 
 template <int D, class F>
 ScatteredData<D> sample(std::size_t n, int dim, std::uint32_t seed, F&& f) {

@@ -8,6 +8,7 @@
 #include "trivar/fit/lr_approximation.hpp"
 #include "trivar/fit/mba.hpp"
 #include "trivar/lr/refinement.hpp"
+#include "fit/crater.hpp"
 
 namespace trivar::mba_test {
 namespace {
@@ -29,13 +30,10 @@ double scaled_value(const LRBSpline<D>& b, const Param<D>& x) {
   return v;
 }
 
-constexpr double kCx = 0.3, kCy = 0.6, kR = 0.12;
-double crater(double x, double y) {
-  const double r = std::hypot(x - kCx, y - kCy);
-  const double plane = 0.1 * x + 0.05 * y;
-  if (r < kR) return plane - 0.2 * (1 - (r / kR) * (r / kR)) + 0.08 * (r / kR) * (r / kR) * (r / kR);
-  return plane + 0.08 * std::exp(-(r - kR) / 0.02);
-}
+using test::crater;
+using test::kCx;
+using test::kCy;
+using test::kR;
 
 template <int D, class F>
 ScatteredData<D> sample(std::size_t n, std::uint32_t seed, F&& f) {
