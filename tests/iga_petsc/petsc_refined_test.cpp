@@ -108,7 +108,7 @@ TEST(PetscRefined, ModesOnLocallyRefinedSpacesMatchTheSerialEigenvalues) {
   std::vector<Face> sides;
   for (int k = 0; k < 3; ++k) sides.push_back({k, 0}), sides.push_back({k, 1});
   const ModesResult s = laplace_modes(lr, sides, 4);
-  const ModesResult d = petsc_laplace_modes(lr, sides, 4, tight("mumps"));
+  const ModesResult d = petsc_laplace_modes(lr, sides, 4, tight_options("mumps"));
   EXPECT_EQ(d.dofs, s.dofs);
   for (int i = 0; i < 4; ++i) EXPECT_NEAR(d.values[i], s.values[i], 1e-10 * s.values[i]) << i;
 
@@ -124,7 +124,7 @@ TEST(PetscRefined, ModesOnLocallyRefinedSpacesMatchTheSerialEigenvalues) {
   const ModesResult es = elastic_modes(thb, pb, 4);
   for (const char* pc : {"mumps", "gamg"}) {
     SCOPED_TRACE(pc);
-    const ModesResult ed = petsc_elastic_modes(thb, pb, 4, tight(pc));
+    const ModesResult ed = petsc_elastic_modes(thb, pb, 4, tight_options(pc));
     EXPECT_EQ(ed.dofs, es.dofs);
     for (int i = 0; i < 4; ++i) EXPECT_NEAR(ed.values[i], es.values[i], 1e-10 * es.values[i]) << i;
   }
