@@ -151,13 +151,31 @@ bool corner_less(const Box<D>& a, const Box<D>& b) {
   return false;
 }
 
+// The element ids in corner order. The first `sorted` elements are usually in that order already (a refinement
+// only appends elements and never moves a lower corner), so only the rest is sorted and merged in; the keys are
+// sorted by value, not through the ids, so the comparisons read contiguous memory.
 template <int D>
-std::vector<int> corner_order(std::span<const Box<D>> elements) {
-  std::vector<int> order(elements.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
-  std::sort(order.begin(), order.end(), [&](int a, int b) {
-    return corner_less(elements[static_cast<std::size_t>(a)], elements[static_cast<std::size_t>(b)]);
-  });
+std::vector<int> corner_order(std::span<const Box<D>> elements, std::size_t sorted) {
+  struct Key {
+    Param<D> lo;
+    int id;
+  };
+  const auto less = [](const Key& a, const Key& b) {
+    for (int k = D - 1; k >= 0; --k)
+      if (a.lo[k] != b.lo[k]) return a.lo[k] < b.lo[k];
+    return false;
+  };
+  std::vector<Key> keys(elements.size());
+  for (std::size_t i = 0; i < keys.size(); ++i) keys[i] = {elements[i].lo, static_cast<int>(i)};
+  const auto mid = keys.begin() + static_cast<std::ptrdiff_t>(std::min(sorted, keys.size()));
+  if (!std::is_sorted(keys.begin(), mid, less)) {
+    std::sort(keys.begin(), keys.end(), less);
+  } else {
+    std::sort(mid, keys.end(), less);
+    std::inplace_merge(keys.begin(), mid, keys.end(), less);
+  }
+  std::vector<int> order(keys.size());
+  for (std::size_t i = 0; i < keys.size(); ++i) order[i] = keys[i].id;
   return order;
 }
 
@@ -209,6 +227,8 @@ struct LRSpline<D>::Batch {
   std::vector<int> extended;       // B-splines whose lists resolve extended by the new elements
   std::size_t sorted_count = 0;    // B-splines before the batch, in id order
   std::vector<int> touched;
+  std::vector<Param<D>> centres;   // refresh_lists(): element centres
+  std::size_t first_new_element = 0;  // elements before the batch
   std::size_t base = 0;            // elements whose lists element_basis_ holds
   std::vector<int> origin;         // base element of element base + i
   std::vector<int> touched_base;   // base elements touched by a rectangle since the last resolve
@@ -231,7 +251,7 @@ struct LRSpline<D>::Batch {
     sorted_count = s.basis_.size();
     root.resize(s.basis_.size());
     for (std::size_t i = 0; i < root.size(); ++i) root[i] = static_cast<int>(i);
-    base = s.elements_.size();
+    base = first_new_element = s.elements_.size();
     is_touched.assign(base, 0);
   }
 
@@ -395,13 +415,18 @@ struct LRSpline<D>::Batch {
   // there): finish() renumbers the elements and rebuilds every list in order by transposition, so sorting here
   // would be wasted. Then every B-spline is its own root again.
   void refresh_lists() {
+    // The centres once per call, in a flat array half the size of the boxes: the filter reads each element
+    // about ten times (once per surviving piece of its root), so this is most of the memory traffic.
+    centres.resize(s.elements_.size());
+    for (std::size_t e = 0; e < centres.size(); ++e) centres[e] = s.elements_[e].center();
     for (int b : stale) {
       if (dead[static_cast<std::size_t>(b)]) continue;
       const Box<D> S = s.basis_[static_cast<std::size_t>(b)].support();
       auto& L = s.basis_elements_[static_cast<std::size_t>(b)];
+      const auto& from = s.basis_elements_[static_cast<std::size_t>(root[static_cast<std::size_t>(b)])];
       L.clear();
-      for (int e : s.basis_elements_[static_cast<std::size_t>(root[static_cast<std::size_t>(b)])])
-        if (center_inside(s.elements_[static_cast<std::size_t>(e)], S)) L.push_back(e);
+      for (int e : from)
+        if (strictly_inside(centres[static_cast<std::size_t>(e)], S)) L.push_back(e);
       root[static_cast<std::size_t>(b)] = b;
     }
     for (int b : extended)
@@ -590,7 +615,22 @@ struct LRSpline<D>::Batch {
       return knot_less(s.basis_[static_cast<std::size_t>(a)], s.basis_[static_cast<std::size_t>(b)]);
     };
     const auto fresh = std::lower_bound(order.begin(), order.end(), static_cast<int>(sorted_count));
-    std::sort(fresh, order.end(), less);
+    // The new ones are sorted on their knots copied into one flat row each (last direction first, so a row
+    // compares lexicographically as knot_less does): the comparisons then read one contiguous row instead of
+    // D separately allocated vectors.
+    std::size_t width = 0;
+    for (int k = 0; k < D; ++k) width += static_cast<std::size_t>(s.degrees_[k] + 2);
+    std::vector<double> rows((s.basis_.size() - sorted_count) * width);
+    for (auto it = fresh; it != order.end(); ++it) {
+      double* row = rows.data() + (static_cast<std::size_t>(*it) - sorted_count) * width;
+      for (int k = D - 1; k >= 0; --k) row = std::copy(s.basis_[static_cast<std::size_t>(*it)].knots[k].begin(),
+                                                       s.basis_[static_cast<std::size_t>(*it)].knots[k].end(), row);
+    }
+    std::sort(fresh, order.end(), [&](int a, int b) {
+      const double* ra = rows.data() + (static_cast<std::size_t>(a) - sorted_count) * width;
+      const double* rb = rows.data() + (static_cast<std::size_t>(b) - sorted_count) * width;
+      return std::lexicographical_compare(ra, ra + width, rb, rb + width);
+    });
     std::inplace_merge(order.begin(), fresh, order.end(), less);
     std::vector<LRBSpline<D>> basis;
     std::vector<std::vector<int>> basis_elements;
@@ -602,8 +642,22 @@ struct LRSpline<D>::Batch {
     }
     s.basis_ = std::move(basis);
     s.basis_elements_ = std::move(basis_elements);
+    // The elements in id order: renumber the support lists' entries in place, then transpose twice (element
+    // lists ascending in B-spline id, then support lists ascending in element id) without a sort.
+    const std::vector<int> corner = corner_order<D>(s.elements_, first_new_element);
+    std::vector<int> new_id(corner.size());
+    std::vector<Box<D>> elements(corner.size());
+    for (std::size_t i = 0; i < corner.size(); ++i) {
+      new_id[static_cast<std::size_t>(corner[i])] = static_cast<int>(i);
+      elements[i] = s.elements_[static_cast<std::size_t>(corner[i])];
+    }
+    s.elements_ = std::move(elements);
+    for (auto& list : s.basis_elements_)
+      for (int& e : list) e = new_id[static_cast<std::size_t>(e)];
     rebuild_element_lists(s.basis_elements_, nullptr);
-    s.reorder_elements(corner_order<D>(s.elements_));
+    for (auto& list : s.basis_elements_) list.clear();
+    for (std::size_t e = 0; e < s.elements_.size(); ++e)
+      for (int b : s.element_basis_[e]) s.basis_elements_[static_cast<std::size_t>(b)].push_back(static_cast<int>(e));
     std::erase_if(s.mesh_, [](const Rect& r) { return r.multiplicity == 0; });
     s.evaluator_.reset();
   }
