@@ -26,7 +26,7 @@ LRSpline<2> read_surface(const std::string& path) {
 }
 
 // Largest difference of the derivative across the seam between the two patches, each evaluated on its own side.
-double derivative_jump(const Stitched& s) {
+double derivative_jump(const Stitched<2>& s) {
   const int dim = s.first.dim(), a = s.seam.along();
   std::vector<double> x(3 * static_cast<std::size_t>(dim)), y(x.size());
   double jump = 0;
@@ -127,7 +127,7 @@ void add_stitch_command(CLI::App& app, Context&) {
     std::vector<std::string> report;  // printed once everything is written
     for (std::size_t i = 1; i < a->in.size(); ++i) {
       const LRSpline<2> next = read_surface(a->in[i]);
-      const Stitched s = [&] {
+      const Stitched<2> s = [&] {
         try {
           return stitch(joined, next, opts);
         } catch (const Error& e) {
