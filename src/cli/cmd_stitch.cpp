@@ -1,5 +1,6 @@
-// trivar stitch A B [C ...] --continuity C1 -o OUT: surfaces sharing sides joined C0 or C1 into one LR spline
-// (or, with --separate, two patches with matching knot lines and continuity across their common side).
+// trivar stitch A B [C ...] --continuity C1 -o OUT: surfaces sharing sides (or volumes sharing faces) joined C0 or
+// C1 into one LR spline (or, with --separate, two patches with matching knot lines and continuity across their
+// common side).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -17,23 +18,36 @@
 namespace trivar::cli {
 namespace {
 
-LRSpline<2> read_surface(const std::string& path) {
+AnyLRSpline read_patch(const std::string& path) {
   std::vector<AnyLRSpline> objects = read_as_lr(path, "stitch");
-  require(objects.size() == 1 && std::holds_alternative<LRSpline<2>>(objects[0]),
-          "stitch: " + path + " must hold one surface (B-spline or LR), it holds " + std::to_string(objects.size()) +
-              (objects.size() == 1 ? " volume" : " objects"));
-  return std::get<LRSpline<2>>(objects[0]);
+  require(objects.size() == 1, "stitch: " + path + " must hold one surface or volume (B-spline or LR), it holds " +
+                                   std::to_string(objects.size()) + " objects");
+  return std::move(objects[0]);
 }
 
-// Largest difference of the derivative across the seam between the two patches, each evaluated on its own side.
-double derivative_jump(const Stitched& s) {
-  const int dim = s.first.dim(), a = s.seam.along();
-  std::vector<double> x(3 * static_cast<std::size_t>(dim)), y(x.size());
+LRSpline<2> read_surface(const std::string& path) {
+  AnyLRSpline object = read_patch(path);
+  require(std::holds_alternative<LRSpline<2>>(object), "stitch: " + path + " must hold a surface, it holds a volume");
+  return std::get<LRSpline<2>>(object);
+}
+
+// Largest difference of the derivative across the seam between the two patches, each evaluated on its own side
+// (on a 201-point line along a side, a 41 x 41 grid on a face).
+template <int D>
+double derivative_jump(const Stitched<D>& s) {
+  const int dim = s.first.dim(), n = D == 2 ? 201 : 41;
+  std::vector<double> x((D + 1) * static_cast<std::size_t>(dim)), y(x.size());
+  int total = 1;
+  for (int k = 1; k < D; ++k) total *= n;
   double jump = 0;
-  for (int i = 0; i <= 200; ++i) {
-    Param<2> u{};
+  for (int g = 0; g < total; ++g) {
+    Param<D> u{};
     u[s.seam.dir] = s.seam.value(s.first);
-    u[a] = s.first.domain().lo[a] + (s.first.domain().hi[a] - s.first.domain().lo[a]) * i / 200.0;
+    for (int k = 0, r = g; k < D; ++k) {
+      if (k == s.seam.dir) continue;
+      u[k] = s.first.domain().lo[k] + (s.first.domain().hi[k] - s.first.domain().lo[k]) * (r % n) / (n - 1.0);
+      r /= n;
+    }
     s.first.eval_first_derivatives(u, x.data());
     s.second.eval_first_derivatives(u, y.data());
     for (int j = 0; j < dim; ++j) {
@@ -45,7 +59,7 @@ double derivative_jump(const Stitched& s) {
 }
 
 const char* side_name(DomainSide s) {
-  static const char* sides[2][2] = {{"u = lo", "u = hi"}, {"v = lo", "v = hi"}};
+  static const char* sides[3][2] = {{"u = lo", "u = hi"}, {"v = lo", "v = hi"}, {"w = lo", "w = hi"}};
   return sides[s.dir][s.end];
 }
 
@@ -81,10 +95,37 @@ void run_multiblock(const std::vector<std::string>& in, const std::string& out, 
   }
 }
 
+// Each file stitched to the union of those before it (of the same dimension as the first).
+template <int D>
+void join(LRSpline<D> joined, const std::vector<std::string>& in, bool separate, const StitchOptions& opts,
+          std::vector<AnyLRSpline>& out, std::vector<std::string>& report) {
+  for (std::size_t i = 1; i < in.size(); ++i) {
+    AnyLRSpline object = read_patch(in[i]);
+    require(std::holds_alternative<LRSpline<D>>(object), "stitch: " + in[i] + " holds a " +
+                                                            (D == 2 ? "volume" : "surface") + ", " + in[0] +
+                                                            " a " + (D == 2 ? "surface" : "volume"));
+    const Stitched<D> s = [&] {
+      try {
+        return stitch(joined, std::get<LRSpline<D>>(object), opts);
+      } catch (const Error& e) {
+        throw Error(std::string(e.what()) + " (" + in[i] + ")");
+      }
+    }();
+    report.push_back(in[i] + ": " + (D == 2 ? "side " : "face ") + side_name(s.seam) + ", gap " + fmt(s.seam_gap) +
+                     ", control points moved up to " + fmt(s.moved) + ", derivative jump " + fmt(derivative_jump(s)));
+    if (separate) {
+      out = {AnyLRSpline(s.first), AnyLRSpline(s.second)};
+      return;
+    }
+    joined = merge(s);
+  }
+  out.emplace_back(std::move(joined));
+}
+
 }  // namespace
 
 void add_stitch_command(CLI::App& app, Context&) {
-  auto* cmd = app.add_subcommand("stitch", "Join surfaces that share sides C0 or C1 into one LR spline");
+  auto* cmd = app.add_subcommand("stitch", "Join surfaces that share sides (volumes that share faces) C0 or C1 into one LR spline");
   struct Args {
     std::vector<std::string> in;
     std::string out, continuity = "C1";
@@ -92,7 +133,7 @@ void add_stitch_command(CLI::App& app, Context&) {
     bool separate = false, multiblock = false, whole_lines = false;
   };
   auto a = std::make_shared<Args>();
-  cmd->add_option("FILES", a->in, "Surfaces (B-spline or LR: .g2, .json, .lr), each sharing a side with the union of "
+  cmd->add_option("FILES", a->in, "Surfaces or volumes (B-spline or LR: .g2, .json, .lr), each sharing a side with the union of "
                                   "those before it")
       ->required()
       ->expected(2, 1000);
@@ -112,7 +153,7 @@ void add_stitch_command(CLI::App& app, Context&) {
   cmd->add_flag("--whole-lines", a->whole_lines,
                 "With --multiblock: knot lines across whole blocks, so tensor blocks stay tensor splines");
   cmd->callback([a] {
-    require(!a->separate || a->in.size() == 2, "stitch: --separate takes exactly two surfaces");
+    require(!a->separate || a->in.size() == 2, "stitch: --separate takes exactly two patches");
     require(!(a->multiblock && a->separate), "stitch: --multiblock and --separate exclude each other");
     require(a->multiblock || !a->whole_lines, "stitch: --whole-lines needs --multiblock");
     if (a->multiblock) {
@@ -122,28 +163,9 @@ void add_stitch_command(CLI::App& app, Context&) {
     StitchOptions opts;
     opts.continuity = (a->continuity == "C0" || a->continuity == "c0") ? Continuity::C0 : Continuity::C1;
     opts.tolerance = a->tolerance;
-    LRSpline<2> joined = read_surface(a->in[0]);
     std::vector<AnyLRSpline> out;
     std::vector<std::string> report;  // printed once everything is written
-    for (std::size_t i = 1; i < a->in.size(); ++i) {
-      const LRSpline<2> next = read_surface(a->in[i]);
-      const Stitched s = [&] {
-        try {
-          return stitch(joined, next, opts);
-        } catch (const Error& e) {
-          throw Error(std::string(e.what()) + " (" + a->in[i] + ")");
-        }
-      }();
-      report.push_back(a->in[i] + ": side " + side_name(s.seam) + ", gap " + fmt(s.seam_gap) +
-                       ", control points moved up to " + fmt(s.moved) + ", derivative jump " +
-                       fmt(derivative_jump(s)));
-      if (a->separate) {
-        out = {AnyLRSpline(s.first), AnyLRSpline(s.second)};
-        break;
-      }
-      joined = merge(s);
-    }
-    if (out.empty()) out.emplace_back(std::move(joined));
+    std::visit([&](auto first) { join(std::move(first), a->in, a->separate, opts, out, report); }, read_patch(a->in[0]));
     write_lr_file(a->out, out, "stitch");
     for (const std::string& line : report) std::printf("%s\n", line.c_str());
   });

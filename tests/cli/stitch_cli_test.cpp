@@ -98,6 +98,30 @@ trivar::TensorSpline<2> block(std::vector<double> ku, std::vector<double> kv, st
   return trivar::TensorSpline<2>::from_cartesian({u, v}, 2, pts);
 }
 
+// Two triquadratic volumes sharing the face x = 1 (a .g2 volume each, interior points bent) joined C1.
+std::string stitch_volume_g2(double x0) {
+  std::string g2 = "700 1 0 0\n3 0\n";
+  for (int k = 0; k < 3; ++k) g2 += "4 3\n0 0 0 0.5 1 1 1\n";
+  for (int k = 0; k < 4; ++k)
+    for (int j = 0; j < 4; ++j)
+      for (int i = 0; i < 4; ++i)
+        g2 += std::to_string(x0 + i / 3.0) + " " + std::to_string(j / 3.0) + " " +
+              std::to_string(k / 3.0 + (i == 0 || i == 3 ? 0.0 : 0.01 * ((i * j) % 3))) + "\n";
+  return g2;
+}
+
+TEST_F(StitchCli, VolumesSharingAFaceC1) {
+  write("va.g2", stitch_volume_g2(0));
+  write("vb.g2", stitch_volume_g2(1));
+  const Result r = ok("stitch va.g2 vb.g2 --continuity C1 -o vab.lr");
+  EXPECT_NE(r.out.find("face u = hi"), std::string::npos) << r.out;
+  const auto at = r.out.find("derivative jump ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  EXPECT_LT(std::stod(r.out.substr(at + 16)), 1e-10) << r.out;
+  EXPECT_EQ(nlohmann::json::parse(ok("info vab.lr --json").out).at("objects").at(0).at("kind"), "lr_volume");
+  fails("stitch a.g2 va.g2 -o x.lr");  // a surface and a volume
+}
+
 class MultiblockCli : public Cli {};
 
 // Block 0 spans [0, 2] x [0, 1]; blocks 1 ([0, 1] x [1, 2]) and 2 ([1, 2] x [1, 2], reversed axes) sit on its top

@@ -106,7 +106,7 @@ Pair make_pair_() {
   return {a, rotated(b, 2.0, 5.0, -1.0, 1.0)};
 }
 
-double max_jump(const Stitched& s, int order, int samples = 101) {
+double max_jump(const Stitched<2>& s, int order, int samples = 101) {
   double jump = 0;
   double x[9], y[9];
   for (int i = 0; i < samples; ++i) {
@@ -127,7 +127,7 @@ std::map<std::array<std::vector<double>, 2>, std::vector<double>> by_knots(const
 
 TEST(PatchStitching, C1AcrossTheSeamAndUnchangedElsewhere) {
   const Pair in = make_pair_();
-  const Stitched s = stitch(LRSpline<2>(in.a), LRSpline<2>(in.b), {Continuity::C1});
+  const Stitched<2> s = stitch(LRSpline<2>(in.a), LRSpline<2>(in.b), {Continuity::C1});
   EXPECT_EQ(s.seam.dir, 0);
   EXPECT_EQ(s.seam.end, 1);
   EXPECT_LT(s.seam_gap, 1e-14);
@@ -176,8 +176,8 @@ TEST(PatchStitching, C1AcrossTheSeamAndUnchangedElsewhere) {
 // The second patch given with its directions swapped (a quarter turn) stitches to the same result.
 TEST(PatchStitching, QuarterTurnedSecondPatch) {
   const Pair in = make_pair_();
-  const Stitched s = stitch(LRSpline<2>(in.a), LRSpline<2>(quarter_turn(in.b)), {Continuity::C1});
-  const Stitched r = stitch(LRSpline<2>(in.a), LRSpline<2>(in.b), {Continuity::C1});
+  const Stitched<2> s = stitch(LRSpline<2>(in.a), LRSpline<2>(quarter_turn(in.b)), {Continuity::C1});
+  const Stitched<2> r = stitch(LRSpline<2>(in.a), LRSpline<2>(in.b), {Continuity::C1});
   EXPECT_LT(max_jump(s, 1), 1e-10);
   EXPECT_NEAR(s.second.domain().hi[0], r.second.domain().hi[0], 1e-12);
   double x[3], y[3];
@@ -191,7 +191,7 @@ TEST(PatchStitching, QuarterTurnedSecondPatch) {
 
 TEST(PatchStitching, C0KeepsTheDerivativeJump) {
   const Pair in = make_pair_();
-  const Stitched s = stitch(LRSpline<2>(in.a), LRSpline<2>(in.b), {Continuity::C0});
+  const Stitched<2> s = stitch(LRSpline<2>(in.a), LRSpline<2>(in.b), {Continuity::C0});
   EXPECT_LT(max_jump(s, 0), 1e-12);
   EXPECT_GT(max_jump(s, 1), 1e-2);  // nothing made the random patches tangent
   const LRSpline<2> merged = merge(s);
@@ -211,7 +211,7 @@ TEST(PatchStitching, HalvesOfOneSurfaceMergeBackIntoIt) {
   auto [left, right] = split_at(whole, 0, 1.0);
   left = insert_knot(left, 1, 0.7);
   right = insert_knot(right, 1, 0.2);
-  const Stitched s = stitch(LRSpline<2>(rotated(right, 0, 1, 0, 1)), LRSpline<2>(left), {Continuity::C1});
+  const Stitched<2> s = stitch(LRSpline<2>(rotated(right, 0, 1, 0, 1)), LRSpline<2>(left), {Continuity::C1});
   EXPECT_LT(s.moved, 1e-13);
   const LRSpline<2> merged = merge(s);
   // right was rotated by 180 degrees, so merged(u, v) = whole(2 - u, 1 - v) on [0, 2] x [0, 1].
@@ -233,7 +233,7 @@ TEST(PatchStitching, LocallyRefinedPatch) {
   LRSpline<2> a(in.a);
   ASSERT_TRUE(a.insert(MeshRectangle<2>::make(0, 0.3, {0.3, 0.0}, {0.3, 0.5})));
   ASSERT_TRUE(a.insert(MeshRectangle<2>::make(1, 0.4, {0.0, 0.4}, {0.6, 0.4})));
-  const Stitched s = stitch(a, LRSpline<2>(in.b), {Continuity::C1});
+  const Stitched<2> s = stitch(a, LRSpline<2>(in.b), {Continuity::C1});
   EXPECT_LT(max_jump(s, 0), 1e-12);
   EXPECT_LT(max_jump(s, 1), 1e-10);
   const LRSpline<2> merged = merge(s);
@@ -296,7 +296,7 @@ TensorSpline<2> quarter_cylinder(double angle0, double weight_scale, std::vector
 TEST(PatchStitching, RationalCylinderPiecesStayExact) {
   const TensorSpline<2> a = quarter_cylinder(0.0, 1.0, {0, 0, 0.5, 1, 1});
   const TensorSpline<2> b = quarter_cylinder(std::numbers::pi / 2, 3.0, {0, 0, 0.3, 1, 1});
-  const Stitched s = stitch(LRSpline<2>(a), LRSpline<2>(b), {Continuity::C0});
+  const Stitched<2> s = stitch(LRSpline<2>(a), LRSpline<2>(b), {Continuity::C0});
   EXPECT_TRUE(s.first.is_rational() && s.second.is_rational());
   EXPECT_LT(s.moved, 1e-13);  // the seam points were equal once the weights were scaled
   const LRSpline<2> merged = merge(s);

@@ -13,7 +13,8 @@ Param<2> side_param(const LRSpline<2>& s, DomainSide side, double t) {
   return u;
 }
 
-double control_net_diagonal(const LRSpline<2>& s) {
+template <int D>
+double control_net_diagonal(const LRSpline<D>& s) {
   double d = 0;
   for (int j = 0; j < s.dim(); ++j) {
     double lo = HUGE_VAL, hi = -HUGE_VAL;
@@ -26,7 +27,8 @@ double control_net_diagonal(const LRSpline<2>& s) {
   return std::sqrt(d);
 }
 
-std::vector<int> side_row(const LRSpline<2>& s, DomainSide side, int row) {
+template <int D>
+std::vector<int> side_row(const LRSpline<D>& s, DomainSide side, int row) {
   const int p = s.degree(side.dir);
   const double end = side.value(s);
   std::vector<int> ids;
@@ -39,27 +41,33 @@ std::vector<int> side_row(const LRSpline<2>& s, DomainSide side, int row) {
   return ids;
 }
 
-std::vector<std::pair<double, int>> side_trace_knots(const LRSpline<2>& s, DomainSide side) {
-  const int a = side.along();
-  std::map<double, int> mult;
-  for (int id : side_row(s, side, 0)) {
-    const auto& t = s.basis_function(id).knots[static_cast<std::size_t>(a)];
-    for (std::size_t i = 0; i < t.size();) {
-      std::size_t j = i;
-      while (j < t.size() && t[j] == t[i]) ++j;
-      int& m = mult[t[i]];
-      m = std::max(m, static_cast<int>(j - i));
-      i = j;
+template <int D>
+SideKnots<D> side_trace_knots(const LRSpline<D>& s, DomainSide side) {
+  SideKnots<D> out;
+  const std::vector<int> row0 = side_row(s, side, 0);
+  for (int a = 0; a < D; ++a) {
+    if (a == side.dir) continue;
+    std::map<double, int> mult;
+    for (int id : row0) {
+      const auto& t = s.basis_function(id).knots[static_cast<std::size_t>(a)];
+      for (std::size_t i = 0; i < t.size();) {
+        std::size_t j = i;
+        while (j < t.size() && t[j] == t[i]) ++j;
+        int& m = mult[t[i]];
+        m = std::max(m, static_cast<int>(j - i));
+        i = j;
+      }
     }
+    const int p = s.degree(a);
+    mult[s.domain().lo[a]] = p + 1;
+    mult[s.domain().hi[a]] = p + 1;
+    out[static_cast<std::size_t>(a)].assign(mult.begin(), mult.end());
   }
-  const int p = s.degree(a);
-  mult[s.domain().lo[a]] = p + 1;
-  mult[s.domain().hi[a]] = p + 1;
-  return {mult.begin(), mult.end()};
+  return out;
 }
 
-int insert_side_knot_lines(LRSpline<2>& s, DomainSide side, std::span<const std::pair<double, int>> knots, int rows) {
-  const int a = side.along();
+template <int D>
+int insert_side_knot_lines(LRSpline<D>& s, DomainSide side, const std::type_identity_t<SideKnots<D>>& knots, int rows) {
   // The depth of the first rows: the innermost end of their supports across the side.
   double depth = rows > 0 ? side.value(s) : (side.end == 0 ? s.domain().hi[side.dir] : s.domain().lo[side.dir]);
   for (int row = 0; row < rows; ++row)
@@ -67,15 +75,25 @@ int insert_side_knot_lines(LRSpline<2>& s, DomainSide side, std::span<const std:
       const auto& t = s.basis_function(id).knots[static_cast<std::size_t>(side.dir)];
       depth = side.end == 0 ? std::max(depth, t.back()) : std::min(depth, t.front());
     }
-  std::vector<MeshRectangle<2>> lines;
-  for (const auto& [value, m] : knots) {
-    if (value <= s.domain().lo[a] || value >= s.domain().hi[a]) continue;
-    Param<2> lo{}, hi{};
-    lo[side.dir] = std::min(depth, side.value(s));
-    hi[side.dir] = std::max(depth, side.value(s));
-    lines.push_back(MeshRectangle<2>::make(a, value, lo, hi, std::min(m, s.degree(a))));
-  }
+  std::vector<MeshRectangle<D>> lines;
+  for (int a = 0; a < D; ++a)
+    for (const auto& [value, m] : knots[static_cast<std::size_t>(a)]) {
+      if (a == side.dir || value <= s.domain().lo[a] || value >= s.domain().hi[a]) continue;
+      Param<D> lo = s.domain().lo, hi = s.domain().hi;
+      lo[side.dir] = std::min(depth, side.value(s));
+      hi[side.dir] = std::max(depth, side.value(s));
+      lines.push_back(MeshRectangle<D>::make(a, value, lo, hi, std::min(m, s.degree(a))));
+    }
   return lines.empty() ? 0 : s.insert(lines);
 }
+
+template double control_net_diagonal(const LRSpline<2>&);
+template double control_net_diagonal(const LRSpline<3>&);
+template std::vector<int> side_row(const LRSpline<2>&, DomainSide, int);
+template std::vector<int> side_row(const LRSpline<3>&, DomainSide, int);
+template SideKnots<2> side_trace_knots<2>(const LRSpline<2>&, DomainSide);
+template SideKnots<3> side_trace_knots<3>(const LRSpline<3>&, DomainSide);
+template int insert_side_knot_lines<2>(LRSpline<2>&, DomainSide, const SideKnots<2>&, int);
+template int insert_side_knot_lines<3>(LRSpline<3>&, DomainSide, const SideKnots<3>&, int);
 
 }  // namespace trivar

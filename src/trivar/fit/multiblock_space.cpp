@@ -110,11 +110,11 @@ std::vector<std::pair<double, int>> knots_for(const std::vector<LRSpline<2>>& B,
   const int from = 1 - to;
   const LRSpline<2>& R = B[static_cast<std::size_t>(f.block[to])];
   const LRSpline<2>& S = B[static_cast<std::size_t>(f.block[from])];
-  const auto own = side_trace_knots(R, f.side[to]);
+  const auto own = side_trace_knots(R, f.side[to])[static_cast<std::size_t>(f.side[to].along())];
   const double scale = hi_along(R, f.side[to]) - lo_along(R, f.side[to]);
   const double slo = std::min(f.lo[from], f.hi[from]), shi = std::max(f.lo[from], f.hi[from]);
   std::vector<std::pair<double, int>> out;
-  for (const auto& [s, m] : side_trace_knots(S, f.side[from]))
+  for (const auto& [s, m] : side_trace_knots(S, f.side[from])[static_cast<std::size_t>(f.side[from].along())])
     if (s > slo && s < shi) out.emplace_back(snap(map_param(f, from, s), own, scale), m);
   const int p = R.degree(f.side[to].along());
   for (double e : {f.lo[to], f.hi[to]}) out.emplace_back(e, p);
@@ -192,7 +192,8 @@ MultiblockSpace multiblock_space(std::vector<LRSpline<2>> blocks, const Multiblo
     int changed = 0;
     for (const BlockInterface& f : out.interfaces)
       for (int to = 0; to < 2; ++to) {
-        const auto k = knots_for(blocks, f, to);
+        SideKnots<2> k;
+        k[static_cast<std::size_t>(f.side[to].along())] = knots_for(blocks, f, to);
         changed += insert_side_knot_lines(blocks[static_cast<std::size_t>(f.block[to])], f.side[to], k, options.whole_lines ? 0 : 1);
       }
     if (changed == 0) break;

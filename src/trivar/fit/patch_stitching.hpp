@@ -1,9 +1,10 @@
 #pragma once
-// C0 and C1 stitching of two B-spline or LR surfaces that share a side (seed 004, "C1 stitching of 2-variate
-// B-splines"): the shared side is found geometrically (any side of either patch, either direction along it), the
-// second patch is re-parametrised to continue the first across that side, the knot lines of each patch's side
-// are inserted into the other as short segments over the first rows only (LR refinement, geometry unchanged),
-// and continuity is enforced on the first rows alone:
+// C0 and C1 stitching of two B-spline or LR surfaces that share a side, or two volumes that share a face (seed
+// 004, "C1 stitching of 2-variate B-splines", one dimension up): the shared side is found geometrically (any side
+// of either patch, any orientation-preserving correspondence of their parameters along it), the second patch is
+// re-parametrised to continue the first across that side, the knot lines (planes) of both sides are inserted into
+// each as segments spanning the side over the first rows only (LR refinement, geometry unchanged), and continuity
+// is enforced on the first rows alone:
 //   C0: the two copies of every seam control point become their average;
 //   C1: additionally the control points of row 1 on both sides move, as little as possible (least squares),
 //       onto the line through the seam point in the ratio of the two seam-adjacent knot spans, which makes the
@@ -26,9 +27,10 @@ struct StitchOptions {
   double tolerance = 0.0;
 };
 
+template <int D>
 struct Stitched {
-  LRSpline<2> first;   // the first patch in its own parametrisation, knot lines adapted, continuity enforced
-  LRSpline<2> second;  // the second patch re-parametrised beyond first's seam side, adapted likewise
+  LRSpline<D> first;   // the first patch in its own parametrisation, knot lines adapted, continuity enforced
+  LRSpline<D> second;  // the second patch re-parametrised beyond first's seam side, adapted likewise
   DomainSide seam;     // the side of first's domain that the second patch continues
   Continuity continuity = Continuity::C1;
   double seam_gap = 0.0;  // largest distance between the two sides before stitching (sampled)
@@ -44,9 +46,11 @@ struct Stitched {
 // correspond linearly or with weights that are not proportional along it, or when the second patch would have to
 // be mirrored to continue the first (opposite orientation: its normal points the
 // other way); for C1 also when the cross-seam derivatives point against each other (the patches fold back).
-Stitched stitch(const LRSpline<2>& first, const LRSpline<2>& second, const StitchOptions& options = {});
+template <int D>
+Stitched<D> stitch(const LRSpline<D>& first, const LRSpline<D>& second, const StitchOptions& options = {});
 
 // The two stitched patches as one LR spline on the union of their domains (first's parametrisation).
-LRSpline<2> merge(const Stitched& s);
+template <int D>
+LRSpline<D> merge(const Stitched<D>& s);
 
 }  // namespace trivar
