@@ -3,6 +3,7 @@
 // attribute blends.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <numbers>
 
 #include <Eigen/Core>
@@ -331,9 +332,11 @@ TEST(Boolean, BallMinusCylinderThenSlabInEitherOrder) {
   const VModel slab = box({-2, -2, -h}, {4, 4, 2 * h});
   const double exact = pi * (2 * h * (1 - r * r) - 2 * h * h * h / 3);
   const VModel ring_then_slab = cad::boolean(cad::boolean(b, cyl, BooleanOp::subtract), slab, BooleanOp::intersect);
-  EXPECT_NEAR(ring_then_slab.volume(), exact, 1e-6 * exact);
+  EXPECT_NEAR(ring_then_slab.volume(), exact, 2e-7 * exact);  // 2.5e-8 measured
   EXPECT_EQ(boundary_euler(ring_then_slab), 0);
   const VModel slab_then_ring = cad::boolean(cad::boolean(b, slab, BooleanOp::intersect), cyl, BooleanOp::subtract);
-  EXPECT_NEAR(slab_then_ring.volume(), exact, 1e-6 * exact);
+  EXPECT_NEAR(slab_then_ring.volume(), exact, 2e-7 * exact);  // 5.1e-8 measured
   EXPECT_EQ(boundary_euler(slab_then_ring), 0);
+  std::printf("ball minus cylinder, slab: relative volume errors %.2e (ring first), %.2e (slab first)\n",
+              std::abs(ring_then_slab.volume() / exact - 1), std::abs(slab_then_ring.volume() / exact - 1));
 }
