@@ -315,6 +315,20 @@ std::vector<TopoDS_Face> trimmed_faces(const TrimmedBoundary& b, double toleranc
                                       std::to_string(gap) + " > " + std::to_string(tolerance) + ")");
         builder.MakeVertex(junction[k], gp_Pnt((p0.XYZ() + p1.XYZ()) / 2), std::max(Precision::Confusion(), 0.5 * gap * (1 + 1e-3)));
       }
+      // A curve closed in space (a full circle beside a seam, a pole) starts and ends at one vertex: the kernel
+      // refuses two there. Junctions joined by such curves become the first of them.
+      for (std::size_t k = 0; k < n; ++k) {
+        if (ends[k][0].Distance(ends[k][1]) > Precision::Confusion()) continue;
+        const std::size_t to = (k + 1) % n;
+        if (junction[to].IsSame(junction[k])) continue;
+        const gp_Pnt p = BRep_Tool::Pnt(junction[k]);
+        const double t = std::max(BRep_Tool::Tolerance(junction[k]),
+                                  BRep_Tool::Tolerance(junction[to]) + p.Distance(BRep_Tool::Pnt(junction[to])));
+        builder.UpdateVertex(junction[k], t);
+        const TopoDS_Vertex old = junction[to];
+        for (TopoDS_Vertex& v : junction)
+          if (v.IsSame(old)) v = junction[k];
+      }
       BRepBuilderAPI_MakeWire wire;
       for (std::size_t k = 0; k < n; ++k) {
         BRepBuilderAPI_MakeEdge edge(pcs[k], surface, junction[k], junction[(k + 1) % n], pcs[k]->FirstParameter(),
