@@ -3,6 +3,7 @@
 // attribute blends.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <numbers>
 
 #include <Eigen/Core>
@@ -319,4 +320,23 @@ TEST(Boolean, SlicingABlendedUnion) {
   EXPECT_GT(checked, 1000);
   // Pixel centres on a face between two cells (within the meshes' chordal tolerance) may count twice or never.
   EXPECT_LE(not_one, checked / 500);
+}
+
+// Results as operands, with curved trims: the unit ball minus a cylinder of radius 0.4 off the axis, then cut to
+// the slab |z| <= h, and the same in the other order. The cylinder lies inside every cross-section of the slab,
+// so the volume is the integral of pi (1 - z^2 - r^2) over |z| <= h.
+TEST(Boolean, BallMinusCylinderThenSlabInEitherOrder) {
+  const double r = 0.4, h = 0.3;
+  const VModel b = ball(1);
+  const VModel cyl = test::glued(make_cylinder({r, 3}), {0.1, 0.05, -1.5});
+  const VModel slab = box({-2, -2, -h}, {4, 4, 2 * h});
+  const double exact = pi * (2 * h * (1 - r * r) - 2 * h * h * h / 3);
+  const VModel ring_then_slab = cad::boolean(cad::boolean(b, cyl, BooleanOp::subtract), slab, BooleanOp::intersect);
+  EXPECT_NEAR(ring_then_slab.volume(), exact, 2e-7 * exact);  // 2.5e-8 measured
+  EXPECT_EQ(boundary_euler(ring_then_slab), 0);
+  const VModel slab_then_ring = cad::boolean(cad::boolean(b, slab, BooleanOp::intersect), cyl, BooleanOp::subtract);
+  EXPECT_NEAR(slab_then_ring.volume(), exact, 2e-7 * exact);  // 5.1e-8 measured
+  EXPECT_EQ(boundary_euler(slab_then_ring), 0);
+  std::printf("ball minus cylinder, slab: relative volume errors %.2e (ring first), %.2e (slab first)\n",
+              std::abs(ring_then_slab.volume() / exact - 1), std::abs(slab_then_ring.volume() / exact - 1));
 }

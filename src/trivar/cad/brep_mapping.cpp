@@ -14,6 +14,8 @@
 #include <BRep_Tool.hxx>
 #include <ShapeFix_Shell.hxx>
 #include <TopoDS_Shell.hxx>
+#include <TopoDS_Vertex.hxx>
+#include <Precision.hxx>
 #include <gp_Trsf.hxx>
 #include <BRepBuilderAPI_Transform.hxx>
 #include <TopoDS_Compound.hxx>
@@ -288,13 +290,54 @@ std::vector<TopoDS_Face> trimmed_faces(const TrimmedBoundary& b, double toleranc
     const Handle(Geom_BSplineSurface) surface = to_occt(tf.surface);
     std::vector<TopoDS_Wire> wires;
     for (const TrimLoop& loop : tf.loops) {
-      BRepBuilderAPI_MakeWire wire;
+      // The curves' ends on the surface: where a curve meets the next, the two ends differ by the accuracy of the
+      // pcurves the kernel computed (intersection curves of an earlier Boolean are approximations, 1e-6 and more
+      // apart at their ends). One vertex at each junction, its tolerance covering both ends, joins them; edges
+      // made on their own would each get vertices of the default tolerance, too small to connect them.
+      const std::size_t n = loop.curves.size();
+      std::vector<Handle(Geom2d_BSplineCurve)> pcs;
+      std::vector<std::array<gp_Pnt, 2>> ends;
       for (const TrimCurve& c : loop.curves) {
-        const Handle(Geom2d_BSplineCurve) pc = to_occt_2d(c.pcurve);
-        BRepBuilderAPI_MakeEdge edge(pc, surface);
+        pcs.push_back(to_occt_2d(c.pcurve));
+        const auto at = [&](double t) {
+          const gp_Pnt2d q = pcs.back()->Value(t);
+          return surface->Value(q.X(), q.Y());
+        };
+        ends.push_back({at(pcs.back()->FirstParameter()), at(pcs.back()->LastParameter())});
+      }
+      std::vector<TopoDS_Vertex> junction(n);  // junction k: the start of curve k, the end of curve k - 1
+      BRep_Builder builder;
+      for (std::size_t k = 0; k < n; ++k) {
+        const gp_Pnt& p0 = ends[(k + n - 1) % n][1];
+        const gp_Pnt& p1 = ends[k][0];
+        const double gap = p0.Distance(p1);
+        require(gap <= tolerance, what + ": face " + std::to_string(i) + ": a trimming loop is not connected within the tolerance (gap " +
+                                      std::to_string(gap) + " > " + std::to_string(tolerance) + ")");
+        builder.MakeVertex(junction[k], gp_Pnt((p0.XYZ() + p1.XYZ()) / 2), std::max(Precision::Confusion(), 0.5 * gap * (1 + 1e-3)));
+      }
+      // A curve closed in space (a full circle beside a seam, a pole) starts and ends at one vertex: the kernel
+      // refuses two there. Junctions joined by such curves become the first of them.
+      for (std::size_t k = 0; k < n; ++k) {
+        if (ends[k][0].Distance(ends[k][1]) > Precision::Confusion()) continue;
+        const std::size_t to = (k + 1) % n;
+        if (junction[to].IsSame(junction[k])) continue;
+        const gp_Pnt p = BRep_Tool::Pnt(junction[k]);
+        const double t = std::max(BRep_Tool::Tolerance(junction[k]),
+                                  BRep_Tool::Tolerance(junction[to]) + p.Distance(BRep_Tool::Pnt(junction[to])));
+        builder.UpdateVertex(junction[k], t);
+        const TopoDS_Vertex old = junction[to];
+        for (TopoDS_Vertex& v : junction)
+          if (v.IsSame(old)) v = junction[k];
+      }
+      BRepBuilderAPI_MakeWire wire;
+      for (std::size_t k = 0; k < n; ++k) {
+        BRepBuilderAPI_MakeEdge edge(pcs[k], surface, junction[k], junction[(k + 1) % n], pcs[k]->FirstParameter(),
+                                     pcs[k]->LastParameter());
         require(edge.IsDone(), what + ": face " + std::to_string(i) + ": a trimming curve is no edge on its surface");
-        wire.Add(edge.Edge());
-        require(wire.IsDone(), what + ": face " + std::to_string(i) + ": a trimming loop is not connected within the tolerance");
+        TopoDS_Edge e = edge.Edge();
+        if (loop.curves[k].edge < 0) builder.Degenerated(e, true);
+        wire.Add(e);
+        require(wire.IsDone(), what + ": face " + std::to_string(i) + ": a trimming loop is not connected");
       }
       wires.push_back(wire.Wire());
     }
