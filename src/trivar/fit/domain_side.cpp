@@ -4,6 +4,8 @@
 #include <cmath>
 #include <map>
 
+#include "trivar/lr/tensor_expansion.hpp"
+
 namespace trivar {
 
 Param<2> side_param(const LRSpline<2>& s, DomainSide side, double t) {
@@ -48,16 +50,7 @@ SideKnots<D> side_trace_knots(const LRSpline<D>& s, DomainSide side) {
   for (int a = 0; a < D; ++a) {
     if (a == side.dir) continue;
     std::map<double, int> mult;
-    for (int id : row0) {
-      const auto& t = s.basis_function(id).knots[static_cast<std::size_t>(a)];
-      for (std::size_t i = 0; i < t.size();) {
-        std::size_t j = i;
-        while (j < t.size() && t[j] == t[i]) ++j;
-        int& m = mult[t[i]];
-        m = std::max(m, static_cast<int>(j - i));
-        i = j;
-      }
-    }
+    for (int id : row0) raise_knot_multiplicities(s.basis_function(id).knots[static_cast<std::size_t>(a)], mult);
     const int p = s.degree(a);
     mult[s.domain().lo[a]] = p + 1;
     mult[s.domain().hi[a]] = p + 1;

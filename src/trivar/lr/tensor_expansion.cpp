@@ -9,6 +9,16 @@
 
 namespace trivar {
 
+void raise_knot_multiplicities(const std::vector<double>& t, std::map<double, int>& mult) {
+  for (std::size_t i = 0; i < t.size();) {
+    std::size_t j = i;
+    while (j < t.size() && t[j] == t[i]) ++j;
+    int& m = mult[t[i]];
+    m = std::max(m, static_cast<int>(j - i));
+    i = j;
+  }
+}
+
 template <int D>
 TensorSpline<D> tensor_expansion(const LRSpline<D>& lr) {
   require(!lr.is_rational(), "tensor expansion: rational LR splines are not supported");
@@ -17,16 +27,8 @@ TensorSpline<D> tensor_expansion(const LRSpline<D>& lr) {
   double count = 1.0;
   for (int k = 0; k < D; ++k) {
     std::map<double, int> mult;
-    for (const LRBSpline<D>& b : lr.basis_functions()) {
-      const auto& t = b.knots[static_cast<std::size_t>(k)];
-      for (std::size_t i = 0; i < t.size();) {
-        std::size_t j = i;
-        while (j < t.size() && t[j] == t[i]) ++j;
-        int& m = mult[t[i]];
-        m = std::max(m, static_cast<int>(j - i));
-        i = j;
-      }
-    }
+    for (const LRBSpline<D>& b : lr.basis_functions())
+      raise_knot_multiplicities(b.knots[static_cast<std::size_t>(k)], mult);
     std::vector<double> t;
     for (const auto& [value, m] : mult) t.insert(t.end(), static_cast<std::size_t>(m), value);
     knots[static_cast<std::size_t>(k)] = KnotVector(lr.degree(k), std::move(t));
