@@ -114,7 +114,8 @@ std::vector<std::pair<double, int>> knots_for(const std::vector<LRSpline<2>>& B,
   const double scale = hi_along(R, f.side[to]) - lo_along(R, f.side[to]);
   const double slo = std::min(f.lo[from], f.hi[from]), shi = std::max(f.lo[from], f.hi[from]);
   std::vector<std::pair<double, int>> out;
-  for (const auto& [s, m] : side_trace_knots(S, f.side[from])[static_cast<std::size_t>(f.side[from].along())])
+  const auto theirs = side_trace_knots(S, f.side[from])[static_cast<std::size_t>(f.side[from].along())];
+  for (const auto& [s, m] : theirs)
     if (s > slo && s < shi) out.emplace_back(snap(map_param(f, from, s), own, scale), m);
   const int p = R.degree(f.side[to].along());
   for (double e : {f.lo[to], f.hi[to]}) out.emplace_back(e, p);
