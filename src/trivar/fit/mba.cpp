@@ -106,18 +106,22 @@ void mba_update(const LRSpline<D>& lr, const ScatteredData<D>& data, const Point
     if (!cached || C.size() == 0) C = extraction_operator(deg, lr.basis_functions(), lr.element_support(e), lr.element(e));
     return C;
   };
-  std::vector<double> local(start.back());
-  std::vector<double> num(static_cast<std::size_t>(n) * static_cast<std::size_t>(m)), den(static_cast<std::size_t>(n));
-  for (int pass = 0; pass < passes; ++pass) {
-    std::fill(local.begin(), local.end(), 0.0);
+  // Both halves of a pass visit the elements that hold points, with their support and extraction operator.
+  const auto for_each_element_with_points = [&](auto&& body) {
     parallel_for(ne, threads, [&](std::ptrdiff_t ei) {
       const int e = static_cast<int>(ei);
       const std::span<const int> pts = fit_kernel::points_of(where, e);
       if (pts.empty()) return;
-      const Box<D>& box = lr.element(e);
-      const std::span<const int> ids = lr.element_support(e);
       Eigen::MatrixXd scratch;
-      const Eigen::MatrixXd& C = extraction(e, scratch);
+      body(e, pts, lr.element(e), lr.element_support(e), extraction(e, scratch));
+    });
+  };
+  std::vector<double> local(start.back());
+  std::vector<double> num(static_cast<std::size_t>(n) * static_cast<std::size_t>(m)), den(static_cast<std::size_t>(n));
+  for (int pass = 0; pass < passes; ++pass) {
+    std::fill(local.begin(), local.end(), 0.0);
+    for_each_element_with_points([&](int e, std::span<const int> pts, const Box<D>& box, std::span<const int> ids,
+                                     const Eigen::MatrixXd& C) {
       double* wishes = local.data() + start[static_cast<std::size_t>(e)];
       double* weights = wishes + ids.size() * static_cast<std::size_t>(m);
       fit_kernel::with_degree<D>(deg, [&](auto P) {
@@ -143,14 +147,8 @@ void mba_update(const LRSpline<D>& lr, const ScatteredData<D>& data, const Point
         d = den[j] > 0.0 ? d / den[j] : 0.0;
         coefs[j * static_cast<std::size_t>(m) + static_cast<std::size_t>(c)] += d;
       }
-    parallel_for(ne, threads, [&](std::ptrdiff_t ei) {
-      const int e = static_cast<int>(ei);
-      const std::span<const int> pts = fit_kernel::points_of(where, e);
-      if (pts.empty()) return;
-      const Box<D>& box = lr.element(e);
-      const std::span<const int> ids = lr.element_support(e);
-      Eigen::MatrixXd scratch;
-      const Eigen::MatrixXd& C = extraction(e, scratch);
+    for_each_element_with_points([&](int, std::span<const int> pts, const Box<D>& box, std::span<const int> ids,
+                                     const Eigen::MatrixXd& C) {
       Eigen::MatrixXd delta(static_cast<Eigen::Index>(ids.size()), m);
       for (std::size_t r = 0; r < ids.size(); ++r)
         for (int c = 0; c < m; ++c)
