@@ -6,20 +6,22 @@
 #include <string>
 
 #include "trivar/core/error.hpp"
-#include "trivar/tspline/catmull_clark_patch.hpp"
 
 namespace trivar {
 
 namespace t_mesh_patches_detail {
 
-using P3 = std::array<double, 3>;
-using Net = std::array<P3, 16>;  // bicubic Bezier net, index i + 4 j
+// Homogeneous points (w x, w y, w z, w): the Catmull-Clark pieces of a rational mesh are rational patches.
+using P4 = std::array<double, 4>;
+using Net = std::array<P4, 16>;  // bicubic Bezier net, index i + 4 j
+// Value, d/du, d/dv of the homogeneous surface at (x, y) of the patch frame (12 values).
+using HomogeneousEval = std::function<void(double, double, double*)>;
 
 // The cubic Bezier coefficients of the cubic through f(0), f(1/3), f(2/3), f(1) (the inverse Bernstein
 // Vandermonde matrix; its first and last rows are exact, so shared end values stay bit-identical).
-std::array<P3, 4> interpolate(const std::array<P3, 4>& f) {
-  std::array<P3, 4> b{};
-  for (std::size_t c = 0; c < 3; ++c) {
+std::array<P4, 4> interpolate(const std::array<P4, 4>& f) {
+  std::array<P4, 4> b{};
+  for (std::size_t c = 0; c < 4; ++c) {
     b[0][c] = f[0][c];
     b[1][c] = (-5 * f[0][c] + 18 * f[1][c] - 9 * f[2][c] + 2 * f[3][c]) / 6;
     b[2][c] = (2 * f[0][c] - 9 * f[1][c] + 18 * f[2][c] - 5 * f[3][c]) / 6;
@@ -28,14 +30,14 @@ std::array<P3, 4> interpolate(const std::array<P3, 4>& f) {
   return b;
 }
 
-// A bicubic polynomial on [x0, x0 + w] x [y0, y0 + w] (value at (x, y) into out[0..2]) as its Bezier net.
-Net interpolate_patch(const std::function<void(double, double, double*)>& f, double x0, double y0, double w) {
+// A bicubic polynomial on [x0, x0 + w] x [y0, y0 + w] as its Bezier net.
+Net interpolate_patch(const HomogeneousEval& f, double x0, double y0, double w) {
   Net vals{};
   for (int j = 0; j < 4; ++j)
     for (int i = 0; i < 4; ++i) {
-      double o[9];
+      double o[12];
       f(x0 + w * i / 3.0, y0 + w * j / 3.0, o);
-      vals[static_cast<std::size_t>(i + 4 * j)] = {o[0], o[1], o[2]};
+      vals[static_cast<std::size_t>(i + 4 * j)] = {o[0], o[1], o[2], o[3]};
     }
   Net rows{}, net{};
   for (std::size_t j = 0; j < 4; ++j) {
@@ -49,17 +51,18 @@ Net interpolate_patch(const std::function<void(double, double, double*)>& f, dou
   return net;
 }
 
-P3 eval_net(const Net& n, double s, double t) {
+// The projected point of the net at (s, t).
+std::array<double, 3> eval_net(const Net& n, double s, double t) {
   const auto bern = [](double x) {
     const double y = 1 - x;
     return std::array<double, 4>{y * y * y, 3 * x * y * y, 3 * x * x * y, x * x * x};
   };
   const auto bs = bern(s), bt = bern(t);
-  P3 x{};
+  P4 x{};
   for (std::size_t j = 0; j < 4; ++j)
     for (std::size_t i = 0; i < 4; ++i)
-      for (std::size_t c = 0; c < 3; ++c) x[c] += bs[i] * bt[j] * n[i + 4 * j][c];
-  return x;
+      for (std::size_t c = 0; c < 4; ++c) x[c] += bs[i] * bt[j] * n[i + 4 * j][c];
+  return {x[0] / x[3], x[1] / x[3], x[2] / x[3]};
 }
 
 // A Bezier net of degree p given over the source rectangle [lo, hi], stride values per point, as a patch of
@@ -102,7 +105,8 @@ FacePatch net_to_face(int face, const Net& net, const Box<2>& src, const CornerF
   const auto map = [&](double x, double y) {
     return std::array<double, 2>{fr.origin[0] + x * fr.a[0] + y * fr.b[0], fr.origin[1] + x * fr.a[1] + y * fr.b[1]};
   };
-  return to_face(face, 3, src, 3, false, net[0].data(), map, exact);
+  const bool rational = std::any_of(net.begin(), net.end(), [](const P4& x) { return std::abs(x[3] - 1) > 1e-14; });
+  return to_face(face, 3, src, 4, rational, net[0].data(), map, exact);
 }
 
 // The exact faces: the chart's Bezier elements inside the face.
@@ -137,28 +141,31 @@ void exact_face(const TMeshSurface& s, int face, std::vector<FacePatch>& out) {
   });
 }
 
-// The corner patch [0, h]^2 (patch frame) of a star face; see the header.
-Net corner_patch(const CatmullClarkPatch& cc, const std::vector<P3>& pts, double h) {
-  const auto f = [&](double x, double y, double* o) { cc.eval(pts, x, y, o); };
-  double o[9];
+// The corner patch [0, h]^2 (patch frame) of a star face; see the header. Built on the homogeneous surface: the
+// construction is affine in the data, and a tangent direction of (w x, w) at the star point projects to the
+// limit tangent, so the projected patches keep the tangent plane there.
+Net corner_patch(const HomogeneousEval& f, double h) {
+  double o[12];
   f(0, 0, o);
-  const P3 b00{o[0], o[1], o[2]};
-  const auto unit = [](const double* d) {
-    const double l = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    return P3{d[0] / l, d[1] / l, d[2] / l};
+  const P4 b00{o[0], o[1], o[2], o[3]};
+  const auto norm = [](const P4& d) { return std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] + d[3] * d[3]); };
+  const auto unit = [&](const double* d) {
+    const P4 x{d[0], d[1], d[2], d[3]};
+    const double l = norm(x);
+    return P4{d[0] / l, d[1] / l, d[2] / l, d[3] / l};
   };
-  const P3 tu = unit(o + 3), tv = unit(o + 6);
+  const P4 tu = unit(o + 4), tv = unit(o + 8);
   Net b{};
-  const auto at = [&](int i, int j) -> P3& { return b[static_cast<std::size_t>(i + 4 * j)]; };
+  const auto at = [&](int i, int j) -> P4& { return b[static_cast<std::size_t>(i + 4 * j)]; };
   // The sides away from the star point and their cross-derivatives, sampled at the thirds.
-  std::array<P3, 4> side_u{}, side_v{}, du{}, dv{};
-  for (int k = 0; k < 4; ++k) {
-    f(h, h * k / 3.0, o);
-    side_u[static_cast<std::size_t>(k)] = {o[0], o[1], o[2]};
-    du[static_cast<std::size_t>(k)] = {o[3], o[4], o[5]};
-    f(h * k / 3.0, h, o);
-    side_v[static_cast<std::size_t>(k)] = {o[0], o[1], o[2]};
-    dv[static_cast<std::size_t>(k)] = {o[6], o[7], o[8]};
+  std::array<P4, 4> side_u{}, side_v{}, du{}, dv{};
+  for (std::size_t k = 0; k < 4; ++k) {
+    f(h, h * static_cast<double>(k) / 3.0, o);
+    side_u[k] = {o[0], o[1], o[2], o[3]};
+    du[k] = {o[4], o[5], o[6], o[7]};
+    f(h * static_cast<double>(k) / 3.0, h, o);
+    side_v[k] = {o[0], o[1], o[2], o[3]};
+    dv[k] = {o[8], o[9], o[10], o[11]};
   }
   const auto su = interpolate(side_u), sv = interpolate(side_v), cu = interpolate(du), cv = interpolate(dv);
   for (int k = 0; k < 4; ++k) {
@@ -167,11 +174,10 @@ Net corner_patch(const CatmullClarkPatch& cc, const std::vector<P3>& pts, double
   }
   at(3, 3) = su[3];
   // The edges out of the star point: from the limit point along the limit tangent to the exact end.
-  for (std::size_t c = 0; c < 3; ++c) at(0, 0)[c] = b00[c];
-  const auto edge = [&](const P3& end, const P3& t, const P3& d_end, P3& b1, P3& b2) {
-    const double chord = std::sqrt((end[0] - b00[0]) * (end[0] - b00[0]) + (end[1] - b00[1]) * (end[1] - b00[1]) +
-                                   (end[2] - b00[2]) * (end[2] - b00[2]));
-    for (std::size_t c = 0; c < 3; ++c) {
+  at(0, 0) = b00;
+  const auto edge = [&](const P4& end, const P4& t, const P4& d_end, P4& b1, P4& b2) {
+    const double chord = norm({end[0] - b00[0], end[1] - b00[1], end[2] - b00[2], end[3] - b00[3]});
+    for (std::size_t c = 0; c < 4; ++c) {
       b1[c] = b00[c] + chord / 3 * t[c];
       b2[c] = end[c] - h / 3 * d_end[c];
     }
@@ -179,7 +185,7 @@ Net corner_patch(const CatmullClarkPatch& cc, const std::vector<P3>& pts, double
   // d/du at (h, 0) is the first coefficient's value of the sampled cross-derivative (its end values are exact).
   edge(at(3, 0), tu, du[0], at(1, 0), at(2, 0));
   edge(at(0, 3), tv, dv[0], at(0, 1), at(0, 2));
-  for (std::size_t c = 0; c < 3; ++c) {
+  for (std::size_t c = 0; c < 4; ++c) {
     at(1, 1)[c] = at(1, 0)[c] + at(0, 1)[c] - b00[c];
     at(2, 1)[c] = at(3, 1)[c] - h / 3 * cu[1][c];
     at(1, 2)[c] = at(1, 3)[c] - h / 3 * cv[1][c];
@@ -188,14 +194,14 @@ Net corner_patch(const CatmullClarkPatch& cc, const std::vector<P3>& pts, double
   return b;
 }
 
-double corner_deviation(const CatmullClarkPatch& cc, const std::vector<P3>& pts, const Net& net, double h) {
+double corner_deviation(const HomogeneousEval& f, const Net& net, double h) {
   double worst = 0;
   for (int j = 0; j <= 8; ++j)
     for (int i = 0; i <= 8; ++i) {
-      double o[9];
-      cc.eval(pts, h * i / 8.0, h * j / 8.0, o);
-      const P3 x = eval_net(net, i / 8.0, j / 8.0);
-      worst = std::max(worst, std::hypot(x[0] - o[0], x[1] - o[1], x[2] - o[2]));
+      double o[12];
+      f(h * i / 8.0, h * j / 8.0, o);
+      const auto x = eval_net(net, i / 8.0, j / 8.0);
+      worst = std::max(worst, std::hypot(x[0] - o[0] / o[3], x[1] - o[1] / o[3], x[2] - o[2] / o[3]));
     }
   return worst;
 }
@@ -216,23 +222,21 @@ TMeshPatches t_mesh_patches(const TMeshSurface& s, const TMeshPatchOptions& opti
   // Star faces: the corner patches for a growing number of levels until they meet the tolerance.
   struct Star {
     int face;
-    std::vector<P3> points;
-    const CatmullClarkPatch* cc;
+    HomogeneousEval eval;
     Net corner;
+  };
+  const auto patch_eval = [&s](int f) -> HomogeneousEval {
+    return [&s, f](double x, double y, double* o) { s.eval_patch_homogeneous(f, x, y, o); };
   };
   std::vector<Star> stars;
   for (int f = 0; f < s.num_faces(); ++f)
-    if (s.method(f) == FaceMethod::star) {
-      std::vector<P3> p = s.patch_points(f);
-      const int n = static_cast<int>((p.size() - 8) / 2);
-      stars.push_back({f, std::move(p), &catmull_clark_patch(n), {}});
-    }
+    if (s.method(f) == FaceMethod::star) stars.push_back({f, patch_eval(f), {}});
   for (int k = options.levels >= 0 ? options.levels : 0;; ++k) {
     const double h = std::ldexp(1.0, -k);
     double dev = 0;
     for (Star& st : stars) {
-      st.corner = corner_patch(*st.cc, st.points, h);
-      dev = std::max(dev, corner_deviation(*st.cc, st.points, st.corner, h));
+      st.corner = corner_patch(st.eval, h);
+      dev = std::max(dev, corner_deviation(st.eval, st.corner, h));
     }
     r.levels = k;
     r.deviation = dev;
@@ -247,20 +251,17 @@ TMeshPatches t_mesh_patches(const TMeshSurface& s, const TMeshPatchOptions& opti
     switch (s.method(f)) {
       case FaceMethod::none: break;
       case FaceMethod::exact: exact_face(s, f, r.patches); break;
-      case FaceMethod::bicubic: {
-        const auto g = regular_grid(s.patch_points(f));
-        const Net net = interpolate_patch([&](double x, double y, double* o) { eval_uniform_bicubic(g, x, y, o); }, 0, 0, 1);
-        r.patches.push_back(net_to_face(f, net, {{0, 0}, {1, 1}}, corner_frame(s.patch_corner(f)), true));
+      case FaceMethod::bicubic:
+        r.patches.push_back(net_to_face(f, interpolate_patch(patch_eval(f), 0, 0, 1), {{0, 0}, {1, 1}},
+                                        corner_frame(s.patch_corner(f)), true));
         break;
-      }
       case FaceMethod::star: {
         const Star& st = stars[next_star++];
         const CornerFrame fr = corner_frame(s.patch_corner(f));
-        const auto ev = [&](double x, double y, double* o) { st.cc->eval(st.points, x, y, o); };
         for (int j = 1; j <= r.levels; ++j) {
           const double h = std::ldexp(1.0, -j);
           for (const auto& lo : {std::array<double, 2>{h, 0}, std::array<double, 2>{h, h}, std::array<double, 2>{0, h}})
-            r.patches.push_back(net_to_face(f, interpolate_patch(ev, lo[0], lo[1], h),
+            r.patches.push_back(net_to_face(f, interpolate_patch(st.eval, lo[0], lo[1], h),
                                             {{lo[0], lo[1]}, {lo[0] + h, lo[1] + h}}, fr, true));
         }
         const double h = std::ldexp(1.0, -r.levels);

@@ -202,12 +202,15 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(mesh), stars_
     require(star_corners <= 1, [&] { return where() + "it has " + std::to_string(star_corners) + " star corners; subdivide the control mesh once so that every face has at most one"; });
     Gather gth = gather(m, loop[static_cast<std::size_t>(corner)]);
     require(gth.error.empty(), [&] { return where() + gth.error; });
-    for (int x : gth.points)
-    {
+    for (int x : gth.points) {
       const TMeshVertex& mv = m.vertices[static_cast<std::size_t>(x)];
-      require(mv.primary >= 0 && m.points[static_cast<std::size_t>(mv.primary)].w == 1.0 && mv.block.empty(), [&] {
-        return where() + "vertex " + std::to_string(x) + " has no control point, a weight other than 1 or repeated-knot nodes; the Catmull-Clark evaluation around star points needs one point of weight 1";
+      require(mv.primary >= 0 && mv.block.empty(), [&] {
+        return where() + "vertex " + std::to_string(x) + " has no control point or repeated-knot nodes; the Catmull-Clark evaluation around star points needs one point per vertex";
       });
+      const RationalPoint& pt = m.points[static_cast<std::size_t>(mv.primary)];
+      face.wx.push_back({pt.w * pt.xyz[0], pt.w * pt.xyz[1], pt.w * pt.xyz[2]});
+      face.w.push_back({pt.w, 0, 0});
+      face.rational = face.rational || pt.w != 1.0;
     }
     face.method = star_corners ? FaceMethod::star : FaceMethod::bicubic;
     face.corner = corner;
@@ -363,24 +366,44 @@ void TMeshSurface::eval(int face, double u, double v, double* out) const {
     }
     return;
   }
-  const std::vector<std::array<double, 3>> p = patch_points(face);
   // The patch's frame: (u', v') from the corner along the next and the previous corner.
   const CornerFrame fr = corner_frame(f.corner);
   const auto& o = fr.origin;
   const auto& a = fr.a;
   const auto& b = fr.b;
   const double up = a[0] * (u - o[0]) + a[1] * (v - o[1]), vp = b[0] * (u - o[0]) + b[1] * (v - o[1]);
-  double q[9];
-  if (f.method == FaceMethod::bicubic) {
-    const auto g = regular_grid(p);
-    eval_uniform_bicubic(g, std::clamp(up, 0.0, 1.0), std::clamp(vp, 0.0, 1.0), q);
-  } else {
-    catmull_clark_patch(static_cast<int>((p.size() - 8) / 2)).eval(p, std::clamp(up, 0.0, 1.0), std::clamp(vp, 0.0, 1.0), q);
-  }
+  double h[12], q[9];
+  eval_patch_homogeneous(face, std::clamp(up, 0.0, 1.0), std::clamp(vp, 0.0, 1.0), h);
+  // The quotient rule: x = X / W, x' = (X' - x W') / W.
+  for (int k = 0; k < 3; ++k)
+    for (int c = 0; c < 3; ++c) {
+      const double x = h[c] / h[3];
+      q[3 * k + c] = k == 0 ? x : (h[4 * k + c] - x * h[4 * k + 3]) / h[3];
+    }
   for (int c = 0; c < 3; ++c) {
     out[c] = q[c];
     out[3 + c] = a[0] * q[3 + c] + b[0] * q[6 + c];
     out[6 + c] = a[1] * q[3 + c] + b[1] * q[6 + c];
+  }
+}
+
+void TMeshSurface::eval_patch_homogeneous(int face, double up, double vp, double* out) const {
+  const Face& f = faces_[static_cast<std::size_t>(face)];
+  require(f.method == FaceMethod::bicubic || f.method == FaceMethod::star,
+          [&] { return "T-mesh: face " + std::to_string(face) + " is not a Catmull-Clark face"; });
+  // The rules are linear: once on w x, once on the weights (all 1: W = 1, W' = 0).
+  const auto run = [&](const std::vector<std::array<double, 3>>& p, double* q) {
+    if (f.method == FaceMethod::bicubic)
+      eval_uniform_bicubic(regular_grid(p), up, vp, q);
+    else
+      catmull_clark_patch(static_cast<int>((p.size() - 8) / 2)).eval(p, up, vp, q);
+  };
+  double x[9], w[9] = {1, 0, 0, 0, 0, 0, 0, 0, 0};
+  run(f.wx, x);
+  if (f.rational) run(f.w, w);
+  for (int k = 0; k < 3; ++k) {
+    for (int c = 0; c < 3; ++c) out[4 * k + c] = x[3 * k + c];
+    out[4 * k + 3] = w[3 * k];
   }
 }
 

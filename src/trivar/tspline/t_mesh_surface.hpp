@@ -12,8 +12,12 @@
 //   star           the faces at a star point: the Catmull-Clark limit surface of their 2N + 8 control points,
 //                  evaluated exactly (catmull_clark_patch, Stam 1998).
 // The faces within p + 2 rings of a star point (bicubic and star) need, and are checked to have, degree 3,
-// equal knot intervals, no T-junction and no boundary within (p + 1) / 2 rings of them, control points of
-// weight 1 without repeated-knot nodes, and at most one star corner per face. A face more than p rings from
+// equal knot intervals, no T-junction and no boundary within (p + 1) / 2 rings of them, control points
+// without repeated-knot nodes, and at most one star corner per face. Weights other than 1 are rational
+// Catmull-Clark: the rules act on the homogeneous points (w x, w) and the limit is projected, which on faces
+// without a star corner is the rational uniform bicubic B-spline sum w P B / sum w B, i.e. the T-spline (the
+// rules are linear, so Stam's evaluation of the homogeneous mesh is exact; projection keeps C1 across edges and
+// the tangent plane at the star point). A face more than p rings from
 // the star points' faces that fails these (a boundary, a T-junction or unequal intervals nearby) is exact
 // instead when a chart of p up to (its distance - 1) rings around it holds its knot vectors (so a star point
 // needs 7 faces to the boundary, not 8); otherwise the face's reason is the error. The
@@ -70,6 +74,10 @@ public:
   // regular case) and the corner of the face they start at; the patch's (u', v') maps to the face's (u, v) by
   // corner_frame.
   std::vector<std::array<double, 3>> patch_points(int face) const;
+  // The same face in its patch frame (u', v'): the homogeneous limit surface (w x, w y, w z, w) and its d/du',
+  // d/dv' (12 values: value, d/du', d/dv', four each; at a star point the derivatives are directions).
+  void eval_patch_homogeneous(int face, double up, double vp, double* out) const;
+  bool rational_patch(int face) const { return faces_[static_cast<std::size_t>(face)].rational; }
   int patch_corner(int face) const { return faces_[static_cast<std::size_t>(face)].corner; }
 
 private:
@@ -79,6 +87,9 @@ private:
     std::array<double, 2> origin{}, axis_u{}, axis_v{};  // exact: the face's first corner and sides in the chart
     int corner = 0;                // star: the star point's corner (0..3)
     std::vector<int> points;       // bicubic: 16, star: 2N + 8 control points (catmull_clark_patch layout)
+    // Their homogeneous coordinates, split for the evaluation of the linear rules: w x and (w, 0, 0).
+    std::vector<std::array<double, 3>> wx, w;
+    bool rational = false;         // a weight other than 1
   };
   TMesh mesh_;
   std::vector<int> stars_;
