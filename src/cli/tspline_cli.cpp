@@ -382,8 +382,8 @@ void convert_tspline(const std::string& in, const std::string& out, const TSplin
 
 namespace {
 
-// A planar T-mesh with star points: the C0 multipatch space of its face patches, each face refine x refine
-// elements.
+// A planar T-mesh with star points: the C0 multipatch space of its face patches (cut until their sides conform),
+// each patch refine x refine elements.
 void solve_t_mesh_poisson(const std::string& path, const TMeshSurface& mesh, const std::string& solver,
                           const std::string& vtu, int threads, int refine) {
   TMeshSpaceReport rep;
@@ -398,9 +398,10 @@ void solve_t_mesh_poisson(const std::string& path, const TMeshSurface& mesh, con
   pb.dirichlet.push_back({space.boundary, {}, nullptr});
   auto s = make_solver(solver);
   const SolveResult r = solve_poisson(space, pb, *s, threads);
-  std::printf("T-mesh multipatch space (C0 across faces): %d faces, %d corner patches at star points (%s from the limit "
-              "surface), %d x %d bicubic elements per face, %d functions\n",
-              rep.faces, rep.corner_patches, fmt(rep.deviation).c_str(), refine, refine, space.num_basis);
+  std::printf("T-mesh multipatch space (C0 across faces): %d faces as %d patches (Bezier elements, cut where T-junctions "
+              "put corners inside sides), %d corner patches at star points (%s from the limit surface), %d x %d bicubic "
+              "elements per patch, %d functions\n",
+              rep.faces, rep.patches, rep.corner_patches, fmt(rep.deviation).c_str(), refine, refine, space.num_basis);
   std::printf("dofs %d, assembly %.3f s, solve %.3f s\n", r.dofs, r.assembly_seconds, r.solve_seconds);
   std::printf("u: max %s\n", fmt(r.coefs.maxCoeff()).c_str());
   if (vtu.empty()) return;

@@ -15,9 +15,17 @@ namespace trivar::test {
 struct QuadMesh {
   std::vector<std::array<double, 3>> points;
   std::vector<std::array<int, 4>> quads;  // counter-clockwise seen from outside
+  // Faces with T-junctions, written after the quads: the vertex loop counter-clockwise from a corner, and per
+  // vertex whether the face's angle there is 180 degrees (a neighbour's T-junction on its side).
+  struct TFace {
+    std::vector<int> loop;
+    std::vector<char> straight;
+  };
+  std::vector<TFace> t_faces;
+  std::map<std::array<int, 2>, double> intervals;  // knot intervals other than the default, by end vertices
 };
 
-// Every edge gets knot interval `interval`; boundary links get the outside angle's flag; every boundary vertex
+// Every edge gets knot interval `interval` (or its entry in m.intervals); boundary links get the outside angle's flag; every boundary vertex
 // gets the repeated-knot node block of Bezier end conditions (one layer outwards, its points on the vertex).
 inline std::string tsm_text(const QuadMesh& m, double interval = 1.0) {
   struct Link {
@@ -25,14 +33,22 @@ inline std::string tsm_text(const QuadMesh& m, double interval = 1.0) {
   };
   std::vector<Link> links;
   std::map<std::array<int, 2>, int> by_ends;
-  std::vector<int> faces_at(m.points.size(), 0);
-  for (int f = 0; f < static_cast<int>(m.quads.size()); ++f)
-    for (int i = 0; i < 4; ++i) {
+  std::vector<int> angle(m.points.size(), 0);  // the faces' angles at a vertex, in right angles
+  std::vector<QuadMesh::TFace> faces;
+  for (const auto& q : m.quads) faces.push_back({{q[0], q[1], q[2], q[3]}, {0, 0, 0, 0}});
+  faces.insert(faces.end(), m.t_faces.begin(), m.t_faces.end());
+  std::vector<int> face_link;
+  for (int f = 0; f < static_cast<int>(faces.size()); ++f) {
+    const auto& loop = faces[f].loop;
+    const int n = static_cast<int>(loop.size()), base = static_cast<int>(links.size());
+    face_link.push_back(base);
+    for (int i = 0; i < n; ++i) {
       const int l = static_cast<int>(links.size());
-      links.push_back({4 * f + (i + 3) % 4, 4 * f + (i + 1) % 4, -1, m.quads[f][i], f, -1, 0});
-      by_ends[{m.quads[f][i], m.quads[f][(i + 1) % 4]}] = l;
-      ++faces_at[m.quads[f][i]];
+      links.push_back({base + (i + n - 1) % n, base + (i + 1) % n, -1, loop[i], f, -1, faces[f].straight[i] ? 1 : 0});
+      by_ends[{loop[i], loop[(i + 1) % n]}] = l;
+      angle[loop[i]] += faces[f].straight[i] ? 2 : 1;
     }
+  }
   const int inner = static_cast<int>(links.size());
   std::map<int, int> outside_from;  // boundary vertex -> outside link leaving it
   for (int l = 0; l < inner; ++l) {
@@ -43,7 +59,7 @@ inline std::string tsm_text(const QuadMesh& m, double interval = 1.0) {
       continue;
     }
     const int o = static_cast<int>(links.size());
-    links.push_back({-1, -1, l, b, -1, -1, 3 - faces_at[b]});
+    links.push_back({-1, -1, l, b, -1, -1, 3 - angle[b]});
     links[l].opp = o;
     outside_from[b] = o;
   }
@@ -89,8 +105,14 @@ inline std::string tsm_text(const QuadMesh& m, double interval = 1.0) {
   std::ostringstream os;
   os.precision(17);
   os << "#TS0200\n\ndegree 3\ncap-type 1\nstar-smoothness 0\nunits 1 millimeters\nforce-bezier-end-conditions 1\n";
-  for (int f = 0; f < static_cast<int>(m.quads.size()); ++f) os << "f " << 4 * f << " 0\n";
-  for (int e = 0; e < edges; ++e) os << "e " << edge_link[e] << ' ' << interval << '\n';
+  for (int l : face_link) os << "f " << l << " 0\n";
+  for (int e = 0; e < edges; ++e) {
+    const Link& k = links[edge_link[e]];
+    const int a = k.vertex, b = links[k.opp].vertex;
+    auto it = m.intervals.find({a, b});
+    if (it == m.intervals.end()) it = m.intervals.find({b, a});
+    os << "e " << edge_link[e] << ' ' << (it == m.intervals.end() ? interval : it->second) << '\n';
+  }
   for (int v : vertex_link) os << "v " << v << " EAST\n";
   for (const Link& k : links)
     os << "l " << k.prev << ' ' << k.next << ' ' << k.opp << ' ' << k.vertex << ' ' << k.face << ' ' << k.edge << ' ' << k.flag << '\n';
@@ -159,6 +181,42 @@ QuadMesh fan_mesh(int valence, int m, Height height) {
     for (int j = 0; j < m; ++j)
       for (int i = 0; i < m; ++i)
         q.quads.push_back({vertex(k, i, j), vertex(k, i + 1, j), vertex(k, i + 1, j + 1), vertex(k, i, j + 1)});
+  return q;
+}
+
+// fan_mesh with T-junctions: in sector 0, the faces [i, i + 1] x [row, row + 1], first <= i < last, are split
+// at row + 1/2 (edges of knot interval 1/2), which puts T-junctions on the sides of the faces first - 1 and last
+// of that row (1 <= first < last < m).
+template <class Height>
+QuadMesh fan_mesh_with_t_junctions(int valence, int m, int row, int first, int last, Height height) {
+  QuadMesh q = fan_mesh(valence, m, height);
+  const auto quad = [&](int i) { return q.quads[static_cast<std::size_t>(row * m + i)]; };  // sector 0
+  std::vector<int> mid;  // the new vertices (i, row + 1/2), first <= i <= last
+  for (int i = first; i <= last; ++i) {
+    const auto& a = q.points[static_cast<std::size_t>(i < last ? quad(i)[0] : quad(i - 1)[1])];
+    const auto& b = q.points[static_cast<std::size_t>(i < last ? quad(i)[3] : quad(i - 1)[2])];
+    const double x = 0.5 * (a[0] + b[0]), y = 0.5 * (a[1] + b[1]);
+    mid.push_back(static_cast<int>(q.points.size()));
+    q.points.push_back({x, y, height(x, y)});
+  }
+  std::vector<std::array<int, 4>> quads;
+  for (int k = 0; k < static_cast<int>(q.quads.size()); ++k) {
+    const int i = k - row * m;
+    if (i >= first - 1 && i <= last && k < m * m) continue;
+    quads.push_back(q.quads[static_cast<std::size_t>(k)]);
+  }
+  for (int i = first; i < last; ++i) {
+    const auto c = quad(i);
+    const int lo = mid[static_cast<std::size_t>(i - first)], hi = mid[static_cast<std::size_t>(i - first + 1)];
+    quads.push_back({c[0], c[1], hi, lo});
+    quads.push_back({lo, hi, c[2], c[3]});
+    q.intervals[{c[0], lo}] = q.intervals[{lo, c[3]}] = 0.5;
+    q.intervals[{c[1], hi}] = q.intervals[{hi, c[2]}] = 0.5;
+  }
+  const auto left = quad(first - 1), right = quad(last);
+  q.t_faces.push_back({{left[0], left[1], mid.front(), left[2], left[3]}, {0, 0, 1, 0, 0}});
+  q.t_faces.push_back({{right[0], right[1], right[2], right[3], mid.back()}, {0, 0, 0, 0, 1}});
+  q.quads = std::move(quads);
   return q;
 }
 

@@ -7,25 +7,14 @@
 
 #include "star_mesh_tsm.hpp"
 #include "trivar/core/error.hpp"
-#include "trivar/iga/error_norms.hpp"
-#include "trivar/iga/poisson.hpp"
-#include "trivar/iga/solver.hpp"
-#include "trivar/iga/t_mesh_space.hpp"
-#include "trivar/io/tsm_format.hpp"
+#include "t_mesh_poisson_support.hpp"
 
 namespace trivar {
 namespace {
 
-// The planar fan of 8 x 8 faces per sector. The generator puts the boundary's repeated-knot nodes on their
-// vertices, which makes the surface's cross-boundary derivative vanish; moved outwards by one eighth of their
-// radius (about one knot interval) the map is regular up to the boundary.
+// The planar fan of 8 x 8 faces per sector.
 TMeshSurface planar_fan(int valence) {
-  io::TsmModel m = io::parse_tsm(test::tsm_text(test::fan_mesh(valence, 8, [](double, double) { return 0.0; })), "fan.tsm");
-  for (const TMeshVertex& v : m.mesh.vertices)
-    for (int i : v.block)
-      if (i >= 0)
-        for (int k = 0; k < 2; ++k) m.mesh.points[static_cast<std::size_t>(i)].xyz[static_cast<std::size_t>(k)] *= 1.125;
-  return TMeshSurface(m.mesh, 1);
+  return test::planar_t_mesh(test::tsm_text(test::fan_mesh(valence, 8, [](double, double) { return 0.0; })));
 }
 
 TEST(TMeshPoisson, LinearSolutionsAreExact) {
@@ -34,22 +23,14 @@ TEST(TMeshPoisson, LinearSolutionsAreExact) {
     TMeshSpaceReport r;
     const MultipatchSpace<2> space = t_mesh_space(s, 1, &r);
     EXPECT_EQ(r.faces, valence * 64);
+    EXPECT_EQ(r.patches, valence * 64);
     EXPECT_EQ(r.corner_patches, valence);
     // The fan's outer boundary: 8 faces per sector side, 2 sides per sector.
     EXPECT_EQ(space.boundary.size(), static_cast<std::size_t>(valence * 16));
     // Bicubic patches of one element share their corners and side points: V + 2 E + 4 F functions, with
     // F = 64 N faces, V = 72 N + 1 vertices and E = V + F - 1 edges (Euler, a disk).
     EXPECT_EQ(space.num_basis, 600 * valence + 1);
-    PoissonProblem<2> pb;
-    const auto u = [](const double* x) { return 0.3 + 0.7 * x[0] - 1.1 * x[1]; };
-    pb.dirichlet = {DirichletCondition<2>{space.boundary, {}, [&](const double* x, double* v) { v[0] = u(x); }}};
-    auto solver = make_solver("cholmod");
-    const SolveResult res = solve_poisson(space, pb, *solver, 1);
-    const ErrorNorms e = error_norms(space, res.coefs, 1, [&](const double* x, double* v, double* g) {
-      v[0] = u(x);
-      g[0] = 0.7;
-      g[1] = -1.1;
-    }, 1);
+    const ErrorNorms e = test::linear_solution_errors(space);
     EXPECT_LT(e.h1, 1e-10) << valence;
     EXPECT_LT(e.l2, 1e-10) << valence;
   }
@@ -59,23 +40,12 @@ TEST(TMeshPoisson, LinearSolutionsAreExact) {
 // p + 1 = 4 and H1 rate p = 3 with p = 3, the corner patches at the star point included (measured from 4 x 4 to
 // 8 x 8 elements per face: 3.80 / 2.90 at valence 3, 3.94 / 2.96 at valence 5).
 TEST(TMeshPoisson, ManufacturedSolutionConvergesAtTheOptimalRate) {
-  const auto u = [](const double* x) { return std::sin(0.4 * x[0]) * std::cos(0.3 * x[1]) + 0.05 * x[0] * x[1]; };
-  PoissonProblem<2> pb;
-  pb.source = [](const double* x) { return 0.25 * std::sin(0.4 * x[0]) * std::cos(0.3 * x[1]); };
-  const ExactSolution<2> exact = [&](const double* x, double* v, double* g) {
-    v[0] = u(x);
-    g[0] = 0.4 * std::cos(0.4 * x[0]) * std::cos(0.3 * x[1]) + 0.05 * x[1];
-    g[1] = -0.3 * std::sin(0.4 * x[0]) * std::sin(0.3 * x[1]) + 0.05 * x[0];
-  };
   for (int valence : {3, 5}) {
     const TMeshSurface s = planar_fan(valence);
     std::vector<double> l2, h1;
     for (int n : {1, 2, 4, 8}) {
       const MultipatchSpace<2> space = t_mesh_space(s, n);
-      pb.dirichlet = {DirichletCondition<2>{space.boundary, {}, [&](const double* x, double* v) { v[0] = u(x); }}};
-      auto solver = make_solver("cholmod");
-      const SolveResult r = solve_poisson(space, pb, *solver, 1);
-      const ErrorNorms e = error_norms(space, r.coefs, 1, exact, 1);
+      const ErrorNorms e = test::manufactured_errors(space);
       l2.push_back(e.l2);
       h1.push_back(e.h1);
       std::printf("valence %d, %d x %d elements per face: %d dofs, L2 %.3e, H1 %.3e\n", valence, n, n, space.num_basis,

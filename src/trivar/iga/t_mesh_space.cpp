@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <set>
 #include <string>
 
 #include "trivar/core/error.hpp"
+#include "trivar/iga/conforming_split.hpp"
 #include "trivar/tspline/t_mesh_patches.hpp"
 
 namespace trivar {
@@ -21,14 +23,10 @@ MultipatchSpace<2> t_mesh_space(const TMeshSurface& surface, int subdivisions, T
   require(box.extent(2) <= 1e-12 * size, [&] {
     return "T-mesh space: the control points span " + std::to_string(box.extent(2)) + " in z; analysis needs a planar mesh (z constant)";
   });
-  MultipatchSpace<2> out;
-  std::vector<int> face_of;
+  // The plane's (x, y): drop z, keep the weights. Faces crossed by T-junction extensions are several Bezier
+  // elements and T-junctions put corners inside sides: the pieces are cut until their sides conform.
+  std::vector<TensorSpline<2>> planar;
   for (const FacePatch& f : patches.patches) {
-    require(face_of.empty() || face_of.back() != f.face, [&] {
-      return "T-mesh space: face " + std::to_string(f.face) + " is several Bezier elements (T-junction extensions cross it); the multipatch space needs one per face";
-    });
-    face_of.push_back(f.face);
-    // The plane's (x, y): drop z, keep the weights.
     const TensorSpline<2>& s = f.surface;
     std::vector<double> c;
     for (int i = 0; i < s.num_coefs(); ++i) {
@@ -36,7 +34,14 @@ MultipatchSpace<2> t_mesh_space(const TMeshSurface& surface, int subdivisions, T
       c.insert(c.end(), {q[0], q[1]});
       if (s.is_rational()) c.push_back(q[3]);
     }
-    out.patches.push_back(make_tensor_space(TensorSpline<2>(s.knot_vectors(), 2, s.is_rational(), std::move(c)), 3, subdivisions));
+    planar.emplace_back(s.knot_vectors(), 2, s.is_rational(), std::move(c));
+  }
+  ConformingPatches pieces = conforming_split(std::move(planar), 1e-10 * size);
+  MultipatchSpace<2> out;
+  std::vector<int> face_of;
+  for (std::size_t i = 0; i < pieces.patches.size(); ++i) {
+    face_of.push_back(patches.patches[static_cast<std::size_t>(pieces.owner[i])].face);
+    out.patches.push_back(make_tensor_space(pieces.patches[i], 3, subdivisions));
   }
   // Shared sides: sides whose control points coincide (within 1e-10 of the size) in the same or reversed order;
   // their functions are identified in that order (corners through the chains of sides, so the N corners at a
@@ -105,17 +110,34 @@ MultipatchSpace<2> t_mesh_space(const TMeshSurface& surface, int subdivisions, T
         parent[static_cast<std::size_t>(find(j))] = find(i);
       }
     }
-  // The unshared sides must be the mesh's boundary edges, one each: any other unshared side meets its
-  // neighbours only in part (a T-junction), which a conforming multipatch space cannot hold.
-  int boundary_edges = 0;
-  for (const TMeshLink& k : surface.mesh().links)
-    boundary_edges += k.vertex >= 0 && k.face < 0 && k.opp >= 0 && surface.mesh().links[static_cast<std::size_t>(k.opp)].face >= 0;
-  for (const Side& sd : sides)
-    if (sd.partner < 0) out.boundary.push_back(sd.face);
-  require(static_cast<int>(out.boundary.size()) == boundary_edges, [&] {
-    return "T-mesh space: " + std::to_string(out.boundary.size()) + " face sides have no neighbour but the mesh has " +
-           std::to_string(boundary_edges) + " boundary edges: faces do not conform (T-junctions)";
-  });
+  // An unshared side must lie on a side of its face whose edges are all on the mesh's boundary (the piece's
+  // domain is its part of the face's (u, v) in [0, 1]^2; sides 0..3 as Face {dir 1 lo, dir 0 hi, dir 1 hi, dir 0 lo});
+  // anything else meets its neighbours only in part, which a conforming multipatch space cannot hold.
+  const TMesh& mesh = surface.mesh();
+  const auto boundary_side = [&](int face, int k) {
+    const auto& loop = mesh.faces[static_cast<std::size_t>(face)];
+    const auto first = std::find(loop.begin(), loop.end(), mesh.first_corner(face)) - loop.begin();
+    int side = -1;
+    bool all = true;
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const TMeshLink& l = mesh.links[static_cast<std::size_t>(loop[(static_cast<std::size_t>(first) + i) % loop.size()])];
+      if (l.flag == 0) ++side;
+      if (side == k) all = all && mesh.links[static_cast<std::size_t>(l.opp)].face < 0;
+    }
+    return all;
+  };
+  for (const Side& sd : sides) {
+    if (sd.partner >= 0) continue;
+    const Box<2> d = out.patches[static_cast<std::size_t>(sd.patch)].geometry.domain();
+    const int k = sd.face.dir == 1 ? (sd.face.side == 0 ? 0 : 2) : (sd.face.side == 0 ? 3 : 1);
+    const double edge = k == 0 ? d.lo[1] : k == 1 ? 1 - d.hi[0] : k == 2 ? 1 - d.hi[1] : d.lo[0];
+    const int face = face_of[static_cast<std::size_t>(sd.patch)];
+    require(std::abs(edge) <= 1e-12 && boundary_side(face, k), [&] {
+      return "T-mesh space: side " + std::to_string(k) + " of a piece of face " + std::to_string(face) +
+             " has no neighbour but is not on the mesh's boundary: faces do not conform";
+    });
+    out.boundary.push_back(sd.face);
+  }
   std::vector<int> number(parent.size(), -1);
   for (int p = 0; p < out.num_patches(); ++p) {
     std::vector<int>& g = out.global.emplace_back();
@@ -125,7 +147,7 @@ MultipatchSpace<2> t_mesh_space(const TMeshSurface& surface, int subdivisions, T
       g.push_back(n);
     }
   }
-  if (report) *report = {out.num_patches(), patches.corner_patches, patches.deviation};
+  if (report) *report = {static_cast<int>(std::set<int>(face_of.begin(), face_of.end()).size()), out.num_patches(), patches.corner_patches, patches.deviation};
   return out;
 }
 

@@ -1,0 +1,135 @@
+#include "trivar/iga/conforming_split.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+#include <string>
+
+#include "trivar/core/error.hpp"
+#include "trivar/spline/split.hpp"
+
+namespace trivar {
+
+namespace {
+
+using XY = std::array<double, 2>;
+
+XY at(const TensorSpline<2>& s, double u, double v) {
+  XY x{};
+  s.eval({u, v}, x.data());
+  return x;
+}
+
+// The parameter along side k of s (0: v = lo, 1: u = hi, 2: v = hi, 3: u = lo) where the side passes within tol
+// of x strictly between its ends, or NaN. Sampling then Newton on |side(t) - x|^2 (the side is one cubic-like
+// Bezier curve, monotone enough between samples).
+double on_side(const TensorSpline<2>& s, int k, const XY& x, double tol) {
+  const Box<2> d = s.domain();
+  const int dir = k % 2 == 0 ? 0 : 1;  // the parameter that runs along the side
+  const double fixed = k == 0 ? d.lo[1] : k == 1 ? d.hi[0] : k == 2 ? d.hi[1] : d.lo[0];
+  const auto point = [&](double t) { return dir == 0 ? Param<2>{t, fixed} : Param<2>{fixed, t}; };
+  const double lo = d.lo[dir], hi = d.hi[dir];
+  double best = lo, best_d = INFINITY;
+  constexpr int samples = 16;
+  for (int i = 0; i <= samples; ++i) {
+    const double t = lo + (hi - lo) * i / samples;
+    double y[2];
+    s.eval(point(t), y);
+    const double e = std::hypot(y[0] - x[0], y[1] - x[1]);
+    if (e < best_d) {
+      best_d = e;
+      best = t;
+    }
+  }
+  double t = best;
+  for (int it = 0; it < 30; ++it) {
+    double q[6];  // value, d/du, d/dv
+    s.eval_derivs(point(t), 1, q);
+    const double dx = q[0] - x[0], dy = q[1] - x[1];
+    const double tx = q[2 + 2 * dir], ty = q[3 + 2 * dir];
+    const double g = dx * tx + dy * ty, h = tx * tx + ty * ty;
+    if (h <= 0) break;
+    const double step = g / h;
+    t = std::clamp(t - step, lo, hi);
+    if (std::abs(step) <= 1e-15 * (hi - lo)) break;
+  }
+  double y[2];
+  s.eval(point(t), y);
+  if (std::hypot(y[0] - x[0], y[1] - x[1]) > tol) return NAN;
+  const double margin = 1e-9 * (hi - lo);
+  return t > lo + margin && t < hi - margin ? t : NAN;
+}
+
+}  // namespace
+
+ConformingPatches conforming_split(std::vector<TensorSpline<2>> patches, double tol) {
+  ConformingPatches r;
+  r.owner.resize(patches.size());
+  std::iota(r.owner.begin(), r.owner.end(), 0);
+  for (std::size_t i = 0; i < patches.size(); ++i)
+    require(patches[i].count(0) == patches[i].degree(0) + 1 && patches[i].count(1) == patches[i].degree(1) + 1 && patches[i].dim() == 2,
+            [&] { return "conforming split: patch " + std::to_string(i) + " is not one planar Bezier element"; });
+  r.patches = std::move(patches);
+  const std::size_t limit = 64 * std::max<std::size_t>(r.patches.size(), 1);
+  for (;;) {
+    // Every patch corner, sorted by x, to find the ones inside a side's bounding box.
+    struct Corner {
+      XY x;
+      std::size_t patch;
+    };
+    std::vector<Corner> corners;
+    for (std::size_t i = 0; i < r.patches.size(); ++i) {
+      const Box<2> d = r.patches[i].domain();
+      for (const auto& [u, v] : {std::array<double, 2>{d.lo[0], d.lo[1]}, {d.hi[0], d.lo[1]}, {d.hi[0], d.hi[1]}, {d.lo[0], d.hi[1]}})
+        corners.push_back({at(r.patches[i], u, v), i});
+    }
+    std::sort(corners.begin(), corners.end(), [](const Corner& a, const Corner& b) { return a.x[0] < b.x[0]; });
+    struct Cut {
+      int dir;
+      double t;
+    };
+    std::vector<std::vector<Cut>> cuts(r.patches.size());
+    bool any = false;
+    for (std::size_t i = 0; i < r.patches.size(); ++i) {
+      const TensorSpline<2>& s = r.patches[i];
+      double lo[2], hi[2];
+      s.control_bounds(lo, hi);
+      const auto first = std::lower_bound(corners.begin(), corners.end(), lo[0] - tol, [](const Corner& c, double x) { return c.x[0] < x; });
+      for (auto c = first; c != corners.end() && c->x[0] <= hi[0] + tol; ++c) {
+        if (c->patch == i || c->x[1] < lo[1] - tol || c->x[1] > hi[1] + tol) continue;
+        for (int k = 0; k < 4; ++k) {
+          const double t = on_side(s, k, c->x, tol);
+          if (std::isnan(t)) continue;
+          cuts[i].push_back({k % 2 == 0 ? 0 : 1, t});
+          any = true;
+          break;
+        }
+      }
+    }
+    if (!any) break;
+    std::vector<TensorSpline<2>> next;
+    std::vector<int> owner;
+    for (std::size_t i = 0; i < r.patches.size(); ++i) {
+      if (cuts[i].empty()) {
+        next.push_back(std::move(r.patches[i]));
+        owner.push_back(r.owner[i]);
+        continue;
+      }
+      // One cut per pass and patch (its pieces are checked again in the next pass).
+      const Cut c = cuts[i].front();
+      auto [a, b] = split_at(r.patches[i], c.dir, c.t);
+      next.push_back(std::move(a));
+      next.push_back(std::move(b));
+      owner.insert(owner.end(), 2, r.owner[i]);
+    }
+    r.patches = std::move(next);
+    r.owner = std::move(owner);
+    require(r.patches.size() <= limit, [&] {
+      return "conforming split: " + std::to_string(r.patches.size()) + " pieces and still corners inside sides; the patches do not tile a domain";
+    });
+  }
+  return r;
+}
+
+}  // namespace trivar
