@@ -14,6 +14,7 @@
 #include "trivar/core/error.hpp"
 #include "trivar/iga/refined_poisson.hpp"
 #include "trivar/iga/solver.hpp"
+#include "trivar/iga/surface_poisson.hpp"
 #include "trivar/iga/t_mesh_space.hpp"
 #include "trivar/iga/tensor_space.hpp"
 #include "trivar/io/g2_format.hpp"
@@ -55,6 +56,7 @@ struct Loaded {
   std::string step_type;  // Part 42 locally_refined_spline_type when read from that form
   std::unique_ptr<TSplineSurface> surface;  // empty for a TSM model with star points
   std::unique_ptr<TMeshSurface> mesh;       // a TSM model with star points: evaluated per face
+  std::unique_ptr<TMesh> tsm_mesh;          // a TSM model without star points: its mesh (for surface analysis)
 };
 
 Loaded load(const std::string& path) {
@@ -73,6 +75,7 @@ Loaded load(const std::string& path) {
       return l;
     }
     l.layers = std::move(m.spline);
+    l.tsm_mesh = std::make_unique<TMesh>(std::move(m.mesh));
   } else if (is_t_spline_json(path)) {
     l.format = "trivar T-spline JSON";
     l.layers = io::read_t_spline_json(path);
@@ -386,6 +389,31 @@ namespace {
 // each patch refine x refine elements.
 void solve_t_mesh_poisson(const std::string& path, const TMeshSurface& mesh, const std::string& solver,
                           const std::string& vtu, int threads, int refine) {
+  Box<3> box = Box<3>::empty();
+  for (const RationalPoint& p : mesh.mesh().points) box.extend(p.xyz.data());
+  if (box.extent(2) > 1e-12 * box.diagonal()) {
+    // A curved surface: the Laplace-Beltrami problem on it (a closed one with a reaction term).
+    require(vtu.empty(), "solve: " + path + ": --out is written for planar meshes only (the solution of a curved one is a field on the surface)");
+    TMeshSpaceReport rep;
+    TMeshSurfaceSpace space;
+    try {
+      space = t_mesh_surface_space(mesh, refine, &rep);
+    } catch (const Error& e) {
+      throw Error("solve: " + path + ": " + e.what());
+    }
+    SurfacePoissonProblem pb;
+    pb.source = [](const double*) { return 1.0; };
+    const bool closed = space.space.boundary.empty();
+    pb.reaction = closed ? 1.0 : 0.0;
+    auto s = make_solver(solver);
+    const SurfacePoissonResult r = solve_surface_poisson(space, pb, *s);
+    std::printf("T-mesh surface (curved, %s): -lap_S u%s = 1%s; %d faces as %d patches, %d corner patches at star points (%s "
+                "from the limit surface), %d x %d bicubic elements per patch, %d functions, %d unknowns\n",
+                closed ? "closed" : "open", closed ? " + u" : "", closed ? "" : ", u = 0 on the boundary", rep.faces,
+                rep.patches, rep.corner_patches, fmt(rep.deviation).c_str(), refine, refine, space.space.num_basis, r.dofs);
+    std::printf("area %s\nu: max %s\n", fmt(r.area).c_str(), fmt(r.coefs.maxCoeff()).c_str());
+    return;
+  }
   TMeshSpaceReport rep;
   MultipatchSpace<2> space;
   try {
@@ -428,6 +456,20 @@ void solve_tspline_poisson(const std::string& path, const std::string& solver, c
   const Loaded l = load(path);
   if (l.mesh) return solve_t_mesh_poisson(path, *l.mesh, solver, vtu, threads, refine);
   const TSplineSurface& surf = *l.surface;
+  if (l.tsm_mesh) {
+    // A curved TSM model: the surface problem on its faces' patches.
+    bool planar = true;
+    for (const LRBSpline<2>& b : surf.basis()) planar = planar && b.coef[2] == 0;
+    if (!planar) {
+      std::unique_ptr<TMeshSurface> mesh;
+      try {
+        mesh = std::make_unique<TMeshSurface>(*l.tsm_mesh, threads);
+      } catch (const Error& e) {
+        throw Error("solve: " + path + ": " + e.what());
+      }
+      return solve_t_mesh_poisson(path, *mesh, solver, vtu, threads, refine);
+    }
+  }
   RefinedSpace<2> space;
   try {
     space = refined_space(surf, threads);

@@ -13,12 +13,18 @@ namespace trivar {
 
 namespace {
 
-using XY = std::array<double, 2>;
+using XY = std::array<double, 3>;  // a point of a patch (z = 0 for planar ones)
 
 XY at(const TensorSpline<2>& s, double u, double v) {
   XY x{};
   s.eval({u, v}, x.data());
   return x;
+}
+
+double distance(const double* y, const XY& x, int dim) {
+  double d = 0;
+  for (int c = 0; c < dim; ++c) d += (y[c] - x[static_cast<std::size_t>(c)]) * (y[c] - x[static_cast<std::size_t>(c)]);
+  return std::sqrt(d);
 }
 
 // The parameter along side k of s (0: v = lo, 1: u = hi, 2: v = hi, 3: u = lo) where the side passes within tol
@@ -32,11 +38,12 @@ double on_side(const TensorSpline<2>& s, int k, const XY& x, double tol) {
   const double lo = d.lo[dir], hi = d.hi[dir];
   double best = lo, best_d = INFINITY;
   constexpr int samples = 16;
+  const int dim = s.dim();
   for (int i = 0; i <= samples; ++i) {
     const double t = lo + (hi - lo) * i / samples;
-    double y[2];
+    double y[3];
     s.eval(point(t), y);
-    const double e = std::hypot(y[0] - x[0], y[1] - x[1]);
+    const double e = distance(y, x, dim);
     if (e < best_d) {
       best_d = e;
       best = t;
@@ -44,19 +51,22 @@ double on_side(const TensorSpline<2>& s, int k, const XY& x, double tol) {
   }
   double t = best;
   for (int it = 0; it < 30; ++it) {
-    double q[6];  // value, d/du, d/dv
+    double q[9];  // value, d/du, d/dv
     s.eval_derivs(point(t), 1, q);
-    const double dx = q[0] - x[0], dy = q[1] - x[1];
-    const double tx = q[2 + 2 * dir], ty = q[3 + 2 * dir];
-    const double g = dx * tx + dy * ty, h = tx * tx + ty * ty;
+    double g = 0, h = 0;
+    for (int c = 0; c < dim; ++c) {
+      const double tc = q[(1 + dir) * dim + c];
+      g += (q[c] - x[static_cast<std::size_t>(c)]) * tc;
+      h += tc * tc;
+    }
     if (h <= 0) break;
     const double step = g / h;
     t = std::clamp(t - step, lo, hi);
     if (std::abs(step) <= 1e-15 * (hi - lo)) break;
   }
-  double y[2];
+  double y[3];
   s.eval(point(t), y);
-  if (std::hypot(y[0] - x[0], y[1] - x[1]) > tol) return NAN;
+  if (distance(y, x, dim) > tol) return NAN;
   const double margin = 1e-9 * (hi - lo);
   return t > lo + margin && t < hi - margin ? t : NAN;
 }
@@ -68,8 +78,9 @@ ConformingPatches conforming_split(std::vector<TensorSpline<2>> patches, double 
   r.owner.resize(patches.size());
   std::iota(r.owner.begin(), r.owner.end(), 0);
   for (std::size_t i = 0; i < patches.size(); ++i)
-    require(patches[i].count(0) == patches[i].degree(0) + 1 && patches[i].count(1) == patches[i].degree(1) + 1 && patches[i].dim() == 2,
-            [&] { return "conforming split: patch " + std::to_string(i) + " is not one planar Bezier element"; });
+    require(patches[i].count(0) == patches[i].degree(0) + 1 && patches[i].count(1) == patches[i].degree(1) + 1 &&
+                (patches[i].dim() == 2 || patches[i].dim() == 3),
+            [&] { return "conforming split: patch " + std::to_string(i) + " is not one Bezier element in the plane or in space"; });
   r.patches = std::move(patches);
   const std::size_t limit = 64 * std::max<std::size_t>(r.patches.size(), 1);
   for (;;) {
@@ -93,11 +104,11 @@ ConformingPatches conforming_split(std::vector<TensorSpline<2>> patches, double 
     bool any = false;
     for (std::size_t i = 0; i < r.patches.size(); ++i) {
       const TensorSpline<2>& s = r.patches[i];
-      double lo[2], hi[2];
+      double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
       s.control_bounds(lo, hi);
       const auto first = std::lower_bound(corners.begin(), corners.end(), lo[0] - tol, [](const Corner& c, double x) { return c.x[0] < x; });
       for (auto c = first; c != corners.end() && c->x[0] <= hi[0] + tol; ++c) {
-        if (c->patch == i || c->x[1] < lo[1] - tol || c->x[1] > hi[1] + tol) continue;
+        if (c->patch == i || c->x[1] < lo[1] - tol || c->x[1] > hi[1] + tol || c->x[2] < lo[2] - tol || c->x[2] > hi[2] + tol) continue;
         for (int k = 0; k < 4; ++k) {
           const double t = on_side(s, k, c->x, tol);
           if (std::isnan(t)) continue;

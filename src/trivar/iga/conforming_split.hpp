@@ -1,5 +1,5 @@
 #pragma once
-// Planar Bezier patches that tile a domain with T-junctions (a corner of one patch inside a side of another) cut
+// Bezier patches (in the plane or in space) that tile a domain or a surface with T-junctions (a corner of one patch inside a side of another) cut
 // along the parameter lines through those corners until every side meets its neighbours whole, so that a C0
 // multipatch space can identify the functions of shared sides. A cut crosses its patch and may end inside the
 // side of the next one, so cutting repeats until no corner lies inside a side (at most a few passes on a
@@ -12,7 +12,7 @@
 namespace trivar {
 
 struct ConformingPatches {
-  std::vector<TensorSpline<2>> patches;  // one Bezier element each, dim 2
+  std::vector<TensorSpline<2>> patches;  // one Bezier element each, dim 2 or 3
   std::vector<int> owner;                // per piece: the index of the patch it was cut from
 };
 

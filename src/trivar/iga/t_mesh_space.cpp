@@ -8,11 +8,16 @@
 
 #include "trivar/core/error.hpp"
 #include "trivar/iga/conforming_split.hpp"
+#include "trivar/spline/knot_insertion.hpp"
 #include "trivar/tspline/t_mesh_patches.hpp"
 
 namespace trivar {
 
-MultipatchSpace<2> t_mesh_space(const TMeshSurface& surface, int subdivisions, TMeshSpaceReport* report) {
+namespace {
+
+// The patches cut to conform and refined, identified across shared sides (by their control points in the
+// space of `dim` coordinates: 2 planar, 3 a surface), with the surfaces (dim 3) refined like the spaces.
+TMeshSurfaceSpace build(const TMeshSurface& surface, int subdivisions, TMeshSpaceReport* report, bool planar) {
   require(subdivisions >= 1, "T-mesh space: subdivisions must be at least 1, got " + std::to_string(subdivisions));
   TMeshPatchOptions po;
   po.levels = 0;
@@ -20,28 +25,33 @@ MultipatchSpace<2> t_mesh_space(const TMeshSurface& surface, int subdivisions, T
   Box<3> box = Box<3>::empty();
   for (const RationalPoint& p : surface.mesh().points) box.extend(p.xyz.data());
   const double size = box.diagonal();
-  require(box.extent(2) <= 1e-12 * size, [&] {
+  require(!planar || box.extent(2) <= 1e-12 * size, [&] {
     return "T-mesh space: the control points span " + std::to_string(box.extent(2)) + " in z; analysis needs a planar mesh (z constant)";
   });
-  // The plane's (x, y): drop z, keep the weights. Faces crossed by T-junction extensions are several Bezier
-  // elements and T-junctions put corners inside sides: the pieces are cut until their sides conform.
-  std::vector<TensorSpline<2>> planar;
-  for (const FacePatch& f : patches.patches) {
-    const TensorSpline<2>& s = f.surface;
+  const int dim = planar ? 2 : 3;
+  // Faces crossed by T-junction extensions are several Bezier elements and T-junctions put corners inside sides:
+  // the pieces are cut until their sides conform.
+  const auto keep = [](const TensorSpline<2>& s, int d) {
     std::vector<double> c;
     for (int i = 0; i < s.num_coefs(); ++i) {
       const double* q = s.coef(i);
-      c.insert(c.end(), {q[0], q[1]});
+      c.insert(c.end(), q, q + d);
       if (s.is_rational()) c.push_back(q[3]);
     }
-    planar.emplace_back(s.knot_vectors(), 2, s.is_rational(), std::move(c));
-  }
-  ConformingPatches pieces = conforming_split(std::move(planar), 1e-10 * size);
-  MultipatchSpace<2> out;
+    return TensorSpline<2>(s.knot_vectors(), d, s.is_rational(), std::move(c));
+  };
+  std::vector<TensorSpline<2>> pieces_in;
+  for (const FacePatch& f : patches.patches) pieces_in.push_back(planar ? keep(f.surface, 2) : f.surface);
+  ConformingPatches pieces = conforming_split(std::move(pieces_in), 1e-10 * size);
+  TMeshSurfaceSpace result;
+  MultipatchSpace<2>& out = result.space;
   std::vector<int> face_of;
   for (std::size_t i = 0; i < pieces.patches.size(); ++i) {
     face_of.push_back(patches.patches[static_cast<std::size_t>(pieces.owner[i])].face);
-    out.patches.push_back(make_tensor_space(pieces.patches[i], 3, subdivisions));
+    // The space's geometry has the (x, y) of the piece (the plane's map; on a surface only a carrier of the
+    // knots and weights), the surface its (x, y, z).
+    out.patches.push_back(make_tensor_space(planar ? pieces.patches[i] : keep(pieces.patches[i], 2), 3, subdivisions));
+    if (!planar) result.surfaces.push_back(refine_uniform(pieces.patches[i], {subdivisions, subdivisions}));
   }
   // Shared sides: sides whose control points coincide (within 1e-10 of the size) in the same or reversed order;
   // their functions are identified in that order (corners through the chains of sides, so the N corners at a
@@ -51,8 +61,8 @@ MultipatchSpace<2> t_mesh_space(const TMeshSurface& surface, int subdivisions, T
     int patch;
     Face face;
     std::vector<int> ids;
-    std::vector<std::array<double, 2>> x;
-    std::array<double, 2> mid{};
+    std::vector<std::array<double, 3>> x;
+    std::array<double, 3> mid{};
     int partner = -1;
   };
   std::vector<Side> sides;
@@ -61,11 +71,10 @@ MultipatchSpace<2> t_mesh_space(const TMeshSurface& surface, int subdivisions, T
     for (const Face& f : all_faces<2>()) {
       Side sd{p, Face{f.dir, f.side, p}, face_basis(space, f), {}, {}, -1};
       for (int i : sd.ids) {
-        std::array<double, 2> x{};
-        space.geometry.control_point(i, x.data());
+        std::array<double, 3> x{};
+        (planar ? space.geometry : result.surfaces[static_cast<std::size_t>(p)]).control_point(i, x.data());
         sd.x.push_back(x);
-        sd.mid[0] += x[0] / static_cast<double>(sd.ids.size());
-        sd.mid[1] += x[1] / static_cast<double>(sd.ids.size());
+        for (std::size_t c = 0; c < 3; ++c) sd.mid[c] += x[c] / static_cast<double>(sd.ids.size());
       }
       sides.push_back(std::move(sd));
     }
@@ -74,8 +83,8 @@ MultipatchSpace<2> t_mesh_space(const TMeshSurface& surface, int subdivisions, T
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return sides[a].mid[0] < sides[b].mid[0]; });
   const double tol = 1e-10 * size;
-  const auto near = [&](const std::array<double, 2>& a, const std::array<double, 2>& b) {
-    return std::abs(a[0] - b[0]) <= tol && std::abs(a[1] - b[1]) <= tol;
+  const auto near = [&](const std::array<double, 3>& a, const std::array<double, 3>& b) {
+    return std::abs(a[0] - b[0]) <= tol && std::abs(a[1] - b[1]) <= tol && std::abs(a[2] - b[2]) <= tol;
   };
   std::vector<int> parent;
   std::vector<int> base(static_cast<std::size_t>(out.num_patches()) + 1, 0);  // local function -> union-find slot
@@ -110,29 +119,42 @@ MultipatchSpace<2> t_mesh_space(const TMeshSurface& surface, int subdivisions, T
         parent[static_cast<std::size_t>(find(j))] = find(i);
       }
     }
-  // An unshared side must lie on a side of its face whose edges are all on the mesh's boundary (the piece's
-  // domain is its part of the face's (u, v) in [0, 1]^2; sides 0..3 as Face {dir 1 lo, dir 0 hi, dir 1 hi, dir 0 lo});
-  // anything else meets its neighbours only in part, which a conforming multipatch space cannot hold.
+  // An unshared side must lie on a side of its face along edges of the mesh's boundary only (the piece's domain
+  // is its part of the face's (u, v) in [0, 1]^2; sides 0..3 counter-clockwise from the first corner, as Face
+  // {dir 1 lo, dir 0 hi, dir 1 hi, dir 0 lo}; a face side's links divide it by their knot intervals); anything
+  // else meets its neighbours only in part, which a conforming multipatch space cannot hold.
   const TMesh& mesh = surface.mesh();
-  const auto boundary_side = [&](int face, int k) {
+  const auto on_boundary = [&](int face, int k, double a, double b) {
     const auto& loop = mesh.faces[static_cast<std::size_t>(face)];
     const auto first = std::find(loop.begin(), loop.end(), mesh.first_corner(face)) - loop.begin();
+    std::vector<const TMeshLink*> links;
     int side = -1;
-    bool all = true;
+    double total = 0;
     for (std::size_t i = 0; i < loop.size(); ++i) {
       const TMeshLink& l = mesh.links[static_cast<std::size_t>(loop[(static_cast<std::size_t>(first) + i) % loop.size()])];
       if (l.flag == 0) ++side;
-      if (side == k) all = all && mesh.links[static_cast<std::size_t>(l.opp)].face < 0;
+      if (side != k) continue;
+      links.push_back(&l);
+      total += mesh.intervals[static_cast<std::size_t>(l.edge)];
     }
-    return all;
+    double at = 0;
+    for (const TMeshLink* l : links) {
+      const double next = at + mesh.intervals[static_cast<std::size_t>(l->edge)] / total;
+      if (std::min(next, b) - std::max(at, a) > 1e-9 && mesh.links[static_cast<std::size_t>(l->opp)].face >= 0) return false;
+      at = next;
+    }
+    return true;
   };
   for (const Side& sd : sides) {
     if (sd.partner >= 0) continue;
     const Box<2> d = out.patches[static_cast<std::size_t>(sd.patch)].geometry.domain();
     const int k = sd.face.dir == 1 ? (sd.face.side == 0 ? 0 : 2) : (sd.face.side == 0 ? 3 : 1);
     const double edge = k == 0 ? d.lo[1] : k == 1 ? 1 - d.hi[0] : k == 2 ? 1 - d.hi[1] : d.lo[0];
+    // The piece's extent along the side, as the fraction of the way from the side's first corner.
+    const double a = k == 0 ? d.lo[0] : k == 1 ? d.lo[1] : k == 2 ? 1 - d.hi[0] : 1 - d.hi[1];
+    const double b = k == 0 ? d.hi[0] : k == 1 ? d.hi[1] : k == 2 ? 1 - d.lo[0] : 1 - d.lo[1];
     const int face = face_of[static_cast<std::size_t>(sd.patch)];
-    require(std::abs(edge) <= 1e-12 && boundary_side(face, k), [&] {
+    require(std::abs(edge) <= 1e-12 && on_boundary(face, k, a, b), [&] {
       return "T-mesh space: side " + std::to_string(k) + " of a piece of face " + std::to_string(face) +
              " has no neighbour but is not on the mesh's boundary: faces do not conform";
     });
@@ -148,7 +170,17 @@ MultipatchSpace<2> t_mesh_space(const TMeshSurface& surface, int subdivisions, T
     }
   }
   if (report) *report = {static_cast<int>(std::set<int>(face_of.begin(), face_of.end()).size()), out.num_patches(), patches.corner_patches, patches.deviation};
-  return out;
+  return result;
+}
+
+}  // namespace
+
+MultipatchSpace<2> t_mesh_space(const TMeshSurface& surface, int subdivisions, TMeshSpaceReport* report) {
+  return build(surface, subdivisions, report, true).space;
+}
+
+TMeshSurfaceSpace t_mesh_surface_space(const TMeshSurface& surface, int subdivisions, TMeshSpaceReport* report) {
+  return build(surface, subdivisions, report, false);
 }
 
 }  // namespace trivar

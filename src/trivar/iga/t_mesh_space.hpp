@@ -21,4 +21,13 @@ struct TMeshSpaceReport {
 // the mesh's boundary (the patches do not tile the domain), or subdivisions < 1.
 MultipatchSpace<2> t_mesh_space(const TMeshSurface& surface, int subdivisions, TMeshSpaceReport* report = nullptr);
 
+// The same on a T-mesh surface in space (curved, open or closed), for surface PDEs (surface_poisson.hpp): sides
+// identified by their control points in space; the space's patch geometries carry only the knots and weights
+// (their coordinates are the surface's (x, y)), `surfaces` the refined patches in space.
+struct TMeshSurfaceSpace {
+  MultipatchSpace<2> space;
+  std::vector<TensorSpline<2>> surfaces;  // per patch, dim 3, the knots and weights of the space's patch
+};
+TMeshSurfaceSpace t_mesh_surface_space(const TMeshSurface& surface, int subdivisions, TMeshSpaceReport* report = nullptr);
+
 }  // namespace trivar
