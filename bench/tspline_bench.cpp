@@ -11,6 +11,7 @@
 // 5 x 8 x 8 faces in the C0 multipatch space of its faces (t_mesh_space).
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -18,6 +19,7 @@
 
 #include "trivar/iga/refined_poisson.hpp"
 #include "trivar/iga/solver.hpp"
+#include "trivar/iga/surface_poisson.hpp"
 #include "trivar/iga/t_mesh_space.hpp"
 #include "trivar/iga/tensor_space.hpp"
 #include "trivar/io/tsm_format.hpp"
@@ -209,6 +211,81 @@ void star_poisson_solve(benchmark::State& state) {
   state.counters["functions"] = space.num_basis;
 }
 BENCHMARK(star_poisson_solve)->Arg(2)->Arg(8)->Unit(benchmark::kMillisecond);
+
+// The valence-5 fan of star_model(1) with weights 0.6 to 1.8 (rational Catmull-Clark: the rules run on w x and
+// on w); range(0) = 1: only the faces at the star point.
+void star_eval_rational(benchmark::State& state) {
+  trivar::TMesh mesh = trivar::io::parse_tsm(star_model(1), "star.tsm").mesh;
+  for (trivar::RationalPoint& p : mesh.points) p.w = 1.2 + 0.6 * std::sin(0.7 * p.xyz[0] + 0.45 * p.xyz[1] + 0.3);
+  const trivar::TMeshSurface s(mesh, 1);
+  std::vector<int> faces;
+  for (int f = 0; f < s.num_faces(); ++f)
+    if (s.method(f) != trivar::FaceMethod::none && (state.range(0) == 0 || s.method(f) == trivar::FaceMethod::star))
+      faces.push_back(f);
+  double out[9];
+  for (auto _ : state)
+    for (int f : faces)
+      for (int j = 0; j < 16; ++j)
+        for (int i = 0; i < 16; ++i) {
+          s.eval(f, (i + 0.5) / 16, (j + 0.5) / 16, out);
+          benchmark::DoNotOptimize(out);
+        }
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(faces.size()) * 256);
+}
+BENCHMARK(star_eval_rational)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+// Poisson on the planar valence-5 fan with T-junctions (5 x 8 x 8 faces, three split): the patches cut until
+// their sides conform, refined n x n; space build, then assembly + solve.
+trivar::TMeshSurface planar_t_fan() {
+  return trivar::TMeshSurface(
+      trivar::io::parse_tsm(trivar::test::tsm_text(trivar::test::fan_mesh_with_t_junctions(5, 8, 6, 2, 5, [](double, double) { return 0.0; })),
+                            "t_fan.tsm")
+          .mesh,
+      1);
+}
+
+void t_junction_poisson_space(benchmark::State& state) {
+  const trivar::TMeshSurface s = planar_t_fan();
+  for (auto _ : state) {
+    const auto space = trivar::t_mesh_space(s, static_cast<int>(state.range(0)));
+    benchmark::DoNotOptimize(space.num_basis);
+  }
+}
+BENCHMARK(t_junction_poisson_space)->Arg(2)->Arg(8)->Unit(benchmark::kMillisecond);
+
+void t_junction_poisson_solve(benchmark::State& state) {
+  const trivar::TMeshSurface s = planar_t_fan();
+  const auto space = trivar::t_mesh_space(s, static_cast<int>(state.range(0)));
+  trivar::PoissonProblem<2> pb;
+  pb.source = [](const double*) { return 1.0; };
+  pb.dirichlet.push_back({space.boundary, {}, nullptr});
+  for (auto _ : state) {
+    auto solver = trivar::make_solver("cholmod");
+    const auto r = trivar::solve_poisson(space, pb, *solver, 1);
+    benchmark::DoNotOptimize(r.coefs.data());
+  }
+  state.counters["functions"] = space.num_basis;
+}
+BENCHMARK(t_junction_poisson_solve)->Arg(2)->Arg(8)->Unit(benchmark::kMillisecond);
+
+// -lap_S u + u = 1 on the closed cube surface of eight valence-3 star points (54 faces), n x n elements per face:
+// space build and assembly + solve (point by point: basis, metric, one quadrature point at a time).
+void surface_poisson(benchmark::State& state) {
+  const trivar::TMeshSurface s(trivar::io::parse_tsm(star_model(0), "cube.tsm").mesh, 1);
+  int functions = 0;
+  for (auto _ : state) {
+    const auto space = trivar::t_mesh_surface_space(s, static_cast<int>(state.range(0)));
+    trivar::SurfacePoissonProblem pb;
+    pb.reaction = 1;
+    pb.source = [](const double*) { return 1.0; };
+    auto solver = trivar::make_solver("cholmod");
+    const auto r = trivar::solve_surface_poisson(space, pb, *solver);
+    functions = space.space.num_basis;
+    benchmark::DoNotOptimize(r.coefs.data());
+  }
+  state.counters["functions"] = functions;
+}
+BENCHMARK(surface_poisson)->Arg(2)->Arg(8)->Unit(benchmark::kMillisecond);
 
 int register_models() {
   std::vector<std::string> files{std::string(TRIVAR_SOURCE_DIR) + "/tests/data/tsm/bezier_patch.tsm"};

@@ -106,10 +106,39 @@ ConformingPatches conforming_split(std::vector<TensorSpline<2>> patches, double 
       const TensorSpline<2>& s = r.patches[i];
       double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
       s.control_bounds(lo, hi);
+      // Its own corners (most of the corners near a patch are its neighbours' shared ones) and the bounding
+      // boxes of its sides' control points (convex hull: a point on a side lies in its box).
+      const Box<2> d = s.domain();
+      std::array<XY, 4> own;
+      std::array<Box<3>, 4> side_box;
+      const int dim = s.dim();
+      const auto n = s.counts();
+      for (int k = 0; k < 4; ++k) {
+        const double u = k == 1 || k == 2 ? d.hi[0] : d.lo[0], v = k >= 2 ? d.hi[1] : d.lo[1];
+        own[static_cast<std::size_t>(k)] = at(s, u, v);
+        Box<3>& b = side_box[static_cast<std::size_t>(k)];
+        b = Box<3>::empty();
+        for (int t = 0; t < n[k % 2 == 0 ? 0 : 1]; ++t) {
+          const int a = k % 2 == 0 ? t : (k == 1 ? n[0] - 1 : 0), c = k % 2 == 0 ? (k == 0 ? 0 : n[1] - 1) : t;
+          double x[3] = {0, 0, 0};
+          s.control_point(a + n[0] * c, x);
+          if (dim == 2) x[2] = 0;
+          b.extend(x);
+        }
+      }
+      const auto near_own = [&](const XY& x) {
+        return std::any_of(own.begin(), own.end(), [&](const XY& y) { return distance(y.data(), x, 3) <= tol; });
+      };
       const auto first = std::lower_bound(corners.begin(), corners.end(), lo[0] - tol, [](const Corner& c, double x) { return c.x[0] < x; });
       for (auto c = first; c != corners.end() && c->x[0] <= hi[0] + tol; ++c) {
-        if (c->patch == i || c->x[1] < lo[1] - tol || c->x[1] > hi[1] + tol || c->x[2] < lo[2] - tol || c->x[2] > hi[2] + tol) continue;
+        if (c->patch == i || c->x[1] < lo[1] - tol || c->x[1] > hi[1] + tol || c->x[2] < lo[2] - tol || c->x[2] > hi[2] + tol ||
+            near_own(c->x))
+          continue;
         for (int k = 0; k < 4; ++k) {
+          const Box<3>& b = side_box[static_cast<std::size_t>(k)];
+          bool inside = true;
+          for (int e = 0; e < 3; ++e) inside = inside && c->x[static_cast<std::size_t>(e)] >= b.lo[e] - tol && c->x[static_cast<std::size_t>(e)] <= b.hi[e] + tol;
+          if (!inside) continue;
           const double t = on_side(s, k, c->x, tol);
           if (std::isnan(t)) continue;
           cuts[i].push_back({k % 2 == 0 ? 0 : 1, t});
