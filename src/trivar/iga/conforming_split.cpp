@@ -15,13 +15,13 @@ namespace {
 
 using XY = std::array<double, 3>;  // a point of a patch (z = 0 for planar ones)
 
-XY at(const TensorSpline<2>& s, double u, double v) {
+XY corner_at(const TensorSpline<2>& s, double u, double v) {
   XY x{};
   s.eval({u, v}, x.data());
   return x;
 }
 
-double distance(const double* y, const XY& x, int dim) {
+double point_distance(const double* y, const XY& x, int dim) {
   double d = 0;
   for (int c = 0; c < dim; ++c) d += (y[c] - x[static_cast<std::size_t>(c)]) * (y[c] - x[static_cast<std::size_t>(c)]);
   return std::sqrt(d);
@@ -30,7 +30,7 @@ double distance(const double* y, const XY& x, int dim) {
 // The parameter along side k of s (0: v = lo, 1: u = hi, 2: v = hi, 3: u = lo) where the side passes within tol
 // of x strictly between its ends, or NaN. Sampling then Newton on |side(t) - x|^2 (the side is one cubic-like
 // Bezier curve, monotone enough between samples).
-double on_side(const TensorSpline<2>& s, int k, const XY& x, double tol) {
+double side_parameter(const TensorSpline<2>& s, int k, const XY& x, double tol) {
   const Box<2> d = s.domain();
   const int dir = k % 2 == 0 ? 0 : 1;  // the parameter that runs along the side
   const double fixed = k == 0 ? d.lo[1] : k == 1 ? d.hi[0] : k == 2 ? d.hi[1] : d.lo[0];
@@ -43,7 +43,7 @@ double on_side(const TensorSpline<2>& s, int k, const XY& x, double tol) {
     const double t = lo + (hi - lo) * i / samples;
     double y[3];
     s.eval(point(t), y);
-    const double e = distance(y, x, dim);
+    const double e = point_distance(y, x, dim);
     if (e < best_d) {
       best_d = e;
       best = t;
@@ -66,7 +66,7 @@ double on_side(const TensorSpline<2>& s, int k, const XY& x, double tol) {
   }
   double y[3];
   s.eval(point(t), y);
-  if (distance(y, x, dim) > tol) return NAN;
+  if (point_distance(y, x, dim) > tol) return NAN;
   const double margin = 1e-9 * (hi - lo);
   return t > lo + margin && t < hi - margin ? t : NAN;
 }
@@ -93,7 +93,7 @@ ConformingPatches conforming_split(std::vector<TensorSpline<2>> patches, double 
     for (std::size_t i = 0; i < r.patches.size(); ++i) {
       const Box<2> d = r.patches[i].domain();
       for (const auto& [u, v] : {std::array<double, 2>{d.lo[0], d.lo[1]}, {d.hi[0], d.lo[1]}, {d.hi[0], d.hi[1]}, {d.lo[0], d.hi[1]}})
-        corners.push_back({at(r.patches[i], u, v), i});
+        corners.push_back({corner_at(r.patches[i], u, v), i});
     }
     std::sort(corners.begin(), corners.end(), [](const Corner& a, const Corner& b) { return a.x[0] < b.x[0]; });
     struct Cut {
@@ -115,7 +115,7 @@ ConformingPatches conforming_split(std::vector<TensorSpline<2>> patches, double 
       const auto n = s.counts();
       for (int k = 0; k < 4; ++k) {
         const double u = k == 1 || k == 2 ? d.hi[0] : d.lo[0], v = k >= 2 ? d.hi[1] : d.lo[1];
-        own[static_cast<std::size_t>(k)] = at(s, u, v);
+        own[static_cast<std::size_t>(k)] = corner_at(s, u, v);
         Box<3>& b = side_box[static_cast<std::size_t>(k)];
         b = Box<3>::empty();
         for (int t = 0; t < n[k % 2 == 0 ? 0 : 1]; ++t) {
@@ -127,7 +127,7 @@ ConformingPatches conforming_split(std::vector<TensorSpline<2>> patches, double 
         }
       }
       const auto near_own = [&](const XY& x) {
-        return std::any_of(own.begin(), own.end(), [&](const XY& y) { return distance(y.data(), x, 3) <= tol; });
+        return std::any_of(own.begin(), own.end(), [&](const XY& y) { return point_distance(y.data(), x, 3) <= tol; });
       };
       const auto first = std::lower_bound(corners.begin(), corners.end(), lo[0] - tol, [](const Corner& c, double x) { return c.x[0] < x; });
       for (auto c = first; c != corners.end() && c->x[0] <= hi[0] + tol; ++c) {
@@ -139,7 +139,7 @@ ConformingPatches conforming_split(std::vector<TensorSpline<2>> patches, double 
           bool inside = true;
           for (int e = 0; e < 3; ++e) inside = inside && c->x[static_cast<std::size_t>(e)] >= b.lo[e] - tol && c->x[static_cast<std::size_t>(e)] <= b.hi[e] + tol;
           if (!inside) continue;
-          const double t = on_side(s, k, c->x, tol);
+          const double t = side_parameter(s, k, c->x, tol);
           if (std::isnan(t)) continue;
           cuts[i].push_back({k % 2 == 0 ? 0 : 1, t});
           any = true;

@@ -17,7 +17,7 @@ namespace {
 
 // The patches cut to conform and refined, identified across shared sides (by their control points in the
 // space of `dim` coordinates: 2 planar, 3 a surface), with the surfaces (dim 3) refined like the spaces.
-TMeshSurfaceSpace build(const TMeshSurface& surface, int subdivisions, TMeshSpaceReport* report, bool planar) {
+TMeshSurfaceSpace build_t_mesh_space(const TMeshSurface& surface, int subdivisions, TMeshSpaceReport* report, bool planar) {
   require(subdivisions >= 1, "T-mesh space: subdivisions must be at least 1, got " + std::to_string(subdivisions));
   TMeshPatchOptions po;
   po.levels = 0;
@@ -28,7 +28,6 @@ TMeshSurfaceSpace build(const TMeshSurface& surface, int subdivisions, TMeshSpac
   require(!planar || box.extent(2) <= 1e-12 * size, [&] {
     return "T-mesh space: the control points span " + std::to_string(box.extent(2)) + " in z; analysis needs a planar mesh (z constant)";
   });
-  const int dim = planar ? 2 : 3;
   // Faces crossed by T-junction extensions are several Bezier elements and T-junctions put corners inside sides:
   // the pieces are cut until their sides conform.
   const auto keep = [](const TensorSpline<2>& s, int d) {
@@ -176,11 +175,11 @@ TMeshSurfaceSpace build(const TMeshSurface& surface, int subdivisions, TMeshSpac
 }  // namespace
 
 MultipatchSpace<2> t_mesh_space(const TMeshSurface& surface, int subdivisions, TMeshSpaceReport* report) {
-  return build(surface, subdivisions, report, true).space;
+  return build_t_mesh_space(surface, subdivisions, report, true).space;
 }
 
 TMeshSurfaceSpace t_mesh_surface_space(const TMeshSurface& surface, int subdivisions, TMeshSpaceReport* report) {
-  return build(surface, subdivisions, report, false);
+  return build_t_mesh_space(surface, subdivisions, report, false);
 }
 
 }  // namespace trivar

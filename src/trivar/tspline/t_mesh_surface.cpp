@@ -218,7 +218,7 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(mesh), stars_
   }
   // Exact faces: the T-spline in a chart of their neighbourhood. A chart of depth + k rings around a face serves
   // every face within k rings of it (their neighbourhoods lie inside), so faces are grouped greedily: a cluster
-  // around the first face not yet served, k as large as the star points allow (up to 4).
+  // around the first face not yet served, k as large as the star points allow (up to 4; without star points all it reaches).
   struct Cluster {
     int centre, rings;
     std::vector<int> members;
@@ -231,7 +231,10 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(mesh), stars_
     std::vector<char> served(static_cast<std::size_t>(nf), 0);
     for (int f : exact) {
       if (served[static_cast<std::size_t>(f)]) continue;
-      const int k = std::min(4, star_dist[static_cast<std::size_t>(f)] == INT_MAX ? 4 : star_dist[static_cast<std::size_t>(f)] - depth - 1);
+      // Without star points the chart of all the faces it reaches (the global T-spline: small charts of a
+      // model whose end-condition blocks or slits end inside them can have blending functions the chart's border
+      // collapses).
+      const int k = stars_.empty() ? nf : std::min(4, star_dist[static_cast<std::size_t>(f)] == INT_MAX ? 4 : star_dist[static_cast<std::size_t>(f)] - depth - 1);
       std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX);
       dist[static_cast<std::size_t>(f)] = 0;
       Cluster c{f, depth + k, {}, {}};
