@@ -1,6 +1,6 @@
 // `trivar info|eval|convert` on T-splines: the hand-written Bezier patch in TSM, converted to both STEP forms,
 // JSON, .lr, meshes; malformed input fails with one line and writes nothing; `solve poisson` on a planar
-// T-spline written as .tsm and .stp.
+// T-spline written as .tsm and .stp, and on curved models (the surface problem).
 #include <map>
 
 #include "cli_fixture.hpp"
@@ -89,7 +89,13 @@ TEST_F(TSplineCli, SolvePoissonOnAPlanarTSpline) {
   }
   ok("solve poisson square.tsm --out sol");
   EXPECT_TRUE(fs::exists(work_ / "sol" / "solution.vtu"));
-  fails("solve poisson patch.tsm");  // not planar
+  // A curved model: the Laplace-Beltrami problem on its surface (-lap_S u = 1, u = 0 on the boundary); its
+  // solution is a field on the surface, so --out is refused and writes nothing.
+  const Result curved = ok("solve poisson patch.tsm --solver cholmod");
+  EXPECT_NE(curved.out.find("T-mesh surface (curved, open)"), std::string::npos) << curved.out;
+  EXPECT_FALSE(numbers_after(curved.out, "u: max").empty()) << curved.out;
+  fails("solve poisson patch.tsm --out curved");
+  EXPECT_FALSE(fs::exists(work_ / "curved"));
   fails("solve elasticity square.tsm");
 }
 
@@ -203,14 +209,20 @@ TEST_F(TSplineCli, StarPointModel) {
 TEST_F(TSplineCli, SolvePoissonAroundAStarPoint) {
   std::ofstream((work_ / "fan.tsm").string()) << trivar::test::tsm_text(trivar::test::fan_mesh(3, 8, [](double, double) { return 0.0; }));
   const Result r = ok("solve poisson fan.tsm --solver cholmod --refine 1 --out sol");
-  EXPECT_NE(r.out.find("192 faces, 3 corner patches"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("192 faces as 192 patches"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("3 corner patches"), std::string::npos) << r.out;
   const auto u = numbers_after(r.out, "u: max");
   ASSERT_FALSE(u.empty()) << r.out;
   EXPECT_GT(u[0], 6.5 * 6.5 / 4);
   EXPECT_LT(u[0], 16.0);
   EXPECT_TRUE(fs::exists(work_ / "sol" / "solution.vtu"));
   fs::copy_file(std::string(TRIVAR_TEST_DATA) + "/tsm/star_cube.tsm", work_ / "cube.tsm");
-  fails("solve poisson cube.tsm");  // not planar
+  // The closed cube surface: -lap_S u + u = 1, whose solution is u = 1 (in the space: the partition of unity).
+  const Result c = ok("solve poisson cube.tsm --solver cholmod --refine 2");
+  EXPECT_NE(c.out.find("T-mesh surface (curved, closed)"), std::string::npos) << c.out;
+  const auto one = numbers_after(c.out, "u: max");
+  ASSERT_FALSE(one.empty()) << c.out;
+  EXPECT_NEAR(one[0], 1.0, 1e-9);
 }
 
 }  // namespace
