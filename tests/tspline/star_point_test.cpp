@@ -376,6 +376,33 @@ TEST(StarPoints, WhatTheCatmullClarkRegionDoesNotHoldIsRefused) {
   expect_error(tsm_text(test::cube_mesh(1)), "star corners");
 }
 
+// What the uniform Catmull-Clark rules cannot represent is refused with one line naming it. A star point on the
+// boundary (four sectors of the valence-5 fan: the origin a boundary vertex with four faces, 360 degrees) cannot
+// even be written: the outside link's corner flag would be -1 (an outside angle of 0). T-junctions (split edges
+// of interval 1/2) in the ring of faces 3 from the star point: their neighbours within 3 rings need uniform
+// quads within 2 rings, and no chart without the star point holds their knot vectors.
+TEST(StarPoints, BoundaryStarPointsAndTJunctionsNearOneAreRefused) {
+  test::QuadMesh open = test::fan_mesh(5, 8, height);
+  open.quads.resize(4 * 64);
+  std::vector<int> used(open.points.size(), -1);
+  std::vector<std::array<double, 3>> points;
+  for (auto& q : open.quads)
+    for (int& v : q) {
+      if (used[static_cast<std::size_t>(v)] < 0) {
+        used[static_cast<std::size_t>(v)] = static_cast<int>(points.size());
+        points.push_back(open.points[static_cast<std::size_t>(v)]);
+      }
+      v = used[static_cast<std::size_t>(v)];
+    }
+  open.points = std::move(points);
+  expect_error(tsm_text(open), "corner flag -1");
+  expect_error(tsm_text(test::fan_mesh_with_t_junctions(5, 8, 3, 1, 3, height)), "within 5 face rings of a star point");
+  // Two rings further out the T-junctions are faces of charts without the star point: the mesh loads.
+  const io::TsmModel far = io::parse_tsm(tsm_text(test::fan_mesh_with_t_junctions(5, 8, 6, 2, 5, height)), "far.tsm");
+  const TMeshSurface s(far.mesh, 1);
+  EXPECT_EQ(s.count(FaceMethod::star), 5);
+}
+
 }  // namespace
 }  // namespace trivar
 
