@@ -15,6 +15,7 @@
 #include "trivar/io/stl_writer.hpp"
 #include "trivar/io/vmodel_json.hpp"
 #include "trivar/model/trimmed_tessellation.hpp"
+#include "support/model_fixtures.hpp"
 
 using namespace trivar;
 
@@ -220,5 +221,53 @@ TEST(BooleanCli, BallMinusCylinder) {
   EXPECT_EQ(empty.code, 1);
   EXPECT_NE(empty.err.find("difference is empty"), std::string::npos) << empty.err;
   EXPECT_FALSE(std::filesystem::exists(d + "e.json"));
+  std::filesystem::remove_all(dir);
+}
+
+// info and check report the V-curves and V-points of a Boolean's result (two unit cubes sharing a face: 20
+// V-curves, 12 V-points, boundary 12 - 20 + 10 = 2); a trimming loop that names the wrong edge leaves one edge
+// used by an odd number of loops, which check reports as a defect (exit 3).
+TEST(BooleanCli, InfoAndCheckReportVCurvesAndVPoints) {
+  const auto dir = test::temp_dir("boolean_topology_cli");
+  std::filesystem::create_directories(dir);
+  const std::string d = dir.string() + "/";
+  const auto cube_at = [](double x) {
+    VModel m;
+    m.add_cell(VCell(test::block_at(x, 0, 0)));
+    m.glue();
+    return m;
+  };
+  std::ofstream(d + "a.json") << io::to_json(cube_at(0)).dump();
+  std::ofstream(d + "b.json") << io::to_json(cube_at(1)).dump();
+  ASSERT_EQ(run("boolean " + d + "a.json " + d + "b.json --op union -o " + d + "u.json", dir).code, 0);
+  const CliRun info = run("info " + d + "u.json --json", dir);
+  ASSERT_EQ(info.code, 0) << info.err;
+  const nlohmann::json j = nlohmann::json::parse(info.out);
+  EXPECT_EQ(j["curves"].get<int>(), 20);
+  EXPECT_EQ(j["points"].get<int>(), 12);
+  EXPECT_EQ(j["shared_surfaces"].get<int>(), 1);
+  EXPECT_EQ(j["boundary_surfaces"].get<int>(), 10);
+  EXPECT_EQ(j["trimmed_topology"]["euler_characteristic"].get<int>(), 2);
+  EXPECT_EQ(j["trimmed_topology"]["cell_euler_characteristics"], nlohmann::json({2, 2}));
+  const CliRun ok = run("check " + d + "u.json", dir);
+  EXPECT_EQ(ok.code, 0) << ok.out;
+  EXPECT_NE(ok.out.find("trimming edges: 20 V-curves, 12 V-points"), std::string::npos) << ok.out;
+  EXPECT_NE(ok.out.find("V - E + F = 2, mesh watertight, Euler characteristic 2"), std::string::npos) << ok.out;
+  // The first loop's first curve names the edge of its second curve instead of its own.
+  nlohmann::json doc = nlohmann::json::parse(std::ifstream(d + "u.json"));
+  std::function<bool(nlohmann::json&)> rename = [&](nlohmann::json& v) {
+    if (v.is_array() && v.size() > 1 && v[0].is_object() && v[0].contains("edge") && v[0].contains("pcurve")) {
+      v[0]["edge"] = v[1]["edge"];
+      return true;
+    }
+    for (auto& x : v)
+      if ((x.is_object() || x.is_array()) && rename(x)) return true;
+    return false;
+  };
+  ASSERT_TRUE(rename(doc));
+  std::ofstream(d + "bad.json") << doc.dump();
+  const CliRun bad = run("check " + d + "bad.json", dir);
+  EXPECT_EQ(bad.code, 3) << bad.out << bad.err;
+  EXPECT_NE(bad.out.find("face loops (a closed boundary uses every edge twice)"), std::string::npos) << bad.out;
   std::filesystem::remove_all(dir);
 }
