@@ -253,6 +253,22 @@ TEST(BooleanCli, InfoAndCheckReportVCurvesAndVPoints) {
   EXPECT_EQ(ok.code, 0) << ok.out;
   EXPECT_NE(ok.out.find("trimming edges: 20 V-curves, 12 V-points"), std::string::npos) << ok.out;
   EXPECT_NE(ok.out.find("V - E + F = 2, mesh watertight, Euler characteristic 2"), std::string::npos) << ok.out;
+  // A model mixing an untrimmed cell (the left cube) and a trimmed one (the right cell of the union) solves as
+  // one: the first Laplace eigenvalue of the 2 x 1 x 1 box, pi^2 (1/4 + 1 + 1).
+  VModel mixed;
+  mixed.add_cell(cube_at(0).cell(0));
+  const VModel u = io::vmodel_from_json(nlohmann::json::parse(std::ifstream(d + "u.json")), "u");
+  for (const VCell& c : u.cells())
+    if (c.trim()->bounding_box().lo[0] > 0.5) mixed.add_cell(c);
+  ASSERT_EQ(mixed.num_cells(), 2);
+  std::ofstream(d + "mixed.json") << io::to_json(mixed).dump();
+  const CliRun modes = run("solve modes " + d + "mixed.json --physics laplace --modes 1 --refine 4", dir);
+  ASSERT_EQ(modes.code, 0) << modes.out << modes.err;
+  EXPECT_NE(modes.out.find("mixed model: 1 untrimmed cells"), std::string::npos) << modes.out;
+  const auto at = modes.out.find("mode 1: lambda ");
+  ASSERT_NE(at, std::string::npos) << modes.out;
+  const double pi = 3.14159265358979323846;
+  EXPECT_NEAR(std::stod(modes.out.substr(at + 15)), 2.25 * pi * pi, 2e-3 * 2.25 * pi * pi) << modes.out;
   // The first loop's first curve names the edge of its second curve instead of its own.
   nlohmann::json doc = nlohmann::json::parse(std::ifstream(d + "u.json"));
   std::function<bool(nlohmann::json&)> rename = [&](nlohmann::json& v) {
