@@ -92,10 +92,11 @@ double trimmed_integral(const TrimmedBoundary& b, const std::function<double(con
         // meet within its vertex tolerance only, 1e-7 and more apart after Booleans of Booleans), the segment
         // across the gap closes it, so the result is off by the gap's square rather than by G times the gap.
         const TensorSpline<1>& next = loop.curves[(k + 1) % loop.curves.size()].pcurve;
-        double a[2], b[2];
-        c.eval({c.domain().hi[0]}, a);
-        next.eval({next.domain().lo[0]}, b);
-        if (a[0] != b[0] || a[1] != b[1]) along(TensorSpline<1>({KnotVector(1, {0, 0, 1, 1})}, 2, false, {a[0], a[1], b[0], b[1]}));
+        double end[2], start[2];
+        c.eval({c.domain().hi[0]}, end);
+        next.eval({next.domain().lo[0]}, start);
+        if (end[0] != start[0] || end[1] != start[1])
+          along(TensorSpline<1>({KnotVector(1, {0, 0, 1, 1})}, 2, false, {end[0], end[1], start[0], start[1]}));
       }
     total += f.reversed ? -face : face;
   }
