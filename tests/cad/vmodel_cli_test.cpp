@@ -113,8 +113,9 @@ double unit_cube_poisson_integral() {
 
 }  // namespace
 
-// solve on a trimmed model: the STEP unit cube (every face on a side of its box) against the sine series; the
-// block with holes (cut elements, trimming boundary free) writes its solution; check certifies both trims.
+// solve on a trimmed model: the STEP unit cube (every face on a side of its box) against the sine series and its
+// first Laplace eigenvalue; the block with holes (cut elements, trimming boundary free) writes its solution;
+// check certifies both trims.
 TEST(VmodelCli, SolveAndCheckTrimmedModels) {
   const auto dir = test::temp_dir("cli_solve");
   const std::string cube = (dir / "cube.json").string(), part = (dir / "part.json").string();
@@ -135,7 +136,13 @@ TEST(VmodelCli, SolveAndCheckTrimmedModels) {
   EXPECT_NEAR(std::stod(p.out.substr(vol + 7)), std::stod(p.out.substr(exact + 15)), 1e-6 * 24000);
   const CliRun e = run("solve elasticity " + part + " --refine 4 --clamp x- --solver cholmod", dir);
   EXPECT_EQ(e.code, 0) << e.err;
-  EXPECT_NE(run("solve modes " + part, dir).err.find("not supported"), std::string::npos);
+  // Laplace modes of the STEP unit cube with u = 0 on its sides: 3 pi^2 first.
+  const CliRun md = run("solve modes " + cube + " --physics laplace --modes 1 --degree 3 --refine 4", dir);
+  ASSERT_EQ(md.code, 0) << md.err;
+  const auto lam = md.out.find("mode 1: lambda ");
+  ASSERT_NE(lam, std::string::npos) << md.out;
+  const double pi2 = 3.14159265358979323846 * 3.14159265358979323846;
+  EXPECT_NEAR(std::stod(md.out.substr(lam + 15)), 3 * pi2, 1e-4 * 3 * pi2) << md.out;
   for (const std::string& m : {cube, part}) {
     const CliRun k = run("check " + m, dir);
     EXPECT_EQ(k.code, 0) << k.out << k.err;
