@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "trivar/am/layer_slicer.hpp"
 #include "trivar/am/slicer.hpp"
@@ -345,33 +346,41 @@ TEST(Boolean, BallMinusCylinderThenSlabInEitherOrder) {
               std::abs(ring_then_slab.volume() / exact - 1), std::abs(slab_then_ring.volume() / exact - 1));
 }
 
-// The intersection of the unit ball and the slab |z| <= h: pi (2 h - 2 h^3 / 3). The plane cuts the ball's
-// rational sphere patches, whose intersection curves the kernel approximates (9.6e-9 relative in the volume
-// with its curves); solved onto both surfaces, the trimming curves on the slab's faces lie on the sphere (or on
-// the ball's planar cell faces) to 1e-10 and the volume holds to 1e-12.
+// A cylinder (radius 0.4, z in [0, 3]) cut below the plane z = 1.5 + x tan 30 degrees (a box turned about the
+// y-axis): the plane's odd part in x integrates to zero over the disk, so the volume is pi r^2 1.5. The plane
+// cuts the cylinder's rational patches in ellipse arcs, which the kernel approximates; solved onto both
+// surfaces, the trimming curves on the plane lie on the cylinder to 1e-10 and the volume holds to 1e-12.
 TEST(Boolean, IntersectionEdgesLieOnBothSurfaces) {
-  const double h = 0.3;
-  const VModel cut = cad::boolean(ball(1), box({-2, -2, -h}, {4, 4, 2 * h}), BooleanOp::intersect);
-  const double exact = pi * (2 * h - 2 * h * h * h / 3);
+  const double r = 0.4, h = 1.5, angle = pi / 6;
+  const VModel cyl = test::glued(make_cylinder({r, 3}));
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(-angle, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  VModel below;
+  for (const TensorSpline<3>& c : make_box({{4, 4, 4}, {-2, -2, -4}}))
+    below.add_cell(VCell(transform(c, turn, Eigen::Vector3d(0, 0, h))));
+  below.glue();
+  const VModel cut = cad::boolean(cyl, below, BooleanOp::intersect);
+  const double exact = pi * r * r * h;
   EXPECT_NEAR(cut.volume(), exact, 1e-12 * exact);
-  int on_sphere = 0;
+  int on_cylinder = 0;
   for (const VCell& c : cut.cells())
     for (const TrimmedFace& f : c.trim()->boundary().faces)
       for (const TrimLoop& l : f.loops)
         for (const TrimCurve& t : l.curves) {
-          double worst = 0;
+          double worst = 0, tilt = 0;
           const Box<1> d = t.pcurve.domain();
           for (int k = 0; k <= 50; ++k) {
             double uv[2], x[3];
             t.pcurve.eval({d.lo[0] + k / 50.0 * d.extent(0)}, uv);
             f.surface.eval({uv[0], uv[1]}, x);
-            worst = std::max(worst, std::abs(std::hypot(x[0], x[1], x[2]) - 1));
+            worst = std::max(worst, std::abs(std::hypot(x[0], x[1]) - r));
+            tilt = std::max(tilt, std::abs(x[2] - h - x[0] * std::tan(angle)));
           }
-          // Curves on the sphere: those of the slab's planes at z = +-h, and the sphere's own loops.
-          if (worst < 1e-6) {
-            ++on_sphere;
+          // The ellipse arcs: on the cylinder and on the plane.
+          if (worst < 1e-6 && tilt < 1e-6) {
+            ++on_cylinder;
             EXPECT_LT(worst, 1e-10);
+            EXPECT_LT(tilt, 1e-10);
           }
         }
-  EXPECT_GT(on_sphere, 0);
+  EXPECT_GE(on_cylinder, 8);  // four arcs, each on the plane face and on the cylinder face
 }
