@@ -47,10 +47,10 @@ class EdgeSolver {
       s1_->D1(e.p[0], e.p[1], p1, d1u, d1v);
       s2_->D1(e.p[2], e.p[3], p2, d2u, d2v);
       const gp_Vec n1 = d1u.Crossed(d1v), n2 = d2u.Crossed(d2v);
-      const gp_Vec t = n1.Crossed(n2);
-      if (n1.Magnitude() == 0 || n2.Magnitude() == 0 || t.Magnitude() < kMinSine * n1.Magnitude() * n2.Magnitude())
+      const gp_Vec tangent = n1.Crossed(n2);
+      if (n1.Magnitude() == 0 || n2.Magnitude() == 0 || tangent.Magnitude() < kMinSine * n1.Magnitude() * n2.Magnitude())
         return std::nullopt;
-      if (it == 0) dir = t.Normalized();
+      if (it == 0) dir = tangent.Normalized();
       Eigen::Matrix4d J;
       Eigen::Vector4d F;
       const gp_Vec r(p2, p1), q(x0, p1);
