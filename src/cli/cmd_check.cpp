@@ -47,20 +47,29 @@ int check_trimmed(const TrimmedSolid& solid) {
   return t.valid ? kSuccess : kInvalid;
 }
 
-// The cells of a model of several trimmed cells against one another: every face two cells share is whole on both
-// sides (exactly two cells), and the model's boundary (the shared faces left out) is closed.
+// The V-topology of trimmed cells: every face two cells share is whole on both sides (exactly two cells), every
+// cell's edge is used by an even number of its face loops and ends at its V-points, and the model's boundary
+// (the shared faces left out) is closed, its Euler characteristic from V-points, V-curves and V-surfaces the
+// mesh's.
 int check_trimmed_interfaces(const VModel& m) {
   const TrimmedInterfaces t = trimmed_interfaces(m);
   const TriangleMesh b = trimmed_boundary_mesh(m).mesh;
   const bool closed = is_watertight(b);
+  const int chi = euler_characteristic(b);
   std::printf("trimming faces: %d shared by two cells, %d on the boundary, %zu non-conforming\n", t.shared, t.boundary,
               t.non_conforming.size());
-  std::printf("model boundary mesh: %s, Euler characteristic %d\n", closed ? "watertight" : "not watertight",
-              euler_characteristic(b));
+  std::printf("trimming edges: %zu V-curves, %zu V-points\n", t.curves.size(), t.points.size());
+  std::printf("model boundary: V - E + F = %d, mesh %s, Euler characteristic %d\n", t.boundary_euler,
+              closed ? "watertight" : "not watertight", chi);
   for (const TrimmedFaceRef& f : t.non_conforming)
     std::printf("defect: face %d of cell %d is only partly shared with another cell\n", f.face, f.cell);
+  for (const std::string& d : t.defects) std::printf("defect: %s\n", d.c_str());
   if (!closed) std::printf("defect: the model's boundary mesh is not closed\n");
-  return t.non_conforming.empty() && closed ? kSuccess : kInvalid;
+  const bool euler = t.boundary_euler == chi;
+  if (closed && !euler)
+    std::printf("defect: the boundary's V-points, V-curves and V-surfaces give Euler characteristic %d, its mesh %d\n",
+                t.boundary_euler, chi);
+  return t.non_conforming.empty() && t.defects.empty() && closed && euler ? kSuccess : kInvalid;
 }
 
 int worse(int a, int b) { return (b == kInvalid || (b == kUndecided && a == kSuccess)) ? b : a; }
@@ -90,7 +99,7 @@ void add_check_command(CLI::App& app, Context& ctx) {
         worst = worse(worst, check(c.geometry(), a->opts));
         if (c.is_trimmed()) worst = worse(worst, check_trimmed(*c.trim()));
       }
-      if (m->num_cells() > 1 && std::all_of(m->cells().begin(), m->cells().end(), [](const VCell& c) { return c.is_trimmed(); }))
+      if (std::all_of(m->cells().begin(), m->cells().end(), [](const VCell& c) { return c.is_trimmed(); }))
         worst = worse(worst, check_trimmed_interfaces(*m));
       ctx.exit_code = worst;
       return;

@@ -32,6 +32,7 @@
 #include "trivar/iga/refined_elasticity.hpp"
 #include "trivar/iga/refined_modes.hpp"
 #include "trivar/iga/refined_space.hpp"
+#include "trivar/cad/trimmed_form.hpp"
 #include "trivar/iga/trimmed_model_space.hpp"
 #include "trivar/iga/lr_solution_field.hpp"
 #include "trivar/iga/poisson.hpp"
@@ -656,7 +657,6 @@ bool has_trimmed_cells(const FileInput& in) {
 // names one of them); the rest of the model's boundary is free (natural). Elasticity takes each cell's
 // material attributes.
 void run_trimmed(const SolveArgs& a, const VModel& m) {
-  require(a.kind != "modes", "solve: eigenmodes of trimmed cells are not supported (poisson and elasticity are)");
   const auto t0 = std::chrono::steady_clock::now();
   const TrimmedModelSpace tm = trimmed_model_space(m, a.degree, a.refine, a.threads);
   const RefinedSpace<3>& space = tm.space;
@@ -668,6 +668,32 @@ void run_trimmed(const SolveArgs& a, const VModel& m) {
   else
     std::printf("trimmed cells: %d, sharing %d faces; %d elements (%d cut, %d outside), quadrature %s s\n",
                 m.num_cells(), tm.interfaces.shared, space.num_elements(), tm.cut, tm.outside, secs(build).c_str());
+  if (a.kind == "modes") {
+    // Laplace modes with u = 0 on the sides of the box holding faces of the model (natural on the trimming
+    // boundary), or free vibration with each cell's material (clamped with --clamp, else free).
+    const bool elastic = a.physics == "elastic";
+    ModesResult r;
+    if (!elastic) {
+      require(!sides.empty(), "solve: " + a.file + ": no face of the trimmed model lies on a side of its bounding box, "
+                                  "so there is nowhere to hold u = 0");
+      r = laplace_modes(space, sides, a.modes, a.threads);
+    } else {
+      ElasticityProblem<3> pb;
+      pb.material = {a.youngs, a.poisson, a.density};
+      require(pb.material.valid(), "solve: --youngs and --density must be positive, --poisson-ratio in (-1, 0.5)");
+      const auto materials = cell_materials(m, pb.material);
+      pb.material_at = [&tm, materials](int, const double* x) { return materials(std::max(tm.cell_at(x), 0), x); };
+      if (a.clamp != "none") pb.displacement.push_back({{Face{a.clamp[0] - 'x', a.clamp[1] == '-' ? 0 : 1, 0}}, {}, nullptr});
+      r = elastic_modes(space, pb, a.modes, a.threads);
+    }
+    for (int i = 0; i < a.modes && i < static_cast<int>(r.values.size()); ++i) {
+      std::string line = "mode " + std::to_string(i + 1) + ": " + (elastic ? "omega^2 " : "lambda ") + sci(r.values[i]);
+      if (elastic) line += ", frequency " + sci(std::sqrt(std::max(0.0, r.values[i])) / (2 * M_PI));
+      std::printf("%s\n", line.c_str());
+    }
+    std::printf("dofs %d, assembly %s s, solve %s s\n", r.dofs, secs(r.assembly_seconds).c_str(), secs(r.solve_seconds).c_str());
+    return;
+  }
   auto solver = make_solver(a.solver);
   SolveResult r;
   if (a.kind == "poisson") {
@@ -754,7 +780,17 @@ void run(const SolveArgs& a) {
     const FileInput in = read_input(a);
     if (has_trimmed_cells(in)) {
       require(!distributed(a), "solve: --backend petsc does not take trimmed cells");
-      run_trimmed(a, *in.model);
+      const int untrimmed = static_cast<int>(std::count_if(in.model->cells().begin(), in.model->cells().end(),
+                                                           [](const VCell& c) { return !c.is_trimmed(); }));
+      if (untrimmed == 0) {
+        run_trimmed(a, *in.model);
+      } else {
+        // Untrimmed cells become trimmed cells of their own region, sharing their faces with the trimmed ones.
+        const VModel all = cad::trimmed_form(*in.model);
+        std::printf("mixed model: %d untrimmed cells trimmed to their own regions (one general fuse with the %d trimmed "
+                    "cells)\n", untrimmed, in.model->num_cells() - untrimmed);
+        run_trimmed(a, all);
+      }
     } else if (a.kind == "modes" && in.dimension() == 3)
       file_modes<3>(a, in);
     else if (a.kind == "modes")

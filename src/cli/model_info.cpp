@@ -71,9 +71,20 @@ nlohmann::json describe(const VModel& m) {
                              {"boundary_faces", ti.boundary},
                              {"non_conforming_faces", nc},
                              {"neighbours", ti.neighbours},
+                             {"curves", ti.curves.size()},
+                             {"points", ti.points.size()},
+                             {"euler_characteristic", ti.boundary_euler},
+                             {"cell_euler_characteristics", ti.cell_euler},
+                             {"defects", ti.defects},
                              {"boundary_mesh", {{"triangles", b.mesh.triangles.size()},
                                                 {"watertight", is_watertight(b.mesh)},
                                                 {"euler_characteristic", euler_characteristic(b.mesh)}}}};
+    // The trimmed cells' boxes are no part of the model: the topology is that of their trimming faces.
+    j["shared_surfaces"] = ti.shared;
+    j["boundary_surfaces"] = ti.boundary;
+    j["curves"] = ti.curves.size();
+    j["points"] = ti.points.size();
+    j["non_conforming_faces"] = ti.non_conforming.size();
   }
   for (int i = 0; i < m.num_cells(); ++i) {
     const TensorSpline<3>& g = m.cell(i).geometry();
@@ -121,6 +132,9 @@ void print_model_info(const std::string& path, const VModel& m, bool json) {
                 t["shared_faces"].get<int>(), t["boundary_faces"].get<int>(), t["non_conforming_faces"].size(),
                 b["triangles"].get<std::size_t>(), b["watertight"].get<bool>() ? "watertight" : "NOT watertight",
                 b["euler_characteristic"].get<int>());
+    std::printf("  trimming edges and vertices: %zu V-curves, %zu V-points; boundary V - E + F = %d\n",
+                t["curves"].get<std::size_t>(), t["points"].get<std::size_t>(), t["euler_characteristic"].get<int>());
+    for (const auto& line : t["defects"]) std::printf("    defect: %s\n", line.get<std::string>().c_str());
   }
   std::printf("  volume: %s\n", fmt(d["volume"].get<double>()).c_str());
   const Box<3> box = m.bounding_box();
@@ -136,7 +150,9 @@ void print_model_info(const std::string& path, const VModel& m, bool json) {
                 c["jacobian"].get<std::string>().c_str(), fmt(c["min_det_j_lower_bound"].get<double>()).c_str());
     if (!c.contains("trim")) continue;
     if (d.contains("trimmed_topology") && m.num_cells() > 1)
-      std::printf("    neighbours across shared faces: %s\n", d["trimmed_topology"]["neighbours"][static_cast<std::size_t>(i)].dump().c_str());
+      std::printf("    neighbours across shared faces: %s; boundary Euler characteristic %d\n",
+                  d["trimmed_topology"]["neighbours"][static_cast<std::size_t>(i)].dump().c_str(),
+                  d["trimmed_topology"]["cell_euler_characteristics"][static_cast<std::size_t>(i)].get<int>());
     const nlohmann::json& t = c["trim"];
     std::string kinds;
     for (const auto& [k, n] : t["faces_by_kind"].items()) kinds += (kinds.empty() ? "" : ", ") + std::to_string(n.get<int>()) + " " + k;

@@ -15,6 +15,7 @@
 #include "trivar/io/stl_writer.hpp"
 #include "trivar/io/vmodel_json.hpp"
 #include "trivar/model/trimmed_tessellation.hpp"
+#include "support/model_fixtures.hpp"
 
 using namespace trivar;
 
@@ -112,8 +113,9 @@ double unit_cube_poisson_integral() {
 
 }  // namespace
 
-// solve on a trimmed model: the STEP unit cube (every face on a side of its box) against the sine series; the
-// block with holes (cut elements, trimming boundary free) writes its solution; check certifies both trims.
+// solve on a trimmed model: the STEP unit cube (every face on a side of its box) against the sine series and its
+// first Laplace eigenvalue; the block with holes (cut elements, trimming boundary free) writes its solution;
+// check certifies both trims.
 TEST(VmodelCli, SolveAndCheckTrimmedModels) {
   const auto dir = test::temp_dir("cli_solve");
   const std::string cube = (dir / "cube.json").string(), part = (dir / "part.json").string();
@@ -134,7 +136,13 @@ TEST(VmodelCli, SolveAndCheckTrimmedModels) {
   EXPECT_NEAR(std::stod(p.out.substr(vol + 7)), std::stod(p.out.substr(exact + 15)), 1e-6 * 24000);
   const CliRun e = run("solve elasticity " + part + " --refine 4 --clamp x- --solver cholmod", dir);
   EXPECT_EQ(e.code, 0) << e.err;
-  EXPECT_NE(run("solve modes " + part, dir).err.find("not supported"), std::string::npos);
+  // Laplace modes of the STEP unit cube with u = 0 on its sides: 3 pi^2 first.
+  const CliRun md = run("solve modes " + cube + " --physics laplace --modes 1 --degree 3 --refine 4", dir);
+  ASSERT_EQ(md.code, 0) << md.err;
+  const auto lam = md.out.find("mode 1: lambda ");
+  ASSERT_NE(lam, std::string::npos) << md.out;
+  const double pi2 = 3.14159265358979323846 * 3.14159265358979323846;
+  EXPECT_NEAR(std::stod(md.out.substr(lam + 15)), 3 * pi2, 1e-4 * 3 * pi2) << md.out;
   for (const std::string& m : {cube, part}) {
     const CliRun k = run("check " + m, dir);
     EXPECT_EQ(k.code, 0) << k.out << k.err;
@@ -220,5 +228,69 @@ TEST(BooleanCli, BallMinusCylinder) {
   EXPECT_EQ(empty.code, 1);
   EXPECT_NE(empty.err.find("difference is empty"), std::string::npos) << empty.err;
   EXPECT_FALSE(std::filesystem::exists(d + "e.json"));
+  std::filesystem::remove_all(dir);
+}
+
+// info and check report the V-curves and V-points of a Boolean's result (two unit cubes sharing a face: 20
+// V-curves, 12 V-points, boundary 12 - 20 + 10 = 2); a trimming loop that names the wrong edge leaves one edge
+// used by an odd number of loops, which check reports as a defect (exit 3).
+TEST(BooleanCli, InfoAndCheckReportVCurvesAndVPoints) {
+  const auto dir = test::temp_dir("boolean_topology_cli");
+  std::filesystem::create_directories(dir);
+  const std::string d = dir.string() + "/";
+  const auto cube_at = [](double x) {
+    VModel m;
+    m.add_cell(VCell(test::block_at(x, 0, 0)));
+    m.glue();
+    return m;
+  };
+  std::ofstream(d + "a.json") << io::to_json(cube_at(0)).dump();
+  std::ofstream(d + "b.json") << io::to_json(cube_at(1)).dump();
+  ASSERT_EQ(run("boolean " + d + "a.json " + d + "b.json --op union -o " + d + "u.json", dir).code, 0);
+  const CliRun info = run("info " + d + "u.json --json", dir);
+  ASSERT_EQ(info.code, 0) << info.err;
+  const nlohmann::json j = nlohmann::json::parse(info.out);
+  EXPECT_EQ(j["curves"].get<int>(), 20);
+  EXPECT_EQ(j["points"].get<int>(), 12);
+  EXPECT_EQ(j["shared_surfaces"].get<int>(), 1);
+  EXPECT_EQ(j["boundary_surfaces"].get<int>(), 10);
+  EXPECT_EQ(j["trimmed_topology"]["euler_characteristic"].get<int>(), 2);
+  EXPECT_EQ(j["trimmed_topology"]["cell_euler_characteristics"], nlohmann::json({2, 2}));
+  const CliRun ok = run("check " + d + "u.json", dir);
+  EXPECT_EQ(ok.code, 0) << ok.out;
+  EXPECT_NE(ok.out.find("trimming edges: 20 V-curves, 12 V-points"), std::string::npos) << ok.out;
+  EXPECT_NE(ok.out.find("V - E + F = 2, mesh watertight, Euler characteristic 2"), std::string::npos) << ok.out;
+  // A model mixing an untrimmed cell (the left cube) and a trimmed one (the right cell of the union) solves as
+  // one: the first Laplace eigenvalue of the 2 x 1 x 1 box, pi^2 (1/4 + 1 + 1).
+  VModel mixed;
+  mixed.add_cell(cube_at(0).cell(0));
+  const VModel u = io::vmodel_from_json(nlohmann::json::parse(std::ifstream(d + "u.json")), "u");
+  for (const VCell& c : u.cells())
+    if (c.trim()->bounding_box().lo[0] > 0.5) mixed.add_cell(c);
+  ASSERT_EQ(mixed.num_cells(), 2);
+  std::ofstream(d + "mixed.json") << io::to_json(mixed).dump();
+  const CliRun modes = run("solve modes " + d + "mixed.json --physics laplace --modes 1 --refine 4", dir);
+  ASSERT_EQ(modes.code, 0) << modes.out << modes.err;
+  EXPECT_NE(modes.out.find("mixed model: 1 untrimmed cells"), std::string::npos) << modes.out;
+  const auto at = modes.out.find("mode 1: lambda ");
+  ASSERT_NE(at, std::string::npos) << modes.out;
+  const double pi = 3.14159265358979323846;
+  EXPECT_NEAR(std::stod(modes.out.substr(at + 15)), 2.25 * pi * pi, 2e-3 * 2.25 * pi * pi) << modes.out;
+  // The first loop's first curve names the edge of its second curve instead of its own.
+  nlohmann::json doc = nlohmann::json::parse(std::ifstream(d + "u.json"));
+  std::function<bool(nlohmann::json&)> rename = [&](nlohmann::json& v) {
+    if (v.is_array() && v.size() > 1 && v[0].is_object() && v[0].contains("edge") && v[0].contains("pcurve")) {
+      v[0]["edge"] = v[1]["edge"];
+      return true;
+    }
+    for (auto& x : v)
+      if ((x.is_object() || x.is_array()) && rename(x)) return true;
+    return false;
+  };
+  ASSERT_TRUE(rename(doc));
+  std::ofstream(d + "bad.json") << doc.dump();
+  const CliRun bad = run("check " + d + "bad.json", dir);
+  EXPECT_EQ(bad.code, 3) << bad.out << bad.err;
+  EXPECT_NE(bad.out.find("face loops (a closed boundary uses every edge twice)"), std::string::npos) << bad.out;
   std::filesystem::remove_all(dir);
 }

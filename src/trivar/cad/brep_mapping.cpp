@@ -1,5 +1,6 @@
 #include "trivar/cad/brep_mapping.hpp"
 
+#include <BRepBndLib.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakeSolid.hxx>
@@ -10,6 +11,7 @@
 #include <BRepLib.hxx>
 #include <BRepTools.hxx>
 #include <BRepTools_WireExplorer.hxx>
+#include <Bnd_Box.hxx>
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
 #include <ShapeFix_Shell.hxx>
@@ -81,11 +83,22 @@ TensorSpline<1> reverse_curve(const TensorSpline<1>& c) {
   return TensorSpline<1>({KnotVector(k.degree(), std::move(t))}, c.dim(), c.is_rational(), std::move(coefs));
 }
 
+// The face's surface as a B-spline, null when it is none.
+Handle(Geom_BSplineSurface) bspline_surface(const TopoDS_Face& face) {
+  Handle(Geom_Surface) surf = BRep_Tool::Surface(face);
+  if (const auto rt = Handle(Geom_RectangularTrimmedSurface)::DownCast(surf); !rt.IsNull()) surf = rt->BasisSurface();
+  return Handle(Geom_BSplineSurface)::DownCast(surf);
+}
+
 }  // namespace
 
 SolidMapper::SolidMapper(const TopoDS_Shape& solid, double chordal) {
   TopExp::MapShapes(solid, TopAbs_EDGE, edges_);
   TopExp::MapShapes(solid, TopAbs_VERTEX, vertices_);
+  TopExp::MapShapesAndAncestors(solid, TopAbs_EDGE, TopAbs_FACE, edge_faces_);
+  Bnd_Box box;
+  BRepBndLib::Add(solid, box, false);
+  scale_ = box.IsVoid() ? 1.0 : std::sqrt(box.SquareExtent());
   boundary_.chordal_tolerance = chordal;
   boundary_.edges.resize(static_cast<std::size_t>(edges_.Extent()));
   edge_done_.assign(boundary_.edges.size(), false);
@@ -97,10 +110,8 @@ std::string SolidMapper::add_face(const TopoDS_Face& face, const std::string& ki
   tf.name = name;
   tf.reversed = face.Orientation() == TopAbs_REVERSED;
   tf.tolerance = BRep_Tool::Tolerance(face);
-  Handle(Geom_Surface) surf = BRep_Tool::Surface(face);
-  if (const auto rt = Handle(Geom_RectangularTrimmedSurface)::DownCast(surf); !rt.IsNull()) surf = rt->BasisSurface();
-  const Handle(Geom_BSplineSurface) bs = Handle(Geom_BSplineSurface)::DownCast(surf);
-  if (bs.IsNull()) return "the surface (" + std::string(surf->DynamicType()->Name()) + ") has no exact NURBS form";
+  const Handle(Geom_BSplineSurface) bs = bspline_surface(face);
+  if (bs.IsNull()) return "the surface (" + std::string(BRep_Tool::Surface(face)->DynamicType()->Name()) + ") has no exact NURBS form";
   tf.surface = to_spline(*bs);
   const TopoDS_Face fwd = TopoDS::Face(face.Oriented(TopAbs_FORWARD));
   // The face's parameter box once: the wire explorer would otherwise compute it over all loops for each loop.
@@ -117,13 +128,20 @@ std::string SolidMapper::add_face(const TopoDS_Face& face, const std::string& ki
       const Handle(Geom2d_BSplineCurve) bc = Geom2dConvert::CurveToBSplineCurve(new Geom2d_TrimmedCurve(pc, f, l));
       TrimCurve tc;
       tc.edge_reversed = e.Orientation() == TopAbs_REVERSED;
-      tc.pcurve = tc.edge_reversed ? reversed(bc) : to_spline(*bc);
       tc.edge = BRep_Tool::Degenerated(e) ? -1 : edges_.FindIndex(e) - 1;
+      const Solved* solved = tc.edge >= 0 && !BRep_Tool::IsClosed(e, fwd) ? &solved_edge(e, tc.edge, fwd) : nullptr;
+      if (solved && solved->edge) {
+        const TensorSpline<1>& on = solved->first_face.IsSame(fwd) ? solved->edge->on_first : solved->edge->on_second;
+        tc.pcurve = tc.edge_reversed ? reverse_curve(on) : on;
+      } else {
+        tc.pcurve = tc.edge_reversed ? reversed(bc) : to_spline(*bc);
+      }
       if (tc.edge >= 0 && !edge_done_[tc.edge]) {
         double cf = 0, cl = 0;
         const Handle(Geom_Curve) c3 = BRep_Tool::Curve(e, cf, cl);
         if (c3.IsNull()) return "an edge has no 3D curve";
-        boundary_.edges[tc.edge] = {to_spline(*GeomConvert::CurveToBSplineCurve(new Geom_TrimmedCurve(c3, cf, cl))),
+        boundary_.edges[tc.edge] = {solved && solved->edge ? solved->edge->curve
+                                                           : to_spline(*GeomConvert::CurveToBSplineCurve(new Geom_TrimmedCurve(c3, cf, cl))),
                                     BRep_Tool::Tolerance(e)};
         edge_done_[tc.edge] = true;
       }
@@ -149,6 +167,39 @@ std::string SolidMapper::add_face(const TopoDS_Face& face, const std::string& ki
   if (std::string why = add_mesh(face, static_cast<int>(boundary_.faces.size())); !why.empty()) return why;
   boundary_.faces.push_back(std::move(tf));
   return {};
+}
+
+const SolidMapper::Solved& SolidMapper::solved_edge(const TopoDS_Edge& e, int index, const TopoDS_Face& face) {
+  const auto [it, fresh] = solved_.try_emplace(index);
+  if (!fresh) return it->second;
+  Solved& s = it->second;
+  s.first_face = face;
+  // The other face along the edge, its surface and the edge's curves on both, over one parameter range.
+  TopoDS_Face other;
+  for (const TopoDS_Shape& f : edge_faces_.FindFromKey(e))
+    if (!f.IsSame(face)) other = TopoDS::Face(f.Oriented(TopAbs_FORWARD));
+  if (other.IsNull()) return s;
+  const Handle(Geom_BSplineSurface) s1 = bspline_surface(face), s2 = bspline_surface(other);
+  double f1 = 0, l1 = 0, f2 = 0, l2 = 0, f3 = 0, l3 = 0;
+  const Handle(Geom2d_Curve) c1 = BRep_Tool::CurveOnSurface(e, face, f1, l1);
+  const Handle(Geom2d_Curve) c2 = BRep_Tool::CurveOnSurface(e, other, f2, l2);
+  const Handle(Geom_Curve) c3 = BRep_Tool::Curve(e, f3, l3);
+  if (s1.IsNull() || s2.IsNull() || c1.IsNull() || c2.IsNull() || c3.IsNull()) return s;
+  const double span = std::abs(l1 - f1);
+  if (std::abs(f2 - f1) > 1e-12 * span || std::abs(l2 - l1) > 1e-12 * span || std::abs(f3 - f1) > 1e-12 * span ||
+      std::abs(l3 - l1) > 1e-12 * span)
+    return s;
+  // Edges already on both surfaces (those of the operands, lines on planes) are kept as they are.
+  constexpr int kProbes = 7;
+  double gap = 0;
+  for (int k = 0; k < kProbes; ++k) {
+    const double t = f1 + (l1 - f1) * (k + 0.5) / kProbes;
+    const gp_Pnt2d a = c1->Value(t), b = c2->Value(t);
+    gap = std::max(gap, s1->Value(a.X(), a.Y()).Distance(s2->Value(b.X(), b.Y())));
+  }
+  if (gap <= 1e-10 * scale_) return s;
+  s.edge = solve_intersection_edge(s1, c1, s2, c2, c3, f1, l1, scale_);
+  return s;
 }
 
 TrimmedBoundary SolidMapper::take() {

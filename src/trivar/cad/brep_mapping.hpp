@@ -8,15 +8,19 @@
 //
 // kernel_solid() goes the other way: the closed solid of a V-cell (the six boundary faces of its trivariate,
 // or the exact faces and loops of its trimming boundary), sewn with a tolerance relative to its size.
+#include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS_Edge.hxx>
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Shape.hxx>
 #include <TopoDS_Solid.hxx>
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "trivar/cad/intersection_edge.hpp"
 #include "trivar/model/trimmed_boundary.hpp"
 #include "trivar/model/vmodel.hpp"
 
@@ -37,8 +41,18 @@ private:
   std::vector<bool> edge_done_;
   std::map<std::pair<int, int>, int> edge_nodes_;  // (edge, polygon position) -> mesh vertex
   std::map<int, int> vertex_nodes_;                // topological vertex -> mesh vertex
+  TopTools_IndexedDataMapOfShapeListOfShape edge_faces_;
+  double scale_ = 0;  // the solid's size
+  // Per edge where two faces meet off the exact intersection of their surfaces: the edge solved onto it
+  // (intersection_edge.hpp) and the face its first parameter-space curve lies on.
+  struct Solved {
+    std::optional<IntersectionEdge> edge;
+    TopoDS_Shape first_face;
+  };
+  std::map<int, Solved> solved_;
 
   int mesh_vertex_of(const TopoDS_Shape& vertex);
+  const Solved& solved_edge(const TopoDS_Edge& edge, int index, const TopoDS_Face& face);
   std::string add_mesh(const TopoDS_Face& face, int face_index);
 };
 

@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <numeric>
 
 #include "trivar/core/error.hpp"
 #include "trivar/core/number_format.hpp"
 #include "trivar/core/tolerance.hpp"
+#include "trivar/model/point_clusters.hpp"
 #include "trivar/spline/closest_point.hpp"
 #include "trivar/spline/iso_extraction.hpp"
 #include "trivar/spline/measure.hpp"
@@ -53,19 +53,6 @@ TensorSpline<1> edge_curve(const TensorSpline<3>& g, int edge) {
   const Param<3> c = corner_param(g.domain(), edge_corners(edge)[0]);
   return iso_extract(iso_extract(g, o2, c[o2]), o1, c[o1]);
 }
-
-struct UnionFind {
-  std::vector<int> parent;
-  explicit UnionFind(int n) : parent(static_cast<std::size_t>(n)) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  }
-  void unite(int a, int b) {
-    a = find(a), b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
 
 // The face surface b re-expressed in the parameters of face surface a, given the orientation a -> b.
 TensorSpline<2> align(const TensorSpline<2>& b, const FaceOrientation& o, const Box<2>& a_domain) {
@@ -216,23 +203,13 @@ VTopology glue(std::span<const VCell> cells, const GlueOptions& options) {
     for (int k = 0; k < 8; ++k)
       cells[c].geometry().eval(corner_param(cells[c].geometry().domain(), k), corner_pos[8 * c + k].data());
   {
-    std::vector<int> order(corner_pos.size());
-    std::iota(order.begin(), order.end(), 0);
-    std::sort(order.begin(), order.end(), [&](int a, int b) { return corner_pos[a][0] < corner_pos[b][0]; });
-    UnionFind uf(8 * nc);
-    for (std::size_t i = 0; i < order.size(); ++i)
-      for (std::size_t j = i + 1; j < order.size() && corner_pos[order[j]][0] - corner_pos[order[i]][0] <= tol; ++j)
-        if (dist(corner_pos[order[i]].data(), corner_pos[order[j]].data()) <= tol) uf.unite(order[i], order[j]);
-    std::vector<int> id(corner_pos.size(), -1);
+    const std::vector<int> id = cluster_points(corner_pos, tol);
     topo.cell_corners.resize(static_cast<std::size_t>(nc));
     for (int i = 0; i < 8 * nc; ++i) {
-      const int r = uf.find(i);
-      if (id[r] < 0) {
-        id[r] = static_cast<int>(topo.points.size());
-        topo.points.push_back({corner_pos[i], {}, {}});
-      }
-      topo.cell_corners[i / 8][i % 8] = id[r];
-      topo.points[id[r]].corners.push_back({i / 8, i % 8});
+      const int r = id[static_cast<std::size_t>(i)];
+      if (r == static_cast<int>(topo.points.size())) topo.points.push_back({corner_pos[i], {}, {}});
+      topo.cell_corners[i / 8][i % 8] = r;
+      topo.points[r].corners.push_back({i / 8, i % 8});
     }
   }
 

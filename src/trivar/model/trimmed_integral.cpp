@@ -79,12 +79,24 @@ double trimmed_integral(const TrimmedBoundary& b, const std::function<double(con
     for (int k = 0; k < 3; ++k) scale = std::max(scale, hi[k] - lo[k]);
     const double tol = opts.relative_tolerance * std::max(scale * scale * scale, 1e-300);
     double face = 0;
+    const auto along = [&](const TensorSpline<1>& c) {
+      const std::vector<double> br = c.knots(0).breakpoints();
+      for (std::size_t s = 0; s + 1 < br.size(); ++s)
+        face += adaptive(g, c, rule, br[s], br[s + 1], piece(g, c, rule, br[s], br[s + 1]), tol, kMaxHalvings);
+    };
     for (const TrimLoop& loop : f.loops)
-      for (const TrimCurve& tc : loop.curves) {
-        const std::vector<double> br = tc.pcurve.knots(0).breakpoints();
-        for (std::size_t s = 0; s + 1 < br.size(); ++s)
-          face += adaptive(g, tc.pcurve, rule, br[s], br[s + 1], piece(g, tc.pcurve, rule, br[s], br[s + 1]), tol,
-                           kMaxHalvings);
+      for (std::size_t k = 0; k < loop.curves.size(); ++k) {
+        const TensorSpline<1>& c = loop.curves[k].pcurve;
+        along(c);
+        // Green's theorem needs the loop closed: where a curve ends off the next one's start (a kernel's curves
+        // meet within its vertex tolerance only, 1e-7 and more apart after Booleans of Booleans), the segment
+        // across the gap closes it, so the result is off by the gap's square rather than by G times the gap.
+        const TensorSpline<1>& next = loop.curves[(k + 1) % loop.curves.size()].pcurve;
+        double end[2], start[2];
+        c.eval({c.domain().hi[0]}, end);
+        next.eval({next.domain().lo[0]}, start);
+        if (end[0] != start[0] || end[1] != start[1])
+          along(TensorSpline<1>({KnotVector(1, {0, 0, 1, 1})}, 2, false, {end[0], end[1], start[0], start[1]}));
       }
     total += f.reversed ? -face : face;
   }

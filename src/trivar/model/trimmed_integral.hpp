@@ -6,7 +6,9 @@
 // of G(u, v) = int_{u0}^{u} F(S) (S_u x S_v)_x du' dv. The loop integrals are adaptive Gauss-Legendre
 // quadratures over each trimming curve's knot spans; G is a Gauss-Legendre sum over the surface's knot spans.
 // Exact polynomial integrands on polynomial faces are integrated to rounding; rational faces (conics,
-// spheres, tori) converge spectrally.
+// spheres, tori) converge spectrally. A loop whose curves meet only within a tolerance (a kernel's vertices) is
+// closed across each gap by a straight segment in the face's parameters, so a gap costs its square, not G times
+// its length.
 #include <functional>
 
 #include "trivar/model/trimmed_boundary.hpp"

@@ -1,9 +1,190 @@
 #include "trivar/model/trimmed_interfaces.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
+#include "trivar/core/number_format.hpp"
+#include "trivar/model/point_clusters.hpp"
+#include "trivar/model/trimmed_vertices.hpp"
+#include "trivar/spline/closest_point.hpp"
+
 namespace trivar {
+
+namespace {
+
+using Point3 = std::array<double, 3>;
+
+double distance3(const Point3& a, const Point3& b) { return std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]); }
+
+// Interior fractions of an edge at which edges are compared.
+constexpr std::array<double, 3> kEdgeSamples{0.25, 0.5, 0.75};
+
+// The edge's points at kEdgeSamples of its parameter range: on its 3D curve, or along the first trim curve that
+// uses it on its surface when it has none.
+std::array<Point3, 3> edge_samples(const TrimmedBoundary& b, int e) {
+  std::array<Point3, 3> out;
+  const TensorSpline<1>& c = b.edges[static_cast<std::size_t>(e)].curve;
+  if (c.num_coefs() > 0) {
+    const Box<1> d = c.domain();
+    for (std::size_t k = 0; k < out.size(); ++k) c.eval({d.lo[0] + kEdgeSamples[k] * d.extent(0)}, out[k].data());
+    return out;
+  }
+  for (const TrimmedFace& f : b.faces)
+    for (const TrimLoop& l : f.loops)
+      for (const TrimCurve& t : l.curves) {
+        if (t.edge != e) continue;
+        const Box<1> d = t.pcurve.domain();
+        for (std::size_t k = 0; k < out.size(); ++k) {
+          const double s = t.edge_reversed ? 1 - kEdgeSamples[k] : kEdgeSamples[k];
+          double uv[2];
+          t.pcurve.eval({d.lo[0] + s * d.extent(0)}, uv);
+          f.surface.eval({uv[0], uv[1]}, out[k].data());
+        }
+        return out;
+      }
+  return out;
+}
+
+// The V-curves and V-points of the trimmed cells, their Euler characteristics and defects (r's faces known).
+void add_curves_and_points(const VModel& model, TrimmedInterfaces& r) {
+  const int n = model.num_cells();
+  std::vector<TrimmedVertices> tv(static_cast<std::size_t>(n));
+  Box<3> box = Box<3>::empty();
+  bool any = false;
+  double tol = 0;
+  for (int c = 0; c < n; ++c) {
+    if (!model.cell(c).is_trimmed()) continue;
+    const TrimmedSolid& s = *model.cell(c).trim();
+    tv[static_cast<std::size_t>(c)] = trimmed_vertices(s.boundary());
+    box.extend(s.bounding_box().lo.data());
+    box.extend(s.bounding_box().hi.data());
+    any = true;
+    for (const TrimmedFace& f : s.boundary().faces) tol = std::max(tol, f.tolerance);
+    for (const TrimEdge& e : s.boundary().edges) tol = std::max(tol, e.tolerance);
+  }
+  r.cell_euler.assign(static_cast<std::size_t>(n), 0);
+  r.edge_curve.resize(static_cast<std::size_t>(n));
+  r.vertex_point.resize(static_cast<std::size_t>(n));
+  if (!any) return;
+  r.tolerance = tol = std::max(tol, 1e-6 * box.diagonal());
+  const auto defect = [&r](std::string s) {
+    if (r.defects.size() < 20) r.defects.push_back(std::move(s));
+  };
+  // V-points: the cells' vertices merged by position.
+  std::vector<Point3> positions;
+  std::vector<CellCornerRef> owners;
+  for (int c = 0; c < n; ++c)
+    for (std::size_t v = 0; v < tv[static_cast<std::size_t>(c)].positions.size(); ++v) {
+      positions.push_back(tv[static_cast<std::size_t>(c)].positions[v]);
+      owners.push_back({c, static_cast<int>(v)});
+    }
+  const std::vector<int> cluster = cluster_points(positions, tol);
+  for (std::size_t i = 0; i < positions.size(); ++i) {
+    const auto p = static_cast<std::size_t>(cluster[i]);
+    if (p == r.points.size()) r.points.emplace_back();
+    VPoint& vp = r.points[p];
+    for (int k = 0; k < 3; ++k) vp.position[k] += positions[i][k];
+    vp.corners.push_back(owners[i]);
+    auto& vmap = r.vertex_point[static_cast<std::size_t>(owners[i].cell)];
+    vmap.resize(tv[static_cast<std::size_t>(owners[i].cell)].positions.size());
+    vmap[static_cast<std::size_t>(owners[i].corner)] = cluster[i];
+  }
+  for (VPoint& p : r.points)
+    for (double& x : p.position) x /= static_cast<double>(p.corners.size());
+  // The V-surface of each cell face (-1 for a non-conforming face).
+  std::vector<std::vector<int>> face_surface(static_cast<std::size_t>(n));
+  for (int c = 0; c < n; ++c)
+    if (model.cell(c).is_trimmed()) face_surface[static_cast<std::size_t>(c)].assign(model.cell(c).trim()->boundary().faces.size(), -1);
+  for (std::size_t s = 0; s < r.surfaces.size(); ++s)
+    for (const TrimmedFaceRef& h : r.surfaces[s])
+      if (h.cell >= 0) face_surface[static_cast<std::size_t>(h.cell)][static_cast<std::size_t>(h.face)] = static_cast<int>(s);
+  // V-curves: edges with the same V-points at their ends and the same interior points.
+  std::map<std::pair<int, int>, std::vector<int>> by_points;
+  std::vector<std::array<Point3, 3>> curve_samples;
+  for (int c = 0; c < n; ++c) {
+    if (!model.cell(c).is_trimmed()) continue;
+    const TrimmedBoundary& b = model.cell(c).trim()->boundary();
+    const TrimmedVertices& t = tv[static_cast<std::size_t>(c)];
+    const auto& vmap = r.vertex_point[static_cast<std::size_t>(c)];
+    auto& emap = r.edge_curve[static_cast<std::size_t>(c)];
+    emap.assign(b.edges.size(), -1);
+    for (std::size_t e = 0; e < b.edges.size(); ++e) {
+      if (t.edge_vertices[e][0] < 0) continue;
+      const int p0 = vmap[static_cast<std::size_t>(t.edge_vertices[e][0])], p1 = vmap[static_cast<std::size_t>(t.edge_vertices[e][1])];
+      const std::array<Point3, 3> samples = edge_samples(b, static_cast<int>(e));
+      auto& bucket = by_points[{std::min(p0, p1), std::max(p0, p1)}];
+      int found = -1;
+      bool reversed = false;
+      for (int id : bucket) {
+        const VCurve& cv = r.curves[static_cast<std::size_t>(id)];
+        for (int rev = 0; rev < 2 && found < 0; ++rev) {
+          if (rev ? (p0 != cv.points[1] || p1 != cv.points[0]) : (p0 != cv.points[0] || p1 != cv.points[1])) continue;
+          const auto& ref = curve_samples[static_cast<std::size_t>(id)];
+          bool same = true;
+          for (std::size_t k = 0; k < samples.size() && same; ++k) same = distance3(samples[k], ref[rev ? 2 - k : k]) <= tol;
+          if (!same) {
+            // Differently parametrised: this edge's points on the V-curve's first edge.
+            const CellEdgeRef first = cv.cell_edges.front();
+            const TensorSpline<1>& curve = model.cell(first.cell).trim()->boundary().edges[static_cast<std::size_t>(first.edge)].curve;
+            same = curve.num_coefs() > 0;
+            for (std::size_t k = 0; k < samples.size() && same; ++k) same = closest_point(curve, samples[k].data()).distance <= tol;
+            // A closed edge matches in either direction; the tangent decides which.
+            if (same && p0 == p1 && rev == 0) same = distance3(samples[0], ref[0]) <= distance3(samples[0], ref[2]);
+          }
+          if (same) found = id, reversed = rev == 1;
+        }
+        if (found >= 0) break;
+      }
+      if (found < 0) {
+        found = static_cast<int>(r.curves.size());
+        VCurve cv;
+        cv.points = {p0, p1};
+        r.curves.push_back(std::move(cv));
+        curve_samples.push_back(samples);
+        bucket.push_back(found);
+      }
+      VCurve& cv = r.curves[static_cast<std::size_t>(found)];
+      cv.cell_edges.push_back({c, static_cast<int>(e), reversed});
+      for (int f : t.edge_faces[e])
+        if (const int s = face_surface[static_cast<std::size_t>(c)][static_cast<std::size_t>(f)]; s >= 0) cv.surfaces.push_back(s);
+      emap[e] = found;
+      if (t.edge_faces[e].size() % 2 != 0)
+        defect("cell " + std::to_string(c) + ": trimming edge " + std::to_string(e) + " is used by " +
+               std::to_string(t.edge_faces[e].size()) + " face loops (a closed boundary uses every edge twice)");
+      for (int s = 0; s < 2; ++s) {
+        const double d = distance3(t.edge_ends[e][static_cast<std::size_t>(s)], r.points[static_cast<std::size_t>(s ? p1 : p0)].position);
+        if (d > tol)
+          defect("cell " + std::to_string(c) + ": the " + (s ? "end" : "start") + " of trimming edge " + std::to_string(e) + " is " +
+                 format_number(d) + " from its V-point " + std::to_string(s ? p1 : p0) + " (tolerance " + format_number(tol) + ")");
+      }
+    }
+    r.cell_euler[static_cast<std::size_t>(c)] = t.euler_characteristic;
+  }
+  for (std::size_t i = 0; i < r.curves.size(); ++i) {
+    VCurve& cv = r.curves[i];
+    std::sort(cv.surfaces.begin(), cv.surfaces.end());
+    cv.surfaces.erase(std::unique(cv.surfaces.begin(), cv.surfaces.end()), cv.surfaces.end());
+    for (int p : cv.points) {
+      auto& list = r.points[static_cast<std::size_t>(p)].curves;
+      if (list.empty() || list.back() != static_cast<int>(i)) list.push_back(static_cast<int>(i));
+    }
+  }
+  // The model's boundary: its faces, the V-curves on them and those curves' V-points.
+  std::vector<char> boundary_point(r.points.size(), 0);
+  int faces = 0, edges = 0;
+  for (const auto& s : r.surfaces)
+    if (s[1].cell < 0)
+      faces += 2 - static_cast<int>(model.cell(s[0].cell).trim()->boundary().faces[static_cast<std::size_t>(s[0].face)].loops.size());
+  for (const VCurve& cv : r.curves)
+    if (std::any_of(cv.surfaces.begin(), cv.surfaces.end(), [&](int s) { return r.surfaces[static_cast<std::size_t>(s)][1].cell < 0; })) {
+      ++edges;
+      for (int p : cv.points) boundary_point[static_cast<std::size_t>(p)] = 1;
+    }
+  r.boundary_euler = static_cast<int>(std::count(boundary_point.begin(), boundary_point.end(), 1)) - edges + faces;
+}
+
+}  // namespace
 
 std::vector<long> paired_trimming_triangles(const VModel& model, std::vector<long>& first_triangle) {
   // Vertices are merged by their exact coordinates, so matching corners become equal ids.
@@ -116,6 +297,7 @@ TrimmedInterfaces trimmed_interfaces(const VModel& model) {
     std::sort(nb.begin(), nb.end());
     nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
   }
+  add_curves_and_points(model, r);
   return r;
 }
 
