@@ -20,7 +20,8 @@ struct TrimmedIntegralOptions {
   int points = 16;
 };
 
-// Volume enclosed by the faces (positive for outward orientation).
+// Volume enclosed by the faces (positive for outward orientation); the faces on all threads, the same result
+// for any thread count.
 double trimmed_volume(const TrimmedBoundary& b, const TrimmedIntegralOptions& opts = {});
 
 // Integral of a density over the enclosed region. `antiderivative(x)` returns int_{x0}^{x[0]} rho(s, x[1],
