@@ -11,11 +11,19 @@ namespace trivar {
 
 namespace {
 
+// The inner integral runs along the surface direction with fewer knot spans (its cost per loop point is
+// the number of spans times the rule's points): with dir = 0, G(u, v) = int_{u0}^{u} flux(s, v) ds and the loop
+// integrand is G c_v'; with dir = 1, G(u, v) = int_{v0}^{v} flux(u, s) ds and it is -G c_u' (Green's theorem
+// either way: the region integral of flux is the loop integral).
 class FaceIntegrand {
 public:
   FaceIntegrand(const TrimmedFace& f, const std::function<double(const std::array<double, 3>&)>& F,
                 const QuadratureRule& rule)
-      : f_(f), F_(F), rule_(rule), breaks_(f.surface.knots(0).breakpoints()) {}
+      : f_(f), F_(F), rule_(rule) {
+    const std::vector<double> bu = f.surface.knots(0).breakpoints(), bv = f.surface.knots(1).breakpoints();
+    dir_ = bv.size() < bu.size() ? 1 : 0;
+    breaks_ = dir_ == 0 ? bu : bv;
+  }
 
   // F(S(u, v)) (S_u x S_v)_x, the x-flux density in parameter space.
   double flux(double u, double v) const {
@@ -25,32 +33,37 @@ public:
     return F_({d[0], d[1], d[2]}) * nx;
   }
 
-  // G(u, v) = int_{u0}^{u} flux(s, v) ds, Gauss over the surface's u-spans (the integrand is smooth in each).
-  double G(double u, double v) const {
+  // The loop integrand at the curve point (u, v) with derivative (du, dv).
+  double loop_density(double u, double v, double du, double dv) const {
+    const double x = dir_ == 0 ? u : v;
     double sum = 0;
-    for (std::size_t s = 0; s + 1 < breaks_.size() && breaks_[s] < u; ++s) {
-      const double a = breaks_[s], b = std::min(breaks_[s + 1], u);
+    for (std::size_t s = 0; s + 1 < breaks_.size() && breaks_[s] < x; ++s) {
+      const double a = breaks_[s], b = std::min(breaks_[s + 1], x);
       if (b <= a) continue;
-      for (std::size_t q = 0; q < rule_.nodes.size(); ++q) sum += rule_.weights[q] * (b - a) * flux(a + rule_.nodes[q] * (b - a), v);
+      for (std::size_t q = 0; q < rule_.nodes.size(); ++q) {
+        const double y = a + rule_.nodes[q] * (b - a);
+        sum += rule_.weights[q] * (b - a) * (dir_ == 0 ? flux(y, v) : flux(u, y));
+      }
     }
-    return sum;
+    return dir_ == 0 ? sum * dv : -sum * du;
   }
 
 private:
   const TrimmedFace& f_;
   const std::function<double(const std::array<double, 3>&)>& F_;
   const QuadratureRule& rule_;
+  int dir_ = 0;
   std::vector<double> breaks_;
 };
 
-// int_a^b G(c(t)) c_v'(t) dt over one smooth piece of a trimming curve.
+// The loop integral over one smooth piece [a, b] of a trimming curve.
 double piece(const FaceIntegrand& g, const TensorSpline<1>& c, const QuadratureRule& rule, double a, double b) {
   double sum = 0;
   for (std::size_t q = 0; q < rule.nodes.size(); ++q) {
     const double t = a + rule.nodes[q] * (b - a);
     double d[4];
     c.eval_derivs({t}, 1, d);  // (u, v), (u', v')
-    sum += rule.weights[q] * (b - a) * g.G(d[0], d[1]) * d[3];
+    sum += rule.weights[q] * (b - a) * g.loop_density(d[0], d[1], d[2], d[3]);
   }
   return sum;
 }
@@ -64,6 +77,36 @@ double adaptive(const FaceIntegrand& g, const TensorSpline<1>& c, const Quadratu
   return adaptive(g, c, rule, a, m, left, tol / 2, depth - 1) + adaptive(g, c, rule, m, b, right, tol / 2, depth - 1);
 }
 
+// The span [a, b] of a trimming curve cut where it crosses the surface's knot lines, the kinks of the loop
+// integrand (halving would only isolate them): sign changes of u - x (v - x) on eight sub-intervals, refined by
+// bisection to rounding. A crossing that touches a knot line without changing sides is left to the halving.
+void knot_line_crossings(const TensorSpline<1>& c, double a, double b, const std::array<std::vector<double>, 2>& knot_lines,
+                         std::vector<double>& cuts) {
+  constexpr int kSamples = 8;
+  cuts = {a, b};
+  std::array<std::array<double, 2>, kSamples + 1> uv;
+  for (int i = 0; i <= kSamples; ++i) c.eval({a + (b - a) * i / kSamples}, uv[static_cast<std::size_t>(i)].data());
+  for (std::size_t k = 0; k < 2; ++k) {
+    const std::vector<double>& lines = knot_lines[k];
+    for (std::size_t j = 1; j + 1 < lines.size(); ++j) {  // the domain's ends are no kinks inside it
+      const double x = lines[j];
+      for (int i = 0; i < kSamples; ++i) {
+        const double f0 = uv[static_cast<std::size_t>(i)][k] - x, f1 = uv[static_cast<std::size_t>(i) + 1][k] - x;
+        if (!(f0 * f1 < 0)) continue;
+        double lo = a + (b - a) * i / kSamples, hi = a + (b - a) * (i + 1) / kSamples;
+        for (int it = 0; it < 60 && hi - lo > 1e-15 * (std::abs(lo) + std::abs(hi)); ++it) {
+          const double m = 0.5 * (lo + hi);
+          double p[2];
+          c.eval({m}, p);
+          ((p[k] - x) * f0 > 0 ? lo : hi) = m;
+        }
+        cuts.push_back(0.5 * (lo + hi));
+      }
+    }
+  }
+  std::sort(cuts.begin(), cuts.end());
+}
+
 // The face's term: its loop integral, signed by its orientation.
 double face_integral(const TrimmedFace& f, const std::function<double(const std::array<double, 3>&)>& antiderivative,
                      const QuadratureRule& rule, double relative_tolerance) {
@@ -75,12 +118,17 @@ double face_integral(const TrimmedFace& f, const std::function<double(const std:
   double scale = 0;
   for (int k = 0; k < 3; ++k) scale = std::max(scale, hi[k] - lo[k]);
   const double tol = relative_tolerance * std::max(scale * scale * scale, 1e-300);
+  const std::array<std::vector<double>, 2> knot_lines{f.surface.knots(0).breakpoints(), f.surface.knots(1).breakpoints()};
   double face = 0;
+  std::vector<double> cuts;
   for (const TrimLoop& loop : f.loops)
     for (const TrimCurve& tc : loop.curves) {
       const std::vector<double> br = tc.pcurve.knots(0).breakpoints();
-      for (std::size_t s = 0; s + 1 < br.size(); ++s)
-        face += adaptive(g, tc.pcurve, rule, br[s], br[s + 1], piece(g, tc.pcurve, rule, br[s], br[s + 1]), tol, kMaxHalvings);
+      for (std::size_t s = 0; s + 1 < br.size(); ++s) {
+        knot_line_crossings(tc.pcurve, br[s], br[s + 1], knot_lines, cuts);
+        for (std::size_t c = 0; c + 1 < cuts.size(); ++c)
+          face += adaptive(g, tc.pcurve, rule, cuts[c], cuts[c + 1], piece(g, tc.pcurve, rule, cuts[c], cuts[c + 1]), tol, kMaxHalvings);
+      }
     }
   return f.reversed ? -face : face;
 }
