@@ -46,7 +46,7 @@ TopoDS_Shape read_back(const std::string& path) {
   return r.OneShape();
 }
 
-// Distance from x to the curve: the closest of 400 samples, refined by golden-section search between its
+// Distance from x to the curve: the closest of 200 samples, refined by golden-section search between its
 // neighbours (the distance is unimodal there for the smooth edges of the test parts).
 double distance_to_curve(const TensorSpline<1>& c, const double* x) {
   const Box<1> d = c.domain();
@@ -55,18 +55,25 @@ double distance_to_curve(const TensorSpline<1>& c, const double* x) {
     c.eval({std::clamp(t, d.lo[0], d.hi[0])}, y);
     return std::hypot(x[0] - y[0], x[1] - y[1], x[2] - y[2]);
   };
-  const int n = 400;
+  const int n = 200;
   const double h = (d.hi[0] - d.lo[0]) / n;
   int best = 0;
+  double best_d = dist(d.lo[0]);
   for (int i = 1; i <= n; ++i)
-    if (dist(d.lo[0] + i * h) < dist(d.lo[0] + best * h)) best = i;
+    if (const double di = dist(d.lo[0] + i * h); di < best_d) {
+      best = i;
+      best_d = di;
+    }
   double a = d.lo[0] + (best - 1) * h, b = d.lo[0] + (best + 1) * h;
   const double g = (std::sqrt(5.0) - 1) / 2;
-  for (int it = 0; it < 100; ++it) {
+  for (int it = 0; it < 60; ++it) {  // the bracket shrinks to 3e-13 of its width
     const double p = b - g * (b - a), q = a + g * (b - a);
-    (dist(p) < dist(q) ? b : a) = dist(p) < dist(q) ? q : p;
+    if (dist(p) < dist(q))
+      b = q;
+    else
+      a = p;
   }
-  return std::min(dist(0.5 * (a + b)), dist(d.lo[0] + best * h));
+  return std::min(dist(0.5 * (a + b)), best_d);
 }
 
 }  // namespace
