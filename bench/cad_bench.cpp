@@ -3,9 +3,16 @@
 #include <benchmark/benchmark.h>
 
 #include <BRepAlgoAPI_Cut.hxx>
+#include <BRepAlgoAPI_Fuse.hxx>
+#include <BRep_Tool.hxx>
+#include <BRepBuilderAPI_Transform.hxx>
+#include <BRepFilletAPI_MakeFillet.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
+#include <BRepPrimAPI_MakeTorus.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS.hxx>
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
 #include <Message_PrinterOStream.hxx>
@@ -21,6 +28,25 @@
 #include "trivar/iga/trimmed_space.hpp"
 
 namespace {
+
+// The STEP files the benchmarks wrote, removed when the program ends.
+struct WrittenFiles {
+  std::vector<std::string> paths;
+  ~WrittenFiles() {
+    for (const std::string& p : paths) std::filesystem::remove(p);
+  }
+};
+WrittenFiles written;
+
+std::string write_step(const TopoDS_Shape& s, const std::string& name) {
+  const std::string path =
+      (std::filesystem::temp_directory_path() / ("trivar_bench_" + name + "_" + std::to_string(::getpid()) + ".stp")).string();
+  STEPControl_Writer w;
+  w.Transfer(s, STEPControl_AsIs);
+  w.Write(path.c_str());
+  written.paths.push_back(path);
+  return path;
+}
 
 // A 200 x 200 x 10 plate with n x n through holes (n^2 + 6 faces: planes and cylinders), written by
 // OpenCASCADE; a stand-in for a machined part of a few hundred faces.
@@ -40,11 +66,80 @@ const std::string& plate(int n) {
   cut.SetArguments(args);
   cut.SetTools(tools);
   cut.Build();
-  path = (std::filesystem::temp_directory_path() / ("trivar_bench_plate_" + std::to_string(n) + "_" +
-                                                    std::to_string(::getpid()) + ".stp")).string();
-  STEPControl_Writer w;
-  w.Transfer(cut.Shape(), STEPControl_AsIs);
-  w.Write(path.c_str());
+  path = write_step(cut.Shape(), "plate_" + std::to_string(n));
+  return path;
+}
+
+// A machined block, 40 mm thick, on an n x n grid of 40 mm cells alternating between
+// - a pocket 24 x 18 x 12 mm whose vertical edges are rounded with radius 5 (cylinders) and floor edges with a
+//   radius growing from 1.5 to 2.5 along each edge (B-spline blends, and B-spline corner patches), and
+// - a boss of radius 8, 10 mm high, with a fillet of radius 3 at its foot (a torus) and a hole of radius 4
+//   through boss and block,
+// and two cross holes of radius 3 along x through the whole block at mid-height (cylinders meeting the boss
+// holes: intersection curves that are no iso-lines). Planes, cylinders, tori and B-spline blends with a few
+// loops per face, written by OpenCASCADE: a stand-in for a real machined part.
+const std::string& machined_part(int n) {
+  static std::map<int, std::string> files;
+  auto& path = files[n];
+  if (!path.empty()) return path;
+  Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
+  const double cell = 40, size = cell * n, depth = 12;
+  const TopoDS_Shape pocket = [&] {
+    const TopoDS_Shape box = BRepPrimAPI_MakeBox(gp_Pnt(-12, -9, 0), 24, 18, 30).Shape();
+    BRepFilletAPI_MakeFillet f(box);
+    for (TopExp_Explorer e(box, TopAbs_EDGE); e.More(); e.Next()) {
+      double first = 0, last = 0;
+      const TopoDS_Edge& edge = TopoDS::Edge(e.Current());
+      const Handle(Geom_Curve) c = BRep_Tool::Curve(edge, first, last);
+      const gp_Pnt a = c->Value(first), b = c->Value(last);
+      if (std::abs(a.Z() - b.Z()) > 1)
+        f.Add(5, edge);  // vertical
+      else if (a.Z() < 1e-9 && b.Z() < 1e-9)
+        f.Add(1.5, 2.5, edge);  // floor: a radius growing along the edge (B-spline blends)
+    }
+    return f.Shape();
+  }();
+  const double foot = 3, boss_r = 8, boss_h = 10;
+  // The boss with its foot fillet: a cylinder on a collar of radius boss_r + foot, height foot, whose torus
+  // (centred at the collar's outer top edge) is cut away.
+  const TopoDS_Shape boss = [&] {
+    const TopoDS_Shape cyl = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, -1), gp_Dir(0, 0, 1)), boss_r, boss_h + 1).Shape();
+    const TopoDS_Shape collar = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(0, 0, -1), gp_Dir(0, 0, 1)), boss_r + foot, foot + 1).Shape();
+    const TopoDS_Shape torus = BRepPrimAPI_MakeTorus(gp_Ax2(gp_Pnt(0, 0, foot), gp_Dir(0, 0, 1)), boss_r + foot, foot).Shape();
+    return BRepAlgoAPI_Fuse(cyl, BRepAlgoAPI_Cut(collar, torus).Shape()).Shape();
+  }();
+  TopTools_ListOfShape cut_tools, bosses;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      gp_Trsf at;
+      at.SetTranslation(gp_Vec(cell * (i + 0.5), cell * (j + 0.5), 0));
+      if ((i + j) % 2 == 0) {
+        gp_Trsf down;
+        down.SetTranslation(gp_Vec(cell * (i + 0.5), cell * (j + 0.5), cell - depth));
+        cut_tools.Append(BRepBuilderAPI_Transform(pocket, down, true).Shape());
+      } else {
+        gp_Trsf up;
+        up.SetTranslation(gp_Vec(cell * (i + 0.5), cell * (j + 0.5), cell));
+        bosses.Append(BRepBuilderAPI_Transform(boss, up, true).Shape());
+        cut_tools.Append(BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(cell * (i + 0.5), cell * (j + 0.5), -1), gp_Dir(0, 0, 1)), 4,
+                                                  cell + boss_h + 2).Shape());
+      }
+    }
+  for (double y : {cell * 1.5, cell * (n - 1.5)})
+    cut_tools.Append(BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(-1, y, cell / 2), gp_Dir(1, 0, 0)), 3, size + 2).Shape());
+  BRepAlgoAPI_Fuse fuse;
+  TopTools_ListOfShape block;
+  block.Append(BRepPrimAPI_MakeBox(size, size, cell).Shape());
+  fuse.SetArguments(block);
+  fuse.SetTools(bosses);
+  fuse.Build();
+  BRepAlgoAPI_Cut cut;
+  TopTools_ListOfShape fused;
+  fused.Append(fuse.Shape());
+  cut.SetArguments(fused);
+  cut.SetTools(cut_tools);
+  cut.Build();
+  path = write_step(cut.Shape(), "machined_" + std::to_string(n));
   return path;
 }
 
@@ -64,6 +159,23 @@ void BM_StepToTrimmedModel(benchmark::State& state) {
 // Wall time is the figure (the validity check runs beside the conversion, the meshing on both cores); the CPU
 // column counts every thread.
 BENCHMARK(BM_StepToTrimmedModel)->Arg(4)->Arg(12)->Arg(20)->Arg(28)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
+
+void BM_MachinedPartToTrimmedModel(benchmark::State& state) {
+  const std::string& path = machined_part(static_cast<int>(state.range(0)));
+  double volume = 0, kernel = 0;
+  std::size_t faces = 0;
+  for (auto _ : state) {
+    const trivar::cad::StepImport im = trivar::cad::import_step(path);
+    volume = im.solids.at(0).solid->volume();
+    kernel = im.solids[0].kernel_volume;
+    faces = im.solids[0].solid->boundary().faces.size();
+  }
+  state.counters["faces"] = static_cast<double>(faces);
+  state.counters["file_kB"] = static_cast<double>(std::filesystem::file_size(path)) / 1024;
+  state.counters["volume"] = volume;
+  state.counters["rel_diff_occt"] = std::abs(volume - kernel) / kernel;
+}
+BENCHMARK(BM_MachinedPartToTrimmedModel)->Arg(3)->Arg(7)->Arg(8)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
 
 void BM_ContainsRandomPoints(benchmark::State& state) {
   const trivar::cad::StepImport im = trivar::cad::import_step(plate(12));

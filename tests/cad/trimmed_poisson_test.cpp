@@ -115,7 +115,9 @@ TEST(TrimmedSpace, ElementRulesIntegrateTheTrimmedVolumeAndTheHoleSurface) {
   EXPECT_NEAR(moment, 0.25 - test::kPi * r2 * 0.45 * 0.55, 1e-9);
   EXPECT_NEAR(area, 2 * test::kPi * kRadius, 1e-5);
   // The hole's normals point into the hole (out of the solid): the flux of (x, 0, 0) is minus the hole's volume.
-  EXPECT_NEAR(flux, -test::kPi * r2, 1e-6);
+  // The rule's leaves and line axes follow the boundary mesh, so its (algebraic) error at the hole's silhouettes
+  // moves with the mesh: 4e-7 with the mesh of the kernel's converted faces, 1.1e-6 with that of the analytic faces.
+  EXPECT_NEAR(flux, -test::kPi * r2, 2e-6);
 }
 
 // Patch test: a linear u = x + 2y - 3z lies in every space, so with its Dirichlet data on the cube's faces and

@@ -22,10 +22,7 @@
 #include <BRepBuilderAPI_Transform.hxx>
 #include <TopoDS_Compound.hxx>
 #include <GProp_GProps.hxx>
-#include <Geom2dConvert.hxx>
-#include <Geom2d_TrimmedCurve.hxx>
 #include <GeomConvert.hxx>
-#include <Geom_RectangularTrimmedSurface.hxx>
 #include <Geom_TrimmedCurve.hxx>
 #include <Poly_PolygonOnTriangulation.hxx>
 #include <Poly_Triangulation.hxx>
@@ -37,8 +34,10 @@
 #include <TopoDS.hxx>
 
 #include <algorithm>
+#include <optional>
 #include <cmath>
 
+#include "trivar/cad/face_nurbs.hpp"
 #include "trivar/cad/occt_spline.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/core/gauss_legendre.hpp"
@@ -110,13 +109,13 @@ std::string SolidMapper::add_face(const TopoDS_Face& face, const std::string& ki
   tf.name = name;
   tf.reversed = face.Orientation() == TopAbs_REVERSED;
   tf.tolerance = BRep_Tool::Tolerance(face);
-  const Handle(Geom_BSplineSurface) bs = bspline_surface(face);
-  if (bs.IsNull()) return "the surface (" + std::string(BRep_Tool::Surface(face)->DynamicType()->Name()) + ") has no exact NURBS form";
-  tf.surface = to_spline(*bs);
   const TopoDS_Face fwd = TopoDS::Face(face.Oriented(TopAbs_FORWARD));
   // The face's parameter box once: the wire explorer would otherwise compute it over all loops for each loop.
   double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
   BRepTools::UVBounds(fwd, u0, u1, v0, v1);
+  const std::optional<FaceNurbs> form = face_nurbs(face, Box<2>{{u0, v0}, {u1, v1}});
+  if (!form) return "the surface (" + std::string(BRep_Tool::Surface(face)->DynamicType()->Name()) + ") has no exact NURBS form";
+  tf.surface = form->surface;
   for (TopExp_Explorer w(fwd, TopAbs_WIRE); w.More(); w.Next()) {
     TrimLoop loop;
     BRepTools_WireExplorer we;
@@ -125,7 +124,8 @@ std::string SolidMapper::add_face(const TopoDS_Face& face, const std::string& ki
       double f = 0, l = 0;
       const Handle(Geom2d_Curve) pc = BRep_Tool::CurveOnSurface(e, fwd, f, l);
       if (pc.IsNull()) return "an edge has no parameter-space curve on the face";
-      const Handle(Geom2d_BSplineCurve) bc = Geom2dConvert::CurveToBSplineCurve(new Geom2d_TrimmedCurve(pc, f, l));
+      const Handle(Geom2d_BSplineCurve) bc = form->pcurve(pc, f, l);
+      if (bc.IsNull()) return "a parameter-space curve is no iso-line of the surface's angular direction";
       TrimCurve tc;
       tc.edge_reversed = e.Orientation() == TopAbs_REVERSED;
       tc.edge = BRep_Tool::Degenerated(e) ? -1 : edges_.FindIndex(e) - 1;
@@ -164,7 +164,7 @@ std::string SolidMapper::add_face(const TopoDS_Face& face, const std::string& ki
         c.edge_reversed = !c.edge_reversed;
       }
     }
-  if (std::string why = add_mesh(face, static_cast<int>(boundary_.faces.size())); !why.empty()) return why;
+  if (std::string why = add_mesh(face, static_cast<int>(boundary_.faces.size()), *form); !why.empty()) return why;
   boundary_.faces.push_back(std::move(tf));
   return {};
 }
@@ -232,7 +232,7 @@ int SolidMapper::mesh_vertex_of(const TopoDS_Shape& v) {
 
 // The face's triangulation, its nodes on edges identified with the edges' shared discretisation so that
 // neighbouring faces use the same mesh vertices.
-std::string SolidMapper::add_mesh(const TopoDS_Face& face, int face_index) {
+std::string SolidMapper::add_mesh(const TopoDS_Face& face, int face_index, const FaceNurbs& form) {
   TopLoc_Location loc;
   const Handle(Poly_Triangulation) tri = BRep_Tool::Triangulation(face, loc);
   if (tri.IsNull() || tri->NbTriangles() == 0 || !tri->HasUVNodes()) return "the kernel did not tessellate the face";
@@ -279,7 +279,7 @@ std::string SolidMapper::add_mesh(const TopoDS_Face& face, int face_index) {
     for (int k = 0; k < 3; ++k) {
       ids[k] = node[static_cast<std::size_t>(n[k])];
       const gp_Pnt2d p = tri->UVNode(n[k]);
-      uv[k] = {p.X(), p.Y()};
+      uv[k] = form(p.X(), p.Y());
     }
     boundary_.mesh.triangles.push_back(ids);
     boundary_.triangle_face.push_back(face_index);

@@ -1,8 +1,9 @@
 #pragma once
 // Internal to the cad layer (includes OpenCASCADE): the kernel's solids as trivar TrimmedBoundaries and back.
 //
-// SolidMapper maps one solid whose faces are B-spline surfaces (after BRepBuilderAPI_NurbsConvert) and carry
-// the kernel's triangulation: every face an exact NURBS patch with its trimming loops, the mesh made
+// SolidMapper maps one solid whose faces carry the kernel's triangulation and whose surfaces have an exact NURBS
+// form (face_nurbs: analytic and B-spline surfaces; BRepBuilderAPI_NurbsConvert's output where a face's
+// trimming curves do not follow the analytic map): every face an exact NURBS patch with its trimming loops, the mesh made
 // watertight by identifying the nodes on shared edges. Faces triangulated once for several solids (a general
 // fuse of cells) give the same triangles to each, so neighbouring cells' meshes conform.
 //
@@ -25,6 +26,8 @@
 #include "trivar/model/vmodel.hpp"
 
 namespace trivar::cad {
+
+struct FaceNurbs;
 
 class SolidMapper {
 public:
@@ -53,7 +56,7 @@ private:
 
   int mesh_vertex_of(const TopoDS_Shape& vertex);
   const Solved& solved_edge(const TopoDS_Edge& edge, int index, const TopoDS_Face& face);
-  std::string add_mesh(const TopoDS_Face& face, int face_index);
+  std::string add_mesh(const TopoDS_Face& face, int face_index, const FaceNurbs& form);
 };
 
 // The closed solid of a cell, outward oriented. Throws trivar::Error naming `what` when the faces do not sew

@@ -2,6 +2,7 @@
 
 #include <BRepAdaptor_Surface.hxx>
 #include <BRepBndLib.hxx>
+#include <BRepBuilderAPI_Copy.hxx>
 #include <BRepBuilderAPI_MakeSolid.hxx>
 #include <BRepBuilderAPI_NurbsConvert.hxx>
 #include <BRepCheck_Analyzer.hxx>
@@ -39,6 +40,7 @@
 #include <optional>
 
 #include "trivar/cad/brep_mapping.hpp"
+#include "trivar/cad/face_nurbs.hpp"
 #include "trivar/core/error.hpp"
 
 namespace trivar::cad {
@@ -200,8 +202,20 @@ struct MappedSolid {
 };
 
 MappedSolid map_solid(const TopoDS_Shape& solid, const Namer& name, const std::string& sname, double chordal, double angular) {
-  BRepBuilderAPI_NurbsConvert conv(solid, true);
-  const TopoDS_Shape nurbs = conv.Shape();
+  // Faces whose surfaces and trimming curves trivar maps exactly itself (face_nurbs) keep the solid's geometry:
+  // a copy of its topology is meshed, so the validity check reading the solid beside it is undisturbed. Else
+  // the kernel converts the solid (re-projecting the trimming curves of periodic faces: most of the time of a
+  // part with many holes when it is not needed).
+  bool direct = true;
+  for (TopExp_Explorer f(solid, TopAbs_FACE); f.More() && direct; f.Next()) direct = maps_directly(TopoDS::Face(f.Current()));
+  std::optional<BRepBuilderAPI_NurbsConvert> conv;
+  TopoDS_Shape target;
+  if (direct)
+    target = BRepBuilderAPI_Copy(solid, false, false).Shape();
+  else {
+    conv.emplace(solid, true);
+    target = conv->Shape();
+  }
   // Delaunay by Delabella: a planar face carrying hundreds of hole loops took most of the import with the
   // default (Watson) algorithm.
   IMeshTools_Parameters mp;
@@ -209,19 +223,19 @@ MappedSolid map_solid(const TopoDS_Shape& solid, const Namer& name, const std::s
   mp.Angle = angular;
   mp.InParallel = true;
   mp.MeshAlgo = IMeshTools_MeshAlgoType_Delabella;
-  BRepMesh_IncrementalMesh mesh(nurbs, mp);
-  MappedSolid out{SolidMapper(nurbs, chordal), {}};
-  // Faces as they sit in the converted solid (with their orientation there), named after the faces read.
-  TopTools_IndexedMapOfShape converted;
+  BRepMesh_IncrementalMesh mesh(target, mp);
+  MappedSolid out{SolidMapper(target, chordal), {}};
+  // Faces as they sit in the mapped solid (with their orientation there), named after the faces read.
+  TopTools_IndexedMapOfShape mapped;
   std::vector<TopoDS_Face> originals;
-  for (TopExp_Explorer f(solid, TopAbs_FACE); f.More(); f.Next()) {
-    const TopoDS_Shape mod = conv.ModifiedShape(f.Current());
-    if (converted.Add(mod) > static_cast<int>(originals.size())) originals.push_back(TopoDS::Face(f.Current()));
+  for (TopExp_Explorer f(solid, TopAbs_FACE), g(target, TopAbs_FACE); f.More() && g.More(); f.Next(), g.Next()) {
+    const TopoDS_Shape mod = conv ? conv->ModifiedShape(f.Current()) : g.Current();
+    if (mapped.Add(mod) > static_cast<int>(originals.size())) originals.push_back(TopoDS::Face(f.Current()));
   }
   int fi = 0;
-  for (TopExp_Explorer f(nurbs, TopAbs_FACE); f.More(); f.Next(), ++fi) {
+  for (TopExp_Explorer f(target, TopAbs_FACE); f.More(); f.Next(), ++fi) {
     const TopoDS_Face& face = TopoDS::Face(f.Current());
-    const int oi = converted.FindIndex(face);
+    const int oi = mapped.FindIndex(face);
     const TopoDS_Face orig = oi > 0 ? originals[static_cast<std::size_t>(oi - 1)] : face;
     const std::string fname = name(orig, sname + " face " + std::to_string(fi));
     if (std::string why = out.mapper.add_face(face, surface_kind(orig), fname); !why.empty()) out.unmapped.push_back({fname, why});

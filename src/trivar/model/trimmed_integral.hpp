@@ -3,7 +3,8 @@
 // mesh): by the divergence theorem with the field (F, 0, 0), where F(x, y, z) is an antiderivative of the
 // integrand in x, the volume integral becomes the sum over faces of the integral of F n_x over the trimmed
 // parameter domain, and Green's theorem turns each of those into an integral along the face's trimming loops
-// of G(u, v) = int_{u0}^{u} F(S) (S_u x S_v)_x du' dv. The loop integrals are adaptive Gauss-Legendre
+// of G(u, v) = int_{u0}^{u} F(S) (S_u x S_v)_x du' dv (or its counterpart along v, whichever direction of the
+// face has fewer knot spans). The loop integrals are adaptive Gauss-Legendre
 // quadratures over each trimming curve's knot spans; G is a Gauss-Legendre sum over the surface's knot spans.
 // Exact polynomial integrands on polynomial faces are integrated to rounding; rational faces (conics,
 // spheres, tori) converge spectrally. A loop whose curves meet only within a tolerance (a kernel's vertices) is
@@ -22,7 +23,8 @@ struct TrimmedIntegralOptions {
   int points = 16;
 };
 
-// Volume enclosed by the faces (positive for outward orientation).
+// Volume enclosed by the faces (positive for outward orientation); the faces on all threads, the same result
+// for any thread count.
 double trimmed_volume(const TrimmedBoundary& b, const TrimmedIntegralOptions& opts = {});
 
 // Integral of a density over the enclosed region. `antiderivative(x)` returns int_{x0}^{x[0]} rho(s, x[1],
