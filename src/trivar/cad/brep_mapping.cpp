@@ -23,6 +23,7 @@
 #include <TopoDS_Compound.hxx>
 #include <GProp_GProps.hxx>
 #include <GeomConvert.hxx>
+#include <Geom_RectangularTrimmedSurface.hxx>
 #include <Geom_TrimmedCurve.hxx>
 #include <Poly_PolygonOnTriangulation.hxx>
 #include <Poly_Triangulation.hxx>
