@@ -9,6 +9,7 @@
 
 #include "trivar/core/error.hpp"
 #include "trivar/core/number_format.hpp"
+#include "trivar/iga/refined_quadrature.hpp"
 
 namespace trivar {
 
@@ -120,6 +121,24 @@ std::vector<std::pair<double, int>> knots_for(const std::vector<LRSpline<2>>& B,
   const int p = R.degree(f.side[to].along());
   for (double e : {f.lo[to], f.hi[to]}) out.emplace_back(e, p);
   return out;
+}
+
+// The parts of a block side on interfaces, as sorted parameter intervals along it.
+std::vector<std::pair<double, double>> covered_parts(const std::vector<BlockInterface>& interfaces, int b, DomainSide side) {
+  std::vector<std::pair<double, double>> covered;
+  for (const BlockInterface& f : interfaces)
+    for (int k = 0; k < 2; ++k)
+      if (f.block[k] == b && f.side[k].dir == side.dir && f.side[k].end == side.end)
+        covered.emplace_back(std::min(f.lo[k], f.hi[k]), std::max(f.lo[k], f.hi[k]));
+  std::sort(covered.begin(), covered.end());
+  return covered;
+}
+
+// How far from `from` the covered parts reach without a gap (eps: the rounding allowed at joins).
+double covered_until(const std::vector<std::pair<double, double>>& covered, double from, double eps) {
+  for (const auto& [c0, c1] : covered)
+    if (c0 <= from + eps && c1 > from) from = c1;
+  return from;
 }
 
 struct UnionFind {
@@ -251,6 +270,34 @@ MultiblockSpace multiblock_space(std::vector<LRSpline<2>> blocks, const Multiblo
   sp.num_basis = static_cast<int>(control.size() / 2);
   sp.degrees = blocks[0].degrees();
   sp.domain = blocks[0].domain();
+  // Per block side: the parts on interfaces; the row-0 B-splines reaching a part on none are boundary functions.
+  std::vector<char> on_boundary(static_cast<std::size_t>(sp.num_basis), 0);
+  std::vector<std::array<std::vector<std::pair<double, double>>, 4>> covered(static_cast<std::size_t>(nb));
+  sp.blocks.resize(static_cast<std::size_t>(nb));
+  for (int b = 0; b < nb; ++b) {
+    const LRSpline<2>& s = blocks[static_cast<std::size_t>(b)];
+    RefinedBlock<2>& rb = sp.blocks[static_cast<std::size_t>(b)];
+    rb.domain = s.domain();
+    for (int sd = 0; sd < 4; ++sd) {
+      const DomainSide side{sd / 2, sd % 2};
+      auto& parts = covered[static_cast<std::size_t>(b)][static_cast<std::size_t>(sd)];
+      parts = covered_parts(out.interfaces, b, side);
+      const double eps = 1e-12 * (hi_along(s, side) - lo_along(s, side));
+      if (parts.empty()) out.boundary_sides.push_back({b, side});
+      else if (covered_until(parts, lo_along(s, side), eps) < hi_along(s, side) - eps) out.partial_sides.push_back({b, side});
+      std::vector<int>& face = rb.face_basis[static_cast<std::size_t>(sd)];
+      for (int id : side_row(s, side, 0)) {
+        const auto& t = s.basis_function(id).knots[static_cast<std::size_t>(side.along())];
+        // Walk the support, skipping covered parts.
+        if (covered_until(parts, t.front(), eps) >= t.back() - eps) continue;
+        const int g = out.global[static_cast<std::size_t>(b)][static_cast<std::size_t>(id)];
+        face.push_back(g);
+        on_boundary[static_cast<std::size_t>(g)] = 1;
+      }
+      std::sort(face.begin(), face.end());
+      face.erase(std::unique(face.begin(), face.end()), face.end());
+    }
+  }
   for (int b = 0; b < nb; ++b) {
     const LRSpline<2>& s = blocks[static_cast<std::size_t>(b)];
     RefinedSpace<2> local = refined_space(s, 1);
@@ -266,43 +313,29 @@ MultiblockSpace multiblock_space(std::vector<LRSpline<2>> blocks, const Multiblo
       std::sort(order.begin(), order.end());
       RefinedElement<2> g;
       g.box = el.box;
+      g.block = b;
       g.C = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(order.size()), el.C.cols());
       for (const auto& [id, r] : order) {
         if (g.ids.empty() || g.ids.back() != id) g.ids.push_back(id);
         g.C.row(static_cast<Eigen::Index>(g.ids.size()) - 1) += el.C.row(r);
       }
       g.C.conservativeResize(static_cast<Eigen::Index>(g.ids.size()), Eigen::NoChange);
+      // Sides of the element on the block's sides that lie wholly on an interface (matching splits sides at the
+      // ends of every interface, so an element side is wholly on one or wholly off).
+      for (int sd = 0; sd < 4; ++sd) {
+        const DomainSide side{sd / 2, sd % 2};
+        const Face face{side.dir, side.end, b};
+        if (!on_domain_face(s.domain(), g.box, face)) continue;
+        const int a = side.along();
+        const double eps = 1e-12 * (hi_along(s, side) - lo_along(s, side));
+        if (covered_until(covered[static_cast<std::size_t>(b)][static_cast<std::size_t>(sd)], g.box.lo[a], eps) >= g.box.hi[a] - eps)
+          g.interface_sides |= 1u << sd;
+      }
       sp.elements.push_back(std::move(g));
       out.element_block.push_back(b);
     }
   }
 
-  // Boundary functions: row-0 B-splines whose support along a side reaches a part no interface covers.
-  std::vector<char> on_boundary(static_cast<std::size_t>(sp.num_basis), 0);
-  for (int b = 0; b < nb; ++b)
-    for (int sd = 0; sd < 4; ++sd) {
-      const DomainSide side{sd / 2, sd % 2};
-      const LRSpline<2>& s = blocks[static_cast<std::size_t>(b)];
-      std::vector<std::pair<double, double>> covered;
-      for (const BlockInterface& f : out.interfaces)
-        for (int k = 0; k < 2; ++k)
-          if (f.block[k] == b && f.side[k].dir == side.dir && f.side[k].end == side.end)
-            covered.emplace_back(std::min(f.lo[k], f.hi[k]), std::max(f.lo[k], f.hi[k]));
-      std::sort(covered.begin(), covered.end());
-      const double eps = 1e-12 * (hi_along(s, side) - lo_along(s, side));
-      double reach = lo_along(s, side);  // how far from the side's start the interfaces cover it
-      for (const auto& [c0, c1] : covered)
-        if (c0 <= reach + eps && c1 > reach) reach = c1;
-      if (covered.empty()) out.boundary_sides.push_back({b, side});
-      else if (reach < hi_along(s, side) - eps) out.partial_sides.push_back({b, side});
-      for (int id : side_row(s, side, 0)) {
-        const auto& t = s.basis_function(id).knots[static_cast<std::size_t>(side.along())];
-        double at = t.front();  // walk the support, skipping covered parts
-        for (const auto& [c0, c1] : covered)
-          if (c0 <= at + eps && c1 > at) at = c1;
-        if (at < t.back() - eps) on_boundary[static_cast<std::size_t>(out.global[static_cast<std::size_t>(b)][static_cast<std::size_t>(id)])] = 1;
-      }
-    }
   for (int i = 0; i < sp.num_basis; ++i)
     if (on_boundary[static_cast<std::size_t>(i)]) out.boundary.push_back(i);
   out.blocks = std::move(blocks);
@@ -351,6 +384,14 @@ TensorSpline<2> as_tensor(const LRSpline<2>& s, int block, std::vector<int>& lr_
 }
 
 }  // namespace
+
+std::vector<Face> boundary_faces(const MultiblockSpace& m) {
+  std::vector<Face> out;
+  for (std::size_t b = 0; b < m.space.blocks.size(); ++b)
+    for (int sd = 0; sd < 4; ++sd)
+      if (!m.space.blocks[b].face_basis[static_cast<std::size_t>(sd)].empty()) out.push_back(Face{sd / 2, sd % 2, static_cast<int>(b)});
+  return out;
+}
 
 MultipatchSpace<2> tensor_multipatch(const MultiblockSpace& m) {
   require(m.partial_sides.empty(), [&] {

@@ -36,7 +36,9 @@ struct MultiblockSpace {
   std::vector<LRSpline<2>> blocks;            // the blocks after matching (refined near their interfaces)
   std::vector<BlockInterface> interfaces;
   std::vector<std::vector<int>> global;       // per block: B-spline id -> global function
-  RefinedSpace<2> space;                      // all blocks' elements, global ids; no locator, no face lists
+  // All blocks' elements with global ids, one RefinedBlock per block (its domain, its boundary functions per side)
+  // and the elements' sides on interfaces marked, so iga's solvers on RefinedSpace take Face{dir, side, block}.
+  RefinedSpace<2> space;
   std::vector<int> element_block;             // per element of `space`: its block
   std::vector<int> boundary;                  // global functions non-zero on the boundary of the union, ascending
   std::vector<std::pair<int, DomainSide>> boundary_sides;  // (block, side) not on any interface
@@ -55,6 +57,10 @@ struct MultiblockOptions {
 // that meet along a segment with parametrisations that do not correspond linearly or with different degrees
 // along it, geometry that differs across an interface, or traces that still differ after matching.
 MultiblockSpace multiblock_space(std::vector<LRSpline<2>> blocks, const MultiblockOptions& options = {});
+
+// The faces Face{dir, side, block} of the blocks that reach the boundary of the union (wholly or in part): the
+// Dirichlet faces of a problem held on the whole boundary.
+std::vector<Face> boundary_faces(const MultiblockSpace& m);
 
 // The same model as the tensor multipatch space of iga (MultipatchSpace: one TensorSpace per block and the
 // local-to-global map), for its assembler, Dirichlet projection, Poisson and elasticity solvers and error norms.
