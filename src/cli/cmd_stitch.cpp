@@ -25,12 +25,6 @@ AnyLRSpline read_patch(const std::string& path) {
   return std::move(objects[0]);
 }
 
-LRSpline<2> read_surface(const std::string& path) {
-  AnyLRSpline object = read_patch(path);
-  require(std::holds_alternative<LRSpline<2>>(object), "stitch: " + path + " must hold a surface, it holds a volume");
-  return std::get<LRSpline<2>>(object);
-}
-
 // Largest difference of the derivative across the seam between the two patches, each evaluated on its own side
 // (on a 201-point line along a side, a 41 x 41 grid on a face).
 template <int D>
@@ -68,10 +62,13 @@ const char* side_name(DomainSide s) {
 void run_multiblock(const std::vector<std::string>& in, const std::string& out, double tolerance, bool whole_lines) {
   std::vector<LRSpline<2>> blocks;
   int before = 0;
-  for (const std::string& path : in) {
-    blocks.push_back(read_surface(path));
-    before += blocks.back().num_basis();
-  }
+  for (const std::string& path : in)
+    for (AnyLRSpline& object : read_as_lr(path, "stitch")) {
+      require(std::holds_alternative<LRSpline<2>>(object), "stitch: --multiblock takes surfaces, " + path + " holds a volume");
+      blocks.push_back(std::get<LRSpline<2>>(std::move(object)));
+      before += blocks.back().num_basis();
+    }
+  require(blocks.size() >= 2, "stitch: --multiblock needs at least two blocks (in one file or several)");
   const MultiblockSpace m = multiblock_space(std::move(blocks), MultiblockOptions{tolerance, whole_lines});
   std::vector<AnyLRSpline> objects(m.blocks.begin(), m.blocks.end());
   write_lr_file(out, objects, "stitch");
@@ -134,9 +131,9 @@ void add_stitch_command(CLI::App& app, Context&) {
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("FILES", a->in, "Surfaces or volumes (B-spline or LR: .g2, .json, .lr), each sharing a side with the union of "
-                                  "those before it")
+                                  "those before it (--multiblock: every block of every file)")
       ->required()
-      ->expected(2, 1000);
+      ->expected(1, 1000);
   cmd->add_option("-o,--output", a->out, "Output LR file (.lr, .g2, .json, .vtu)")->required();
   cmd->add_option("--continuity", a->continuity, "C0 or C1 across every seam")
       ->check(CLI::IsMember({"C0", "C1", "c0", "c1"}))
@@ -154,6 +151,7 @@ void add_stitch_command(CLI::App& app, Context&) {
                 "With --multiblock: knot lines across whole blocks, so tensor blocks stay tensor splines");
   cmd->callback([a] {
     require(!a->separate || a->in.size() == 2, "stitch: --separate takes exactly two patches");
+    require(a->multiblock || a->in.size() >= 2, "stitch: give at least two patches (one file: with --multiblock, holding several blocks)");
     require(!(a->multiblock && a->separate), "stitch: --multiblock and --separate exclude each other");
     require(a->multiblock || !a->whole_lines, "stitch: --whole-lines needs --multiblock");
     if (a->multiblock) {

@@ -393,6 +393,28 @@ std::vector<Face> boundary_faces(const MultiblockSpace& m) {
   return out;
 }
 
+std::vector<LRSpline<2>> multiblock_fields(const MultiblockSpace& m, const Eigen::VectorXd& coefs, int components) {
+  const int N = m.space.num_basis;
+  require(components >= 1 && coefs.size() == static_cast<Eigen::Index>(N) * components, [&] {
+    return "multiblock: " + std::to_string(coefs.size()) + " coefficients for " + std::to_string(components) +
+           " components of " + std::to_string(N) + " functions";
+  });
+  std::vector<LRSpline<2>> out;
+  for (std::size_t b = 0; b < m.blocks.size(); ++b) {
+    const LRSpline<2>& s = m.blocks[b];
+    std::vector<LRBSpline<2>> basis(s.basis_functions().begin(), s.basis_functions().end());
+    for (std::size_t i = 0; i < basis.size(); ++i) {
+      const int g = m.global[b][i];
+      basis[i].coef.resize(static_cast<std::size_t>(components));
+      for (int c = 0; c < components; ++c)
+        basis[i].coef[static_cast<std::size_t>(c)] = coefs[static_cast<Eigen::Index>(c) * N + g] / basis[i].gamma;
+    }
+    // The B-splines stay in id order (it depends on the knots only), so coefficient i stays with id i.
+    out.emplace_back(s.degrees(), components, false, std::move(basis), s.mesh());
+  }
+  return out;
+}
+
 MultipatchSpace<2> tensor_multipatch(const MultiblockSpace& m) {
   require(m.partial_sides.empty(), [&] {
     return "multiblock: block " + std::to_string(m.partial_sides[0].first) +

@@ -62,6 +62,11 @@ MultiblockSpace multiblock_space(std::vector<LRSpline<2>> blocks, const Multiblo
 // Dirichlet faces of a problem held on the whole boundary.
 std::vector<Face> boundary_faces(const MultiblockSpace& m);
 
+// A discrete field on the multi-block space (coefs component-major over the global functions, as iga's solvers
+// give them) as one LR spline per block with `components` values, on the block's own B-splines and mesh (each
+// B-spline's coefficient is the global function's divided by its scaling factor), for evaluation and output.
+std::vector<LRSpline<2>> multiblock_fields(const MultiblockSpace& m, const Eigen::VectorXd& coefs, int components);
+
 // The same model as the tensor multipatch space of iga (MultipatchSpace: one TensorSpace per block and the
 // local-to-global map), for its assembler, Dirichlet projection, Poisson and elasticity solvers and error norms.
 // Needs blocks that are tensor splines (multiblock_space with whole_lines and tensor inputs) and block sides that
