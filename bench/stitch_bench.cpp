@@ -77,7 +77,7 @@ void BM_MultiblockTJoint(benchmark::State& state) {
   const std::vector<LRSpline<2>> blocks{block(0, 0, 2, 2 * n + 1, 0.5), block(0, 1, 1, n, 0.25), block(1, 1, 1, n, 0.7)};
   int functions = 0;
   for (auto _ : state) {
-    const MultiblockSpace m = multiblock_space(blocks);
+    const MultiblockSpace<2> m = multiblock_space(blocks);
     functions = m.space.num_basis;
     benchmark::DoNotOptimize(functions);
   }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <type_traits>
 #include <variant>
 
 #include "cli.hpp"
@@ -18,68 +19,84 @@ namespace trivar::cli {
 
 namespace {
 
-MultiblockSpace matched(const std::string& path, const std::vector<AnyLRSpline>& objects) {
-  std::vector<LRSpline<2>> blocks;
+template <int D>
+MultiblockSpace<D> matched(const std::string& path, const std::vector<AnyLRSpline>& objects) {
+  std::vector<LRSpline<D>> blocks;
   for (std::size_t i = 0; i < objects.size(); ++i) {
-    const auto* s = std::get_if<LRSpline<2>>(&objects[i]);
-    require(s != nullptr, "solve: " + path + " block " + std::to_string(i) +
-                              " is a volume; multi-block analysis takes planar surfaces");
+    const auto* s = std::get_if<LRSpline<D>>(&objects[i]);
+    require(s != nullptr, "solve: " + path + " block " + std::to_string(i) + " is a " + (D == 2 ? "volume" : "surface") +
+                              ", block 0 a " + (D == 2 ? "surface" : "volume") + "; blocks are all planar surfaces or all volumes");
     blocks.push_back(*s);
   }
   const int n = static_cast<int>(blocks.size());
-  MultiblockSpace m;
+  MultiblockSpace<D> m;
   try {
     m = multiblock_space(std::move(blocks));
   } catch (const Error& e) {
     throw Error("solve: " + path + ": " + e.what());
   }
-  // A block sharing no side segment with any other is almost always one that misses its neighbours (a gap, a
-  // different curve), not a model of separate parts.
+  // A block sharing no side with any other is almost always one that misses its neighbours (a gap, a different
+  // curve), not a model of separate parts.
   std::vector<char> joined(static_cast<std::size_t>(n), 0);
-  for (const BlockInterface& f : m.interfaces) joined[static_cast<std::size_t>(f.block[0])] = joined[static_cast<std::size_t>(f.block[1])] = 1;
+  for (const BlockInterface<D>& f : m.interfaces) joined[static_cast<std::size_t>(f.block[0])] = joined[static_cast<std::size_t>(f.block[1])] = 1;
   for (int b = 0; b < n && n > 1; ++b)
     require(joined[static_cast<std::size_t>(b)], [&] {
-      return "solve: " + path + ": block " + std::to_string(b) + " shares no side segment with another block (within "
-             "1e-8 of the model's size), so it cannot be matched into the multi-block model";
+      return "solve: " + path + ": block " + std::to_string(b) + " shares no side with another block (within 1e-8 of "
+             "the model's size), so it cannot be matched into the multi-block model";
     });
   return m;
 }
 
 // The largest value and the mean of the last component over the union (Gauss points of every element).
-std::pair<double, double> max_and_mean(const MultiblockSpace& m, const Eigen::VectorXd& coefs, int components) {
-  const RefinedSpace<2>& s = m.space;
-  double area = 0, integral = 0, largest = 0;
-  RefinedPoint<2> p;
+template <int D>
+std::pair<double, double> max_and_mean(const MultiblockSpace<D>& m, const Eigen::VectorXd& coefs, int components) {
+  const RefinedSpace<D>& s = m.space;
+  double volume = 0, integral = 0, largest = 0;
+  RefinedPoint<D> p;
   std::vector<double> grad;
   const auto c = static_cast<Eigen::Index>(components - 1) * s.num_basis;
-  for (const RefinedElement<2>& el : s.elements)
-    for_each_element_point<2>(el, s.degrees[0] + 2, [&](const Param<2>& u, double w) {
+  for (const RefinedElement<D>& el : s.elements)
+    for_each_element_point<D>(el, s.degrees[0] + 2, [&](const Param<D>& u, double w) {
       refined_point(s, el, u, p);
       const double dV = physical_gradients(p, grad) * w;
       double v = 0;
       for (std::size_t l = 0; l < el.ids.size(); ++l) v += coefs[c + el.ids[l]] * p.R[l];
-      area += dV;
+      volume += dV;
       integral += v * dV;
       if (std::abs(v) > std::abs(largest)) largest = v;
     });
-  return {largest, integral / area};
+  return {largest, integral / volume};
 }
 
 // One VTU piece per block with the fields on its own mesh.
-void write_fields(const MultiblockSpace& m, const std::vector<std::pair<std::string, Eigen::VectorXd>>& fields,
-                  int components, const std::string& vtu);
+template <int D>
+void write_fields(const MultiblockSpace<D>& m, const std::vector<std::pair<std::string, Eigen::VectorXd>>& fields,
+                  int components, const std::string& vtu) {
+  std::vector<std::vector<LRSpline<D>>> per_block;  // per field, one LR spline per block
+  for (const auto& [name, coefs] : fields) per_block.push_back(multiblock_fields(m, coefs, components));
+  std::vector<io::VtkPointField> vtk;
+  for (std::size_t i = 0; i < fields.size(); ++i)
+    vtk.push_back({fields[i].first, components, [&per_block, i](int piece, std::span<const double> u, std::span<double> out) {
+                     Param<D> p;
+                     for (int k = 0; k < D; ++k) p[k] = u[static_cast<std::size_t>(k)];
+                     per_block[i][static_cast<std::size_t>(piece)].eval(p, out.data());
+                   }});
+  io::write_lr_vtu(vtu, std::vector<AnyLRSpline>(m.blocks.begin(), m.blocks.end()), {}, vtk);
+}
 
-}  // namespace
-
-void solve_multiblock(const std::string& path, const std::vector<AnyLRSpline>& objects, const MultiblockSolveOptions& o) {
-  const MultiblockSpace m = matched(path, objects);
-  const RefinedSpace<2>& space = m.space;
+template <int D>
+void solve(const std::string& path, const std::vector<AnyLRSpline>& objects, const MultiblockSolveOptions& o) {
+  const MultiblockSpace<D> m = matched<D>(path, objects);
+  const RefinedSpace<D>& space = m.space;
   int partial = 0;
-  for (const BlockInterface& f : m.interfaces)
-    for (int k = 0; k < 2; ++k) {
-      const LRSpline<2>& b = m.blocks[static_cast<std::size_t>(f.block[k])];
-      const int a = f.side[k].along();
-      partial += std::min(f.lo[k], f.hi[k]) != b.domain().lo[a] || std::max(f.lo[k], f.hi[k]) != b.domain().hi[a];
+  for (const BlockInterface<D>& f : m.interfaces)
+    for (std::size_t k = 0; k < 2; ++k) {
+      const LRSpline<D>& b = m.blocks[static_cast<std::size_t>(f.block[k])];
+      for (int a = 0; a < D; ++a)
+        if (a != f.side[k].dir && (std::min(f.lo[k][a], f.hi[k][a]) != b.domain().lo[a] || std::max(f.lo[k][a], f.hi[k][a]) != b.domain().hi[a])) {
+          ++partial;
+          break;
+        }
     }
   // Printed with the results, so a failing solve writes nothing to stdout.
   std::vector<std::string> report{"multi-block: " + std::to_string(m.blocks.size()) + " blocks, " +
@@ -87,7 +104,7 @@ void solve_multiblock(const std::string& path, const std::vector<AnyLRSpline>& o
                                   " of them on part of a block side: T-joints), " + std::to_string(space.num_basis) +
                                   " functions, " + std::to_string(space.num_elements()) + " elements"};
 
-  ElasticityProblem<2> elastic;
+  ElasticityProblem<D> elastic;
   elastic.material = o.material;
   const bool elastic_kind = o.kind == "elasticity" || (o.kind == "modes" && o.physics == "elastic");
   require(!elastic_kind || elastic.material.valid(), "solve: --youngs and --density must be positive, --poisson-ratio in (-1, 0.5)");
@@ -99,7 +116,7 @@ void solve_multiblock(const std::string& path, const std::vector<AnyLRSpline>& o
     }
   }
   const std::vector<Face> boundary = boundary_faces(m);
-  const int components = elastic_kind ? 2 : 1;
+  const int components = elastic_kind ? D : 1;
   std::vector<std::pair<std::string, Eigen::VectorXd>> fields;
   if (o.kind == "modes") {
     const ModesResult r = elastic_kind ? elastic_modes(space, elastic, o.modes, o.threads)
@@ -117,18 +134,20 @@ void solve_multiblock(const std::string& path, const std::vector<AnyLRSpline>& o
     auto solver = make_solver(o.solver);
     SolveResult r;
     if (o.kind == "poisson") {
-      PoissonProblem<2> pb;
+      PoissonProblem<D> pb;
       pb.source = [](const double*) { return 1.0; };
       pb.dirichlet.push_back({boundary, {}, nullptr});
       r = solve_poisson(space, pb, *solver, o.threads);
     } else {
       require(o.clamp != "none", "solve: static elasticity needs supports (--clamp)");
-      elastic.body_force = [](const double*, double* b) { b[0] = 0, b[1] = -1; };
+      elastic.body_force = [](const double*, double* b) {
+        for (int k = 0; k < D; ++k) b[k] = k == D - 1 ? -1.0 : 0.0;
+      };
       r = solve_elasticity(space, elastic, *solver, o.threads);
     }
     const auto [largest, mean] = max_and_mean(m, r.coefs, components);
-    std::string line = "dofs " + std::to_string(r.dofs) + ", " + (components == 1 ? "max u " : "max y-displacement ") +
-                       fmt(largest) + (components == 1 ? ", mean u " : ", mean y-displacement ") + fmt(mean);
+    const std::string what = components == 1 ? "u" : D == 2 ? "y-displacement" : "z-displacement";
+    std::string line = "dofs " + std::to_string(r.dofs) + ", max " + what + " " + fmt(largest) + ", mean " + what + " " + fmt(mean);
     char times[96];
     std::snprintf(times, sizeof times, ", assembly %.3f s, solve %.3f s", r.assembly_seconds, r.solve_seconds);
     line += times;
@@ -140,20 +159,12 @@ void solve_multiblock(const std::string& path, const std::vector<AnyLRSpline>& o
   for (const std::string& line : report) std::printf("%s\n", line.c_str());
 }
 
-namespace {
-
-void write_fields(const MultiblockSpace& m, const std::vector<std::pair<std::string, Eigen::VectorXd>>& fields,
-                  int components, const std::string& vtu) {
-  std::vector<std::vector<LRSpline<2>>> per_block;  // per field, one LR spline per block
-  for (const auto& [name, coefs] : fields) per_block.push_back(multiblock_fields(m, coefs, components));
-  std::vector<io::VtkPointField> vtk;
-  for (std::size_t i = 0; i < fields.size(); ++i)
-    vtk.push_back({fields[i].first, components, [&per_block, i](int piece, std::span<const double> u, std::span<double> out) {
-                     per_block[i][static_cast<std::size_t>(piece)].eval(Param<2>{u[0], u[1]}, out.data());
-                   }});
-  io::write_lr_vtu(vtu, std::vector<AnyLRSpline>(m.blocks.begin(), m.blocks.end()), {}, vtk);
-}
-
 }  // namespace
+
+void solve_multiblock(const std::string& path, const std::vector<AnyLRSpline>& blocks, const MultiblockSolveOptions& o) {
+  require(!blocks.empty(), "solve: " + path + " holds no blocks");
+  if (std::holds_alternative<LRSpline<2>>(blocks.front())) solve<2>(path, blocks, o);
+  else solve<3>(path, blocks, o);
+}
 
 }  // namespace trivar::cli

@@ -70,7 +70,7 @@ std::vector<LRSpline<2>> t_joint_blocks() {
 }
 
 // The values of the functions of block b's elements at parameter u of that block, by global id.
-std::map<int, double> values_at(const MultiblockSpace& m, int b, const Param<2>& u) {
+std::map<int, double> values_at(const MultiblockSpace<2>& m, int b, const Param<2>& u) {
   std::map<int, double> out;
   for (std::size_t e = 0; e < m.space.elements.size(); ++e) {
     const RefinedElement<2>& el = m.space.elements[e];
@@ -87,7 +87,7 @@ std::map<int, double> values_at(const MultiblockSpace& m, int b, const Param<2>&
 
 TEST(MultiblockSpace, TJointInterfacesAreConforming) {
   const std::vector<LRSpline<2>> in = t_joint_blocks();
-  const MultiblockSpace m = multiblock_space(in);
+  const MultiblockSpace<2> m = multiblock_space(in);
   ASSERT_EQ(m.interfaces.size(), 3u);
 
   // Only B-splines of the first rows along interfaces changed: the long block's top row (three of them split at
@@ -125,13 +125,14 @@ TEST(MultiblockSpace, TJointInterfacesAreConforming) {
   EXPECT_EQ(knot_at_joint, p);
 
   // Identified functions are equal on both sides of every interface.
-  for (const BlockInterface& f : m.interfaces)
+  for (const BlockInterface<2>& f : m.interfaces)
     for (int k = 1; k < 40; ++k) {
-      const double t = f.lo[0] + (f.hi[0] - f.lo[0]) * k / 40.0;
-      const auto a = values_at(m, f.block[0], side_param(m.blocks[static_cast<std::size_t>(f.block[0])], f.side[0], t));
-      const double s = f.lo[1] + (t - f.lo[0]) / (f.hi[0] - f.lo[0]) * (f.hi[1] - f.lo[1]);
-      const auto c = values_at(m, f.block[1], side_param(m.blocks[static_cast<std::size_t>(f.block[1])], f.side[1], s));
-      ASSERT_EQ(a.size(), c.size()) << t;
+      const int a0 = 1 - f.side[0].dir, a1 = f.along[a0];
+      Param<2> u0 = f.lo[0], u1 = f.lo[1];
+      u0[a0] = f.lo[0][a0] + (f.hi[0][a0] - f.lo[0][a0]) * k / 40.0;
+      u1[a1] = f.lo[1][a1] + (f.hi[1][a1] - f.lo[1][a1]) * k / 40.0;
+      const auto a = values_at(m, f.block[0], u0), c = values_at(m, f.block[1], u1);
+      ASSERT_EQ(a.size(), c.size()) << k;
       for (const auto& [id, value] : a) {
         ASSERT_TRUE(c.count(id)) << id;
         EXPECT_NEAR(value, c.at(id), 1e-13);
@@ -153,7 +154,7 @@ TEST(MultiblockSpace, TJointInterfacesAreConforming) {
 // u = x^2 - x y + 2 y^2 + x: -laplace u = -6. Dirichlet values from the L2 projection of u (exact, as u lies in
 // the space), the interior from the Galerkin system; both must be u to rounding.
 TEST(MultiblockSpace, PoissonReproducesAQuadraticOnATJointModel) {
-  const MultiblockSpace m = multiblock_space(t_joint_blocks());
+  const MultiblockSpace<2> m = multiblock_space(t_joint_blocks());
   const auto exact = [](const std::array<double, 2>& x) { return x[0] * x[0] - x[0] * x[1] + 2 * x[1] * x[1] + x[0]; };
   auto mass = assemble_refined_system<2>(
       m.space, 1, 1,
@@ -239,7 +240,7 @@ TEST(MultiblockSpace, TensorMultipatchPoissonConvergesAtTheOptimalRate) {
   for (int n : {1, 2, 4}) {
     std::vector<LRSpline<2>> blocks;
     for (const auto& c : t_joint_tensors()) blocks.emplace_back(refine_uniform(c, Ints<2>{n, n}));
-    const MultiblockSpace m = multiblock_space(blocks, {0.0, true});
+    const MultiblockSpace<2> m = multiblock_space(blocks, {0.0, true});
     const MultipatchSpace<2> space = tensor_multipatch(m);
     ASSERT_EQ(space.boundary.size(), 7u);  // the square's sides: three of the long block, two of each upper one
     problem.dirichlet = {DirichletCondition<2>{space.boundary, {}, [u](const double* x, double* v) { v[0] = u(x); }}};
@@ -266,7 +267,7 @@ std::vector<LRSpline<2>> two_block_t_joint(int n = 1) {
 
 // The largest difference between a discrete field (coefs component-major) and `exact` at points spread over every
 // element of a multi-block space.
-double largest_pointwise_error(const MultiblockSpace& m, const Eigen::VectorXd& coefs, int components,
+double largest_pointwise_error(const MultiblockSpace<2>& m, const Eigen::VectorXd& coefs, int components,
                                const std::function<void(const double*, double*)>& exact) {
   double worst = 0;
   RefinedPoint<2> pt;
@@ -291,7 +292,7 @@ double largest_pointwise_error(const MultiblockSpace& m, const Eigen::VectorXd& 
 TEST(MultiblockSpace, IgaPoissonReproducesAQuadraticOnTwoAndThreeBlockTJointModels) {
   const auto u = [](const double* x) { return x[0] * x[0] - x[0] * x[1] + 2 * x[1] * x[1] + x[0]; };
   for (const auto& blocks : {two_block_t_joint(), t_joint_blocks()}) {
-    const MultiblockSpace m = multiblock_space(blocks);
+    const MultiblockSpace<2> m = multiblock_space(blocks);
     const std::vector<Face> faces = boundary_faces(m);
     EXPECT_EQ(faces.size(), 7u);  // two blocks: 4 (one partly boundary) + 3; three: 3 + 2 + 2
     if (blocks.size() == 2) {
@@ -325,7 +326,7 @@ TEST(MultiblockSpace, IgaElasticityPassesThePatchTestAcrossTJoints) {
     v[1] = -0.005 * x[0] + 0.015 * x[1];
   };
   for (const auto& blocks : {two_block_t_joint(), t_joint_blocks()}) {
-    const MultiblockSpace m = multiblock_space(blocks);
+    const MultiblockSpace<2> m = multiblock_space(blocks);
     ElasticityProblem<2> problem;
     problem.material = {1000.0, 0.3, 1.0};
     problem.displacement = {DirichletCondition<2>{boundary_faces(m), {}, disp}};
@@ -361,7 +362,7 @@ TEST(MultiblockSpace, IgaPoissonOnLocallyMatchedBlocksConvergesAtTheOptimalRates
       const int k = b == 0 ? n : 2 * n;
       blocks.emplace_back(refine_uniform(coarse[b], Ints<2>{k, k}));
     }
-    const MultiblockSpace m = multiblock_space(blocks);
+    const MultiblockSpace<2> m = multiblock_space(blocks);
     problem.dirichlet = {DirichletCondition<2>{boundary_faces(m), {}, [u](const double* x, double* v) { v[0] = u(x); }}};
     auto solver = make_solver("cholmod");
     const SolveResult r = solve_poisson(m.space, problem, *solver, 1);
