@@ -89,10 +89,12 @@ bool on_side(const LRSpline<D>& s, DomainSide side, const double* x, double tol,
     if (next == u) break;
     u = next;
   }
-  for (int a : dirs) {
-    if (std::abs(u[a] - dom.lo[a]) <= 1e-10 * dom.extent(a)) u[a] = dom.lo[a];
-    if (std::abs(u[a] - dom.hi[a]) <= 1e-10 * dom.extent(a)) u[a] = dom.hi[a];
-  }
+  // A parameter within rounding of the side's ends or of one of its knots is that value exactly: a common part
+  // found again on matched blocks must end on the very knots the first matching inserted.
+  const SideKnots<D> knots = side_trace_knots(s, side);
+  for (int a : dirs)
+    for (const auto& [value, m] : knots[static_cast<std::size_t>(a)])
+      if (std::abs(u[a] - value) <= 1e-10 * dom.extent(a)) u[a] = value;
   s.eval(u, c);
   return distance<D>(c, x) <= tol;
 }

@@ -224,7 +224,11 @@ template <int D>
 int ElementEvaluator<D>::find_element(const Param<D>& u) const {
   std::size_t cell = 0;
   for (int k = D - 1; k >= 0; --k) {
-    const int i = std::clamp(static_cast<int>((u[k] - domain_.lo[k]) * grid_scale_[k]), 0, grid_n_[k] - 1);
+    int i = std::clamp(static_cast<int>((u[k] - domain_.lo[k]) * grid_scale_[k]), 0, grid_n_[k] - 1);
+    // The product can round across a cell bound (u just below lo + i / scale); the cell is the one whose bounds, as
+    // build_start_grid computes them, hold u, or its start node may lie in a subtree without u's element.
+    if (i > 0 && u[k] < domain_.lo[k] + i / grid_scale_[k]) --i;
+    else if (i + 1 < grid_n_[k] && u[k] >= domain_.lo[k] + (i + 1) / grid_scale_[k]) ++i;
     cell = cell * static_cast<std::size_t>(grid_n_[k]) + static_cast<std::size_t>(i);
   }
   const Node* n = nodes_.data() + grid_start_[cell];
