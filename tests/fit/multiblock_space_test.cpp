@@ -300,7 +300,9 @@ TEST(MultiblockSpace, IgaPoissonReproducesAQuadraticOnTwoAndThreeBlockTJointMode
       EXPECT_EQ(m.partial_sides[0].first, 0);
       // The long block's top: the elements left of the joint are on the interface, those right of it not.
       for (const RefinedElement<2>& el : m.space.elements)
-        if (el.block == 0 && el.box.hi[1] == 1.0) EXPECT_EQ(el.interface_sides == (1u << 3), el.box.hi[0] <= 0.5) << el.box.lo[0];
+        if (el.block == 0 && el.box.hi[1] == 1.0) {
+          EXPECT_EQ(el.interface_sides == (1u << 3), el.box.hi[0] <= 0.5) << el.box.lo[0];
+        }
     }
     PoissonProblem<2> problem;
     problem.source = [](const double*) { return -6.0; };

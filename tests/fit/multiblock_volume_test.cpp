@@ -17,6 +17,7 @@
 #include "trivar/iga/poisson.hpp"
 #include "trivar/iga/refined_poisson.hpp"
 #include "trivar/iga/solver.hpp"
+#include "trivar/lr/linear_independence.hpp"
 
 namespace trivar {
 namespace {
@@ -43,10 +44,13 @@ std::vector<LRSpline<3>> three_volume_t_joint() {
                                     {{{-1, 0, 0}, {0, -1, 0}, {0, 0, 1}}}))};
 }
 
-// A slab [0, 2] x [0, 2] x [0, 1] and a block [0, 1] x [0, 1] x [1, 2] on one quarter of its top, parametrised
-// with its first two directions swapped.
+// A slab [0, 2] x [0, 2] x [0, 1] (10 x 10 x 1 spans) and a block [0, 1] x [0, 1] x [1, 2] on one quarter of its
+// top, parametrised with its first two directions swapped.
 std::vector<LRSpline<3>> quarter_on_slab() {
-  return {LRSpline<3>(affine_volume({{{0, 0, 0, 0.3, 1, 1, 1}, {0, 0, 0, 0.7, 1, 1, 1}, {0, 0, 0, 1, 1, 1}}}, {0, 0, 0},
+  std::vector<double> tenths{0, 0, 0};
+  for (int i = 1; i < 10; ++i) tenths.push_back(i / 10.0);
+  tenths.insert(tenths.end(), {1, 1, 1});
+  return {LRSpline<3>(affine_volume({{tenths, tenths, {0, 0, 0, 1, 1, 1}}}, {0, 0, 0},
                                     {{{2, 0, 0}, {0, 2, 0}, {0, 0, 1}}})),
           LRSpline<3>(affine_volume({{{0, 0, 0, 0.5, 1, 1, 1}, {0, 0, 0, 0.35, 1, 1, 1}, {0, 0, 0, 1, 1, 1}}}, {0, 0, 1},
                                     {{{0, 1, 0}, {1, 0, 0}, {0, 0, 1}}}))};
@@ -144,6 +148,33 @@ TEST(MultiblockVolumes, MatchedFacesAgreeAcrossTJoints) {
         }
     }
   }
+}
+
+// The neighbour's knot planes enter a face over its common part only (and the supports of the first-row B-splines
+// meeting it): the slab's B-splines beyond the quarter block's reach keep their knots and coefficients (the
+// block's planes across the whole face would split those near the slab's left edge too), and every matched block
+// passes the peeling test of linear independence.
+TEST(MultiblockVolumes, FacesAreRefinedOnlyWhereTheNeighbourNeedsIt) {
+  for (const auto& blocks : {three_volume_t_joint(), quarter_on_slab()}) {
+    const MultiblockSpace<3> m = multiblock_space(blocks);
+    for (const LRSpline<3>& b : m.blocks) EXPECT_EQ(peeling_test(b).status, Independence::independent);
+  }
+  const std::vector<LRSpline<3>> in = quarter_on_slab();
+  const MultiblockSpace<3> m = multiblock_space(in);
+  std::map<std::array<std::vector<double>, 3>, std::vector<double>> after;
+  for (const auto& f : m.blocks[0].basis_functions()) after[f.knots] = f.coef;
+  int far = 0;
+  for (const auto& f : in[0].basis_functions())
+    // v >= 0.8 (y >= 1.6, beyond the reach of the block on [0, 1]^2), and not across the plane u = 0.5 (x = 1) at
+    // the edge of the common part, which crosses the whole face with multiplicity p.
+    if (f.knots[1].front() >= 0.8 - 1e-12 && !(f.knots[0].front() < 0.5 && f.knots[0].back() > 0.5)) {
+      ++far;
+      const auto it = after.find(f.knots);
+      ASSERT_NE(it, after.end());
+      EXPECT_EQ(it->second, f.coef);
+    }
+  EXPECT_EQ(far, 2 * 10 * 3);  // two rows of 10 x 3 B-splines in u and w
+  EXPECT_GT(m.blocks[0].num_basis(), in[0].num_basis());
 }
 
 TEST(MultiblockVolumes, IgaSolversReproduceQuadraticAndLinearFields) {

@@ -5,6 +5,7 @@
 #include <map>
 #include <numeric>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 #include <Eigen/Dense>
@@ -149,7 +150,7 @@ bool common_part(const std::vector<LRSpline<D>>& B, int i, DomainSide si, int j,
   std::vector<std::pair<Param<D>, Param<D>>> hits;  // (on si, on sj)
   double x[(D + 1) * D], y[(D + 1) * D];
   const auto corners = [](const LRSpline<D>& s, DomainSide side) {
-    std::vector<Param<D>> out;
+    std::vector<Param<D>> cs;
     const auto dirs = face_dirs<D>(side);
     for (int c = 0; c < (1 << (D - 1)); ++c) {
       Param<D> u = on_face(s, side, s.domain().lo);
@@ -157,9 +158,9 @@ bool common_part(const std::vector<LRSpline<D>>& B, int i, DomainSide si, int j,
         const int a = dirs[static_cast<std::size_t>(k)];
         u[a] = (c >> k) & 1 ? s.domain().hi[a] : s.domain().lo[a];
       }
-      out.push_back(u);
+      cs.push_back(u);
     }
-    return out;
+    return cs;
   };
   Param<D> t;
   for (const Param<D>& c : corners(C, sj)) {
@@ -236,10 +237,11 @@ bool common_part(const std::vector<LRSpline<D>>& B, int i, DomainSide si, int j,
   return true;
 }
 
-// Knot lines (planes) of the other side of interface f on the common part (side `to` receives them), and the
-// part's bounds where they lie inside the receiving side (a T-joint) with multiplicity p.
+// Knot lines (planes) of the other side of interface f on the common part (side `to` receives them), and in
+// `edges` the part's bounds where they lie inside the receiving side (a T-joint) with multiplicity p.
 template <int D>
-SideKnots<D> knots_for(const std::vector<LRSpline<D>>& B, const BlockInterface<D>& f, int to) {
+SideKnots<D> knots_for(const std::vector<LRSpline<D>>& B, const BlockInterface<D>& f, int to,
+                       std::type_identity_t<SideKnots<D>>& edges) {
   const int from = 1 - to;
   const LRSpline<D>& R = B[static_cast<std::size_t>(f.block[static_cast<std::size_t>(to)])];
   const LRSpline<D>& S = B[static_cast<std::size_t>(f.block[static_cast<std::size_t>(from)])];
@@ -254,7 +256,33 @@ SideKnots<D> knots_for(const std::vector<LRSpline<D>>& B, const BlockInterface<D
     for (const auto& [s, m] : theirs[static_cast<std::size_t>(b)])
       if (s > slo && s < shi)
         k.emplace_back(snap(map_value(f, from, b, s), own[static_cast<std::size_t>(a)], R.domain().extent(a)), m);
-    for (double e : {f.lo[static_cast<std::size_t>(to)][a], f.hi[static_cast<std::size_t>(to)][a]}) k.emplace_back(e, R.degree(a));
+    for (double e : {f.lo[static_cast<std::size_t>(to)][a], f.hi[static_cast<std::size_t>(to)][a]})
+      edges[static_cast<std::size_t>(a)].emplace_back(e, R.degree(a));
+  }
+  return out;
+}
+
+// Where the neighbour's planes must reach on side `to` of interface f: across the supports of the first-row
+// B-splines that meet the common part (those C0 at its edges reach one span beyond them, and their traces on the
+// part must split like the neighbour's).
+template <int D>
+Box<D> planes_extent(const LRSpline<D>& s, const BlockInterface<D>& f, int to) {
+  const auto t = static_cast<std::size_t>(to);
+  Box<D> part = s.domain(), out = s.domain();
+  for (int a : face_dirs<D>(f.side[t])) {
+    part.lo[a] = std::min(f.lo[t][a], f.hi[t][a]), part.hi[a] = std::max(f.lo[t][a], f.hi[t][a]);
+    out.lo[a] = part.lo[a], out.hi[a] = part.hi[a];
+  }
+  for (int id : side_row(s, f.side[t], 0)) {
+    const auto& knots = s.basis_function(id).knots;
+    bool meets = true;
+    for (int a : face_dirs<D>(f.side[t]))
+      meets = meets && knots[static_cast<std::size_t>(a)].back() > part.lo[a] && knots[static_cast<std::size_t>(a)].front() < part.hi[a];
+    if (!meets) continue;
+    for (int a : face_dirs<D>(f.side[t])) {
+      out.lo[a] = std::min(out.lo[a], knots[static_cast<std::size_t>(a)].front());
+      out.hi[a] = std::max(out.hi[a], knots[static_cast<std::size_t>(a)].back());
+    }
   }
   return out;
 }
@@ -364,10 +392,19 @@ MultiblockSpace<D> multiblock_space(std::vector<LRSpline<D>> blocks, const Multi
   for (int round = 0;; ++round) {
     int changed = 0;
     for (const BlockInterface<D>& f : out.interfaces)
-      for (int to = 0; to < 2; ++to)
-        changed += insert_side_knot_lines(blocks[static_cast<std::size_t>(f.block[static_cast<std::size_t>(to)])],
-                                          f.side[static_cast<std::size_t>(to)], knots_for(blocks, f, to),
-                                          options.whole_lines ? 0 : 1);
+      for (int to = 0; to < 2; ++to) {
+        // The edges of the common part across the whole side (few planes, C0 there); the neighbour's knots over
+        // the common part only, so a block's face is refined where its neighbour needs it (on surfaces the lines
+        // are points along the side: nothing to restrict).
+        const auto t = static_cast<std::size_t>(to);
+        LRSpline<D>& s = blocks[static_cast<std::size_t>(f.block[t])];
+        SideKnots<D> edges;
+        const SideKnots<D> inner = knots_for(blocks, f, to, edges);
+        const int rows = options.whole_lines ? 0 : 1;
+        changed += insert_side_knot_lines(s, f.side[t], edges, rows);
+        const Box<D> part = planes_extent(s, f, to);
+        changed += insert_side_knot_lines(s, f.side[t], inner, rows, options.whole_lines ? nullptr : &part);
+      }
     if (changed == 0) break;
     require(round < 16, "multiblock: the interface knot lines did not settle");
   }
