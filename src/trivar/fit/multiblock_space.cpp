@@ -47,9 +47,10 @@ double distance(const double* x, const double* y) {
 }
 
 // The side's point closest to x (samples, then Gauss-Newton in the side's parameters); false when farther than
-// tol. Parameters within rounding of the side's ends become the ends exactly.
+// tol. Parameters within rounding of the side's ends or its trace knots (`knots`) become those values exactly.
 template <int D>
-bool on_side(const LRSpline<D>& s, DomainSide side, const double* x, double tol, Param<D>& u) {
+bool on_side(const LRSpline<D>& s, DomainSide side, const std::type_identity_t<SideKnots<D>>& knots, const double* x,
+             double tol, Param<D>& u) {
   const auto dirs = face_dirs<D>(side);
   const Box<D>& dom = s.domain();
   constexpr int n = D == 2 ? 65 : 17;
@@ -92,7 +93,6 @@ bool on_side(const LRSpline<D>& s, DomainSide side, const double* x, double tol,
   }
   // A parameter within rounding of the side's ends or of one of its knots is that value exactly: a common part
   // found again on matched blocks must end on the very knots the first matching inserted.
-  const SideKnots<D> knots = side_trace_knots(s, side);
   for (int a : dirs)
     for (const auto& [value, m] : knots[static_cast<std::size_t>(a)])
       if (std::abs(u[a] - value) <= 1e-10 * dom.extent(a)) u[a] = value;
@@ -143,8 +143,9 @@ Param<D> map_param(const BlockInterface<D>& f, int from, const Param<D>& x) {
 // correspond where the sides' tangents are parallel at such a corner, and the parametrisations must then agree
 // linearly at every corner found and at interior points.
 template <int D>
-bool common_part(const std::vector<LRSpline<D>>& B, int i, DomainSide si, int j, DomainSide sj, double tol,
-                 BlockInterface<D>& out) {
+bool common_part(const std::vector<LRSpline<D>>& B, int i, DomainSide si, int j, DomainSide sj,
+                 const std::type_identity_t<SideKnots<D>>& knots_i, const std::type_identity_t<SideKnots<D>>& knots_j,
+                 double tol, BlockInterface<D>& out) {
   const LRSpline<D>& A = B[static_cast<std::size_t>(i)];
   const LRSpline<D>& C = B[static_cast<std::size_t>(j)];
   std::vector<std::pair<Param<D>, Param<D>>> hits;  // (on si, on sj)
@@ -165,11 +166,11 @@ bool common_part(const std::vector<LRSpline<D>>& B, int i, DomainSide si, int j,
   Param<D> t;
   for (const Param<D>& c : corners(C, sj)) {
     C.eval(c, x);
-    if (on_side(A, si, x, tol, t)) hits.emplace_back(t, c);
+    if (on_side(A, si, knots_i, x, tol, t)) hits.emplace_back(t, c);
   }
   for (const Param<D>& a : corners(A, si)) {
     A.eval(a, x);
-    if (on_side(C, sj, x, tol, t)) hits.emplace_back(a, t);
+    if (on_side(C, sj, knots_j, x, tol, t)) hits.emplace_back(a, t);
   }
   if (hits.size() < 2) return false;
   const auto da = face_dirs<D>(si), dc = face_dirs<D>(sj);
@@ -379,12 +380,18 @@ MultiblockSpace<D> multiblock_space(std::vector<LRSpline<D>> blocks, const Multi
   const double tol = options.tolerance > 0 ? options.tolerance : 1e-8 * diag;
 
   MultiblockSpace<D> out;
+  std::vector<std::array<SideKnots<D>, S>> trace_knots(static_cast<std::size_t>(nb));  // per block and side
+  for (int b = 0; b < nb; ++b)
+    for (int sd = 0; sd < S; ++sd)
+      trace_knots[static_cast<std::size_t>(b)][static_cast<std::size_t>(sd)] = side_trace_knots(blocks[static_cast<std::size_t>(b)], DomainSide{sd / 2, sd % 2});
   for (int i = 0; i < nb; ++i)
     for (int j = i + 1; j < nb; ++j)
       for (int si = 0; si < S; ++si)
         for (int sj = 0; sj < S; ++sj) {
           BlockInterface<D> f;
-          if (common_part(blocks, i, {si / 2, si % 2}, j, {sj / 2, sj % 2}, tol, f)) out.interfaces.push_back(f);
+          if (common_part(blocks, i, {si / 2, si % 2}, j, {sj / 2, sj % 2}, trace_knots[static_cast<std::size_t>(i)][static_cast<std::size_t>(si)],
+                          trace_knots[static_cast<std::size_t>(j)][static_cast<std::size_t>(sj)], tol, f))
+            out.interfaces.push_back(f);
         }
 
   // Adjust the side knot lines until every interface's two traces agree (a line given to one block can be
@@ -399,11 +406,18 @@ MultiblockSpace<D> multiblock_space(std::vector<LRSpline<D>> blocks, const Multi
         const auto t = static_cast<std::size_t>(to);
         LRSpline<D>& s = blocks[static_cast<std::size_t>(f.block[t])];
         SideKnots<D> edges;
-        const SideKnots<D> inner = knots_for(blocks, f, to, edges);
+        SideKnots<D> inner = knots_for(blocks, f, to, edges);
         const int rows = options.whole_lines ? 0 : 1;
+        if (D == 2 || options.whole_lines) {  // one LR refinement batch
+          for (int a = 0; a < D; ++a)
+            inner[static_cast<std::size_t>(a)].insert(inner[static_cast<std::size_t>(a)].end(), edges[static_cast<std::size_t>(a)].begin(),
+                                                      edges[static_cast<std::size_t>(a)].end());
+          changed += insert_side_knot_lines(s, f.side[t], inner, rows);
+          continue;
+        }
         changed += insert_side_knot_lines(s, f.side[t], edges, rows);
         const Box<D> part = planes_extent(s, f, to);
-        changed += insert_side_knot_lines(s, f.side[t], inner, rows, options.whole_lines ? nullptr : &part);
+        changed += insert_side_knot_lines(s, f.side[t], inner, rows, &part);
       }
     if (changed == 0) break;
     require(round < 16, "multiblock: the interface knot lines did not settle");
