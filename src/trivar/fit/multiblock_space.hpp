@@ -1,19 +1,21 @@
 #pragma once
-// Multi-block LR models with T-joints (seed 004, "multi-block T-joints"): planar LR (or B-spline) blocks, or
-// volume blocks, whose sides (faces) meet along common parts that need not be whole sides (a side of one block may border several blocks,
-// so a block corner can lie inside a neighbour's side: a T-joint). The blocks are made conforming by
-//   1. matching the parametrisation: every common segment is found geometrically and must correspond linearly
-//      on both sides;
-//   2. adjusting the side knot lines: each block receives its neighbours' knot lines along the segment, and at a
-//      T-joint the joint's parameter with multiplicity p, as knot line segments over the first row only;
-//   3. identifying the transition B-splines: the B-splines of the first rows that split at a T-joint are those
-//      whose support the joint's line crosses; after the split each one's trace on a segment equals one
-//      neighbour B-spline's trace there, and those are identified as one global function (a B-spline at a
-//      T-joint is identified with one function of each block meeting there).
-// The result is an analysis space for the element loop of iga/refined_assembly (RefinedSpace): every block's
-// Bezier elements with global function ids. Global functions are the unscaled B-splines (LR scaling factors
-// moved into their control points), which makes the traces of identified functions equal, so the space is C0 and
-// conforming across every interface.
+// Multi-block LR models with T-joints (seed 004, "multi-block T-joints"): planar LR (or B-spline) blocks, or volume
+// blocks, one template, whose sides (faces) meet over common parts that need not be whole sides (a side of one
+// block may border several blocks, so a block corner or edge can lie inside a neighbour's side: a T-joint). The
+// blocks are made conforming by
+//   1. matching the parametrisation: every common part is found geometrically (the corners of each side that lie
+//      on the other bound it) and must correspond linearly, direction by direction, on both sides;
+//   2. adjusting the side knot lines (planes): each block receives its neighbours' knots over the common part, and
+//      at the part's edges inside the side (T-joints) their parameters with multiplicity p, as LR segments over the
+//      first row only (on volumes the neighbour's planes span the part, widened to the first-row supports meeting
+//      it, not the whole face);
+//   3. identifying the transition B-splines: the first-row B-splines that a T-joint's line crosses split there;
+//      after the splits each one's trace on a common part equals one neighbour B-spline's trace there, and those
+//      are identified as one global function (a B-spline at a T-joint with one function of each block there).
+// The result is an analysis space for iga's refined solvers (RefinedSpace with blocks): every block's Bezier
+// elements with global function ids. Global functions are the unscaled B-splines (LR scaling factors moved into
+// their control points), which makes the traces of identified functions equal, so the space is C0 and conforming
+// across every interface.
 #include <array>
 #include <utility>
 #include <vector>
