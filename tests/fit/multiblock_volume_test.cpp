@@ -44,11 +44,11 @@ std::vector<LRSpline<3>> three_volume_t_joint() {
                                     {{{-1, 0, 0}, {0, -1, 0}, {0, 0, 1}}}))};
 }
 
-// A slab [0, 2] x [0, 2] x [0, 1] (10 x 10 x 1 spans) and a block [0, 1] x [0, 1] x [1, 2] on one quarter of its
+// A slab [0, 2] x [0, 2] x [0, 1] (spans x spans x 1) and a block [0, 1] x [0, 1] x [1, 2] on one quarter of its
 // top, parametrised with its first two directions swapped.
-std::vector<LRSpline<3>> quarter_on_slab() {
+std::vector<LRSpline<3>> quarter_on_slab(int spans = 10) {
   std::vector<double> tenths{0, 0, 0};
-  for (int i = 1; i < 10; ++i) tenths.push_back(i / 10.0);
+  for (int i = 1; i < spans; ++i) tenths.push_back(static_cast<double>(i) / spans);
   tenths.insert(tenths.end(), {1, 1, 1});
   return {LRSpline<3>(affine_volume({{tenths, tenths, {0, 0, 0, 1, 1, 1}}}, {0, 0, 0},
                                     {{{2, 0, 0}, {0, 2, 0}, {0, 0, 1}}})),
@@ -184,7 +184,7 @@ TEST(MultiblockVolumes, IgaSolversReproduceQuadraticAndLinearFields) {
     v[1] = -0.005 * x[0] + 0.015 * x[1];
     v[2] = 0.002 * x[0] - 0.01 * x[2] + 0.001;
   };
-  for (const auto& blocks : {three_volume_t_joint(), quarter_on_slab()}) {
+  for (const auto& blocks : {three_volume_t_joint(), quarter_on_slab(3)}) {
     const MultiblockSpace<3> m = multiblock_space(blocks);
     PoissonProblem<3> poisson;
     poisson.source = [](const double*) { return -6.0; };
@@ -217,7 +217,7 @@ TEST(MultiblockVolumes, IgaSolversReproduceQuadraticAndLinearFields) {
   }, 1);
   EXPECT_LT(e.l2, 1e-10);
   EXPECT_LT(e.h1, 1e-9);
-  EXPECT_THROW(tensor_multipatch(multiblock_space(quarter_on_slab(), {0.0, true})), Error);
+  EXPECT_THROW(tensor_multipatch(multiblock_space(quarter_on_slab(3), {0.0, true})), Error);
 }
 
 }  // namespace
