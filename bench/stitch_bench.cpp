@@ -9,6 +9,8 @@
 
 #include "trivar/fit/multiblock_space.hpp"
 #include "trivar/fit/patch_stitching.hpp"
+#include "trivar/iga/refined_poisson.hpp"
+#include "trivar/iga/solver.hpp"
 
 using namespace trivar;
 
@@ -57,9 +59,9 @@ void BM_StitchC1(benchmark::State& state) {
 }
 BENCHMARK(BM_StitchC1)->Arg(16)->Arg(64)->Arg(256)->Unit(benchmark::kMillisecond);
 
-void BM_MultiblockTJoint(benchmark::State& state) {
-  const int n = static_cast<int>(state.range(0));
-  // Long block [0, 2] x [0, 1] (2n x n), two blocks [0, 1] x [1, 2] and [1, 2] x [1, 2] above it.
+// Long block [0, 2] x [0, 1] (2n x n), two blocks [0, 1] x [1, 2] and [1, 2] x [1, 2] above it, interior knots
+// shifted so no interface matches.
+std::vector<LRSpline<2>> t_joint_model(int n) {
   auto block = [&](double x0, double y0, double w, int nu, double shift) {
     std::vector<double> u(2, 0.0), v(2, 0.0);
     for (int i = 0; i <= nu - 2; ++i) u.push_back(i == 0 || i == nu - 2 ? double(i) / (nu - 2) : (i + shift) / (nu - 2));
@@ -74,16 +76,69 @@ void BM_MultiblockTJoint(benchmark::State& state) {
       }
     return LRSpline<2>(TensorSpline<2>::from_cartesian({KnotVector(2, u), KnotVector(2, v)}, 2, pts));
   };
-  const std::vector<LRSpline<2>> blocks{block(0, 0, 2, 2 * n + 1, 0.5), block(0, 1, 1, n, 0.25), block(1, 1, 1, n, 0.7)};
+  return {block(0, 0, 2, 2 * n + 1, 0.5), block(0, 1, 1, n, 0.25), block(1, 1, 1, n, 0.7)};
+}
+
+void BM_MultiblockTJoint(benchmark::State& state) {
+  const std::vector<LRSpline<2>> blocks = t_joint_model(static_cast<int>(state.range(0)));
   int functions = 0;
   for (auto _ : state) {
-    const MultiblockSpace m = multiblock_space(blocks);
+    const MultiblockSpace<2> m = multiblock_space(blocks);
     functions = m.space.num_basis;
     benchmark::DoNotOptimize(functions);
   }
   state.counters["functions"] = functions;
 }
 BENCHMARK(BM_MultiblockTJoint)->Arg(16)->Arg(64)->Arg(128)->Unit(benchmark::kMillisecond);
+
+void BM_MultiblockPoisson(benchmark::State& state) {
+  const MultiblockSpace<2> m = multiblock_space(t_joint_model(static_cast<int>(state.range(0))));
+  PoissonProblem<2> problem;
+  problem.source = [](const double*) { return 1.0; };
+  problem.dirichlet = {DirichletCondition<2>{boundary_faces(m), {}, nullptr}};
+  int dofs = 0;
+  for (auto _ : state) {
+    auto solver = make_solver("cholmod");
+    const SolveResult r = solve_poisson(m.space, problem, *solver, 1);
+    dofs = r.dofs;
+    benchmark::DoNotOptimize(r.coefs.data());
+  }
+  state.counters["dofs"] = dofs;
+}
+BENCHMARK(BM_MultiblockPoisson)->Arg(16)->Arg(64)->Unit(benchmark::kMillisecond);
+
+// A triquadratic block origin + [0, 1]^3 scaled by `size`, n_k uniform spans per direction.
+LRSpline<3> volume_block(std::array<int, 3> n, std::array<double, 3> origin, std::array<double, 3> size) {
+  std::array<KnotVector, 3> kv;
+  for (std::size_t k = 0; k < 3; ++k) {
+    std::vector<double> t(3, 0.0);
+    for (int i = 1; i < n[k]; ++i) t.push_back(static_cast<double>(i) / n[k]);
+    t.insert(t.end(), 3, 1.0);
+    kv[k] = KnotVector(2, t);
+  }
+  std::vector<double> pts;
+  for (double w : kv[2].greville())
+    for (double v : kv[1].greville())
+      for (double u : kv[0].greville()) pts.insert(pts.end(), {origin[0] + u * size[0], origin[1] + v * size[1], origin[2] + w * size[2]});
+  return LRSpline<3>(TensorSpline<3>::from_cartesian(kv, 3, pts));
+}
+
+void BM_MultiblockVolumes(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  // A slab [0, 2] x [0, 1] x [0, 1] (2n x n x n) and two blocks [0, 1] x [0, 1] x [1, 2] and [1, 2] x [0, 1] x [1, 2]
+  // with n - 1 and n + 1 spans along y: every knot plane of one is new to the other.
+  const std::vector<LRSpline<3>> blocks{volume_block({2 * n, n, n}, {0, 0, 0}, {2, 1, 1}),
+                                        volume_block({n, n - 1, n}, {0, 0, 1}, {1, 1, 1}),
+                                        volume_block({n, n + 1, n}, {1, 0, 1}, {1, 1, 1})};
+  int functions = 0;
+  for (auto _ : state) {
+    const MultiblockSpace<3> m = multiblock_space(blocks);
+    functions = m.space.num_basis;
+    benchmark::DoNotOptimize(functions);
+  }
+  state.counters["functions"] = functions;
+}
+BENCHMARK(BM_MultiblockVolumes)->Arg(4)->Arg(8)->Arg(16)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -15,6 +15,7 @@
 #include "cli.hpp"
 #include "hier_cli.hpp"
 #include "lr_cli.hpp"
+#include "multiblock_cli.hpp"
 #include "tspline_cli.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/iga/benchmark_problems.hpp"
@@ -108,10 +109,12 @@ void print_ranks() {
 
 std::string solver_name(const SolveArgs& a) { return distributed(a) ? "cg+" + a.pc : a.solver; }
 
-// The input file, read (and a model glued) once: a V-model or a single spline.
+// The input file, read (and a model glued) once: a V-model, a single spline, or several blocks (a multi-block
+// model).
 struct FileInput {
   std::optional<VModel> model;
   std::optional<AnySpline> spline;
+  std::vector<AnySpline> blocks;
   int dimension() const { return model ? 3 : parametric_dimension(*spline); }
 };
 
@@ -120,10 +123,16 @@ FileInput read_input(const SolveArgs& a) {
   in.model = read_model_if_any(a.file);
   if (in.model) {
     if (!in.model->is_glued()) in.model->glue();
-  } else {
-    in.spline = read_single(a.file, "solve");
-    require(in.dimension() >= 2, "solve: " + a.file + " holds a curve; analysis needs a volume or a planar surface");
+    return in;
   }
+  std::vector<AnySpline> objects = read_objects(a.file);
+  if (objects.size() > 1) {
+    in.blocks = std::move(objects);
+    return in;
+  }
+  require(objects.size() == 1, "solve: " + a.file + " holds no objects");
+  in.spline = std::move(objects.front());
+  require(in.dimension() >= 2, "solve: " + a.file + " holds a curve; analysis needs a volume or a planar surface");
   return in;
 }
 
@@ -626,7 +635,29 @@ void run_refined_geometry(const SolveArgs& a, const HierarchicalSpline<D>& g) {
   run_refined_file<D>(a, g);
 }
 
-// The single locally refined geometry of a file, solved by run_refined_file; false for any other file.
+// Several blocks in one file: matched across their interfaces (T-joints allowed) and solved on the one conforming
+// space, as they are (like LR files, --degree and --refine do not apply).
+void run_multiblock(const SolveArgs& a, const std::vector<AnyLRSpline>& blocks) {
+  require(!distributed(a), "solve: --backend petsc does not take multi-block models");
+  MultiblockSolveOptions o;
+  o.kind = a.kind;
+  o.physics = a.physics;
+  o.clamp = a.clamp;
+  o.solver = a.solver;
+  o.material = {a.youngs, a.poisson, a.density};
+  o.modes = a.modes;
+  o.threads = a.threads;
+  std::unique_ptr<OutputFolder> out;
+  if (!a.out.empty()) {
+    out = prepare_out(a);
+    o.vtu = out->path(a.kind == "modes" ? "modes.vtu" : "solution.vtu").string();
+  }
+  solve_multiblock(a.file, blocks, o);
+  if (out) out->commit();
+}
+
+// The single locally refined geometry of a file, solved by run_refined_file (several LR surfaces: a multi-block
+// model); false for any other file.
 bool run_if_refined(const SolveArgs& a) {
   const auto single = [&](const auto& objects) {
     require(objects.size() == 1, "solve: " + a.file + " holds " + std::to_string(objects.size()) +
@@ -634,6 +665,10 @@ bool run_if_refined(const SolveArgs& a) {
     return objects.front();
   };
   if (const auto lr = read_lr_if_any(a.file)) {
+    if (lr->size() > 1) {
+      run_multiblock(a, *lr);
+      return true;
+    }
     std::visit([&](const auto& g) { run_refined_geometry(a, g); }, single(*lr));
     return true;
   }
@@ -778,7 +813,15 @@ void run(const SolveArgs& a) {
     }
     if (run_if_refined(a)) return;
     const FileInput in = read_input(a);
-    if (has_trimmed_cells(in)) {
+    if (!in.blocks.empty()) {
+      std::vector<AnyLRSpline> blocks;
+      for (std::size_t i = 0; i < in.blocks.size(); ++i) {
+        if (const auto* s = std::get_if<TensorSpline<2>>(&in.blocks[i])) blocks.emplace_back(LRSpline<2>(*s));
+        else if (const auto* v = std::get_if<TensorSpline<3>>(&in.blocks[i])) blocks.emplace_back(LRSpline<3>(*v));
+        else throw Error("solve: " + a.file + " object " + std::to_string(i) + " is a curve; blocks are surfaces or volumes");
+      }
+      run_multiblock(a, blocks);
+    } else if (has_trimmed_cells(in)) {
       require(!distributed(a), "solve: --backend petsc does not take trimmed cells");
       const int untrimmed = static_cast<int>(std::count_if(in.model->cells().begin(), in.model->cells().end(),
                                                            [](const VCell& c) { return !c.is_trimmed(); }));
@@ -848,7 +891,9 @@ void add_solve_command(CLI::App& app, Context& ctx) {
   cmd->add_option("KIND", a->kind, "poisson, elasticity or modes")
       ->required()
       ->check(CLI::IsMember({"poisson", "elasticity", "modes"}));
-  cmd->add_option("MODEL_OR_SPLINE", a->file, "Volume, planar surface or V-model (.json, .g2), or planar T-spline (.tsm, .stp)");
+  cmd->add_option("MODEL_OR_SPLINE", a->file,
+                  "Volume, planar surface or V-model (.json, .g2), planar T-spline (.tsm, .stp), LR spline (.lr), or "
+                  "several planar blocks in one file (a multi-block model, T-joints allowed)");
   cmd->add_option(
       "--problem", a->problem,
       "Built-in problem: sine-cube, sine-square, l-shape (poisson), lame-cylinder, lame-ring, plate-hole (elasticity), "

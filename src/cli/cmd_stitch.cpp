@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <type_traits>
 #include <string>
 #include <variant>
 #include <vector>
@@ -23,12 +24,6 @@ AnyLRSpline read_patch(const std::string& path) {
   require(objects.size() == 1, "stitch: " + path + " must hold one surface or volume (B-spline or LR), it holds " +
                                    std::to_string(objects.size()) + " objects");
   return std::move(objects[0]);
-}
-
-LRSpline<2> read_surface(const std::string& path) {
-  AnyLRSpline object = read_patch(path);
-  require(std::holds_alternative<LRSpline<2>>(object), "stitch: " + path + " must hold a surface, it holds a volume");
-  return std::get<LRSpline<2>>(object);
 }
 
 // Largest difference of the derivative across the seam between the two patches, each evaluated on its own side
@@ -63,36 +58,61 @@ const char* side_name(DomainSide s) {
   return sides[s.dir][s.end];
 }
 
-// --multiblock: the blocks made conforming across interfaces that need not match one to one (T-joints), written
-// as separate LR surfaces, with the interfaces found and the functions identified across them.
-void run_multiblock(const std::vector<std::string>& in, const std::string& out, double tolerance, bool whole_lines) {
-  std::vector<LRSpline<2>> blocks;
+// --multiblock: the blocks (planar surfaces or volumes) made conforming across interfaces that need not match one
+// to one (T-joints), written as separate LR splines, with the interfaces found and the functions identified across
+// them.
+template <int D>
+void run_multiblock(std::vector<LRSpline<D>> blocks, const std::string& out, double tolerance, bool whole_lines) {
   int before = 0;
-  for (const std::string& path : in) {
-    blocks.push_back(read_surface(path));
-    before += blocks.back().num_basis();
-  }
-  const MultiblockSpace m = multiblock_space(std::move(blocks), MultiblockOptions{tolerance, whole_lines});
+  for (const LRSpline<D>& b : blocks) before += b.num_basis();
+  const MultiblockSpace<D> m = multiblock_space(std::move(blocks), MultiblockOptions{tolerance, whole_lines});
   std::vector<AnyLRSpline> objects(m.blocks.begin(), m.blocks.end());
   write_lr_file(out, objects, "stitch");
   int after = 0;
-  for (const LRSpline<2>& b : m.blocks) after += b.num_basis();
+  for (const LRSpline<D>& b : m.blocks) after += b.num_basis();
   std::printf("%s: %zu blocks, %zu interfaces; B-splines %d before matching, %d after, %d global functions "
               "(%d on the boundary)\n",
               out.c_str(), m.blocks.size(), m.interfaces.size(), before, after, m.space.num_basis,
               static_cast<int>(m.boundary.size()));
-  for (const BlockInterface& f : m.interfaces) {
-    const auto whole = [&](int k) {
-      const LRSpline<2>& b = m.blocks[static_cast<std::size_t>(f.block[static_cast<std::size_t>(k)])];
-      const int a = f.side[static_cast<std::size_t>(k)].along();
-      const double lo = std::min(f.lo[static_cast<std::size_t>(k)], f.hi[static_cast<std::size_t>(k)]);
-      const double hi = std::max(f.lo[static_cast<std::size_t>(k)], f.hi[static_cast<std::size_t>(k)]);
-      return lo == b.domain().lo[a] && hi == b.domain().hi[a];
+  for (const BlockInterface<D>& f : m.interfaces) {
+    // Side k's common part as [lo, hi] per direction along it, and whether it is the whole side.
+    const auto part = [&](int k, bool& whole) {
+      const auto kk = static_cast<std::size_t>(k);
+      const LRSpline<D>& b = m.blocks[static_cast<std::size_t>(f.block[kk])];
+      std::string text;
+      for (int a = 0; a < D; ++a) {
+        if (a == f.side[kk].dir) continue;
+        const double lo = std::min(f.lo[kk][a], f.hi[kk][a]), hi = std::max(f.lo[kk][a], f.hi[kk][a]);
+        whole = whole && lo == b.domain().lo[a] && hi == b.domain().hi[a];
+        text += (text.empty() ? "[" : " x [") + fmt(f.lo[kk][a]) + ", " + fmt(f.hi[kk][a]) + "]";
+      }
+      return text;
     };
-    std::printf("  block %d side %s [%s, %s] - block %d side %s [%s, %s]%s\n", f.block[0], side_name(f.side[0]),
-                fmt(f.lo[0]).c_str(), fmt(f.hi[0]).c_str(), f.block[1], side_name(f.side[1]), fmt(f.lo[1]).c_str(),
-                fmt(f.hi[1]).c_str(), whole(0) && whole(1) ? "" : " (part of a side: T-joint)");
+    bool whole = true;
+    const std::string p0 = part(0, whole), p1 = part(1, whole);
+    std::printf("  block %d %s %s %s - block %d %s %s %s%s\n", f.block[0], D == 2 ? "side" : "face",
+                side_name(f.side[0]), p0.c_str(), f.block[1], D == 2 ? "side" : "face", side_name(f.side[1]), p1.c_str(),
+                whole ? "" : " (part of a side: T-joint)");
   }
+}
+
+// The blocks of every file for --multiblock: all surfaces or all volumes.
+void run_multiblock(const std::vector<std::string>& in, const std::string& out, double tolerance, bool whole_lines) {
+  std::vector<AnyLRSpline> objects;
+  for (const std::string& path : in)
+    for (AnyLRSpline& object : read_as_lr(path, "stitch")) objects.push_back(std::move(object));
+  require(objects.size() >= 2, "stitch: --multiblock needs at least two blocks (in one file or several)");
+  std::visit(
+      [&](const auto& first) {
+        using Spline = std::decay_t<decltype(first)>;
+        std::vector<Spline> blocks;
+        for (AnyLRSpline& object : objects) {
+          require(std::holds_alternative<Spline>(object), "stitch: --multiblock takes blocks of one kind (all surfaces or all volumes)");
+          blocks.push_back(std::get<Spline>(std::move(object)));
+        }
+        run_multiblock(std::move(blocks), out, tolerance, whole_lines);
+      },
+      objects.front());
 }
 
 // Each file stitched to the union of those before it (of the same dimension as the first).
@@ -134,9 +154,9 @@ void add_stitch_command(CLI::App& app, Context&) {
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("FILES", a->in, "Surfaces or volumes (B-spline or LR: .g2, .json, .lr), each sharing a side with the union of "
-                                  "those before it")
+                                  "those before it (--multiblock: every block of every file)")
       ->required()
-      ->expected(2, 1000);
+      ->expected(1, 1000);
   cmd->add_option("-o,--output", a->out, "Output LR file (.lr, .g2, .json, .vtu)")->required();
   cmd->add_option("--continuity", a->continuity, "C0 or C1 across every seam")
       ->check(CLI::IsMember({"C0", "C1", "c0", "c1"}))
@@ -148,12 +168,14 @@ void add_stitch_command(CLI::App& app, Context&) {
                 "Write the two stitched patches as two LR objects with matching seams instead of merging them (two "
                 "inputs only)");
   cmd->add_flag("--multiblock", a->multiblock,
-                "Make planar blocks whose sides meet along common segments (T-joints allowed) conforming: adapt the "
-                "knot lines along every interface, identify the B-splines across it, write the matched blocks");
+                "Make planar blocks whose sides meet along common segments, or volumes whose faces meet over common "
+                "parts (T-joints allowed), conforming: adapt the knot lines along every interface, identify the "
+                "B-splines across it, write the matched blocks");
   cmd->add_flag("--whole-lines", a->whole_lines,
                 "With --multiblock: knot lines across whole blocks, so tensor blocks stay tensor splines");
   cmd->callback([a] {
     require(!a->separate || a->in.size() == 2, "stitch: --separate takes exactly two patches");
+    require(a->multiblock || a->in.size() >= 2, "stitch: give at least two patches (one file: with --multiblock, holding several blocks)");
     require(!(a->multiblock && a->separate), "stitch: --multiblock and --separate exclude each other");
     require(a->multiblock || !a->whole_lines, "stitch: --whole-lines needs --multiblock");
     if (a->multiblock) {

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <map>
 #include <set>
 #include <string>
@@ -19,6 +20,8 @@
 #include "trivar/iga/error_norms.hpp"
 #include "trivar/iga/poisson.hpp"
 #include "trivar/iga/refined_assembly.hpp"
+#include "trivar/iga/refined_elasticity.hpp"
+#include "trivar/iga/refined_poisson.hpp"
 #include "trivar/spline/knot_insertion.hpp"
 
 namespace trivar {
@@ -54,14 +57,20 @@ LRSpline<2> affine_block(const std::vector<double>& u, const std::vector<double>
 
 // Long block [0, 2] x [0, 1]; above it [0, 1] x [1, 2] and [1, 2] x [1, 2], the latter rotated by 180 degrees.
 // The T-joint is the point (1, 1): u = 0.5 of the long block's top, not one of its knots.
+std::vector<TensorSpline<2>> t_joint_tensors() {
+  return {affine_tensor({0, 0, 0, 0.3, 0.7, 1, 1, 1}, {0, 0, 0, 0.5, 1, 1, 1}, {0, 0}, {2, 0}, {0, 1}),
+          affine_tensor({0, 0, 0, 0.25, 0.5, 1, 1, 1}, {0, 0, 0, 0.5, 1, 1, 1}, {0, 1}, {1, 0}, {0, 1}),
+          affine_tensor({0, 0, 0, 0.4, 1, 1, 1}, {0, 0, 0, 0.6, 1, 1, 1}, {2, 2}, {-1, 0}, {0, -1})};
+}
+
 std::vector<LRSpline<2>> t_joint_blocks() {
-  return {affine_block({0, 0, 0, 0.3, 0.7, 1, 1, 1}, {0, 0, 0, 0.5, 1, 1, 1}, {0, 0}, {2, 0}, {0, 1}),
-          affine_block({0, 0, 0, 0.25, 0.5, 1, 1, 1}, {0, 0, 0, 0.5, 1, 1, 1}, {0, 1}, {1, 0}, {0, 1}),
-          affine_block({0, 0, 0, 0.4, 1, 1, 1}, {0, 0, 0, 0.6, 1, 1, 1}, {2, 2}, {-1, 0}, {0, -1})};
+  std::vector<LRSpline<2>> out;
+  for (const auto& t : t_joint_tensors()) out.emplace_back(t);
+  return out;
 }
 
 // The values of the functions of block b's elements at parameter u of that block, by global id.
-std::map<int, double> values_at(const MultiblockSpace& m, int b, const Param<2>& u) {
+std::map<int, double> values_at(const MultiblockSpace<2>& m, int b, const Param<2>& u) {
   std::map<int, double> out;
   for (std::size_t e = 0; e < m.space.elements.size(); ++e) {
     const RefinedElement<2>& el = m.space.elements[e];
@@ -78,7 +87,7 @@ std::map<int, double> values_at(const MultiblockSpace& m, int b, const Param<2>&
 
 TEST(MultiblockSpace, TJointInterfacesAreConforming) {
   const std::vector<LRSpline<2>> in = t_joint_blocks();
-  const MultiblockSpace m = multiblock_space(in);
+  const MultiblockSpace<2> m = multiblock_space(in);
   ASSERT_EQ(m.interfaces.size(), 3u);
 
   // Only B-splines of the first rows along interfaces changed: the long block's top row (three of them split at
@@ -116,13 +125,14 @@ TEST(MultiblockSpace, TJointInterfacesAreConforming) {
   EXPECT_EQ(knot_at_joint, p);
 
   // Identified functions are equal on both sides of every interface.
-  for (const BlockInterface& f : m.interfaces)
+  for (const BlockInterface<2>& f : m.interfaces)
     for (int k = 1; k < 40; ++k) {
-      const double t = f.lo[0] + (f.hi[0] - f.lo[0]) * k / 40.0;
-      const auto a = values_at(m, f.block[0], side_param(m.blocks[static_cast<std::size_t>(f.block[0])], f.side[0], t));
-      const double s = f.lo[1] + (t - f.lo[0]) / (f.hi[0] - f.lo[0]) * (f.hi[1] - f.lo[1]);
-      const auto c = values_at(m, f.block[1], side_param(m.blocks[static_cast<std::size_t>(f.block[1])], f.side[1], s));
-      ASSERT_EQ(a.size(), c.size()) << t;
+      const int a0 = 1 - f.side[0].dir, a1 = f.along[a0];
+      Param<2> u0 = f.lo[0], u1 = f.lo[1];
+      u0[a0] = f.lo[0][a0] + (f.hi[0][a0] - f.lo[0][a0]) * k / 40.0;
+      u1[a1] = f.lo[1][a1] + (f.hi[1][a1] - f.lo[1][a1]) * k / 40.0;
+      const auto a = values_at(m, f.block[0], u0), c = values_at(m, f.block[1], u1);
+      ASSERT_EQ(a.size(), c.size()) << k;
       for (const auto& [id, value] : a) {
         ASSERT_TRUE(c.count(id)) << id;
         EXPECT_NEAR(value, c.at(id), 1e-13);
@@ -144,7 +154,7 @@ TEST(MultiblockSpace, TJointInterfacesAreConforming) {
 // u = x^2 - x y + 2 y^2 + x: -laplace u = -6. Dirichlet values from the L2 projection of u (exact, as u lies in
 // the space), the interior from the Galerkin system; both must be u to rounding.
 TEST(MultiblockSpace, PoissonReproducesAQuadraticOnATJointModel) {
-  const MultiblockSpace m = multiblock_space(t_joint_blocks());
+  const MultiblockSpace<2> m = multiblock_space(t_joint_blocks());
   const auto exact = [](const std::array<double, 2>& x) { return x[0] * x[0] - x[0] * x[1] + 2 * x[1] * x[1] + x[0]; };
   auto mass = assemble_refined_system<2>(
       m.space, 1, 1,
@@ -229,12 +239,8 @@ TEST(MultiblockSpace, TensorMultipatchPoissonConvergesAtTheOptimalRate) {
   std::vector<double> l2, h1;
   for (int n : {1, 2, 4}) {
     std::vector<LRSpline<2>> blocks;
-    const std::vector<TensorSpline<2>> coarse{
-        affine_tensor({0, 0, 0, 0.3, 0.7, 1, 1, 1}, {0, 0, 0, 0.5, 1, 1, 1}, {0, 0}, {2, 0}, {0, 1}),
-        affine_tensor({0, 0, 0, 0.25, 0.5, 1, 1, 1}, {0, 0, 0, 0.5, 1, 1, 1}, {0, 1}, {1, 0}, {0, 1}),
-        affine_tensor({0, 0, 0, 0.4, 1, 1, 1}, {0, 0, 0, 0.6, 1, 1, 1}, {2, 2}, {-1, 0}, {0, -1})};
-    for (const auto& c : coarse) blocks.emplace_back(refine_uniform(c, Ints<2>{n, n}));
-    const MultiblockSpace m = multiblock_space(blocks, {0.0, true});
+    for (const auto& c : t_joint_tensors()) blocks.emplace_back(refine_uniform(c, Ints<2>{n, n}));
+    const MultiblockSpace<2> m = multiblock_space(blocks, {0.0, true});
     const MultipatchSpace<2> space = tensor_multipatch(m);
     ASSERT_EQ(space.boundary.size(), 7u);  // the square's sides: three of the long block, two of each upper one
     problem.dirichlet = {DirichletCondition<2>{space.boundary, {}, [u](const double* x, double* v) { v[0] = u(x); }}};
@@ -250,6 +256,126 @@ TEST(MultiblockSpace, TensorMultipatchPoissonConvergesAtTheOptimalRate) {
   }
   // The locally matched (LR) model cannot be a tensor multipatch space: its long block is locally refined.
   EXPECT_THROW(tensor_multipatch(multiblock_space(t_joint_blocks())), Error);
+}
+
+// Two blocks: [0, 2] x [0, 1] and [0, 1] x [1, 2] above its left half. The long block's top is partly an
+// interface and partly boundary (the T-joint (1, 1) is the short block's corner).
+std::vector<LRSpline<2>> two_block_t_joint(int n = 1) {
+  return {LRSpline<2>(refine_uniform(affine_tensor({0, 0, 0, 0.3, 0.7, 1, 1, 1}, {0, 0, 0, 0.5, 1, 1, 1}, {0, 0}, {2, 0}, {0, 1}), Ints<2>{n, n})),
+          LRSpline<2>(refine_uniform(affine_tensor({0, 0, 0, 0.6, 1, 1, 1}, {0, 0, 0, 0.4, 1, 1, 1}, {0, 1}, {1, 0}, {0, 1}), Ints<2>{n, n}))};
+}
+
+// The largest difference between a discrete field (coefs component-major) and `exact` at points spread over every
+// element of a multi-block space.
+double largest_pointwise_error(const MultiblockSpace<2>& m, const Eigen::VectorXd& coefs, int components,
+                               const std::function<void(const double*, double*)>& exact) {
+  double worst = 0;
+  RefinedPoint<2> pt;
+  std::vector<double> e(static_cast<std::size_t>(components));
+  for (const RefinedElement<2>& el : m.space.elements)
+    for (double a : {0.0, 0.3, 1.0})
+      for (double b : {0.0, 0.6, 1.0}) {
+        refined_point(m.space, el, {el.box.lo[0] + a * el.box.extent(0), el.box.lo[1] + b * el.box.extent(1)}, pt);
+        exact(pt.x.data(), e.data());
+        for (int c = 0; c < components; ++c) {
+          double uh = 0;
+          for (std::size_t l = 0; l < el.ids.size(); ++l) uh += coefs[c * m.space.num_basis + el.ids[l]] * pt.R[l];
+          worst = std::max(worst, std::abs(uh - e[static_cast<std::size_t>(c)]));
+        }
+      }
+  return worst;
+}
+
+// iga's Poisson solver on the multi-block space itself (Dirichlet faces Face{dir, side, block}, projected onto the
+// functions of the boundary parts of the block sides): u = x^2 - x y + 2 y^2 + x lies in the space of affine
+// blocks, so the solution is u to rounding, on two blocks (a side partly boundary) and on three.
+TEST(MultiblockSpace, IgaPoissonReproducesAQuadraticOnTwoAndThreeBlockTJointModels) {
+  const auto u = [](const double* x) { return x[0] * x[0] - x[0] * x[1] + 2 * x[1] * x[1] + x[0]; };
+  for (const auto& blocks : {two_block_t_joint(), t_joint_blocks()}) {
+    const MultiblockSpace<2> m = multiblock_space(blocks);
+    const std::vector<Face> faces = boundary_faces(m);
+    EXPECT_EQ(faces.size(), 7u);  // two blocks: 4 (one partly boundary) + 3; three: 3 + 2 + 2
+    if (blocks.size() == 2) {
+      ASSERT_EQ(m.partial_sides.size(), 1u);
+      EXPECT_EQ(m.partial_sides[0].first, 0);
+      // The long block's top: the elements left of the joint are on the interface, those right of it not.
+      for (const RefinedElement<2>& el : m.space.elements)
+        if (el.block == 0 && el.box.hi[1] == 1.0) {
+          EXPECT_EQ(el.interface_sides == (1u << 3), el.box.hi[0] <= 0.5) << el.box.lo[0];
+        }
+    }
+    PoissonProblem<2> problem;
+    problem.source = [](const double*) { return -6.0; };
+    problem.dirichlet = {DirichletCondition<2>{faces, {}, [&](const double* x, double* v) { v[0] = u(x); }}};
+    auto solver = make_solver("cholmod");
+    const SolveResult r = solve_poisson(m.space, problem, *solver, 1);
+    EXPECT_GT(r.dofs, 10);
+    EXPECT_LT(largest_pointwise_error(m, r.coefs, 1, [&](const double* x, double* v) { v[0] = u(x); }), 1e-10) << blocks.size();
+    const ErrorNorms e = error_norms(m.space, r.coefs, 1, [&](const double* x, double* v, double* g) {
+      v[0] = u(x);
+      g[0] = 2 * x[0] - x[1] + 1;
+      g[1] = -x[0] + 4 * x[1];
+    });
+    EXPECT_LT(e.h1, 1e-9);
+  }
+}
+
+// iga's elasticity solver on the multi-block space: a linear displacement (constant strain, no body force) held on
+// the whole boundary is reproduced to rounding (the patch test across T-joints).
+TEST(MultiblockSpace, IgaElasticityPassesThePatchTestAcrossTJoints) {
+  const auto disp = [](const double* x, double* v) {
+    v[0] = 0.01 * x[0] + 0.02 * x[1] + 0.03;
+    v[1] = -0.005 * x[0] + 0.015 * x[1];
+  };
+  for (const auto& blocks : {two_block_t_joint(), t_joint_blocks()}) {
+    const MultiblockSpace<2> m = multiblock_space(blocks);
+    ElasticityProblem<2> problem;
+    problem.material = {1000.0, 0.3, 1.0};
+    problem.displacement = {DirichletCondition<2>{boundary_faces(m), {}, disp}};
+    auto solver = make_solver("cholmod");
+    const SolveResult r = solve_elasticity(m.space, problem, *solver, 1);
+    EXPECT_LT(largest_pointwise_error(m, r.coefs, 2, disp), 1e-10) << blocks.size();
+  }
+}
+
+// A manufactured solution on LR blocks matched locally (knot lines over the first rows only), the upper blocks
+// refined twice as finely as the lower one so every refinement keeps non-matching interfaces: iga's refined
+// Poisson solver converges at the optimal rates p + 1 (L2) and p (H1).
+TEST(MultiblockSpace, IgaPoissonOnLocallyMatchedBlocksConvergesAtTheOptimalRates) {
+  const double pi = std::acos(-1.0);
+  const auto u = [pi](const double* x) { return std::sin(pi * x[0] / 2) * std::sin(pi * x[1] / 2) * std::exp(x[0] / 4); };
+  PoissonProblem<2> problem;
+  problem.source = [pi](const double* x) {
+    const double s = std::sin(pi * x[0] / 2), c = std::cos(pi * x[0] / 2), t = std::sin(pi * x[1] / 2), e = std::exp(x[0] / 4);
+    return -((-pi * pi / 4 * s + pi / 4 * c + s / 16) * t * e - pi * pi / 4 * s * t * e);
+  };
+  const ExactSolution<2> exact = [pi, u](const double* x, double* value, double* grad) {
+    value[0] = u(x);
+    const double s = std::sin(pi * x[0] / 2), c = std::cos(pi * x[0] / 2), t = std::sin(pi * x[1] / 2),
+                 d = std::cos(pi * x[1] / 2), e = std::exp(x[0] / 4);
+    grad[0] = (pi / 2 * c + s / 4) * t * e;
+    grad[1] = pi / 2 * s * d * e;
+  };
+  std::vector<double> l2, h1;
+  for (int n : {1, 2, 4}) {
+    const std::vector<TensorSpline<2>> coarse = t_joint_tensors();
+    std::vector<LRSpline<2>> blocks;
+    for (std::size_t b = 0; b < coarse.size(); ++b) {
+      const int k = b == 0 ? n : 2 * n;
+      blocks.emplace_back(refine_uniform(coarse[b], Ints<2>{k, k}));
+    }
+    const MultiblockSpace<2> m = multiblock_space(blocks);
+    problem.dirichlet = {DirichletCondition<2>{boundary_faces(m), {}, [u](const double* x, double* v) { v[0] = u(x); }}};
+    auto solver = make_solver("cholmod");
+    const SolveResult r = solve_poisson(m.space, problem, *solver, 1);
+    const ErrorNorms e = error_norms(m.space, r.coefs, 1, exact, 1);
+    l2.push_back(e.l2);
+    h1.push_back(e.h1);
+  }
+  for (std::size_t i = 1; i < l2.size(); ++i) {
+    EXPECT_NEAR(std::log2(l2[i - 1] / l2[i]), p + 1, 0.3) << l2[i - 1] << " " << l2[i];
+    EXPECT_NEAR(std::log2(h1[i - 1] / h1[i]), p, 0.3) << h1[i - 1] << " " << h1[i];
+  }
 }
 
 TEST(MultiblockSpace, BadBlocksGiveOneLineErrors) {

@@ -270,6 +270,30 @@ TEST(LRSpline, DerivativesMatchFiniteDifferencesAfterRefinement) {
   }
 }
 
+// A parameter one ulp below an interior knot whose product with the element locator's grid scale rounds up to the
+// next grid cell: it is still found in its element (the lower one) and evaluates as the tensor spline does.
+TEST(LRSpline, ParametersJustBelowAKnotFindTheirElement) {
+  std::array<std::vector<double>, 3> t;
+  const std::array<int, 3> n{6, 7, 4};
+  for (int k = 0; k < 3; ++k) {
+    t[static_cast<std::size_t>(k)] = {0, 0, 0};
+    for (int i = 1; i < n[static_cast<std::size_t>(k)]; ++i) t[static_cast<std::size_t>(k)].push_back(static_cast<double>(i) / n[static_cast<std::size_t>(k)]);
+    t[static_cast<std::size_t>(k)].insert(t[static_cast<std::size_t>(k)].end(), {1, 1, 1});
+  }
+  std::vector<double> c;
+  for (int i = 0; i < 8 * 9 * 6 * 3; ++i) c.push_back(std::sin(0.37 * i));
+  const TensorSpline<3> s({KnotVector(2, t[0]), KnotVector(2, t[1]), KnotVector(2, t[2])}, 3, false, c);
+  const LRSpline<3> lr(s);
+  const double below = std::nextafter(5.0 / 6.0, 0.0);  // 168 elements: a 6^3 grid, 6 * below rounds to 5
+  ASSERT_EQ(below * 6, 5.0);
+  double x[3], y[3];
+  for (double w : {0.0, 0.5, 1.0}) {
+    lr.eval({below, 1.0 / 3.0, w}, x);
+    s.eval({below, 1.0 / 3.0, w}, y);
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(x[k], y[k], 1e-14);
+  }
+}
+
 TEST(LRSpline, BatchEvaluationIsThreadCountIndependent) {
   const auto s = test::random_spline<3>({3, 3, 3}, {4, 4, 4}, 3, false, 71);
   LRSpline<3> lr(s);

@@ -60,7 +60,8 @@ SideKnots<D> side_trace_knots(const LRSpline<D>& s, DomainSide side) {
 }
 
 template <int D>
-int insert_side_knot_lines(LRSpline<D>& s, DomainSide side, const std::type_identity_t<SideKnots<D>>& knots, int rows) {
+int insert_side_knot_lines(LRSpline<D>& s, DomainSide side, const std::type_identity_t<SideKnots<D>>& knots, int rows,
+                           const Box<D>* part) {
   // The depth of the first rows: the innermost end of their supports across the side.
   double depth = rows > 0 ? side.value(s) : (side.end == 0 ? s.domain().hi[side.dir] : s.domain().lo[side.dir]);
   for (int row = 0; row < rows; ++row)
@@ -72,7 +73,7 @@ int insert_side_knot_lines(LRSpline<D>& s, DomainSide side, const std::type_iden
   for (int a = 0; a < D; ++a)
     for (const auto& [value, m] : knots[static_cast<std::size_t>(a)]) {
       if (a == side.dir || value <= s.domain().lo[a] || value >= s.domain().hi[a]) continue;
-      Param<D> lo = s.domain().lo, hi = s.domain().hi;
+      Param<D> lo = part ? part->lo : s.domain().lo, hi = part ? part->hi : s.domain().hi;
       lo[side.dir] = std::min(depth, side.value(s));
       hi[side.dir] = std::max(depth, side.value(s));
       lines.push_back(MeshRectangle<D>::make(a, value, lo, hi, std::min(m, s.degree(a))));
@@ -86,7 +87,7 @@ template std::vector<int> side_row(const LRSpline<2>&, DomainSide, int);
 template std::vector<int> side_row(const LRSpline<3>&, DomainSide, int);
 template SideKnots<2> side_trace_knots<2>(const LRSpline<2>&, DomainSide);
 template SideKnots<3> side_trace_knots<3>(const LRSpline<3>&, DomainSide);
-template int insert_side_knot_lines<2>(LRSpline<2>&, DomainSide, const SideKnots<2>&, int);
-template int insert_side_knot_lines<3>(LRSpline<3>&, DomainSide, const SideKnots<3>&, int);
+template int insert_side_knot_lines<2>(LRSpline<2>&, DomainSide, const SideKnots<2>&, int, const Box<2>*);
+template int insert_side_knot_lines<3>(LRSpline<3>&, DomainSide, const SideKnots<3>&, int, const Box<3>*);
 
 }  // namespace trivar

@@ -51,9 +51,12 @@ SideKnots<D> side_trace_knots(const LRSpline<D>& s, DomainSide side);
 // Inserts, for each direction along the side and each (value, multiplicity) strictly inside the side's range, a
 // knot line (plane) segment across the side over the whole side, from the side inwards over the supports of rows
 // 0 .. rows - 1 (LR refinement, the geometry is unchanged); rows <= 0: across the whole domain (a tensor spline
-// stays one). Returns the number of segments that changed the spline. Throws trivar::Error (from the LR
-// refinement) when a segment would end inside an element.
+// stays one). With `part` (volumes), a plane spans only part's range in the other direction along the face (the
+// common part of a face with a neighbour: the face is refined where the neighbour needs it, not across the
+// whole face); part's ends must lie on mesh planes there. Returns the number of segments that changed the
+// spline. Throws trivar::Error (from the LR refinement) when a segment would end inside an element.
 template <int D>
-int insert_side_knot_lines(LRSpline<D>& s, DomainSide side, const std::type_identity_t<SideKnots<D>>& knots, int rows);
+int insert_side_knot_lines(LRSpline<D>& s, DomainSide side, const std::type_identity_t<SideKnots<D>>& knots, int rows,
+                           const Box<D>* part = nullptr);
 
 }  // namespace trivar

@@ -43,6 +43,7 @@ void gradient_and_laplacian(const RefinedPoint<D>& p, const std::vector<int>& id
 template <int D>
 std::vector<double> residual_indicators(const RefinedSpace<D>& g, const PoissonProblem<D>& problem, const Eigen::VectorXd& coefs, int threads) {
   require(!problem.conductivity, "iga: the residual indicator supports conductivity k = 1 only");
+  require(g.blocks.empty(), "iga: the residual indicator needs a space on one parameter domain, not a multi-block one");
   const int E = g.num_elements();
   const Box<D>& dom = g.domain;
   std::vector<double> eta(static_cast<std::size_t>(E));

@@ -10,14 +10,10 @@ FixedDofs project_dirichlet(const RefinedSpace<D>& g, int components,
                             const std::vector<DirichletCondition<D>>& conditions) {
   return project_per_component<D>(
       g.num_basis, components, conditions,
-      [&](const Face& f) {
-        require(f.dir >= 0 && f.dir < D && (f.side == 0 || f.side == 1) && f.patch == 0,
-                "iga: no such face of the locally refined domain");
-        return g.face_basis[static_cast<std::size_t>(2 * f.dir + f.side)];
-      },
+      [&](const Face& f) { return boundary_face_basis(g, f); },
       [&](const Face& f, auto&& body) {
         for (const auto& el : g.elements) {
-          if (!on_domain_face(g.domain, el.box, f)) continue;
+          if (!on_boundary_face(g, el, f)) continue;
           for_each_side_point<D>(g, el, f.dir, f.side, g.degrees[0] + 2,
                                  [&](const Param<D>&, const RefinedPoint<D>& p, double w, const std::array<double, D>&) {
                                    body(p.x.data(), w, std::span<const int>(el.ids), std::span<const double>(p.R));

@@ -20,7 +20,7 @@ void add_side_loads(const RefinedSpace<D>& geometry, const RefinedElement<D>& el
   const Eigen::Index m = static_cast<Eigen::Index>(element.ids.size());
   std::vector<double> t(static_cast<std::size_t>(components));
   for (const Face& f : faces) {
-    if (!on_domain_face(geometry.domain, element.box, f)) continue;
+    if (!on_boundary_face(geometry, element, f)) continue;
     for_each_side_point<D>(geometry, element, f.dir, f.side, geometry.degrees[0] + 2,
                            [&](const Param<D>&, const RefinedPoint<D>& q, double w, const std::array<double, D>& n) {
                              load(q.x.data(), n.data(), t.data());

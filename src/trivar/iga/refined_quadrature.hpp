@@ -6,6 +6,7 @@
 #include <array>
 #include <utility>
 
+#include "trivar/core/error.hpp"
 #include "trivar/core/gauss_legendre.hpp"
 #include "trivar/iga/boundary_integral.hpp"
 #include "trivar/iga/refined_space.hpp"
@@ -53,6 +54,26 @@ void for_each_element_point(const RefinedElement<D>& element, int n, Body&& body
 template <int D>
 bool on_domain_face(const Box<D>& domain, const Box<D>& box, const Face& face) {
   return face.side == 0 ? box.lo[face.dir] == domain.lo[face.dir] : box.hi[face.dir] == domain.hi[face.dir];
+}
+
+// Whether side (face.dir, face.side) of an element lies on the boundary face `face` of the space: of the domain,
+// or in a multi-block space of the element's block (Face::patch) and on no interface.
+template <int D>
+bool on_boundary_face(const RefinedSpace<D>& space, const RefinedElement<D>& element, const Face& face) {
+  if (space.blocks.empty()) return on_domain_face(space.domain, element.box, face);
+  if (element.block != face.patch || ((element.interface_sides >> (2 * face.dir + face.side)) & 1u)) return false;
+  return on_domain_face(space.blocks[static_cast<std::size_t>(element.block)].domain, element.box, face);
+}
+
+// The functions non-zero on a boundary face of the space; throws trivar::Error for a face it does not have.
+template <int D>
+const std::vector<int>& boundary_face_basis(const RefinedSpace<D>& space, const Face& face) {
+  const bool multi = !space.blocks.empty();
+  require(face.dir >= 0 && face.dir < D && (face.side == 0 || face.side == 1) && face.patch >= 0 &&
+              face.patch < (multi ? static_cast<int>(space.blocks.size()) : 1),
+          multi ? "iga: no such face of the multi-block domain" : "iga: no such face of the locally refined domain");
+  const auto k = static_cast<std::size_t>(2 * face.dir + face.side);
+  return multi ? space.blocks[static_cast<std::size_t>(face.patch)].face_basis[k] : space.face_basis[k];
 }
 
 // Gauss points (n^(D-1)) on the side (dir, side) of one element: calls body(u, p, weight, normal) with the

@@ -38,6 +38,18 @@ struct RefinedElement {
   bool outside = false;
   std::vector<std::pair<Param<D>, double>> rule;
   std::vector<TrimmedSidePoint<D>> trim_sides;
+  // Multi-block spaces only: the block whose parameter domain holds the box, and the sides of the box that lie on
+  // an interface between blocks (bit 2 * dir + side), which are not boundary.
+  int block = 0;
+  unsigned interface_sides = 0;
+};
+
+// One block of a multi-block space: its parameter domain and, per face [2 * dir + side], the functions non-zero
+// on the part of that face that lies on no interface (the boundary of the union there).
+template <int D>
+struct RefinedBlock {
+  Box<D> domain{};
+  std::array<std::vector<int>, 2 * D> face_basis;
 };
 
 template <int D>
@@ -49,6 +61,10 @@ struct RefinedSpace {
   std::vector<RefinedElement<D>> elements;
   std::array<std::vector<int>, 2 * D> face_basis;  // [2 * dir + side]: functions non-zero on that domain face
   std::function<int(const Param<D>&)> locate;   // the element containing a parameter of the domain
+  // Multi-block spaces (blocks with their own parameter domains joined along interfaces, possibly with T-joints:
+  // fit/multiblock_space): one entry per block, Face::patch names the block, and `domain`, `face_basis` and
+  // `locate` are unused. Empty for a space on one domain.
+  std::vector<RefinedBlock<D>> blocks;
 
   int num_elements() const { return static_cast<int>(elements.size()); }
   int degree(int k) const { return degrees[k]; }

@@ -70,8 +70,17 @@ std::vector<Face> faces_in_side_plane(const RefinedSpace<D>& space, const std::s
     hi = std::max(hi, space.control[static_cast<std::size_t>(D * i + axis)]);
   }
   std::vector<std::pair<Face, std::vector<int>>> candidates;
-  for (int dir = 0; dir < D; ++dir)
-    for (int s = 0; s < 2; ++s) candidates.emplace_back(Face{dir, s, 0}, space.face_basis[static_cast<std::size_t>(2 * dir + s)]);
+  // A multi-block space: every block face with a part on the boundary (a face wholly on interfaces has none).
+  const int blocks = std::max<int>(1, static_cast<int>(space.blocks.size()));
+  for (int b = 0; b < blocks; ++b)
+    for (int dir = 0; dir < D; ++dir)
+      for (int s = 0; s < 2; ++s) {
+        const Face f{dir, s, b};
+        const std::vector<int>& ids = space.blocks.empty() ? space.face_basis[static_cast<std::size_t>(2 * dir + s)]
+                                                           : space.blocks[static_cast<std::size_t>(b)].face_basis[static_cast<std::size_t>(2 * dir + s)];
+        if (!space.blocks.empty() && ids.empty()) continue;
+        candidates.emplace_back(f, ids);
+      }
   return side_faces::in_plane<D>(
       side, candidates,
       [&](const Face&, int G, double* out) {

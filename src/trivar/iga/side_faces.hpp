@@ -16,7 +16,8 @@ struct RefinedSpace;
 template <int D>
 std::vector<Face> faces_in_side_plane(const MultipatchSpace<D>& space, const std::string& side);
 
-// The same on a locally refined space (refined_space.hpp), whose faces are Face{dir, side, 0}.
+// The same on a locally refined space (refined_space.hpp), whose faces are Face{dir, side, 0}, or Face{dir, side,
+// block} on the block faces that reach the boundary of a multi-block space.
 template <int D>
 std::vector<Face> faces_in_side_plane(const RefinedSpace<D>& space, const std::string& side);
 extern template std::vector<Face> faces_in_side_plane(const MultipatchSpace<2>&, const std::string&);

@@ -98,6 +98,10 @@ void ElementEvaluator<D>::build_start_grid() {
     grid_n_[k] = std::clamp(static_cast<int>(std::ceil(per_direction)), 1, 1 << (18 / D));
     grid_scale_[k] = grid_n_[k] / (domain_.hi[k] - domain_.lo[k]);
     cells *= static_cast<std::size_t>(grid_n_[k]);
+    auto& bounds = grid_bounds_[static_cast<std::size_t>(k)];
+    bounds.resize(static_cast<std::size_t>(grid_n_[k]) + 1);
+    for (int i = 0; i < grid_n_[k]; ++i) bounds[static_cast<std::size_t>(i)] = domain_.lo[k] + i / grid_scale_[k];
+    bounds.back() = domain_.hi[k];
   }
   grid_start_.resize(cells);
   for (std::size_t c = 0; c < cells; ++c) {
@@ -106,8 +110,8 @@ void ElementEvaluator<D>::build_start_grid() {
     for (int k = 0; k < D; ++k) {
       const auto i = static_cast<int>(rest % static_cast<std::size_t>(grid_n_[k]));
       rest /= static_cast<std::size_t>(grid_n_[k]);
-      cell.lo[k] = domain_.lo[k] + i / grid_scale_[k];
-      cell.hi[k] = i + 1 == grid_n_[k] ? domain_.hi[k] : domain_.lo[k] + (i + 1) / grid_scale_[k];
+      cell.lo[k] = grid_bounds_[static_cast<std::size_t>(k)][static_cast<std::size_t>(i)];
+      cell.hi[k] = grid_bounds_[static_cast<std::size_t>(k)][static_cast<std::size_t>(i) + 1];
     }
     int node = 0;
     for (;;) {
@@ -224,7 +228,12 @@ template <int D>
 int ElementEvaluator<D>::find_element(const Param<D>& u) const {
   std::size_t cell = 0;
   for (int k = D - 1; k >= 0; --k) {
-    const int i = std::clamp(static_cast<int>((u[k] - domain_.lo[k]) * grid_scale_[k]), 0, grid_n_[k] - 1);
+    int i = std::clamp(static_cast<int>((u[k] - domain_.lo[k]) * grid_scale_[k]), 0, grid_n_[k] - 1);
+    // The product can round across a cell bound (u just below a bound); the cell is the one whose stored bounds
+    // hold u, or its start node may lie in a subtree without u's element.
+    const double* bounds = grid_bounds_[static_cast<std::size_t>(k)].data();
+    if (u[k] < bounds[i]) --i;
+    else if (i + 1 < grid_n_[k] && u[k] >= bounds[i + 1]) ++i;
     cell = cell * static_cast<std::size_t>(grid_n_[k]) + static_cast<std::size_t>(i);
   }
   const Node* n = nodes_.data() + grid_start_[cell];

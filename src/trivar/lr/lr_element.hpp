@@ -56,6 +56,7 @@ private:
   // (all of them on a tensor-like mesh) without a data-dependent branch.
   Ints<D> grid_n_{};
   Param<D> grid_scale_{};
+  std::array<std::vector<double>, D> grid_bounds_;  // per direction the grid_n_ + 1 cell bounds
   std::vector<int> grid_start_;
   std::vector<int> leaf_elements_;
   std::vector<int> row_start_;      // per (element, direction): offset of its rows in rows_ (doubles)
