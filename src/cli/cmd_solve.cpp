@@ -31,6 +31,7 @@
 #include "trivar/iga/refined_poisson.hpp"
 #include "trivar/iga/refined_quadrature.hpp"
 #include "trivar/iga/refined_elasticity.hpp"
+#include "trivar/iga/refined_field.hpp"
 #include "trivar/iga/refined_modes.hpp"
 #include "trivar/iga/refined_space.hpp"
 #include "trivar/cad/trimmed_form.hpp"
@@ -238,11 +239,10 @@ double von_mises_at(const TensorSpline<D>& geometry, const TensorSpline<D>& fiel
   return von_mises<D>(m, sigma);
 }
 
-// With the PETSc back end: <stem>.pvtu and one piece per rank (iga_petsc/parallel_vtk.hpp) in the folder rank 0
-// stages; collective.
-template <int D>
-void write_parallel(const SolveArgs& a, const std::string& stem, const MultipatchSpace<D>& space,
-                    const std::vector<ParallelField>& fields) {
+// With the PETSc back end: <stem>.pvtu and one piece per rank (iga_petsc/parallel_vtk.hpp), written by
+// write(folder) on every rank into the folder rank 0 stages; collective.
+void write_parallel(const SolveArgs& a, const std::string& stem,
+                    const std::function<void(const std::filesystem::path&)>& write) {
   std::unique_ptr<OutputFolder> out;
   std::string staging;
   const std::vector<std::string> names = parallel_vtu_files(stem, rank_partition().parts);
@@ -251,7 +251,7 @@ void write_parallel(const SolveArgs& a, const std::string& stem, const Multipatc
     out = prepare_out(a);
     for (const std::string& n : names) staging = out->path(n).parent_path().string();
   });
-  write_parallel_vtu<D>(broadcast_from_rank0(staging), stem, space, fields);
+  write(broadcast_from_rank0(staging));
   if (out) out->commit();
 }
 
@@ -317,7 +317,10 @@ void run_static(const SolveArgs& a, const std::function<Discretisation<D>(int)>&
                 observed_rate(rows, i, D, true));
   if (distributed(a)) print_ranks();
   if (!a.out.empty() && distributed(a)) {
-    write_parallel<D>(a, "solution", last->space, {{last->components == 1 ? "u" : "displacement", coefs, last->components}});
+    write_parallel(a, "solution", [&](const std::filesystem::path& folder) {
+      write_parallel_vtu<D>(folder, "solution", last->space,
+                            {{last->components == 1 ? "u" : "displacement", coefs, last->components}});
+    });
   } else if (!a.out.empty()) {
     const auto out = prepare_out(a);
     write_solution<D>(out->path("solution.vtu"), *last, coefs);
@@ -501,7 +504,7 @@ void modes(const SolveArgs& a, const MultipatchSpace<D>& space, const Elasticity
   if (!a.out.empty() && distributed(a)) {
     std::vector<ParallelField> fields;
     for (int i = 0; i < a.modes; ++i) fields.push_back({"mode_" + std::to_string(i + 1), r.vectors.col(i), elastic ? D : 1});
-    write_parallel<D>(a, "modes", space, fields);
+    write_parallel(a, "modes", [&](const std::filesystem::path& folder) { write_parallel_vtu<D>(folder, "modes", space, fields); });
   } else if (!a.out.empty()) {
     const int components = elastic ? D : 1;
     std::vector<std::vector<TensorSpline<D>>> fields;
@@ -524,22 +527,6 @@ void file_modes(const SolveArgs& a, const FileInput& in) {
     const ElasticityProblem<D> pb = file_elasticity(a, f);
     modes<D>(a, f.space, &pb, {});
   }
-}
-
-// A field with `components` components at a parameter of a locally refined space (coefficients component-major),
-// from the element containing it.
-template <int D>
-std::function<void(const Param<D>&, double*)> refined_field(const RefinedSpace<D>& space, const Eigen::VectorXd& coefs,
-                                                            int components) {
-  return [&space, &coefs, components](const Param<D>& u, double* out) {
-    const RefinedElement<D>& el = space.elements[static_cast<std::size_t>(space.locate(u))];
-    RefinedPoint<D> p;
-    refined_point(space, el, u, p);
-    for (int c = 0; c < components; ++c) {
-      out[c] = 0;
-      for (std::size_t l = 0; l < el.ids.size(); ++l) out[c] += coefs[c * space.num_basis + el.ids[l]] * p.R[l];
-    }
-  };
 }
 
 // A locally refined file (an LR spline, or a G+Smo HB / THB geometry) solved on its own space: Poisson with f = 1
@@ -609,16 +596,23 @@ void run_refined_file(const SolveArgs& a, const Geometry& g) {
     fields.emplace_back(components == 1 ? "u" : "displacement", r.coefs);
   }
   if (distributed(a)) print_ranks();
-  if (a.out.empty() || (distributed(a) && rank_partition().part != 0)) return;
+  if (a.out.empty()) return;
+  const std::string stem = a.kind == "modes" ? "modes" : "solution";
+  if (distributed(a)) {
+    std::vector<ParallelField> parallel;
+    for (const auto& [name, coefs] : fields) parallel.push_back({name, coefs, components});
+    write_parallel(a, stem, [&](const std::filesystem::path& folder) {
+      write_parallel_vtu<D>(folder, stem, space, g, parallel);
+    });
+    return;
+  }
   const auto out = prepare_out(a);
-  std::vector<std::function<void(const Param<D>&, double*)>> at;
   std::vector<io::VtkPointField> vtk;
-  for (const auto& [name, coefs] : fields) at.push_back(refined_field<D>(space, coefs, components));
-  for (std::size_t i = 0; i < fields.size(); ++i)
-    vtk.push_back({fields[i].first, components, [&at, i](int, std::span<const double> u, std::span<double> v) {
-                     at[i](param_of<D>(u), v.data());
+  for (const auto& [name, coefs] : fields)
+    vtk.push_back({name, components, [&space, &c = coefs, components](int, std::span<const double> u, std::span<double> v) {
+                     refined_field_value(space, c, components, param_of<D>(u), v.data());
                    }});
-  const std::string file = out->path(a.kind == "modes" ? "modes.vtu" : "solution.vtu").string();
+  const std::string file = out->path(stem + ".vtu").string();
   if constexpr (std::is_same_v<Geometry, LRSpline<D>>)
     io::write_lr_vtu(file, AnyLRSpline(g), {}, vtk);
   else
@@ -754,7 +748,7 @@ void run_trimmed(const SolveArgs& a, const VModel& m) {
   }
   const int components = a.kind == "poisson" ? 1 : 3;
   // The field at a parameter of the box (the identity: a point).
-  const auto field = refined_field<3>(space, r.coefs, components);
+  const auto field = [&](const Param<3>& u, double* v) { refined_field_value(space, r.coefs, components, u, v); };
   double volume = 0, mean = 0;
   for (const RefinedElement<3>& el : space.elements)
     for_each_element_point<3>(el, a.degree + 2, [&](const Param<3>& u, double w) {

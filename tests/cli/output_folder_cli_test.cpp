@@ -90,6 +90,9 @@ TEST_F(OutputFolderCli, AFileOrAForeignFolderIsNeverReplaced) {
   write("slices", "a file named like the output folder\n");
   refused("slice box.json --out slices --layer 1 --dpi 50", "exists and is not a folder");
   refused("slice box.json --out slices --layer 1 --dpi 50 --force", "exists and is not a folder");
+  // A file where a parent folder would be made is refused before solving (no output line, nothing written).
+  refused("solve poisson box.json --out notes.txt/out", "notes.txt is not a folder");
+  refused("slice box.json --out notes.txt/deep/out --layer 1 --dpi 50", "notes.txt is not a folder");
   fs::create_directory(work_ / "mine");
   write("mine/keep.txt", "keep me\n");
   write("mine/layer_00000.png", "not an image, but the user's\n");

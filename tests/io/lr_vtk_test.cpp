@@ -113,6 +113,33 @@ TEST(LrVtk, PointAndCellFieldsOfTheCaller) {
   EXPECT_EQ(dir.entries(), 1);
 }
 
+TEST(LrVtk, AnElementRunWritesThoseElementsAsTheWholeFileDoes) {
+  // The runs [0, 1) and [1, 3) together are the whole file: the same cells, points and fields in element order
+  // (elements share no points, so a run's points are a contiguous slice of the whole file's).
+  test::TempDir dir;
+  const LRSpline<2> s = identity_surface();
+  const io::VtkPointField uv{"uv", 1, [](int, std::span<const double> u, std::span<double> out) { out[0] = u[0] * u[1]; }};
+  io::write_lr_vtu(dir.file("all.vtu"), AnyLRSpline(s), {}, {uv});
+  io::write_lr_vtu(dir.file("a.vtu"), AnyLRSpline(s), {.first_element = 0, .last_element = 1}, {uv});
+  io::write_lr_vtu(dir.file("b.vtu"), AnyLRSpline(s), {.first_element = 1, .last_element = 3}, {uv});
+  const test::VtuPiece all = test::read_vtu(dir.file("all.vtu")), a = test::read_vtu(dir.file("a.vtu")),
+                       b = test::read_vtu(dir.file("b.vtu"));
+  ASSERT_EQ(all.cells, 3);
+  EXPECT_EQ(a.cells, 1);
+  EXPECT_EQ(b.cells, 2);
+  EXPECT_EQ(a.points + b.points, all.points);
+  for (const char* name : {"Points", "param", "uv", "element", "support"}) {
+    std::vector<double> joined = a.arrays.at(name);
+    joined.insert(joined.end(), b.arrays.at(name).begin(), b.arrays.at(name).end());
+    EXPECT_EQ(joined, all.arrays.at(name)) << name;
+  }
+  const std::string bad = dir.file("bad.vtu");
+  EXPECT_THROW(io::write_lr_vtu(bad, AnyLRSpline(s), {.first_element = 2, .last_element = 1}), Error);
+  EXPECT_THROW(io::write_lr_vtu(bad, AnyLRSpline(s), {.first_element = 0, .last_element = 4}), Error);
+  EXPECT_THROW(io::write_lr_vtu(bad, AnyLRSpline(s), {.first_element = -1}), Error);
+  EXPECT_EQ(dir.entries(), 3);
+}
+
 TEST(LrVtk, InvalidOptionsWriteNothing) {
   test::TempDir dir;
   EXPECT_THROW(io::write_lr_vtu(dir.file("a.vtu"), AnyLRSpline(identity_surface()), {.cells = io::LRVtkCells::sampled, .samples_per_element = 0}), Error);

@@ -1,6 +1,8 @@
 #include "trivar/core/output_folder.hpp"
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <set>
 #include <unistd.h>
@@ -94,6 +96,13 @@ fs::path check_output_folder(const std::string& target, const OutputFolderOption
     const fs::path input_folder = fs::weakly_canonical(fs::absolute(in)).parent_path();
     require(!contains(folder, input_folder), what + " is the folder of the input " + in + " or contains it; give a new folder");
   }
+  // The files are staged beside the folder, which is created with its missing parents: the nearest existing
+  // parent must be a folder trivar may write into (checked here, or the failure comes after the computation).
+  fs::path parent = folder.parent_path();
+  while (!fs::exists(fs::status(parent)) && parent.has_relative_path()) parent = parent.parent_path();
+  require(fs::is_directory(parent), what + ": " + parent.string() + " is not a folder");
+  require(::access(parent.c_str(), W_OK) == 0,
+          what + ": cannot write into " + parent.string() + " (" + std::strerror(errno) + ")");
   const fs::file_status st = fs::status(folder);
   if (fs::exists(st)) {
     require(fs::is_directory(st), what + " exists and is not a folder");

@@ -1,6 +1,8 @@
 #include "trivar/iga_petsc/parallel_vtk.hpp"
 
 #include <fstream>
+#include <functional>
+#include <type_traits>
 #include <regex>
 #include <sstream>
 
@@ -9,9 +11,11 @@
 
 #include "trivar/core/atomic_file.hpp"
 #include "trivar/core/error.hpp"
+#include "trivar/iga/refined_field.hpp"
 #include "trivar/iga/solution_field.hpp"
 #include "trivar/iga_petsc/petsc_problems.hpp"
 #include "trivar/iga_petsc/petsc_session.hpp"
+#include "trivar/io/lr_vtk.hpp"
 #include "trivar/io/vtk_writer.hpp"
 #include "trivar/spline/split.hpp"
 
@@ -53,6 +57,71 @@ std::string pvtu_index(const std::filesystem::path& first_piece, const std::vect
   return os.str();
 }
 
+// Every rank with elements writes its piece through write_piece(path), then rank 0 writes the index of the
+// pieces written. A piece or the index that cannot be written (disk full, permissions) fails every rank, not just
+// its writer.
+void write_pieces_and_index(const std::filesystem::path& folder, const std::string& stem, bool has_elements,
+                            const std::function<void(const std::string& path)>& write_piece) {
+  const ElementPartition part = rank_partition();
+  const std::vector<std::string> names = parallel_vtu_files(stem, part.parts);
+  int wrote = has_elements ? 1 : 0;
+  on_every_rank([&] {
+    if (wrote) write_piece((folder / names[static_cast<std::size_t>(part.part) + 1]).string());
+  });
+  std::vector<int> all(static_cast<std::size_t>(part.parts));
+  MPI_Gather(&wrote, 1, MPI_INT, all.data(), 1, MPI_INT, 0, PETSC_COMM_WORLD);
+  on_every_rank([&] {
+    if (part.part != 0) return;
+    std::vector<std::string> written;
+    for (int r = 0; r < part.parts; ++r)
+      if (all[static_cast<std::size_t>(r)]) written.push_back(names[static_cast<std::size_t>(r) + 1]);
+    require(!written.empty(), "vtk: no rank has elements to write");
+    const std::string index = pvtu_index(folder / written.front(), written);
+    write_file_atomically((folder / names[0]).string(), [&](std::ostream& os) { os << index; });
+  });
+}
+
+template <int D>
+Param<D> as_param(std::span<const double> u) {
+  Param<D> q;
+  for (int k = 0; k < D; ++k) q[k] = u[static_cast<std::size_t>(k)];
+  return q;
+}
+
+template <int D>
+int element_count(const LRSpline<D>& g) {
+  return g.num_elements();
+}
+template <int D>
+int element_count(const HierarchicalSpline<D>& g) {
+  return g.space().num_elements();
+}
+
+// The pieces of a locally refined space: this rank's run of the element list (the elements it assembled),
+// tessellated by the serial writer of refined geometries.
+template <int D, class Geometry>
+void write_refined_pieces(const std::filesystem::path& folder, const std::string& stem, const RefinedSpace<D>& space,
+                          const Geometry& geometry, const std::vector<ParallelField>& fields) {
+  const int elements = element_count(geometry);
+  require(elements == space.num_elements(), "vtk: the geometry has " + std::to_string(elements) +
+                                                " elements, the analysis space " + std::to_string(space.num_elements()));
+  const std::pair<int, int> run = rank_partition().layers(space.num_elements());
+  io::LRVtkOptions options;
+  options.first_element = run.first;
+  options.last_element = run.second;
+  std::vector<io::VtkPointField> vtk;
+  for (const ParallelField& f : fields)
+    vtk.push_back({f.name, f.components, [&space, &f](int, std::span<const double> u, std::span<double> out) {
+                     refined_field_value(space, f.coefs, f.components, as_param<D>(u), out.data());
+                   }});
+  write_pieces_and_index(folder, stem, run.first < run.second, [&](const std::string& path) {
+    if constexpr (std::is_same_v<Geometry, LRSpline<D>>)
+      io::write_lr_vtu(path, AnyLRSpline(geometry), options, vtk);
+    else
+      io::write_hierarchical_vtu(path, {AnyHierarchicalSpline(geometry)}, options, vtk);
+  });
+}
+
 }  // namespace
 
 template <int D>
@@ -87,33 +156,36 @@ void write_parallel_vtu(const std::filesystem::path& folder, const std::string& 
                                           fields[f].components));
     vtk.push_back({fields[f].name, fields[f].components,
                    [&s = splines[f]](int piece, std::span<const double> u, std::span<double> out) {
-                     Param<D> q;
-                     for (int k = 0; k < D; ++k) q[k] = u[static_cast<std::size_t>(k)];
-                     s[static_cast<std::size_t>(piece)].eval(q, out.data());
+                     s[static_cast<std::size_t>(piece)].eval(as_param<D>(u), out.data());
                    }});
   }
-  const std::vector<std::string> names = parallel_vtu_files(stem, part.parts);
-  int wrote = pieces.empty() ? 0 : 1;
-  // A piece or the index that cannot be written (disk full, permissions) fails every rank, not just its writer.
-  on_every_rank([&] {
-    if (wrote) io::write_vtu((folder / names[static_cast<std::size_t>(part.part) + 1]).string(), pieces, {}, vtk);
-  });
-  std::vector<int> all(static_cast<std::size_t>(part.parts));
-  MPI_Gather(&wrote, 1, MPI_INT, all.data(), 1, MPI_INT, 0, PETSC_COMM_WORLD);
-  on_every_rank([&] {
-    if (part.part != 0) return;
-    std::vector<std::string> written;
-    for (int r = 0; r < part.parts; ++r)
-      if (all[static_cast<std::size_t>(r)]) written.push_back(names[static_cast<std::size_t>(r) + 1]);
-    require(!written.empty(), "vtk: no rank has elements to write");
-    const std::string index = pvtu_index(folder / written.front(), written);
-    write_file_atomically((folder / names[0]).string(), [&](std::ostream& os) { os << index; });
-  });
+  write_pieces_and_index(folder, stem, !pieces.empty(),
+                         [&](const std::string& path) { io::write_vtu(path, pieces, {}, vtk); });
+}
+
+template <int D>
+void write_parallel_vtu(const std::filesystem::path& folder, const std::string& stem, const RefinedSpace<D>& space,
+                        const LRSpline<D>& geometry, const std::vector<ParallelField>& fields) {
+  write_refined_pieces<D>(folder, stem, space, geometry, fields);
+}
+
+template <int D>
+void write_parallel_vtu(const std::filesystem::path& folder, const std::string& stem, const RefinedSpace<D>& space,
+                        const HierarchicalSpline<D>& geometry, const std::vector<ParallelField>& fields) {
+  write_refined_pieces<D>(folder, stem, space, geometry, fields);
 }
 
 template void write_parallel_vtu(const std::filesystem::path&, const std::string&, const MultipatchSpace<2>&,
                                  const std::vector<ParallelField>&);
 template void write_parallel_vtu(const std::filesystem::path&, const std::string&, const MultipatchSpace<3>&,
                                  const std::vector<ParallelField>&);
+#define TRIVAR_REFINED_PARALLEL_VTU(D)                                                                             \
+  template void write_parallel_vtu(const std::filesystem::path&, const std::string&, const RefinedSpace<D>&,        \
+                                   const LRSpline<D>&, const std::vector<ParallelField>&);                          \
+  template void write_parallel_vtu(const std::filesystem::path&, const std::string&, const RefinedSpace<D>&,        \
+                                   const HierarchicalSpline<D>&, const std::vector<ParallelField>&);
+TRIVAR_REFINED_PARALLEL_VTU(2)
+TRIVAR_REFINED_PARALLEL_VTU(3)
+#undef TRIVAR_REFINED_PARALLEL_VTU
 
 }  // namespace trivar

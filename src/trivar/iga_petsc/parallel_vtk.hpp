@@ -1,9 +1,9 @@
 #pragma once
 // Parallel VTK output of a distributed solution: every rank writes the elements it assembled (its slab of each
-// patch, ElementPartition) as `<stem>_<rank>.vtu` (io/vtk_writer.hpp, Bezier cells, one piece per patch
-// slab), and rank 0 writes `<stem>.pvtu`, the index ParaView opens to load all pieces. The folder must be the
-// same on every rank (a shared file system, as MPI-IO output assumes). Collective: a file one rank cannot write
-// makes every rank throw (petsc_session.hpp, agree_on_failure).
+// patch, ElementPartition, or its run of a locally refined space's elements) as `<stem>_<rank>.vtu`
+// (io/vtk_writer.hpp, io/lr_vtk.hpp: Bezier cells), and rank 0 writes `<stem>.pvtu`, the index ParaView opens to
+// load all pieces. The folder must be the same on every rank (a shared file system, as MPI-IO output assumes).
+// Collective: a file one rank cannot write makes every rank throw (petsc_session.hpp, agree_on_failure).
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 
 #include "trivar/iga/multipatch_space.hpp"
+#include "trivar/iga/refined_space.hpp"
 
 namespace trivar {
 
@@ -26,5 +27,16 @@ std::vector<std::string> parallel_vtu_files(const std::string& stem, int ranks);
 template <int D>
 void write_parallel_vtu(const std::filesystem::path& folder, const std::string& stem,
                         const MultipatchSpace<D>& space, const std::vector<ParallelField>& fields);
+
+// A locally refined space (LR, HB, THB; refined_space.hpp) with the geometry it was built from: every rank writes
+// the contiguous run of the element list it assembled (rank_partition), one Bezier cell per element with the
+// fields' exact Bezier coefficients, as the serial output of refined geometries (io/lr_vtk.hpp). Throws
+// trivar::Error (every rank) when the geometry's elements are not the space's.
+template <int D>
+void write_parallel_vtu(const std::filesystem::path& folder, const std::string& stem, const RefinedSpace<D>& space,
+                        const LRSpline<D>& geometry, const std::vector<ParallelField>& fields);
+template <int D>
+void write_parallel_vtu(const std::filesystem::path& folder, const std::string& stem, const RefinedSpace<D>& space,
+                        const HierarchicalSpline<D>& geometry, const std::vector<ParallelField>& fields);
 
 }  // namespace trivar

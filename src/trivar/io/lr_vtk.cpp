@@ -125,13 +125,18 @@ Piece build_piece(const Spline& s, int piece, const LRVtkOptions& opts,
   // Elements do not share points: per point coordinates, parameters, weight and fields, per cell its corners.
   int field_values = 0;
   for (const VtkPointField& f : point_fields) field_values += f.components;
-  const double points = static_cast<double>(source.num_elements()) * nodes;
+  const int first_element = opts.first_element,
+            last_element = opts.last_element < 0 ? source.num_elements() : opts.last_element;
+  require(0 <= first_element && first_element <= last_element && last_element <= source.num_elements(),
+          where + ": element run [" + std::to_string(first_element) + ", " + std::to_string(last_element) +
+              ") outside the " + std::to_string(source.num_elements()) + " elements");
+  const double points = static_cast<double>(last_element - first_element) * nodes;
   require_memory(8.0 * points * (7 + std::max(dim - 3, 0) + field_values + 2),
                  where + ": VTU output of " + format_number(points) + " points");
   std::vector<std::int64_t> conn(static_cast<std::size_t>(nodes));
   std::vector<double> x(static_cast<std::size_t>(dim)), element_weights, net;
   const int stride = dim + (s.is_rational() ? 1 : 0);
-  for (int e = 0; e < source.num_elements(); ++e) {
+  for (int e = first_element; e < last_element; ++e) {
     const Box<D> b = source.box(e);
     const auto base = static_cast<std::int64_t>(p.num_points());
     if (bezier) {

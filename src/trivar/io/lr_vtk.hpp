@@ -36,6 +36,9 @@ enum class LRVtkCells { bezier, sampled, parametric_mesh };
 struct LRVtkOptions {
   LRVtkCells cells = LRVtkCells::bezier;
   int samples_per_element = 4;  // n >= 1, sampled mode
+  // The elements written: the contiguous run of element ids [first_element, last_element) of every object
+  // (one process's share of a parallel output); last_element < 0 means up to the last element.
+  int first_element = 0, last_element = -1;
 };
 
 // An extra cell-data array: value(piece, element, out) writes `components` values for element `element` (the
@@ -46,8 +49,9 @@ struct LRVtkCellField {
   std::function<void(int piece, int element, std::span<double> out)> value;
 };
 
-// Throws trivar::Error (nothing written) for samples_per_element < 1 when sampled, degree 0 in Bezier mode, an empty list, a field without name or
-// value function, with a duplicate or reserved name, or a write failure.
+// Throws trivar::Error (nothing written) for samples_per_element < 1 when sampled, degree 0 in Bezier mode, an
+// empty list, an element run outside an object's elements, a field without name or value function, with a
+// duplicate or reserved name, or a write failure.
 void write_lr_vtu(const std::string& path, const AnyLRSpline& s, const LRVtkOptions& opts = {},
                   const std::vector<VtkPointField>& point_fields = {},
                   const std::vector<LRVtkCellField>& cell_fields = {});

@@ -207,7 +207,9 @@ struct LRSpline<D>::Batch {
   };
   std::array<std::vector<PlaneEntry>, D> plane_values;
   ElementGrid<D> grid;
-  int max_multiplicity = 1;
+  // The largest multiplicity of a rectangle strictly inside the domain in its direction (the ends, multiplicity
+  // p + 1 on open knot vectors, lie inside no support): only above 1 can a line raise an interior knot.
+  int interior_multiplicity = 1;
   bool changed = false;
   // B-splines to test, largest support volume first: a split only makes B-splines of smaller support, so every
   // contribution to a B-spline arrives (merged by add) before it is tested and split, and each distinct B-spline
@@ -217,6 +219,12 @@ struct LRSpline<D>::Batch {
   std::vector<int> stamp;
   int epoch = 0;
   std::vector<double> candidates;
+  bool all_lines = false;  // find_split chose every multiplicity-one line of its direction
+  // Per B-spline, a direction in which it has no multiplicity-one line to split by in the current mesh, or -1:
+  // a piece of a split by all such lines of direction k has none in k (its planes across k are its parent's,
+  // with the same cross-section, and the parent's lines inside its support are now its knots). Valid while the
+  // mesh does not change, so within one resolve().
+  std::vector<signed char> settled;
   std::vector<const Rect*> plane_rects;
   std::vector<double> fine, coefs;  // split(): the finer local knots and the coefficients on them
   LRBSpline<D> piece;               // split(): the piece being added
@@ -241,18 +249,24 @@ struct LRSpline<D>::Batch {
     for (std::size_t i = 0; i < s.mesh_.size(); ++i) {
       const auto& r = s.mesh_[i];
       planes[{r.dir, r.value}].push_back(static_cast<int>(i));
-      max_multiplicity = std::max(max_multiplicity, r.multiplicity);
+      note_multiplicity(r);
     }
     for (const auto& [key, ids] : planes) plane_values[static_cast<std::size_t>(key.dir)].push_back({key.value, &ids});
     for (auto& v : plane_values)
       std::sort(v.begin(), v.end(), [](const PlaneEntry& a, const PlaneEntry& b) { return a.value < b.value; });
     for (std::size_t e = 0; e < s.elements_.size(); ++e) grid.add(static_cast<int>(e), s.elements_[e]);
     stamp.assign(s.basis_.size(), 0);
+    settled.assign(s.basis_.size(), -1);
     sorted_count = s.basis_.size();
     root.resize(s.basis_.size());
     for (std::size_t i = 0; i < root.size(); ++i) root[i] = static_cast<int>(i);
     base = first_new_element = s.elements_.size();
     is_touched.assign(base, 0);
+  }
+
+  void note_multiplicity(const Rect& r) {
+    if (s.domain_.lo[r.dir] < r.value && r.value < s.domain_.hi[r.dir])
+      interior_multiplicity = std::max(interior_multiplicity, r.multiplicity);
   }
 
   int base_of(int e) const {
@@ -392,6 +406,7 @@ struct LRSpline<D>::Batch {
           for (int c = head[static_cast<std::size_t>(L[j])]; c >= 0; c = chain[static_cast<std::size_t>(c)])
             L.push_back(static_cast<int>(base) + c);
         extended.push_back(b);
+        settled[static_cast<std::size_t>(b)] = -1;
         enqueue(b);
       }
     }
@@ -501,7 +516,7 @@ struct LRSpline<D>::Batch {
     }
     ids.push_back(static_cast<int>(s.mesh_.size()));
     s.mesh_.push_back(n);
-    max_multiplicity = std::max(max_multiplicity, n.multiplicity);
+    note_multiplicity(n);
   }
 
   // A mesh line that crosses B-spline b's support completely with more multiplicity than b's knots have,
@@ -518,22 +533,25 @@ struct LRSpline<D>::Batch {
       const auto& y = fn.knots[k];
       const auto& v = plane_values[static_cast<std::size_t>(k)];
       candidates.clear();
-      for (auto it = std::upper_bound(v.begin(), v.end(), S.lo[k],
-                                      [](double x, const PlaneEntry& a) { return x < a.value; });
-           it != v.end() && it->value < S.hi[k]; ++it)
-        if (std::find(y.begin(), y.end(), it->value) == y.end() && plane_covers(*it->ids, k, it->value, S, 1))
-          candidates.push_back(it->value);
+      if (settled[static_cast<std::size_t>(b)] != k)
+        for (auto it = std::upper_bound(v.begin(), v.end(), S.lo[k],
+                                        [](double x, const PlaneEntry& a) { return x < a.value; });
+             it != v.end() && it->value < S.hi[k]; ++it)
+          if (std::find(y.begin(), y.end(), it->value) == y.end() && plane_covers(*it->ids, k, it->value, S, 1))
+            candidates.push_back(it->value);
       if (!candidates.empty()) {
         dir = k;
+        all_lines = true;
         return true;
       }
-      if (max_multiplicity > 1) {
+      if (interior_multiplicity > 1) {
         for (std::size_t i = 1; i + 1 < y.size(); ++i) {
           if (y[i] == y[i - 1] || !(S.lo[k] < y[i] && y[i] < S.hi[k])) continue;
           const int m = static_cast<int>(std::count(y.begin(), y.end(), y[i]));
           gather_plane(k, y[i], nullptr);
           if (mesh_covers<D>(plane_rects, k, y[i], S, m + 1)) {
             dir = k;
+            all_lines = false;
             candidates.assign(1, y[i]);
             return true;
           }
@@ -565,7 +583,7 @@ struct LRSpline<D>::Batch {
       piece.knots[k].assign(fine.begin() + static_cast<std::ptrdiff_t>(j),
                             fine.begin() + static_cast<std::ptrdiff_t>(j) + p + 2);
       piece.gamma = fn.gamma * coefs[j];
-      add(piece, from);
+      add(piece, from, all_lines ? k : -1);
     }
   }
 
@@ -584,7 +602,7 @@ struct LRSpline<D>::Batch {
 
   // A piece descending from `from`; a merge keeps the old B-spline's list (or root: both supports contain it).
   // b is moved into the collection when it is new.
-  void add(LRBSpline<D>& b, int from) {
+  void add(LRBSpline<D>& b, int from, int settled_dir) {
     const std::uint64_t h = knot_hash(b);
     const int same = by_knots.find(h, [&](int i) { return same_knots(s.basis_[static_cast<std::size_t>(i)], b); });
     if (same >= 0) {
@@ -598,6 +616,7 @@ struct LRSpline<D>::Batch {
     stale.push_back(id);
     dead.push_back(0);
     stamp.push_back(0);
+    settled.push_back(static_cast<signed char>(settled_dir));
     by_knots.insert(h, id);
     enqueue(id);
   }
