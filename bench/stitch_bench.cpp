@@ -79,15 +79,21 @@ std::vector<LRSpline<2>> t_joint_model(int n) {
   return {block(0, 0, 2, 2 * n + 1, 0.5), block(0, 1, 1, n, 0.25), block(1, 1, 1, n, 0.7)};
 }
 
-void BM_MultiblockTJoint(benchmark::State& state) {
-  const std::vector<LRSpline<2>> blocks = t_joint_model(static_cast<int>(state.range(0)));
+// Matching the blocks and building their conforming space, timed per iteration.
+template <int D>
+void time_matching(benchmark::State& state, const std::vector<LRSpline<D>>& blocks) {
   int functions = 0;
   for (auto _ : state) {
-    const MultiblockSpace<2> m = multiblock_space(blocks);
+    const MultiblockSpace<D> m = multiblock_space(blocks);
     functions = m.space.num_basis;
     benchmark::DoNotOptimize(functions);
   }
   state.counters["functions"] = functions;
+}
+
+void BM_MultiblockTJoint(benchmark::State& state) {
+  const std::vector<LRSpline<2>> blocks = t_joint_model(static_cast<int>(state.range(0)));
+  time_matching(state, blocks);
 }
 BENCHMARK(BM_MultiblockTJoint)->Arg(16)->Arg(64)->Arg(128)->Unit(benchmark::kMillisecond);
 
@@ -130,13 +136,7 @@ void BM_MultiblockVolumes(benchmark::State& state) {
   const std::vector<LRSpline<3>> blocks{volume_block({2 * n, n, n}, {0, 0, 0}, {2, 1, 1}),
                                         volume_block({n, n - 1, n}, {0, 0, 1}, {1, 1, 1}),
                                         volume_block({n, n + 1, n}, {1, 0, 1}, {1, 1, 1})};
-  int functions = 0;
-  for (auto _ : state) {
-    const MultiblockSpace<3> m = multiblock_space(blocks);
-    functions = m.space.num_basis;
-    benchmark::DoNotOptimize(functions);
-  }
-  state.counters["functions"] = functions;
+  time_matching(state, blocks);
 }
 BENCHMARK(BM_MultiblockVolumes)->Arg(4)->Arg(8)->Arg(16)->Unit(benchmark::kMillisecond);
 

@@ -134,12 +134,11 @@ void star_build(benchmark::State& state) {
 }
 BENCHMARK(star_build)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
-// range(1) = 1: only the faces at star points.
-void star_eval(benchmark::State& state) {
-  const trivar::TMeshSurface s(trivar::io::parse_tsm(star_model(static_cast<int>(state.range(0))), "star.tsm").mesh, 1);
+// 16 x 16 points on every face with a surface (only the faces at star points if `star_only`), per iteration.
+void eval_faces(benchmark::State& state, const trivar::TMeshSurface& s, bool star_only) {
   std::vector<int> faces;
   for (int f = 0; f < s.num_faces(); ++f)
-    if (s.method(f) != trivar::FaceMethod::none && (state.range(1) == 0 || s.method(f) == trivar::FaceMethod::star))
+    if (s.method(f) != trivar::FaceMethod::none && (!star_only || s.method(f) == trivar::FaceMethod::star))
       faces.push_back(f);
   double out[9];
   for (auto _ : state)
@@ -150,6 +149,12 @@ void star_eval(benchmark::State& state) {
           benchmark::DoNotOptimize(out);
         }
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(faces.size()) * 256);
+}
+
+// range(1) = 1: only the faces at star points.
+void star_eval(benchmark::State& state) {
+  const trivar::TMeshSurface s(trivar::io::parse_tsm(star_model(static_cast<int>(state.range(0))), "star.tsm").mesh, 1);
+  eval_faces(state, s, state.range(1) == 1);
 }
 BENCHMARK(star_eval)->Args({0, 0})->Args({0, 1})->Args({1, 0})->Args({1, 1})->Unit(benchmark::kMillisecond);
 
@@ -197,9 +202,8 @@ void star_poisson_space(benchmark::State& state) {
 }
 BENCHMARK(star_poisson_space)->Arg(2)->Arg(8)->Unit(benchmark::kMillisecond);
 
-void star_poisson_solve(benchmark::State& state) {
-  const trivar::TMeshSurface s(trivar::io::parse_tsm(planar_fan(), "fan.tsm").mesh, 1);
-  const auto space = trivar::t_mesh_space(s, static_cast<int>(state.range(0)));
+// -lap u = 1, u = 0 on the boundary, assembled and solved by CHOLMOD in every iteration.
+void solve_unit_load(benchmark::State& state, const trivar::MultipatchSpace<2>& space) {
   trivar::PoissonProblem<2> pb;
   pb.source = [](const double*) { return 1.0; };
   pb.dirichlet.push_back({space.boundary, {}, nullptr});
@@ -210,6 +214,12 @@ void star_poisson_solve(benchmark::State& state) {
   }
   state.counters["functions"] = space.num_basis;
 }
+
+void star_poisson_solve(benchmark::State& state) {
+  const trivar::TMeshSurface s(trivar::io::parse_tsm(planar_fan(), "fan.tsm").mesh, 1);
+  const auto space = trivar::t_mesh_space(s, static_cast<int>(state.range(0)));
+  solve_unit_load(state, space);
+}
 BENCHMARK(star_poisson_solve)->Arg(2)->Arg(8)->Unit(benchmark::kMillisecond);
 
 // The valence-5 fan of star_model(1) with weights 0.6 to 1.8 (rational Catmull-Clark: the rules run on w x and
@@ -218,19 +228,7 @@ void star_eval_rational(benchmark::State& state) {
   trivar::TMesh mesh = trivar::io::parse_tsm(star_model(1), "star.tsm").mesh;
   for (trivar::RationalPoint& p : mesh.points) p.w = 1.2 + 0.6 * std::sin(0.7 * p.xyz[0] + 0.45 * p.xyz[1] + 0.3);
   const trivar::TMeshSurface s(mesh, 1);
-  std::vector<int> faces;
-  for (int f = 0; f < s.num_faces(); ++f)
-    if (s.method(f) != trivar::FaceMethod::none && (state.range(0) == 0 || s.method(f) == trivar::FaceMethod::star))
-      faces.push_back(f);
-  double out[9];
-  for (auto _ : state)
-    for (int f : faces)
-      for (int j = 0; j < 16; ++j)
-        for (int i = 0; i < 16; ++i) {
-          s.eval(f, (i + 0.5) / 16, (j + 0.5) / 16, out);
-          benchmark::DoNotOptimize(out);
-        }
-  state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(faces.size()) * 256);
+  eval_faces(state, s, state.range(0) == 1);
 }
 BENCHMARK(star_eval_rational)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
@@ -256,15 +254,7 @@ BENCHMARK(t_junction_poisson_space)->Arg(2)->Arg(8)->Unit(benchmark::kMillisecon
 void t_junction_poisson_solve(benchmark::State& state) {
   const trivar::TMeshSurface s = planar_t_fan();
   const auto space = trivar::t_mesh_space(s, static_cast<int>(state.range(0)));
-  trivar::PoissonProblem<2> pb;
-  pb.source = [](const double*) { return 1.0; };
-  pb.dirichlet.push_back({space.boundary, {}, nullptr});
-  for (auto _ : state) {
-    auto solver = trivar::make_solver("cholmod");
-    const auto r = trivar::solve_poisson(space, pb, *solver, 1);
-    benchmark::DoNotOptimize(r.coefs.data());
-  }
-  state.counters["functions"] = space.num_basis;
+  solve_unit_load(state, space);
 }
 BENCHMARK(t_junction_poisson_solve)->Arg(2)->Arg(8)->Unit(benchmark::kMillisecond);
 
