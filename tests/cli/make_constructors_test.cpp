@@ -40,8 +40,6 @@ void expect_point(const std::vector<double>& x, const Point& expected) {
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(x[i], expected[i], 1e-14) << "coordinate " << i;
 }
 
-}  // namespace
-
 TEST_F(MakeCli, MakeExtrudeAlongVectorAndPath) {
   ok("make box --degree 2 --elements 2 3 --size 2 1 -o plate.json");
   ok("make extrude plate.json --direction 0.5 0 3 -o slab.json");
@@ -114,3 +112,5 @@ TEST_F(MakeCli, MakeCoonsFromCuboidFaces) {
   fails("make coons u0.json u1.json v0.json v1.json w0.json w1.json -o x.json");
   fails("make coons u0.json u1.json -o x.json");
 }
+
+}  // namespace
