@@ -26,6 +26,15 @@ struct DomainSide {
   int along() const { return 1 - dir; }
 };
 
+// The directions along a side (all but side.dir), ascending.
+template <int D>
+std::array<int, D - 1> along_directions(DomainSide side) {
+  std::array<int, D - 1> out{};
+  for (int a = 0, n = 0; a < D; ++a)
+    if (a != side.dir) out[static_cast<std::size_t>(n++)] = a;
+  return out;
+}
+
 // Per direction of the domain, the trace knots as (value, multiplicity), ascending; the side's own direction
 // holds none.
 template <int D>

@@ -23,15 +23,6 @@ std::string where(int i, DomainSide s) {
   return "block " + std::to_string(i) + " side " + names[s.dir][s.end];
 }
 
-// The directions along a side (all but side.dir), ascending.
-template <int D>
-std::array<int, D - 1> face_dirs(DomainSide side) {
-  std::array<int, D - 1> out{};
-  for (int a = 0, n = 0; a < D; ++a)
-    if (a != side.dir) out[static_cast<std::size_t>(n++)] = a;
-  return out;
-}
-
 // The point of the side at the face parameters of u (u[side.dir] is set to the side).
 template <int D>
 Param<D> on_face(const LRSpline<D>& s, DomainSide side, Param<D> u) {
@@ -51,7 +42,7 @@ double distance(const double* x, const double* y) {
 template <int D>
 bool on_side(const LRSpline<D>& s, DomainSide side, const std::type_identity_t<SideKnots<D>>& knots, const double* x,
              double tol, Param<D>& u) {
-  const auto dirs = face_dirs<D>(side);
+  const auto dirs = along_directions<D>(side);
   const Box<D>& dom = s.domain();
   constexpr int n = D == 2 ? 65 : 17;
   int count = 1;
@@ -152,7 +143,7 @@ bool common_part(const std::vector<LRSpline<D>>& B, int i, DomainSide si, int j,
   double x[(D + 1) * D], y[(D + 1) * D];
   const auto corners = [](const LRSpline<D>& s, DomainSide side) {
     std::vector<Param<D>> cs;
-    const auto dirs = face_dirs<D>(side);
+    const auto dirs = along_directions<D>(side);
     for (int c = 0; c < (1 << (D - 1)); ++c) {
       Param<D> u = on_face(s, side, s.domain().lo);
       for (int k = 0; k < D - 1; ++k) {
@@ -173,7 +164,7 @@ bool common_part(const std::vector<LRSpline<D>>& B, int i, DomainSide si, int j,
     if (on_side(C, sj, knots_j, x, tol, t)) hits.emplace_back(a, t);
   }
   if (hits.size() < 2) return false;
-  const auto da = face_dirs<D>(si), dc = face_dirs<D>(sj);
+  const auto da = along_directions<D>(si), dc = along_directions<D>(sj);
   Param<D> lo = hits[0].first, hi = hits[0].first;
   for (const auto& h : hits)
     for (int a : da) lo[a] = std::min(lo[a], h.first[a]), hi[a] = std::max(hi[a], h.first[a]);
@@ -249,7 +240,7 @@ SideKnots<D> knots_for(const std::vector<LRSpline<D>>& B, const BlockInterface<D
   const SideKnots<D> own = side_trace_knots(R, f.side[static_cast<std::size_t>(to)]);
   const SideKnots<D> theirs = side_trace_knots(S, f.side[static_cast<std::size_t>(from)]);
   SideKnots<D> out;
-  for (int b : face_dirs<D>(f.side[static_cast<std::size_t>(from)])) {
+  for (int b : along_directions<D>(f.side[static_cast<std::size_t>(from)])) {
     const int a = to_dir(f, from, b);
     auto& k = out[static_cast<std::size_t>(a)];
     const double slo = std::min(f.lo[static_cast<std::size_t>(from)][b], f.hi[static_cast<std::size_t>(from)][b]);
@@ -270,17 +261,17 @@ template <int D>
 Box<D> planes_extent(const LRSpline<D>& s, const BlockInterface<D>& f, int to) {
   const auto t = static_cast<std::size_t>(to);
   Box<D> part = s.domain(), out = s.domain();
-  for (int a : face_dirs<D>(f.side[t])) {
+  for (int a : along_directions<D>(f.side[t])) {
     part.lo[a] = std::min(f.lo[t][a], f.hi[t][a]), part.hi[a] = std::max(f.lo[t][a], f.hi[t][a]);
     out.lo[a] = part.lo[a], out.hi[a] = part.hi[a];
   }
   for (int id : side_row(s, f.side[t], 0)) {
     const auto& knots = s.basis_function(id).knots;
     bool meets = true;
-    for (int a : face_dirs<D>(f.side[t]))
+    for (int a : along_directions<D>(f.side[t]))
       meets = meets && knots[static_cast<std::size_t>(a)].back() > part.lo[a] && knots[static_cast<std::size_t>(a)].front() < part.hi[a];
     if (!meets) continue;
-    for (int a : face_dirs<D>(f.side[t])) {
+    for (int a : along_directions<D>(f.side[t])) {
       out.lo[a] = std::min(out.lo[a], knots[static_cast<std::size_t>(a)].front());
       out.hi[a] = std::max(out.hi[a], knots[static_cast<std::size_t>(a)].back());
     }
@@ -308,8 +299,8 @@ template <int D>
 std::vector<std::pair<Trace<D>, int>> traces(const std::vector<LRSpline<D>>& B, const BlockInterface<D>& f, int k) {
   const auto kk = static_cast<std::size_t>(k);
   const LRSpline<D>& S = B[static_cast<std::size_t>(f.block[kk])];
-  const auto dirs = face_dirs<D>(f.side[kk]);
-  const auto dirs0 = face_dirs<D>(f.side[0]);
+  const auto dirs = along_directions<D>(f.side[kk]);
+  const auto dirs0 = along_directions<D>(f.side[0]);
   std::vector<std::pair<Trace<D>, int>> out;
   for (int id : side_row(S, f.side[kk], 0)) {
     Trace<D> tr;
@@ -346,7 +337,7 @@ std::vector<std::pair<Trace<D>, int>> traces(const std::vector<LRSpline<D>>& B, 
 template <int D>
 bool inside_part(const BlockInterface<D>& f, int k, DomainSide side, const Box<D>& box, double eps) {
   const auto kk = static_cast<std::size_t>(k);
-  for (int a : face_dirs<D>(side)) {
+  for (int a : along_directions<D>(side)) {
     const double lo = std::min(f.lo[kk][a], f.hi[kk][a]), hi = std::max(f.lo[kk][a], f.hi[kk][a]);
     if (box.lo[a] < lo - eps || box.hi[a] > hi + eps) return false;
   }
@@ -432,7 +423,7 @@ MultiblockSpace<D> multiblock_space(std::vector<LRSpline<D>> blocks, const Multi
   std::iota(uf.parent.begin(), uf.parent.end(), 0);
   for (const BlockInterface<D>& f : out.interfaces) {
     const auto a = traces(blocks, f, 0), c = traces(blocks, f, 1);
-    const double scale = blocks[static_cast<std::size_t>(f.block[0])].domain().extent(face_dirs<D>(f.side[0])[0]);
+    const double scale = blocks[static_cast<std::size_t>(f.block[0])].domain().extent(along_directions<D>(f.side[0])[0]);
     bool same = a.size() == c.size();
     for (std::size_t k = 0; same && k < a.size(); ++k)
       for (std::size_t d = 0; same && d < a[k].first.size(); ++d) {

@@ -112,15 +112,6 @@ double lerp_exact(double x, double f0, double f1, double g0, double g1) {
   return g0 + (x - f0) / (f1 - f0) * (g1 - g0);
 }
 
-// The directions along a side, ascending.
-template <int D>
-std::array<int, D - 1> along_dirs(DomainSide side) {
-  std::array<int, D - 1> a{};
-  for (int k = 0, i = 0; k < D; ++k)
-    if (k != side.dir) a[static_cast<std::size_t>(i++)] = k;
-  return a;
-}
-
 double distance(const double* x, const double* y, int dim) {
   double d = 0;
   for (int i = 0; i < dim; ++i) d += (x[i] - y[i]) * (x[i] - y[i]);
@@ -140,7 +131,7 @@ struct SideMatch {
 // The side's values on an n^(D-1) grid (first along direction fastest).
 template <int D>
 std::vector<double> side_grid(const LRSpline<D>& s, DomainSide side, int n) {
-  const auto along = along_dirs<D>(side);
+  const auto along = along_directions<D>(side);
   int total = 1;
   for (int i = 0; i < D - 1; ++i) total *= n;
   std::vector<double> out(static_cast<std::size_t>(total * s.dim()));
@@ -292,7 +283,7 @@ Stitched<D> stitch(const LRSpline<D>& first, const LRSpline<D>& second, const St
     return "stitch: the patches share no side (closest sides differ by " + format_number(m.gap) +
            ", tolerance " + format_number(tol) + ")";
   });
-  const auto along_a = along_dirs<D>(m.a), along_b = along_dirs<D>(m.b);
+  const auto along_a = along_directions<D>(m.a), along_b = along_directions<D>(m.b);
   for (int i = 0; i < D - 1; ++i) {
     const int pa = first.degree(along_a[static_cast<std::size_t>(i)]);
     const int pb = second.degree(along_b[static_cast<std::size_t>(m.perm[static_cast<std::size_t>(i)])]);
