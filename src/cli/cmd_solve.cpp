@@ -191,18 +191,11 @@ std::vector<AnySpline> patch_pieces(const MultipatchSpace<D>& space) {
   return pieces;
 }
 
-template <int D>
-Param<D> param_of(std::span<const double> u) {
-  Param<D> p;
-  for (int k = 0; k < D; ++k) p[k] = u[static_cast<std::size_t>(k)];
-  return p;
-}
-
 // A field given per patch as a spline over the patch's parameters.
 template <int D>
 io::VtkPointField spline_field(const std::string& name, const std::vector<TensorSpline<D>>& per_patch) {
   return {name, per_patch.front().dim(), [&per_patch](int piece, std::span<const double> u, std::span<double> out) {
-            per_patch[static_cast<std::size_t>(piece)].eval(param_of<D>(u), out.data());
+            per_patch[static_cast<std::size_t>(piece)].eval(io::param_of<D>(u), out.data());
           }};
 }
 
@@ -263,9 +256,9 @@ void write_solution(const std::filesystem::path& path, const Discretisation<D>& 
     vtk.push_back({"von_mises", 1, [&](int piece, std::span<const double> u, std::span<double> out) {
                      const TensorSpline<D>& g = d.space.patches[static_cast<std::size_t>(piece)].geometry;
                      double x[D];
-                     g.eval(param_of<D>(u), x);
+                     g.eval(io::param_of<D>(u), x);
                      out[0] = von_mises_at<D>(g, fields[static_cast<std::size_t>(piece)], d.material(piece, x),
-                                              param_of<D>(u));
+                                              io::param_of<D>(u));
                    }});
   io::write_vtu(path.string(), patch_pieces(d.space), {}, vtk);
 }
@@ -382,9 +375,7 @@ void write_refined_solution(const std::filesystem::path& path, const Geometry& g
       {"estimate", 1, cell(eta, false)}, {"error_l2", 1, cell(l2, true)}, {"error_h1", 1, cell(h1, true)}};
   auto point_field = [](const auto& field) {
     return std::vector<io::VtkPointField>{{"u", 1, [&field](int, std::span<const double> u, std::span<double> out) {
-                                             Param<D> p;
-                                             for (int k = 0; k < D; ++k) p[k] = u[static_cast<std::size_t>(k)];
-                                             field.eval(p, out.data());
+                                             field.eval(io::param_of<D>(u), out.data());
                                            }}};
   };
   if constexpr (std::is_same_v<Geometry, LRSpline<D>>) {
@@ -610,7 +601,7 @@ void run_refined_file(const SolveArgs& a, const Geometry& g) {
   std::vector<io::VtkPointField> vtk;
   for (const auto& [name, coefs] : fields)
     vtk.push_back({name, components, [&space, &c = coefs, components](int, std::span<const double> u, std::span<double> v) {
-                     refined_field_value(space, c, components, param_of<D>(u), v.data());
+                     refined_field_value(space, c, components, io::param_of<D>(u), v.data());
                    }});
   const std::string file = out->path(stem + ".vtu").string();
   if constexpr (std::is_same_v<Geometry, LRSpline<D>>)
@@ -768,9 +759,9 @@ void run_trimmed(const SolveArgs& a, const VModel& m) {
     const TensorSpline<3> geometry = identity_geometry(tm.box, a.degree, a.refine);
     std::vector<io::VtkPointField> vtk{
         {components == 1 ? "u" : "displacement", components,
-         [&](int, std::span<const double> u, std::span<double> v) { field(param_of<3>(u), v.data()); }},
+         [&](int, std::span<const double> u, std::span<double> v) { field(io::param_of<3>(u), v.data()); }},
         {"inside", 1, [&](int, std::span<const double> u, std::span<double> v) {
-           const Param<3> x = param_of<3>(u);
+           const Param<3> x = io::param_of<3>(u);
            v[0] = std::any_of(m.cells().begin(), m.cells().end(), [&](const VCell& c) { return c.trim()->contains(x); }) ? 1.0 : 0.0;
          }}};
     io::write_vtu(out->path("solution.vtu").string(), {AnySpline(geometry)}, {}, vtk);

@@ -77,9 +77,7 @@ void write_fields(const MultiblockSpace<D>& m, const std::vector<std::pair<std::
   std::vector<io::VtkPointField> vtk;
   for (std::size_t i = 0; i < fields.size(); ++i)
     vtk.push_back({fields[i].first, components, [&per_block, i](int piece, std::span<const double> u, std::span<double> out) {
-                     Param<D> p;
-                     for (int k = 0; k < D; ++k) p[k] = u[static_cast<std::size_t>(k)];
-                     per_block[i][static_cast<std::size_t>(piece)].eval(p, out.data());
+                     per_block[i][static_cast<std::size_t>(piece)].eval(io::param_of<D>(u), out.data());
                    }});
   io::write_lr_vtu(vtu, std::vector<AnyLRSpline>(m.blocks.begin(), m.blocks.end()), {}, vtk);
 }

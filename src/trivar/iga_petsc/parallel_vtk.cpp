@@ -82,13 +82,6 @@ void write_pieces_and_index(const std::filesystem::path& folder, const std::stri
 }
 
 template <int D>
-Param<D> as_param(std::span<const double> u) {
-  Param<D> q;
-  for (int k = 0; k < D; ++k) q[k] = u[static_cast<std::size_t>(k)];
-  return q;
-}
-
-template <int D>
 int element_count(const LRSpline<D>& g) {
   return g.num_elements();
 }
@@ -112,7 +105,7 @@ void write_refined_pieces(const std::filesystem::path& folder, const std::string
   std::vector<io::VtkPointField> vtk;
   for (const ParallelField& f : fields)
     vtk.push_back({f.name, f.components, [&space, &f](int, std::span<const double> u, std::span<double> out) {
-                     refined_field_value(space, f.coefs, f.components, as_param<D>(u), out.data());
+                     refined_field_value(space, f.coefs, f.components, io::param_of<D>(u), out.data());
                    }});
   write_pieces_and_index(folder, stem, run.first < run.second, [&](const std::string& path) {
     if constexpr (std::is_same_v<Geometry, LRSpline<D>>)
@@ -156,7 +149,7 @@ void write_parallel_vtu(const std::filesystem::path& folder, const std::string& 
                                           fields[f].components));
     vtk.push_back({fields[f].name, fields[f].components,
                    [&s = splines[f]](int piece, std::span<const double> u, std::span<double> out) {
-                     s[static_cast<std::size_t>(piece)].eval(as_param<D>(u), out.data());
+                     s[static_cast<std::size_t>(piece)].eval(io::param_of<D>(u), out.data());
                    }});
   }
   write_pieces_and_index(folder, stem, !pieces.empty(),

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "trivar/core/box.hpp"
 #include "trivar/spline/any_spline.hpp"
 
 namespace trivar::io {
@@ -36,6 +37,14 @@ struct VtkPointField {
   int components = 1;
   std::function<void(int piece, std::span<const double> u, std::span<double> out)> value;
 };
+
+// The parameter point of a field's u (D values).
+template <int D>
+Param<D> param_of(std::span<const double> u) {
+  Param<D> p;
+  for (int k = 0; k < D; ++k) p[k] = u[static_cast<std::size_t>(k)];
+  return p;
+}
 
 enum class VtkCells { bezier, sampled, control_net };
 
