@@ -223,6 +223,28 @@ TEST(Glue, RingOfFourRevolvedCells) {
   EXPECT_TRUE(one.neighbours(0).empty());
 }
 
+TEST(Glue, ClosedEdgesRunningOppositeWays) {
+  // Two full-turn annuli stacked in z, the upper one turning the other way: they share the two circles at z = 1,
+  // which start and end at one V-point each. Every point of one circle lies on the other, so only the order of
+  // the samples can tell that the upper cell runs along them backwards.
+  const auto lower = revolve<3>(make_rectangle_profile({0, 1}, {1, 2}), Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ(),
+                                2 * std::numbers::pi);
+  const auto upper = reverse(revolve<3>(make_rectangle_profile({1, 2}, {1, 2}), Eigen::Vector3d::Zero(),
+                                        Eigen::Vector3d::UnitZ(), 2 * std::numbers::pi),
+                             2);
+  VModel m;
+  m.add_cell(VCell(lower));
+  m.add_cell(VCell(upper));
+  const VTopology& t = m.glue();
+  int shared_circles = 0;
+  for (int i = 0; i < static_cast<int>(t.curves.size()); ++i) {
+    if (t.cells_around_curve(i).size() < 2 || t.curves[i].points[0] != t.curves[i].points[1]) continue;
+    ++shared_circles;
+    for (const CellEdgeRef& e : t.curves[i].cell_edges) EXPECT_EQ(e.reversed, e.cell == 1) << "cell " << e.cell << " edge " << e.edge;
+  }
+  EXPECT_EQ(shared_circles, 2);
+}
+
 TEST(Glue, RejectsBadOptions) {
   VModel m;
   m.add_cell(VCell(test::block_at(0, 0, 0)));

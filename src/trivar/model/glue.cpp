@@ -7,6 +7,8 @@
 #include "trivar/core/error.hpp"
 #include "trivar/core/number_format.hpp"
 #include "trivar/core/tolerance.hpp"
+#include "trivar/core/vec3.hpp"
+#include "trivar/model/curve_matching.hpp"
 #include "trivar/model/point_clusters.hpp"
 #include "trivar/spline/closest_point.hpp"
 #include "trivar/spline/iso_extraction.hpp"
@@ -30,8 +32,6 @@ std::vector<int> VTopology::cells_around_curve(int curve) const {
 }
 
 namespace {
-
-using Vec3 = std::array<double, 3>;
 
 // Largest tolerance relative to the bounding-box diagonal of the model.
 constexpr double kMaxRelativeTolerance = 1e-3;
@@ -214,62 +214,51 @@ VTopology glue(std::span<const VCell> cells, const GlueOptions& options) {
   }
 
   // 2. V-curves. Samples at interior fractions k / (ns + 1) of each cell edge.
-  std::vector<std::vector<double>> edge_samples(static_cast<std::size_t>(12 * nc));
+  std::vector<std::vector<Vec3>> edge_samples(static_cast<std::size_t>(12 * nc));
   for (int c = 0; c < nc; ++c) {
     const auto& g = cells[c].geometry();
     const Box<3> dom = g.domain();
     for (int e = 0; e < 12; ++e) {
       auto& s = edge_samples[12 * c + e];
-      s.resize(static_cast<std::size_t>(3 * ns));
+      s.resize(static_cast<std::size_t>(ns));
       Param<3> u = corner_param(dom, edge_corners(e)[0]);
       const int d = edge_direction(e);
       for (int k = 0; k < ns; ++k) {
         u[d] = dom.lo[d] + (k + 1.0) / (ns + 1) * dom.extent(d);
-        g.eval(u, s.data() + 3 * k);
+        g.eval(u, s[k].data());
       }
     }
   }
   topo.cell_edges.resize(static_cast<std::size_t>(nc));
   std::map<std::pair<int, int>, std::vector<int>> curves_by_points;
+  std::vector<CurveCandidate> candidates;
   for (int c = 0; c < nc; ++c)
     for (int e = 0; e < 12; ++e) {
       const auto [c0, c1] = edge_corners(e);
       const int p0 = topo.cell_corners[c][c0], p1 = topo.cell_corners[c][c1];
       const auto& s = edge_samples[12 * c + e];
       auto& bucket = curves_by_points[{std::min(p0, p1), std::max(p0, p1)}];
-      int found = -1;
-      bool reversed = false;
+      candidates.clear();
       for (int id : bucket) {
-        const VCurve& cv = topo.curves[id];
-        const CellEdgeRef rep = cv.cell_edges.front();
-        const auto& r = edge_samples[12 * rep.cell + rep.edge];
-        for (int rev = 0; rev < 2 && found < 0; ++rev) {
-          const bool ends_match = rev ? (p0 == cv.points[1] && p1 == cv.points[0]) : (p0 == cv.points[0] && p1 == cv.points[1]);
-          if (!ends_match) continue;
-          bool equal = true;
-          for (int k = 0; k < ns && equal; ++k)
-            equal = dist(s.data() + 3 * k, r.data() + 3 * (rev ? ns - 1 - k : k)) <= tol;
-          if (!equal) {
-            const TensorSpline<1> curve = edge_curve(cells[rep.cell].geometry(), rep.edge);
-            equal = true;
-            for (int k = 0; k < ns && equal; ++k) equal = closest_point(curve, s.data() + 3 * k).distance <= tol;
-          }
-          if (equal) found = id, reversed = rev == 1;
-        }
-        if (found >= 0) break;
+        const CellEdgeRef rep = topo.curves[id].cell_edges.front();
+        candidates.push_back({topo.curves[id].points, edge_samples[12 * rep.cell + rep.edge]});
       }
+      const CurveMatch m = match_curve(candidates, p0, p1, s, tol, [&](std::size_t i, const Vec3& x) {
+        const CellEdgeRef rep = topo.curves[bucket[i]].cell_edges.front();
+        return closest_point(edge_curve(cells[rep.cell].geometry(), rep.edge), x.data()).distance;
+      });
+      int found = m.candidate < 0 ? -1 : bucket[static_cast<std::size_t>(m.candidate)];
       if (found < 0) {
         found = static_cast<int>(topo.curves.size());
         VCurve cv;
         cv.points = {p0, p1};
         bool at_point = p0 == p1;
-        for (int k = 0; k < ns && at_point; ++k)
-          at_point = dist(s.data() + 3 * k, topo.points[p0].position.data()) <= tol;
+        for (int k = 0; k < ns && at_point; ++k) at_point = distance(s[k], topo.points[p0].position) <= tol;
         cv.degenerate = at_point;
         topo.curves.push_back(std::move(cv));
         bucket.push_back(found);
       }
-      topo.curves[found].cell_edges.push_back({c, e, reversed});
+      topo.curves[found].cell_edges.push_back({c, e, m.reversed});
       topo.cell_edges[c][e] = found;
     }
 

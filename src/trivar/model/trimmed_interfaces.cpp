@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 
 #include "trivar/core/number_format.hpp"
+#include "trivar/core/vec3.hpp"
+#include "trivar/model/curve_matching.hpp"
 #include "trivar/model/point_clusters.hpp"
 #include "trivar/model/trimmed_vertices.hpp"
 #include "trivar/spline/closest_point.hpp"
@@ -14,8 +17,6 @@ namespace trivar {
 namespace {
 
 using Point3 = std::array<double, 3>;
-
-double distance3(const Point3& a, const Point3& b) { return std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]); }
 
 // Interior fractions of an edge at which edges are compared.
 constexpr std::array<double, 3> kEdgeSamples{0.25, 0.5, 0.75};
@@ -102,6 +103,7 @@ void add_curves_and_points(const VModel& model, TrimmedInterfaces& r) {
   // V-curves: edges with the same V-points at their ends and the same interior points.
   std::map<std::pair<int, int>, std::vector<int>> by_points;
   std::vector<std::array<Point3, 3>> curve_samples;
+  std::vector<CurveCandidate> candidates;
   for (int c = 0; c < n; ++c) {
     if (!model.cell(c).is_trimmed()) continue;
     const TrimmedBoundary& b = model.cell(c).trim()->boundary();
@@ -114,28 +116,16 @@ void add_curves_and_points(const VModel& model, TrimmedInterfaces& r) {
       const int p0 = vmap[static_cast<std::size_t>(t.edge_vertices[e][0])], p1 = vmap[static_cast<std::size_t>(t.edge_vertices[e][1])];
       const std::array<Point3, 3> samples = edge_samples(b, static_cast<int>(e));
       auto& bucket = by_points[{std::min(p0, p1), std::max(p0, p1)}];
-      int found = -1;
-      bool reversed = false;
-      for (int id : bucket) {
-        const VCurve& cv = r.curves[static_cast<std::size_t>(id)];
-        for (int rev = 0; rev < 2 && found < 0; ++rev) {
-          if (rev ? (p0 != cv.points[1] || p1 != cv.points[0]) : (p0 != cv.points[0] || p1 != cv.points[1])) continue;
-          const auto& ref = curve_samples[static_cast<std::size_t>(id)];
-          bool same = true;
-          for (std::size_t k = 0; k < samples.size() && same; ++k) same = distance3(samples[k], ref[rev ? 2 - k : k]) <= tol;
-          if (!same) {
-            // Differently parametrised: this edge's points on the V-curve's first edge.
-            const CellEdgeRef first = cv.cell_edges.front();
-            const TensorSpline<1>& curve = model.cell(first.cell).trim()->boundary().edges[static_cast<std::size_t>(first.edge)].curve;
-            same = curve.num_coefs() > 0;
-            for (std::size_t k = 0; k < samples.size() && same; ++k) same = closest_point(curve, samples[k].data()).distance <= tol;
-            // A closed edge matches in either direction; the tangent decides which.
-            if (same && p0 == p1 && rev == 0) same = distance3(samples[0], ref[0]) <= distance3(samples[0], ref[2]);
-          }
-          if (same) found = id, reversed = rev == 1;
-        }
-        if (found >= 0) break;
-      }
+      candidates.clear();
+      for (int id : bucket) candidates.push_back({r.curves[static_cast<std::size_t>(id)].points, curve_samples[static_cast<std::size_t>(id)]});
+      const CurveMatch m = match_curve(candidates, p0, p1, samples, tol, [&](std::size_t i, const Point3& x) {
+        // Differently parametrised: this edge's points on the V-curve's first edge.
+        const CellEdgeRef first = r.curves[static_cast<std::size_t>(bucket[i])].cell_edges.front();
+        const TensorSpline<1>& curve = model.cell(first.cell).trim()->boundary().edges[static_cast<std::size_t>(first.edge)].curve;
+        return curve.num_coefs() > 0 ? closest_point(curve, x.data()).distance : std::numeric_limits<double>::infinity();
+      });
+      int found = m.candidate < 0 ? -1 : bucket[static_cast<std::size_t>(m.candidate)];
+      const bool reversed = m.reversed;
       if (found < 0) {
         found = static_cast<int>(r.curves.size());
         VCurve cv;
@@ -153,7 +143,7 @@ void add_curves_and_points(const VModel& model, TrimmedInterfaces& r) {
         defect("cell " + std::to_string(c) + ": trimming edge " + std::to_string(e) + " is used by " +
                std::to_string(t.edge_faces[e].size()) + " face loops (a closed boundary uses every edge twice)");
       for (int s = 0; s < 2; ++s) {
-        const double d = distance3(t.edge_ends[e][static_cast<std::size_t>(s)], r.points[static_cast<std::size_t>(s ? p1 : p0)].position);
+        const double d = distance(t.edge_ends[e][static_cast<std::size_t>(s)], r.points[static_cast<std::size_t>(s ? p1 : p0)].position);
         if (d > tol)
           defect("cell " + std::to_string(c) + ": the " + (s ? "end" : "start") + " of trimming edge " + std::to_string(e) + " is " +
                  format_number(d) + " from its V-point " + std::to_string(s ? p1 : p0) + " (tolerance " + format_number(tol) + ")");
