@@ -228,6 +228,7 @@ struct LRSpline<D>::Batch {
   std::vector<const Rect*> plane_rects;
   std::vector<double> fine, coefs;  // split(): the finer local knots and the coefficients on them
   LRBSpline<D> piece;               // split(): the piece being added
+  std::vector<LRBSpline<D>> spare;  // split(): storage of split B-splines, for new pieces
   // B-splines made since the last resolve lack support lists: each one's list is filtered, once it is final,
   // from the list of the B-spline on a touched element it descends from (its root; extended by resolve).
   std::vector<int> root;
@@ -656,7 +657,12 @@ struct LRSpline<D>::Batch {
     express_in<double>(y, fine, coefs.data());
     for (std::size_t j = 0; j < coefs.size(); ++j) {
       // Built in the reused `piece` (copy assignment keeps its storage): most pieces merge into an existing
-      // B-spline, and only a new one takes the storage away.
+      // B-spline, and only a new one takes the storage away; then the storage of a B-spline split before
+      // (the same sizes) replaces it, so a split allocates nothing while split B-splines outnumber new ones.
+      if (piece.coef.capacity() == 0 && !spare.empty()) {
+        piece = std::move(spare.back());
+        spare.pop_back();
+      }
       piece.knots = fn.knots;
       piece.coef = fn.coef;
       piece.knots[k].assign(fine.begin() + static_cast<std::ptrdiff_t>(j),
@@ -664,6 +670,7 @@ struct LRSpline<D>::Batch {
       piece.gamma = fn.gamma * coefs[j];
       add(piece, from, all_lines ? k : -1);
     }
+    spare.push_back(std::move(fn));
   }
 
   // gamma c is what the function sees: keep sum gamma_i c_i for the merged B-spline.
