@@ -306,7 +306,8 @@ struct LRSpline<D>::Batch {
     Box<D> q = r.extent;
     q.lo[k] = q.hi[k] = z;
     touched.clear();
-    grid.query(q, [&](int e) {
+    const auto box = [&](int e) -> const Box<D>& { return s.elements_[static_cast<std::size_t>(e)]; };
+    grid.query_dense(q, box, [&](int e) {
       const auto& el = s.elements_[static_cast<std::size_t>(e)];
       if (el.lo[k] <= z && z <= el.hi[k] && r.overlaps_across(el)) touched.push_back(e);
     });
