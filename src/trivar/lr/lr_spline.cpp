@@ -228,6 +228,7 @@ struct LRSpline<D>::Batch {
   std::vector<const Rect*> plane_rects;
   std::vector<double> fine, coefs;  // split(): the finer local knots and the coefficients on them
   LRBSpline<D> piece;               // split(): the piece being added
+  std::vector<LRBSpline<D>> spare;  // split(): storage of split B-splines, for new pieces
   // B-splines made since the last resolve lack support lists: each one's list is filtered, once it is final,
   // from the list of the B-spline on a touched element it descends from (its root; extended by resolve).
   std::vector<int> root;
@@ -236,6 +237,10 @@ struct LRSpline<D>::Batch {
   std::size_t sorted_count = 0;    // B-splines before the batch, in id order
   std::vector<int> touched;
   std::vector<Param<D>> centres;   // refresh_lists(): element centres
+  std::vector<int> filtered;       // refresh_lists(): one list being filtered
+  std::vector<int> group_head, group_next, bucket_start, bucket_of, by_bucket;  // refresh_lists(): scratch
+  std::vector<double> cuts;                                                    // refresh_lists(): scratch
+  std::vector<int*> cursor;        // rebuild_element_lists(), finish(): write positions in the lists
   std::size_t first_new_element = 0;  // elements before the batch
   std::size_t base = 0;            // elements whose lists element_basis_ holds
   std::vector<int> origin;         // base element of element base + i
@@ -301,7 +306,8 @@ struct LRSpline<D>::Batch {
     Box<D> q = r.extent;
     q.lo[k] = q.hi[k] = z;
     touched.clear();
-    grid.query(q, [&](int e) {
+    const auto box = [&](int e) -> const Box<D>& { return s.elements_[static_cast<std::size_t>(e)]; };
+    grid.query_dense(q, box, [&](int e) {
       const auto& el = s.elements_[static_cast<std::size_t>(e)];
       if (el.lo[k] <= z && z <= el.hi[k] && r.overlaps_across(el)) touched.push_back(e);
     });
@@ -389,10 +395,11 @@ struct LRSpline<D>::Batch {
   // the lists of the pieces that survive from them.
   void resolve() {
     if (touched_base.empty()) return;
-    std::vector<int> head(base, -1), chain(origin.size(), -1);
+    std::vector<int> head(base, -1), chain(origin.size(), -1), pieces(base, 0);
     for (std::size_t i = origin.size(); i-- > 0;) {  // so that every chain ascends
       chain[i] = head[static_cast<std::size_t>(origin[i])];
       head[static_cast<std::size_t>(origin[i])] = static_cast<int>(i);
+      ++pieces[static_cast<std::size_t>(origin[i])];
     }
     ++epoch;
     for (int o : touched_base) {
@@ -402,6 +409,9 @@ struct LRSpline<D>::Batch {
         stamp[static_cast<std::size_t>(b)] = epoch;
         auto& L = s.basis_elements_[static_cast<std::size_t>(b)];
         const std::size_t n = L.size();
+        std::size_t grown = n;
+        for (std::size_t j = 0; j < n; ++j) grown += static_cast<std::size_t>(pieces[static_cast<std::size_t>(L[j])]);
+        L.reserve(grown);
         for (std::size_t j = 0; j < n; ++j)
           for (int c = head[static_cast<std::size_t>(L[j])]; c >= 0; c = chain[static_cast<std::size_t>(c)])
             L.push_back(static_cast<int>(base) + c);
@@ -429,25 +439,90 @@ struct LRSpline<D>::Batch {
   // list whose centres lie inside their support. Lists stay unsorted within a batch (only their sets matter
   // there): finish() renumbers the elements and rebuilds every list in order by transposition, so sorting here
   // would be wasted. Then every B-spline is its own root again.
+  //
+  // A root has about ten survivors, each inside a part of the root's support. The root's elements are
+  // bucketed once by their centres' last coordinate between the survivors' bounds in that direction, so a
+  // survivor tests only the buckets between its own bounds (about half the root's list on the diagonal)
+  // instead of the whole list.
   void refresh_lists() {
     // The centres once per call, in a flat array half the size of the boxes: the filter reads each element
-    // about ten times (once per surviving piece of its root), so this is most of the memory traffic.
+    // several times, so this is most of the memory traffic.
     centres.resize(s.elements_.size());
     for (std::size_t e = 0; e < centres.size(); ++e) centres[e] = s.elements_[e].center();
-    for (int b : stale) {
+    // The survivors of every root, chained from the root.
+    group_head.assign(s.basis_.size(), -1);
+    group_next.assign(stale.size(), -1);
+    for (std::size_t i = stale.size(); i-- > 0;) {
+      const int b = stale[i];
       if (dead[static_cast<std::size_t>(b)]) continue;
-      const Box<D> S = s.basis_[static_cast<std::size_t>(b)].support();
-      auto& L = s.basis_elements_[static_cast<std::size_t>(b)];
-      const auto& from = s.basis_elements_[static_cast<std::size_t>(root[static_cast<std::size_t>(b)])];
-      L.clear();
-      for (int e : from)
-        if (strictly_inside(centres[static_cast<std::size_t>(e)], S)) L.push_back(e);
-      root[static_cast<std::size_t>(b)] = b;
+      int& head = group_head[static_cast<std::size_t>(root[static_cast<std::size_t>(b)])];
+      group_next[i] = head;
+      head = static_cast<int>(i);
     }
+    for (std::size_t i = 0; i < stale.size(); ++i) {
+      const int b = stale[i];
+      if (dead[static_cast<std::size_t>(b)]) continue;
+      const int r = root[static_cast<std::size_t>(b)];
+      const int first = group_head[static_cast<std::size_t>(r)];
+      if (first < 0) continue;  // the root's group is done
+      group_head[static_cast<std::size_t>(r)] = -1;
+      filter_group(s.basis_elements_[static_cast<std::size_t>(r)], first);
+    }
+    for (int b : stale) root[static_cast<std::size_t>(b)] = b;
     for (int b : extended)
       if (dead[static_cast<std::size_t>(b)]) s.basis_elements_[static_cast<std::size_t>(b)] = {};
     stale.clear();
     extended.clear();
+  }
+
+  // The lists of the survivors chained from stale[first] (through group_next), filtered from their root's
+  // list `from`.
+  void filter_group(const std::vector<int>& from, int first) {
+    constexpr int last = D - 1;
+    cuts.clear();
+    std::size_t members = 0;
+    for (int i = first; i >= 0; i = group_next[static_cast<std::size_t>(i)], ++members) {
+      const auto& y = s.basis_[static_cast<std::size_t>(stale[static_cast<std::size_t>(i)])].knots[last];
+      cuts.push_back(y.front());
+      cuts.push_back(y.back());
+    }
+    std::sort(cuts.begin(), cuts.end());
+    cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+    // Bucket j holds the elements whose centre lies between cuts[j - 1] and cuts[j] (counting sort).
+    const auto bucket = [&](double c) {
+      return static_cast<std::size_t>(std::upper_bound(cuts.begin(), cuts.end(), c) - cuts.begin());
+    };
+    const bool bucketed = members > 2;
+    if (bucketed) {
+      bucket_start.assign(cuts.size() + 2, 0);
+      bucket_of.resize(from.size());
+      for (std::size_t j = 0; j < from.size(); ++j) {
+        bucket_of[j] = static_cast<int>(bucket(centres[static_cast<std::size_t>(from[j])][last]));
+        ++bucket_start[static_cast<std::size_t>(bucket_of[j]) + 1];
+      }
+      for (std::size_t j = 1; j < bucket_start.size(); ++j) bucket_start[j] += bucket_start[j - 1];
+      by_bucket.resize(from.size());
+      for (std::size_t j = 0; j < from.size(); ++j)
+        by_bucket[static_cast<std::size_t>(bucket_start[static_cast<std::size_t>(bucket_of[j])]++)] = from[j];
+      // bucket_start[j] is now the end of bucket j, the start of bucket j + 1.
+    }
+    for (int i = first; i >= 0; i = group_next[static_cast<std::size_t>(i)]) {
+      const int b = stale[static_cast<std::size_t>(i)];
+      const Box<D> S = s.basis_[static_cast<std::size_t>(b)].support();
+      const int* begin = from.data();
+      const int* end = begin + from.size();
+      if (bucketed) {
+        // Centres strictly inside (S.lo, S.hi) lie in the buckets after S.lo's cut up to S.hi's.
+        const std::size_t lo = bucket(S.lo[last]), hi = bucket(S.hi[last]) - 1;
+        begin = by_bucket.data() + (lo == 0 ? 0 : bucket_start[lo - 1]);
+        end = by_bucket.data() + bucket_start[hi];
+      }
+      // Filtered into scratch and copied: one allocation of the exact size instead of a list growing by doubling.
+      filtered.clear();
+      for (const int* e = begin; e != end; ++e)
+        if (strictly_inside(centres[static_cast<std::size_t>(*e)], S)) filtered.push_back(*e);
+      s.basis_elements_[static_cast<std::size_t>(b)].assign(filtered.begin(), filtered.end());
+    }
   }
 
   // resolve() and element lists for every element, so the exact test can run on the current mesh.
@@ -461,20 +536,26 @@ struct LRSpline<D>::Batch {
     is_touched.assign(base, 0);
   }
 
-  // element_basis_ as the transpose of `lists`, skipping dead B-splines; each list ascending.
-  void rebuild_element_lists(const std::vector<std::vector<int>>& lists, const std::vector<char>* skip) {
+  // element_basis_ as the transpose of `lists`, skipping dead B-splines; each list ascending. With `rename`,
+  // the lists' element e is element rename[e] of element_basis_.
+  void rebuild_element_lists(const std::vector<std::vector<int>>& lists, const std::vector<char>* skip,
+                             const std::vector<int>* rename = nullptr) {
+    const auto id = [&](int e) { return static_cast<std::size_t>(rename ? (*rename)[static_cast<std::size_t>(e)] : e); };
     std::vector<int> count(s.elements_.size(), 0);
     for (std::size_t i = 0; i < lists.size(); ++i)
       if (!skip || !(*skip)[i])
-        for (int e : lists[i]) ++count[static_cast<std::size_t>(e)];
+        for (int e : lists[i]) ++count[id(e)];
     s.element_basis_.resize(s.elements_.size());
+    // Sized first, then written through one cursor per list: no capacity test per entry.
+    cursor.resize(s.elements_.size());
     for (std::size_t e = 0; e < s.elements_.size(); ++e) {
       s.element_basis_[e].clear();
-      s.element_basis_[e].reserve(static_cast<std::size_t>(count[e]));
+      s.element_basis_[e].resize(static_cast<std::size_t>(count[e]));
+      cursor[e] = s.element_basis_[e].data();
     }
     for (std::size_t i = 0; i < lists.size(); ++i)
       if (!skip || !(*skip)[i])
-        for (int e : lists[i]) s.element_basis_[static_cast<std::size_t>(e)].push_back(static_cast<int>(i));
+        for (int e : lists[i]) *cursor[id(e)]++ = static_cast<int>(i);
   }
   void add_to_mesh(const Rect& r) {
     Rect n = r;
@@ -577,7 +658,12 @@ struct LRSpline<D>::Batch {
     express_in<double>(y, fine, coefs.data());
     for (std::size_t j = 0; j < coefs.size(); ++j) {
       // Built in the reused `piece` (copy assignment keeps its storage): most pieces merge into an existing
-      // B-spline, and only a new one takes the storage away.
+      // B-spline, and only a new one takes the storage away; then the storage of a B-spline split before
+      // (the same sizes) replaces it, so a split allocates nothing while split B-splines outnumber new ones.
+      if (piece.coef.capacity() == 0 && !spare.empty()) {
+        piece = std::move(spare.back());
+        spare.pop_back();
+      }
       piece.knots = fn.knots;
       piece.coef = fn.coef;
       piece.knots[k].assign(fine.begin() + static_cast<std::ptrdiff_t>(j),
@@ -585,6 +671,7 @@ struct LRSpline<D>::Batch {
       piece.gamma = fn.gamma * coefs[j];
       add(piece, from, all_lines ? k : -1);
     }
+    spare.push_back(std::move(fn));
   }
 
   // gamma c is what the function sees: keep sum gamma_i c_i for the merged B-spline.
@@ -661,8 +748,8 @@ struct LRSpline<D>::Batch {
     }
     s.basis_ = std::move(basis);
     s.basis_elements_ = std::move(basis_elements);
-    // The elements in id order: renumber the support lists' entries in place, then transpose twice (element
-    // lists ascending in B-spline id, then support lists ascending in element id) without a sort.
+    // The elements in id order: transpose twice (element lists ascending in B-spline id, renumbering the
+    // elements on the way, then support lists ascending in element id) without a sort.
     const std::vector<int> corner = corner_order<D>(s.elements_, first_new_element);
     std::vector<int> new_id(corner.size());
     std::vector<Box<D>> elements(corner.size());
@@ -671,12 +758,12 @@ struct LRSpline<D>::Batch {
       elements[i] = s.elements_[static_cast<std::size_t>(corner[i])];
     }
     s.elements_ = std::move(elements);
-    for (auto& list : s.basis_elements_)
-      for (int& e : list) e = new_id[static_cast<std::size_t>(e)];
-    rebuild_element_lists(s.basis_elements_, nullptr);
-    for (auto& list : s.basis_elements_) list.clear();
+    rebuild_element_lists(s.basis_elements_, nullptr, &new_id);
+    // Every support list keeps its size: overwritten in place.
+    cursor.resize(s.basis_elements_.size());
+    for (std::size_t b = 0; b < cursor.size(); ++b) cursor[b] = s.basis_elements_[b].data();
     for (std::size_t e = 0; e < s.elements_.size(); ++e)
-      for (int b : s.element_basis_[e]) s.basis_elements_[static_cast<std::size_t>(b)].push_back(static_cast<int>(e));
+      for (int b : s.element_basis_[e]) *cursor[static_cast<std::size_t>(b)]++ = static_cast<int>(e);
     std::erase_if(s.mesh_, [](const Rect& r) { return r.multiplicity == 0; });
     s.evaluator_.reset();
   }
