@@ -42,7 +42,7 @@ struct LRVtkOptions {
   int first_element = 0, last_element = -1;
   // When not empty: one run [first, last) per object instead (a process's share of a multi-block model, whose
   // run of the element list covers parts of several blocks).
-  std::vector<std::pair<int, int>> runs;
+  std::vector<std::pair<int, int>> runs{};
 };
 
 // An extra cell-data array: value(piece, element, out) writes `components` values for element `element` (the
