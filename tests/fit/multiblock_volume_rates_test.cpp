@@ -2,7 +2,8 @@
 // [0, 1]^2 x [0, 1/2] under two blocks [0, 1/2] x [0, 1] x [1/2, 1] and [1/2, 1] x [0, 1] x [1/2, 1], with 2s, s
 // and 2s elements per direction (no interface matches, and the upper blocks' common edge runs through the middle
 // of the slab's top face). u = e^x sin(y + 1/2) cos(z) (-lap u = u, Dirichlet data on the whole boundary): under
-// halving of every element the L2 and H1 errors fall at the optimal rates p + 1 and p.
+// halving of every element the L2 and H1 errors fall at the optimal rates p + 1 and p (p = 2: 32, 180 and 1,256
+// dofs, H1 errors 1.34e-2, 3.90e-3, 1.00e-3).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -43,15 +44,15 @@ TEST(MultiblockVolumeRates, SplitCubeConvergesAtTheOptimalRates) {
     auto solver = make_solver("cholmod");
     const SolveResult r = solve_poisson(m.space, pb, *solver, 1);
     const ErrorNorms e = error_norms(m.space, r.coefs, 1, exact, 1);
-    std::printf("s %d: dofs %d, elements %d, L2 %.3e, H1 %.3e\n", s, r.dofs, m.space.num_elements(), e.l2, e.h1);
     l2.push_back(e.l2);
     h1.push_back(e.h1);
   }
-  for (std::size_t i = 1; i < l2.size(); ++i) {
-    std::printf("rates L2 %.2f H1 %.2f\n", std::log2(l2[i - 1] / l2[i]), std::log2(h1[i - 1] / h1[i]));
-    EXPECT_NEAR(std::log2(l2[i - 1] / l2[i]), p + 1, 0.3) << i;
-    EXPECT_NEAR(std::log2(h1[i - 1] / h1[i]), p, 0.2) << i;
-  }
+  // The coarsest level has one element in the upper left block (pre-asymptotic: rates 2.4 and 1.8); the next
+  // halving gives 2.9 and 2.0.
+  EXPECT_GT(std::log2(l2[0] / l2[1]), p + 1 - 0.8);
+  EXPECT_GT(std::log2(h1[0] / h1[1]), p - 0.4);
+  EXPECT_NEAR(std::log2(l2[1] / l2[2]), p + 1, 0.25);
+  EXPECT_NEAR(std::log2(h1[1] / h1[2]), p, 0.1);
 }
 
 }  // namespace
