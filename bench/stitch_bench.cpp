@@ -1,12 +1,14 @@
 // Stitching and multi-block matching. BM_StitchC1: two bicubic patches of n x n B-splines with different knot
 // lines along their common side (the second rotated by 180 degrees), stitched C1 (side search, re-parametrisation,
 // knot line segments, continuity on the two seam rows) and merged into one LR spline. BM_MultiblockTJoint: three
-// biquadratic blocks with a T-joint made conforming and turned into the analysis space. Figures in bench/README.md.
+// biquadratic blocks with a T-joint made conforming and turned into the analysis space; the residual indicator and
+// an adaptive round on them. Figures in bench/README.md.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 #include <vector>
 
+#include "trivar/fit/multiblock_adaptive.hpp"
 #include "trivar/fit/multiblock_space.hpp"
 #include "trivar/fit/patch_stitching.hpp"
 #include "trivar/iga/refined_poisson.hpp"
@@ -139,6 +141,44 @@ void BM_MultiblockVolumes(benchmark::State& state) {
   time_matching(state, blocks);
 }
 BENCHMARK(BM_MultiblockVolumes)->Arg(4)->Arg(8)->Arg(16)->Unit(benchmark::kMillisecond);
+
+// The residual indicator on the T-joint model (one thread): interior jumps through each block's element locator,
+// interface jumps through the neighbour block at the mapped parameter.
+void BM_MultiblockEstimate(benchmark::State& state) {
+  const MultiblockSpace<2> m = multiblock_space(t_joint_model(static_cast<int>(state.range(0))));
+  PoissonProblem<2> problem;
+  problem.source = [](const double*) { return 1.0; };
+  problem.dirichlet = {DirichletCondition<2>{boundary_faces(m), {}, nullptr}};
+  auto solver = make_solver("cholmod");
+  const SolveResult r = solve_poisson(m.space, problem, *solver, 1);
+  const ElementAcross<2> across = multiblock_across(m);
+  for (auto _ : state) {
+    const std::vector<double> eta = residual_indicators(m.space, problem, r.coefs, 1, across);
+    benchmark::DoNotOptimize(eta.data());
+  }
+  state.counters["elements"] = m.space.num_elements();
+}
+BENCHMARK(BM_MultiblockEstimate)->Arg(16)->Arg(64)->Unit(benchmark::kMillisecond);
+
+// One adaptive round after the solve on the T-joint model: estimate, Dorfler marking (0.3), FULLSPAN refinement
+// inside the blocks and matching again (two solves per iteration: the loop's steps 0 and 1).
+void BM_MultiblockAdaptiveStep(benchmark::State& state) {
+  const std::vector<LRSpline<2>> blocks = t_joint_model(static_cast<int>(state.range(0)));
+  PoissonProblem<2> problem;
+  problem.source = [](const double*) { return 1.0; };
+  AdaptiveOptions o;
+  o.steps = 2;
+  int elements = 0;
+  for (auto _ : state) {
+    MultiblockSpace<2> m = multiblock_space(blocks);
+    problem.dirichlet = {DirichletCondition<2>{boundary_faces(m), {}, nullptr}};
+    const auto rows = adaptive_poisson(m, problem, nullptr, o, {}, nullptr, 1);
+    elements = rows.back().elements;
+    benchmark::DoNotOptimize(elements);
+  }
+  state.counters["elements"] = elements;
+}
+BENCHMARK(BM_MultiblockAdaptiveStep)->Arg(16)->Arg(64)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

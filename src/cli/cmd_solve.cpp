@@ -623,7 +623,8 @@ void run_refined_geometry(const SolveArgs& a, const HierarchicalSpline<D>& g) {
 // Several blocks in one file: matched across their interfaces (T-joints allowed) and solved on the one conforming
 // space, as they are (like LR files, --degree and --refine do not apply).
 void run_multiblock(const SolveArgs& a, const std::vector<AnyLRSpline>& blocks) {
-  require(!distributed(a), "solve: --backend petsc does not take multi-block models");
+  require(!a.adaptive || a.kind == "poisson", "solve: --adaptive on a multi-block model takes poisson");
+  require(!a.adaptive || a.space == "lr", "solve: --adaptive on a multi-block model refines its LR blocks (--space lr)");
   MultiblockSolveOptions o;
   o.kind = a.kind;
   o.physics = a.physics;
@@ -632,10 +633,31 @@ void run_multiblock(const SolveArgs& a, const std::vector<AnyLRSpline>& blocks) 
   o.material = {a.youngs, a.poisson, a.density};
   o.modes = a.modes;
   o.threads = a.threads;
+  if (a.adaptive) {
+    AdaptiveOptions adaptive;
+    adaptive.steps = a.steps;
+    adaptive.beta = a.beta;
+    adaptive.solver = a.solver;
+    o.adaptive = adaptive;
+  }
   std::unique_ptr<OutputFolder> out;
-  if (!a.out.empty()) {
-    out = prepare_out(a);
-    o.vtu = out->path(a.kind == "modes" ? "modes.vtu" : "solution.vtu").string();
+  if (distributed(a)) {
+    o.petsc = petsc_options(a);
+    o.print_ranks = print_ranks;
+    if (!a.out.empty() && !a.adaptive)
+      o.write_parallel = [&a](const std::string& stem, const std::function<void(const std::filesystem::path&)>& write) {
+        write_parallel(a, stem, write);
+      };
+  }
+  // Serial outputs: the serial back end's, or the adaptive loop's, which rank 0 writes after the last collective
+  // call.
+  if (!a.out.empty() && !o.write_parallel) {
+    const auto prepare = [&] {
+      out = prepare_out(a);
+      o.path = [&out](const std::string& name) { return out->path(name).string(); };
+    };
+    if (!distributed(a)) prepare();
+    else on_every_rank([&] { if (rank_partition().part == 0) prepare(); });
   }
   solve_multiblock(a.file, blocks, o);
   if (out) out->commit();
@@ -782,7 +804,7 @@ void run(const SolveArgs& a) {
   require(a.modes >= 1, "solve: --modes must be at least 1, got " + std::to_string(a.modes));
   if (!a.out.empty()) check_output_folder(a.out, out_options(a));
   require(!distributed(a) || !is_t_spline_file(a.file),
-          "solve: --backend petsc solves tensor, multipatch and --adaptive (LR, HB, THB) spaces, not T-splines");
+          "solve: --backend petsc solves tensor, multipatch, multi-block and --adaptive (LR, HB, THB) spaces, not T-splines");
   require(!distributed(a) || !a.study || a.out.empty(),
           "solve: --study writes its convergence table with the serial back end only");
   if (a.problem.empty()) {

@@ -8,11 +8,14 @@
 
 #include "cli.hpp"
 #include "trivar/core/error.hpp"
+#include "trivar/fit/multiblock_adaptive.hpp"
 #include "trivar/fit/multiblock_space.hpp"
+#include "trivar/iga/convergence_table.hpp"
 #include "trivar/iga/refined_elasticity.hpp"
 #include "trivar/iga/refined_modes.hpp"
 #include "trivar/iga/refined_poisson.hpp"
 #include "trivar/iga/side_faces.hpp"
+#include "trivar/iga_petsc/parallel_vtk.hpp"
 #include "trivar/io/lr_vtk.hpp"
 
 namespace trivar::cli {
@@ -82,9 +85,34 @@ void write_fields(const MultiblockSpace<D>& m, const std::vector<std::pair<std::
   io::write_lr_vtu(vtu, std::vector<AnyLRSpline>(m.blocks.begin(), m.blocks.end()), {}, vtk);
 }
 
+// Adaptive Poisson (f = 1, u = 0 on the boundary of the union): one line per step; convergence.csv / .svg,
+// mesh.vtu (the blocks' final meshes) and solution.vtu.
+template <int D>
+void solve_adaptive(MultiblockSpace<D>& m, const MultiblockSolveOptions& o, std::vector<std::string>& report) {
+  PoissonProblem<D> pb;
+  pb.source = [](const double*) { return 1.0; };
+  pb.dirichlet.push_back({boundary_faces(m), {}, nullptr});
+  RefinedPoissonSolve<D> distributed;
+  if (o.petsc) distributed = [&o](const RefinedSpace<D>& s, const PoissonProblem<D>& p) { return petsc_solve_poisson(s, p, *o.petsc); };
+  Eigen::VectorXd coefs;
+  const std::vector<ConvergenceRow> rows = adaptive_poisson<D>(m, pb, nullptr, *o.adaptive, [&](const ConvergenceRow& r) {
+    char line[200];
+    std::snprintf(line, sizeof line, "step %d: dofs %d, elements %d, estimate %.3e, assembly %.3f s, solve %.3f s", r.step, r.dofs,
+                  r.elements, r.estimate, r.assembly_seconds, r.solve_seconds);
+    report.emplace_back(line);
+  }, &coefs, o.threads, distributed);
+  report.push_back("final model: " + std::to_string(m.space.num_basis) + " functions, " + std::to_string(m.space.num_elements()) +
+                   " elements, " + std::to_string(m.interfaces.size()) + " interfaces (matched again after every step)");
+  if (!o.path) return;
+  write_convergence_csv(o.path("convergence.csv"), rows, D);
+  write_convergence_svg(o.path("convergence.svg"), rows);
+  io::write_lr_vtu(o.path("mesh.vtu"), std::vector<AnyLRSpline>(m.blocks.begin(), m.blocks.end()));
+  write_fields(m, {{"u", coefs}}, 1, o.path("solution.vtu"));
+}
+
 template <int D>
 void solve(const std::string& path, const std::vector<AnyLRSpline>& objects, const MultiblockSolveOptions& o) {
-  const MultiblockSpace<D> m = matched<D>(path, objects);
+  MultiblockSpace<D> m = matched<D>(path, objects);
   const RefinedSpace<D>& space = m.space;
   int partial = 0;
   for (const BlockInterface<D>& f : m.interfaces)
@@ -116,9 +144,17 @@ void solve(const std::string& path, const std::vector<AnyLRSpline>& objects, con
   const std::vector<Face> boundary = boundary_faces(m);
   const int components = elastic_kind ? D : 1;
   std::vector<std::pair<std::string, Eigen::VectorXd>> fields;
+  if (o.adaptive) {
+    solve_adaptive(m, o, report);
+    for (const std::string& line : report) std::printf("%s\n", line.c_str());
+    if (o.print_ranks) o.print_ranks();
+    return;
+  }
   if (o.kind == "modes") {
-    const ModesResult r = elastic_kind ? elastic_modes(space, elastic, o.modes, o.threads)
-                                       : laplace_modes(space, boundary, o.modes, o.threads);
+    const ModesResult r = o.petsc ? (elastic_kind ? petsc_elastic_modes(space, elastic, o.modes, *o.petsc)
+                                                  : petsc_laplace_modes(space, boundary, o.modes, *o.petsc))
+                                  : (elastic_kind ? elastic_modes(space, elastic, o.modes, o.threads)
+                                                  : laplace_modes(space, boundary, o.modes, o.threads));
     for (int i = 0; i < o.modes; ++i) {
       std::string line = "mode " + std::to_string(i + 1) + ": " + (elastic_kind ? "omega^2 " : "lambda ") + fmt(r.values[i]);
       if (elastic_kind) line += ", frequency " + fmt(std::sqrt(std::max(0.0, r.values[i])) / (2 * M_PI));
@@ -129,19 +165,18 @@ void solve(const std::string& path, const std::vector<AnyLRSpline>& objects, con
     std::snprintf(line, sizeof line, "dofs %d, assembly %.3f s, solve %.3f s", r.dofs, r.assembly_seconds, r.solve_seconds);
     report.emplace_back(line);
   } else {
-    auto solver = make_solver(o.solver);
     SolveResult r;
     if (o.kind == "poisson") {
       PoissonProblem<D> pb;
       pb.source = [](const double*) { return 1.0; };
       pb.dirichlet.push_back({boundary, {}, nullptr});
-      r = solve_poisson(space, pb, *solver, o.threads);
+      r = o.petsc ? petsc_solve_poisson(space, pb, *o.petsc) : solve_poisson(space, pb, *make_solver(o.solver), o.threads);
     } else {
       require(o.clamp != "none", "solve: static elasticity needs supports (--clamp)");
       elastic.body_force = [](const double*, double* b) {
         for (int k = 0; k < D; ++k) b[k] = k == D - 1 ? -1.0 : 0.0;
       };
-      r = solve_elasticity(space, elastic, *solver, o.threads);
+      r = o.petsc ? petsc_solve_elasticity(space, elastic, *o.petsc) : solve_elasticity(space, elastic, *make_solver(o.solver), o.threads);
     }
     const auto [largest, mean] = max_and_mean(m, r.coefs, components);
     const std::string what = components == 1 ? "u" : D == 2 ? "y-displacement" : "z-displacement";
@@ -149,12 +184,21 @@ void solve(const std::string& path, const std::vector<AnyLRSpline>& objects, con
     char times[96];
     std::snprintf(times, sizeof times, ", assembly %.3f s, solve %.3f s", r.assembly_seconds, r.solve_seconds);
     line += times;
-    if (r.stats.iterations > 0) line += " (" + std::to_string(r.stats.iterations) + " " + o.solver + " iterations)";
+    if (r.stats.iterations > 0)
+      line += " (" + std::to_string(r.stats.iterations) + " " + (o.petsc ? "cg+" + o.petsc->preconditioner : o.solver) + " iterations)";
     report.push_back(line);
     fields.emplace_back(components == 1 ? "u" : "displacement", r.coefs);
   }
-  if (!o.vtu.empty()) write_fields(m, fields, components, o.vtu);
+  const std::string stem = o.kind == "modes" ? "modes" : "solution";
+  if (o.petsc && o.write_parallel) {
+    std::vector<ParallelField> parallel;
+    for (const auto& [name, coefs] : fields) parallel.push_back({name, coefs, components});
+    o.write_parallel(stem, [&](const std::filesystem::path& folder) { write_parallel_vtu<D>(folder, stem, space, m.blocks, parallel); });
+  } else if (o.path) {
+    write_fields(m, fields, components, o.path(stem + ".vtu"));
+  }
   for (const std::string& line : report) std::printf("%s\n", line.c_str());
+  if (o.print_ranks) o.print_ranks();
 }
 
 }  // namespace

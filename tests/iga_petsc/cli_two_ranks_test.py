@@ -2,8 +2,9 @@
 """`mpiexec -n 2 trivar solve ... --backend petsc` against the serial CLI (the same printed errors and
 eigenvalues), its parallel VTK output read back (every element in exactly one rank's piece, the index naming
 each piece and declaring its arrays), and its refusals. Arguments: trivar, mpiexec, tests/support folder, and
-the part to run: "tensor" (built-in problems, tensor output, refusals) or "refined" (LR and hierarchical files,
-the adaptive loop), two tests that ctest runs side by side."""
+the part to run: "tensor" (built-in problems, tensor output, refusals), "refined" (LR and hierarchical files,
+the adaptive loop) or "multiblock" (multi-block models with T-joints: static problems, modes, the adaptive loop),
+three tests that ctest runs side by side."""
 import os
 import re
 import shutil
@@ -39,8 +40,9 @@ def numbers(out, pattern):
 thb_file = os.path.join(support, "..", "data", "gismo", "thb_simple_leaf_boxes.xml")
 
 
-def points_by_element(path):
-    """Every point of a refined solution's .vtu keyed by (element id, parameter): its coordinates and point data."""
+def points_by_element(path, with_points=False):
+    """Every point of a refined solution's .vtu keyed by (element id, parameter), and its coordinates when the
+    file holds several blocks (whose element ids and parameters repeat): its coordinates and point data."""
     table = {}
     for piece in read_vtu.read(path):
         arrays = dict((name, (comps, values)) for name, comps, values in piece["arrays"])
@@ -52,25 +54,27 @@ def points_by_element(path):
             for q in conn[begin:end]:
                 param = tuple(round(x, 12) for x in arrays["param"][1][3 * q:3 * q + 3])
                 key = (int(element[c]), param)
+                if with_points:
+                    key += tuple(round(x, 9) for x in arrays["Points"][1][3 * q:3 * q + 3])
                 check(key not in table, "%s: point %s twice" % (path, key))
                 table[key] = {n: arrays[n][1][arrays[n][0] * q:arrays[n][0] * (q + 1)] for n in fields}
             begin = end
     return table
 
 
-def compare_refined_outputs(what, serial_vtu, petsc_out, stem, fields):
+def compare_refined_outputs(what, serial_vtu, petsc_out, stem, fields, blocks=False):
     pieces = [stem + "_0.vtu", stem + "_1.vtu"]
     written = sorted(f for f in os.listdir(petsc_out) if not f.startswith("."))
     check(written == sorted([stem + ".pvtu"] + pieces), "%s: wrote %s" % (what, written))
     index = ET.parse(os.path.join(petsc_out, stem + ".pvtu")).getroot()
     check([p.get("Source") for p in index.iter("Piece")] == pieces, "%s: index pieces" % what)
     declared = {a.get("Name") for a in index.find("PUnstructuredGrid/PPointData")}
-    want = points_by_element(serial_vtu)
+    want = points_by_element(serial_vtu, blocks)
     check(set(fields) <= declared and declared - {"param"} == set(next(iter(want.values()))) - {"Points"},
           "%s: index declares %s" % (what, declared))
     got = {}
     for p in pieces:
-        part = points_by_element(os.path.join(petsc_out, p))
+        part = points_by_element(os.path.join(petsc_out, p), blocks)
         check(part and not set(part) & set(got), "%s: piece %s empty or overlapping" % (what, p))
         got.update(part)
     check(set(got) == set(want), "%s: %d points in the pieces, %d in the serial file" % (what, len(got), len(want)))
@@ -213,7 +217,76 @@ def refined_part():
     check(r.returncode != 0 and "T-splines" in r.stderr, "T-spline with petsc: %d %s" % (r.returncode, r.stderr))
 
 
-{"tensor": tensor_part, "refined": refined_part}[part]()
+def write_l_shape_blocks(path):
+    """The L-shaped domain [-1, 1]^2 minus [0, 1] x [-1, 0] as three biquadratic blocks in one .g2 file: the left
+    column [-1, 0] x [-1, 1] and, on the upper half of its right side, [0, 1] x [0, 1/2] and [0, 1] x [1/2, 1]
+    (T-joints at (0, 0) and (0, 1/2)), with 3, 2 and 4 elements per direction (no interface matches)."""
+    with open(path, "w") as f:
+        for (x0, y0), (w, h), n in [((-1, -1), (1, 2), 3), ((0, 0), (1, 0.5), 2), ((0, 0.5), (1, 0.5), 4)]:
+            knots = [0, 0, 0] + [i / n for i in range(1, n)] + [1, 1, 1]
+            greville = [(knots[i + 1] + knots[i + 2]) / 2 for i in range(n + 2)]
+            f.write("200 1 0 0\n2 0\n")
+            for _ in range(2):
+                f.write("%d 3\n%s\n" % (n + 2, " ".join(repr(k) for k in knots)))
+            for b in greville:
+                for a in greville:
+                    f.write("%r %r\n" % (x0 + w * a, y0 + h * b))
+
+
+def agree(want, got, rel):
+    """The numbers of two lists of matched strings agree to `rel` relative to the largest of them."""
+    def values(matches):
+        text = " ".join(" ".join(m) if isinstance(m, tuple) else m for m in matches)
+        return [float(x) for x in re.findall(r"-?\d[\d.]*(?:e[-+]?\d+)?", text)]
+    a, b = values(want), values(got)
+    scale = max([abs(x) for x in a] + [1e-300])
+    return bool(a) and len(a) == len(b) and all(abs(x - y) <= rel * max(abs(x), 1e-3 * scale) for x, y in zip(a, b))
+
+
+def multiblock_part():
+    # The three-block L-shape with T-joints solved on the ranks against the serial solve: the same printed digits,
+    # and the ranks' .pvtu pieces against the serial .vtu at every point (keys include the coordinates: element ids
+    # and parameters repeat from block to block). Then the adaptive loop on the ranks: the same steps.
+    work = tempfile.mkdtemp()
+    blocks = os.path.join(work, "l_shape.g2")
+    write_l_shape_blocks(blocks)
+    static = r"dofs (\d+), max \S+ (\S+), mean \S+ (\S+),"
+    for args, pattern, stem, fields in [
+        (["solve", "poisson", blocks], static, "solution", ["u"]),
+        (["solve", "elasticity", blocks, "--clamp", "y-"], static, "solution", ["displacement"]),
+        (["solve", "modes", blocks, "--physics", "laplace", "--modes", "3"], r"lambda (\S+)", "modes", ["mode_1"]),
+    ]:
+        serial_out, petsc_out = os.path.join(work, "serial"), os.path.join(work, "petsc")
+        serial = run(args + ["--solver", "cholmod", "--out", serial_out])
+        petsc = run(args + ["--backend", "petsc", "--pc", "mumps", "--out", petsc_out], ranks=2)
+        check(serial.returncode == 0 and petsc.returncode == 0, "%s exits %d / %d: %s %s" % (
+            args[1], serial.returncode, petsc.returncode, serial.stderr, petsc.stderr))
+        want, got = numbers(serial.stdout, pattern), numbers(petsc.stdout, pattern)
+        check(agree(want, got, 1e-9), "%s: serial %s, petsc %s" % (args[1], want, got))
+        check("T-joints" in petsc.stdout and petsc.stdout.count("multi-block") == 1, "%s: %s" % (args[1], petsc.stdout))
+        check(re.search(r"ranks 2, CPU per rank", petsc.stdout), "%s: no per-rank line" % args[1])
+        if serial.returncode == 0 and petsc.returncode == 0:
+            compare_refined_outputs(args[1], os.path.join(serial_out, stem + ".vtu"), petsc_out, stem, fields, True)
+        shutil.rmtree(serial_out, ignore_errors=True)
+        shutil.rmtree(petsc_out, ignore_errors=True)
+    # GAMG (iterative, to 1e-10) against the direct solve: the same numbers to the printed digits.
+    gamg = run(["solve", "poisson", blocks, "--backend", "petsc"], ranks=2)
+    direct = run(["solve", "poisson", blocks, "--solver", "cholmod"])
+    check(agree(numbers(direct.stdout, static), numbers(gamg.stdout, static), 1e-7),
+          "gamg: %s, cholmod %s" % (gamg.stdout, direct.stdout))
+    args = ["solve", "poisson", blocks, "--adaptive", "--steps", "3"]
+    serial = run(args + ["--solver", "cholmod", "--out", os.path.join(work, "adaptive")])
+    petsc = run(args + ["--backend", "petsc", "--pc", "mumps", "--out", os.path.join(work, "adaptive_petsc")], ranks=2)
+    pattern = r"(step \d+: dofs \d+, elements \d+, estimate \S+)"
+    want, got = numbers(serial.stdout, pattern), numbers(petsc.stdout, pattern)
+    check(len(want) == 3 and want == got, "adaptive: serial %s, petsc %s (%s)" % (want, got, petsc.stderr))
+    written = sorted(os.listdir(os.path.join(work, "adaptive_petsc"))) if petsc.returncode == 0 else []
+    check([f for f in written if not f.startswith(".")] == ["convergence.csv", "convergence.svg", "mesh.vtu", "solution.vtu"],
+          "adaptive petsc wrote %s" % written)
+    shutil.rmtree(work)
+
+
+{"tensor": tensor_part, "refined": refined_part, "multiblock": multiblock_part}[part]()
 for f in failures:
     print("FAIL:", f)
 sys.exit(1 if failures else 0)

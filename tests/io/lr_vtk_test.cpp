@@ -140,6 +140,32 @@ TEST(LrVtk, AnElementRunWritesThoseElementsAsTheWholeFileDoes) {
   EXPECT_EQ(dir.entries(), 3);
 }
 
+TEST(LrVtk, PerObjectRunsWriteEachObjectsShare) {
+  // Two objects, each with its own run (a multi-block model's share of one process): piece k holds object k's run,
+  // as the same run of that object written alone; runs not one per object write nothing.
+  test::TempDir dir;
+  const LRSpline<2> s = identity_surface();
+  const io::VtkPointField uv{"uv", 1, [](int piece, std::span<const double> u, std::span<double> out) { out[0] = piece + u[0] * u[1]; }};
+  io::LRVtkOptions both;
+  both.runs = {{2, 3}, {0, 2}};
+  io::write_lr_vtu(dir.file("both.vtu"), {AnyLRSpline(s), AnyLRSpline(s)}, both, {uv});
+  io::write_lr_vtu(dir.file("first.vtu"), AnyLRSpline(s), {.first_element = 2, .last_element = 3}, {uv});
+  const std::vector<test::VtuPiece> pieces = test::read_vtu_pieces(dir.file("both.vtu"));
+  ASSERT_EQ(pieces.size(), 2u);
+  EXPECT_EQ(pieces[0].cells, 1);
+  EXPECT_EQ(pieces[1].cells, 2);
+  const test::VtuPiece first = test::read_vtu(dir.file("first.vtu"));
+  for (const char* name : {"Points", "param", "uv", "element"}) EXPECT_EQ(pieces[0].arrays.at(name), first.arrays.at(name)) << name;
+  EXPECT_EQ(pieces[1].arrays.at("element"), (std::vector<double>{0, 1}));
+  for (double v : pieces[1].arrays.at("uv")) EXPECT_GE(v, 1.0);  // the field called with piece 1
+  io::LRVtkOptions one;
+  one.runs = {{0, 1}};
+  EXPECT_THROW(io::write_lr_vtu(dir.file("bad.vtu"), {AnyLRSpline(s), AnyLRSpline(s)}, one), Error);
+  one.runs = {{0, 1}, {2, 4}};
+  EXPECT_THROW(io::write_lr_vtu(dir.file("bad.vtu"), {AnyLRSpline(s), AnyLRSpline(s)}, one), Error);
+  EXPECT_EQ(dir.entries(), 2);
+}
+
 TEST(LrVtk, InvalidOptionsWriteNothing) {
   test::TempDir dir;
   EXPECT_THROW(io::write_lr_vtu(dir.file("a.vtu"), AnyLRSpline(identity_surface()), {.cells = io::LRVtkCells::sampled, .samples_per_element = 0}), Error);

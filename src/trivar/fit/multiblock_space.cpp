@@ -646,7 +646,13 @@ MultipatchSpace<D> tensor_multipatch(const MultiblockSpace<D>& m) {
   return out;
 }
 
+template <int D>
+Param<D> interface_param(const BlockInterface<D>& f, int from, const Param<D>& u) {
+  return map_param(f, from, u);
+}
+
 #define TRIVAR_INSTANTIATE(D)                                                                                   \
+  template Param<D> interface_param(const BlockInterface<D>&, int, const Param<D>&);                           \
   template MultiblockSpace<D> multiblock_space(std::vector<LRSpline<D>>, const MultiblockOptions&);            \
   template std::vector<Face> boundary_faces(const MultiblockSpace<D>&);                                         \
   template std::vector<LRSpline<D>> multiblock_fields(const MultiblockSpace<D>&, const Eigen::VectorXd&, int); \

@@ -79,6 +79,11 @@ std::vector<Face> boundary_faces(const MultiblockSpace<D>& m);
 template <int D>
 std::vector<LRSpline<D>> multiblock_fields(const MultiblockSpace<D>& m, const Eigen::VectorXd& coefs, int components);
 
+// Parameter u of block f.block[from] on the common part of interface f, mapped to the other block's parameter
+// (linear direction by direction; the other side's value in its normal direction).
+template <int D>
+Param<D> interface_param(const BlockInterface<D>& f, int from, const Param<D>& u);
+
 // The same model as the tensor multipatch space of iga (MultipatchSpace: one TensorSpace per block and the
 // local-to-global map), for its assembler, Dirichlet projection, Poisson and elasticity solvers and error norms.
 // Needs blocks that are tensor splines (multiblock_space with whole_lines and tensor inputs) and block sides that

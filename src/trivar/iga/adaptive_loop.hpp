@@ -4,11 +4,13 @@
 // marked elements refined by the LR strategy of options.refine) or a hierarchical spline (HB or THB: the marked
 // leaf elements are refined dyadically, the geometry kept exactly); the loop is the same code for both.
 #include <functional>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "trivar/hier/hierarchical_spline.hpp"
 #include "trivar/iga/convergence_table.hpp"
+#include "trivar/iga/error_indicator.hpp"
 #include "trivar/iga/error_norms.hpp"
 #include "trivar/iga/poisson.hpp"
 #include "trivar/lr/refinement.hpp"
@@ -24,9 +26,6 @@ struct AdaptiveOptions {
   // most m levels of functions act on any element; HierarchicalSpace::refine_elements_admissible).
   int admissible = 0;
 };
-
-template <int D>
-struct RefinedSpace;
 
 // The linear solve of each step. Null: solve_poisson with options.solver on this process. The distributed back
 // end passes petsc_solve_poisson (iga_petsc/): every rank then runs the whole loop with the gathered solution,
@@ -45,6 +44,23 @@ std::vector<ConvergenceRow> adaptive_poisson(LRSpline<D>& geometry, const Poisso
                                              const RefinedPoissonSolve<D>& solve = {});
 template <int D>
 std::vector<ConvergenceRow> adaptive_poisson(HierarchicalSpline<D>& geometry, const PoissonProblem<D>& problem,
+                                             const ExactSolution<D>& exact, const AdaptiveOptions& options,
+                                             const std::function<void(const ConvergenceRow&)>& report = {},
+                                             Eigen::VectorXd* coefs = nullptr, int threads = 0,
+                                             const RefinedPoissonSolve<D>& solve = {});
+
+// The loop over any locally refined model: `space()` is the current analysis space (valid until the next
+// refine), `refine(eta)` refines the model given one indicator per element of that space, and `across` is what
+// residual_indicators needs to find the neighbours of multi-block spaces (null on one parameter domain). The LR
+// and hierarchical loops above and the multi-block loop (fit/multiblock_adaptive.hpp) are this loop.
+template <int D>
+struct AdaptiveModel {
+  std::function<const RefinedSpace<D>&()> space;
+  std::function<void(std::span<const double> eta)> refine;
+  ElementAcross<D> across;
+};
+template <int D>
+std::vector<ConvergenceRow> adaptive_poisson(const AdaptiveModel<D>& model, const PoissonProblem<D>& problem,
                                              const ExactSolution<D>& exact, const AdaptiveOptions& options,
                                              const std::function<void(const ConvergenceRow&)>& report = {},
                                              Eigen::VectorXd* coefs = nullptr, int threads = 0,

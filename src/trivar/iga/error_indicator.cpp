@@ -41,11 +41,19 @@ void gradient_and_laplacian(const RefinedPoint<D>& p, const std::vector<int>& id
 }  // namespace
 
 template <int D>
-std::vector<double> residual_indicators(const RefinedSpace<D>& g, const PoissonProblem<D>& problem, const Eigen::VectorXd& coefs, int threads) {
+std::vector<double> residual_indicators(const RefinedSpace<D>& g, const PoissonProblem<D>& problem, const Eigen::VectorXd& coefs, int threads,
+                                        const ElementAcross<D>& across) {
   require(!problem.conductivity, "iga: the residual indicator supports conductivity k = 1 only");
-  require(g.blocks.empty(), "iga: the residual indicator needs a space on one parameter domain, not a multi-block one");
+  const bool multi = !g.blocks.empty();
+  require(!multi || across, "iga: the residual indicator on a multi-block space needs the elements across its interfaces");
   const int E = g.num_elements();
-  const Box<D>& dom = g.domain;
+  // The element just across a side: the given map, or the locator of the one parameter domain.
+  const ElementAcross<D> neighbour = across ? across : [&g](int, int k, int side, const Param<D>& u, Param<D>& v) {
+    v = u;
+    Param<D> inside = u;
+    inside[k] += (side == 0 ? -1.0 : 1.0) * 1e-9 * g.domain.extent(k);
+    return g.locate(inside);
+  };
   std::vector<double> eta(static_cast<std::size_t>(E));
   auto is_dirichlet = [&](const Face& f) {
     for (const auto& cond : problem.dirichlet)
@@ -54,6 +62,7 @@ std::vector<double> residual_indicators(const RefinedSpace<D>& g, const PoissonP
   };
   parallel_for(E, threads, [&](std::ptrdiff_t e) {
     const RefinedElement<D>& el = g.elements[static_cast<std::size_t>(e)];
+    const Box<D>& dom = multi ? g.blocks[static_cast<std::size_t>(el.block)].domain : g.domain;
     const int nq = g.degrees[0] + 1;
     RefinedPoint<D> p, pn;
     Eigen::Matrix<double, D, 1> grad, gn;
@@ -73,15 +82,13 @@ std::vector<double> residual_indicators(const RefinedSpace<D>& g, const PoissonP
     double jumps = 0, neumann = 0;
     for (int k = 0; k < D; ++k)
       for (int side = 0; side < 2; ++side) {
-        const Face face{k, side};
-        if (!on_domain_face(dom, el.box, face)) {
+        const Face face{k, side, el.block};
+        if (!on_domain_face(dom, el.box, face) || ((el.interface_sides >> (2 * k + side)) & 1u)) {
           for_each_side_point<D>(g, el, k, side, nq,
                                  [&](const Param<D>& u, const RefinedPoint<D>& q, double w, const std::array<double, D>& n) {
-            // The neighbour is the element just across the side at this point.
-            Param<D> across = u;
-            across[k] += (side == 0 ? -1.0 : 1.0) * 1e-9 * dom.extent(k);
-            const RefinedElement<D>& nb = g.elements[static_cast<std::size_t>(g.locate(across))];
-            refined_point(g, nb, u, pn);
+            Param<D> v;
+            const RefinedElement<D>& nb = g.elements[static_cast<std::size_t>(neighbour(static_cast<int>(e), k, side, u, v))];
+            refined_point(g, nb, v, pn);
             gradient_and_laplacian<D>(q, el.ids, coefs, grad, lap);
             gradient_and_laplacian<D>(pn, nb.ids, coefs, gn, lapn);
             double jump = 0;
@@ -108,7 +115,9 @@ std::vector<double> residual_indicators(const RefinedSpace<D>& g, const PoissonP
   return eta;
 }
 
-template std::vector<double> residual_indicators(const RefinedSpace<2>&, const PoissonProblem<2>&, const Eigen::VectorXd&, int);
-template std::vector<double> residual_indicators(const RefinedSpace<3>&, const PoissonProblem<3>&, const Eigen::VectorXd&, int);
+template std::vector<double> residual_indicators(const RefinedSpace<2>&, const PoissonProblem<2>&, const Eigen::VectorXd&, int,
+                                                 const ElementAcross<2>&);
+template std::vector<double> residual_indicators(const RefinedSpace<3>&, const PoissonProblem<3>&, const Eigen::VectorXd&, int,
+                                                 const ElementAcross<3>&);
 
 }  // namespace trivar

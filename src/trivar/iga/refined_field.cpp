@@ -5,7 +5,13 @@ namespace trivar {
 template <int D>
 void refined_field_value(const RefinedSpace<D>& space, const Eigen::VectorXd& coefs, int components,
                          const Param<D>& u, double* out) {
-  const RefinedElement<D>& el = space.elements[static_cast<std::size_t>(space.locate(u))];
+  refined_field_value(space, space.locate(u), coefs, components, u, out);
+}
+
+template <int D>
+void refined_field_value(const RefinedSpace<D>& space, int element, const Eigen::VectorXd& coefs, int components,
+                         const Param<D>& u, double* out) {
+  const RefinedElement<D>& el = space.elements[static_cast<std::size_t>(element)];
   RefinedPoint<D> p;
   refined_point(space, el, u, p);
   for (int c = 0; c < components; ++c) {
@@ -16,5 +22,7 @@ void refined_field_value(const RefinedSpace<D>& space, const Eigen::VectorXd& co
 
 template void refined_field_value(const RefinedSpace<2>&, const Eigen::VectorXd&, int, const Param<2>&, double*);
 template void refined_field_value(const RefinedSpace<3>&, const Eigen::VectorXd&, int, const Param<3>&, double*);
+template void refined_field_value(const RefinedSpace<2>&, int, const Eigen::VectorXd&, int, const Param<2>&, double*);
+template void refined_field_value(const RefinedSpace<3>&, int, const Eigen::VectorXd&, int, const Param<3>&, double*);
 
 }  // namespace trivar

@@ -13,5 +13,9 @@ namespace trivar {
 template <int D>
 void refined_field_value(const RefinedSpace<D>& space, const Eigen::VectorXd& coefs, int components,
                          const Param<D>& u, double* out);
+// The same on a given element holding u (multi-block spaces, whose parameters are per block).
+template <int D>
+void refined_field_value(const RefinedSpace<D>& space, int element, const Eigen::VectorXd& coefs, int components,
+                         const Param<D>& u, double* out);
 
 }  // namespace trivar

@@ -1,5 +1,6 @@
 #include "trivar/iga_petsc/parallel_vtk.hpp"
 
+#include <algorithm>
 #include <fstream>
 #include <functional>
 #include <type_traits>
@@ -168,6 +169,46 @@ void write_parallel_vtu(const std::filesystem::path& folder, const std::string& 
   write_refined_pieces<D>(folder, stem, space, geometry, fields);
 }
 
+template <int D>
+void write_parallel_vtu(const std::filesystem::path& folder, const std::string& stem, const RefinedSpace<D>& space,
+                        const std::vector<LRSpline<D>>& blocks, const std::vector<ParallelField>& fields) {
+  // Per block the index of its first element in the space.
+  std::vector<int> offset{0};
+  for (const LRSpline<D>& b : blocks) offset.push_back(offset.back() + b.num_elements());
+  bool same = offset.back() == space.num_elements() && space.blocks.size() == blocks.size();
+  for (int e = 0; same && e < space.num_elements(); ++e) {
+    const RefinedElement<D>& el = space.elements[static_cast<std::size_t>(e)];
+    same = el.block >= 0 && el.block < static_cast<int>(blocks.size());
+    const int local = same ? e - offset[static_cast<std::size_t>(el.block)] : -1;
+    same = same && local >= 0 && local < blocks[static_cast<std::size_t>(el.block)].num_elements() &&
+           el.box.lo == blocks[static_cast<std::size_t>(el.block)].element(local).lo &&
+           el.box.hi == blocks[static_cast<std::size_t>(el.block)].element(local).hi;
+  }
+  require(same, "vtk: the blocks' " + std::to_string(offset.back()) + " elements are not the multi-block space's " +
+                    std::to_string(space.num_elements()));
+  const std::pair<int, int> run = rank_partition().layers(space.num_elements());
+  // The blocks the run meets, each with its part of the run in its own element ids.
+  std::vector<AnyLRSpline> pieces;
+  std::vector<int> block_of;
+  io::LRVtkOptions options;
+  for (std::size_t b = 0; b < blocks.size(); ++b) {
+    const int first = std::max(run.first, offset[b]), last = std::min(run.second, offset[b + 1]);
+    if (first >= last) continue;
+    pieces.emplace_back(blocks[b]);
+    block_of.push_back(static_cast<int>(b));
+    options.runs.emplace_back(first - offset[b], last - offset[b]);
+  }
+  std::vector<io::VtkPointField> vtk;
+  for (const ParallelField& f : fields)
+    vtk.push_back({f.name, f.components, [&](int piece, std::span<const double> u, std::span<double> out) {
+                     const auto b = static_cast<std::size_t>(block_of[static_cast<std::size_t>(piece)]);
+                     const Param<D> x = io::param_of<D>(u);
+                     const int element = offset[b] + blocks[b].evaluator().find_element(x);
+                     refined_field_value(space, element, f.coefs, f.components, x, out.data());
+                   }});
+  write_pieces_and_index(folder, stem, !pieces.empty(), [&](const std::string& path) { io::write_lr_vtu(path, pieces, options, vtk); });
+}
+
 template void write_parallel_vtu(const std::filesystem::path&, const std::string&, const MultipatchSpace<2>&,
                                  const std::vector<ParallelField>&);
 template void write_parallel_vtu(const std::filesystem::path&, const std::string&, const MultipatchSpace<3>&,
@@ -175,6 +216,8 @@ template void write_parallel_vtu(const std::filesystem::path&, const std::string
 #define TRIVAR_REFINED_PARALLEL_VTU(D)                                                                             \
   template void write_parallel_vtu(const std::filesystem::path&, const std::string&, const RefinedSpace<D>&,        \
                                    const LRSpline<D>&, const std::vector<ParallelField>&);                          \
+  template void write_parallel_vtu(const std::filesystem::path&, const std::string&, const RefinedSpace<D>&,        \
+                                   const std::vector<LRSpline<D>>&, const std::vector<ParallelField>&);             \
   template void write_parallel_vtu(const std::filesystem::path&, const std::string&, const RefinedSpace<D>&,        \
                                    const HierarchicalSpline<D>&, const std::vector<ParallelField>&);
 TRIVAR_REFINED_PARALLEL_VTU(2)

@@ -38,5 +38,12 @@ void write_parallel_vtu(const std::filesystem::path& folder, const std::string& 
 template <int D>
 void write_parallel_vtu(const std::filesystem::path& folder, const std::string& stem, const RefinedSpace<D>& space,
                         const HierarchicalSpline<D>& geometry, const std::vector<ParallelField>& fields);
+// A multi-block space (RefinedSpace::blocks, fit/multiblock_space.hpp: the blocks' elements one block after the
+// other, each in its LR order) with its blocks: every rank writes its run of the element list as one piece per
+// block the run meets (that block's part of the run), as the serial multi-block output writes one piece per block.
+// Throws trivar::Error (every rank) when the blocks' elements are not the space's.
+template <int D>
+void write_parallel_vtu(const std::filesystem::path& folder, const std::string& stem, const RefinedSpace<D>& space,
+                        const std::vector<LRSpline<D>>& blocks, const std::vector<ParallelField>& fields);
 
 }  // namespace trivar

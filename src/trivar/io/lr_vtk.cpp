@@ -125,8 +125,8 @@ Piece build_piece(const Spline& s, int piece, const LRVtkOptions& opts,
   // Elements do not share points: per point coordinates, parameters, weight and fields, per cell its corners.
   int field_values = 0;
   for (const VtkPointField& f : point_fields) field_values += f.components;
-  const int first_element = opts.first_element,
-            last_element = opts.last_element < 0 ? source.num_elements() : opts.last_element;
+  const auto run = opts.runs.empty() ? std::pair{opts.first_element, opts.last_element} : opts.runs[static_cast<std::size_t>(piece)];
+  const int first_element = run.first, last_element = run.second < 0 ? source.num_elements() : run.second;
   require(0 <= first_element && first_element <= last_element && last_element <= source.num_elements(),
           where + ": element run [" + std::to_string(first_element) + ", " + std::to_string(last_element) +
               ") outside the " + std::to_string(source.num_elements()) + " elements");
@@ -251,6 +251,8 @@ void write_pieces(const std::string& path, const std::vector<Any>& objects, cons
   require(!objects.empty(), path + ": nothing to write (no objects)");
   require(opts.cells != LRVtkCells::sampled || opts.samples_per_element >= 1,
           path + ": samples per element must be at least 1, got " + std::to_string(opts.samples_per_element));
+  require(opts.runs.empty() || opts.runs.size() == objects.size(), path + ": " + std::to_string(opts.runs.size()) +
+                                                                      " element runs for " + std::to_string(objects.size()) + " objects");
   validate_fields(path, "point field", point_fields, kReservedPointNames);
   validate_fields(path, "cell field", cell_fields, kReservedCellNames);
   std::vector<Piece> pieces;

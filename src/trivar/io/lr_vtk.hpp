@@ -23,6 +23,7 @@
 #include <functional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "trivar/hier/any_hierarchical_spline.hpp"
@@ -39,6 +40,9 @@ struct LRVtkOptions {
   // The elements written: the contiguous run of element ids [first_element, last_element) of every object
   // (one process's share of a parallel output); last_element < 0 means up to the last element.
   int first_element = 0, last_element = -1;
+  // When not empty: one run [first, last) per object instead (a process's share of a multi-block model, whose
+  // run of the element list covers parts of several blocks).
+  std::vector<std::pair<int, int>> runs{};
 };
 
 // An extra cell-data array: value(piece, element, out) writes `components` values for element `element` (the
@@ -50,7 +54,7 @@ struct LRVtkCellField {
 };
 
 // Throws trivar::Error (nothing written) for samples_per_element < 1 when sampled, degree 0 in Bezier mode, an
-// empty list, an element run outside an object's elements, a field without name or value function, with a
+// empty list, an element run outside an object's elements (or runs not one per object), a field without name or value function, with a
 // duplicate or reserved name, or a write failure.
 void write_lr_vtu(const std::string& path, const AnyLRSpline& s, const LRVtkOptions& opts = {},
                   const std::vector<VtkPointField>& point_fields = {},
