@@ -29,6 +29,7 @@
 // every edge.
 #include <array>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "trivar/tspline/t_mesh.hpp"
@@ -36,7 +37,7 @@
 
 namespace trivar {
 
-enum class FaceMethod { none, exact, bicubic, star };
+enum class FaceMethod { none, exact, bicubic, star, non_uniform };
 const char* face_method_name(FaceMethod m);
 
 // The frame of a Catmull-Clark patch starting at corner c (0..3, counter-clockwise from the face's first corner)
@@ -79,6 +80,11 @@ public:
   void eval_patch_homogeneous(int face, double up, double vp, double* out) const;
   bool rational_patch(int face) const { return faces_[static_cast<std::size_t>(face)].rational; }
   int patch_corner(int face) const { return faces_[static_cast<std::size_t>(face)].corner; }
+  // A non-uniform Catmull-Clark face: true when the star point is its patch corner (a face of the star's one-ring
+  // of faces); the others lie in the second ring (their four quarters are bicubic B-spline cells).
+  bool star_corner(int face) const { return faces_[static_cast<std::size_t>(face)].cell == std::array<int, 2>{0, 0}; }
+  // Star points evaluated by non-uniform Catmull-Clark (unequal knot intervals around them).
+  int non_uniform_stars() const { return static_cast<int>(nurcc_.size()); }
 
 private:
   struct Face {
@@ -90,11 +96,17 @@ private:
     // Their homogeneous coordinates, split for the evaluation of the linear rules: w x and (w, 0, 0).
     std::vector<std::array<double, 3>> wx, w;
     bool rational = false;         // a weight other than 1
+    // bicubic with unequal knot intervals: the knots of the cell [0, 1] (patch frame), six per direction
+    std::optional<std::array<std::array<double, 6>, 2>> knots;
+    int nurcc = -1, sector = 0;    // non_uniform: index into nurcc_, the sector and the face's cell in it
+    std::array<int, 2> cell{-1, -1};
   };
+  struct Nurcc;  // a star point evaluated by non-uniform Catmull-Clark: its subdivision and homogeneous points
   TMesh mesh_;
   std::vector<int> stars_;
   std::vector<Face> faces_;
   std::vector<std::unique_ptr<TSplineSurface>> charts_;
+  std::vector<std::unique_ptr<Nurcc>> nurcc_;
 };
 
 }  // namespace trivar
