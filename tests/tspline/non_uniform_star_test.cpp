@@ -189,14 +189,8 @@ TEST(NonUniformStar, ValenceFourIsTheBicubicBSplineOnTheKnots) {
 double nurcc_interval(int k, int i) { return (0.6 + 0.35 * k) * (1 + 0.25 * (i % 3)); }
 
 TMesh nurcc_fan(int valence, int m, bool weights) {
-  test::QuadMesh q = test::fan_mesh(valence, m, [](double x, double y) { return 0.04 * x * x - 0.02 * x * y + 0.15 * std::sin(0.5 * y); });
-  for (int k = 0; k < valence; ++k)
-    for (int j = 0; j < m; ++j)
-      for (int i = 0; i < m; ++i) {
-        const auto& f = q.quads[static_cast<std::size_t>(k * m * m + j * m + i)];
-        q.intervals[{f[0], f[1]}] = q.intervals[{f[3], f[2]}] = nurcc_interval(k, i);
-        q.intervals[{f[1], f[2]}] = q.intervals[{f[0], f[3]}] = nurcc_interval((k + 1) % valence, j);
-      }
+  const test::QuadMesh q = test::fan_mesh_with_intervals(
+      valence, m, [](double x, double y) { return 0.04 * x * x - 0.02 * x * y + 0.15 * std::sin(0.5 * y); }, nurcc_interval);
   io::TsmModel model = io::parse_tsm(test::tsm_text(q), "nurcc_fan.tsm");
   if (weights)
     for (RationalPoint& p : model.mesh.points) p.w = 1.1 + 0.5 * std::sin(0.6 * p.xyz[0] - 0.4 * p.xyz[1] + 0.2);
