@@ -302,9 +302,14 @@ void NonUniformStar::build_eigen() {
   tangent0_ = {std::move(g[1]), std::move(g[2])};
 }
 
-void NonUniformStar::apply(int level, const std::vector<std::array<double, 4>>& p, std::vector<std::array<double, 4>>& q) const {
+void NonUniformStar::apply(int level, int radius, const std::vector<std::array<double, 4>>& p,
+                           std::vector<std::array<double, 4>>& q) const {
   const auto& rows = steps_[static_cast<std::size_t>(std::min(level, 3))];
   for (std::size_t r = 0; r < rows.size(); ++r) {
+    if (r > 0) {
+      const std::size_t local = (r - 1) % static_cast<std::size_t>(kW * (kW + 1));
+      if (static_cast<int>(local) / (kW + 1) + 1 > radius || static_cast<int>(local) % (kW + 1) > radius) continue;
+    }
     std::array<double, 4> s{};
     for (const auto& [j, w] : rows[r])
       for (std::size_t c = 0; c < 4; ++c) s[c] += w * p[static_cast<std::size_t>(j)][c];
@@ -348,10 +353,13 @@ void NonUniformStar::eval(std::span<const std::array<double, 4>> points, int sec
       for (int j = 0; j <= kRings; ++j)
         p[static_cast<std::size_t>(1 + k * kW * (kW + 1) + (i - 1) * (kW + 1) + j)] = rel(points[static_cast<std::size_t>(index(k, i, j))]);
   // Level of the exact cell: max(x, y) 2^level in [2, 4); x = y = 0 (or beyond double range): the star point.
-  int level = 0;
+  int level = 0, levels = 1;
+  for (double t = 2 * mx; t < 2 && levels < 1100; t *= 2) ++levels;
   double sx = x, sy = y;
   while ((level == 0 || std::max(sx, sy) < 2) && level < 1100) {  // level 0 holds points up to 3 only
-    apply(level, p, q);
+    // The last step makes the cell's points (up to 5 per direction) from points up to 3; the steps before
+    // need only those (points up to 3 from points up to 2).
+    apply(level, level + 1 == levels ? kW : 3, p, q);
     p.swap(q);
     sx *= 2;
     sy *= 2;
