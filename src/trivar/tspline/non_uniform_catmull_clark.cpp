@@ -302,13 +302,17 @@ void NonUniformStar::build_eigen() {
   tangent0_ = {std::move(g[1]), std::move(g[2])};
 }
 
-void NonUniformStar::apply(int level, int radius, const std::vector<std::array<double, 4>>& p,
+void NonUniformStar::apply(int level, int radius, int sector, const std::vector<std::array<double, 4>>& p,
                            std::vector<std::array<double, 4>>& q) const {
   const auto& rows = steps_[static_cast<std::size_t>(std::min(level, 3))];
+  const std::size_t per = static_cast<std::size_t>(kW * (kW + 1));
   for (std::size_t r = 0; r < rows.size(); ++r) {
+    if (r == 0 && sector >= 0) continue;
     if (r > 0) {
-      const std::size_t local = (r - 1) % static_cast<std::size_t>(kW * (kW + 1));
+      const std::size_t local = (r - 1) % per;
       if (static_cast<int>(local) / (kW + 1) + 1 > radius || static_cast<int>(local) % (kW + 1) > radius) continue;
+      const int m = static_cast<int>((r - 1) / per), dist = ((m - sector) % n_ + n_) % n_;
+      if (sector >= 0 && dist > 1 && dist < n_ - 1) continue;
     }
     std::array<double, 4> s{};
     for (const auto& [j, w] : rows[r])
@@ -359,7 +363,8 @@ void NonUniformStar::eval(std::span<const std::array<double, 4>> points, int sec
   while ((level == 0 || std::max(sx, sy) < 2) && level < 1100) {  // level 0 holds points up to 3 only
     // The last step makes the cell's points (up to 5 per direction) from points up to 3; the steps before
     // need only those (points up to 3 from points up to 2).
-    apply(level, level + 1 == levels ? kW : 3, p, q);
+    // The cell's points lie in the sectors k - 1 .. k + 1 and off the star point.
+    apply(level, level + 1 == levels ? kW : 3, level + 1 == levels ? sector : -1, p, q);
     p.swap(q);
     sx *= 2;
     sy *= 2;

@@ -75,8 +75,10 @@ private:
   int window_size() const { return 1 + n_ * kWindow * (kWindow + 1); }
   void build_step(int level, std::vector<Row>& rows) const;
   void build_eigen();
-  // One step from `level`, the rows of the points (i, j) with i, j <= radius.
-  void apply(int level, int radius, const std::vector<std::array<double, 4>>& p, std::vector<std::array<double, 4>>& q) const;
+  // One step from `level`: the rows of the points (i, j) with i, j <= radius (of the sectors sector - 1 ..
+  // sector + 1 without the star point if sector >= 0).
+  void apply(int level, int radius, int sector, const std::vector<std::array<double, 4>>& p,
+             std::vector<std::array<double, 4>>& q) const;
   double interval(int level, int spoke, int i) const;  // U at that level, in units of the level's halving
   double across(int spoke) const;
 };
