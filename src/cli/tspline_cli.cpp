@@ -158,8 +158,8 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
               s.count(FaceMethod::star));
   if (nu > 0)
     std::printf("  %d faces around %d star points with unequal knot intervals by non-uniform Catmull-Clark (knot-interval "
-                "weighted rules, exact B-spline cells per subdivision level; C2 away from the star point, a common "
-                "tangent plane at it)\n", nu, s.non_uniform_stars());
+                "weighted rules, exact B-spline cells per subdivision level; C2 away from the star point, its tangent "
+                "plane reached in the limit, slowly for large interval ratios)\n", nu, s.non_uniform_stars());
   std::printf("  continuity: %s\n", continuity);
   if (!r.skipped_records.empty()) {
     std::string k;
