@@ -308,6 +308,12 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(mesh), stars_
     for (const auto& r : sec.intervals)
       for (double d : r) equal = equal && std::abs(d - d0) <= 1e-12 * d0;
     if (equal) continue;
+    for (const auto& r : sec.intervals)
+      for (double d : r)
+        require(d > 0, [&] {
+          return "T-mesh: knot interval " + std::to_string(d) + " within three rings of star point " + std::to_string(v) +
+                 ": repeated knots near a star point are not evaluated";
+        });
     auto z = std::make_unique<Nurcc>(Nurcc{NonUniformStar(static_cast<int>(sec.intervals.size()), sec.intervals), {}});
     for (int x : sec.points) {
       const TMeshVertex& mv = m.vertices[static_cast<std::size_t>(x)];
