@@ -134,11 +134,12 @@ void star_build(benchmark::State& state) {
 }
 BENCHMARK(star_build)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
-// 16 x 16 points on every face with a surface (only the faces at star points if `star_only`), per iteration.
-void eval_faces(benchmark::State& state, const trivar::TMeshSurface& s, bool star_only) {
+// 16 x 16 points on every face with a surface (only the faces of method `only` if `star_only`), per iteration.
+void eval_faces(benchmark::State& state, const trivar::TMeshSurface& s, bool star_only,
+                trivar::FaceMethod only = trivar::FaceMethod::star) {
   std::vector<int> faces;
   for (int f = 0; f < s.num_faces(); ++f)
-    if (s.method(f) != trivar::FaceMethod::none && (!star_only || s.method(f) == trivar::FaceMethod::star))
+    if (s.method(f) != trivar::FaceMethod::none && (!star_only || s.method(f) == only))
       faces.push_back(f);
   double out[9];
   for (auto _ : state)
@@ -231,6 +232,18 @@ void star_eval_rational(benchmark::State& state) {
   eval_faces(state, s, state.range(0) == 1);
 }
 BENCHMARK(star_eval_rational)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+// The valence-5 fan of star_model(1) with unequal knot intervals (0.6 to 2.5, per spoke and along the spokes):
+// non-uniform Catmull-Clark at its star point. range(0) = 1: only its 20 faces (the star point's two rings of
+// faces: the subdivision path), 0: all faces.
+void non_uniform_star_eval(benchmark::State& state) {
+  const auto text = trivar::test::tsm_text(trivar::test::fan_mesh_with_intervals(
+      5, 10, [](double x, double y) { return 0.05 * x * x - 0.03 * x * y; },
+      [](int k, int i) { return (0.6 + 0.35 * k) * (1 + 0.25 * (i % 3)); }));
+  const trivar::TMeshSurface s(trivar::io::parse_tsm(text, "star.tsm").mesh, 1);
+  eval_faces(state, s, state.range(0) == 1, trivar::FaceMethod::non_uniform);
+}
+BENCHMARK(non_uniform_star_eval)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 // Poisson on the planar valence-5 fan with T-junctions (5 x 8 x 8 faces, three split): the patches cut until
 // their sides conform, refined n x n; space build, then assembly + solve.

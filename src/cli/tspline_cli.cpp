@@ -131,13 +131,15 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
   const io::TsmReport& r = *l.tsm;
   std::map<int, int> valences;
   for (int v : s.stars()) ++valences[s.valence(v)];
-  const int faces = s.count(FaceMethod::exact) + s.count(FaceMethod::bicubic) + s.count(FaceMethod::star);
+  const int nu = s.count(FaceMethod::non_uniform);
+  const int faces = s.count(FaceMethod::exact) + s.count(FaceMethod::bicubic) + s.count(FaceMethod::star) + nu;
   const char* continuity = "C2 across every edge away from star points; C1 across the edges at a star point; G1 at star points";
   nlohmann::json j{{"file", path}, {"kind", "T-spline surface with star points"}, {"format", l.format},
                    {"degrees", {s.mesh().degree, s.mesh().degree}}, {"units", r.units}, {"faces", faces},
                    {"star_points", r.star_points}, {"faces_exact", s.count(FaceMethod::exact)},
                    {"faces_catmull_clark", s.count(FaceMethod::bicubic) + s.count(FaceMethod::star)},
-                   {"faces_at_star_points", s.count(FaceMethod::star)}, {"continuity", continuity},
+                   {"faces_at_star_points", s.count(FaceMethod::star)}, {"faces_non_uniform_catmull_clark", nu},
+                   {"non_uniform_star_points", s.non_uniform_stars()}, {"continuity", continuity},
                    {"deleted_slots", r.deleted}, {"deleted_faces", r.holes}, {"skipped_records", r.skipped_records}};
   for (const auto& [n, c] : valences) j["star_valences"][std::to_string(n)] = c;
   if (json) {
@@ -154,6 +156,10 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
               "point by the Catmull-Clark limit surface (%d at a star point, evaluated exactly by subdivision)\n",
               s.count(FaceMethod::exact), s.count(FaceMethod::bicubic) + s.count(FaceMethod::star), s.mesh().degree + 2,
               s.count(FaceMethod::star));
+  if (nu > 0)
+    std::printf("  %d faces around %d star points with unequal knot intervals by non-uniform Catmull-Clark (knot-interval "
+                "weighted rules, exact B-spline cells per subdivision level; C2 away from the star point, its tangent "
+                "plane reached in the limit, slowly for large interval ratios)\n", nu, s.non_uniform_stars());
   std::printf("  continuity: %s\n", continuity);
   if (!r.skipped_records.empty()) {
     std::string k;

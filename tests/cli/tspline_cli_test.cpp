@@ -202,6 +202,21 @@ TEST_F(TSplineCli, StarPointModel) {
   for (const auto& [k, n] : edges) ASSERT_EQ(n, 2);
 }
 
+// The valence-5 fan with unequal knot intervals around its star point: info counts the faces taken by
+// non-uniform Catmull-Clark, eval and the Bezier patches run on them.
+TEST_F(TSplineCli, NonUniformStarPointModel) {
+  std::ofstream((work_ / "fan.tsm").string()) << trivar::test::tsm_text(trivar::test::fan_mesh_with_intervals(
+      5, 8, [](double x, double y) { return 0.05 * x * x - 0.03 * x * y; },
+      [](int k, int i) { return (0.6 + 0.35 * k) * (1 + 0.25 * (i % 3)); }));
+  const Result info = ok("info fan.tsm");
+  EXPECT_NE(info.out.find("20 faces around 1 star points with unequal knot intervals by non-uniform Catmull-Clark"),
+            std::string::npos) << info.out;
+  EXPECT_NE(ok("info fan.tsm --json").out.find("\"faces_non_uniform_catmull_clark\": 20"), std::string::npos);
+  EXPECT_EQ(numbers_after(ok("eval fan.tsm 0 0.25 0.5").out, "S").size(), 3u);
+  const Result g2 = ok("convert fan.tsm fan.g2");
+  EXPECT_NE(g2.out.find("5 corner patches at star points"), std::string::npos) << g2.out;
+}
+
 // -lap u = 1, u = 0 on the boundary of the planar valence-3 fan of 3 x 8 x 8 faces (star point at the origin):
 // the C0 multipatch space of its face patches. The domain lies in the disk of radius 8 around the star point and
 // holds the disk of radius 6.5 (its boundary lies 6.78 to 7.84 from it), so by comparison with the disks' solutions

@@ -4,9 +4,9 @@
 // of such a mesh (rational patches: exact pieces against the surface, corners within the tolerance).
 #include <gtest/gtest.h>
 
-#include <climits>
 #include <cstdio>
 
+#include "chart_comparison.hpp"
 #include "face_continuity.hpp"
 #include "star_mesh_tsm.hpp"
 #include "trivar/core/error.hpp"
@@ -28,28 +28,6 @@ TMesh weighted_fan(int valence, int m) {
   return model.mesh;
 }
 
-// The faces within `depth` rings (faces sharing a vertex with the previous ring) of face f.
-std::vector<int> rational_face_rings(const TMesh& m, int f, int depth) {
-  std::vector<std::vector<int>> at(m.vertices.size());
-  for (const TMeshLink& k : m.links)
-    if (k.vertex >= 0 && k.face >= 0) at[static_cast<std::size_t>(k.vertex)].push_back(k.face);
-  std::vector<int> dist(m.faces.size(), INT_MAX), all{f}, front{f};
-  dist[static_cast<std::size_t>(f)] = 0;
-  for (int r = 1; r <= depth; ++r) {
-    std::vector<int> next;
-    for (int g : front)
-      for (int l : m.faces[static_cast<std::size_t>(g)])
-        for (int h : at[static_cast<std::size_t>(m.links[static_cast<std::size_t>(l)].vertex)])
-          if (dist[static_cast<std::size_t>(h)] > r) {
-            dist[static_cast<std::size_t>(h)] = r;
-            next.push_back(h);
-            all.push_back(h);
-          }
-    front = std::move(next);
-  }
-  return all;
-}
-
 // Every Catmull-Clark face without a star corner whose two face rings hold no star point is the rational
 // T-spline of the chart of those rings (its 16 blending functions and their knots lie inside), to rounding.
 TEST(RationalStarPoints, CatmullClarkFacesAreTheRationalTSpline) {
@@ -58,39 +36,9 @@ TEST(RationalStarPoints, CatmullClarkFacesAreTheRationalTSpline) {
     const TMeshSurface s(mesh, 1);
     EXPECT_EQ(s.count(FaceMethod::star), valence);
     EXPECT_EQ(s.count(FaceMethod::bicubic), valence * 25 - valence);  // as with weights 1
-    int compared = 0;
-    double worst = 0, worst_derivative = 0;
-    for (int f = 0; f < s.num_faces(); ++f) {
-      if (s.method(f) != FaceMethod::bicubic) continue;
-      const std::vector<int> hood = rational_face_rings(mesh, f, 2);
-      TChart chart;
-      try {
-        chart = t_spline_chart(mesh, hood, f, false);
-      } catch (const Error&) {
-        continue;  // a star point inside the rings
-      }
-      const TSplineSurface ts(chart.spline, 1);
-      const auto c = s.corners(f);
-      const auto st = [&](int v) {
-        const TVertex& x = chart.spline.image.vertices[static_cast<std::size_t>(chart.vertex[static_cast<std::size_t>(v)])];
-        return std::array<double, 2>{x.s, x.t};
-      };
-      const auto p0 = st(c[0]), p1 = st(c[1]), p3 = st(c[3]);
-      ++compared;
-      for (double u : {0.0, 0.23, 0.5, 0.91})
-        for (double v : {0.07, 0.5, 1.0}) {
-          double a[9], b[9];
-          s.eval(f, u, v, a);
-          const Param<2> x{p0[0] + u * (p1[0] - p0[0]) + v * (p3[0] - p0[0]), p0[1] + u * (p1[1] - p0[1]) + v * (p3[1] - p0[1])};
-          ts.eval_first_derivatives(x, b);
-          for (int k = 0; k < 3; ++k) {
-            worst = std::max(worst, std::abs(a[k] - b[k]));
-            const double du = (p1[0] - p0[0]) * b[3 + k] + (p1[1] - p0[1]) * b[6 + k];
-            const double dv = (p3[0] - p0[0]) * b[3 + k] + (p3[1] - p0[1]) * b[6 + k];
-            worst_derivative = std::max({worst_derivative, std::abs(a[3 + k] - du), std::abs(a[6 + k] - dv)});
-          }
-        }
-    }
+    const test::ChartComparison cmp = test::compare_with_charts(mesh, s, FaceMethod::bicubic);
+    const int compared = cmp.compared;
+    const double worst = cmp.position, worst_derivative = cmp.derivative;
     EXPECT_GT(compared, valence * 10) << valence;
     EXPECT_LT(worst, 1e-12) << valence;
     EXPECT_LT(worst_derivative, 1e-11) << valence;

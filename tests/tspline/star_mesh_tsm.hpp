@@ -184,6 +184,22 @@ QuadMesh fan_mesh(int valence, int m, Height height) {
   return q;
 }
 
+// fan_mesh with knot interval interval(k, i) on the edges of the i-th strip along spoke k (so sector k's faces
+// [i, i + 1] x [j, j + 1] have intervals interval(k, i) and interval(k + 1, j)): unequal between spokes and along
+// them, as non-uniform Catmull-Clark takes them.
+template <class Height, class Interval>
+QuadMesh fan_mesh_with_intervals(int valence, int m, Height height, Interval interval) {
+  QuadMesh q = fan_mesh(valence, m, height);
+  for (int k = 0; k < valence; ++k)
+    for (int j = 0; j < m; ++j)
+      for (int i = 0; i < m; ++i) {
+        const auto& f = q.quads[static_cast<std::size_t>(k * m * m + j * m + i)];
+        q.intervals[{f[0], f[1]}] = q.intervals[{f[3], f[2]}] = interval(k, i);
+        q.intervals[{f[1], f[2]}] = q.intervals[{f[0], f[3]}] = interval((k + 1) % valence, j);
+      }
+  return q;
+}
+
 // fan_mesh with T-junctions: in sector 0, the faces [i, i + 1] x [row, row + 1], first <= i < last, are split
 // at row + 1/2 (edges of knot interval 1/2), which puts T-junctions on the sides of the faces first - 1 and last
 // of that row (1 <= first < last < m).

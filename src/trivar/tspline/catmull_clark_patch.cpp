@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "trivar/core/error.hpp"
+#include "trivar/spline/basis.hpp"
 
 namespace trivar {
 
@@ -109,6 +110,24 @@ void eval_uniform_bicubic(std::span<const std::array<double, 3>> grid, double s,
     for (std::size_t i = 0; i < 4; ++i) {
       const auto& p = grid[i + 4 * j];
       const double w0 = bs[i] * bt[j], w1 = ds[i] * bt[j], w2 = bs[i] * dt[j];
+      for (std::size_t c = 0; c < 3; ++c) {
+        out[c] += w0 * p[c];
+        out[3 + c] += w1 * p[c];
+        out[6 + c] += w2 * p[c];
+      }
+    }
+}
+
+void eval_bicubic_cell(std::span<const std::array<double, 3>> grid, const std::array<double, 6>& ku,
+                       const std::array<double, 6>& kv, double s, double t, double* out) {
+  double bu[8], bv[8];
+  basis_derivatives(ku.data(), 3, 2, s, 1, bu);
+  basis_derivatives(kv.data(), 3, 2, t, 1, bv);
+  std::fill(out, out + 9, 0.0);
+  for (std::size_t j = 0; j < 4; ++j)
+    for (std::size_t i = 0; i < 4; ++i) {
+      const auto& p = grid[i + 4 * j];
+      const double w0 = bu[i] * bv[j], w1 = bu[4 + i] * bv[j], w2 = bu[i] * bv[4 + j];
       for (std::size_t c = 0; c < 3; ++c) {
         out[c] += w0 * p[c];
         out[3 + c] += w1 * p[c];

@@ -43,6 +43,11 @@ const CatmullClarkPatch& catmull_clark_patch(int valence);
 // [0, 1]^2 between grid points (0, 0) and (1, 1): value, d/ds, d/dt (9 values).
 void eval_uniform_bicubic(std::span<const std::array<double, 3>> grid, double s, double t, double* out);
 
+// The same 4 x 4 grid as the bicubic B-spline on non-uniform knots: the cell [ku[2], ku[3]] x [kv[2], kv[3]] =
+// [0, 1]^2 with two knots on either side per direction (ku[2] = 0, ku[3] = 1).
+void eval_bicubic_cell(std::span<const std::array<double, 3>> grid, const std::array<double, 6>& ku,
+                       const std::array<double, 6>& kv, double s, double t, double* out);
+
 // The 4 x 4 grid of the regular case (valence 4) from the 16 points in the layout above.
 std::array<std::array<double, 3>, 16> regular_grid(std::span<const std::array<double, 3>> points);
 

@@ -230,7 +230,8 @@ TMeshPatches t_mesh_patches(const TMeshSurface& s, const TMeshPatchOptions& opti
   };
   std::vector<Star> stars;
   for (int f = 0; f < s.num_faces(); ++f)
-    if (s.method(f) == FaceMethod::star) stars.push_back({f, patch_eval(f), {}});
+    if (s.method(f) == FaceMethod::star || (s.method(f) == FaceMethod::non_uniform && s.star_corner(f)))
+      stars.push_back({f, patch_eval(f), {}});
   for (int k = options.levels >= 0 ? options.levels : 0;; ++k) {
     const double h = std::ldexp(1.0, -k);
     double dev = 0;
@@ -255,14 +256,29 @@ TMeshPatches t_mesh_patches(const TMeshSurface& s, const TMeshPatchOptions& opti
         r.patches.push_back(net_to_face(f, interpolate_patch(patch_eval(f), 0, 0, 1), {{0, 0}, {1, 1}},
                                         corner_frame(s.patch_corner(f)), true));
         break;
+      case FaceMethod::non_uniform:
+        if (!s.star_corner(f)) {
+          // A face of the second ring: four bicubic B-spline cells.
+          const CornerFrame fr = corner_frame(s.patch_corner(f));
+          for (const auto& lo : {std::array<double, 2>{0, 0}, std::array<double, 2>{0.5, 0}, std::array<double, 2>{0.5, 0.5}, std::array<double, 2>{0, 0.5}})
+            r.patches.push_back(net_to_face(f, interpolate_patch(patch_eval(f), lo[0], lo[1], 0.5),
+                                            {{lo[0], lo[1]}, {lo[0] + 0.5, lo[1] + 0.5}}, fr, true));
+          break;
+        }
+        [[fallthrough]];
       case FaceMethod::star: {
         const Star& st = stars[next_star++];
         const CornerFrame fr = corner_frame(s.patch_corner(f));
+        // Stam's rings are one bicubic piece per square; the non-uniform scheme's are 2 x 2 B-spline cells.
+        const int split = s.method(f) == FaceMethod::star ? 1 : 2;
         for (int j = 1; j <= r.levels; ++j) {
-          const double h = std::ldexp(1.0, -j);
+          const double h = std::ldexp(1.0, -j), c = h / split;
           for (const auto& lo : {std::array<double, 2>{h, 0}, std::array<double, 2>{h, h}, std::array<double, 2>{0, h}})
-            r.patches.push_back(net_to_face(f, interpolate_patch(st.eval, lo[0], lo[1], h),
-                                            {{lo[0], lo[1]}, {lo[0] + h, lo[1] + h}}, fr, true));
+            for (int b = 0; b < split; ++b)
+              for (int a = 0; a < split; ++a) {
+                const double x = lo[0] + a * c, y = lo[1] + b * c;
+                r.patches.push_back(net_to_face(f, interpolate_patch(st.eval, x, y, c), {{x, y}, {x + c, y + c}}, fr, true));
+              }
         }
         const double h = std::ldexp(1.0, -r.levels);
         r.patches.push_back(net_to_face(f, st.corner, {{0, 0}, {h, h}}, fr, false));

@@ -8,6 +8,7 @@
 #include "trivar/core/error.hpp"
 #include "trivar/core/parallel.hpp"
 #include "trivar/tspline/catmull_clark_patch.hpp"
+#include "trivar/tspline/non_uniform_catmull_clark.hpp"
 
 namespace trivar {
 
@@ -17,6 +18,7 @@ const char* face_method_name(FaceMethod m) {
     case FaceMethod::exact: return "exact";
     case FaceMethod::bicubic: return "bicubic";
     case FaceMethod::star: return "star";
+    case FaceMethod::non_uniform: return "non-uniform";
   }
   return "?";
 }
@@ -89,7 +91,149 @@ Gather gather(const TMesh& m, int l0) {
   return g;
 }
 
+// The link leaving the far end of link l straight on (the opposite of l's link there), when that vertex is an
+// interior vertex of four faces; -1 otherwise.
+int straight_link(const TMesh& m, int l) {
+  const auto L = [&](int x) -> const TMeshLink& { return m.links[static_cast<std::size_t>(x)]; };
+  const auto rot = [&](int x) { return x < 0 || L(x).face < 0 ? -1 : L(L(x).prev).opp; };
+  std::array<int, 4> r{L(l).opp, -1, -1, -1};  // back, right, straight, left
+  for (std::size_t i = 1; i < 4; ++i) r[i] = rot(r[i - 1]);
+  if (r[3] < 0 || rot(r[3]) != r[0]) return -1;
+  for (int x : r)
+    if (L(x).face < 0 || m.faces[static_cast<std::size_t>(L(x).face)].size() != 4) return -1;
+  return r[2];
+}
+
+// The sectors around star point v for non-uniform Catmull-Clark: the level-0 points (NonUniformStar layout),
+// the knot intervals U_k[0..3] along the spokes, and per sector the faces of the cells (0, 0), (1, 0), (1, 1),
+// (0, 1) with the link leaving each cell's corner (a, b) towards (a + 1, b).
+struct Sectors {
+  std::vector<int> points;
+  std::vector<std::array<double, 4>> intervals;
+  std::vector<std::array<std::array<int, 2>, 4>> cells;  // (face, link) per sector and cell
+  std::string error;
+};
+
+Sectors gather_sectors(const TMesh& m, int v) {
+  const auto L = [&](int x) -> const TMeshLink& { return m.links[static_cast<std::size_t>(x)]; };
+  const auto target = [&](int x) { return L(L(x).next).vertex; };
+  const auto interval = [&](int x) { return m.intervals[static_cast<std::size_t>(L(x).edge)]; };
+  Sectors s;
+  std::vector<int> spokes;
+  int l0 = -1;
+  for (int l = 0; l < static_cast<int>(m.links.size()) && l0 < 0; ++l)
+    if (L(l).vertex == v && L(l).face >= 0) l0 = l;
+  int l = l0;
+  do {
+    if (L(l).face < 0 || L(l).prev < 0) break;
+    spokes.push_back(l);
+    l = L(L(l).prev).opp;
+  } while (l >= 0 && l != l0 && spokes.size() <= 64);
+  if (l != l0 || spokes.size() < 3) {
+    s.error = "star point " + std::to_string(v) + " has no closed ring of 3 to 64 faces";
+    return s;
+  }
+  const int n = static_cast<int>(spokes.size());
+  s.points.assign(static_cast<std::size_t>(1 + 12 * n), -1);
+  s.points[0] = v;
+  s.intervals.resize(static_cast<std::size_t>(n));
+  s.cells.resize(static_cast<std::size_t>(n));
+  // v-direction edges of each sector, checked against the next spoke's intervals once all are known.
+  std::vector<std::array<std::array<double, 3>, 3>> up(static_cast<std::size_t>(n));
+  const auto fail = [&](const std::string& what) {
+    s.error = "the faces within 3 rings of star point " + std::to_string(v) + " " + what +
+              "; non-uniform Catmull-Clark needs quadrilaterals without T-junctions, vertices of 4 faces and no boundary there";
+  };
+  for (int k = 0; k < n; ++k) {
+    int spoke = spokes[static_cast<std::size_t>(k)];
+    for (int i = 1; i <= 3; ++i) {
+      if (i > 1) spoke = straight_link(m, spoke);
+      if (spoke < 0) {
+        fail("are not a regular grid along spoke " + std::to_string(k));
+        return s;
+      }
+      s.intervals[static_cast<std::size_t>(k)][static_cast<std::size_t>(i - 1)] = interval(spoke);
+      s.points[static_cast<std::size_t>(NonUniformStar::index(k, i, 0))] = target(spoke);
+      int col = L(spoke).next;  // (i, 0) -> (i, 1)
+      for (int j = 1; j <= 3; ++j) {
+        if (j > 1) col = straight_link(m, col);
+        if (col < 0 || L(col).face < 0 || m.faces[static_cast<std::size_t>(L(col).face)].size() != 4) {
+          fail("are not a regular grid in sector " + std::to_string(k));
+          return s;
+        }
+        s.points[static_cast<std::size_t>(NonUniformStar::index(k, i, j))] = target(col);
+        up[static_cast<std::size_t>(k)][static_cast<std::size_t>(i - 1)][static_cast<std::size_t>(j - 1)] = interval(col);
+        // The cell (i - 1, j - 1) left of the column: its sides along u have the spoke's interval i - 1.
+        const int across = L(col).next;
+        if (std::abs(interval(across) - s.intervals[static_cast<std::size_t>(k)][static_cast<std::size_t>(i - 1)]) >
+            1e-12 * interval(across)) {
+          fail("have knot intervals that differ on opposite sides of face " + std::to_string(L(col).face));
+          return s;
+        }
+        if (i <= 2 && j <= 2) {
+          static constexpr std::array<std::array<int, 2>, 2> slot{{{0, 3}, {1, 2}}};  // cell (a, b) -> 0..3
+          s.cells[static_cast<std::size_t>(k)][static_cast<std::size_t>(slot[static_cast<std::size_t>(i - 1)][static_cast<std::size_t>(j - 1)])] =
+              {L(col).face, L(col).prev};
+        }
+      }
+    }
+    const int beyond = straight_link(m, spoke);
+    if (beyond < 0) {
+      fail("are not a regular grid along spoke " + std::to_string(k));
+      return s;
+    }
+    s.intervals[static_cast<std::size_t>(k)][3] = interval(beyond);
+  }
+  for (int k = 0; k < n; ++k)
+    for (std::size_t i = 0; i < 3; ++i)
+      for (std::size_t j = 0; j < 3; ++j) {
+        const double a = up[static_cast<std::size_t>(k)][i][j], b = s.intervals[static_cast<std::size_t>((k + 1) % n)][j];
+        if (std::abs(a - b) > 1e-12 * b) {
+          fail("have knot intervals that differ along a strip of spoke " + std::to_string((k + 1) % n));
+          return s;
+        }
+      }
+  std::vector<int> sorted = s.points;
+  std::sort(sorted.begin(), sorted.end());
+  if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) fail("close on themselves");
+
+  return s;
+}
+
+// The knots of the bicubic cell of the quad whose corner link is l0 (from (0, 0) to (1, 0)), six per direction in
+// units of the cell's side: two intervals before it, its own, two after, read along the lines through (0, 0).
+std::optional<std::array<std::array<double, 6>, 2>> cell_knots(const TMesh& m, int l0) {
+  const auto L = [&](int x) -> const TMeshLink& { return m.links[static_cast<std::size_t>(x)]; };
+  std::array<std::array<double, 6>, 2> k{};
+  const std::array<int, 2> axis{l0, L(L(l0).prev).opp};
+  for (std::size_t d = 0; d < 2; ++d) {
+    std::array<double, 5> h{};  // intervals -2 .. 2
+    int f = axis[d];
+    h[2] = m.intervals[static_cast<std::size_t>(L(f).edge)];
+    for (std::size_t i = 3; i < 5; ++i) {
+      f = straight_link(m, f);
+      if (f < 0) return std::nullopt;
+      h[i] = m.intervals[static_cast<std::size_t>(L(f).edge)];
+    }
+    int b = L(axis[d]).opp;
+    for (std::size_t i = 2; i-- > 0;) {
+      b = straight_link(m, b);
+      if (b < 0) return std::nullopt;
+      h[i] = m.intervals[static_cast<std::size_t>(L(b).edge)];
+    }
+    k[d][2] = 0;
+    for (std::size_t i = 3; i < 6; ++i) k[d][i] = k[d][i - 1] + h[i - 1] / h[2];
+    for (std::size_t i = 2; i-- > 0;) k[d][i] = k[d][i + 1] - h[i] / h[2];
+  }
+  return k;
+}
+
 }  // namespace
+
+struct TMeshSurface::Nurcc {
+  NonUniformStar star;
+  std::vector<std::array<double, 4>> points;  // homogeneous (w x, w y, w z, w) in the NonUniformStar layout
+};
 
 TMeshSurface::~TMeshSurface() = default;
 TMeshSurface::TMeshSurface(TMeshSurface&&) noexcept = default;
@@ -144,6 +288,53 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(mesh), stars_
         }
     rings(front, depth + 5, star_dist);  // far enough to size the clusters below
   }
+  // Star points with unequal knot intervals on their three rings of faces: non-uniform Catmull-Clark on the
+  // faces of the cells (0, 0), (1, 0), (1, 1), (0, 1) of every sector (the faces whose 4 x 4 points hold the star
+  // point). With equal intervals the uniform evaluation below applies (the same surface, Stam's exact method).
+  struct NurccFace {
+    int star = -1, sector = 0, cell = 0, link = -1;
+  };
+  std::vector<NurccFace> nurcc_of(static_cast<std::size_t>(nf));
+  std::vector<std::string> nurcc_why(static_cast<std::size_t>(nv));  // a star point whose sectors could not be gathered
+  for (int v : stars_) {
+    if (m.degree != 3) continue;
+    Sectors sec = gather_sectors(m, v);
+    if (!sec.error.empty()) {
+      nurcc_why[static_cast<std::size_t>(v)] = sec.error;
+      continue;
+    }
+    const double d0 = sec.intervals[0][0];
+    bool equal = true;
+    for (const auto& r : sec.intervals)
+      for (double d : r) equal = equal && std::abs(d - d0) <= 1e-12 * d0;
+    if (equal) continue;
+    for (const auto& r : sec.intervals)
+      for (double d : r)
+        require(d > 0, [&] {
+          return "T-mesh: knot interval " + std::to_string(d) + " within three rings of star point " + std::to_string(v) +
+                 ": repeated knots near a star point are not evaluated";
+        });
+    auto z = std::make_unique<Nurcc>(Nurcc{NonUniformStar(static_cast<int>(sec.intervals.size()), sec.intervals), {}});
+    for (int x : sec.points) {
+      const TMeshVertex& mv = m.vertices[static_cast<std::size_t>(x)];
+      require(mv.primary >= 0 && mv.block.empty(), [&] {
+        return "T-mesh: vertex " + std::to_string(x) + " near star point " + std::to_string(v) +
+               " has no control point or repeated-knot nodes; non-uniform Catmull-Clark needs one point per vertex";
+      });
+      const RationalPoint& pt = m.points[static_cast<std::size_t>(mv.primary)];
+      z->points.push_back({pt.w * pt.xyz[0], pt.w * pt.xyz[1], pt.w * pt.xyz[2], pt.w});
+    }
+    for (std::size_t k = 0; k < sec.cells.size(); ++k)
+      for (int c = 0; c < 4; ++c) {
+        const auto [face, link] = sec.cells[k][static_cast<std::size_t>(c)];
+        NurccFace& nf_ = nurcc_of[static_cast<std::size_t>(face)];
+        require(nf_.star < 0, [&] {
+          return "T-mesh: face " + std::to_string(face) + " is next to two star points with unequal knot intervals; subdivide the control mesh";
+        });
+        nf_ = {static_cast<int>(nurcc_.size()), static_cast<int>(k), c, link};
+      }
+    nurcc_.push_back(std::move(z));
+  }
   std::vector<int> exact;
   struct NearExact {
     int face;
@@ -160,10 +351,22 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(mesh), stars_
       exact.push_back(f);
       continue;
     }
+    if (const NurccFace& z = nurcc_of[static_cast<std::size_t>(f)]; z.star >= 0) {
+      static constexpr std::array<std::array<int, 2>, 4> cells{{{0, 0}, {1, 0}, {1, 1}, {0, 1}}};
+      face.method = FaceMethod::non_uniform;
+      face.nurcc = z.star;
+      face.sector = z.sector;
+      face.cell = cells[static_cast<std::size_t>(z.cell)];
+      const auto c = corners(f);
+      face.corner = static_cast<int>(std::find(c.begin(), c.end(), L(z.link).vertex) - c.begin());
+      for (const auto& p : nurcc_[static_cast<std::size_t>(z.star)]->points) face.rational = face.rational || p[3] != 1.0;
+      continue;
+    }
     // Near a star point: the Catmull-Clark region's conditions on the neighbourhood. A face's uniform bicubic
     // patch is the T-spline there when the (p + 1) / 2 rings around it are uniform quadrilaterals inside the
     // mesh: its 16 nodes are the corners of the first ring and their rays cross (p + 1) / 2 lines.
     const int cc_depth = (m.degree + 1) / 2;
+    std::string unequal;  // unequal knot intervals within cc_depth rings: exact as a non-uniform bicubic face
     const std::string why = [&]() -> std::string {
       if (m.degree != 3) return "star points are evaluated for degree 3, not " + std::to_string(m.degree);
       std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX);
@@ -177,8 +380,8 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(mesh), stars_
           if (boundary[static_cast<std::size_t>(L(l).vertex)])
             return "boundary vertex " + std::to_string(L(l).vertex) + " is within " + std::to_string(cc_depth) + " rings; the Catmull-Clark evaluation around star points needs none";
           const double d = m.intervals[static_cast<std::size_t>(L(l).edge)];
-          if (std::abs(d - d0) > 1e-12 * d0)
-            return "edge " + std::to_string(L(l).edge) + " nearby has knot interval " + std::to_string(d) + ", not " + std::to_string(d0) + "; the Catmull-Clark evaluation around star points needs equal intervals";
+          if (std::abs(d - d0) > 1e-12 * d0 && unequal.empty())
+            unequal = "edge " + std::to_string(L(l).edge) + " nearby has knot interval " + std::to_string(d) + ", not " + std::to_string(d0);
         }
       return {};
     }();
@@ -202,6 +405,18 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(mesh), stars_
     require(star_corners <= 1, [&] { return where() + "it has " + std::to_string(star_corners) + " star corners; subdivide the control mesh once so that every face has at most one"; });
     Gather gth = gather(m, loop[static_cast<std::size_t>(corner)]);
     require(gth.error.empty(), [&] { return where() + gth.error; });
+    if (!unequal.empty()) {
+      // Unequal intervals: a face whose 16 points avoid the star points is the bicubic B-spline on its knots;
+      // one whose points hold a star point needs its star's non-uniform Catmull-Clark sectors.
+      for (int x : gth.points)
+        require(!is_star[static_cast<std::size_t>(x)], [&] {
+          const std::string& sw = nurcc_why[static_cast<std::size_t>(x)];
+          return where() + unequal + "; non-uniform Catmull-Clark at star point " + std::to_string(x) + " needs its three rings of faces: " +
+                 (sw.empty() ? std::string("degree 3") : sw);
+        });
+      face.knots = cell_knots(m, loop[static_cast<std::size_t>(corner)]);
+      require(face.knots.has_value(), [&] { return where() + unequal + "; its knot lines are not straight through vertices of four faces"; });
+    }
     for (int x : gth.points) {
       const TMeshVertex& mv = m.vertices[static_cast<std::size_t>(x)];
       require(mv.primary >= 0 && mv.block.empty(), [&] {
@@ -392,11 +607,18 @@ void TMeshSurface::eval(int face, double u, double v, double* out) const {
 
 void TMeshSurface::eval_patch_homogeneous(int face, double up, double vp, double* out) const {
   const Face& f = faces_[static_cast<std::size_t>(face)];
-  require(f.method == FaceMethod::bicubic || f.method == FaceMethod::star,
+  require(f.method == FaceMethod::bicubic || f.method == FaceMethod::star || f.method == FaceMethod::non_uniform,
           [&] { return "T-mesh: face " + std::to_string(face) + " is not a Catmull-Clark face"; });
+  if (f.method == FaceMethod::non_uniform) {
+    const Nurcc& z = *nurcc_[static_cast<std::size_t>(f.nurcc)];
+    z.star.eval(z.points, f.sector, f.cell[0] + up, f.cell[1] + vp, out);
+    return;
+  }
   // The rules are linear: once on w x, once on the weights (all 1: W = 1, W' = 0).
   const auto run = [&](const std::vector<std::array<double, 3>>& p, double* q) {
-    if (f.method == FaceMethod::bicubic)
+    if (f.method == FaceMethod::bicubic && f.knots)
+      eval_bicubic_cell(regular_grid(p), (*f.knots)[0], (*f.knots)[1], up, vp, q);
+    else if (f.method == FaceMethod::bicubic)
       eval_uniform_bicubic(regular_grid(p), up, vp, q);
     else
       catmull_clark_patch(static_cast<int>((p.size() - 8) / 2)).eval(p, up, vp, q);
@@ -418,6 +640,11 @@ TMeshSurface::ChartFrame TMeshSurface::chart_frame(int face) const {
 
 std::vector<std::array<double, 3>> TMeshSurface::patch_points(int face) const {
   const Face& f = faces_[static_cast<std::size_t>(face)];
+  if (f.method == FaceMethod::non_uniform) {
+    std::vector<std::array<double, 3>> p;
+    for (const auto& x : nurcc_[static_cast<std::size_t>(f.nurcc)]->points) p.push_back({x[0] / x[3], x[1] / x[3], x[2] / x[3]});
+    return p;
+  }
   require(f.method == FaceMethod::bicubic || f.method == FaceMethod::star,
           [&] { return "T-mesh: face " + std::to_string(face) + " is not a Catmull-Clark face"; });
   std::vector<std::array<double, 3>> p(f.points.size());

@@ -7,12 +7,19 @@
 //                  when no blending function nonzero on its faces has a knot vector cut by the chart's border
 //                  inside the mesh (else it grows by a ring), so this is the global T-spline's surface wherever
 //                  one exists (tested face by face to 1e-12, also starting from one-ring charts).
-//   bicubic        the other faces without a star corner: the uniform bicubic B-spline patch of their 4 x 4
-//                  control points, which is the T-spline there (equal knot intervals, no T-junction).
+//   bicubic        the other faces without a star corner: the bicubic B-spline patch of their 4 x 4 control
+//                  points on the knots of the mesh's lines through the face (uniform when the intervals are
+//                  equal), which is the T-spline there (no T-junction nearby).
 //   star           the faces at a star point: the Catmull-Clark limit surface of their 2N + 8 control points,
 //                  evaluated exactly (catmull_clark_patch, Stam 1998).
+//   non_uniform    the faces of the two face rings of a star point with unequal knot intervals on its three rings
+//                  of faces (the faces whose 4 x 4 points hold the star point): non-uniform Catmull-Clark
+//                  (non_uniform_catmull_clark: knot-interval-weighted rules, which are knot insertion of the
+//                  bicubic B-spline away from the star point and uniform Catmull-Clark for equal intervals),
+//                  evaluated exactly as B-spline cells of the subdivision levels. It needs the three rings to be
+//                  quadrilaterals without T-junctions around vertices of four faces, off the boundary.
 // The faces within p + 2 rings of a star point (bicubic and star) need, and are checked to have, degree 3,
-// equal knot intervals, no T-junction and no boundary within (p + 1) / 2 rings of them, control points
+// no T-junction and no boundary within (p + 1) / 2 rings of them, control points
 // without repeated-knot nodes, and at most one star corner per face. Weights other than 1 are rational
 // Catmull-Clark: the rules act on the homogeneous points (w x, w) and the limit is projected, which on faces
 // without a star corner is the rational uniform bicubic B-spline sum w P B / sum w B, i.e. the T-spline (the
@@ -20,15 +27,20 @@
 // the tangent plane at the star point). A face more than p rings from
 // the star points' faces that fails these (a boundary, a T-junction or unequal intervals nearby) is exact
 // instead when a chart of p up to (its distance - 1) rings around it holds its knot vectors (so a star point
-// needs 7 faces to the boundary, not 8); otherwise the face's reason is the error. The
+// needs 7 faces to the boundary, not 8); otherwise the face's reason is the error (what is still refused:
+// T-junctions and repeated knots within two rings of a star point's faces, star points on the boundary, two star
+// points with unequal intervals within three rings of each other, degrees other than 3). The
 // surface there is then the Catmull-Clark limit surface of the control mesh, which on faces without a star
 // corner is the uniform bicubic B-spline = the T-spline. Continuity: C2 across every edge away from star points
 // (T-spline and uniform B-spline pieces meet as one spline); C1 across the edges at a star point except at the
 // point itself, where the surface is G1 (tangent-plane continuous; the face parametrisations are singular there
 // for valence != 4). tests/tspline/star_point_test.cpp measures positions, normals and first derivatives across
-// every edge.
+// every edge; tests/tspline/non_uniform_star_test.cpp the same for non-uniform star points, whose faces meet C2
+// away from the star point and have a common tangent plane at it (normal spread 1.7e-5 rad at 1e-6 from a
+// valence-5 star point with intervals 0.6 to 2.5).
 #include <array>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "trivar/tspline/t_mesh.hpp"
@@ -36,7 +48,7 @@
 
 namespace trivar {
 
-enum class FaceMethod { none, exact, bicubic, star };
+enum class FaceMethod { none, exact, bicubic, star, non_uniform };
 const char* face_method_name(FaceMethod m);
 
 // The frame of a Catmull-Clark patch starting at corner c (0..3, counter-clockwise from the face's first corner)
@@ -79,6 +91,11 @@ public:
   void eval_patch_homogeneous(int face, double up, double vp, double* out) const;
   bool rational_patch(int face) const { return faces_[static_cast<std::size_t>(face)].rational; }
   int patch_corner(int face) const { return faces_[static_cast<std::size_t>(face)].corner; }
+  // A non-uniform Catmull-Clark face: true when the star point is its patch corner (a face of the star's one-ring
+  // of faces); the others lie in the second ring (their four quarters are bicubic B-spline cells).
+  bool star_corner(int face) const { return faces_[static_cast<std::size_t>(face)].cell == std::array<int, 2>{0, 0}; }
+  // Star points evaluated by non-uniform Catmull-Clark (unequal knot intervals around them).
+  int non_uniform_stars() const { return static_cast<int>(nurcc_.size()); }
 
 private:
   struct Face {
@@ -90,11 +107,17 @@ private:
     // Their homogeneous coordinates, split for the evaluation of the linear rules: w x and (w, 0, 0).
     std::vector<std::array<double, 3>> wx, w;
     bool rational = false;         // a weight other than 1
+    // bicubic with unequal knot intervals: the knots of the cell [0, 1] (patch frame), six per direction
+    std::optional<std::array<std::array<double, 6>, 2>> knots;
+    int nurcc = -1, sector = 0;    // non_uniform: index into nurcc_, the sector and the face's cell in it
+    std::array<int, 2> cell{-1, -1};
   };
+  struct Nurcc;  // a star point evaluated by non-uniform Catmull-Clark: its subdivision and homogeneous points
   TMesh mesh_;
   std::vector<int> stars_;
   std::vector<Face> faces_;
   std::vector<std::unique_ptr<TSplineSurface>> charts_;
+  std::vector<std::unique_ptr<Nurcc>> nurcc_;
 };
 
 }  // namespace trivar
