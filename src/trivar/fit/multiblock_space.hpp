@@ -59,7 +59,25 @@ struct MultiblockOptions {
   // Knot lines (planes) across whole blocks instead of the first row only: tensor blocks stay tensor splines
   // (every B-spline crossing a T-joint's line splits, not only the transition ones), as tensor_multipatch needs.
   bool whole_lines = false;
+  // Volumes: the edges of a common part inside a face (T-joints) as planes across the whole face instead of over
+  // the common part widened to the first-row supports meeting it (splits more B-splines; kept to measure what
+  // the local planes save).
+  bool whole_face_edges = false;
 };
+
+// Steps 1 and 2 alone, on blocks of any number of coordinates (surfaces in space, rational ones too): finds the
+// common parts and exchanges the side knot lines (planes) over the first `rows` rows (1 for C0 conformity, 2 for
+// C1 stitching; 0 or options.whole_lines: across whole blocks) until every interface's traces agree; the blocks
+// are refined in place (geometry unchanged). Throws trivar::Error as multiblock_space for blocks of different
+// degrees, coordinates or rationality, and for faces that overlap with no corner of either on the other
+// (a plus-shaped overlap, naming both blocks).
+template <int D>
+std::vector<BlockInterface<D>> match_blocks(std::vector<LRSpline<D>>& blocks, const MultiblockOptions& options, int rows);
+
+// The parameters of side 1 - from of interface f at the point with parameters u on side `from` (u's entry across
+// the side is ignored; the result's is the other side's value).
+template <int D>
+Param<D> interface_param(const BlockInterface<D>& f, int from, const Param<D>& u);
 
 // Planar surfaces (D = 2, two coordinates) or volumes (D = 3, three coordinates). Throws trivar::Error with one
 // line for blocks that are not polynomial with D coordinates and equal degrees, sides that meet over a common part
