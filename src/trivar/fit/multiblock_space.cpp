@@ -299,18 +299,23 @@ SideKnots<D> knots_for(const std::vector<LRSpline<D>>& B, const BlockInterface<D
   return out;
 }
 
-// Where the neighbour's planes must reach on side `to` of interface f: across the supports of the first-row
-// B-splines that meet the common part (those C0 at its edges reach one span beyond them, and their traces on the
+// Where the neighbour's planes must reach on side `to` of interface f: across the supports of the B-splines of
+// the first `rows` rows that meet the common part (those C0 at its edges reach one span beyond them, and their traces on the
 // part must split like the neighbour's).
 template <int D>
-Box<D> planes_extent(const LRSpline<D>& s, const BlockInterface<D>& f, int to) {
+Box<D> planes_extent(const LRSpline<D>& s, const BlockInterface<D>& f, int to, int rows) {
   const auto t = static_cast<std::size_t>(to);
   Box<D> part = s.domain(), out = s.domain();
   for (int a : along_directions<D>(f.side[t])) {
     part.lo[a] = std::min(f.lo[t][a], f.hi[t][a]), part.hi[a] = std::max(f.lo[t][a], f.hi[t][a]);
     out.lo[a] = part.lo[a], out.hi[a] = part.hi[a];
   }
-  for (int id : side_row(s, f.side[t], 0)) {
+  std::vector<int> first;
+  for (int r = 0; r < std::max(rows, 1); ++r) {
+    const std::vector<int> row = side_row(s, f.side[t], r);
+    first.insert(first.end(), row.begin(), row.end());
+  }
+  for (int id : first) {
     const auto& knots = s.basis_function(id).knots;
     bool meets = true;
     for (int a : along_directions<D>(f.side[t]))
@@ -460,7 +465,7 @@ std::vector<BlockInterface<D>> match_blocks(std::vector<LRSpline<D>>& blocks, co
           changed += insert_side_knot_lines(s, f.side[t], inner, rows);
           continue;
         }
-        const Box<D> part = planes_extent(s, f, to);
+        const Box<D> part = planes_extent(s, f, to, rows);
         changed += insert_side_knot_lines(s, f.side[t], edges, rows, options.whole_face_edges ? nullptr : &part);
         changed += insert_side_knot_lines(s, f.side[t], inner, rows, &part);
       }

@@ -121,7 +121,7 @@ double outward(DomainSide s) { return s.end == 1 ? 1.0 : -1.0; }
 }  // namespace
 
 template <int D>
-StitchedBlocks<D> stitch_blocks(std::vector<LRSpline<D>> blocks, const StitchOptions& options) {
+StitchedBlocks<D> stitch_blocks(std::vector<LRSpline<D>> blocks, const StitchOptions& options, CrossSpeed speed) {
   StitchedBlocks<D> out;
   out.continuity = options.continuity;
   const bool c1 = options.continuity == Continuity::C1;
@@ -163,24 +163,29 @@ StitchedBlocks<D> stitch_blocks(std::vector<LRSpline<D>> blocks, const StitchOpt
     const std::array<std::vector<int>, 2> ids{first_rows(A, f.side[0], rows), first_rows(C, f.side[1], rows)};
     const std::vector<Param<D>> points = part_points(blocks, f, ids, pinned);
     const auto name = [&] { return "stitch: blocks " + std::to_string(i) + " and " + std::to_string(j); };
-    // lambda: block 1's parameters run 1 / lambda times as fast as block 0's across the seam as along it (the
-    // geometric mean of the directions along a face); the input's cross derivatives must not point against each
-    // other.
+    // lambda: from the parametrisation (block 1's parameters run 1 / lambda times as fast as block 0's across the
+    // seam as along it; the geometric mean of the directions along a face), or fitted to the input's cross
+    // derivatives (least squares), which must not point against each other in either case.
     double lambda = 1.0;
     for (int a : along_directions<D>(f.side[0]))
       lambda *= std::abs((f.hi[0][a] - f.lo[0][a]) / (f.hi[1][f.along[a]] - f.lo[1][f.along[a]]));
     lambda = std::pow(lambda, 1.0 / (D - 1));
     if (c1) {
-      double ab = 0;
+      double ab = 0, aa = 0;
       for (const Param<D>& u : points) {
         side_values(A, f.side[0], ids[0], u, outward(f.side[0]), va);
         side_values(C, f.side[1], ids[1], interface_param(f, 0, u), -outward(f.side[1]), vb);
-        for (int c = 0; c < dim; ++c) ab += combination(i, va, true, c) * combination(j, vb, true, c);
+        for (int c = 0; c < dim; ++c) {
+          const double x = combination(i, va, true, c), y = combination(j, vb, true, c);
+          ab += x * y;
+          aa += x * x;
+        }
       }
-      require(ab > 0, [&] {
+      require(aa > 0 && ab > 0, [&] {
         return name() + ": the derivatives across their interface point against each other (the blocks fold back); "
                "C1 is impossible there";
       });
+      if (speed == CrossSpeed::fitted) lambda = ab / aa;
     }
     out.speed.push_back(lambda);
     for (const Param<D>& u : points) {
@@ -284,7 +289,6 @@ StitchedBlocks<D> stitch_blocks(std::vector<LRSpline<D>> blocks, const StitchOpt
   return out;
 }
 
-template StitchedBlocks<2> stitch_blocks(std::vector<LRSpline<2>>, const StitchOptions&);
-template StitchedBlocks<3> stitch_blocks(std::vector<LRSpline<3>>, const StitchOptions&);
+template StitchedBlocks<2> stitch_blocks(std::vector<LRSpline<2>>, const StitchOptions&, CrossSpeed);
 
 }  // namespace trivar

@@ -1,6 +1,7 @@
 #pragma once
-// C0 and C1 stitching of multi-block models (seed 004, "C1 stitching" beyond two patches): surfaces (in the plane
-// or in space) or volumes, polynomial or rational, whose blocks meet over common parts of their sides, T-joints
+// C0 and C1 stitching of multi-block models (seed 004, "C1 stitching" beyond two patches): surfaces (D = 2, in
+// the plane or in space; the code is written on the dimension, volumes are not instantiated yet: their matched
+// blocks with local planes can fail the LR constructor from parts), polynomial or rational, whose blocks meet over common parts of their sides, T-joints
 // included, with parametrisations that correspond linearly across every interface (the usual multi-patch setting
 // after knot-line insertion). The blocks are matched as in multiblock_space (common parts found geometrically,
 // side knot lines exchanged over the first two rows for C1, T-joint lines with multiplicity p), and then the
@@ -9,11 +10,7 @@
 // and T-joints shared by several interfaces are consistent) such that on every common part
 //   C0: both blocks' traces are equal;
 //   C1: additionally block 1's derivative across the side (into it) equals lambda times block 0's (out of it),
-//       where the parametrisations correspond with one scale across the seam and along it: lambda is the ratio
-//       of the common part's parameter lengths along the side, block 0's over block 1's (the geometric mean of
-//       the two directions along a face), 1 for blocks cut from one parametrisation. So C1 is the continuity of
-//       the derivatives of the map from the blocks' parameters placed side by side with that affine map, which
-//       is consistent around T-joints (a lambda fitted per interface would not be).
+//       lambda > 0 the interface's ratio of parametric speeds (CrossSpeed below).
 // Each condition is imposed at p + 1 points per Bezier span of the common part and direction along it, which
 // makes the polynomial pieces equal, so the continuity holds everywhere on the seam. Every other control value
 // keeps its value bit for bit.
@@ -28,6 +25,15 @@
 #include "trivar/lr/lr_spline.hpp"
 
 namespace trivar {
+
+// lambda per interface. `parametric`: the parametrisations correspond with one scale across the seam and along
+// it, so lambda is the ratio of the common part's parameter lengths along the side, block 0's over block 1's (the
+// geometric mean of the two directions along a face), 1 for blocks cut from one parametrisation; C1 is then the
+// continuity of the derivatives of the map over the blocks' parameter domains placed side by side by that affine
+// map, consistent around T-joints. `fitted`: lambda fitted to the input's cross derivatives by least squares (as
+// the two-patch stitch), for blocks parametrised with different scales across and along (a long block over
+// [0, 1]^2); a badly kinked input then fixes lambda at its kinks' average.
+enum class CrossSpeed { parametric, fitted };
 
 template <int D>
 struct StitchedBlocks {
@@ -47,6 +53,7 @@ struct StitchedBlocks {
 // other (C1: the blocks fold back), for rational blocks whose weights are not C0 (C1) across an interface (naming
 // both blocks), and when the conditions cannot be met (the jump after stitching exceeds 1e-9 of the model).
 template <int D>
-StitchedBlocks<D> stitch_blocks(std::vector<LRSpline<D>> blocks, const StitchOptions& options = {});
+StitchedBlocks<D> stitch_blocks(std::vector<LRSpline<D>> blocks, const StitchOptions& options = {},
+                                CrossSpeed speed = CrossSpeed::parametric);
 
 }  // namespace trivar
