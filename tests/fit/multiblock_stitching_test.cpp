@@ -309,5 +309,80 @@ TEST(MultiblockStitching, WeightsThatJumpAreRefusedNamingTheBlocks) {
   }
 }
 
+// One triquadratic Bezier volume cut into three blocks with a T-joint (z < 0.8; above it cut at x = 0.6), each
+// refined with its own knots: stitched C1 with nothing moved and every block still the volume; with the upper
+// blocks' first rows bent, C1 again (jumps through finite differences across the two seams z = 0.8 and x = 0.6).
+TEST(MultiblockStitching, SplitVolumeIsReproducedAndBentVolumeMadeC1) {
+  const KnotVector k(2, {0, 0, 0, 1.5, 1.5, 1.5});
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<double> shift(-0.1, 0.1);
+  std::vector<double> pts;
+  for (int l = 0; l < 3; ++l)
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 3; ++i) pts.insert(pts.end(), {0.75 * i + shift(rng), 0.75 * j + shift(rng), 0.75 * l + shift(rng)});
+  const TensorSpline<3> s = TensorSpline<3>::from_cartesian({k, k, k}, 3, pts);
+  const auto [below, above] = split_at(s, 2, 0.8);
+  const auto [left, right] = split_at(above, 0, 0.6);
+  std::vector<LRSpline<3>> blocks{LRSpline<3>(insert_knots(below, 0, std::vector<double>{0.4, 1.1})),
+                                  LRSpline<3>(insert_knots(left, 1, std::vector<double>{0.5})),
+                                  LRSpline<3>(insert_knots(insert_knots(insert_knots(right, 2, std::vector<double>{1.1}), 0,
+                                                                        std::vector<double>{0.9, 1.2}),
+                                                           1, std::vector<double>{0.5, 1.0}))};
+  const StitchedBlocks<3> r = stitch_blocks(blocks);
+  EXPECT_EQ(r.interfaces.size(), 3u);
+  EXPECT_LE(r.moved, 1e-12);
+  EXPECT_LE(r.jump, 1e-12);
+  double worst = 0, x[3], y[3];
+  for (const LRSpline<3>& b : r.blocks)
+    for (int i = 0; i < 20; ++i) {
+      Param<3> u;
+      for (int c = 0; c < 3; ++c) u[static_cast<std::size_t>(c)] = b.domain().lo[c] + (0.05 + 0.9 * ((i * (c + 3)) % 20) / 19.0) * b.domain().extent(c);
+      b.eval(u, x);
+      s.eval(u, y);
+      for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(x[c] - y[c]));
+    }
+  EXPECT_LE(worst, 1e-12);
+
+  // Bend the upper right block's second layer above the seam z = 0.8 (inside the face, away from its edges).
+  std::vector<LRBSpline<3>> basis(blocks[2].basis_functions().begin(), blocks[2].basis_functions().end());
+  int bent = 0;
+  for (LRBSpline<3>& f : basis)
+    if (std::count(f.knots[2].begin(), f.knots[2].end(), 0.8) == 2 && f.knots[0].front() > 0.6 && f.knots[1].front() > 0) {
+      f.coef[2] += 0.03 * (1 + bent++ % 3);
+    }
+  ASSERT_GT(bent, 0);
+  blocks[2] = LRSpline<3>(blocks[2].degrees(), 3, false, std::move(basis), blocks[2].mesh());
+  const StitchedBlocks<3> c1 = stitch_blocks(blocks);
+  EXPECT_GT(c1.moved, 1e-3);
+  // One-sided derivatives across z = 0.8 (below: block 0; above: blocks 1, 2) and x = 0.6 (blocks 1, 2): quadratic
+  // pieces, so the 8-point stencil is exact up to rounding.
+  constexpr double h = 0.004;
+  const Eigen::VectorXd down = stencil_weights(h, -1), up = stencil_weights(h, 1);
+  double jump = 0;
+  const auto derivative = [&](const LRSpline<3>& b, Param<3> u, int dir, const Eigen::VectorXd& w, double sign) {
+    std::array<double, 3> d{0, 0, 0};
+    for (int q = 0; q < 8; ++q) {
+      Param<3> p = u;
+      p[static_cast<std::size_t>(dir)] += sign * q * h;
+      b.eval(p, x);
+      for (int c = 0; c < 3; ++c) d[static_cast<std::size_t>(c)] += w[q] * x[c];
+    }
+    return d;
+  };
+  for (int i = 0; i < 9; ++i)
+    for (int j = 0; j < 9; ++j) {
+      const double a = 1.5 * (i + 0.5) / 9, b = 1.5 * (j + 0.5) / 9;
+      const auto lo = derivative(c1.blocks[0], {a, b, 0.8}, 2, down, -1);
+      const auto hi = derivative(c1.blocks[a < 0.6 ? 1 : 2], {a, b, 0.8}, 2, up, 1);
+      const double z = 0.8 + 0.7 * (j + 0.5) / 9;
+      const auto left_side = derivative(c1.blocks[1], {0.6, b, z}, 0, down, -1);
+      const auto right_side = derivative(c1.blocks[2], {0.6, b, z}, 0, up, 1);
+      for (std::size_t c = 0; c < 3; ++c)
+        jump = std::max({jump, std::abs(lo[c] - hi[c]), std::abs(left_side[c] - right_side[c])});
+    }
+  EXPECT_LE(jump, 1e-10);
+  RecordProperty("volume_seam_derivative_jump", format_number(jump));
+}
+
 }  // namespace
 }  // namespace trivar

@@ -444,6 +444,29 @@ std::vector<BlockInterface<D>> match_blocks(std::vector<LRSpline<D>>& blocks, co
             interfaces.push_back(f);
         }
 
+  // One point of a block found by several interfaces (a T-joint's corner projected from two neighbours) is one
+  // parameter: bounds within rounding of a value seen before (or of the domain's ends) become that value, or the
+  // block would get two knot planes an ulp apart.
+  std::vector<std::array<std::vector<double>, D>> seen(static_cast<std::size_t>(nb));
+  for (int b = 0; b < nb; ++b)
+    for (int a = 0; a < D; ++a)
+      seen[static_cast<std::size_t>(b)][static_cast<std::size_t>(a)] = {blocks[static_cast<std::size_t>(b)].domain().lo[a],
+                                                                        blocks[static_cast<std::size_t>(b)].domain().hi[a]};
+  for (BlockInterface<D>& f : interfaces)
+    for (std::size_t k = 0; k < 2; ++k) {
+      const auto b = static_cast<std::size_t>(f.block[k]);
+      for (int a : along_directions<D>(f.side[k])) {
+        std::vector<double>& values = seen[b][static_cast<std::size_t>(a)];
+        for (double* x : {&f.lo[k][a], &f.hi[k][a]}) {
+          const auto near = std::find_if(values.begin(), values.end(), [&](double v) {
+            return std::abs(v - *x) <= 1e-10 * blocks[b].domain().extent(a);
+          });
+          if (near != values.end()) *x = *near;
+          else values.push_back(*x);
+        }
+      }
+    }
+
   // Adjust the side knot lines until every interface's two traces agree (a line given to one block can be
   // passed on to a third one through another interface, hence the rounds).
   if (options.whole_lines) rows = 0;

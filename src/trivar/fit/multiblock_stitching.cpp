@@ -290,5 +290,6 @@ StitchedBlocks<D> stitch_blocks(std::vector<LRSpline<D>> blocks, const StitchOpt
 }
 
 template StitchedBlocks<2> stitch_blocks(std::vector<LRSpline<2>>, const StitchOptions&, CrossSpeed);
+template StitchedBlocks<3> stitch_blocks(std::vector<LRSpline<3>>, const StitchOptions&, CrossSpeed);
 
 }  // namespace trivar

@@ -1,7 +1,6 @@
 #pragma once
-// C0 and C1 stitching of multi-block models (seed 004, "C1 stitching" beyond two patches): surfaces (D = 2, in
-// the plane or in space; the code is written on the dimension, volumes are not instantiated yet: their matched
-// blocks with local planes can fail the LR constructor from parts), polynomial or rational, whose blocks meet over common parts of their sides, T-joints
+// C0 and C1 stitching of multi-block models (seed 004, "C1 stitching" beyond two patches): surfaces (in the plane
+// or in space) or volumes, polynomial or rational, whose blocks meet over common parts of their sides, T-joints
 // included, with parametrisations that correspond linearly across every interface (the usual multi-patch setting
 // after knot-line insertion). The blocks are matched as in multiblock_space (common parts found geometrically,
 // side knot lines exchanged over the first two rows for C1, T-joint lines with multiplicity p), and then the
