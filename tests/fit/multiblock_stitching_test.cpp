@@ -192,7 +192,10 @@ TEST(MultiblockStitching, BentBlocksBecomeC1AndKeepTheirGeometryAwayFromTheSeams
   EXPECT_LE(r.jump, 1e-12);
   const double jump = seam_derivative_jump(r.blocks);
   EXPECT_LE(jump, 1e-10);
-  RecordProperty("seam_derivative_jump", std::to_string(jump));
+  EXPECT_LE(interface_derivative_jump(r), 1e-10);
+  RecordProperty("seam_derivative_jump", format_number(jump));
+  RecordProperty("conditions", r.conditions);
+  RecordProperty("unknowns", r.unknowns);
 
   // Only B-splines of the first two rows of interface sides move: compared with the same blocks matched alone.
   std::vector<LRSpline<2>> matched = blocks;
