@@ -7,8 +7,8 @@
 //      on the other bound it) and must correspond linearly, direction by direction, on both sides;
 //   2. adjusting the side knot lines (planes): each block receives its neighbours' knots over the common part, and
 //      at the part's edges inside the side (T-joints) their parameters with multiplicity p, as LR segments over the
-//      first row only (on volumes the neighbour's planes span the part, widened to the first-row supports meeting
-//      it, not the whole face);
+//      first row only (on volumes the neighbour's planes and the T-joint planes span the part, widened to the
+//      first-row supports meeting it, not the whole face);
 //   3. identifying the transition B-splines: the first-row B-splines that a T-joint's line crosses split there;
 //      after the splits each one's trace on a common part equals one neighbour B-spline's trace there, and those
 //      are identified as one global function (a B-spline at a T-joint with one function of each block there).
@@ -80,7 +80,8 @@ template <int D>
 Param<D> interface_param(const BlockInterface<D>& f, int from, const Param<D>& u);
 
 // Planar surfaces (D = 2, two coordinates) or volumes (D = 3, three coordinates). Throws trivar::Error with one
-// line for blocks that are not polynomial with D coordinates and equal degrees, sides that meet over a common part
+// line for blocks that are not polynomial with D coordinates and equal degrees, faces that overlap with no corner
+// of either on the other (plus-shaped, naming both), sides that meet over a common part
 // with parametrisations that do not correspond linearly (direction by direction) or with different degrees along
 // it, geometry that differs across an interface, or traces that still differ after matching.
 template <int D>
