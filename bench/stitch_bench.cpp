@@ -2,7 +2,8 @@
 // lines along their common side (the second rotated by 180 degrees), stitched C1 (side search, re-parametrisation,
 // knot line segments, continuity on the two seam rows) and merged into one LR spline. BM_MultiblockTJoint: three
 // biquadratic blocks with a T-joint made conforming and turned into the analysis space; the residual indicator and
-// an adaptive round on them. Figures in bench/README.md.
+// an adaptive round on them. BM_MultiblockStitchC1: the same blocks stitched C1 (matching over two rows, the
+// conditions at every seam, their minimum-norm solution). Figures in bench/README.md.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -10,6 +11,7 @@
 
 #include "trivar/fit/multiblock_adaptive.hpp"
 #include "trivar/fit/multiblock_space.hpp"
+#include "trivar/fit/multiblock_stitching.hpp"
 #include "trivar/fit/patch_stitching.hpp"
 #include "trivar/iga/refined_poisson.hpp"
 #include "trivar/iga/solver.hpp"
@@ -98,6 +100,21 @@ void BM_MultiblockTJoint(benchmark::State& state) {
   time_matching(state, blocks);
 }
 BENCHMARK(BM_MultiblockTJoint)->Arg(16)->Arg(64)->Arg(128)->Unit(benchmark::kMillisecond);
+
+void BM_MultiblockStitchC1(benchmark::State& state) {
+  const std::vector<LRSpline<2>> blocks = t_joint_model(static_cast<int>(state.range(0)));
+  int conditions = 0, unknowns = 0;
+  for (auto _ : state) {
+    // The long block is parametrised with twice the scale along its top as across it: fitted speeds.
+    const StitchedBlocks<2> s = stitch_blocks(blocks, {}, CrossSpeed::fitted);
+    conditions = s.conditions;
+    unknowns = s.unknowns;
+    benchmark::DoNotOptimize(s.jump);
+  }
+  state.counters["conditions"] = conditions;
+  state.counters["unknowns"] = unknowns;
+}
+BENCHMARK(BM_MultiblockStitchC1)->Arg(16)->Arg(64)->Unit(benchmark::kMillisecond);
 
 void BM_MultiblockPoisson(benchmark::State& state) {
   const MultiblockSpace<2> m = multiblock_space(t_joint_model(static_cast<int>(state.range(0))));

@@ -14,6 +14,7 @@
 #include "lr_cli.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/fit/multiblock_space.hpp"
+#include "trivar/fit/multiblock_stitching.hpp"
 #include "trivar/fit/patch_stitching.hpp"
 
 namespace trivar::cli {
@@ -58,27 +59,14 @@ const char* side_name(DomainSide s) {
   return sides[s.dir][s.end];
 }
 
-// --multiblock: the blocks (planar surfaces or volumes) made conforming across interfaces that need not match one
-// to one (T-joints), written as separate LR splines, with the interfaces found and the functions identified across
-// them.
+// The interfaces of matched blocks, one line each: the common part on each side as [lo, hi] per direction along
+// it, and whether it is part of a side (a T-joint).
 template <int D>
-void run_multiblock(std::vector<LRSpline<D>> blocks, const std::string& out, double tolerance, bool whole_lines) {
-  int before = 0;
-  for (const LRSpline<D>& b : blocks) before += b.num_basis();
-  const MultiblockSpace<D> m = multiblock_space(std::move(blocks), MultiblockOptions{tolerance, whole_lines});
-  std::vector<AnyLRSpline> objects(m.blocks.begin(), m.blocks.end());
-  write_lr_file(out, objects, "stitch");
-  int after = 0;
-  for (const LRSpline<D>& b : m.blocks) after += b.num_basis();
-  std::printf("%s: %zu blocks, %zu interfaces; B-splines %d before matching, %d after, %d global functions "
-              "(%d on the boundary)\n",
-              out.c_str(), m.blocks.size(), m.interfaces.size(), before, after, m.space.num_basis,
-              static_cast<int>(m.boundary.size()));
-  for (const BlockInterface<D>& f : m.interfaces) {
-    // Side k's common part as [lo, hi] per direction along it, and whether it is the whole side.
+void print_interfaces(const std::vector<LRSpline<D>>& blocks, const std::vector<BlockInterface<D>>& interfaces) {
+  for (const BlockInterface<D>& f : interfaces) {
     const auto part = [&](int k, bool& whole) {
       const auto kk = static_cast<std::size_t>(k);
-      const LRSpline<D>& b = m.blocks[static_cast<std::size_t>(f.block[kk])];
+      const LRSpline<D>& b = blocks[static_cast<std::size_t>(f.block[kk])];
       std::string text;
       for (int a = 0; a < D; ++a) {
         if (a == f.side[kk].dir) continue;
@@ -96,8 +84,54 @@ void run_multiblock(std::vector<LRSpline<D>> blocks, const std::string& out, dou
   }
 }
 
+// How --multiblock treats the blocks: matched only (a conforming C0 space), or stitched with a continuity.
+struct MultiblockRun {
+  double tolerance = 0.0;
+  bool whole_lines = false;
+  bool stitch = false;  // --continuity given: the geometry made C0 / C1 across every interface
+  Continuity continuity = Continuity::C1;
+  bool fit_speeds = false;
+};
+
+// --multiblock: the blocks (planar surfaces or volumes) made conforming across interfaces that need not match one
+// to one (T-joints), written as separate LR splines, with the interfaces found and the functions identified across
+// them; with a continuity, the blocks (surfaces in space too, rational too) stitched C0 / C1 across all interfaces.
+template <int D>
+void run_multiblock(std::vector<LRSpline<D>> blocks, const std::string& out, const MultiblockRun& run) {
+  int before = 0;
+  for (const LRSpline<D>& b : blocks) before += b.num_basis();
+  if (run.stitch) {
+    StitchOptions opts;
+    opts.continuity = run.continuity;
+    opts.tolerance = run.tolerance;
+    const StitchedBlocks<D> s =
+        stitch_blocks(std::move(blocks), opts, run.fit_speeds ? CrossSpeed::fitted : CrossSpeed::parametric);
+    std::vector<AnyLRSpline> objects(s.blocks.begin(), s.blocks.end());
+    write_lr_file(out, objects, "stitch");
+    int after = 0;
+    for (const LRSpline<D>& b : s.blocks) after += b.num_basis();
+    std::printf("%s: %zu blocks, %zu interfaces, %s; B-splines %d before matching, %d after; %d conditions on %d "
+                "control values, moved up to %s, %s jump %s\n",
+                out.c_str(), s.blocks.size(), s.interfaces.size(), run.continuity == Continuity::C1 ? "C1" : "C0", before,
+                after, s.conditions, s.unknowns, fmt(s.moved).c_str(),
+                run.continuity == Continuity::C1 ? "derivative" : "value", fmt(s.jump).c_str());
+    print_interfaces(s.blocks, s.interfaces);
+    return;
+  }
+  const MultiblockSpace<D> m = multiblock_space(std::move(blocks), MultiblockOptions{run.tolerance, run.whole_lines});
+  std::vector<AnyLRSpline> objects(m.blocks.begin(), m.blocks.end());
+  write_lr_file(out, objects, "stitch");
+  int after = 0;
+  for (const LRSpline<D>& b : m.blocks) after += b.num_basis();
+  std::printf("%s: %zu blocks, %zu interfaces; B-splines %d before matching, %d after, %d global functions "
+              "(%d on the boundary)\n",
+              out.c_str(), m.blocks.size(), m.interfaces.size(), before, after, m.space.num_basis,
+              static_cast<int>(m.boundary.size()));
+  print_interfaces(m.blocks, m.interfaces);
+}
+
 // The blocks of every file for --multiblock: all surfaces or all volumes.
-void run_multiblock(const std::vector<std::string>& in, const std::string& out, double tolerance, bool whole_lines) {
+void run_multiblock(const std::vector<std::string>& in, const std::string& out, const MultiblockRun& run) {
   std::vector<AnyLRSpline> objects;
   for (const std::string& path : in)
     for (AnyLRSpline& object : read_as_lr(path, "stitch")) objects.push_back(std::move(object));
@@ -110,7 +144,7 @@ void run_multiblock(const std::vector<std::string>& in, const std::string& out, 
           require(std::holds_alternative<Spline>(object), "stitch: --multiblock takes blocks of one kind (all surfaces or all volumes)");
           blocks.push_back(std::get<Spline>(std::move(object)));
         }
-        run_multiblock(std::move(blocks), out, tolerance, whole_lines);
+        run_multiblock(std::move(blocks), out, run);
       },
       objects.front());
 }
@@ -150,7 +184,7 @@ void add_stitch_command(CLI::App& app, Context&) {
     std::vector<std::string> in;
     std::string out, continuity = "C1";
     double tolerance = 0.0;
-    bool separate = false, multiblock = false, whole_lines = false;
+    bool separate = false, multiblock = false, whole_lines = false, fit_speeds = false;
   };
   auto a = std::make_shared<Args>();
   cmd->add_option("FILES", a->in, "Surfaces or volumes (B-spline or LR: .g2, .json, .lr), each sharing a side with the union of "
@@ -158,7 +192,8 @@ void add_stitch_command(CLI::App& app, Context&) {
       ->required()
       ->expected(1, 1000);
   cmd->add_option("-o,--output", a->out, "Output LR file (.lr, .g2, .json, .vtu)")->required();
-  cmd->add_option("--continuity", a->continuity, "C0 or C1 across every seam")
+  auto* continuity = cmd->add_option("--continuity", a->continuity,
+                                     "C0 or C1 across every seam (with --multiblock: stitch the blocks' geometry)")
       ->check(CLI::IsMember({"C0", "C1", "c0", "c1"}))
       ->capture_default_str();
   cmd->add_option("--tolerance", a->tolerance,
@@ -173,17 +208,26 @@ void add_stitch_command(CLI::App& app, Context&) {
                 "B-splines across it, write the matched blocks");
   cmd->add_flag("--whole-lines", a->whole_lines,
                 "With --multiblock: knot lines across whole blocks, so tensor blocks stay tensor splines");
-  cmd->callback([a] {
+  cmd->add_flag("--fit-speeds", a->fit_speeds,
+                "With --multiblock --continuity C1: the ratio of the blocks' parametric speeds across each interface "
+                "fitted to the input (blocks scaled differently across and along a seam) instead of taken from the "
+                "parameter lengths along it");
+  cmd->callback([a, continuity] {
     require(!a->separate || a->in.size() == 2, "stitch: --separate takes exactly two patches");
     require(a->multiblock || a->in.size() >= 2, "stitch: give at least two patches (one file: with --multiblock, holding several blocks)");
     require(!(a->multiblock && a->separate), "stitch: --multiblock and --separate exclude each other");
     require(a->multiblock || !a->whole_lines, "stitch: --whole-lines needs --multiblock");
+    const bool stitch_blocks = a->multiblock && continuity->count() > 0;
+    require(!(stitch_blocks && a->whole_lines), "stitch: --whole-lines takes no --continuity (it matches blocks for a tensor multipatch space)");
+    require(!a->fit_speeds || (stitch_blocks && a->continuity != "C0" && a->continuity != "c0"),
+            "stitch: --fit-speeds needs --multiblock --continuity C1");
+    const Continuity c = (a->continuity == "C0" || a->continuity == "c0") ? Continuity::C0 : Continuity::C1;
     if (a->multiblock) {
-      run_multiblock(a->in, a->out, a->tolerance, a->whole_lines);
+      run_multiblock(a->in, a->out, MultiblockRun{a->tolerance, a->whole_lines, stitch_blocks, c, a->fit_speeds});
       return;
     }
     StitchOptions opts;
-    opts.continuity = (a->continuity == "C0" || a->continuity == "c0") ? Continuity::C0 : Continuity::C1;
+    opts.continuity = c;
     opts.tolerance = a->tolerance;
     std::vector<AnyLRSpline> out;
     std::vector<std::string> report;  // printed once everything is written

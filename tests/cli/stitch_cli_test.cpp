@@ -157,6 +157,22 @@ TEST_F(MultiblockCli, TJointBlocksBecomeConforming) {
   EXPECT_EQ(bad.code, 1);
   EXPECT_NE(bad.err.find("--whole-lines needs --multiblock"), std::string::npos) << bad.err;
   EXPECT_FALSE(exists("x.lr"));
+
+  // Stitched C1: the affine blocks are C1 already once the speeds are fitted (block 0 runs twice as fast along
+  // its top as across it), so nothing moves and the jump is rounding. Speeds from the parameter lengths would
+  // call the seams kinked; --fit-speeds without a C1 stitch is refused.
+  const Result c1 = ok("stitch --multiblock b0.g2 b1.g2 b2.g2 --continuity C1 --fit-speeds -o c1.lr");
+  EXPECT_NE(c1.out.find("3 blocks, 3 interfaces, C1"), std::string::npos) << c1.out;
+  const auto moved = c1.out.find("moved up to "), jump = c1.out.find("derivative jump ");
+  ASSERT_NE(moved, std::string::npos) << c1.out;
+  ASSERT_NE(jump, std::string::npos) << c1.out;
+  EXPECT_LT(std::stod(c1.out.substr(moved + 12)), 1e-12) << c1.out;
+  EXPECT_LT(std::stod(c1.out.substr(jump + 16)), 1e-10) << c1.out;
+  EXPECT_EQ(trivar::io::read_lr((work_ / "c1.lr").string()).size(), 3u);
+  const Result no_c1 = run("stitch --multiblock b0.g2 b1.g2 b2.g2 --fit-speeds -o y.lr");
+  EXPECT_EQ(no_c1.code, 1);
+  EXPECT_NE(no_c1.err.find("--fit-speeds needs --multiblock --continuity C1"), std::string::npos) << no_c1.err;
+  EXPECT_FALSE(exists("y.lr"));
 }
 
 // The unit square as three biquadratic blocks with a T-joint at (0.5, 0.5), knots differing along every interface

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <string>
 #include <vector>
 
 #include "trivar/core/error.hpp"
@@ -150,10 +151,11 @@ TEST(MultiblockVolumes, MatchedFacesAgreeAcrossTJoints) {
   }
 }
 
-// The neighbour's knot planes enter a face over its common part only (and the supports of the first-row B-splines
-// meeting it): the slab's B-splines beyond the quarter block's reach keep their knots and coefficients (the
-// block's planes across the whole face would split those near the slab's left edge too), and every matched block
-// passes the peeling test of linear independence.
+// The neighbour's knot planes and the edges of the common part (T-joint planes, multiplicity p) enter a face over
+// the common part only (widened to the supports of the first-row B-splines meeting it): the slab's B-splines
+// beyond the quarter block's reach keep their knots and coefficients (planes across the whole face would split
+// those near the slab's left edge and across x = 1 too), every matched block passes the peeling test of linear
+// independence, and the local planes need fewer coefficients than edge planes across the whole face.
 TEST(MultiblockVolumes, FacesAreRefinedOnlyWhereTheNeighbourNeedsIt) {
   for (const auto& blocks : {three_volume_t_joint(), quarter_on_slab()}) {
     const MultiblockSpace<3> m = multiblock_space(blocks);
@@ -165,16 +167,48 @@ TEST(MultiblockVolumes, FacesAreRefinedOnlyWhereTheNeighbourNeedsIt) {
   for (const auto& f : m.blocks[0].basis_functions()) after[f.knots] = f.coef;
   int far = 0;
   for (const auto& f : in[0].basis_functions())
-    // v >= 0.8 (y >= 1.6, beyond the reach of the block on [0, 1]^2), and not across the plane u = 0.5 (x = 1) at
-    // the edge of the common part, which crosses the whole face with multiplicity p.
-    if (f.knots[1].front() >= 0.8 - 1e-12 && !(f.knots[0].front() < 0.5 && f.knots[0].back() > 0.5)) {
+    // v >= 0.8 (y >= 1.6, beyond the reach of the block on [0, 1]^2), across the plane u = 0.5 (x = 1) too.
+    if (f.knots[1].front() >= 0.8 - 1e-12) {
       ++far;
       const auto it = after.find(f.knots);
       ASSERT_NE(it, after.end());
       EXPECT_EQ(it->second, f.coef);
     }
-  EXPECT_EQ(far, 2 * 10 * 3);  // two rows of 10 x 3 B-splines in u and w
+  EXPECT_EQ(far, 2 * 12 * 3);  // two rows of 12 x 3 B-splines in u and w
   EXPECT_GT(m.blocks[0].num_basis(), in[0].num_basis());
+
+  // The same model with the T-joint planes across the whole face: conforming too, more coefficients.
+  MultiblockOptions whole_face;
+  whole_face.whole_face_edges = true;
+  for (const auto& blocks : {three_volume_t_joint(), quarter_on_slab()}) {
+    const MultiblockSpace<3> local = multiblock_space(blocks), wide = multiblock_space(blocks, whole_face);
+    for (const LRSpline<3>& b : wide.blocks) EXPECT_EQ(peeling_test(b).status, Independence::independent);
+    EXPECT_LE(local.space.num_basis, wide.space.num_basis);
+    RecordProperty("coefficients_local_" + std::to_string(blocks.size()), local.space.num_basis);
+    RecordProperty("coefficients_whole_face_" + std::to_string(blocks.size()), wide.space.num_basis);
+  }
+  EXPECT_LT(m.space.num_basis, multiblock_space(in, whole_face).space.num_basis);
+}
+
+// Two faces crossing like the bars of a plus sign (a slab long in x, a block long in y on it): no corner of either
+// face lies on the other, so no common part can be bounded by corners; refused naming both blocks and faces.
+TEST(MultiblockVolumes, PlusShapedOverlapIsRefusedNamingBothBlocks) {
+  const std::array<std::vector<double>, 3> knots{{{0, 0, 0, 0.5, 1, 1, 1}, {0, 0, 0, 1, 1, 1}, {0, 0, 0, 1, 1, 1}}};
+  const std::vector<LRSpline<3>> plus{LRSpline<3>(affine_volume(knots, {0, 1, 0}, {{{3, 0, 0}, {0, 1, 0}, {0, 0, 1}}})),
+                                      LRSpline<3>(affine_volume(knots, {2, 0, 1}, {{{0, 3, 0}, {-1, 0, 0}, {0, 0, 1}}}))};
+  try {
+    multiblock_space(plus);
+    FAIL() << "plus-shaped overlap accepted";
+  } catch (const Error& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("block 0 side w = hi"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("block 1 side w = lo"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("plus-shaped"), std::string::npos) << msg;
+  }
+  // Blocks that merely touch along an edge or a corner pass.
+  const std::vector<LRSpline<3>> apart{LRSpline<3>(affine_volume(knots, {0, 0, 0}, {{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}})),
+                                       LRSpline<3>(affine_volume(knots, {1, 1, 1}, {{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}}))};
+  EXPECT_TRUE(multiblock_space(apart).interfaces.empty());
 }
 
 TEST(MultiblockVolumes, IgaSolversReproduceQuadraticAndLinearFields) {

@@ -30,10 +30,9 @@ Param<D> on_face(const LRSpline<D>& s, DomainSide side, Param<D> u) {
   return u;
 }
 
-template <int D>
-double distance(const double* x, const double* y) {
+double distance(const double* x, const double* y, int dim) {
   double d = 0;
-  for (int k = 0; k < D; ++k) d += (x[k] - y[k]) * (x[k] - y[k]);
+  for (int k = 0; k < dim; ++k) d += (x[k] - y[k]) * (x[k] - y[k]);
   return std::sqrt(d);
 }
 
@@ -47,7 +46,10 @@ bool on_side(const LRSpline<D>& s, DomainSide side, const std::type_identity_t<S
   constexpr int n = D == 2 ? 65 : 17;
   int count = 1;
   for (int k = 1; k < D; ++k) count *= n;
-  double c[(D + 1) * D], best = HUGE_VAL;
+  const int dim = s.dim();
+  std::vector<double> buffer(static_cast<std::size_t>((D + 1) * dim));
+  double* c = buffer.data();
+  double best = HUGE_VAL;
   for (int g = 0; g < count; ++g) {
     Param<D> t = on_face(s, side, dom.lo);
     for (int k = 0, r = g; k < D - 1; ++k, r /= n) {
@@ -55,7 +57,7 @@ bool on_side(const LRSpline<D>& s, DomainSide side, const std::type_identity_t<S
       t[a] = dom.lo[a] + dom.extent(a) * (r % n) / (n - 1);
     }
     s.eval(t, c);
-    const double d = distance<D>(c, x);
+    const double d = distance(c, x, dim);
     if (d < best) best = d, u = t;
   }
   for (int it = 0; it < 30; ++it) {
@@ -63,13 +65,13 @@ bool on_side(const LRSpline<D>& s, DomainSide side, const std::type_identity_t<S
     Eigen::Matrix<double, D - 1, D - 1> H;
     Eigen::Matrix<double, D - 1, 1> g;
     for (int k = 0; k < D - 1; ++k) {
-      const double* dk = c + D * (1 + dirs[static_cast<std::size_t>(k)]);
+      const double* dk = c + dim * (1 + dirs[static_cast<std::size_t>(k)]);
       g[k] = 0;
-      for (int j = 0; j < D; ++j) g[k] += (c[j] - x[j]) * dk[j];
+      for (int j = 0; j < dim; ++j) g[k] += (c[j] - x[j]) * dk[j];
       for (int l = 0; l < D - 1; ++l) {
-        const double* dl = c + D * (1 + dirs[static_cast<std::size_t>(l)]);
+        const double* dl = c + dim * (1 + dirs[static_cast<std::size_t>(l)]);
         H(k, l) = 0;
-        for (int j = 0; j < D; ++j) H(k, l) += dk[j] * dl[j];
+        for (int j = 0; j < dim; ++j) H(k, l) += dk[j] * dl[j];
       }
     }
     if (H.determinant() <= 0) break;
@@ -88,7 +90,7 @@ bool on_side(const LRSpline<D>& s, DomainSide side, const std::type_identity_t<S
     for (const auto& [value, m] : knots[static_cast<std::size_t>(a)])
       if (std::abs(u[a] - value) <= 1e-10 * dom.extent(a)) u[a] = value;
   s.eval(u, c);
-  return distance<D>(c, x) <= tol;
+  return distance(c, x, dim) <= tol;
 }
 
 // A value within rounding of one of `knots` becomes that knot, so knots passed back and forth stay identical.
@@ -129,6 +131,43 @@ Param<D> map_param(const BlockInterface<D>& f, int from, const Param<D>& x) {
   return y;
 }
 
+// Faces that overlap with no corner of either on the other (a plus-shaped overlap: each crosses the other like
+// the bars of a plus sign) share a part that no corner bounds; matching cannot find it, and leaving it out would
+// make the blocks' boundary run through the model. Refused: interior points of face sj (a grid) that lie on face
+// si inside its edges reveal it. Points outside si's control-net box (plus tol) are skipped cheaply.
+template <int D>
+void refuse_crossing_faces(const LRSpline<D>& A, int i, DomainSide si, const std::type_identity_t<SideKnots<D>>& knots_i,
+                           const LRSpline<D>& C, int j, DomainSide sj, double tol) {
+  const int dim = A.dim();
+  std::vector<double> lo(static_cast<std::size_t>(dim), HUGE_VAL), hi(lo.size(), -HUGE_VAL);
+  for (int id : side_row(A, si, 0))
+    for (int k = 0; k < dim; ++k) {
+      const double c = A.basis_function(id).coef[static_cast<std::size_t>(k)] / (A.is_rational() ? A.basis_function(id).coef.back() : 1.0);
+      lo[static_cast<std::size_t>(k)] = std::min(lo[static_cast<std::size_t>(k)], c);
+      hi[static_cast<std::size_t>(k)] = std::max(hi[static_cast<std::size_t>(k)], c);
+    }
+  const auto dc = along_directions<D>(sj), da = along_directions<D>(si);
+  constexpr int n = 9;
+  std::vector<double> x(static_cast<std::size_t>(dim));
+  Param<D> t;
+  for (int g = 0; g < n * n; ++g) {
+    Param<D> u = on_face(C, sj, C.domain().lo);
+    u[dc[0]] = C.domain().lo[dc[0]] + C.domain().extent(dc[0]) * (1 + g % n) / (n + 1);
+    u[dc[1]] = C.domain().lo[dc[1]] + C.domain().extent(dc[1]) * (1 + g / n) / (n + 1);
+    C.eval(u, x.data());
+    bool near = true;
+    for (int k = 0; k < dim; ++k)
+      near = near && x[static_cast<std::size_t>(k)] >= lo[static_cast<std::size_t>(k)] - tol && x[static_cast<std::size_t>(k)] <= hi[static_cast<std::size_t>(k)] + tol;
+    if (!near || !on_side(A, si, knots_i, x.data(), tol, t)) continue;
+    bool inside = true;
+    for (int a : da) inside = inside && t[a] > A.domain().lo[a] && t[a] < A.domain().hi[a];
+    require(!inside, [&] {
+      return "multiblock: " + where(i, si) + " and " + where(j, sj) + " overlap with no corner of either face on the "
+             "other (a plus-shaped overlap); split one block at the other's edges";
+    });
+  }
+}
+
 // The common part of two sides, if they share one of positive measure. The corners of each side that lie on the
 // other bound it (two diagonal corners at least: a side inside the other, sides offset along it); the directions
 // correspond where the sides' tangents are parallel at such a corner, and the parametrisations must then agree
@@ -140,7 +179,10 @@ bool common_part(const std::vector<LRSpline<D>>& B, int i, DomainSide si, int j,
   const LRSpline<D>& A = B[static_cast<std::size_t>(i)];
   const LRSpline<D>& C = B[static_cast<std::size_t>(j)];
   std::vector<std::pair<Param<D>, Param<D>>> hits;  // (on si, on sj)
-  double x[(D + 1) * D], y[(D + 1) * D];
+  const int dim = A.dim();
+  std::vector<double> xs(static_cast<std::size_t>((D + 1) * dim)), ys(xs.size());
+  double* x = xs.data();
+  double* y = ys.data();
   const auto corners = [](const LRSpline<D>& s, DomainSide side) {
     std::vector<Param<D>> cs;
     const auto dirs = along_directions<D>(side);
@@ -163,7 +205,10 @@ bool common_part(const std::vector<LRSpline<D>>& B, int i, DomainSide si, int j,
     A.eval(a, x);
     if (on_side(C, sj, knots_j, x, tol, t)) hits.emplace_back(a, t);
   }
-  if (hits.size() < 2) return false;
+  if (hits.size() < 2) {
+    if (D == 3) refuse_crossing_faces(A, i, si, knots_i, C, j, sj, tol);
+    return false;
+  }
   const auto da = along_directions<D>(si), dc = along_directions<D>(sj);
   Param<D> lo = hits[0].first, hi = hits[0].first;
   for (const auto& h : hits)
@@ -179,10 +224,10 @@ bool common_part(const std::vector<LRSpline<D>>& B, int i, DomainSide si, int j,
   for (int a : da) {
     double best = 0;
     for (int c : dc) {
-      const double* ta = x + D * (1 + a);
-      const double* tc = y + D * (1 + c);
+      const double* ta = x + dim * (1 + a);
+      const double* tc = y + dim * (1 + c);
       double dot = 0, na = 0, nc = 0;
-      for (int k = 0; k < D; ++k) dot += ta[k] * tc[k], na += ta[k] * ta[k], nc += tc[k] * tc[k];
+      for (int k = 0; k < dim; ++k) dot += ta[k] * tc[k], na += ta[k] * ta[k], nc += tc[k] * tc[k];
       const double cosine = std::abs(dot) / std::sqrt(na * nc);
       if (cosine > best) best = cosine, out.along[a] = c;
     }
@@ -220,7 +265,7 @@ bool common_part(const std::vector<LRSpline<D>>& B, int i, DomainSide si, int j,
     }
     A.eval(u, x);
     C.eval(map_param(out, 0, u), y);
-    require(distance<D>(x, y) <= tol, fail);
+    require(distance(x, y, dim) <= tol, fail);
   }
   for (int a : da)
     require(A.degree(a) == C.degree(out.along[a]), [&] {
@@ -254,18 +299,23 @@ SideKnots<D> knots_for(const std::vector<LRSpline<D>>& B, const BlockInterface<D
   return out;
 }
 
-// Where the neighbour's planes must reach on side `to` of interface f: across the supports of the first-row
-// B-splines that meet the common part (those C0 at its edges reach one span beyond them, and their traces on the
+// Where the neighbour's planes must reach on side `to` of interface f: across the supports of the B-splines of
+// the first `rows` rows that meet the common part (those C0 at its edges reach one span beyond them, and their traces on the
 // part must split like the neighbour's).
 template <int D>
-Box<D> planes_extent(const LRSpline<D>& s, const BlockInterface<D>& f, int to) {
+Box<D> planes_extent(const LRSpline<D>& s, const BlockInterface<D>& f, int to, int rows) {
   const auto t = static_cast<std::size_t>(to);
   Box<D> part = s.domain(), out = s.domain();
   for (int a : along_directions<D>(f.side[t])) {
     part.lo[a] = std::min(f.lo[t][a], f.hi[t][a]), part.hi[a] = std::max(f.lo[t][a], f.hi[t][a]);
     out.lo[a] = part.lo[a], out.hi[a] = part.hi[a];
   }
-  for (int id : side_row(s, f.side[t], 0)) {
+  std::vector<int> first;
+  for (int r = 0; r < std::max(rows, 1); ++r) {
+    const std::vector<int> row = side_row(s, f.side[t], r);
+    first.insert(first.end(), row.begin(), row.end());
+  }
+  for (int id : first) {
     const auto& knots = s.basis_function(id).knots;
     bool meets = true;
     for (int a : along_directions<D>(f.side[t]))
@@ -303,15 +353,18 @@ std::vector<std::pair<Trace<D>, int>> traces(const std::vector<LRSpline<D>>& B, 
   const auto dirs0 = along_directions<D>(f.side[0]);
   std::vector<std::pair<Trace<D>, int>> out;
   for (int id : side_row(S, f.side[kk], 0)) {
-    Trace<D> tr;
+    const LRBSpline<D>& b = S.basis_function(id);
+    // Meeting the open part takes every direction (a support beside the part, touching it at an edge, may cross
+    // the part's other edges without a C0 knot: those are only where the part is).
     bool meets = true;
+    for (int a : dirs)
+      meets = meets && b.knots[static_cast<std::size_t>(a)].back() > std::min(f.lo[kk][a], f.hi[kk][a]) &&
+              b.knots[static_cast<std::size_t>(a)].front() < std::max(f.lo[kk][a], f.hi[kk][a]);
+    if (!meets) continue;
+    Trace<D> tr;
     for (int a : dirs) {
       const double lo = std::min(f.lo[kk][a], f.hi[kk][a]), hi = std::max(f.lo[kk][a], f.hi[kk][a]);
-      std::vector<double> t = S.basis_function(id).knots[static_cast<std::size_t>(a)];
-      if (t.back() <= lo || t.front() >= hi) {
-        meets = false;
-        break;
-      }
+      std::vector<double> t = b.knots[static_cast<std::size_t>(a)];
       // Clamping the knots to the part gives the restriction only where the support ends there or is C0 there.
       for (double e : {lo, hi})
         require(!(t.front() < e && e < t.back()) || std::count(t.begin(), t.end(), e) >= S.degree(a), [&] {
@@ -327,7 +380,7 @@ std::vector<std::pair<Trace<D>, int>> traces(const std::vector<LRSpline<D>>& B, 
       const auto slot = static_cast<std::size_t>(std::find(dirs0.begin(), dirs0.end(), a0) - dirs0.begin());
       tr[slot] = std::move(t);
     }
-    if (meets) out.emplace_back(std::move(tr), id);
+    out.emplace_back(std::move(tr), id);
   }
   std::sort(out.begin(), out.end());
   return out;
@@ -347,7 +400,12 @@ bool inside_part(const BlockInterface<D>& f, int k, DomainSide side, const Box<D
 }  // namespace
 
 template <int D>
-MultiblockSpace<D> multiblock_space(std::vector<LRSpline<D>> blocks, const MultiblockOptions& options) {
+Param<D> interface_param(const BlockInterface<D>& f, int from, const Param<D>& u) {
+  return map_param(f, from, u);
+}
+
+template <int D>
+std::vector<BlockInterface<D>> match_blocks(std::vector<LRSpline<D>>& blocks, const MultiblockOptions& options, int rows) {
   const int nb = static_cast<int>(blocks.size());
   constexpr int S = 2 * D;  // sides per block
   require(nb >= 1, "multiblock: no blocks");
@@ -359,18 +417,19 @@ MultiblockSpace<D> multiblock_space(std::vector<LRSpline<D>> blocks, const Multi
   };
   for (int b = 0; b < nb; ++b) {
     const LRSpline<D>& s = blocks[static_cast<std::size_t>(b)];
-    require(!s.is_rational() && s.dim() == D, [&] {
-      return "multiblock: block " + std::to_string(b) + " is not a polynomial " +
-             (D == 2 ? "planar surface (2 coordinates)" : "volume (3 coordinates)");
-    });
     require(s.degrees() == blocks[0].degrees(), [&] {
       return "multiblock: block " + std::to_string(b) + " has degrees " + degrees(s) + ", block 0 " + degrees(blocks[0]);
+    });
+    require(s.dim() == blocks[0].dim() && s.is_rational() == blocks[0].is_rational(), [&] {
+      return "multiblock: block " + std::to_string(b) + " has " + std::to_string(s.dim()) + " coordinates" +
+             (s.is_rational() ? " (rational)" : "") + ", block 0 " + std::to_string(blocks[0].dim()) +
+             (blocks[0].is_rational() ? " (rational)" : "");
     });
     diag = std::max(diag, control_net_diagonal(s));
   }
   const double tol = options.tolerance > 0 ? options.tolerance : 1e-8 * diag;
 
-  MultiblockSpace<D> out;
+  std::vector<BlockInterface<D>> interfaces;
   std::vector<std::array<SideKnots<D>, S>> trace_knots(static_cast<std::size_t>(nb));  // per block and side
   for (int b = 0; b < nb; ++b)
     for (int sd = 0; sd < S; ++sd)
@@ -382,23 +441,46 @@ MultiblockSpace<D> multiblock_space(std::vector<LRSpline<D>> blocks, const Multi
           BlockInterface<D> f;
           if (common_part(blocks, i, {si / 2, si % 2}, j, {sj / 2, sj % 2}, trace_knots[static_cast<std::size_t>(i)][static_cast<std::size_t>(si)],
                           trace_knots[static_cast<std::size_t>(j)][static_cast<std::size_t>(sj)], tol, f))
-            out.interfaces.push_back(f);
+            interfaces.push_back(f);
         }
+
+  // One point of a block found by several interfaces (a T-joint's corner projected from two neighbours) is one
+  // parameter: bounds within rounding of a value seen before (or of the domain's ends) become that value, or the
+  // block would get two knot planes an ulp apart.
+  std::vector<std::array<std::vector<double>, D>> seen(static_cast<std::size_t>(nb));
+  for (int b = 0; b < nb; ++b)
+    for (int a = 0; a < D; ++a)
+      seen[static_cast<std::size_t>(b)][static_cast<std::size_t>(a)] = {blocks[static_cast<std::size_t>(b)].domain().lo[a],
+                                                                        blocks[static_cast<std::size_t>(b)].domain().hi[a]};
+  for (BlockInterface<D>& f : interfaces)
+    for (std::size_t k = 0; k < 2; ++k) {
+      const auto b = static_cast<std::size_t>(f.block[k]);
+      for (int a : along_directions<D>(f.side[k])) {
+        std::vector<double>& values = seen[b][static_cast<std::size_t>(a)];
+        for (double* x : {&f.lo[k][a], &f.hi[k][a]}) {
+          const auto near = std::find_if(values.begin(), values.end(), [&](double v) {
+            return std::abs(v - *x) <= 1e-10 * blocks[b].domain().extent(a);
+          });
+          if (near != values.end()) *x = *near;
+          else values.push_back(*x);
+        }
+      }
+    }
 
   // Adjust the side knot lines until every interface's two traces agree (a line given to one block can be
   // passed on to a third one through another interface, hence the rounds).
+  if (options.whole_lines) rows = 0;
   for (int round = 0;; ++round) {
     int changed = 0;
-    for (const BlockInterface<D>& f : out.interfaces)
+    for (const BlockInterface<D>& f : interfaces)
       for (int to = 0; to < 2; ++to) {
-        // The edges of the common part across the whole side (few planes, C0 there); the neighbour's knots over
-        // the common part only, so a block's face is refined where its neighbour needs it (on surfaces the lines
-        // are points along the side: nothing to restrict).
+        // On volumes the neighbour's knots and the edges of the common part (C0 there) enter over the common part
+        // only, widened to the first-row supports meeting it, so a block's face is refined where its neighbour
+        // needs it (on surfaces the lines are points along the side: nothing to restrict).
         const auto t = static_cast<std::size_t>(to);
         LRSpline<D>& s = blocks[static_cast<std::size_t>(f.block[t])];
         SideKnots<D> edges;
         SideKnots<D> inner = knots_for(blocks, f, to, edges);
-        const int rows = options.whole_lines ? 0 : 1;
         if (D == 2 || options.whole_lines) {  // one LR refinement batch
           for (int a = 0; a < D; ++a)
             inner[static_cast<std::size_t>(a)].insert(inner[static_cast<std::size_t>(a)].end(), edges[static_cast<std::size_t>(a)].begin(),
@@ -406,13 +488,32 @@ MultiblockSpace<D> multiblock_space(std::vector<LRSpline<D>> blocks, const Multi
           changed += insert_side_knot_lines(s, f.side[t], inner, rows);
           continue;
         }
-        changed += insert_side_knot_lines(s, f.side[t], edges, rows);
-        const Box<D> part = planes_extent(s, f, to);
+        const Box<D> part = planes_extent(s, f, to, rows);
+        changed += insert_side_knot_lines(s, f.side[t], edges, rows, options.whole_face_edges ? nullptr : &part);
         changed += insert_side_knot_lines(s, f.side[t], inner, rows, &part);
       }
     if (changed == 0) break;
     require(round < 16, "multiblock: the interface knot lines did not settle");
   }
+  return interfaces;
+}
+
+template <int D>
+MultiblockSpace<D> multiblock_space(std::vector<LRSpline<D>> blocks, const MultiblockOptions& options) {
+  const int nb = static_cast<int>(blocks.size());
+  constexpr int S = 2 * D;  // sides per block
+  for (int b = 0; b < nb; ++b) {
+    const LRSpline<D>& s = blocks[static_cast<std::size_t>(b)];
+    require(!s.is_rational() && s.dim() == D, [&] {
+      return "multiblock: block " + std::to_string(b) + " is not a polynomial " +
+             (D == 2 ? "planar surface (2 coordinates)" : "volume (3 coordinates)");
+    });
+  }
+  MultiblockSpace<D> out;
+  out.interfaces = match_blocks(blocks, options, 1);
+  double diag = 0;
+  for (const LRSpline<D>& s : blocks) diag = std::max(diag, control_net_diagonal(s));
+  const double tol = options.tolerance > 0 ? options.tolerance : 1e-8 * diag;
 
   // Identify the traces across every interface.
   std::vector<int> offset(static_cast<std::size_t>(nb) + 1, 0);
@@ -456,7 +557,7 @@ MultiblockSpace<D> multiblock_space(std::vector<LRSpline<D>> blocks, const Multi
         n = static_cast<int>(control.size() / D);
         control.insert(control.end(), d, d + D);
       } else {
-        const double gap = distance<D>(d, control.data() + static_cast<std::size_t>(D) * static_cast<std::size_t>(n));
+        const double gap = distance(d, control.data() + static_cast<std::size_t>(D) * static_cast<std::size_t>(n), D);
         require(gap <= tol, [&] {
           return "multiblock: block " + std::to_string(b) + " does not meet its neighbour continuously (control points of "
                  "one interface function differ by " + format_number(gap) + ")";
@@ -646,17 +747,13 @@ MultipatchSpace<D> tensor_multipatch(const MultiblockSpace<D>& m) {
   return out;
 }
 
-template <int D>
-Param<D> interface_param(const BlockInterface<D>& f, int from, const Param<D>& u) {
-  return map_param(f, from, u);
-}
-
 #define TRIVAR_INSTANTIATE(D)                                                                                   \
-  template Param<D> interface_param(const BlockInterface<D>&, int, const Param<D>&);                           \
   template MultiblockSpace<D> multiblock_space(std::vector<LRSpline<D>>, const MultiblockOptions&);            \
   template std::vector<Face> boundary_faces(const MultiblockSpace<D>&);                                         \
   template std::vector<LRSpline<D>> multiblock_fields(const MultiblockSpace<D>&, const Eigen::VectorXd&, int); \
-  template MultipatchSpace<D> tensor_multipatch(const MultiblockSpace<D>&);
+  template MultipatchSpace<D> tensor_multipatch(const MultiblockSpace<D>&);                                    \
+  template std::vector<BlockInterface<D>> match_blocks(std::vector<LRSpline<D>>&, const MultiblockOptions&, int); \
+  template Param<D> interface_param(const BlockInterface<D>&, int, const Param<D>&);
 TRIVAR_INSTANTIATE(2)
 TRIVAR_INSTANTIATE(3)
 #undef TRIVAR_INSTANTIATE

@@ -7,8 +7,8 @@
 //      on the other bound it) and must correspond linearly, direction by direction, on both sides;
 //   2. adjusting the side knot lines (planes): each block receives its neighbours' knots over the common part, and
 //      at the part's edges inside the side (T-joints) their parameters with multiplicity p, as LR segments over the
-//      first row only (on volumes the neighbour's planes span the part, widened to the first-row supports meeting
-//      it, not the whole face);
+//      first row only (on volumes the neighbour's planes and the T-joint planes span the part, widened to the
+//      first-row supports meeting it, not the whole face);
 //   3. identifying the transition B-splines: the first-row B-splines that a T-joint's line crosses split there;
 //      after the splits each one's trace on a common part equals one neighbour B-spline's trace there, and those
 //      are identified as one global function (a B-spline at a T-joint with one function of each block there).
@@ -59,10 +59,29 @@ struct MultiblockOptions {
   // Knot lines (planes) across whole blocks instead of the first row only: tensor blocks stay tensor splines
   // (every B-spline crossing a T-joint's line splits, not only the transition ones), as tensor_multipatch needs.
   bool whole_lines = false;
+  // Volumes: the edges of a common part inside a face (T-joints) as planes across the whole face instead of over
+  // the common part widened to the first-row supports meeting it (splits more B-splines; kept to measure what
+  // the local planes save).
+  bool whole_face_edges = false;
 };
 
+// Steps 1 and 2 alone, on blocks of any number of coordinates (surfaces in space, rational ones too): finds the
+// common parts and exchanges the side knot lines (planes) over the first `rows` rows (1 for C0 conformity, 2 for
+// C1 stitching; 0 or options.whole_lines: across whole blocks) until every interface's traces agree; the blocks
+// are refined in place (geometry unchanged). Throws trivar::Error as multiblock_space for blocks of different
+// degrees, coordinates or rationality, and for faces that overlap with no corner of either on the other
+// (a plus-shaped overlap, naming both blocks).
+template <int D>
+std::vector<BlockInterface<D>> match_blocks(std::vector<LRSpline<D>>& blocks, const MultiblockOptions& options, int rows);
+
+// The parameters of side 1 - from of interface f at the point with parameters u on side `from` (u's entry across
+// the side is ignored; the result's is the other side's value).
+template <int D>
+Param<D> interface_param(const BlockInterface<D>& f, int from, const Param<D>& u);
+
 // Planar surfaces (D = 2, two coordinates) or volumes (D = 3, three coordinates). Throws trivar::Error with one
-// line for blocks that are not polynomial with D coordinates and equal degrees, sides that meet over a common part
+// line for blocks that are not polynomial with D coordinates and equal degrees, faces that overlap with no corner
+// of either on the other (plus-shaped, naming both), sides that meet over a common part
 // with parametrisations that do not correspond linearly (direction by direction) or with different degrees along
 // it, geometry that differs across an interface, or traces that still differ after matching.
 template <int D>
@@ -78,11 +97,6 @@ std::vector<Face> boundary_faces(const MultiblockSpace<D>& m);
 // B-spline's coefficient is the global function's divided by its scaling factor), for evaluation and output.
 template <int D>
 std::vector<LRSpline<D>> multiblock_fields(const MultiblockSpace<D>& m, const Eigen::VectorXd& coefs, int components);
-
-// Parameter u of block f.block[from] on the common part of interface f, mapped to the other block's parameter
-// (linear direction by direction; the other side's value in its normal direction).
-template <int D>
-Param<D> interface_param(const BlockInterface<D>& f, int from, const Param<D>& u);
 
 // The same model as the tensor multipatch space of iga (MultipatchSpace: one TensorSpace per block and the
 // local-to-global map), for its assembler, Dirichlet projection, Poisson and elasticity solvers and error norms.
