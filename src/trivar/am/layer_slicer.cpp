@@ -88,16 +88,17 @@ template <std::size_t M>
 bool normalise_fractions(std::span<const double> v, const int* column, float* out, std::size_t mats = M) {
   if (M != 0) mats = M;
   const std::size_t n = v.size() / mats;
-  bool ok = true;
-  for (double f : v) ok &= (f >= 0) & (f <= std::numeric_limits<double>::max());
+  // Counted, not branched on; a NaN fails v >= 0, and non-negative values with a finite sum are finite.
+  std::size_t bad = 0;
+  for (double f : v) bad += !(f >= 0);
   double sums[kFractionRun];
   for (std::size_t q = 0; q < n; ++q) {
     double sum = v[mats * q];
     for (std::size_t m = 1; m < mats; ++m) sum += v[mats * q + m];
-    ok &= (sum > 0) & (sum <= std::numeric_limits<double>::max());
     sums[q] = sum;
   }
-  if (!ok) return false;
+  for (std::size_t q = 0; q < n; ++q) bad += !(sums[q] > 0) + !(sums[q] <= std::numeric_limits<double>::max());
+  if (bad != 0) return false;
   for (std::size_t q = 0; q < n; ++q) {
     float* o = out + mats * static_cast<std::size_t>(column[q]);
     for (std::size_t m = 0; m < mats; ++m) o[m] = static_cast<float>(v[mats * q + m] / sums[q]);
