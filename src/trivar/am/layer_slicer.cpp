@@ -354,18 +354,26 @@ SliceLayer LayerSlicer::slice(int k) const {
   LayerStats& st = L.stats;
   for (int j = 0; j < h; ++j) {
     int* row = L.cell.data() + static_cast<std::size_t>(j) * static_cast<std::size_t>(w);
-    // Later cells first, so the first claiming cell ends up on top.
+    // Later cells first, so the first claiming cell ends up on top. [first, last) covers every painted pixel
+    // (and every seed): the solve loop skips the rest of the row, most of the tray.
+    int first = w, last = 0;
     for (int c = n - 1; c >= 0; --c)
       spans(hits[static_cast<std::size_t>(c)], pos[static_cast<std::size_t>(c)], j, [&](int a, int b, const Hit& entry) {
         std::fill(row + a, row + b, c);
         if (a < b) {
           seed[static_cast<std::size_t>(a)] = entry.u;
           seed_cell[static_cast<std::size_t>(a)] = c;
+          first = std::min(first, a);
+          last = std::max(last, b);
         }
       });
     spans(model_hits, model_pos, j, [&](int a, int b, const Hit&) {
       for (int i = a; i < b; ++i)
         if (row[i] == -1) row[i] = kUnclaimed;
+      if (a < b) {
+        first = std::min(first, a);
+        last = std::max(last, b);
+      }
     });
 
     // Inverse Jacobian of the last pixel solved on this row, for chord steps in the same cell.
@@ -373,8 +381,8 @@ SliceLayer LayerSlicer::slice(int k) const {
     int chord_cell = -1, chord_age = 0;
     // The cell of the pixels just left of i and how many of them (at most 4) are in it, after their solve.
     int streak_cell = -1, streak = 0;
-    for (int i = 0; i < w; ++i) {
-      if (i >= 1) {
+    for (int i = first; i < last; ++i) {
+      if (i > first) {
         streak = row[i - 1] == streak_cell ? std::min(streak + 1, 4) : 1;
         streak_cell = row[i - 1];
       }
