@@ -1,8 +1,10 @@
 #include "trivar/am/layer_slicer.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <string>
 #include <utility>
 
