@@ -181,6 +181,28 @@ TEST(LayerSlicer, GradedFractionsEqualTheFieldAtThePixelCentre) {
   EXPECT_GT(checked, 3000);  // pi 2^2 / (dx dy) = 3500
 }
 
+TEST(LayerSlicer, FractionsBadBetweenTheCheckedPointsAreRejectedWhileSlicing) {
+  // Negative only in a band 0.098 < x < 0.148 that the construction's 3 x 3 x 3 check misses: the slice names
+  // the cell and the parameter of the first bad pixel of its run.
+  CellComplex cells = make_cylinder({2.0, 1.0});
+  VModel m;
+  for (const auto& c : cells) {
+    VCell cell(c);
+    cell.set_attribute("material", Attribute::expression({"1", "abs(x - 0.123) - 0.025"}, Attribute::Space::model));
+    m.add_cell(std::move(cell));
+  }
+  m.glue();
+  const LayerSlicer slicer(m, layer_at(0.6, -2.1, 600, 300));
+  try {
+    slicer.slice(0);
+    ADD_FAILURE() << "negative fractions accepted";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(what.rfind("cell ", 0), 0u) << what;
+    EXPECT_NE(what.find("fraction 1 is negative"), std::string::npos) << what;
+  }
+}
+
 TEST(LayerSlicer, RejectsBadOptionsAndModels) {
   const VModel ball = glued(make_ball({1.0}));
   auto with = [](auto change) {

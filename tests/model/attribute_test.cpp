@@ -104,4 +104,25 @@ TEST(Attribute, ManyParametersGiveTheSameValuesAsOneAtATime) {
       }
     }
   }
+  // Model points given directly (the slicer's path): the values at the parameters inside the domain.
+  const Attribute& model = attributes[2];
+  std::vector<double> inside_points, from_points;
+  std::vector<Param<3>> inside;
+  for (std::size_t i = 0; i < u.size(); ++i)
+    if (u[i][0] >= 0 && u[i][0] <= 1) {
+      inside.push_back(u[i]);
+      inside_points.insert(inside_points.end(), points.begin() + 3 * i, points.begin() + 3 * i + 3);
+    }
+  from_points.resize(2 * inside.size());
+  model.eval_model_points(inside_points, from_points.data());
+  for (std::size_t i = 0; i < inside.size(); ++i) {
+    double one[2];
+    model.eval(g, inside[i], one);
+    EXPECT_EQ(from_points[2 * i], one[0]) << i;
+    EXPECT_EQ(from_points[2 * i + 1], one[1]) << i;
+  }
+  double ignored[2];
+  for (const std::size_t k : {std::size_t{0}, std::size_t{1}, std::size_t{3}})
+    EXPECT_THROW(attributes[k].eval_model_points(std::span<const double>(inside_points.data(), 3), ignored), Error)
+        << "attribute " << k << " is no model-space expression";
 }

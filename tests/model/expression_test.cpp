@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "trivar/core/error.hpp"
+#include "trivar/spline/simd_level.hpp"
 
 using namespace trivar;
 
@@ -153,4 +154,34 @@ TEST(Expression, ManyPointsGiveTheSameBitsAsOnePointAtATime) {
   e.eval_many(vars, 0, many.data());  // no points: nothing to do
   const double* const two[2] = {x.data(), y.data()};
   EXPECT_THROW(e.eval_many(two, n, many.data()), Error);
+}
+
+TEST(Expression, ManyPointsGiveTheSameBitsOnEveryInstructionSetAndBlockLength) {
+  // The generic and the AVX2 block loops (chosen at run time), more variables than the columns kept on the
+  // stack, and counts around the block of 32 points (a short block is padded).
+  const Expression e = Expression::parse("sqrt(a*a + b*b + c*c) / 20 - min(1, d / e) * f + max(a, f) - 1 / (b - c)",
+                                         {"a", "b", "c", "d", "e", "f"});
+  const std::size_t n = 70;
+  std::vector<std::vector<double>> columns(6, std::vector<double>(n));
+  for (std::size_t v = 0; v < 6; ++v)
+    for (std::size_t i = 0; i < n; ++i) columns[v][i] = std::sin(0.3 * static_cast<double>(i * (v + 1)) + 0.1 * static_cast<double>(v));
+  columns[4][5] = 0;  // d / 0
+  columns[1][9] = columns[2][9];  // 1 / 0
+  const double* const vars[6] = {columns[0].data(), columns[1].data(), columns[2].data(),
+                                 columns[3].data(), columns[4].data(), columns[5].data()};
+  for (const SimdLevel level : {SimdLevel::generic, SimdLevel::avx2}) {
+    limit_simd_level(level);
+    for (const std::size_t count : {std::size_t{1}, std::size_t{31}, std::size_t{32}, std::size_t{33}, std::size_t{64}, n}) {
+      std::vector<double> many(count, -7.0);
+      e.eval_many(vars, count, many.data());
+      for (std::size_t i = 0; i < count; ++i) {
+        std::vector<double> point(6);
+        for (std::size_t v = 0; v < 6; ++v) point[v] = columns[v][i];
+        const double one = e.eval(point);
+        if (std::isnan(one)) EXPECT_TRUE(std::isnan(many[i])) << i;
+        else EXPECT_EQ(many[i], one) << simd_level_name(level) << ", " << count << " points, point " << i;
+      }
+    }
+  }
+  limit_simd_level(supported_simd_level());
 }

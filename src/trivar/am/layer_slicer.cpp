@@ -1,8 +1,10 @@
 #include "trivar/am/layer_slicer.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <string>
 #include <utility>
 
@@ -74,6 +76,86 @@ bool chord_solve(const Value& value, const Box<3>& dom, const Eigen::Matrix3d& i
       if (!(u[k] >= dom.lo[k] && u[k] <= dom.hi[k])) return false;
     }
   }
+}
+
+// Material fractions are evaluated for runs of up to kFractionRun pixels of one cell at once (the attribute's
+// formulas run over the whole run).
+constexpr std::size_t kFractionRun = 64;
+
+// The fractions of a run of pixels divided by their sums, as floats, into the row `out` at the pixels' columns
+// `column` (mats values per pixel; M = mats at compile time, or 0 for a run-time count): false, with nothing
+// written, unless every value is finite and non-negative and every sum positive and finite (the conditions of
+// material_fraction_sum, checked for the whole run without a branch per value, so the loops vectorise).
+template <std::size_t M>
+bool normalise_fractions(std::span<const double> v, const int* column, float* out, std::size_t mats = M) {
+  if (M != 0) mats = M;
+  const std::size_t n = v.size() / mats;
+  // Counted, not branched on; a NaN fails v >= 0, and non-negative values with a finite sum are finite.
+  std::size_t bad = 0;
+  for (double f : v) bad += !(f >= 0);
+  double sums[kFractionRun];
+  for (std::size_t q = 0; q < n; ++q) {
+    double sum = v[mats * q];
+    for (std::size_t m = 1; m < mats; ++m) sum += v[mats * q + m];
+    sums[q] = sum;
+  }
+  for (std::size_t q = 0; q < n; ++q) bad += !(sums[q] > 0) + !(sums[q] <= std::numeric_limits<double>::max());
+  if (bad != 0) return false;
+  for (std::size_t q = 0; q < n; ++q) {
+    float* o = out + mats * static_cast<std::size_t>(column[q]);
+    for (std::size_t m = 0; m < mats; ++m) o[m] = static_cast<float>(v[mats * q + m] / sums[q]);
+  }
+  return true;
+}
+
+// PointInverter::newton's damped iteration (clamped to the domain, step halved until the residual drops) on
+// the cell's element polynomials, with the explicit inverse of the 3 x 3 Jacobian: about a fifth of the
+// instructions of the B-spline kernels with a rank-revealing QR. True, with u and the residual, when it meets
+// tol; a singular Jacobian or a stall gives false, and the caller runs PointInverter::newton from the guess.
+bool polynomial_newton(const ElementPolynomials& poly, const Box<3>& dom, const double* x, double tol, int max_it,
+                       const Param<3>& guess, Param<3>& u, double& residual) {
+  for (int k = 0; k < 3; ++k)
+    u[k] = std::isfinite(guess[k]) ? std::clamp(guess[k], dom.lo[k], dom.hi[k]) : 0.5 * (dom.lo[k] + dom.hi[k]);
+  double f[12], ft[12];
+  auto evaluate = [&](const Param<3>& t, double* out, Eigen::Vector3d& res) {
+    poly.eval_first(t, out);
+    for (int d = 0; d < 3; ++d) res[d] = x[d] - out[d];
+    return res.norm();
+  };
+  Eigen::Vector3d res, res_t;
+  residual = evaluate(u, f, res);
+  for (int it = 0; residual > tol && it < max_it; ++it) {
+    Eigen::Matrix3d J, inv;
+    for (int k = 0; k < 3; ++k)
+      for (int d = 0; d < 3; ++d) J(d, k) = f[3 * (1 + k) + d];
+    bool invertible = false;
+    double det = 0;
+    J.computeInverseAndDetWithCheck(inv, det, invertible, 0.0);
+    if (!invertible) return false;
+    const Eigen::Vector3d du = inv * res;
+    if (!du.allFinite()) return false;
+    bool accepted = false;
+    double alpha = 1.0;
+    for (int h = 0; h < 12 && !accepted; ++h, alpha *= 0.5) {
+      Param<3> t;
+      bool moved = false;
+      for (int k = 0; k < 3; ++k) {
+        t[k] = std::clamp(u[k] + alpha * du[k], dom.lo[k], dom.hi[k]);
+        moved = moved || t[k] != u[k];
+      }
+      if (!moved) return false;
+      const double tn = evaluate(t, ft, res_t);
+      if (tn < residual) {
+        u = t;
+        residual = tn;
+        res = res_t;
+        std::copy(ft, ft + 12, f);
+        accepted = true;
+      }
+    }
+    if (!accepted) return false;
+  }
+  return residual <= tol;
 }
 
 // First pixel index (0..n) along an axis whose centre origin + (index + 0.5) * size is >= v: rounded, then
@@ -247,49 +329,65 @@ SliceLayer LayerSlicer::slice(int k) const {
   std::size_t model_pos = 0;
   std::vector<Param<3>> cur(static_cast<std::size_t>(w)), prev(static_cast<std::size_t>(w)), seed(static_cast<std::size_t>(w));
   std::vector<int> seed_cell(static_cast<std::size_t>(w), -1);
-  // Material fractions are evaluated for runs of up to kBatch pixels of one cell at once (the attribute's
-  // formulas run over the whole run): pixel columns, parameters and model points of the pending run.
-  constexpr std::size_t kBatch = 64;
-  std::vector<int> batch_i;
-  std::vector<Param<3>> batch_u;
-  std::vector<double> batch_x, values(kBatch * static_cast<std::size_t>(materials_));
+  // Pixel columns, parameters and model points of the pending run of pixels.
+  const auto mats = static_cast<std::size_t>(materials_);
+  std::array<int, kFractionRun> batch_i;
+  std::array<Param<3>, kFractionRun> batch_u;
+  std::array<double, 3 * kFractionRun> batch_x;
+  std::vector<double> values(kFractionRun * mats);
+  std::size_t batched = 0;
   int batch_cell = -1;
   auto flush = [&](int j) {
-    if (batch_i.empty()) return;
+    if (batched == 0) return;
     const int c = batch_cell;
-    const auto mats = static_cast<std::size_t>(materials_);
-    material_[static_cast<std::size_t>(c)]->eval_many(model_.cell(c).geometry(), batch_u, batch_x.data(), values.data());
-    for (std::size_t q = 0; q < batch_i.size(); ++q) {
-      const double* v = values.data() + mats * q;
-      const double sum = material_fraction_sum(std::span<const double>(v, mats), [&] { return cell_point(c, batch_u[q]); });
-      float* out = L.fractions.pixel(batch_i[q], j);
-      for (std::size_t m = 0; m < mats; ++m) out[m] = static_cast<float>(v[m] / sum);
-    }
-    batch_i.clear();
-    batch_u.clear();
-    batch_x.clear();
+    const Attribute& a = *material_[static_cast<std::size_t>(c)];
+    if (a.uses_model_point())
+      a.eval_model_points(std::span<const double>(batch_x.data(), 3 * batched), values.data());
+    else
+      a.eval_many(model_.cell(c).geometry(), std::span<const Param<3>>(batch_u.data(), batched), nullptr, values.data());
+    const std::span<const double> v(values.data(), mats * batched);
+    const bool ok = mats == 2 ? normalise_fractions<2>(v, batch_i.data(), L.fractions.pixel(0, j))
+                              : normalise_fractions<0>(v, batch_i.data(), L.fractions.pixel(0, j), mats);
+    if (!ok)  // the message names the first bad pixel
+      for (std::size_t q = 0; q < batched; ++q)
+        material_fraction_sum(v.subspan(mats * q, mats), [&] { return cell_point(c, batch_u[q]); });
+    batched = 0;
   };
   LayerStats& st = L.stats;
   for (int j = 0; j < h; ++j) {
     int* row = L.cell.data() + static_cast<std::size_t>(j) * static_cast<std::size_t>(w);
-    // Later cells first, so the first claiming cell ends up on top.
+    // Later cells first, so the first claiming cell ends up on top. [first, last) covers every painted pixel
+    // (and every seed): the solve loop skips the rest of the row, most of the tray.
+    int first = w, last = 0;
     for (int c = n - 1; c >= 0; --c)
       spans(hits[static_cast<std::size_t>(c)], pos[static_cast<std::size_t>(c)], j, [&](int a, int b, const Hit& entry) {
         std::fill(row + a, row + b, c);
         if (a < b) {
           seed[static_cast<std::size_t>(a)] = entry.u;
           seed_cell[static_cast<std::size_t>(a)] = c;
+          first = std::min(first, a);
+          last = std::max(last, b);
         }
       });
     spans(model_hits, model_pos, j, [&](int a, int b, const Hit&) {
       for (int i = a; i < b; ++i)
         if (row[i] == -1) row[i] = kUnclaimed;
+      if (a < b) {
+        first = std::min(first, a);
+        last = std::max(last, b);
+      }
     });
 
     // Inverse Jacobian of the last pixel solved on this row, for chord steps in the same cell.
     Eigen::Matrix3d chord_inverse = Eigen::Matrix3d::Zero();
     int chord_cell = -1, chord_age = 0;
-    for (int i = 0; i < w; ++i) {
+    // The cell of the pixels just left of i and how many of them (at most 4) are in it, after their solve.
+    int streak_cell = -1, streak = 0;
+    for (int i = first; i < last; ++i) {
+      if (i > first) {
+        streak = row[i - 1] == streak_cell ? std::min(streak + 1, 4) : 1;
+        streak_cell = row[i - 1];
+      }
       int c = row[i];
       const auto ui = static_cast<std::size_t>(i);
       const int seeded = std::exchange(seed_cell[ui], -1);
@@ -302,23 +400,32 @@ SliceLayer LayerSlicer::slice(int k) const {
       if (c >= 0) {
         const PointInverter<3>& inv = inverters_[static_cast<std::size_t>(c)];
         const TensorSpline<3>& geo = inv.spline();
+        const ElementPolynomials& poly = polynomials_[static_cast<std::size_t>(c)];
         auto newton_from = [&](const Param<3>& guess) {
-          r = inv.newton(x, guess);
           newton_used = true;
+          if (poly.available() &&
+              polynomial_newton(poly, domains_[static_cast<std::size_t>(c)], x, inv.absolute_tolerance(),
+                                inv.options().max_newton, guess, r.param, r.residual))
+            return r.converged = true;
+          r = inv.newton(x, guess);
           return r.converged;
         };
-        if (along_row && i >= 1 && row[i - 1] == c) {
+        if (along_row && streak_cell == c) {
           // Polynomial extrapolation through up to four previous pixels of the cell (cubic: error O(h^4), about
           // 1e-11 of the parameter range at 600 dpi, so the first evaluation usually meets the tolerance).
-          int run = 1;
-          while (run < 4 && i - run - 1 >= 0 && row[i - run - 1] == c) ++run;
-          static constexpr double kExtrapolation[4][4] = {{1, 0, 0, 0}, {2, -1, 0, 0}, {3, -3, 1, 0}, {4, -6, 4, -1}};
-          Param<3> guess{};
-          for (int q = 0; q < run; ++q)
-            for (int d = 0; d < 3; ++d) guess[d] += kExtrapolation[run - 1][q] * cur[ui - 1 - static_cast<std::size_t>(q)][d];
+          const Param<3>& a = cur[ui - 1];
+          Param<3> guess = a;
+          if (streak >= 2) {
+            const Param<3>& b = cur[ui - 2];
+            if (streak == 2)
+              for (int d = 0; d < 3; ++d) guess[d] = 2 * a[d] - b[d];
+            else if (streak == 3)
+              for (int d = 0; d < 3; ++d) guess[d] = (3 * a[d] - 3 * b[d]) + cur[ui - 3][d];
+            else
+              for (int d = 0; d < 3; ++d) guess[d] = ((4 * a[d] - 6 * b[d]) + 4 * cur[ui - 3][d]) - cur[ui - 4][d];
+          }
           if (chord_cell == c) {
             r.param = guess;
-            const ElementPolynomials& poly = polynomials_[static_cast<std::size_t>(c)];
             auto value = [&](const Param<3>& u, double* p) { poly.available() ? poly.eval(u, p) : geo.eval(u, p); };
             ok = chord_solve(value, domains_[static_cast<std::size_t>(c)], chord_inverse, x, inv.absolute_tolerance(),
                              r.param, r.residual, next, point);
@@ -380,20 +487,23 @@ SliceLayer LayerSlicer::slice(int k) const {
         L.fractions.pixel(i, j)[0] = 1.0f;
         continue;
       }
-      if (c != batch_cell || batch_i.size() == kBatch) flush(j);
+      if (c != batch_cell || batched == kFractionRun) flush(j);
       batch_cell = c;
-      batch_i.push_back(i);
-      batch_u.push_back(r.param);
+      batch_i[batched] = i;
+      batch_u[batched] = r.param;
       if (a->uses_model_point()) {
-        if (!next_set) {
+        double* p = batch_x.data() + 3 * batched;
+        if (next_set) {
+          std::copy(point, point + 3, p);
+        } else {
           // Newton and the robust search end with derivatives; the value kernel gives the point eval() would.
           const Box<3>& dom = domains_[static_cast<std::size_t>(c)];
           Param<3> t;
           for (int d = 0; d < 3; ++d) t[d] = std::clamp(r.param[d], dom.lo[d], dom.hi[d]);
-          model_.cell(c).geometry().eval(t, point);
+          model_.cell(c).geometry().eval(t, p);
         }
-        batch_x.insert(batch_x.end(), point, point + 3);
       }
+      ++batched;
     }
     flush(j);
     std::swap(cur, prev);

@@ -22,8 +22,10 @@
 // they differ from TensorSpline::eval by about 1e-12 of the cell's size, far below the inversion tolerance,
 // so a fraction can differ from the B-spline path's in its last float bit); where the row enters the cell,
 // from the parameters of the outline crossing there; else from the pixel below or the nearest pixel of the
-// cell on the previous row. The robust subdivision search (PointInverter::invert) runs only when these fail
-// or none exists. Rows are processed bottom-up within a layer and no state crosses layers, so layers are
+// cell on the previous row. These Newton solves iterate on the element polynomials too (the damped iteration
+// of PointInverter::newton with an explicit 3 x 3 inverse; PointInverter::newton itself where that fails). The
+// robust subdivision search (PointInverter::invert) runs only when these fail or none exists. Each row's loop
+// covers only the extent its spans painted. Rows are processed bottom-up within a layer and no state crosses layers, so layers are
 // independent.
 #include <vector>
 

@@ -73,6 +73,31 @@ void Attribute::eval_at(const TensorSpline<3>& geometry, const Param<3>& u, cons
   for (std::size_t c = 0; c < expressions_.size(); ++c) out[c] = expressions_[c].eval(vars);
 }
 
+namespace {
+
+// The expressions at n points whose variables fill(i, x) writes, by columns in blocks that stay in the L1 cache.
+template <class Fill>
+void eval_expression_columns(const std::vector<Expression>& expressions, std::size_t n, Fill&& fill, double* out) {
+  const std::size_t m = expressions.size();
+  constexpr std::size_t kBlock = 256;
+  double columns[3][kBlock], values[kBlock];
+  for (std::size_t first = 0; first < n; first += kBlock) {
+    const std::size_t b = std::min(kBlock, n - first);
+    for (std::size_t i = 0; i < b; ++i) {
+      double x[3];
+      fill(first + i, x);
+      for (int k = 0; k < 3; ++k) columns[k][i] = x[k];
+    }
+    const double* const vars[3] = {columns[0], columns[1], columns[2]};
+    for (std::size_t c = 0; c < m; ++c) {
+      expressions[c].eval_many(vars, b, values);
+      for (std::size_t i = 0; i < b; ++i) out[m * (first + i) + c] = values[i];
+    }
+  }
+}
+
+}  // namespace
+
 void Attribute::eval_many(const TensorSpline<3>& geometry, std::span<const Param<3>> u, const double* points,
                           double* out) const {
   const auto n = u.size();
@@ -83,28 +108,24 @@ void Attribute::eval_many(const TensorSpline<3>& geometry, std::span<const Param
   }
   require(!uses_model_point() || geometry.dim() == 3,
           [] { return std::string("expression attribute in x, y, z: cell geometry is not in 3-space"); });
-  // Variables by column, in blocks that stay in the L1 cache.
-  constexpr std::size_t kBlock = 256;
-  double columns[3][kBlock], values[kBlock];
   const Box<3> cell = geometry.domain();
-  for (std::size_t first = 0; first < n; first += kBlock) {
-    const std::size_t b = std::min(kBlock, n - first);
-    for (std::size_t i = 0; i < b; ++i) {
-      Param<3> t;
-      for (int k = 0; k < 3; ++k) t[k] = std::clamp(u[first + i][k], cell.lo[k], cell.hi[k]);
-      double x[3] = {t[0], t[1], t[2]};
-      if (uses_model_point()) {
-        if (t == u[first + i]) std::copy(points + 3 * (first + i), points + 3 * (first + i) + 3, x);
-        else geometry.eval(t, x);
-      }
-      for (int k = 0; k < 3; ++k) columns[k][i] = x[k];
+  const bool model = uses_model_point();
+  eval_expression_columns(expressions_, n, [&](std::size_t i, double* x) {
+    Param<3> t;
+    for (int k = 0; k < 3; ++k) t[k] = std::clamp(u[i][k], cell.lo[k], cell.hi[k]);
+    std::copy(t.begin(), t.end(), x);
+    if (model) {
+      if (t == u[i]) std::copy(points + 3 * i, points + 3 * i + 3, x);
+      else geometry.eval(t, x);
     }
-    const double* const vars[3] = {columns[0], columns[1], columns[2]};
-    for (std::size_t c = 0; c < m; ++c) {
-      expressions_[c].eval_many(vars, b, values);
-      for (std::size_t i = 0; i < b; ++i) out[m * (first + i) + c] = values[i];
-    }
-  }
+  }, out);
+}
+
+void Attribute::eval_model_points(std::span<const double> points, double* out) const {
+  require(uses_model_point(),
+          [] { return std::string("attribute: model points given to an attribute that is not a model-space expression"); });
+  eval_expression_columns(expressions_, points.size() / 3,
+                          [&](std::size_t i, double* x) { std::copy(&points[3 * i], &points[3 * i] + 3, x); }, out);
 }
 
 }  // namespace trivar

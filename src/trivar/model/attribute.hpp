@@ -47,6 +47,10 @@ public:
   // uses_model_point()), out[components() i + c] gets component c at u[i]. Expressions run over all points at
   // once (Expression::eval_many), so this is the per-pixel path of the slicer; results equal eval_at()'s.
   void eval_many(const TensorSpline<3>& geometry, std::span<const Param<3>> u, const double* points, double* out) const;
+  // A model-space expression (uses_model_point()) at points.size() / 3 model points x, y, z: out[components() i
+  // + c] gets component c at point i. The slicer's path: its points are geometry(u) of parameters inside the
+  // cell, where eval_at() and eval_many() give the same values. Throws for other attributes.
+  void eval_model_points(std::span<const double> points, double* out) const;
   // Model-space expressions read the cell's model point x(u).
   bool uses_model_point() const { return kind_ == Kind::expression && space_ == Space::model; }
 
