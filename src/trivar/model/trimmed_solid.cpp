@@ -167,16 +167,20 @@ TrimmedSolid::TrimmedSolid(TrimmedBoundary boundary) : boundary_(std::move(bound
       std::vector<P2> poly;
       for (const TrimCurve& c : l.curves) {
         const std::vector<double> br = c.pcurve.knots(0).breakpoints();
-        for (std::size_t s = 0; s + 1 < br.size(); ++s)
+        for (std::size_t s = 0; s + 1 < br.size(); ++s) {
+          // A chord's end is the next chord's start: two curve points per chord.
+          const double h = (br[s + 1] - br[s]) / kChords;
+          P2 q, m, e;
+          c.pcurve.eval({br[s]}, q.data());
           for (int k = 0; k < kChords; ++k) {
-            const double h = (br[s + 1] - br[s]) / kChords, t = br[s] + h * k;
-            P2 q, m, e;
-            c.pcurve.eval({t}, q.data());
+            const double t = br[s] + h * k;
             c.pcurve.eval({t + h / 2}, m.data());
-            c.pcurve.eval({t + h}, e.data());
+            c.pcurve.eval({k + 1 < kChords ? br[s] + h * (k + 1) : br[s + 1]}, e.data());
             trim_slack_[f] = std::max(trim_slack_[f], std::hypot(m[0] - (q[0] + e[0]) / 2, m[1] - (q[1] + e[1]) / 2));
             poly.push_back(q);
+            q = e;
           }
+        }
       }
       Box<2> pb = Box<2>::empty();
       for (const P2& q : poly) pb.extend(q.data());
