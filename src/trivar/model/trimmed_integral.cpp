@@ -165,6 +165,7 @@ void knot_line_crossings(const TensorSpline<1>& c, double a, double b, const std
                          std::vector<double>& cuts) {
   constexpr int kSamples = 8;
   cuts = {a, b};
+  if (knot_lines[0].size() <= 2 && knot_lines[1].size() <= 2) return;  // one polynomial piece: no kinks
   std::array<std::array<double, 2>, kSamples + 1> uv;
   for (int i = 0; i <= kSamples; ++i) c.eval({a + (b - a) * i / kSamples}, uv[static_cast<std::size_t>(i)].data());
   for (std::size_t k = 0; k < 2; ++k) {
