@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "trivar/core/error.hpp"
+#include "trivar/core/parallel.hpp"
 #include "trivar/core/vec3.hpp"
 #include "trivar/model/triangle_mesh.hpp"
 #include "trivar/model/trimmed_integral.hpp"
@@ -162,7 +163,9 @@ TrimmedSolid::TrimmedSolid(TrimmedBoundary boundary) : boundary_(std::move(bound
   trim_polygons_.resize(b.faces.size());
   trim_slack_.assign(b.faces.size(), 0.0);
   trim_boxes_.resize(b.faces.size());
-  for (std::size_t f = 0; f < b.faces.size(); ++f)
+  // The faces on all threads: each writes its own entries only.
+  parallel_for(static_cast<std::ptrdiff_t>(b.faces.size()), 0, [&](std::ptrdiff_t fi) {
+    const auto f = static_cast<std::size_t>(fi);
     for (const TrimLoop& l : b.faces[f].loops) {
       std::vector<P2> poly;
       for (const TrimCurve& c : l.curves) {
@@ -187,6 +190,7 @@ TrimmedSolid::TrimmedSolid(TrimmedBoundary boundary) : boundary_(std::move(bound
       trim_boxes_[f].push_back(pb);
       trim_polygons_[f].push_back(std::move(poly));
     }
+  });
   flat_.assign(b.faces.size(), 0);
   for (std::size_t f = 0; f < b.faces.size(); ++f) flat_[f] = is_flat(b.faces[f].surface);
   volume_ = trimmed_volume(b);
