@@ -4,10 +4,13 @@
 // integrand in x, the volume integral becomes the sum over faces of the integral of F n_x over the trimmed
 // parameter domain, and Green's theorem turns each of those into an integral along the face's trimming loops
 // of G(u, v) = int_{u0}^{u} F(S) (S_u x S_v)_x du' dv (or its counterpart along v, whichever direction of the
-// face has fewer knot spans). The loop integrals are adaptive Gauss-Legendre
-// quadratures over each trimming curve's knot spans; G is a Gauss-Legendre sum over the surface's knot spans.
-// Exact polynomial integrands on polynomial faces are integrated to rounding; rational faces (conics,
-// spheres, tori) converge spectrally. A loop whose curves meet only within a tolerance (a kernel's vertices) is
+// face has fewer knot spans), started per loop at the loop's own least coordinate. The loop integrals are
+// Gauss-Legendre quadratures over each trimming curve's knot spans cut where it crosses the surface's knot
+// lines: adaptive (a piece is accepted when a rule of half the points agrees, else halved), or, for the volume
+// on polynomial faces and curves, one rule exact for the integrand's degree; G is a Gauss-Legendre sum over the
+// surface's knot spans, with the fewest points exact for the volume's flux where the face is polynomial along
+// that direction. Exact polynomial integrands on polynomial faces are integrated to rounding; rational faces
+// (conics, spheres, tori) converge spectrally. A loop whose curves meet only within a tolerance (a kernel's vertices) is
 // closed across each gap by a straight segment in the face's parameters, so a gap costs its square, not G times
 // its length.
 #include <functional>

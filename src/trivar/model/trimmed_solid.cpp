@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "trivar/core/error.hpp"
+#include "trivar/core/parallel.hpp"
 #include "trivar/core/vec3.hpp"
 #include "trivar/model/triangle_mesh.hpp"
 #include "trivar/model/trimmed_integral.hpp"
@@ -162,27 +163,34 @@ TrimmedSolid::TrimmedSolid(TrimmedBoundary boundary) : boundary_(std::move(bound
   trim_polygons_.resize(b.faces.size());
   trim_slack_.assign(b.faces.size(), 0.0);
   trim_boxes_.resize(b.faces.size());
-  for (std::size_t f = 0; f < b.faces.size(); ++f)
+  // The faces on all threads: each writes its own entries only.
+  parallel_for(static_cast<std::ptrdiff_t>(b.faces.size()), 0, [&](std::ptrdiff_t fi) {
+    const auto f = static_cast<std::size_t>(fi);
     for (const TrimLoop& l : b.faces[f].loops) {
       std::vector<P2> poly;
       for (const TrimCurve& c : l.curves) {
         const std::vector<double> br = c.pcurve.knots(0).breakpoints();
-        for (std::size_t s = 0; s + 1 < br.size(); ++s)
+        for (std::size_t s = 0; s + 1 < br.size(); ++s) {
+          // A chord's end is the next chord's start: two curve points per chord.
+          const double h = (br[s + 1] - br[s]) / kChords;
+          P2 q, m, e;
+          c.pcurve.eval({br[s]}, q.data());
           for (int k = 0; k < kChords; ++k) {
-            const double h = (br[s + 1] - br[s]) / kChords, t = br[s] + h * k;
-            P2 q, m, e;
-            c.pcurve.eval({t}, q.data());
+            const double t = br[s] + h * k;
             c.pcurve.eval({t + h / 2}, m.data());
-            c.pcurve.eval({t + h}, e.data());
+            c.pcurve.eval({k + 1 < kChords ? br[s] + h * (k + 1) : br[s + 1]}, e.data());
             trim_slack_[f] = std::max(trim_slack_[f], std::hypot(m[0] - (q[0] + e[0]) / 2, m[1] - (q[1] + e[1]) / 2));
             poly.push_back(q);
+            q = e;
           }
+        }
       }
       Box<2> pb = Box<2>::empty();
       for (const P2& q : poly) pb.extend(q.data());
       trim_boxes_[f].push_back(pb);
       trim_polygons_[f].push_back(std::move(poly));
     }
+  });
   flat_.assign(b.faces.size(), 0);
   for (std::size_t f = 0; f < b.faces.size(); ++f) flat_[f] = is_flat(b.faces[f].surface);
   volume_ = trimmed_volume(b);
