@@ -4,6 +4,9 @@
 
 #include <cmath>
 #include <functional>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "am/slicer_test_support.hpp"
 #include "trivar/core/error.hpp"
@@ -49,6 +52,18 @@ long long compare_with(const SliceLayer& L, const SliceOptions& o, const std::fu
     }
   EXPECT_LE(differ, 4);
   return expected;
+}
+
+// The cylinder of radius 2 and height 1, glued, with the given model-space expression attributes on every cell.
+VModel graded_cylinder(const std::vector<std::pair<std::string, std::vector<std::string>>>& attributes) {
+  VModel m;
+  for (const auto& c : make_cylinder({2.0, 1.0})) {
+    VCell cell(c);
+    for (const auto& [name, formulas] : attributes) cell.set_attribute(name, Attribute::expression(formulas, Attribute::Space::model));
+    m.add_cell(std::move(cell));
+  }
+  m.glue();
+  return m;
 }
 
 }  // namespace
@@ -144,17 +159,10 @@ TEST(LayerSlicer, TwoGluedBlocksHaveNoGapsAndNoOverlaps) {
 }
 
 TEST(LayerSlicer, GradedFractionsEqualTheFieldAtThePixelCentre) {
-  CellComplex cells = make_cylinder({2.0, 1.0});
-  VModel m;
-  for (const auto& c : cells) {
-    VCell cell(c);
-    // Two materials blending along x, one in proportions that need normalising, one negative where x < 0.
-    cell.set_attribute("material", Attribute::expression({"0.5 + 0.2 * x", "0.5 - 0.2 * x"}, Attribute::Space::model));
-    cell.set_attribute("raw", Attribute::expression({"2 * x + 5", "1", "z"}, Attribute::Space::model));
-    cell.set_attribute("negative", Attribute::expression({"x", "1"}, Attribute::Space::model));
-    m.add_cell(std::move(cell));
-  }
-  m.glue();
+  // Two materials blending along x, one in proportions that need normalising, one negative where x < 0.
+  const VModel m = graded_cylinder({{"material", {"0.5 + 0.2 * x", "0.5 - 0.2 * x"}},
+                                    {"raw", {"2 * x + 5", "1", "z"}},
+                                    {"negative", {"x", "1"}}});
   SliceOptions o = layer_at(0.6, -2.1, 600, 300);
   const LayerSlicer slicer(m, o);
   ASSERT_EQ(slicer.materials(), 2);
@@ -184,14 +192,7 @@ TEST(LayerSlicer, GradedFractionsEqualTheFieldAtThePixelCentre) {
 TEST(LayerSlicer, FractionsBadBetweenTheCheckedPointsAreRejectedWhileSlicing) {
   // Negative only in a band 0.098 < x < 0.148 that the construction's 3 x 3 x 3 check misses: the slice names
   // the cell and the parameter of the first bad pixel of its run.
-  CellComplex cells = make_cylinder({2.0, 1.0});
-  VModel m;
-  for (const auto& c : cells) {
-    VCell cell(c);
-    cell.set_attribute("material", Attribute::expression({"1", "abs(x - 0.123) - 0.025"}, Attribute::Space::model));
-    m.add_cell(std::move(cell));
-  }
-  m.glue();
+  const VModel m = graded_cylinder({{"material", {"1", "abs(x - 0.123) - 0.025"}}});
   const LayerSlicer slicer(m, layer_at(0.6, -2.1, 600, 300));
   try {
     slicer.slice(0);

@@ -7,24 +7,14 @@
 #include "trivar/core/error.hpp"
 #include "trivar/iga/benchmark_problems.hpp"
 #include "trivar/iga/refined_poisson.hpp"
+#include "iga/iga_test_support.hpp"
 
 using namespace trivar;
 
 namespace {
 
-// Every step adds dofs and lowers the H1 error, and the estimator tracks the true error within a fixed factor.
-void expect_monotone_and_efficient(const std::vector<ConvergenceRow>& rows) {
-  for (std::size_t i = 1; i < rows.size(); ++i) {
-    EXPECT_GT(rows[i].dofs, rows[i - 1].dofs);
-    EXPECT_LT(rows[i].h1, rows[i - 1].h1);
-  }
-  for (const auto& r : rows) {
-    EXPECT_GT(r.estimate / r.h1, 0.2);
-    EXPECT_LT(r.estimate / r.h1, 20.0);
-  }
-}
-
-// `steps` adaptive solves (Dorfler fraction 0.3) from the benchmark's space, checked as above.
+// `steps` adaptive solves (Dorfler fraction 0.3) from the benchmark's space, each adding dofs and lowering the
+// error, with an estimate that tracks it.
 std::vector<ConvergenceRow> adapt(const PoissonBenchmark<2>& b, int steps) {
   LRSpline<2> lr(b.space.geometry);
   AdaptiveOptions o;
@@ -32,7 +22,7 @@ std::vector<ConvergenceRow> adapt(const PoissonBenchmark<2>& b, int steps) {
   o.beta = 0.3;
   const auto rows = adaptive_poisson(lr, b.problem, b.exact, o);
   EXPECT_EQ(rows.size(), static_cast<std::size_t>(steps));
-  expect_monotone_and_efficient(rows);
+  iga_test::expect_monotone_and_efficient(rows);
   return rows;
 }
 

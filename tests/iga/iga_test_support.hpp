@@ -2,7 +2,7 @@
 // Shared geometry for the analysis tests: a box whose control points and weights are perturbed, so the map is
 // a genuinely curved NURBS with a valid Jacobian, and the identity on its boundary faces' planes is kept; and
 // a local refinement of an LR space near a corner, so LR tests run on spaces that are not tensor spaces; the
-// the reproduction and convergence-rate checks of the LR tests.
+// the reproduction and convergence-rate checks of the LR tests and of the adaptive loops.
 #include <cmath>
 #include <random>
 #include <string>
@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include "trivar/iga/convergence_table.hpp"
 #include "trivar/iga/error_norms.hpp"
 #include "trivar/iga/refined_poisson.hpp"
 #include "trivar/iga/tensor_space.hpp"
@@ -115,6 +116,23 @@ std::vector<trivar::ErrorNorms> expect_optimal_convergence(const trivar::TensorS
     }
   }
   return errors;
+}
+
+// The estimator tracks the true H1 error within a fixed factor on every step.
+inline void expect_efficient_estimates(const std::vector<trivar::ConvergenceRow>& rows) {
+  for (const auto& r : rows) {
+    EXPECT_GT(r.estimate / r.h1, 0.2);
+    EXPECT_LT(r.estimate / r.h1, 20.0);
+  }
+}
+
+// Every step adds dofs and lowers the H1 error, and the estimator tracks the true error.
+inline void expect_monotone_and_efficient(const std::vector<trivar::ConvergenceRow>& rows) {
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    EXPECT_GT(rows[i].dofs, rows[i - 1].dofs);
+    EXPECT_LT(rows[i].h1, rows[i - 1].h1);
+  }
+  expect_efficient_estimates(rows);
 }
 
 }  // namespace iga_test
