@@ -98,8 +98,12 @@ struct MultiblockRun {
 // them; with a continuity, the blocks (surfaces in space too, rational too) stitched C0 / C1 across all interfaces.
 template <int D>
 void run_multiblock(std::vector<LRSpline<D>> blocks, const std::string& out, const MultiblockRun& run) {
-  int before = 0;
-  for (const LRSpline<D>& b : blocks) before += b.num_basis();
+  const auto total_basis = [](const std::vector<LRSpline<D>>& bs) {
+    int n = 0;
+    for (const LRSpline<D>& b : bs) n += b.num_basis();
+    return n;
+  };
+  const int before = total_basis(blocks);
   if (run.stitch) {
     StitchOptions opts;
     opts.continuity = run.continuity;
@@ -108,8 +112,7 @@ void run_multiblock(std::vector<LRSpline<D>> blocks, const std::string& out, con
         stitch_blocks(std::move(blocks), opts, run.fit_speeds ? CrossSpeed::fitted : CrossSpeed::parametric);
     std::vector<AnyLRSpline> objects(s.blocks.begin(), s.blocks.end());
     write_lr_file(out, objects, "stitch");
-    int after = 0;
-    for (const LRSpline<D>& b : s.blocks) after += b.num_basis();
+    const int after = total_basis(s.blocks);
     std::printf("%s: %zu blocks, %zu interfaces, %s; B-splines %d before matching, %d after; %d conditions on %d "
                 "control values, moved up to %s, %s jump %s\n",
                 out.c_str(), s.blocks.size(), s.interfaces.size(), run.continuity == Continuity::C1 ? "C1" : "C0", before,
@@ -121,8 +124,7 @@ void run_multiblock(std::vector<LRSpline<D>> blocks, const std::string& out, con
   const MultiblockSpace<D> m = multiblock_space(std::move(blocks), MultiblockOptions{run.tolerance, run.whole_lines});
   std::vector<AnyLRSpline> objects(m.blocks.begin(), m.blocks.end());
   write_lr_file(out, objects, "stitch");
-  int after = 0;
-  for (const LRSpline<D>& b : m.blocks) after += b.num_basis();
+  const int after = total_basis(m.blocks);
   std::printf("%s: %zu blocks, %zu interfaces; B-splines %d before matching, %d after, %d global functions "
               "(%d on the boundary)\n",
               out.c_str(), m.blocks.size(), m.interfaces.size(), before, after, m.space.num_basis,
