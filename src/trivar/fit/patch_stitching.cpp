@@ -113,12 +113,6 @@ double lerp_exact(double x, double f0, double f1, double g0, double g1) {
   return g0 + (x - f0) / (f1 - f0) * (g1 - g0);
 }
 
-double distance(const double* x, const double* y, int dim) {
-  double d = 0;
-  for (int i = 0; i < dim; ++i) d += (x[i] - y[i]) * (x[i] - y[i]);
-  return std::sqrt(d);
-}
-
 // How the second patch's side corresponds to the first's: the first's i-th direction along its side (ascending)
 // is the second's perm[i]-th along its side, reversed[i] when they run against each other.
 template <int D>
@@ -181,7 +175,7 @@ SideMatch<D> closest_sides(const LRSpline<D>& A, const LRSpline<D>& B) {
               gbi[static_cast<std::size_t>(pm[static_cast<std::size_t>(i)])] = m.reversed[static_cast<std::size_t>(i)] ? n - 1 - x : x;
             }
             for (int i = 0; i < D - 1; ++i, stride *= n) gb += gbi[static_cast<std::size_t>(i)] * stride;
-            const double d = distance(pa.data() + static_cast<std::ptrdiff_t>(g) * dim, pb.data() + static_cast<std::ptrdiff_t>(gb) * dim, dim);
+            const double d = point_distance(pa.data() + static_cast<std::ptrdiff_t>(g) * dim, pb.data() + static_cast<std::ptrdiff_t>(gb) * dim, dim);
             m.gap = std::max(m.gap, d);
             if (corner) m.ends_gap = std::max(m.ends_gap, d);
           }
