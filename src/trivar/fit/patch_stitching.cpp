@@ -371,34 +371,25 @@ Stitched<D> stitch(const LRSpline<D>& first, const LRSpline<D>& second, const St
       // weights are scaled to meet the first's along the seam; used when the weights' cross derivative is more
       // than rounding, the check below then decides.
       const LRSpline<D> Aw = weight_function(A), Bw = weight_function(B1);
-      std::vector<double> wa(static_cast<std::size_t>(total)), wb(wa.size()), ga(wa.size()), gb(wa.size());
-      double w[D + 1];
-      double ww = 0, bw = 0, wmax = 0;
+      double w[D + 1], wab = 0, wbb = 0, gab = 0, gbb = 0, wmax = 0, gmax = 0;
       for (int g = 0; g < total; ++g) {
         Param<D> u{};
         u[0] = a1;
         for (int k = 1, r = g; k < D; ++k, r /= n)
           u[k] = A.domain().lo[k] + (r % n) / double(n - 1) * (A.domain().hi[k] - A.domain().lo[k]);
-        const auto G = static_cast<std::size_t>(g);
         Aw.eval_first_derivatives(u, w);
-        wa[G] = w[0];
-        ga[G] = w[1];
+        const double wa = w[0], ga = w[1];
         Bw.eval_first_derivatives(u, w);
-        wb[G] = w[0];
-        gb[G] = w[1];
-        ww += wa[G] * wb[G];
-        bw += wb[G] * wb[G];
-        wmax = std::max(wmax, std::abs(wa[G]));
+        wab += wa * w[0];
+        wbb += w[0] * w[0];
+        gab += ga * w[1];
+        gbb += w[1] * w[1];
+        wmax = std::max(wmax, std::abs(wa));
+        gmax = std::max(gmax, std::abs(w[1]));
       }
-      const double factor = ww / bw;
-      double gab = 0, gbb = 0, gmax = 0;
-      for (std::size_t g = 0; g < gb.size(); ++g) {
-        gab += ga[g] * factor * gb[g];
-        gbb += factor * gb[g] * factor * gb[g];
-        gmax = std::max(gmax, std::abs(factor * gb[g]));
-      }
-      const double lw = gab / gbb;
-      if (gbb > 0 && std::isfinite(lw) && lw > 0 && gmax * A.domain().extent(0) > 1e-10 * wmax) lambda = lw;
+      // factor * lw * (second's weight derivative) best matches the first's, factor scaling the weights.
+      const double factor = wab / wbb, lw = gab / gbb / factor;
+      if (gbb > 0 && std::isfinite(lw) && lw > 0 && factor * gmax * A.domain().extent(0) > 1e-10 * wmax) lambda = lw;
     }
   }
   LRSpline<D> B = place(len / lambda);
@@ -444,8 +435,8 @@ Stitched<D> stitch(const LRSpline<D>& first, const LRSpline<D>& second, const St
   // Rational C1: the weights must be C1 across the seam (per column, from the control values: the derivative
   // across of row 0 and 1's combination); the column furthest from it is named. The weights then stay as they
   // are and only w x moves.
-  const int p = A.degree(0);
   if (rational_c1) {
+    const int p = A.degree(0);
     double worst = -1, out_of = 0, into = 0, weight = 0;
     for (const Column& c : cols) {
       const LRBSpline<D>& Ea = ba_[static_cast<std::size_t>(c.a[0])];
