@@ -6,6 +6,7 @@
 
 #include "trivar/io/lr_format.hpp"
 #include "trivar/io/spline_file.hpp"
+#include "trivar/spline/split.hpp"
 #include "trivar/spline/tensor_spline.hpp"
 
 namespace cli_test {
@@ -75,6 +76,60 @@ TEST_F(StitchCli, SeparatePatchesAndC0) {
   EXPECT_NE(r.out.find("derivative jump"), std::string::npos);
   const nlohmann::json info = nlohmann::json::parse(ok("info ab.g2 --json").out);
   EXPECT_EQ(info.at("objects").size(), 2u);
+}
+
+// A rational biquadratic over [0, 1]^2 in x, y with heights and weights varying in u (simple knots, C1 at u = 0.5).
+trivar::TensorSpline<2> stitch_nurbs() {
+  const trivar::KnotVector ku(2, {0, 0, 0, 0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875, 1, 1, 1}),
+      kv(2, {0, 0, 0, 1, 1, 1});
+  std::vector<double> h;
+  for (int j = 0; j < kv.size(); ++j)
+    for (int i = 0; i < ku.size(); ++i) {
+      const double w = 1.0 + 0.1 * ((i * 7 + j) % 4);
+      h.insert(h.end(), {w * i / (ku.size() - 1.0), w * j / (kv.size() - 1.0), w * 0.1 * ((i + j) % 3), w});
+    }
+  return trivar::TensorSpline<2>({ku, kv}, 3, true, std::move(h));
+}
+
+// Rational C1: the two halves of one NURBS, the second's row next to the seam lifted (weights kept), are made C1;
+// the quarter cylinders x^2 + y^2 = 1 over 0..90 and 90..180 degrees (exact arcs: their weights' derivatives are
+// opposite at the joint) are refused C1 with one line naming the weight-derivative jump, and stitched C0.
+TEST_F(StitchCli, RationalSurfacesC1WhenTheirWeightsAreC1) {
+  const trivar::TensorSpline<2> whole = stitch_nurbs();
+  auto [left, right] = trivar::split_at(whole, 0, 0.5);
+  for (int j = 0; j < right.count(1); ++j) {
+    double* c = right.coefs().data() + 4 * right.linear_index({1, j});
+    c[2] += 0.05 * c[3];
+  }
+  trivar::io::write_spline_file((work_ / "left.g2").string(), {left});
+  trivar::io::write_spline_file((work_ / "right.g2").string(), {right});
+  const Result r = ok("stitch left.g2 right.g2 --continuity C1 -o lr.lr");
+  const auto at = r.out.find("derivative jump ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  EXPECT_LT(std::stod(r.out.substr(at + 16)), 1e-10) << r.out;
+  double x[3];
+  whole.eval({0.1, 0.6}, x);  // away from the two rows next to the seam: unchanged
+  const std::vector<double> p = numbers_after(ok("eval lr.lr 0.1 0.6").out, "S");
+  ASSERT_GE(p.size(), 3u);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(p[static_cast<std::size_t>(c)], x[c], 1e-12);
+
+  const double s = std::sqrt(0.5);
+  const auto quarter = [&](double c0, double s0, double c1, double s1) {
+    std::vector<double> h;
+    for (double z : {0.0, 1.0})
+      for (const auto& q : {std::array<double, 3>{c0, s0, 1.0}, std::array<double, 3>{c0 + c1, s0 + s1, s},
+                            std::array<double, 3>{c1, s1, 1.0}})
+        h.insert(h.end(), {q[2] * q[0], q[2] * q[1], q[2] * z, q[2]});
+    return trivar::TensorSpline<2>({trivar::KnotVector(2, {0, 0, 0, 1, 1, 1}), trivar::KnotVector(1, {0, 0, 1, 1})}, 3,
+                                   true, std::move(h));
+  };
+  trivar::io::write_spline_file((work_ / "q1.g2").string(), {quarter(1, 0, 0, 1)});
+  trivar::io::write_spline_file((work_ / "q2.g2").string(), {quarter(0, 1, -1, 0)});
+  fails("stitch q1.g2 q2.g2 --continuity C1 -o q.lr");
+  const Result refused = run("stitch q1.g2 q2.g2 --continuity C1 -o q.lr");
+  EXPECT_NE(refused.err.find("weights are not C1 across the shared side (weight-derivative jump "), std::string::npos)
+      << refused.err;
+  ok("stitch q1.g2 q2.g2 --continuity C0 -o q.lr");
 }
 
 TEST_F(StitchCli, BadInputIsRefusedWithOneLine) {

@@ -19,6 +19,7 @@
 #include "trivar/fit/multiblock_stitching.hpp"
 #include "trivar/spline/knot_insertion.hpp"
 #include "trivar/spline/split.hpp"
+#include "fit/one_sided_stencil.hpp"
 
 namespace trivar {
 namespace {
@@ -62,18 +63,6 @@ const LRSpline<2>& block_holding(const std::vector<LRSpline<2>>& blocks, double 
     if (in) return b;
   }
   throw Error("no block holds the point");
-}
-
-// Weights of the one-sided derivative at 0 from samples at 0, s h, ..., 7 s h (s = +-1): exact for polynomials of
-// degree 7 (a Vandermonde system).
-Eigen::VectorXd stencil_weights(double h, double s) {
-  constexpr int n = 8;
-  Eigen::MatrixXd V(n, n);
-  Eigen::VectorXd e = Eigen::VectorXd::Zero(n);
-  e[1] = 1;
-  for (int m = 0; m < n; ++m)
-    for (int k = 0; k < n; ++k) V(m, k) = std::pow(s * k * h, m);
-  return V.fullPivLu().solve(e);
 }
 
 // Largest jump of the derivative across the seams (v = 0.9 for u in [0, 2]; u = 1.3 below, u = 0.7 above), by

@@ -331,8 +331,22 @@ TEST(PatchStitching, RationalCylinderPiecesStayExact) {
   EXPECT_LT(worst_radius, 1e-14);
   EXPECT_LT(worst_first, 1e-14);
   EXPECT_LT(worst_jump, 1e-10);
-  // C1 on rational patches, a rational patch and a polynomial one: refused.
-  EXPECT_THROW(stitch(LRSpline<2>(a), LRSpline<2>(b), {Continuity::C1}), Error);
+  // C1 keeps the weights, and the two arcs' weights are not C1 across the seam: with weights (1, s, 1), s =
+  // sqrt(2)/2, on [0, 1] each, the weight's derivative is 2 (1 - s) leaving the first and 2 (s - 1) entering the
+  // second (both arcs run at the same speed there), a jump of 4 - 2 sqrt(2). Refused, naming it.
+  try {
+    stitch(LRSpline<2>(a), LRSpline<2>(b), {Continuity::C1});
+    ADD_FAILURE() << "C1 with weights that are not C1 accepted";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    const std::string key = "weight-derivative jump ";
+    const std::size_t at = what.find(key);
+    ASSERT_NE(at, std::string::npos) << what;
+    EXPECT_NEAR(std::stod(what.substr(at + key.size())), 4 - 2 * std::sqrt(2.0), 1e-12) << what;
+    EXPECT_NE(what.find("not C1 across the shared side"), std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos);
+  }
+  // A rational patch and a polynomial one: refused.
   TensorSpline<2> flat = surface({0, 0, 0, 0, 1, 1, 1, 1}, {0, 0, 0, 0, 1, 1, 1, 1}, 0, 1, 3);
   expect_error(LRSpline<2>(a), LRSpline<2>(flat), "one patch is rational");
 }

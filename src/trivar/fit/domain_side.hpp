@@ -6,6 +6,7 @@
 // the first rows and spanning the whole side, make the traces of two neighbours equal without touching B-splines
 // further inside.
 #include <array>
+#include <cmath>
 #include <span>
 #include <type_traits>
 #include <utility>
@@ -42,6 +43,13 @@ using SideKnots = std::array<std::vector<std::pair<double, int>>, D>;
 
 // The point of the side at parameter t along it.
 Param<2> side_param(const LRSpline<2>& s, DomainSide side, double t);
+
+// The Euclidean distance of two points of dim coordinates (sides are compared point by point).
+inline double point_distance(const double* x, const double* y, int dim) {
+  double d = 0;
+  for (int k = 0; k < dim; ++k) d += (x[k] - y[k]) * (x[k] - y[k]);
+  return std::sqrt(d);
+}
 
 // The diagonal of the control net's bounding box (the scale of stitching and matching tolerances).
 template <int D>

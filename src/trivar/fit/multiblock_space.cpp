@@ -30,12 +30,6 @@ Param<D> on_face(const LRSpline<D>& s, DomainSide side, Param<D> u) {
   return u;
 }
 
-double distance(const double* x, const double* y, int dim) {
-  double d = 0;
-  for (int k = 0; k < dim; ++k) d += (x[k] - y[k]) * (x[k] - y[k]);
-  return std::sqrt(d);
-}
-
 // The side's point closest to x (samples, then Gauss-Newton in the side's parameters); false when farther than
 // tol. Parameters within rounding of the side's ends or its trace knots (`knots`) become those values exactly.
 template <int D>
@@ -57,7 +51,7 @@ bool on_side(const LRSpline<D>& s, DomainSide side, const std::type_identity_t<S
       t[a] = dom.lo[a] + dom.extent(a) * (r % n) / (n - 1);
     }
     s.eval(t, c);
-    const double d = distance(c, x, dim);
+    const double d = point_distance(c, x, dim);
     if (d < best) best = d, u = t;
   }
   for (int it = 0; it < 30; ++it) {
@@ -90,7 +84,7 @@ bool on_side(const LRSpline<D>& s, DomainSide side, const std::type_identity_t<S
     for (const auto& [value, m] : knots[static_cast<std::size_t>(a)])
       if (std::abs(u[a] - value) <= 1e-10 * dom.extent(a)) u[a] = value;
   s.eval(u, c);
-  return distance(c, x, dim) <= tol;
+  return point_distance(c, x, dim) <= tol;
 }
 
 // A value within rounding of one of `knots` becomes that knot, so knots passed back and forth stay identical.
@@ -265,7 +259,7 @@ bool common_part(const std::vector<LRSpline<D>>& B, int i, DomainSide si, int j,
     }
     A.eval(u, x);
     C.eval(map_param(out, 0, u), y);
-    require(distance(x, y, dim) <= tol, fail);
+    require(point_distance(x, y, dim) <= tol, fail);
   }
   for (int a : da)
     require(A.degree(a) == C.degree(out.along[a]), [&] {
@@ -557,7 +551,7 @@ MultiblockSpace<D> multiblock_space(std::vector<LRSpline<D>> blocks, const Multi
         n = static_cast<int>(control.size() / D);
         control.insert(control.end(), d, d + D);
       } else {
-        const double gap = distance(d, control.data() + static_cast<std::size_t>(D) * static_cast<std::size_t>(n), D);
+        const double gap = point_distance(d, control.data() + static_cast<std::size_t>(D) * static_cast<std::size_t>(n), D);
         require(gap <= tol, [&] {
           return "multiblock: block " + std::to_string(b) + " does not meet its neighbour continuously (control points of "
                  "one interface function differ by " + format_number(gap) + ")";

@@ -11,6 +11,7 @@
 
 #include "trivar/core/error.hpp"
 #include "trivar/core/number_format.hpp"
+#include "trivar/fit/seam_weights.hpp"
 #include "trivar/spline/basis.hpp"
 
 namespace trivar {
@@ -199,12 +200,8 @@ StitchedBlocks<D> stitch_blocks(std::vector<LRSpline<D>> blocks, const StitchOpt
                  format_number(wb) + "); rational stitching keeps the weights and needs them equal there";
         });
         if (c1) {
-          const double da = lambda * combination(i, va, true, dim), db = combination(j, vb, true, dim);
-          const double scale = std::abs(da) + std::abs(db) + std::abs(wa) / A.domain().extent(f.side[0].dir);
-          require(std::abs(da - db) <= 1e-9 * scale, [&] {
-            return name() + ": the weights are not C1 across their interface (cross derivatives " + format_number(da) +
-                   " and " + format_number(db) + "); C1 stitching keeps the weights and needs them C1 there";
-          });
+          require_weights_c1(lambda * combination(i, va, true, dim), combination(j, vb, true, dim), wa,
+                             A.domain().extent(f.side[0].dir), name, "their interface");
         }
       }
       for (int kind = 0; kind < (c1 ? 2 : 1); ++kind) {

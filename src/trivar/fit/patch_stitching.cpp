@@ -10,6 +10,7 @@
 
 #include "trivar/core/error.hpp"
 #include "trivar/core/number_format.hpp"
+#include "trivar/fit/seam_weights.hpp"
 
 namespace trivar {
 
@@ -112,12 +113,6 @@ double lerp_exact(double x, double f0, double f1, double g0, double g1) {
   return g0 + (x - f0) / (f1 - f0) * (g1 - g0);
 }
 
-double distance(const double* x, const double* y, int dim) {
-  double d = 0;
-  for (int i = 0; i < dim; ++i) d += (x[i] - y[i]) * (x[i] - y[i]);
-  return std::sqrt(d);
-}
-
 // How the second patch's side corresponds to the first's: the first's i-th direction along its side (ascending)
 // is the second's perm[i]-th along its side, reversed[i] when they run against each other.
 template <int D>
@@ -180,7 +175,7 @@ SideMatch<D> closest_sides(const LRSpline<D>& A, const LRSpline<D>& B) {
               gbi[static_cast<std::size_t>(pm[static_cast<std::size_t>(i)])] = m.reversed[static_cast<std::size_t>(i)] ? n - 1 - x : x;
             }
             for (int i = 0; i < D - 1; ++i, stride *= n) gb += gbi[static_cast<std::size_t>(i)] * stride;
-            const double d = distance(pa.data() + static_cast<std::ptrdiff_t>(g) * dim, pb.data() + static_cast<std::ptrdiff_t>(gb) * dim, dim);
+            const double d = point_distance(pa.data() + static_cast<std::ptrdiff_t>(g) * dim, pb.data() + static_cast<std::ptrdiff_t>(gb) * dim, dim);
             m.gap = std::max(m.gap, d);
             if (corner) m.ends_gap = std::max(m.ends_gap, d);
           }
@@ -244,6 +239,14 @@ LRSpline<D> rebuilt(const LRSpline<D>& s, std::vector<LRBSpline<D>> basis) {
   return LRSpline<D>(s.degrees(), s.dim(), s.is_rational(), std::move(basis), s.mesh());
 }
 
+// The weight function of a rational LR spline, as a polynomial one with one coordinate (same B-splines).
+template <int D>
+LRSpline<D> weight_function(const LRSpline<D>& s) {
+  std::vector<LRBSpline<D>> basis = basis_copy(s);
+  for (LRBSpline<D>& f : basis) f.coef = {f.coef[static_cast<std::size_t>(s.dim())]};
+  return LRSpline<D>(s.degrees(), 1, false, std::move(basis), s.mesh());
+}
+
 // Both sides' trace knots in each direction, the larger multiplicity where both hold a value.
 template <int D>
 SideKnots<D> knot_union(const SideKnots<D>& x, const SideKnots<D>& y) {
@@ -263,11 +266,13 @@ template <int D>
 Stitched<D> stitch(const LRSpline<D>& first, const LRSpline<D>& second, const StitchOptions& options) {
   require(first.is_rational() == second.is_rational(),
           "stitch: one patch is rational and the other is not (give both as NURBS, weights 1 where polynomial)");
-  // C1 of the homogeneous patches is not C1 of the rational ones (two exact circular arcs meeting tangentially
-  // have opposite weight derivatives at the joint), and enforcing it would move the geometry; a Moebius
-  // reparametrisation that matches the weight derivatives first would be needed.
-  require(!first.is_rational() || options.continuity == Continuity::C0,
-          "stitch: C1 stitching of rational patches is not supported (C0 is)");
+  // Rational C1 keeps the weights and enforces C1 on the homogeneous coordinates w x (seam_weights.hpp), which is
+  // C1 of the rational map only when the weights are C1 across the seam already: pieces of one NURBS are. C1 of
+  // the homogeneous patches alone is not C1 of the rational ones (two exact circular arcs meeting tangentially
+  // have opposite weight derivatives at the joint), and moving the weights would move the geometry elsewhere; a
+  // Moebius reparametrisation that matches the weight derivatives first would be needed. So weights that are not
+  // C1 across the seam are refused, naming the jump.
+  const bool rational_c1 = first.is_rational() && options.continuity == Continuity::C1;
   require(first.dim() == second.dim(), [&] {
     return "stitch: the patches have " + std::to_string(first.dim()) + " and " + std::to_string(second.dim()) +
            " coordinates";
@@ -360,6 +365,32 @@ Stitched<D> stitch(const LRSpline<D>& first, const LRSpline<D>& second, const St
             "stitch: the derivatives across the shared side point against each other (the patches fold back "
             "onto each other); C1 stitching is impossible, C0 is not");
     if (!usable) lambda = 1.0;
+    if (rational_c1) {
+      // Weights kept: the speed that makes them C1 is the only one under which the rational patches can be C1
+      // (a bent first row would bias the geometric fit). Fitted like the geometric one, after the second's
+      // weights are scaled to meet the first's along the seam; used when the weights' cross derivative is more
+      // than rounding, the check below then decides.
+      const LRSpline<D> Aw = weight_function(A), Bw = weight_function(B1);
+      double w[D + 1], wab = 0, wbb = 0, gab = 0, gbb = 0, wmax = 0, gmax = 0;
+      for (int g = 0; g < total; ++g) {
+        Param<D> u{};
+        u[0] = a1;
+        for (int k = 1, r = g; k < D; ++k, r /= n)
+          u[k] = A.domain().lo[k] + (r % n) / double(n - 1) * (A.domain().hi[k] - A.domain().lo[k]);
+        Aw.eval_first_derivatives(u, w);
+        const double wa = w[0], ga = w[1];
+        Bw.eval_first_derivatives(u, w);
+        wab += wa * w[0];
+        wbb += w[0] * w[0];
+        gab += ga * w[1];
+        gbb += w[1] * w[1];
+        wmax = std::max(wmax, std::abs(wa));
+        gmax = std::max(gmax, std::abs(w[1]));
+      }
+      // factor * lw * (second's weight derivative) best matches the first's, factor scaling the weights.
+      const double factor = wab / wbb, lw = gab / gbb / factor;
+      if (gbb > 0 && std::isfinite(lw) && lw > 0 && factor * gmax * A.domain().extent(0) > 1e-10 * wmax) lambda = lw;
+    }
   }
   LRSpline<D> B = place(len / lambda);
 
@@ -401,9 +432,36 @@ Stitched<D> stitch(const LRSpline<D>& first, const LRSpline<D>& second, const St
     for (LRBSpline<D>& f : bb_)
       for (double& x : f.coef) x *= factor;
   }
+  // Rational C1: the weights must be C1 across the seam (per column, from the control values: the derivative
+  // across of row 0 and 1's combination); the column furthest from it is named. The weights then stay as they
+  // are and only w x moves.
+  if (rational_c1) {
+    const int p = A.degree(0);
+    double worst = -1, out_of = 0, into = 0, weight = 0;
+    for (const Column& c : cols) {
+      const LRBSpline<D>& Ea = ba_[static_cast<std::size_t>(c.a[0])];
+      const LRBSpline<D>& Eb = bb_[static_cast<std::size_t>(c.b[0])];
+      const LRBSpline<D>& Fa = ba_[static_cast<std::size_t>(c.a[1])];
+      const LRBSpline<D>& Fb = bb_[static_cast<std::size_t>(c.b[1])];
+      const auto W = static_cast<std::size_t>(dim);
+      const double hA = a1 - Ea.knots[0].front(), hB = Eb.knots[0].back() - a1;
+      const double wE = Ea.gamma * Ea.coef[W];
+      const double da = p * (wE - Fa.gamma * Fa.coef[W]) / hA, db = p * (Fb.gamma * Fb.coef[W] - Eb.gamma * Eb.coef[W]) / hB;
+      const double excess = std::abs(da - db) / (std::abs(da) + std::abs(db) + std::abs(wE) / A.domain().extent(0));
+      if (excess > worst) {
+        worst = excess;
+        out_of = da;
+        into = db;
+        weight = wE;
+      }
+    }
+    require_weights_c1(out_of, into, weight, A.domain().extent(0), [] { return std::string("stitch"); },
+                       "the shared side");
+  }
+  const int moving = rational_c1 ? dim : stride;  // the coordinates that move
   double moved = 0;
   auto set = [&](LRBSpline<D>& f, const std::vector<double>& d) {  // d: gamma-weighted values
-    for (int j = 0; j < stride; ++j) {
+    for (int j = 0; j < moving; ++j) {
       const double c = d[static_cast<std::size_t>(j)] / f.gamma;
       moved = std::max(moved, std::abs(c - f.coef[static_cast<std::size_t>(j)]));
       f.coef[static_cast<std::size_t>(j)] = c;
@@ -413,7 +471,7 @@ Stitched<D> stitch(const LRSpline<D>& first, const LRSpline<D>& second, const St
   for (const Column& c : cols) {
     LRBSpline<D>& Ea = ba_[static_cast<std::size_t>(c.a[0])];
     LRBSpline<D>& Eb = bb_[static_cast<std::size_t>(c.b[0])];
-    for (int j = 0; j < stride; ++j)
+    for (int j = 0; j < moving; ++j)
       dE[static_cast<std::size_t>(j)] = 0.5 * (Ea.gamma * Ea.coef[static_cast<std::size_t>(j)] +
                                                Eb.gamma * Eb.coef[static_cast<std::size_t>(j)]);
     set(Ea, dE);
@@ -423,7 +481,7 @@ Stitched<D> stitch(const LRSpline<D>& first, const LRSpline<D>& second, const St
     LRBSpline<D>& Fb = bb_[static_cast<std::size_t>(c.b[1])];
     const double hA = a1 - Ea.knots[0].front(), hB = Eb.knots[0].back() - a1;
     const double al = hB / (hA + hB), be = hA / (hA + hB), n = al * al + be * be;
-    for (int j = 0; j < stride; ++j) {
+    for (int j = 0; j < moving; ++j) {
       const auto J = static_cast<std::size_t>(j);
       const double fa = Fa.gamma * Fa.coef[J], fb = Fb.gamma * Fb.coef[J];
       const double r = dE[J] - al * fa - be * fb;

@@ -37,11 +37,13 @@ struct Stitched {
   double moved = 0.0;     // largest change of a control point
 };
 
-// Rational patches (NURBS, rational LR) are stitched C0 in homogeneous coordinates after the second patch's
-// weights are scaled to meet the first's along the seam (which leaves its geometry unchanged); `moved` is then
-// measured in homogeneous values.
-// Throws trivar::Error with one line when one patch is rational and the other not, for C1 on rational patches,
-// when they are of another
+// Rational patches (NURBS, rational LR): the second patch's weights are first scaled to meet the first's along the
+// seam (which leaves its geometry unchanged). C0 then averages the seam values in homogeneous form (w x, w). C1
+// keeps the weights, which must already be C1 across the seam (pieces of one NURBS), and enforces C1 on the
+// homogeneous coordinates w x of the first rows (seam_weights.hpp); the second patch's speed across the seam is
+// then the one that makes the weights C1. `moved` is measured in homogeneous values.
+// Throws trivar::Error with one line when one patch is rational and the other not, for C1 on rational patches
+// whose weights are not C1 across the seam (naming the weight-derivative jump), when they are of another
 // parametric or control dimension or degree, share no side, meet along a side with parametrisations that do not
 // correspond linearly or with weights that are not proportional along it, or when the second patch would have to
 // be mirrored to continue the first (opposite orientation: its normal points the
