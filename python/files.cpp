@@ -282,7 +282,7 @@ void bind_files(py::module_& m) {
           });
           models.append(py::module_::import("types").attr("SimpleNamespace")(
               py::arg("name") = s.name, py::arg("model") = trimmed_model(s.solid),
-              py::arg("kernel_volume") = s.kernel_volume ? py::object(py::float_(*s.kernel_volume)) : py::none()));
+              py::arg("kernel_volume") = s.kernel_volume ? py::object(py::float_(*s.kernel_volume)) : py::object(py::none())));
         }
         return models;
       },
