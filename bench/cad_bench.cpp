@@ -162,12 +162,14 @@ BENCHMARK(BM_StepToTrimmedModel)->Arg(4)->Arg(12)->Arg(20)->Arg(28)->Unit(benchm
 
 void BM_MachinedPartToTrimmedModel(benchmark::State& state) {
   const std::string& path = machined_part(static_cast<int>(state.range(0)));
-  double volume = 0, kernel = 0;
+  // OpenCASCADE's volume of the part as read, once outside the timed imports (which, like `trivar info` and
+  // `make vmodel`, leave it out by default).
+  const double kernel = trivar::cad::import_step(path, {.kernel_volume = true}).solids.at(0).kernel_volume.value();
+  double volume = 0;
   std::size_t faces = 0;
   for (auto _ : state) {
     const trivar::cad::StepImport im = trivar::cad::import_step(path);
     volume = im.solids.at(0).solid->volume();
-    kernel = im.solids[0].kernel_volume;
     faces = im.solids[0].solid->boundary().faces.size();
   }
   state.counters["faces"] = static_cast<double>(faces);

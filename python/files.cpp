@@ -265,11 +265,11 @@ void bind_files(py::module_& m) {
         "with vertex colours from the fractions, or a composite material of one formula in x, y, z per material.");
   m.def(
       "import_step",
-      [](const std::string& path, double tolerance) {
+      [](const std::string& path, double tolerance, bool kernel_volume) {
         cad::StepImport im;
         {
           py::gil_scoped_release release;
-          im = cad::import_step(path, {.chordal_tolerance = tolerance});
+          im = cad::import_step(path, {.chordal_tolerance = tolerance, .kernel_volume = kernel_volume});
         }
         py::list models;
         for (const cad::ImportedSolid& s : im.solids) {
@@ -282,15 +282,15 @@ void bind_files(py::module_& m) {
           });
           models.append(py::module_::import("types").attr("SimpleNamespace")(
               py::arg("name") = s.name, py::arg("model") = trimmed_model(s.solid),
-              py::arg("kernel_volume") = s.kernel_volume));
+              py::arg("kernel_volume") = s.kernel_volume ? py::object(py::float_(*s.kernel_volume)) : py::object(py::none())));
         }
         return models;
       },
-      py::arg("path"), py::arg("tolerance") = 0.0,
+      py::arg("path"), py::arg("tolerance") = 0.0, py::arg("kernel_volume") = false,
       "The B-rep solids of a STEP file, each as (name, model, kernel_volume): a trimmed one-cell V-model (as\n"
       "`trivar make vmodel`: exact NURBS faces with trimming loops; volume, tessellate, slice and write work on\n"
-      "it) and OpenCASCADE's volume of the solid as read. tolerance: chordal tolerance of\n"
-      "the boundary mesh (0: 1e-3 of the part's diagonal).");
+      "it) and, with kernel_volume=True, OpenCASCADE's volume of the solid as read (else None). tolerance:\n"
+      "chordal tolerance of the boundary mesh (0: 1e-3 of the part's diagonal).");
 }
 
 }  // namespace trivar::python

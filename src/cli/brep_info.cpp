@@ -8,10 +8,10 @@
 
 namespace trivar::cli {
 
-nlohmann::json brep_info_json(const std::string& file) {
+nlohmann::json brep_info_json(const std::string& file, bool kernel_volume) {
   cad::StepImport im;
   try {
-    im = cad::import_step(file);
+    im = cad::import_step(file, {.kernel_volume = kernel_volume});
   } catch (const Error& e) {
     // A file of B-spline volumes or LR splines only holds no B-rep; the rest of `info` still applies.
     return {{"error", e.what()}};
@@ -23,7 +23,8 @@ nlohmann::json brep_info_json(const std::string& file) {
                    {"solid_info", nlohmann::json::array()}};
   for (const cad::UnmappedFace& f : r.unmapped) j["unmapped_faces"].push_back({{"name", f.name}, {"reason", f.reason}});
   for (const cad::ImportedSolid& s : im.solids) {
-    nlohmann::json d{{"name", s.name}, {"kernel_volume", s.kernel_volume}, {"mapped", s.solid != nullptr}};
+    nlohmann::json d{{"name", s.name}, {"mapped", s.solid != nullptr}};
+    if (s.kernel_volume) d["kernel_volume"] = *s.kernel_volume;
     if (s.solid) {
       d["faces"] = s.solid->boundary().faces.size();
       d["volume"] = s.solid->volume();
@@ -35,8 +36,8 @@ nlohmann::json brep_info_json(const std::string& file) {
   return j;
 }
 
-void print_brep_info(const std::string& file) {
-  const nlohmann::json j = brep_info_json(file);
+void print_brep_info(const std::string& file, bool kernel_volume) {
+  const nlohmann::json j = brep_info_json(file, kernel_volume);
   if (j.contains("error")) {
     std::printf("  B-rep: none (%s)\n", j["error"].get<std::string>().c_str());
     return;
@@ -51,15 +52,15 @@ void print_brep_info(const std::string& file) {
   for (const auto& f : j["unmapped_faces"])
     std::printf("  unmapped face %s: %s\n", f["name"].get<std::string>().c_str(), f["reason"].get<std::string>().c_str());
   for (const auto& s : j["solid_info"]) {
+    const std::string kernel = s.contains("kernel_volume") ? fmt(s["kernel_volume"].get<double>()) : "";
     if (!s["mapped"].get<bool>()) {
-      std::printf("  solid %s: not mapped (see the unmapped faces), OpenCASCADE volume %s\n",
-                  s["name"].get<std::string>().c_str(), fmt(s["kernel_volume"].get<double>()).c_str());
+      std::printf("  solid %s: not mapped (see the unmapped faces)%s\n", s["name"].get<std::string>().c_str(),
+                  kernel.empty() ? "" : (", OpenCASCADE volume " + kernel).c_str());
       continue;
     }
-    std::printf("  solid %s: %zu trimmed NURBS faces, volume %s (exact boundary; OpenCASCADE %s), mesh %zu triangles "
-                "within %s\n",
+    std::printf("  solid %s: %zu trimmed NURBS faces, volume %s (exact boundary%s), mesh %zu triangles within %s\n",
                 s["name"].get<std::string>().c_str(), s["faces"].get<std::size_t>(), fmt(s["volume"].get<double>()).c_str(),
-                fmt(s["kernel_volume"].get<double>()).c_str(), s["triangles"].get<std::size_t>(),
+                kernel.empty() ? "" : ("; OpenCASCADE " + kernel).c_str(), s["triangles"].get<std::size_t>(),
                 fmt(s["chordal_tolerance"].get<double>()).c_str());
   }
 }

@@ -69,8 +69,9 @@ void write_model(std::vector<VCell> cells, const MaterialArgs& a, const std::str
 void add_make_vmodel(CLI::App& make);
 // info on a STEP file: the B-rep as the geometry kernel reads it (solids, shells, faces by surface kind, what
 // is not a solid, faces that cannot be mapped); text or JSON.
-void print_brep_info(const std::string& file);
-nlohmann::json brep_info_json(const std::string& file);
+// kernel_volume: also OpenCASCADE's own volume of each solid (`info --kernel-volume`).
+void print_brep_info(const std::string& file, bool kernel_volume);
+nlohmann::json brep_info_json(const std::string& file, bool kernel_volume);
 void add_invert_command(CLI::App& app, Context& ctx);
 void add_export_command(CLI::App& app, Context& ctx);
 void add_slice_command(CLI::App& app, Context& ctx);

@@ -51,6 +51,19 @@ TEST(VmodelCli, StepSolidBecomesATrimmedModelThatReadsBack) {
   ASSERT_TRUE(m.cell(0).is_trimmed());
   const double ref = test::occt_volume(shape);
   EXPECT_NEAR(m.volume(), ref, 1e-6 * ref);
+  // OpenCASCADE's own volume only on request, beside trivar's.
+  EXPECT_EQ(r.out.find("OpenCASCADE"), std::string::npos) << r.out;
+  const CliRun k = run("make vmodel " + step + " -o " + (dir / "part_k.json").string() + " --kernel-volume", dir);
+  ASSERT_EQ(k.code, 0) << k.err;
+  const auto at = k.out.find("(OpenCASCADE ");
+  ASSERT_NE(at, std::string::npos) << k.out;
+  EXPECT_NEAR(std::stod(k.out.substr(at + 13)), ref, 1e-6 * ref) << k.out;
+  const CliRun ik = run("info " + step + " --kernel-volume", dir);
+  ASSERT_EQ(ik.code, 0) << ik.err;
+  const auto iat = ik.out.find("; OpenCASCADE ");
+  ASSERT_NE(iat, std::string::npos) << ik.out;
+  EXPECT_NEAR(std::stod(ik.out.substr(iat + 14)), ref, 1e-6 * ref) << ik.out;
+  EXPECT_EQ(run("info " + step, dir).out.find("; OpenCASCADE "), std::string::npos);
   // Mass of a linear density rho = x by exact-boundary quadrature: the first moment M_x of the part, which for
   // the block with two symmetric holes is the volume times the centroid x = 20.
   Attribute rho = Attribute::expression({"x"}, Attribute::Space::model);

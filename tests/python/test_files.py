@@ -89,7 +89,7 @@ def test_step_circle_from_a_cad_file():
 def test_step_brep_import_of_a_box(tmp_path):
     path = tmp_path / "box.stp"
     path.write_text(box_step(2.0, 3.0, 5.0))
-    (solid,) = trivar.import_step(str(path))
+    (solid,) = trivar.import_step(str(path), kernel_volume=True)
     m = solid.model
     assert m.trimmed and m.num_cells == 1
     # The exact volume, and OpenCASCADE's (another kernel's) reading of the same file.

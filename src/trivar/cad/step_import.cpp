@@ -187,7 +187,7 @@ void store_plane_pcurves(const TopoDS_Shape& solid) {
   }
 }
 
-// The kernel's fixed Gauss rule: a cross-check for reports, a fifth of the adaptive rule's time.
+// The kernel's fixed Gauss rule: a cross-check on request, a fifth of the adaptive rule's time.
 double kernel_volume(const TopoDS_Shape& s) {
   GProp_GProps props;
   BRepGProp::VolumeProperties(s, props, true);
@@ -281,13 +281,15 @@ StepImport import_step(const std::string& path, const ImportOptions& opts) {
     for (TopExp_Explorer x(shape, TopAbs_SOLID); x.More(); x.Next(), ++index) {
       TopoDS_Shape solid = x.Current();
       const std::string sname = name(solid, "solid " + std::to_string(index));
-      ImportedSolid imported{sname, nullptr, 0};
+      ImportedSolid imported{sname, nullptr, std::nullopt};
       store_plane_pcurves(solid);
-      // The validity check and the kernel's volume run beside the conversion, which reads the same solid and
-      // builds a copy; an invalid solid discards the conversion and is converted again after repair.
-      auto checked = std::async(std::launch::async, [&solid] {
+      // The validity check (and the kernel's volume when asked for) runs beside the conversion, which reads the
+      // same solid and builds a copy; an invalid solid discards the conversion and is converted again after
+      // repair.
+      const bool want_volume = opts.kernel_volume;
+      auto checked = std::async(std::launch::async, [&solid, want_volume] {
         const bool valid = BRepCheck_Analyzer(solid).IsValid();
-        return std::make_pair(valid, valid ? kernel_volume(solid) : 0.0);
+        return std::make_pair(valid, valid && want_volume ? std::optional<double>(kernel_volume(solid)) : std::nullopt);
       });
       std::optional<MappedSolid> mapped;
       std::exception_ptr failure;
@@ -303,15 +305,17 @@ StepImport import_step(const std::string& path, const ImportOptions& opts) {
         solid = fix.Shape();
         require(BRepCheck_Analyzer(solid, true, true).IsValid(), path + ": " + sname + " is not a valid solid and could not be repaired");
         r.repairs.push_back(sname + ": invalid as read (e.g. missing parameter-space curves, tolerances); repaired by shape healing");
-        volume = kernel_volume(solid);
+        if (want_volume) volume = kernel_volume(solid);
         failure = nullptr;
         mapped.reset();
       }
       if (const int fe = free_edges(solid); fe > 0)
         throw Error(path + ": " + sname + " is not closed (" + plural(fe, "free edge") + ")");
+      // Without the kernel's volume an inside-out solid is refused by TrimmedSolid (its mesh encloses a
+      // negative volume) once its faces are mapped.
       imported.kernel_volume = volume;
-      require(imported.kernel_volume > 0, path + ": " + sname + " is inside out or encloses nothing (volume " +
-                                              std::to_string(imported.kernel_volume) + ")");
+      if (volume)
+        require(*volume > 0, path + ": " + sname + " is inside out or encloses nothing (volume " + std::to_string(*volume) + ")");
       if (failure) std::rethrow_exception(failure);
       if (!mapped) mapped = map_solid(solid, name, sname, chordal, opts.angular_tolerance);
       for (UnmappedFace& u : mapped->unmapped) r.unmapped.push_back(std::move(u));

@@ -7,6 +7,7 @@
 // of a solid and names the faces that could not be mapped and the repairs that were made.
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,10 @@ struct ImportOptions {
   double chordal_tolerance = 0;
   // Largest angle between the normals of neighbouring mesh triangles on a face, in radians.
   double angular_tolerance = 0.5;
+  // Also compute OpenCASCADE's own volume of each solid (BRepGProp's Gauss rule on the faces as read), as an
+  // independent cross-check of trivar's exact-boundary volume: about a tenth of the import's instructions on
+  // a machined part, so only on request.
+  bool kernel_volume = false;
 };
 
 // A face that could not become a trimmed NURBS patch, and why.
@@ -45,7 +50,8 @@ struct BrepReport {
 struct ImportedSolid {
   std::string name;                            // "solid 0" or the STEP instance ("#48 MANIFOLD_SOLID_BREP 'part'")
   std::shared_ptr<const TrimmedSolid> solid;   // null when a face could not be mapped (see the report)
-  double kernel_volume = 0;                    // OpenCASCADE's volume of the solid as read (BRepGProp)
+  // OpenCASCADE's volume of the solid as read (BRepGProp), when ImportOptions::kernel_volume asked for it.
+  std::optional<double> kernel_volume;
 };
 
 struct StepImport {

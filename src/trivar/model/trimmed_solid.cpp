@@ -156,32 +156,70 @@ TrimmedSolid::TrimmedSolid(TrimmedBoundary boundary) : boundary_(std::move(bound
     g.triangles.resize(static_cast<std::size_t>(count.back()));
     for (std::size_t t = 0; t < nt; ++t) each_cell(range[t], [&](std::size_t c) { g.triangles[count[c]++] = static_cast<int>(t); });
   }
-  // 64 chords per curve span; the largest gap between a chord's midpoint and the curve, measured per face,
-  // widens the polygon's edge into a band that counts as on the trim, so the polygon never cuts off a sliver
-  // of the face.
-  constexpr int kChords = 64;
+  // The trim polygons: a straight span (degree 1, rational or not: its image is the chord) is one chord; a
+  // curved one starts with 4 uniform chords, halved until the trimming curve's point over each chord's
+  // parameter midpoint lies, on the face in model space, within a quarter of the mesh's chordal tolerance of
+  // the face's point over the chord's midpoint (at most 64 chords per span). The largest gap between a chord's
+  // midpoint and the curve, measured per face, widens the polygon's edge into a band that counts as on the
+  // trim, so the polygon never cuts off a sliver of the face.
   trim_polygons_.resize(b.faces.size());
   trim_slack_.assign(b.faces.size(), 0.0);
   trim_boxes_.resize(b.faces.size());
+  const double gap_3d = b.chordal_tolerance / 4;
   // The faces on all threads: each writes its own entries only.
   parallel_for(static_cast<std::ptrdiff_t>(b.faces.size()), 0, [&](std::ptrdiff_t fi) {
     const auto f = static_cast<std::size_t>(fi);
+    const TensorSpline<2>& surface = b.faces[f].surface;
+    std::vector<P2> ends, mids, finer_ends, finer_mids;
     for (const TrimLoop& l : b.faces[f].loops) {
       std::vector<P2> poly;
       for (const TrimCurve& c : l.curves) {
         const std::vector<double> br = c.pcurve.knots(0).breakpoints();
+        const auto at = [&](double t) {
+          P2 q;
+          c.pcurve.eval({t}, q.data());
+          return q;
+        };
         for (std::size_t s = 0; s + 1 < br.size(); ++s) {
-          // A chord's end is the next chord's start: two curve points per chord.
-          const double h = (br[s + 1] - br[s]) / kChords;
-          P2 q, m, e;
-          c.pcurve.eval({br[s]}, q.data());
-          for (int k = 0; k < kChords; ++k) {
-            const double t = br[s] + h * k;
-            c.pcurve.eval({t + h / 2}, m.data());
-            c.pcurve.eval({k + 1 < kChords ? br[s] + h * (k + 1) : br[s + 1]}, e.data());
+          if (c.pcurve.degree(0) == 1) {
+            poly.push_back(at(br[s]));
+            continue;
+          }
+          constexpr int kFirst = 4, kMost = 64;
+          const double a = br[s], len = br[s + 1] - br[s];
+          int n = kFirst;
+          ends.resize(n + 1);
+          mids.resize(n);
+          for (int k = 0; k <= n; ++k) ends[k] = at(k < n ? a + len * k / n : br[s + 1]);
+          for (int k = 0; k < n; ++k) mids[k] = at(a + len * (k + 0.5) / n);
+          for (;;) {
+            double worst = 0;
+            for (int k = 0; k < n && worst <= gap_3d; ++k) {
+              const P2 chord{(ends[k][0] + ends[k + 1][0]) / 2, (ends[k][1] + ends[k + 1][1]) / 2};
+              P3 x, y;
+              surface.eval({mids[k][0], mids[k][1]}, x.data());
+              surface.eval({chord[0], chord[1]}, y.data());
+              worst = std::max(worst, norm(sub(x, y)));
+            }
+            if (worst <= gap_3d || n == kMost) break;
+            // Halve every chord: the midpoints become ends, and the quarter points the new midpoints.
+            finer_ends.resize(2 * n + 1);
+            finer_mids.resize(2 * n);
+            for (int k = 0; k < n; ++k) {
+              finer_ends[2 * k] = ends[k];
+              finer_ends[2 * k + 1] = mids[k];
+              finer_mids[2 * k] = at(a + len * (k + 0.25) / n);
+              finer_mids[2 * k + 1] = at(a + len * (k + 0.75) / n);
+            }
+            finer_ends[2 * n] = ends[n];
+            std::swap(ends, finer_ends);
+            std::swap(mids, finer_mids);
+            n *= 2;
+          }
+          for (int k = 0; k < n; ++k) {
+            const P2 &q = ends[k], &e = ends[k + 1], &m = mids[k];
             trim_slack_[f] = std::max(trim_slack_[f], std::hypot(m[0] - (q[0] + e[0]) / 2, m[1] - (q[1] + e[1]) / 2));
             poly.push_back(q);
-            q = e;
           }
         }
       }

@@ -59,6 +59,14 @@ public:
   // the mesh triangles boundary_meets() finds there is largest (0 when there are none).
   int transversal_axis(const Box<3>& b) const;
 
+  // The closed polygon in face `face`'s parameter plane that stands for its trimming loop `loop` when
+  // parameter points are classified (straight spans as one chord, curved ones within a quarter of the chordal
+  // tolerance in model space), and how far its chords stray from the curves in the parameter plane at most.
+  const std::vector<std::array<double, 2>>& trim_polygon(int face, int loop) const {
+    return trim_polygons_.at(static_cast<std::size_t>(face)).at(static_cast<std::size_t>(loop));
+  }
+  double trim_slack(int face) const { return trim_slack_.at(static_cast<std::size_t>(face)); }
+
 private:
   // Triangles whose projection along an axis covers each cell of a uniform grid over the box's other two
   // coordinates (compressed rows).
@@ -81,7 +89,7 @@ private:
     template <class F>
     bool any_triangle_in(const std::array<double, 3>& from, const std::array<double, 3>& to, F&& f) const;
   } space_;
-  // Per face its trimming loops as closed polygons in the parameter plane (each curve span sampled finely).
+  // Per face its trimming loops as closed polygons in the parameter plane (trim_polygon).
   std::vector<std::vector<std::vector<std::array<double, 2>>>> trim_polygons_;
   std::vector<std::vector<Box<2>>> trim_boxes_;  // per face and loop: the polygon's box
   std::vector<double> trim_slack_;  // per face: how far its polygons may stray from the trimming curves
