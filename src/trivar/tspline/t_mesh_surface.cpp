@@ -328,7 +328,7 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(mesh), stars_
       for (int c = 0; c < 4; ++c) {
         const auto [face, link] = sec.cells[k][static_cast<std::size_t>(c)];
         NurccFace& nf_ = nurcc_of[static_cast<std::size_t>(face)];
-        require(nf_.star < 0, [&] {
+        require(nf_.star < 0, [face = face] {
           return "T-mesh: face " + std::to_string(face) + " is next to two star points with unequal knot intervals; subdivide the control mesh";
         });
         nf_ = {static_cast<int>(nurcc_.size()), static_cast<int>(k), c, link};
