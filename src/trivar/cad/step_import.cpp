@@ -14,7 +14,6 @@
 #include <Bnd_Box.hxx>
 #include <GProp_GProps.hxx>
 #include <Geom_Plane.hxx>
-#include <Interface_Static.hxx>
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
 #include <Message_PrinterOStream.hxx>
@@ -41,6 +40,7 @@
 
 #include "trivar/cad/brep_mapping.hpp"
 #include "trivar/cad/face_nurbs.hpp"
+#include "trivar/cad/step_transfer.hpp"
 #include "trivar/core/error.hpp"
 
 namespace trivar::cad {
@@ -257,7 +257,7 @@ StepImport import_step(const std::string& path, const ImportOptions& opts) {
   STEPControl_Reader reader;
   try {
     require(reader.ReadFile(path.c_str()) == IFSelect_RetDone, path + ": not a readable STEP file");
-    require(reader.TransferRoots() > 0, path + ": the STEP file holds no shape the kernel can transfer");
+    require(transfer_roots(reader) > 0, path + ": the STEP file holds no shape the kernel can transfer");
     const TopoDS_Shape shape = reader.OneShape();
     require(!shape.IsNull(), path + ": the STEP file holds no shape");
     const Namer name(reader);
@@ -285,7 +285,8 @@ StepImport import_step(const std::string& path, const ImportOptions& opts) {
       store_plane_pcurves(solid);
       // The validity check (and the kernel's volume when asked for) runs beside the conversion, which reads the
       // same solid and builds a copy; an invalid solid discards the conversion and is converted again after
-      // repair.
+      // repair by the kernel's full shape healing (which includes the fixes of intersecting edges and loops the
+      // transfer leaves out: step_transfer.hpp).
       const bool want_volume = opts.kernel_volume;
       auto checked = std::async(std::launch::async, [&solid, want_volume] {
         const bool valid = BRepCheck_Analyzer(solid).IsValid();
@@ -304,7 +305,7 @@ StepImport import_step(const std::string& path, const ImportOptions& opts) {
         fix.Perform();
         solid = fix.Shape();
         require(BRepCheck_Analyzer(solid, true, true).IsValid(), path + ": " + sname + " is not a valid solid and could not be repaired");
-        r.repairs.push_back(sname + ": invalid as read (e.g. missing parameter-space curves, tolerances); repaired by shape healing");
+        r.repairs.push_back(sname + ": invalid as read (e.g. missing parameter-space curves, tolerances, intersecting loops); repaired by shape healing");
         if (want_volume) volume = kernel_volume(solid);
         failure = nullptr;
         mapped.reset();
