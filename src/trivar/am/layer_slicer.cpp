@@ -282,17 +282,36 @@ LayerSlicer::LayerSlicer(const VModel& model, const SliceOptions& options)
 }
 
 SliceLayer LayerSlicer::slice(int k) const {
+  SliceLayer L;
+  slice(k, L);
+  return L;
+}
+
+void LayerSlicer::slice(int k, SliceLayer& L) const {
   require(k >= 0 && k < grid_.layers,
           [&] { return "slicer: layer " + std::to_string(k) + " out of range 0.." + std::to_string(grid_.layers - 1); });
   const SliceGrid& g = grid_;
   const int n = static_cast<int>(sections_.size()), w = g.width, h = g.height;
-  SliceLayer L;
+  const auto uw = static_cast<std::size_t>(w), mats = static_cast<std::size_t>(materials_);
+  if (L.width == w && L.height == h && L.cell.size() == uw * static_cast<std::size_t>(h) &&
+      L.fractions.width() == w && L.fractions.height() == h && L.fractions.channels() == materials_ &&
+      L.fractions.data().size() == uw * static_cast<std::size_t>(h) * mats &&
+      L.row_extents.size() == static_cast<std::size_t>(h)) {
+    for (int j = 0; j < h; ++j) {
+      const auto [a, b] = L.row_extents[static_cast<std::size_t>(j)];
+      std::fill(L.cell.data() + j * uw + a, L.cell.data() + j * uw + b, -1);
+      std::fill(L.fractions.pixel(a, j), L.fractions.pixel(a, j) + mats * static_cast<std::size_t>(b - a), 0.0f);
+    }
+  } else {
+    L.width = w;
+    L.height = h;
+    L.cell.assign(uw * static_cast<std::size_t>(h), -1);
+    L.fractions = FractionImage(w, h, materials_, 0.0f);
+  }
+  L.row_extents.assign(static_cast<std::size_t>(h), {0, 0});
   L.index = k;
   L.z = g.z(k);
-  L.width = w;
-  L.height = h;
-  L.cell.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), -1);
-  L.fractions = FractionImage(w, h, materials_, 0.0f);
+  L.stats = {};
   const double z = L.z;
 
   // Row crossings per cell and of the model boundary, sorted by (row, x).
@@ -330,7 +349,6 @@ SliceLayer LayerSlicer::slice(int k) const {
   std::vector<Param<3>> cur(static_cast<std::size_t>(w)), prev(static_cast<std::size_t>(w)), seed(static_cast<std::size_t>(w));
   std::vector<int> seed_cell(static_cast<std::size_t>(w), -1);
   // Pixel columns, parameters and model points of the pending run of pixels.
-  const auto mats = static_cast<std::size_t>(materials_);
   std::array<int, kFractionRun> batch_i;
   std::array<Param<3>, kFractionRun> batch_u;
   std::array<double, 3 * kFractionRun> batch_x;
@@ -378,6 +396,7 @@ SliceLayer LayerSlicer::slice(int k) const {
       }
     });
 
+    if (first < last) L.row_extents[static_cast<std::size_t>(j)] = {first, last};
     // Inverse Jacobian of the last pixel solved on this row, for chord steps in the same cell.
     Eigen::Matrix3d chord_inverse = Eigen::Matrix3d::Zero();
     int chord_cell = -1, chord_age = 0;
@@ -508,7 +527,6 @@ SliceLayer LayerSlicer::slice(int k) const {
     flush(j);
     std::swap(cur, prev);
   }
-  return L;
 }
 
 }  // namespace trivar::am

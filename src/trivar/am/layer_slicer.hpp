@@ -53,6 +53,12 @@ public:
 
   // Slices layer k (0 <= k < grid().layers). Thread-safe: layers may be sliced concurrently.
   SliceLayer slice(int k) const;
+  // The same into `layer`, reusing its images when they have this grid's size and channels and their
+  // row_extents: only the pixels written before are cleared (the ball of radius 20 on the 2944 x 1466 tray
+  // fills a tenth of it), and no new 50 MB of pages are faulted in per layer. The result equals slice(k) when
+  // `layer` is default, had its images moved out, or came from a slicer of the same grid and materials and
+  // its pixels were not changed since outside its row_extents.
+  void slice(int k, SliceLayer& layer) const;
   // The outline of cell c at height z (segments of its six faces), as the fill uses it.
   void outline(int c, double z, std::vector<OutlineSegment>& out) const { sections_[static_cast<std::size_t>(c)].section(z, out); }
 
