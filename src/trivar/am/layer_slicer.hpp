@@ -16,8 +16,8 @@
 // own outline excludes it.
 //
 // Tracing (per row, left to right; SliceOptions::tracing selects the sources): Newton starts from the
-// parameters of the pixels to the left in the same cell, extrapolated (quadratically from three, linearly from
-// two) and refined by chord steps that reuse the last solved pixel's inverse Jacobian (one value evaluation
+// parameters of the pixels to the left in the same cell, extrapolated (by the polynomial through up to five
+// of them) and refined by chord steps that reuse the last solved pixel's inverse Jacobian (one value evaluation
 // per step, on the cell's element polynomials where its degrees have them, spline/element_polynomials.hpp:
 // they differ from TensorSpline::eval by about 1e-12 of the cell's size, far below the inversion tolerance,
 // so a fraction can differ from the B-spline path's in its last float bit); where the row enters the cell,
