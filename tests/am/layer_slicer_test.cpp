@@ -260,3 +260,51 @@ TEST(LayerSlicer, TracingMethodsAgreeAndDifferInRobustSolves) {
   EXPECT_EQ(parse_tracing("previous-line"), Tracing::previous_line);
   EXPECT_THROW(parse_tracing("sideways"), Error);
 }
+
+// Slicing into a layer that holds an earlier layer clears only what that layer wrote (its row extents): the
+// result must equal a fresh slice whether the earlier layer was wider (the equator), narrower (near the
+// pole), moved out, or of another slicer's grid. Every pixel outside the extents must be empty.
+TEST(LayerSlicer, ALayerSlicedIntoReusedImagesEqualsAFreshOne) {
+  VModel m = glued(make_ball({5.0}));
+  for (int c = 0; c < m.num_cells(); ++c)
+    m.cell(c).set_attribute("material", Attribute::expression({"x / 10 + 0.5", "0.5 - x / 10"}, Attribute::Space::model));
+  SliceOptions o = layer_at(0.0, -5.5, 150, 100);
+  o.z_range = {{-4.9, 4.9}};
+  o.layer_thickness = 0.7;
+  const LayerSlicer slicer(m, o);
+  const int n = slicer.grid().layers;
+  ASSERT_GE(n, 10);
+  SliceLayer reused;
+  // Equator, pole, equator, the other pole, ...: the extents grow and shrink.
+  for (const int k : {n / 2, 0, n / 2 + 1, n - 1, 1, n / 2}) {
+    slicer.slice(k, reused);
+    const SliceLayer fresh = slicer.slice(k);
+    EXPECT_EQ(reused.index, k);
+    EXPECT_EQ(reused.cell, fresh.cell) << "layer " << k;
+    EXPECT_EQ(reused.fractions.data(), fresh.fractions.data()) << "layer " << k;
+    EXPECT_EQ(reused.stats.inside_pixels, fresh.stats.inside_pixels);
+    ASSERT_EQ(reused.row_extents.size(), static_cast<std::size_t>(fresh.height));
+    long long outside_extents = 0, inside = 0;
+    for (int j = 0; j < fresh.height; ++j)
+      for (int i = 0; i < fresh.width; ++i) {
+        const auto [a, b] = reused.row_extents[static_cast<std::size_t>(j)];
+        if (fresh.owner(i, j) >= 0) ++inside;
+        if ((i < a || i >= b) && (fresh.owner(i, j) != -1 || fresh.fractions(i, j, 0) != 0 || fresh.fractions(i, j, 1) != 0))
+          ++outside_extents;
+      }
+    EXPECT_EQ(outside_extents, 0) << "layer " << k;
+    EXPECT_EQ(inside, fresh.stats.inside_pixels);
+  }
+  // Images moved out, and images of another grid, are allocated anew.
+  SliceLayer taken = std::move(reused);
+  slicer.slice(n / 2, reused);
+  EXPECT_EQ(reused.cell, taken.cell);
+  SliceOptions coarse = o;
+  coarse.dpi_x = 50;
+  coarse.image_size = {{(*o.image_size)[0] / 3, (*o.image_size)[1]}};
+  const LayerSlicer other(m, coarse);
+  other.slice(n / 2, reused);
+  EXPECT_EQ(reused.cell, other.slice(n / 2).cell);
+  slicer.slice(n / 2, reused);
+  EXPECT_EQ(reused.fractions.data(), taken.fractions.data());
+}

@@ -78,6 +78,13 @@ bool chord_solve(const Value& value, const Box<3>& dom, const Eigen::Matrix3d& i
   }
 }
 
+// Pixels of a cell to the left that the along-row guess extrapolates through (degree kStreakMax - 1). Cubic
+// extrapolation (error O(h^4)) left the first chord evaluation above the inversion tolerance on 44 % of the
+// ball r 20's pixels at 600 dpi: its truncation error is about the tolerance there. Quartic cuts that to 9 %;
+// quintic amplifies the solved pixels' own error (up to the tolerance times the chord step's contraction) by
+// the sum of its coefficients' magnitudes, 63 against 31, and was worse again (20 %).
+constexpr int kStreakMax = 5;
+
 // Material fractions are evaluated for runs of up to kFractionRun pixels of one cell at once (the attribute's
 // formulas run over the whole run).
 constexpr std::size_t kFractionRun = 64;
@@ -282,17 +289,36 @@ LayerSlicer::LayerSlicer(const VModel& model, const SliceOptions& options)
 }
 
 SliceLayer LayerSlicer::slice(int k) const {
+  SliceLayer L;
+  slice(k, L);
+  return L;
+}
+
+void LayerSlicer::slice(int k, SliceLayer& L) const {
   require(k >= 0 && k < grid_.layers,
           [&] { return "slicer: layer " + std::to_string(k) + " out of range 0.." + std::to_string(grid_.layers - 1); });
   const SliceGrid& g = grid_;
   const int n = static_cast<int>(sections_.size()), w = g.width, h = g.height;
-  SliceLayer L;
+  const auto uw = static_cast<std::size_t>(w), mats = static_cast<std::size_t>(materials_);
+  if (L.width == w && L.height == h && L.cell.size() == uw * static_cast<std::size_t>(h) &&
+      L.fractions.width() == w && L.fractions.height() == h && L.fractions.channels() == materials_ &&
+      L.fractions.data().size() == uw * static_cast<std::size_t>(h) * mats &&
+      L.row_extents.size() == static_cast<std::size_t>(h)) {
+    for (int j = 0; j < h; ++j) {
+      const auto [a, b] = L.row_extents[static_cast<std::size_t>(j)];
+      std::fill(L.cell.data() + j * uw + a, L.cell.data() + j * uw + b, -1);
+      std::fill(L.fractions.pixel(a, j), L.fractions.pixel(a, j) + mats * static_cast<std::size_t>(b - a), 0.0f);
+    }
+  } else {
+    L.width = w;
+    L.height = h;
+    L.cell.assign(uw * static_cast<std::size_t>(h), -1);
+    L.fractions = FractionImage(w, h, materials_, 0.0f);
+  }
+  L.row_extents.assign(static_cast<std::size_t>(h), {0, 0});
   L.index = k;
   L.z = g.z(k);
-  L.width = w;
-  L.height = h;
-  L.cell.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), -1);
-  L.fractions = FractionImage(w, h, materials_, 0.0f);
+  L.stats = {};
   const double z = L.z;
 
   // Row crossings per cell and of the model boundary, sorted by (row, x).
@@ -330,7 +356,6 @@ SliceLayer LayerSlicer::slice(int k) const {
   std::vector<Param<3>> cur(static_cast<std::size_t>(w)), prev(static_cast<std::size_t>(w)), seed(static_cast<std::size_t>(w));
   std::vector<int> seed_cell(static_cast<std::size_t>(w), -1);
   // Pixel columns, parameters and model points of the pending run of pixels.
-  const auto mats = static_cast<std::size_t>(materials_);
   std::array<int, kFractionRun> batch_i;
   std::array<Param<3>, kFractionRun> batch_u;
   std::array<double, 3 * kFractionRun> batch_x;
@@ -378,14 +403,15 @@ SliceLayer LayerSlicer::slice(int k) const {
       }
     });
 
+    if (first < last) L.row_extents[static_cast<std::size_t>(j)] = {first, last};
     // Inverse Jacobian of the last pixel solved on this row, for chord steps in the same cell.
     Eigen::Matrix3d chord_inverse = Eigen::Matrix3d::Zero();
     int chord_cell = -1, chord_age = 0;
-    // The cell of the pixels just left of i and how many of them (at most 4) are in it, after their solve.
+    // The cell of the pixels just left of i and how many of them (at most 5) are in it, after their solve.
     int streak_cell = -1, streak = 0;
     for (int i = first; i < last; ++i) {
       if (i > first) {
-        streak = row[i - 1] == streak_cell ? std::min(streak + 1, 4) : 1;
+        streak = row[i - 1] == streak_cell ? std::min(streak + 1, kStreakMax) : 1;
         streak_cell = row[i - 1];
       }
       int c = row[i];
@@ -411,8 +437,7 @@ SliceLayer LayerSlicer::slice(int k) const {
           return r.converged;
         };
         if (along_row && streak_cell == c) {
-          // Polynomial extrapolation through up to four previous pixels of the cell (cubic: error O(h^4), about
-          // 1e-11 of the parameter range at 600 dpi, so the first evaluation usually meets the tolerance).
+          // Polynomial extrapolation through up to five previous pixels of the cell (see kStreakMax).
           const Param<3>& a = cur[ui - 1];
           Param<3> guess = a;
           if (streak >= 2) {
@@ -421,8 +446,11 @@ SliceLayer LayerSlicer::slice(int k) const {
               for (int d = 0; d < 3; ++d) guess[d] = 2 * a[d] - b[d];
             else if (streak == 3)
               for (int d = 0; d < 3; ++d) guess[d] = (3 * a[d] - 3 * b[d]) + cur[ui - 3][d];
-            else
+            else if (streak == 4)
               for (int d = 0; d < 3; ++d) guess[d] = ((4 * a[d] - 6 * b[d]) + 4 * cur[ui - 3][d]) - cur[ui - 4][d];
+            else
+              for (int d = 0; d < 3; ++d)
+                guess[d] = (((5 * a[d] - 10 * b[d]) + 10 * cur[ui - 3][d]) - 5 * cur[ui - 4][d]) + cur[ui - 5][d];
           }
           if (chord_cell == c) {
             r.param = guess;
@@ -508,7 +536,6 @@ SliceLayer LayerSlicer::slice(int k) const {
     flush(j);
     std::swap(cur, prev);
   }
-  return L;
 }
 
 }  // namespace trivar::am

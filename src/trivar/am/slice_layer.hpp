@@ -2,6 +2,7 @@
 // One sliced layer: which cell every pixel belongs to and the material fractions there, plus the statistics
 // of the point inversions that produced it. The raster follows slice_options.hpp (row 0 at the lowest y).
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -37,6 +38,10 @@ struct SliceLayer {
   // Material fractions per pixel (channels = materials), clamped to [0, 1] and summing to 1 inside; all 0
   // outside, which is what am::dither() reads as empty.
   FractionImage fractions;
+  // Per row, the columns [begin, end) the slicer may have written: every pixel outside is -1 with fractions 0.
+  // Empty when the slicer does not record them. A layer handed back to LayerSlicer::slice(k, layer) is cleared
+  // within these extents only, instead of being filled whole.
+  std::vector<std::array<int, 2>> row_extents;
   LayerStats stats;
 
   int owner(int i, int j) const { return cell[static_cast<std::size_t>(j) * static_cast<std::size_t>(width) + i]; }

@@ -24,23 +24,32 @@ SliceSummary slice_layers(const Slicer& slicer, const SliceOptions& options, con
   std::mutex lock;
   std::exception_ptr failure;
   // Dynamic scheduling balances cheap polar layers against full equator layers; it cannot change a result.
-#pragma omp parallel for num_threads(resolve_threads(options.threads)) schedule(dynamic, 1)
-  for (int k = 0; k < n; ++k) {
-    {
-      std::lock_guard<std::mutex> guard(lock);
-      if (failure) continue;
-    }
-    try {
-      SliceLayer layer = slicer.slice(k);
-      const LayerStats stats = layer.stats;
-      if (consume) consume(layer);
-      std::lock_guard<std::mutex> guard(lock);
-      total.merge(stats);
-      ++done;
-      if (progress) progress(done, n);
-    } catch (...) {
-      std::lock_guard<std::mutex> guard(lock);
-      if (!failure) failure = std::current_exception();
+#pragma omp parallel num_threads(resolve_threads(options.threads))
+  {
+    // Each thread slices into one layer, whose images a LayerSlicer clears where it wrote them and reuses
+    // (unless the consumer moved them out).
+    SliceLayer layer;
+#pragma omp for schedule(dynamic, 1)
+    for (int k = 0; k < n; ++k) {
+      {
+        std::lock_guard<std::mutex> guard(lock);
+        if (failure) continue;
+      }
+      try {
+        if constexpr (requires { slicer.slice(k, layer); })
+          slicer.slice(k, layer);
+        else
+          layer = slicer.slice(k);
+        const LayerStats stats = layer.stats;
+        if (consume) consume(layer);
+        std::lock_guard<std::mutex> guard(lock);
+        total.merge(stats);
+        ++done;
+        if (progress) progress(done, n);
+      } catch (...) {
+        std::lock_guard<std::mutex> guard(lock);
+        if (!failure) failure = std::current_exception();
+      }
     }
   }
   if (failure) std::rethrow_exception(failure);

@@ -30,7 +30,8 @@ struct SliceSummary {
 };
 
 // Receives each finished layer exactly once, in any order and possibly from several threads at once (a
-// consumer that writes one file per layer needs no locking); it may move the layer's data out.
+// consumer that writes one file per layer needs no locking); it may move the layer's data out, but must not
+// otherwise change its pixels: the thread slices its next layer into the same images (LayerSlicer::slice).
 using LayerConsumer = std::function<void(SliceLayer& layer)>;
 // Called after each layer is consumed with the count of finished layers (1..total, increasing), serialised
 // by a lock so it may draw a progress bar.
