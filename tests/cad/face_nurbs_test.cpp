@@ -67,7 +67,7 @@ double distance(const gp_Pnt& p, const double* x) { return std::hypot(p.X() - x[
 TEST(FaceNurbs, SurfacesAreTheKernelsAnalyticSurfacesToRounding) {
   for (const KernelSurface& k : kernel_surfaces()) {
     SCOPED_TRACE(k.name);
-    const std::optional<cad::FaceNurbs> form = cad::face_nurbs(face_of(k), k.uv);
+    const std::optional<cad::FaceNurbs> form = cad::face_nurbs(face_of(k), k.uv, 1e-9);
     ASSERT_TRUE(form);
     const Box<2> dom = form->surface.domain();
     double worst = 0;
@@ -106,7 +106,7 @@ TEST(FaceNurbs, SurfacesAreTheKernelsAnalyticSurfacesToRounding) {
 
 TEST(FaceNurbs, AngularMapIsMonotoneAndExactAtTheArcEnds) {
   const KernelSurface k = kernel_surfaces()[1];  // full cylinder
-  const cad::FaceNurbs form = *cad::face_nurbs(face_of(k), k.uv);
+  const cad::FaceNurbs form = *cad::face_nurbs(face_of(k), k.uv, 1e-9);
   ASSERT_TRUE(form.map[0].angular());
   ASSERT_FALSE(form.map[1].angular());
   for (double a : form.map[0].arc_ends) EXPECT_DOUBLE_EQ(form.map[0](a), a);
@@ -125,7 +125,7 @@ TEST(FaceNurbs, IsoLinesMapToLinesOnTheKernelsCurves) {
   for (const KernelSurface& k : kernel_surfaces()) {
     if (k.name.find("plane") != std::string::npos) continue;
     SCOPED_TRACE(k.name);
-    const cad::FaceNurbs form = *cad::face_nurbs(face_of(k), k.uv);
+    const cad::FaceNurbs form = *cad::face_nurbs(face_of(k), k.uv, 1e-9);
     const double um = 0.3 * k.uv.lo[0] + 0.7 * k.uv.hi[0], vm = 0.6 * k.uv.lo[1] + 0.4 * k.uv.hi[1];
     // u = um (v running down) and v = vm (u running up), each over the whole face.
     const std::array<Handle(Geom2d_Line), 2> lines{new Geom2d_Line(gp_Pnt2d(um, 0), gp_Dir2d(0, -1)),
@@ -166,7 +166,7 @@ TEST(FaceNurbs, IsoLinesMapToLinesOnTheKernelsCurves) {
 TEST(FaceNurbs, CurvesAcrossAnAngleFollowTheMapClosely) {
   for (const KernelSurface& k : {kernel_surfaces()[1], kernel_surfaces()[6]}) {  // cylinder, torus
     SCOPED_TRACE(k.name);
-    const cad::FaceNurbs form = *cad::face_nurbs(face_of(k), k.uv);
+    const cad::FaceNurbs form = *cad::face_nurbs(face_of(k), k.uv, 1e-9);
     // A helix (a diagonal line) across the whole angle: no iso-line, so approximated through the map; every
     // point of it at kernel parameter t lands on the kernel's surface point of the line at t.
     const Handle(Geom2d_Line) helix = new Geom2d_Line(gp_Pnt2d(k.uv.lo[0], k.uv.lo[1]), gp_Dir2d(kTurn, k.uv.hi[1] - k.uv.lo[1]));
@@ -188,13 +188,13 @@ TEST(FaceNurbs, CurvesAcrossAnAngleFollowTheMapClosely) {
   }
   // On a plane every curve keeps its shape (the map is the identity).
   const KernelSurface plane = kernel_surfaces()[0];
-  const cad::FaceNurbs pf = *cad::face_nurbs(face_of(plane), plane.uv);
+  const cad::FaceNurbs pf = *cad::face_nurbs(face_of(plane), plane.uv, 1e-9);
   const Handle(Geom2d_BSplineCurve) pl = pf.pcurve(new Geom2d_Line(gp_Pnt2d(0, 2), gp_Dir2d(1, 1)), 0, 2);
   ASSERT_FALSE(pl.IsNull());
   EXPECT_EQ(pl->NbPoles(), 2);
   // A face bounded by its iso-lines maps directly; an angle beyond a full turn is left to the kernel.
   EXPECT_TRUE(cad::maps_directly(face_of(kernel_surfaces()[1])));
-  EXPECT_FALSE(cad::face_nurbs(face_of(kernel_surfaces()[1]), {{0, 0}, {kTurn + 0.1, 1}}));
+  EXPECT_FALSE(cad::face_nurbs(face_of(kernel_surfaces()[1]), {{0, 0}, {kTurn + 0.1, 1}}, 1e-9));
 }
 
 TEST(FaceNurbs, BSplineSurfacesAreTakenAsTheyAre) {
@@ -202,7 +202,7 @@ TEST(FaceNurbs, BSplineSurfacesAreTakenAsTheyAre) {
   const Handle(Geom_BSplineSurface) bs =
       GeomConvert::SurfaceToBSplineSurface(new Geom_RectangularTrimmedSurface(k.surface, 0.5, 2.5, -1.0, 1.0));
   const TopoDS_Face f = BRepBuilderAPI_MakeFace(bs, 1e-9).Face();
-  const std::optional<cad::FaceNurbs> form = cad::face_nurbs(f, {{0.5, -1}, {2.5, 1}});
+  const std::optional<cad::FaceNurbs> form = cad::face_nurbs(f, {{0.5, -1}, {2.5, 1}}, 1e-9);
   ASSERT_TRUE(form);
   EXPECT_FALSE(form->map[0].angular() || form->map[1].angular());
   double x[3];
