@@ -212,7 +212,9 @@ TEST(OffsetSurface, OffsetsOfAnalyticSurfacesAreExact) {
       const std::optional<cad::FaceNurbs> plain = cad::face_nurbs(offset_face(k.basis, k.uv), k.uv, 1e-9);
       ASSERT_TRUE(plain);
       EXPECT_EQ(form->surface.num_coefs(), plain->surface.num_coefs());
-      if (k.name.find("apex") == std::string::npos) EXPECT_TRUE(cad::maps_directly(offset_face(exact, k.uv)));
+      if (k.name.find("apex") == std::string::npos) {
+        EXPECT_TRUE(cad::maps_directly(offset_face(exact, k.uv)));
+      }
     }
 }
 
