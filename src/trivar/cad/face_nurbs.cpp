@@ -15,6 +15,10 @@
 #include <Geom_Plane.hxx>
 #include <Geom_RectangularTrimmedSurface.hxx>
 #include <Geom_SphericalSurface.hxx>
+#include <Geom_SurfaceOfLinearExtrusion.hxx>
+#include <Geom_TrimmedCurve.hxx>
+#include <Geom_BSplineCurve.hxx>
+#include <Geom_BezierCurve.hxx>
 #include <Geom_ToroidalSurface.hxx>
 #include <TColStd_Array1OfInteger.hxx>
 #include <TColStd_Array1OfReal.hxx>
@@ -200,6 +204,33 @@ bool fitted_offset(const Handle(Geom_Surface)& s, Handle(Geom_Surface)& basis, d
   return Handle(Geom_ElementarySurface)::DownCast(basis).IsNull();
 }
 
+// The extrusion C(u) + v D of a B-spline or Bezier curve over [v0, v1] (u within the curve's domain): the
+// curve's rational B-spline times a linear factor in v, with the kernel's parameters (the face's curves carry
+// over). Other basis curves (lines, conics) are left to the kernel's conversion.
+std::optional<FaceNurbs> extrusion_nurbs(const Geom_SurfaceOfLinearExtrusion& e, const Box<2>& uv) {
+  Handle(Geom_Curve) c = e.BasisCurve();
+  for (auto t = Handle(Geom_TrimmedCurve)::DownCast(c); !t.IsNull(); t = Handle(Geom_TrimmedCurve)::DownCast(c)) c = t->BasisCurve();
+  if (Handle(Geom_BSplineCurve)::DownCast(c).IsNull() && Handle(Geom_BezierCurve)::DownCast(c).IsNull()) return std::nullopt;
+  const TensorSpline<1> curve = to_spline(*GeomConvert::CurveToBSplineCurve(c));
+  const Box<1> dom = curve.domain();
+  const double slack = 1e-12 * (1 + dom.hi[0] - dom.lo[0]);
+  if (!(uv.hi[1] > uv.lo[1]) || uv.lo[0] < dom.lo[0] - slack || uv.hi[0] > dom.hi[0] + slack) return std::nullopt;
+  const gp_XYZ d = e.Direction().XYZ();
+  const int stride = curve.stride();
+  std::vector<double> h;
+  h.reserve(2 * curve.coefs().size());
+  for (double v : {uv.lo[1], uv.hi[1]})
+    for (int i = 0; i < curve.num_coefs(); ++i) {
+      const double* q = curve.coef(i);
+      const double w = curve.weight(i);
+      h.insert(h.end(), {q[0] + w * v * d.X(), q[1] + w * v * d.Y(), q[2] + w * v * d.Z()});
+      if (stride == 4) h.push_back(q[3]);
+    }
+  return FaceNurbs{TensorSpline<2>({curve.knots(0), KnotVector(1, {uv.lo[1], uv.lo[1], uv.hi[1], uv.hi[1]})}, 3,
+                                   curve.is_rational(), std::move(h)),
+                   {}};
+}
+
 }  // namespace
 
 std::optional<FaceNurbs> face_nurbs(const TopoDS_Face& face, const Box<2>& uv, double tolerance) {
@@ -209,6 +240,7 @@ std::optional<FaceNurbs> face_nurbs(const TopoDS_Face& face, const Box<2>& uv, d
   if (const auto bs = Handle(Geom_BSplineSurface)::DownCast(s); !bs.IsNull()) return FaceNurbs{to_spline(*bs), {}};
   if (const auto bz = Handle(Geom_BezierSurface)::DownCast(s); !bz.IsNull())
     return FaceNurbs{to_spline(*GeomConvert::SurfaceToBSplineSurface(bz)), {}};
+  if (const auto ex = Handle(Geom_SurfaceOfLinearExtrusion)::DownCast(s); !ex.IsNull()) return extrusion_nurbs(*ex, uv);
   Handle(Geom_Surface) basis;
   double distance = 0;
   if (fitted_offset(s, basis, distance)) return FaceNurbs{fit_offset_surface(basis, distance, uv, tolerance).surface, {}};
