@@ -9,6 +9,11 @@
 #include <Geom2d_Line.hxx>
 #include <GeomConvert.hxx>
 #include <Geom_BSplineSurface.hxx>
+#include <Geom_BezierCurve.hxx>
+#include <Geom_Circle.hxx>
+#include <Geom_SurfaceOfLinearExtrusion.hxx>
+#include <Geom_TrimmedCurve.hxx>
+#include <TColgp_Array1OfPnt.hxx>
 #include <Geom_ConicalSurface.hxx>
 #include <Geom_CylindricalSurface.hxx>
 #include <Geom_Plane.hxx>
@@ -208,4 +213,32 @@ TEST(FaceNurbs, BSplineSurfacesAreTakenAsTheyAre) {
   double x[3];
   form->surface.eval({1.3, 0.2}, x);
   EXPECT_LT(distance(bs->Value(1.3, 0.2), x), 1e-13);
+}
+
+TEST(FaceNurbs, ExtrusionsOfSplineCurvesAreExactInTheKernelsParameters) {
+  // A rational B-spline curve (a circle arc's conversion, weights != 1) and a Bezier, extruded obliquely.
+  TColgp_Array1OfPnt poles(1, 4);
+  poles(1) = gp_Pnt(0, 0, 1);
+  poles(2) = gp_Pnt(4, 4, 0);
+  poles(3) = gp_Pnt(-2, 6, 2);
+  poles(4) = gp_Pnt(2, 10, 0);
+  const std::vector<Handle(Geom_Curve)> curves{
+      GeomConvert::CurveToBSplineCurve(new Geom_TrimmedCurve(new Geom_Circle(gp_Ax2(gp_Pnt(1, 2, 3), gp_Dir(0, 0, 1)), 3), 0.2, 4.0)),
+      new Geom_BezierCurve(poles)};
+  for (const Handle(Geom_Curve)& c : curves) {
+    const Handle(Geom_Surface) s = new Geom_SurfaceOfLinearExtrusion(c, gp_Dir(0.2, 0.1, 1));
+    const Box<2> uv{{c->FirstParameter(), -1}, {c->LastParameter(), 3}};
+    const std::optional<cad::FaceNurbs> form = cad::face_nurbs(face_of({"extrusion", s, uv}), uv, 1e-9);
+    ASSERT_TRUE(form);
+    EXPECT_FALSE(form->map[0].angular() || form->map[1].angular());
+    double worst = 0;
+    for (int i = 0; i <= 30; ++i)
+      for (int j = 0; j <= 30; ++j) {
+        const double u = uv.lo[0] + i / 30.0 * (uv.hi[0] - uv.lo[0]), v = uv.lo[1] + j / 30.0 * (uv.hi[1] - uv.lo[1]);
+        double x[3];
+        form->surface.eval({u, v}, x);
+        worst = std::max(worst, distance(s->Value(u, v), x));
+      }
+    EXPECT_LT(worst, 1e-13 * 16);
+  }
 }
