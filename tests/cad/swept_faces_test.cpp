@@ -1,6 +1,7 @@
 // Solids whose faces are surfaces of revolution, of linear extrusion and offset surfaces, made by OpenCASCADE
-// (revolve, prism, offset) and written to STEP by it: trivar maps planes, cylinders, cones, spheres and tori
-// itself, and these faces take the kernel's NURBS conversion instead. The volumes are checked against closed
+// (revolve, prism, offset) and written to STEP by it: trivar maps planes, cylinders, cones, spheres, tori,
+// extrusions of spline curves and offset surfaces itself; surfaces of revolution take the kernel's NURBS
+// conversion. The volumes are checked against closed
 // forms of the profile (Green's theorem on a cubic Bezier profile, integrated exactly in the test) and against
 // OpenCASCADE's mass properties; the trim must be valid and the boundary watertight.
 #include <gtest/gtest.h>
