@@ -11,6 +11,8 @@
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRepPrimAPI_MakeTorus.hxx>
+#include <Geom_BezierSurface.hxx>
+#include <TColgp_Array2OfPnt.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
 #include <Message.hxx>
@@ -23,6 +25,7 @@
 #include <filesystem>
 #include <random>
 
+#include "trivar/cad/offset_fit.hpp"
 #include "trivar/cad/step_import.hpp"
 #include "trivar/am/slicer.hpp"
 #include "trivar/iga/trimmed_space.hpp"
@@ -178,6 +181,20 @@ void BM_MachinedPartToTrimmedModel(benchmark::State& state) {
   state.counters["rel_diff_occt"] = std::abs(volume - kernel) / kernel;
 }
 BENCHMARK(BM_MachinedPartToTrimmedModel)->Arg(3)->Arg(7)->Arg(8)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
+
+// Fitting the offset of a free-form surface (cad/offset_fit): the offset by 0.5 of a saddle-like bicubic
+// Bezier patch over 9 x 9 units, to 1e-{arg} model units (the import asks for 1e-9 of the solid's size).
+void BM_OffsetSurfaceFit(benchmark::State& state) {
+  TColgp_Array2OfPnt poles(1, 4, 1, 4);
+  for (int i = 1; i <= 4; ++i)
+    for (int j = 1; j <= 4; ++j) poles(i, j) = gp_Pnt(3.0 * i, 3.0 * j, ((i + j) % 3 - 1) * 2.5 + 0.3 * i * j);
+  const Handle(Geom_Surface) patch = new Geom_BezierSurface(poles);
+  const double tol = std::pow(10.0, -static_cast<double>(state.range(0)));
+  int coefs = 0;
+  for (auto _ : state) coefs = trivar::cad::fit_offset_surface(patch, 0.5, {{0, 0}, {1, 1}}, tol).surface.num_coefs();
+  state.counters["control_points"] = coefs;
+}
+BENCHMARK(BM_OffsetSurfaceFit)->Arg(6)->Arg(9)->Unit(benchmark::kMillisecond);
 
 void BM_ContainsRandomPoints(benchmark::State& state) {
   const trivar::cad::StepImport im = trivar::cad::import_step(plate(12));

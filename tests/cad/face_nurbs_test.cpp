@@ -9,6 +9,11 @@
 #include <Geom2d_Line.hxx>
 #include <GeomConvert.hxx>
 #include <Geom_BSplineSurface.hxx>
+#include <Geom_BezierCurve.hxx>
+#include <Geom_Circle.hxx>
+#include <Geom_SurfaceOfLinearExtrusion.hxx>
+#include <Geom_TrimmedCurve.hxx>
+#include <TColgp_Array1OfPnt.hxx>
 #include <Geom_ConicalSurface.hxx>
 #include <Geom_CylindricalSurface.hxx>
 #include <Geom_Plane.hxx>
@@ -67,7 +72,7 @@ double distance(const gp_Pnt& p, const double* x) { return std::hypot(p.X() - x[
 TEST(FaceNurbs, SurfacesAreTheKernelsAnalyticSurfacesToRounding) {
   for (const KernelSurface& k : kernel_surfaces()) {
     SCOPED_TRACE(k.name);
-    const std::optional<cad::FaceNurbs> form = cad::face_nurbs(face_of(k), k.uv);
+    const std::optional<cad::FaceNurbs> form = cad::face_nurbs(face_of(k), k.uv, 1e-9);
     ASSERT_TRUE(form);
     const Box<2> dom = form->surface.domain();
     double worst = 0;
@@ -106,7 +111,7 @@ TEST(FaceNurbs, SurfacesAreTheKernelsAnalyticSurfacesToRounding) {
 
 TEST(FaceNurbs, AngularMapIsMonotoneAndExactAtTheArcEnds) {
   const KernelSurface k = kernel_surfaces()[1];  // full cylinder
-  const cad::FaceNurbs form = *cad::face_nurbs(face_of(k), k.uv);
+  const cad::FaceNurbs form = *cad::face_nurbs(face_of(k), k.uv, 1e-9);
   ASSERT_TRUE(form.map[0].angular());
   ASSERT_FALSE(form.map[1].angular());
   for (double a : form.map[0].arc_ends) EXPECT_DOUBLE_EQ(form.map[0](a), a);
@@ -125,7 +130,7 @@ TEST(FaceNurbs, IsoLinesMapToLinesOnTheKernelsCurves) {
   for (const KernelSurface& k : kernel_surfaces()) {
     if (k.name.find("plane") != std::string::npos) continue;
     SCOPED_TRACE(k.name);
-    const cad::FaceNurbs form = *cad::face_nurbs(face_of(k), k.uv);
+    const cad::FaceNurbs form = *cad::face_nurbs(face_of(k), k.uv, 1e-9);
     const double um = 0.3 * k.uv.lo[0] + 0.7 * k.uv.hi[0], vm = 0.6 * k.uv.lo[1] + 0.4 * k.uv.hi[1];
     // u = um (v running down) and v = vm (u running up), each over the whole face.
     const std::array<Handle(Geom2d_Line), 2> lines{new Geom2d_Line(gp_Pnt2d(um, 0), gp_Dir2d(0, -1)),
@@ -166,7 +171,7 @@ TEST(FaceNurbs, IsoLinesMapToLinesOnTheKernelsCurves) {
 TEST(FaceNurbs, CurvesAcrossAnAngleFollowTheMapClosely) {
   for (const KernelSurface& k : {kernel_surfaces()[1], kernel_surfaces()[6]}) {  // cylinder, torus
     SCOPED_TRACE(k.name);
-    const cad::FaceNurbs form = *cad::face_nurbs(face_of(k), k.uv);
+    const cad::FaceNurbs form = *cad::face_nurbs(face_of(k), k.uv, 1e-9);
     // A helix (a diagonal line) across the whole angle: no iso-line, so approximated through the map; every
     // point of it at kernel parameter t lands on the kernel's surface point of the line at t.
     const Handle(Geom2d_Line) helix = new Geom2d_Line(gp_Pnt2d(k.uv.lo[0], k.uv.lo[1]), gp_Dir2d(kTurn, k.uv.hi[1] - k.uv.lo[1]));
@@ -188,13 +193,13 @@ TEST(FaceNurbs, CurvesAcrossAnAngleFollowTheMapClosely) {
   }
   // On a plane every curve keeps its shape (the map is the identity).
   const KernelSurface plane = kernel_surfaces()[0];
-  const cad::FaceNurbs pf = *cad::face_nurbs(face_of(plane), plane.uv);
+  const cad::FaceNurbs pf = *cad::face_nurbs(face_of(plane), plane.uv, 1e-9);
   const Handle(Geom2d_BSplineCurve) pl = pf.pcurve(new Geom2d_Line(gp_Pnt2d(0, 2), gp_Dir2d(1, 1)), 0, 2);
   ASSERT_FALSE(pl.IsNull());
   EXPECT_EQ(pl->NbPoles(), 2);
   // A face bounded by its iso-lines maps directly; an angle beyond a full turn is left to the kernel.
   EXPECT_TRUE(cad::maps_directly(face_of(kernel_surfaces()[1])));
-  EXPECT_FALSE(cad::face_nurbs(face_of(kernel_surfaces()[1]), {{0, 0}, {kTurn + 0.1, 1}}));
+  EXPECT_FALSE(cad::face_nurbs(face_of(kernel_surfaces()[1]), {{0, 0}, {kTurn + 0.1, 1}}, 1e-9));
 }
 
 TEST(FaceNurbs, BSplineSurfacesAreTakenAsTheyAre) {
@@ -202,10 +207,38 @@ TEST(FaceNurbs, BSplineSurfacesAreTakenAsTheyAre) {
   const Handle(Geom_BSplineSurface) bs =
       GeomConvert::SurfaceToBSplineSurface(new Geom_RectangularTrimmedSurface(k.surface, 0.5, 2.5, -1.0, 1.0));
   const TopoDS_Face f = BRepBuilderAPI_MakeFace(bs, 1e-9).Face();
-  const std::optional<cad::FaceNurbs> form = cad::face_nurbs(f, {{0.5, -1}, {2.5, 1}});
+  const std::optional<cad::FaceNurbs> form = cad::face_nurbs(f, {{0.5, -1}, {2.5, 1}}, 1e-9);
   ASSERT_TRUE(form);
   EXPECT_FALSE(form->map[0].angular() || form->map[1].angular());
   double x[3];
   form->surface.eval({1.3, 0.2}, x);
   EXPECT_LT(distance(bs->Value(1.3, 0.2), x), 1e-13);
+}
+
+TEST(FaceNurbs, ExtrusionsOfSplineCurvesAreExactInTheKernelsParameters) {
+  // A rational B-spline curve (a circle arc's conversion, weights != 1) and a Bezier, extruded obliquely.
+  TColgp_Array1OfPnt poles(1, 4);
+  poles(1) = gp_Pnt(0, 0, 1);
+  poles(2) = gp_Pnt(4, 4, 0);
+  poles(3) = gp_Pnt(-2, 6, 2);
+  poles(4) = gp_Pnt(2, 10, 0);
+  const std::vector<Handle(Geom_Curve)> curves{
+      GeomConvert::CurveToBSplineCurve(new Geom_TrimmedCurve(new Geom_Circle(gp_Ax2(gp_Pnt(1, 2, 3), gp_Dir(0, 0, 1)), 3), 0.2, 4.0)),
+      new Geom_BezierCurve(poles)};
+  for (const Handle(Geom_Curve)& c : curves) {
+    const Handle(Geom_Surface) s = new Geom_SurfaceOfLinearExtrusion(c, gp_Dir(0.2, 0.1, 1));
+    const Box<2> uv{{c->FirstParameter(), -1}, {c->LastParameter(), 3}};
+    const std::optional<cad::FaceNurbs> form = cad::face_nurbs(face_of({"extrusion", s, uv}), uv, 1e-9);
+    ASSERT_TRUE(form);
+    EXPECT_FALSE(form->map[0].angular() || form->map[1].angular());
+    double worst = 0;
+    for (int i = 0; i <= 30; ++i)
+      for (int j = 0; j <= 30; ++j) {
+        const double u = uv.lo[0] + i / 30.0 * (uv.hi[0] - uv.lo[0]), v = uv.lo[1] + j / 30.0 * (uv.hi[1] - uv.lo[1]);
+        double x[3];
+        form->surface.eval({u, v}, x);
+        worst = std::max(worst, distance(s->Value(u, v), x));
+      }
+    EXPECT_LT(worst, 1e-13 * 16);
+  }
 }

@@ -49,6 +49,10 @@ namespace trivar::cad {
 
 namespace {
 
+// Offset surfaces of free-form bases are fitted within this fraction of the solid's size: the volume error is
+// at most the faces' area times the deviation, far below the 1e-6 relative an import must reach.
+constexpr double kOffsetFitTolerance = 1e-9;
+
 // Signed area of a trimming loop in its face's parameter plane (positive: counter-clockwise).
 double loop_area(const TrimLoop& loop) {
   static const QuadratureRule rule = gauss_legendre(8);
@@ -114,7 +118,12 @@ std::string SolidMapper::add_face(const TopoDS_Face& face, const std::string& ki
   // The face's parameter box once: the wire explorer would otherwise compute it over all loops for each loop.
   double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
   BRepTools::UVBounds(fwd, u0, u1, v0, v1);
-  const std::optional<FaceNurbs> form = face_nurbs(face, Box<2>{{u0, v0}, {u1, v1}});
+  std::optional<FaceNurbs> form;
+  try {
+    form = face_nurbs(face, Box<2>{{u0, v0}, {u1, v1}}, kOffsetFitTolerance * scale_);
+  } catch (const Error& e) {
+    return e.what();
+  }
   if (!form) return "the surface (" + std::string(BRep_Tool::Surface(face)->DynamicType()->Name()) + ") has no exact NURBS form";
   tf.surface = form->surface;
   for (TopExp_Explorer w(fwd, TopAbs_WIRE); w.More(); w.Next()) {

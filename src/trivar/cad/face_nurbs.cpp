@@ -9,10 +9,16 @@
 #include <Geom_BSplineSurface.hxx>
 #include <Geom_BezierSurface.hxx>
 #include <Geom_ConicalSurface.hxx>
+#include <Geom_ElementarySurface.hxx>
+#include <Geom_OffsetSurface.hxx>
 #include <Geom_CylindricalSurface.hxx>
 #include <Geom_Plane.hxx>
 #include <Geom_RectangularTrimmedSurface.hxx>
 #include <Geom_SphericalSurface.hxx>
+#include <Geom_SurfaceOfLinearExtrusion.hxx>
+#include <Geom_TrimmedCurve.hxx>
+#include <Geom_BSplineCurve.hxx>
+#include <Geom_BezierCurve.hxx>
 #include <Geom_ToroidalSurface.hxx>
 #include <TColStd_Array1OfInteger.hxx>
 #include <TColStd_Array1OfReal.hxx>
@@ -26,6 +32,8 @@
 #include <numbers>
 
 #include "trivar/cad/occt_spline.hpp"
+#include "trivar/cad/offset_fit.hpp"
+#include "trivar/core/error.hpp"
 
 namespace trivar::cad {
 
@@ -111,54 +119,134 @@ std::optional<FaceNurbs> from_profiles(const std::optional<Profile>& pu, const s
   return FaceNurbs{tensor_surface(*pu, *pv, f), {pu->map, pv->map}};
 }
 
-}  // namespace
-
-std::optional<FaceNurbs> face_nurbs(const TopoDS_Face& face, const Box<2>& uv) {
-  Handle(Geom_Surface) s = BRep_Tool::Surface(face);
-  if (s.IsNull()) return std::nullopt;
-  if (const auto rt = Handle(Geom_RectangularTrimmedSurface)::DownCast(s); !rt.IsNull()) s = rt->BasisSurface();
+// The analytic surface (plane, cylinder, cone, sphere, torus) offset by `d` along its unit normal
+// Su x Sv / |Su x Sv| (d = 0: the surface itself), or nothing for other kinds. The offset of each is a surface
+// of the same kind with the same parametrisation: with h = (x ^ y) . z (+1 for a right-handed position, -1 for a
+// left-handed one) the normal is h e_r on a cylinder and sphere, h (cos v e_r + sin v z) on a torus (radius
+// r + h d, minor radius r + h d), h (cos a e_r - sin a z) on a cone (where its radius r + v sin a > 0), and
+// x ^ y on a plane.
+std::optional<FaceNurbs> analytic_nurbs(const Handle(Geom_Surface)& s, const Box<2>& uv, double d) {
   const double u0 = uv.lo[0], u1 = uv.hi[0], v0 = uv.lo[1], v1 = uv.hi[1];
-  if (const auto bs = Handle(Geom_BSplineSurface)::DownCast(s); !bs.IsNull()) return FaceNurbs{to_spline(*bs), {}};
-  if (const auto bz = Handle(Geom_BezierSurface)::DownCast(s); !bz.IsNull())
-    return FaceNurbs{to_spline(*GeomConvert::SurfaceToBSplineSurface(bz)), {}};
+  const auto frame = [](const gp_Ax3& a) {
+    return std::array<gp_XYZ, 4>{a.Location().XYZ(), a.XDirection().XYZ(), a.YDirection().XYZ(), a.Direction().XYZ()};
+  };
+  const auto handedness = [](const std::array<gp_XYZ, 4>& f) { return f[1].Crossed(f[2]).Dot(f[3]) > 0 ? 1.0 : -1.0; };
+  // The offset radius; an offset that collapses the surface onto its axis or centre has no normal to carry.
+  const auto offset_radius = [&](double r, const char* what) {
+    const double out = r + d;
+    require(std::abs(out) > 1e-12 * std::abs(r), [&] {
+      return std::string("offset surface: the offset by ") + std::to_string(d) + " collapses the " + what + " of radius " +
+             std::to_string(r) + " (no normal there)";
+    });
+    return out;
+  };
   if (const auto pl = Handle(Geom_Plane)::DownCast(s); !pl.IsNull()) {
-    const gp_Ax3 a = pl->Position();
-    const gp_XYZ o = a.Location().XYZ(), x = a.XDirection().XYZ(), y = a.YDirection().XYZ();
+    const auto [o, x, y, z] = frame(pl->Position());
+    const gp_XYZ c = o + d * x.Crossed(y);
     return from_profiles(linear_profile(u0, u1), linear_profile(v0, v1),
-                         [&](const double* p, const double* q) { return o + p[0] * x + q[0] * y; });
+                         [&](const double* p, const double* q) { return c + p[0] * x + q[0] * y; });
   }
   if (const auto cy = Handle(Geom_CylindricalSurface)::DownCast(s); !cy.IsNull()) {
-    const gp_Ax3 a = cy->Position();
-    const gp_XYZ o = a.Location().XYZ(), x = a.XDirection().XYZ(), y = a.YDirection().XYZ(), z = a.Direction().XYZ();
-    const double r = cy->Radius();
+    const auto [o, x, y, z] = frame(cy->Position());
+    const double h = handedness({o, x, y, z});
+    const double r = h * offset_radius(h * cy->Radius(), "cylinder");
     return from_profiles(angular_profile(u0, u1), linear_profile(v0, v1),
                          [&](const double* p, const double* q) { return o + r * (p[0] * x + p[1] * y) + q[0] * z; });
   }
   if (const auto co = Handle(Geom_ConicalSurface)::DownCast(s); !co.IsNull()) {
-    const gp_Ax3 a = co->Position();
-    const gp_XYZ o = a.Location().XYZ(), x = a.XDirection().XYZ(), y = a.YDirection().XYZ(), z = a.Direction().XYZ();
+    const auto [o, x, y, z] = frame(co->Position());
+    const double h = handedness({o, x, y, z});
     const double r = co->RefRadius(), sa = std::sin(co->SemiAngle()), ca = std::cos(co->SemiAngle());
+    // The kernel evaluates the offset of a cone on the cone's side of positive radius (r + v sin a > 0) on
+    // both sides of the apex (its equivalent cone, Geom_OffsetSurface::Surface): so do we, the face's edges being
+    // the kernel's.
+    const double shift = h * d;
+    if (d != 0) {
+      const double a = r + v0 * sa, b = r + v1 * sa, eps = 1e-12 * (std::abs(r) + std::abs(v1 - v0));
+      require((a > eps && b > eps) || (a < -eps && b < -eps),
+              "offset surface: the face reaches the cone's apex, where the normal the offset needs is undefined");
+    }
     return from_profiles(angular_profile(u0, u1), linear_profile(v0, v1), [&](const double* p, const double* q) {
-      return o + (r + q[0] * sa) * (p[0] * x + p[1] * y) + q[0] * ca * z;
+      return o + (r + q[0] * sa + shift * ca) * (p[0] * x + p[1] * y) + (q[0] * ca - shift * sa) * z;
     });
   }
   if (const auto sp = Handle(Geom_SphericalSurface)::DownCast(s); !sp.IsNull()) {
-    const gp_Ax3 a = sp->Position();
-    const gp_XYZ o = a.Location().XYZ(), x = a.XDirection().XYZ(), y = a.YDirection().XYZ(), z = a.Direction().XYZ();
-    const double r = sp->Radius();
+    const auto [o, x, y, z] = frame(sp->Position());
+    const double h = handedness({o, x, y, z});
+    const double r = h * offset_radius(h * sp->Radius(), "sphere");
     return from_profiles(angular_profile(u0, u1), angular_profile(v0, v1), [&](const double* p, const double* q) {
       return o + r * q[0] * (p[0] * x + p[1] * y) + r * q[1] * z;
     });
   }
   if (const auto to = Handle(Geom_ToroidalSurface)::DownCast(s); !to.IsNull()) {
-    const gp_Ax3 a = to->Position();
-    const gp_XYZ o = a.Location().XYZ(), x = a.XDirection().XYZ(), y = a.YDirection().XYZ(), z = a.Direction().XYZ();
-    const double big = to->MajorRadius(), small = to->MinorRadius();
+    const auto [o, x, y, z] = frame(to->Position());
+    const double h = handedness({o, x, y, z});
+    const double big = to->MajorRadius(), small = h * offset_radius(h * to->MinorRadius(), "torus tube");
     return from_profiles(angular_profile(u0, u1), angular_profile(v0, v1), [&](const double* p, const double* q) {
       return o + (big + small * q[0]) * (p[0] * x + p[1] * y) + small * q[1] * z;
     });
   }
   return std::nullopt;
+}
+
+Handle(Geom_Surface) without_trim(Handle(Geom_Surface) s) {
+  for (auto rt = Handle(Geom_RectangularTrimmedSurface)::DownCast(s); !rt.IsNull(); rt = Handle(Geom_RectangularTrimmedSurface)::DownCast(s))
+    s = rt->BasisSurface();
+  return s;
+}
+
+// An offset surface whose basis has no analytic offset: it is fitted (offset_fit.hpp).
+bool fitted_offset(const Handle(Geom_Surface)& s, Handle(Geom_Surface)& basis, double& distance) {
+  const auto off = Handle(Geom_OffsetSurface)::DownCast(s);
+  if (off.IsNull()) return false;
+  basis = without_trim(off->BasisSurface());
+  distance = off->Offset();
+  return Handle(Geom_ElementarySurface)::DownCast(basis).IsNull();
+}
+
+// The extrusion C(u) + v D of a B-spline or Bezier curve over [v0, v1] (u within the curve's domain): the
+// curve's rational B-spline times a linear factor in v, with the kernel's parameters (the face's curves carry
+// over). Other basis curves (lines, conics) are left to the kernel's conversion.
+std::optional<FaceNurbs> extrusion_nurbs(const Geom_SurfaceOfLinearExtrusion& e, const Box<2>& uv) {
+  Handle(Geom_Curve) c = e.BasisCurve();
+  for (auto t = Handle(Geom_TrimmedCurve)::DownCast(c); !t.IsNull(); t = Handle(Geom_TrimmedCurve)::DownCast(c)) c = t->BasisCurve();
+  if (Handle(Geom_BSplineCurve)::DownCast(c).IsNull() && Handle(Geom_BezierCurve)::DownCast(c).IsNull()) return std::nullopt;
+  const TensorSpline<1> curve = to_spline(*GeomConvert::CurveToBSplineCurve(c));
+  const Box<1> dom = curve.domain();
+  const double slack = 1e-12 * (1 + dom.hi[0] - dom.lo[0]);
+  if (!(uv.hi[1] > uv.lo[1]) || uv.lo[0] < dom.lo[0] - slack || uv.hi[0] > dom.hi[0] + slack) return std::nullopt;
+  const gp_XYZ d = e.Direction().XYZ();
+  const int stride = curve.stride();
+  std::vector<double> h;
+  h.reserve(2 * curve.coefs().size());
+  for (double v : {uv.lo[1], uv.hi[1]})
+    for (int i = 0; i < curve.num_coefs(); ++i) {
+      const double* q = curve.coef(i);
+      const double w = curve.weight(i);
+      h.insert(h.end(), {q[0] + w * v * d.X(), q[1] + w * v * d.Y(), q[2] + w * v * d.Z()});
+      if (stride == 4) h.push_back(q[3]);
+    }
+  return FaceNurbs{TensorSpline<2>({curve.knots(0), KnotVector(1, {uv.lo[1], uv.lo[1], uv.hi[1], uv.hi[1]})}, 3,
+                                   curve.is_rational(), std::move(h)),
+                   {}};
+}
+
+}  // namespace
+
+std::optional<FaceNurbs> face_nurbs(const TopoDS_Face& face, const Box<2>& uv, double tolerance) {
+  Handle(Geom_Surface) s = BRep_Tool::Surface(face);
+  if (s.IsNull()) return std::nullopt;
+  s = without_trim(s);
+  if (const auto bs = Handle(Geom_BSplineSurface)::DownCast(s); !bs.IsNull()) return FaceNurbs{to_spline(*bs), {}};
+  if (const auto bz = Handle(Geom_BezierSurface)::DownCast(s); !bz.IsNull())
+    return FaceNurbs{to_spline(*GeomConvert::SurfaceToBSplineSurface(bz)), {}};
+  if (const auto ex = Handle(Geom_SurfaceOfLinearExtrusion)::DownCast(s); !ex.IsNull()) return extrusion_nurbs(*ex, uv);
+  Handle(Geom_Surface) basis;
+  double distance = 0;
+  if (fitted_offset(s, basis, distance)) return FaceNurbs{fit_offset_surface(basis, distance, uv, tolerance).surface, {}};
+  if (const auto off = Handle(Geom_OffsetSurface)::DownCast(s); !off.IsNull())
+    return analytic_nurbs(without_trim(off->BasisSurface()), uv, off->Offset());
+  return analytic_nurbs(s, uv, 0);
 }
 
 // The image of c under the map, as a C0 piecewise cubic (Bezier pieces) interpolating the image and its
@@ -282,7 +370,19 @@ bool maps_directly(const TopoDS_Face& face) {
   const TopoDS_Face fwd = TopoDS::Face(face.Oriented(TopAbs_FORWARD));
   double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
   BRepTools::UVBounds(fwd, u0, u1, v0, v1);
-  const std::optional<FaceNurbs> form = face_nurbs(fwd, Box<2>{{u0, v0}, {u1, v1}});
+  // A fitted offset keeps the basis's parameters (the identity map): only its curves need checking, and the
+  // fit waits for the face's mapping.
+  Handle(Geom_Surface) basis;
+  double distance = 0;
+  std::optional<FaceNurbs> form;
+  if (fitted_offset(without_trim(BRep_Tool::Surface(fwd)), basis, distance))
+    form.emplace();
+  else
+    try {
+      form = face_nurbs(fwd, Box<2>{{u0, v0}, {u1, v1}}, 0);
+    } catch (const Error&) {
+      return false;
+    }
   if (!form) return false;
   for (TopExp_Explorer e(fwd, TopAbs_EDGE); e.More(); e.Next()) {
     double f = 0, l = 0;

@@ -1,7 +1,8 @@
 #pragma once
 // Internal to the cad layer (includes OpenCASCADE): the exact NURBS form of a face's surface built directly
 // from its analytic definition (plane, cylinder, cone, sphere, torus; B-spline and Bezier surfaces as they
-// are), with the map from the kernel's surface parameters to the NURBS parameters.
+// are; offsets of these; extrusions of B-spline and Bezier curves), with the map from the kernel's surface
+// parameters to the NURBS parameters.
 //
 // Written here rather than taken from the kernel's BRepBuilderAPI_NurbsConvert because the kernel re-projects
 // every parameter-space curve of a converted periodic face onto the new surface (an approximation, and most
@@ -53,12 +54,16 @@ private:
 };
 
 // The face's surface (orientation ignored) over the parameter box `uv` (the face's UV bounds), or nothing
-// when the surface kind is not handled (revolution, extrusion, offset, ...) or an angular direction spans
-// more than a full turn.
-std::optional<FaceNurbs> face_nurbs(const TopoDS_Face& face, const Box<2>& uv);
+// when the surface kind is not handled (revolution, extrusions of lines and conics, ...) or an angular
+// direction spans more than a full turn. Offset surfaces keep their basis's parametrisation: the offset of a plane, cylinder, cone, sphere
+// or torus is exact (the same kind with a changed radius or position); any other offset is fitted to
+// `tolerance` (model units, offset_fit.hpp). Throws trivar::Error when an offset is undefined on the face (a
+// degenerate basis, an offset collapsing the surface) or its fit too large.
+std::optional<FaceNurbs> face_nurbs(const TopoDS_Face& face, const Box<2>& uv, double tolerance);
 
 // Whether face_nurbs applies to the face and maps every parameter-space curve of its loops (exactly, or for
-// curves across an angular direction, to 1e-11 of the parameter box).
+// curves across an angular direction, to 1e-11 of the parameter box). Offsets that need a fit are not fitted
+// here.
 bool maps_directly(const TopoDS_Face& face);
 
 }  // namespace trivar::cad
