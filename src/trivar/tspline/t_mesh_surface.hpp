@@ -69,6 +69,8 @@ public:
   int num_faces() const { return static_cast<int>(faces_.size()); }  // mesh face ids (deleted faces: none)
   FaceMethod method(int face) const { return faces_[static_cast<std::size_t>(face)].method; }
   int count(FaceMethod m) const;
+  // The star faces whose star point is on the boundary (Catmull-Clark of the mesh with its ghost layer).
+  int boundary_star_faces() const;
   const std::vector<int>& stars() const { return stars_; }
   int valence(int star) const;  // faces around a star point
   // The corners of a face (its first corner link's vertex, then counter-clockwise), for quads and T-faces.
@@ -111,6 +113,7 @@ private:
     std::optional<std::array<std::array<double, 6>, 2>> knots;
     int nurcc = -1, sector = 0;    // non_uniform: index into nurcc_, the sector and the face's cell in it
     std::array<int, 2> cell{-1, -1};
+    bool boundary_star = false;    // star: the star point is on the boundary
   };
   struct Nurcc;  // a star point evaluated by non-uniform Catmull-Clark: its subdivision and homogeneous points
   TMesh mesh_;
@@ -118,6 +121,9 @@ private:
   std::vector<Face> faces_;
   std::vector<std::unique_ptr<TSplineSurface>> charts_;
   std::vector<std::unique_ptr<Nurcc>> nurcc_;
+  std::unique_ptr<TMesh> ghosted_;  // with star points on the boundary: the mesh with their ghost layers
+  // The control mesh of the Catmull-Clark faces (bicubic and star: their `points` are its vertices).
+  const TMesh& cc_mesh() const { return ghosted_ ? *ghosted_ : mesh_; }
 };
 
 }  // namespace trivar
