@@ -15,6 +15,7 @@
 #include "trivar/io/tsm_format.hpp"
 #include "trivar/tspline/boundary_ghosts.hpp"
 #include "trivar/tspline/catmull_clark_patch.hpp"
+#include "trivar/tspline/t_mesh_patches.hpp"
 #include "trivar/tspline/t_mesh_surface.hpp"
 #include "trivar/tspline/t_mesh_tessellation.hpp"
 
@@ -161,7 +162,7 @@ class BoundaryStarValence : public ::testing::TestWithParam<int> {};
 
 TEST_P(BoundaryStarValence, LoadsAsOneSmoothSurfaceWithTheTSplineAwayFromTheStarPoint) {
   const int sectors = GetParam(), rings = 7;
-  const io::TsmModel model = half_fan_model(sectors, rings, 5u + static_cast<unsigned>(sectors), std::getenv("OFF") ? 0.0 : 0.2);
+  const io::TsmModel model = half_fan_model(sectors, rings, 5u + static_cast<unsigned>(sectors));
   EXPECT_EQ(model.report.star_points, 1);
   const TMesh& m = model.mesh;
   const TMeshSurface s(m, 1);
@@ -201,9 +202,41 @@ TEST_P(BoundaryStarValence, LoadsAsOneSmoothSurfaceWithTheTSplineAwayFromTheStar
   const TSplineTriangulation t = tessellate(s, 1e-2);
   for (const auto& p : t.points) ASSERT_TRUE(std::isfinite(p[0] + p[1] + p[2]));
   expect_one_boundary_loop(t);
+  // Bezier patches (exact pieces, one corner patch per star face) within their tolerance of the limit surface.
+  if (sectors == 5) {
+    const TMeshPatches p = t_mesh_patches(s);
+    EXPECT_GT(p.patches.size(), static_cast<std::size_t>(s.num_faces()));
+    EXPECT_LE(p.deviation, p.tolerance);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Faces, BoundaryStarValence, ::testing::Values(4, 5, 7));
+
+// What the ghost layer cannot hold is refused with one line naming it.
+TEST(BoundaryStar, RefusesCornersAndUnequalIntervalsNearby) {
+  const auto refused = [](const std::string& text, const std::string& fragment) {
+    try {
+      const io::TsmModel model = io::parse_tsm(text, "bad.tsm");
+      const TMeshSurface s(model.mesh, 1);
+      ADD_FAILURE() << "no error for " << fragment;
+    } catch (const Error& e) {
+      const std::string msg = e.what();
+      EXPECT_NE(msg.find(fragment), std::string::npos) << msg;
+      EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+    }
+  };
+  // One face per sector: the star point's boundary neighbours are corners.
+  refused(tsm_text(test::half_fan_mesh(4, 1, bump)), "corner or a T-junction next to it");
+  // Two faces per sector: the faces near the star point reach the corners two edges out.
+  refused(tsm_text(test::half_fan_mesh(4, 2, bump)), "T-mesh: face");
+  // A knot interval of 2 on the strip of the first faces along spoke 1.
+  test::QuadMesh uneven = test::half_fan_mesh(4, 7, bump);
+  for (int i = 0; i < 7; ++i) {
+    const auto& f = uneven.quads[static_cast<std::size_t>(7 * 7 + i)];  // sector 1, row 0
+    uneven.intervals[{f[0], f[3]}] = uneven.intervals[{f[1], f[2]}] = 2;
+  }
+  refused(tsm_text(uneven), "knot interval");
+}
 
 }  // namespace
 }  // namespace trivar

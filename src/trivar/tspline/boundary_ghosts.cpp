@@ -26,8 +26,10 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
   GhostedMesh g{m, std::vector<int>(m.vertices.size(), -1)};
   TMesh& x = g.mesh;
   const auto L = [&](int l) -> const TMeshLink& { return m.links[static_cast<std::size_t>(l)]; };
-  const auto target = [&](int l) { return L(L(l).next).vertex; };
-  const auto is_face = [&](int f) { return f >= 0 && m.live_face(f); };
+  const int nl = static_cast<int>(m.links.size());
+  const auto target = [&](int l) { return l < 0 || L(l).next < 0 || L(l).next >= nl ? -1 : L(L(l).next).vertex; };
+  const auto is_face = [&](int f) { return f >= 0 && f < static_cast<int>(m.faces.size()) && m.live_face(f); };
+  const auto opp_face = [&](int l) { return L(l).opp >= 0 && L(l).opp < nl && is_face(L(L(l).opp).face); };
   // Links leaving each vertex.
   std::vector<std::vector<int>> leaving(m.vertices.size());
   for (int l = 0; l < static_cast<int>(m.links.size()); ++l)
@@ -54,12 +56,13 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
   };
   // A straight boundary vertex: two faces with corners there, one interior edge; its inner end, else -1.
   const auto inner_of_straight = [&](int v) {
+    if (v < 0) return -1;
     int faces = 0, inner = -1, interior = 0;
     for (int l : leaving[static_cast<std::size_t>(v)]) {
       if (!is_face(L(l).face)) continue;
       ++faces;
       if (L(l).flag != 0) return -1;
-      if (is_face(L(L(l).opp).face)) {
+      if (opp_face(l)) {
         ++interior;
         inner = target(l);
       }
@@ -93,13 +96,13 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
     });
     // The chain of boundary links through v: up to `reach` on either side, between straight vertices.
     std::deque<int> chain;
-    for (int l = out[0], i = 0; i < reach && l >= 0; ++i, l = L(l).next) {
+    for (int l = out[0], i = 0; i < reach && l >= 0 && l < nl; ++i, l = L(l).next) {
       const int b = target(l);
       if (b == v || inner_of_straight(b) < 0) break;
       chain.push_back(l);
     }
     const std::size_t ahead = chain.size();
-    for (int l = L(out[0]).prev, i = 0; i < reach && l >= 0; ++i, l = L(l).prev) {
+    for (int l = L(out[0]).prev, i = 0; i < reach && l >= 0 && l < nl; ++i, l = L(l).prev) {
       const int a = L(l).vertex;
       if (a == v || inner_of_straight(a) < 0) break;
       chain.push_front(l);
@@ -121,7 +124,7 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
       if (star) {
         int n = 0;
         for (int l : leaving[static_cast<std::size_t>(v)])
-          if (is_face(L(l).face) && is_face(L(L(l).opp).face)) {
+          if (is_face(L(l).face) && opp_face(l) && target(l) >= 0) {
             const Homogeneous h = homogeneous(point(target(l)));
             for (std::size_t c = 0; c < 4; ++c) q2[c] += h[c];
             ++n;
@@ -146,6 +149,8 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
     int last_side = -1;  // the previous face's link b -> G(b): the opposite of this face's G(a) -> a
     for (std::size_t i = 0; i < chain.size(); ++i) {
       const int o = chain[i], a = L(o).vertex, b = target(o), inner = L(o).opp;
+      require(inner >= 0 && inner < nl && L(o).edge >= 0 && L(o).edge < static_cast<int>(m.intervals.size()),
+              [&] { return "T-mesh: boundary link " + std::to_string(o) + " has no opposite link or edge"; });
       const int f = static_cast<int>(x.faces.size());
       const int ga = ghost[static_cast<std::size_t>(a)], gb = ghost[static_cast<std::size_t>(b)];
       const double d = m.intervals[static_cast<std::size_t>(L(o).edge)];
