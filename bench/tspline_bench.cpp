@@ -245,6 +245,25 @@ void non_uniform_star_eval(benchmark::State& state) {
 }
 BENCHMARK(non_uniform_star_eval)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
+// A star point of 5 faces on a straight boundary (half_fan_mesh: 5 sectors of 10 x 10 faces, end-condition blocks
+// on the boundary): Catmull-Clark of valence 7 on the mesh with its ghost layer. range(0) = 1: only the faces at
+// the star point, 0: all faces; the build (ghost layer, charts) is timed by boundary_star_build.
+void boundary_star_eval(benchmark::State& state) {
+  const auto text = trivar::test::tsm_text(trivar::test::half_fan_mesh(5, 10, [](double x, double y) { return 0.05 * x * x - 0.03 * x * y; }));
+  const trivar::TMeshSurface s(trivar::io::parse_tsm(text, "boundary_star.tsm").mesh, 1);
+  eval_faces(state, s, state.range(0) == 1);
+}
+BENCHMARK(boundary_star_eval)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+void boundary_star_build(benchmark::State& state) {
+  const auto text = trivar::test::tsm_text(trivar::test::half_fan_mesh(5, 10, [](double x, double y) { return 0.05 * x * x - 0.03 * x * y; }));
+  for (auto _ : state) {
+    const trivar::TMeshSurface s(trivar::io::parse_tsm(text, "boundary_star.tsm").mesh, 1);
+    benchmark::DoNotOptimize(s.boundary_star_faces());
+  }
+}
+BENCHMARK(boundary_star_build)->Unit(benchmark::kMillisecond);
+
 // Poisson on the planar valence-5 fan with T-junctions (5 x 8 x 8 faces, three split): the patches cut until
 // their sides conform, refined n x n; space build, then assembly + solve.
 trivar::TMeshSurface planar_t_fan() {

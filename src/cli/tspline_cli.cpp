@@ -132,13 +132,15 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
   std::map<int, int> valences;
   for (int v : s.stars()) ++valences[s.valence(v)];
   const int nu = s.count(FaceMethod::non_uniform);
+  const int bs = s.boundary_star_faces();
   const int faces = s.count(FaceMethod::exact) + s.count(FaceMethod::bicubic) + s.count(FaceMethod::star) + nu;
   const char* continuity = "C2 across every edge away from star points; C1 across the edges at a star point; G1 at star points";
   nlohmann::json j{{"file", path}, {"kind", "T-spline surface with star points"}, {"format", l.format},
                    {"degrees", {s.mesh().degree, s.mesh().degree}}, {"units", r.units}, {"faces", faces},
                    {"star_points", r.star_points}, {"faces_exact", s.count(FaceMethod::exact)},
                    {"faces_catmull_clark", s.count(FaceMethod::bicubic) + s.count(FaceMethod::star)},
-                   {"faces_at_star_points", s.count(FaceMethod::star)}, {"faces_non_uniform_catmull_clark", nu},
+                   {"faces_at_star_points", s.count(FaceMethod::star)}, {"faces_at_boundary_star_points", bs},
+                   {"faces_non_uniform_catmull_clark", nu},
                    {"non_uniform_star_points", s.non_uniform_stars()}, {"continuity", continuity},
                    {"deleted_slots", r.deleted}, {"deleted_faces", r.holes}, {"skipped_records", r.skipped_records}};
   for (const auto& [n, c] : valences) j["star_valences"][std::to_string(n)] = c;
@@ -160,6 +162,10 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
     std::printf("  %d faces around %d star points with unequal knot intervals by non-uniform Catmull-Clark (knot-interval "
                 "weighted rules, exact B-spline cells per subdivision level; C2 away from the star point, its tangent "
                 "plane reached in the limit, slowly for large interval ratios)\n", nu, s.non_uniform_stars());
+  if (bs > 0)
+    std::printf("  %d faces at star points on the boundary by Catmull-Clark of the control mesh extended by a ghost layer "
+                "(the T-spline's Bezier end condition where regular; boundary curve the cubic B-spline of the block points "
+                "from two faces along the boundary on)\n", bs);
   std::printf("  continuity: %s\n", continuity);
   if (!r.skipped_records.empty()) {
     std::string k;

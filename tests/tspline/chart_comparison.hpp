@@ -47,6 +47,14 @@ inline ChartComparison compare_with_charts(const TMesh& mesh, const TMeshSurface
   for (int f = 0; f < s.num_faces(); ++f) {
     if (s.method(f) != method) continue;
     const std::vector<int> hood = face_rings(mesh, f, 2);
+    // A star point inside the rings: no chart (one on the boundary lays out without an error, overlapping).
+    const auto has_star = [&](int g) {
+      return std::any_of(mesh.faces[static_cast<std::size_t>(g)].begin(), mesh.faces[static_cast<std::size_t>(g)].end(), [&](int l) {
+        const int v = mesh.links[static_cast<std::size_t>(l)].vertex;
+        return std::find(s.stars().begin(), s.stars().end(), v) != s.stars().end();
+      });
+    };
+    if (std::any_of(hood.begin(), hood.end(), has_star)) continue;
     TChart chart;
     try {
       chart = t_spline_chart(mesh, hood, f, false);

@@ -1,7 +1,9 @@
 #pragma once
 // Quad control meshes written as Rhino TSM text (#TS0200 records: f, e, v, l with the corner flags, ec, the
 // grip map and the control points), for the star-point tests: a closed cube of n x n faces per side (eight
-// valence-3 star points) and a planar fan of N sectors of m x m faces around one star point of valence N.
+// valence-3 star points), a planar fan of N sectors of m x m faces around one star point of valence N, and a
+// half fan of K sectors around a star point on a straight boundary.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
@@ -59,7 +61,7 @@ inline std::string tsm_text(const QuadMesh& m, double interval = 1.0) {
       continue;
     }
     const int o = static_cast<int>(links.size());
-    links.push_back({-1, -1, l, b, -1, -1, 3 - angle[b]});
+    links.push_back({-1, -1, l, b, -1, -1, std::max(0, 3 - angle[b])});  // 0 at a boundary star point
     links[l].opp = o;
     outside_from[b] = o;
   }
@@ -233,6 +235,40 @@ QuadMesh fan_mesh_with_t_junctions(int valence, int m, int row, int first, int l
   q.t_faces.push_back({{left[0], left[1], mid.front(), left[2], left[3]}, {0, 0, 1, 0, 0}});
   q.t_faces.push_back({{right[0], right[1], right[2], right[3], mid.back()}, {0, 0, 0, 0, 1}});
   q.quads = std::move(quads);
+  return q;
+}
+
+// K sectors of m x m faces around a star point at the origin on the boundary: spoke k at angle pi k / K, spokes 0
+// and K along the boundary (the x axis); z = height(x, y). K = 2 is a regular boundary vertex.
+template <class Height>
+QuadMesh half_fan_mesh(int sectors, int m, Height height) {
+  QuadMesh q;
+  std::map<std::array<int, 2>, int> spoke;        // (spoke, i >= 1)
+  std::map<std::array<int, 3>, int> inner;        // (sector, i, j >= 1)
+  const auto make = [&](double x, double y) {
+    q.points.push_back({x, y, height(x, y)});
+    return static_cast<int>(q.points.size()) - 1;
+  };
+  const int star = make(0, 0);
+  const auto dir = [&](int k) { return std::array<double, 2>{std::cos(std::numbers::pi * k / sectors), std::sin(std::numbers::pi * k / sectors)}; };
+  const auto vertex = [&](int k, int i, int j) {
+    if (i == 0 && j == 0) return star;
+    if (j == 0 || i == 0) {
+      const std::array<int, 2> key{j == 0 ? k : k + 1, j == 0 ? i : j};
+      auto it = spoke.find(key);
+      if (it != spoke.end()) return it->second;
+      const auto d = dir(key[0]);
+      return spoke[key] = make(key[1] * d[0], key[1] * d[1]);
+    }
+    auto it = inner.find({k, i, j});
+    if (it != inner.end()) return it->second;
+    const auto a = dir(k), b = dir(k + 1);
+    return inner[{k, i, j}] = make(i * a[0] + j * b[0], i * a[1] + j * b[1]);
+  };
+  for (int k = 0; k < sectors; ++k)
+    for (int j = 0; j < m; ++j)
+      for (int i = 0; i < m; ++i)
+        q.quads.push_back({vertex(k, i, j), vertex(k, i + 1, j), vertex(k, i + 1, j + 1), vertex(k, i, j + 1)});
   return q;
 }
 

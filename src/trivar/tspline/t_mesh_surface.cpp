@@ -7,6 +7,7 @@
 
 #include "trivar/core/error.hpp"
 #include "trivar/core/parallel.hpp"
+#include "trivar/tspline/boundary_ghosts.hpp"
 #include "trivar/tspline/catmull_clark_patch.hpp"
 #include "trivar/tspline/non_uniform_catmull_clark.hpp"
 
@@ -252,14 +253,23 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(mesh), stars_
     else
       boundary[static_cast<std::size_t>(k.vertex)] = 1;
   }
+  const int depth = m.degree + 1;
+  // Star points on the boundary: interior ones of the control mesh with a ghost layer (boundary_ghosts), far
+  // enough along the boundary for the 4 x 4 points of every Catmull-Clark face (depth rings, one more for the points).
+  std::vector<int> boundary_stars;
   for (int s : stars_)
-    require(!boundary[static_cast<std::size_t>(s)], [&] {
-      return "T-mesh: star point at boundary vertex " + std::to_string(s) + ": only interior star points are evaluated";
-    });
+    if (boundary[static_cast<std::size_t>(s)]) boundary_stars.push_back(s);
+  std::vector<char> ghosted(static_cast<std::size_t>(nv), 0);
+  if (!boundary_stars.empty()) {
+    GhostedMesh gm = ghost_boundary(m, boundary_stars, depth + 3);
+    ghosted_ = std::make_unique<TMesh>(std::move(gm.mesh));
+    for (int v = 0; v < nv; ++v) ghosted[static_cast<std::size_t>(v)] = gm.ghost[static_cast<std::size_t>(v)] >= 0;
+  }
+  const TMesh& cm = cc_mesh();
   // Face rings: faces sharing a vertex with the previous ring.
-  const auto rings = [&](std::vector<int> front, int depth, std::vector<int>& dist) {
+  const auto rings = [&](std::vector<int> front, int ring_count, std::vector<int>& dist) {
     std::vector<int> all = front;
-    for (int r = 1; r <= depth && !front.empty(); ++r) {
+    for (int r = 1; r <= ring_count && !front.empty(); ++r) {
       std::vector<int> next;
       for (int f : front)
         for (int l : m.faces[static_cast<std::size_t>(f)])
@@ -273,7 +283,6 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(mesh), stars_
     }
     return all;
   };
-  const int depth = m.degree + 1;
   // The face rings the supports of the blending functions on a face span on a uniform quad mesh: their anchors
   // lie (p - 1) / 2 rings out and their supports (p + 1) / 2 further.
   const int reach = m.degree;
@@ -341,7 +350,7 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(mesh), stars_
     std::string why;  // why it is not a Catmull-Clark face
   };
   std::vector<NearExact> near_exact;
-  std::vector<char> is_star(static_cast<std::size_t>(nv), 0);
+  std::vector<char> is_star(cm.vertices.size(), 0);
   for (int s : stars_) is_star[static_cast<std::size_t>(s)] = 1;
   for (int f = 0; f < nf; ++f) {
     if (!m.live_face(f)) continue;
@@ -377,7 +386,7 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(mesh), stars_
         for (int l : m.faces[static_cast<std::size_t>(g)]) {
           if (m.faces[static_cast<std::size_t>(g)].size() != 4)
             return "face " + std::to_string(g) + " nearby has a T-junction; the Catmull-Clark evaluation around star points needs none within " + std::to_string(cc_depth) + " rings";
-          if (boundary[static_cast<std::size_t>(L(l).vertex)])
+          if (boundary[static_cast<std::size_t>(L(l).vertex)] && !ghosted[static_cast<std::size_t>(L(l).vertex)])
             return "boundary vertex " + std::to_string(L(l).vertex) + " is within " + std::to_string(cc_depth) + " rings; the Catmull-Clark evaluation around star points needs none";
           const double d = m.intervals[static_cast<std::size_t>(L(l).edge)];
           if (std::abs(d - d0) > 1e-12 * d0 && unequal.empty())
@@ -403,7 +412,7 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(mesh), stars_
       continue;
     }
     require(star_corners <= 1, [&] { return where() + "it has " + std::to_string(star_corners) + " star corners; subdivide the control mesh once so that every face has at most one"; });
-    Gather gth = gather(m, loop[static_cast<std::size_t>(corner)]);
+    Gather gth = gather(cm, loop[static_cast<std::size_t>(corner)]);
     require(gth.error.empty(), [&] { return where() + gth.error; });
     if (!unequal.empty()) {
       // Unequal intervals: a face whose 16 points avoid the star points is the bicubic B-spline on its knots;
@@ -418,16 +427,17 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(mesh), stars_
       require(face.knots.has_value(), [&] { return where() + unequal + "; its knot lines are not straight through vertices of four faces"; });
     }
     for (int x : gth.points) {
-      const TMeshVertex& mv = m.vertices[static_cast<std::size_t>(x)];
+      const TMeshVertex& mv = cm.vertices[static_cast<std::size_t>(x)];
       require(mv.primary >= 0 && mv.block.empty(), [&] {
         return where() + "vertex " + std::to_string(x) + " has no control point or repeated-knot nodes; the Catmull-Clark evaluation around star points needs one point per vertex";
       });
-      const RationalPoint& pt = m.points[static_cast<std::size_t>(mv.primary)];
+      const RationalPoint& pt = cm.points[static_cast<std::size_t>(mv.primary)];
       face.wx.push_back({pt.w * pt.xyz[0], pt.w * pt.xyz[1], pt.w * pt.xyz[2]});
       face.w.push_back({pt.w, 0, 0});
       face.rational = face.rational || pt.w != 1.0;
     }
     face.method = star_corners ? FaceMethod::star : FaceMethod::bicubic;
+    face.boundary_star = star_corners && boundary[static_cast<std::size_t>(L(loop[static_cast<std::size_t>(corner)]).vertex)];
     face.corner = corner;
     face.points = std::move(gth.points);
   }
@@ -546,6 +556,10 @@ int TMeshSurface::count(FaceMethod m) const {
   return static_cast<int>(std::count_if(faces_.begin(), faces_.end(), [m](const Face& f) { return f.method == m; }));
 }
 
+int TMeshSurface::boundary_star_faces() const {
+  return static_cast<int>(std::count_if(faces_.begin(), faces_.end(), [](const Face& f) { return f.boundary_star; }));
+}
+
 int TMeshSurface::valence(int star) const {
   int n = 0;
   for (const TMeshLink& k : mesh_.links) n += k.vertex == star && k.face >= 0;
@@ -647,9 +661,10 @@ std::vector<std::array<double, 3>> TMeshSurface::patch_points(int face) const {
   }
   require(f.method == FaceMethod::bicubic || f.method == FaceMethod::star,
           [&] { return "T-mesh: face " + std::to_string(face) + " is not a Catmull-Clark face"; });
+  const TMesh& cm = cc_mesh();
   std::vector<std::array<double, 3>> p(f.points.size());
   for (std::size_t i = 0; i < p.size(); ++i)
-    p[i] = mesh_.points[static_cast<std::size_t>(mesh_.vertices[static_cast<std::size_t>(f.points[i])].primary)].xyz;
+    p[i] = cm.points[static_cast<std::size_t>(cm.vertices[static_cast<std::size_t>(f.points[i])].primary)].xyz;
   return p;
 }
 

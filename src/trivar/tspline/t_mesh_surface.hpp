@@ -28,8 +28,11 @@
 // the star points' faces that fails these (a boundary, a T-junction or unequal intervals nearby) is exact
 // instead when a chart of p up to (its distance - 1) rings around it holds its knot vectors (so a star point
 // needs 7 faces to the boundary, not 8); otherwise the face's reason is the error (what is still refused:
-// T-junctions and repeated knots within two rings of a star point's faces, star points on the boundary, two star
-// points with unequal intervals within three rings of each other, degrees other than 3). The
+// T-junctions and repeated knots within two rings of a star point's faces, unequal intervals or corners near a
+// star point on the boundary, two star points with unequal intervals within three rings of each other, degrees
+// other than 3). A star point on the boundary is an interior one of the mesh with a ghost layer along the
+// boundary (boundary_ghosts: the Bezier end condition as a uniform bicubic net), so its faces are star faces of
+// valence K + 2 and the faces near it bicubic faces of that mesh, the T-spline wherever their points avoid it. The
 // surface there is then the Catmull-Clark limit surface of the control mesh, which on faces without a star
 // corner is the uniform bicubic B-spline = the T-spline. Continuity: C2 across every edge away from star points
 // (T-spline and uniform B-spline pieces meet as one spline); C1 across the edges at a star point except at the
@@ -69,6 +72,8 @@ public:
   int num_faces() const { return static_cast<int>(faces_.size()); }  // mesh face ids (deleted faces: none)
   FaceMethod method(int face) const { return faces_[static_cast<std::size_t>(face)].method; }
   int count(FaceMethod m) const;
+  // The star faces whose star point is on the boundary (Catmull-Clark of the mesh with its ghost layer).
+  int boundary_star_faces() const;
   const std::vector<int>& stars() const { return stars_; }
   int valence(int star) const;  // faces around a star point
   // The corners of a face (its first corner link's vertex, then counter-clockwise), for quads and T-faces.
@@ -111,6 +116,7 @@ private:
     std::optional<std::array<std::array<double, 6>, 2>> knots;
     int nurcc = -1, sector = 0;    // non_uniform: index into nurcc_, the sector and the face's cell in it
     std::array<int, 2> cell{-1, -1};
+    bool boundary_star = false;    // star: the star point is on the boundary
   };
   struct Nurcc;  // a star point evaluated by non-uniform Catmull-Clark: its subdivision and homogeneous points
   TMesh mesh_;
@@ -118,6 +124,9 @@ private:
   std::vector<Face> faces_;
   std::vector<std::unique_ptr<TSplineSurface>> charts_;
   std::vector<std::unique_ptr<Nurcc>> nurcc_;
+  std::unique_ptr<TMesh> ghosted_;  // with star points on the boundary: the mesh with their ghost layers
+  // The control mesh of the Catmull-Clark faces (bicubic and star: their `points` are its vertices).
+  const TMesh& cc_mesh() const { return ghosted_ ? *ghosted_ : mesh_; }
 };
 
 }  // namespace trivar

@@ -1,0 +1,242 @@
+// Star points on the boundary of a T-mesh: Catmull-Clark on the control mesh extended by a ghost layer whose
+// regular part is the T-spline's Bezier end condition (boundary_ghosts). Known answers: a regular boundary vertex
+// reproduces the clamped bicubic T-spline through the ghost layer; faces whose points avoid the star point are
+// the T-spline of their charts; the boundary curve is the cubic B-spline of the end-condition block points;
+// positions, normals and first derivatives agree across every interior edge; the tessellation is watertight.
+#include <gtest/gtest.h>
+
+#include <map>
+#include <random>
+
+#include "chart_comparison.hpp"
+#include "face_continuity.hpp"
+#include "star_mesh_tsm.hpp"
+#include "trivar/core/error.hpp"
+#include "trivar/io/tsm_format.hpp"
+#include "trivar/tspline/boundary_ghosts.hpp"
+#include "trivar/tspline/catmull_clark_patch.hpp"
+#include "trivar/tspline/t_mesh_patches.hpp"
+#include "trivar/tspline/t_mesh_surface.hpp"
+#include "trivar/tspline/t_mesh_tessellation.hpp"
+
+namespace trivar {
+namespace {
+
+double bump(double x, double y) { return 0.3 * std::sin(0.7 * x + 0.2) * std::cos(0.5 * y) + 0.05 * x * y; }
+
+// The model of a half fan with its end-condition block points moved off their vertices (the general clamped end:
+// Q0 != Q1), by a random offset each.
+io::TsmModel half_fan_model(int sectors, int m, unsigned seed, double offset = 0.2) {
+  io::TsmModel model = io::parse_tsm(tsm_text(test::half_fan_mesh(sectors, m, bump)), "half_fan.tsm");
+  std::mt19937 g(seed);
+  std::uniform_real_distribution<double> d(-offset, offset);
+  for (const TMeshVertex& v : model.mesh.vertices)
+    for (int b : v.block)
+      if (b >= 0)
+        for (double& c : model.mesh.points[static_cast<std::size_t>(b)].xyz) c += d(g);
+  return model;
+}
+
+const std::array<double, 3>& point_of(const TMesh& m, int v) {
+  return m.points[static_cast<std::size_t>(m.vertices[static_cast<std::size_t>(v)].primary)].xyz;
+}
+
+int vertex_at(const TMesh& m, double x, double y) {
+  for (int v = 0; v < static_cast<int>(m.vertices.size()); ++v) {
+    const auto& p = point_of(m, v);
+    if (std::abs(p[0] - x) < 1e-12 && std::abs(p[1] - y) < 1e-12) return v;
+  }
+  return -1;
+}
+
+TEST(BoundaryStar, RegularBoundaryVertexThroughTheGhostLayerIsTheClampedBicubicTSpline) {
+  // K = 2: the grid [-4, 4] x [0, 4] with a straight boundary; no star point, so every face is the T-spline.
+  const io::TsmModel model = half_fan_model(2, 4, 11);
+  const TMesh& m = model.mesh;
+  const TMeshSurface s(m, 1);
+  ASSERT_EQ(s.count(FaceMethod::exact), s.num_faces());
+  const int centre = vertex_at(m, 0, 0);
+  ASSERT_GE(centre, 0);
+  const std::array<int, 1> stars{centre};
+  const GhostedMesh g = ghost_boundary(m, stars, 3);
+  // The uniform bicubic patch of the extended mesh on the face [a, a + 1] x [0, 1]: rows -1 (ghosts) .. 2.
+  for (int a = -2; a <= 1; ++a) {
+    std::array<std::array<double, 3>, 16> grid{};
+    for (int j = -1; j <= 2; ++j)
+      for (int i = -1; i <= 2; ++i) {
+        const int v = vertex_at(m, a + i, std::max(j, 0));
+        ASSERT_GE(v, 0);
+        const int w = j < 0 ? g.ghost[static_cast<std::size_t>(v)] : v;
+        ASSERT_GE(w, 0) << a + i;
+        grid[static_cast<std::size_t>((i + 1) + 4 * (j + 1))] = point_of(g.mesh, w);
+      }
+    // The face [a, a + 1] x [0, 1] and its frame in the grid's (x, y).
+    int face = -1;
+    for (int f = 0; f < s.num_faces(); ++f) {
+      const auto c = s.corners(f);
+      double lo = 1e9;
+      for (int v : c) lo = std::min(lo, point_of(m, v)[0]);
+      if (std::abs(lo - a) < 1e-12 && std::all_of(c.begin(), c.end(), [&](int v) { return point_of(m, v)[1] < 1.5; })) face = f;
+    }
+    ASSERT_GE(face, 0) << a;
+    const auto c = s.corners(face);
+    const auto& c0 = point_of(m, c[0]);
+    const auto& c1 = point_of(m, c[1]);
+    const auto& c3 = point_of(m, c[3]);
+    for (double u : {0.0, 0.3, 0.5, 1.0})
+      for (double v : {0.0, 0.2, 0.7, 1.0}) {
+        const double sx = c0[0] + u * (c1[0] - c0[0]) + v * (c3[0] - c0[0]) - a, ty = c0[1] + u * (c1[1] - c0[1]) + v * (c3[1] - c0[1]);
+        double x[9], y[9];
+        eval_uniform_bicubic(grid, sx, ty, x);
+        s.eval(face, u, v, y);
+        for (int k = 0; k < 3; ++k) {
+          EXPECT_NEAR(x[k], y[k], 1e-12) << a << ' ' << u << ' ' << v << ' ' << k;
+          EXPECT_NEAR((c1[0] - c0[0]) * x[3 + k] + (c1[1] - c0[1]) * x[6 + k], y[3 + k], 1e-12) << a << ' ' << u << ' ' << v;
+          EXPECT_NEAR((c3[0] - c0[0]) * x[3 + k] + (c3[1] - c0[1]) * x[6 + k], y[6 + k], 1e-12) << a << ' ' << u << ' ' << v;
+        }
+      }
+  }
+}
+
+// The boundary's faces [i, i + 1] x [0, 1] along spoke 0 (sector 0) and [0, 1] x [j, j + 1] along spoke K: their
+// boundary side against the uniform cubic B-spline of the block points (closed form).
+double boundary_curve_defect(const TMeshSurface& s, const TMesh& m, int sectors, int rings, int first) {
+  const auto block = [&](int v) { return m.points[static_cast<std::size_t>(m.vertices[static_cast<std::size_t>(v)].block.at(0))].xyz; };
+  double worst = 0;
+  for (int side = 0; side < 2; ++side)
+    for (int i = first; i + 3 <= rings; ++i) {  // off the clamped ends at the outer corners
+      const int k = side == 0 ? 0 : sectors - 1;
+      const int f = side == 0 ? k * rings * rings + i : k * rings * rings + i * rings;
+      const auto c = s.corners(f);
+      // The boundary vertices b(i - 1) .. b(i + 2) along the spoke, from the face's boundary corners outwards.
+      const int from = side == 0 ? c[0] : c[3], to = side == 0 ? c[1] : c[0];
+      const auto& p0 = point_of(m, from);
+      const auto& p1 = point_of(m, to);
+      const double dx = p1[0] - p0[0], dy = p1[1] - p0[1];
+      std::array<std::array<double, 3>, 4> b;
+      for (int t = -1; t <= 2; ++t) {
+        const int v = vertex_at(m, p0[0] + t * dx, p0[1] + t * dy);
+        if (v < 0) return 1;
+        b[static_cast<std::size_t>(t + 1)] = block(v);
+      }
+      for (double t : {0.0, 0.25, 0.5, 0.8, 1.0}) {
+        const double w[4] = {(1 - t) * (1 - t) * (1 - t) / 6, (3 * t * t * t - 6 * t * t + 4) / 6, (-3 * t * t * t + 3 * t * t + 3 * t + 1) / 6, t * t * t / 6};
+        double x[9];
+        if (side == 0)
+          s.eval(f, t, 0, x);
+        else
+          s.eval(f, 0, 1 - t, x);
+        for (std::size_t q = 0; q < 3; ++q) {
+          double r = 0;
+          for (std::size_t a = 0; a < 4; ++a) r += w[a] * b[a][q];
+          worst = std::max(worst, std::abs(r - x[q]));
+        }
+      }
+    }
+  return worst;
+}
+
+// Edges used once form one closed loop (the outer boundary): a crack inside would add loops.
+void expect_one_boundary_loop(const TSplineTriangulation& t) {
+  std::map<std::array<std::size_t, 2>, int> use;
+  for (const auto& tri : t.triangles)
+    for (int k = 0; k < 3; ++k) ++use[{tri[static_cast<std::size_t>(k)], tri[static_cast<std::size_t>((k + 1) % 3)]}];
+  std::map<std::size_t, std::size_t> next;
+  for (const auto& [e, n] : use) {
+    EXPECT_EQ(n, 1) << "edge used twice in the same direction";
+    if (!use.count({e[1], e[0]})) {
+      EXPECT_EQ(next.count(e[0]), 0u) << "boundary vertex with two outgoing edges";
+      next[e[0]] = e[1];
+    }
+  }
+  ASSERT_FALSE(next.empty());
+  std::size_t v = next.begin()->first, steps = 0;
+  do {
+    v = next.at(v);
+    ++steps;
+  } while (v != next.begin()->first && steps <= next.size());
+  EXPECT_EQ(steps, next.size()) << "the boundary edges form more than one loop";
+}
+
+class BoundaryStarValence : public ::testing::TestWithParam<int> {};
+
+TEST_P(BoundaryStarValence, LoadsAsOneSmoothSurfaceWithTheTSplineAwayFromTheStarPoint) {
+  const int sectors = GetParam(), rings = 7;
+  const io::TsmModel model = half_fan_model(sectors, rings, 5u + static_cast<unsigned>(sectors));
+  EXPECT_EQ(model.report.star_points, 1);
+  const TMesh& m = model.mesh;
+  const TMeshSurface s(m, 1);
+  EXPECT_EQ(s.count(FaceMethod::star), sectors);
+  EXPECT_EQ(s.boundary_star_faces(), sectors);
+  EXPECT_EQ(s.count(FaceMethod::star) + s.count(FaceMethod::bicubic) + s.count(FaceMethod::exact), sectors * rings * rings);
+  EXPECT_GT(s.count(FaceMethod::exact), 0);
+  // The Catmull-Clark faces whose two rings hold no star point: the T-spline of their charts (with its Bezier
+  // end conditions at the boundary, block points off their vertices).
+  const test::ChartComparison cmp = test::compare_with_charts(m, s, FaceMethod::bicubic);
+  EXPECT_GT(cmp.compared, 4);
+  EXPECT_LT(cmp.position, 1e-12);
+  EXPECT_LT(cmp.derivative, 1e-11);
+  // Boundary curve: the cubic B-spline of the block points from two faces along the boundary on.
+  EXPECT_LT(boundary_curve_defect(s, m, sectors, rings, 2), 1e-12);
+  // Across every interior edge (also those at the star point, away from it): positions, normals, C1.
+  const test::Continuity c = test::continuity(m, [&](int f, double u, double v, double* o) { s.eval(f, u, v, o); });
+  EXPECT_LT(c.gap, 1e-12);
+  EXPECT_LT(c.normal_angle, 1e-10);
+  EXPECT_LT(c.c1, 1e-10);
+  std::printf("boundary star of %d faces: %d edges, gap %.2e, normal defect (sin) %.2e, C1 defect %.2e; %d faces as charts "
+              "(position %.2e)\n", sectors, c.edges, c.gap, c.normal_angle, c.c1, cmp.compared, cmp.position);
+  // One tangent plane at the star point for all its faces.
+  std::array<double, 3> n0{};
+  for (int f = 0; f < s.num_faces(); ++f) {
+    if (s.method(f) != FaceMethod::star) continue;
+    const auto c4 = s.corners(f);
+    const int corner = static_cast<int>(std::find(c4.begin(), c4.end(), s.stars()[0]) - c4.begin());
+    ASSERT_LT(corner, 4);
+    const auto o = corner_frame(corner).origin;
+    double x[9];
+    s.eval(f, o[0], o[1], x);
+    const auto n = test::unit_normal(x);
+    if (n0 == std::array<double, 3>{}) n0 = n;
+    EXPECT_LT(std::hypot(n[1] * n0[2] - n[2] * n0[1], n[2] * n0[0] - n[0] * n0[2], n[0] * n0[1] - n[1] * n0[0]), 1e-9) << f;
+  }
+  const TSplineTriangulation t = tessellate(s, 1e-2);
+  for (const auto& p : t.points) ASSERT_TRUE(std::isfinite(p[0] + p[1] + p[2]));
+  expect_one_boundary_loop(t);
+  // Bezier patches (exact pieces, one corner patch per star face) within their tolerance of the limit surface.
+  if (sectors == 5) {
+    const TMeshPatches p = t_mesh_patches(s);
+    EXPECT_GT(p.patches.size(), static_cast<std::size_t>(s.num_faces()));
+    EXPECT_LE(p.deviation, p.tolerance);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Faces, BoundaryStarValence, ::testing::Values(4, 5, 6));
+
+// What the ghost layer cannot hold is refused with one line naming it.
+TEST(BoundaryStar, RefusesCornersAndUnequalIntervalsNearby) {
+  const auto refused = [](const std::string& text, const std::string& fragment) {
+    try {
+      const io::TsmModel model = io::parse_tsm(text, "bad.tsm");
+      const TMeshSurface s(model.mesh, 1);
+      ADD_FAILURE() << "no error for " << fragment;
+    } catch (const Error& e) {
+      const std::string msg = e.what();
+      EXPECT_NE(msg.find(fragment), std::string::npos) << msg;
+      EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+    }
+  };
+  // One face per sector: the star point's boundary neighbours are corners.
+  refused(tsm_text(test::half_fan_mesh(4, 1, bump)), "corner or a T-junction next to it");
+  // Two faces per sector: the faces near the star point reach the corners two edges out.
+  refused(tsm_text(test::half_fan_mesh(4, 2, bump)), "T-mesh: face");
+  // A knot interval of 2 on the strip of the first faces along spoke 1.
+  test::QuadMesh uneven = test::half_fan_mesh(4, 7, bump);
+  for (int i = 0; i < 7; ++i) {
+    const auto& f = uneven.quads[static_cast<std::size_t>(7 * 7 + i)];  // sector 1, row 0
+    uneven.intervals[{f[0], f[3]}] = uneven.intervals[{f[1], f[2]}] = 2;
+  }
+  refused(tsm_text(uneven), "knot interval");
+}
+
+}  // namespace
+}  // namespace trivar
