@@ -52,8 +52,8 @@ private:
 // cheaper choice.
 constexpr int kMaxExactPoints = 40;
 
-// The inner integral runs along the surface direction with fewer knot spans (its cost per loop point is
-// the number of spans times the rule's points): with dir = 0, G(u, v) = int_{x0}^{u} flux(s, v) ds and the loop
+// The inner integral runs along the surface direction where it is cheaper (its cost per loop point is the
+// number of knot spans times the inner rule's points): with dir = 0, G(u, v) = int_{x0}^{u} flux(s, v) ds and the loop
 // integrand is G c_v'; with dir = 1, G(u, v) = int_{x0}^{v} flux(u, s) ds and it is -G c_u' (Green's theorem
 // either way: the region integral of flux is the loop integral). The start line x0 is any constant per loop
 // (changing it adds H(v) dv, whose integral over a closed loop vanishes): the loop's own least coordinate, so a
@@ -70,7 +70,7 @@ public:
   // `F` null: F(x) = x[0] - shift (the volume), which allows exact rules.
   FaceIntegrand(const TrimmedFace& f, const std::function<double(const std::array<double, 3>&)>* F, double shift,
                 const QuadratureRule& rule, RuleCache& rules)
-      : F_(F), dir_(inner_direction(f.surface)), shift_(shift),
+      : F_(F), dir_(inner_direction(f.surface, rule, F == nullptr)), shift_(shift),
         line_(f.surface, dir_, inner_rule(f.surface, dir_, rule, F == nullptr, rules)) {
     if (!F_ && polynomial_along(f.surface, 0) && polynomial_along(f.surface, 1))
       total_degree_ = 3 * (f.surface.degree(0) + f.surface.degree(1));
@@ -96,13 +96,23 @@ public:
   }
 
 private:
-  static int inner_direction(const TensorSpline<2>& s) { return s.knots(1).breakpoints().size() < s.knots(0).breakpoints().size() ? 1 : 0; }
+  // Points per span of the inner rule along `dir`: the exact rule where the volume's flux is a polynomial.
+  static int inner_points(const TensorSpline<2>& s, int dir, const QuadratureRule& rule, bool linear) {
+    const int n = static_cast<int>(rule.nodes.size());
+    return linear && polynomial_along(s, dir) ? std::min(n, std::max((3 * s.degree(dir) + 1) / 2, 1)) : n;
+  }
+
+  // The direction whose lines cost fewer flux points per loop point (knot spans times the inner rule's points:
+  // a cylinder of one span around is integrated along its axis, 2 points, not around it, 16); u on a tie.
+  static int inner_direction(const TensorSpline<2>& s, const QuadratureRule& rule, bool linear) {
+    const auto cost = [&](int d) { return (s.knots(d).breakpoints().size() - 1) * static_cast<std::size_t>(inner_points(s, d, rule, linear)); };
+    return cost(1) < cost(0) ? 1 : 0;
+  }
 
   static const QuadratureRule& inner_rule(const TensorSpline<2>& s, int dir, const QuadratureRule& rule, bool linear,
                                           RuleCache& rules) {
-    if (linear && polynomial_along(s, dir))
-      if (const int n = (3 * s.degree(dir) + 1) / 2; n < static_cast<int>(rule.nodes.size())) return rules(std::max(n, 1));
-    return rule;
+    const int n = inner_points(s, dir, rule, linear);
+    return n < static_cast<int>(rule.nodes.size()) ? rules(n) : rule;
   }
 
   const std::function<double(const std::array<double, 3>&)>* F_;
