@@ -8,6 +8,7 @@
 #include "trivar/core/error.hpp"
 #include "trivar/core/gauss_legendre.hpp"
 #include "trivar/core/parallel.hpp"
+#include "trivar/model/line_flux.hpp"
 
 namespace trivar {
 
@@ -51,8 +52,8 @@ private:
 // cheaper choice.
 constexpr int kMaxExactPoints = 40;
 
-// The inner integral runs along the surface direction with fewer knot spans (its cost per loop point is
-// the number of spans times the rule's points): with dir = 0, G(u, v) = int_{x0}^{u} flux(s, v) ds and the loop
+// The inner integral runs along the surface direction where it is cheaper (its cost per loop point is the
+// number of knot spans times the inner rule's points): with dir = 0, G(u, v) = int_{x0}^{u} flux(s, v) ds and the loop
 // integrand is G c_v'; with dir = 1, G(u, v) = int_{x0}^{v} flux(u, s) ds and it is -G c_u' (Green's theorem
 // either way: the region integral of flux is the loop integral). The start line x0 is any constant per loop
 // (changing it adds H(v) dv, whose integral over a closed loop vanishes): the loop's own least coordinate, so a
@@ -66,17 +67,13 @@ constexpr int kMaxExactPoints = 40;
 // adaptive halving.
 class FaceIntegrand {
 public:
-  FaceIntegrand(const TrimmedFace& f, const std::function<double(const std::array<double, 3>&)>& F,
-                const QuadratureRule& rule, bool linear_F, RuleCache& rules)
-      : f_(f), F_(F), inner_(&rule) {
-    const std::vector<double> bu = f.surface.knots(0).breakpoints(), bv = f.surface.knots(1).breakpoints();
-    dir_ = bv.size() < bu.size() ? 1 : 0;
-    breaks_ = dir_ == 0 ? bu : bv;
-    if (linear_F && polynomial_along(f.surface, dir_)) {
-      const int p = f.surface.degree(dir_);
-      if (const int n = (3 * p + 1) / 2; n < static_cast<int>(rule.nodes.size())) inner_ = &rules(std::max(n, 1));
-      if (polynomial_along(f.surface, 1 - dir_)) total_degree_ = 3 * (f.surface.degree(0) + f.surface.degree(1));
-    }
+  // `F` null: F(x) = x[0] - shift (the volume), which allows exact rules.
+  FaceIntegrand(const TrimmedFace& f, const std::function<double(const std::array<double, 3>&)>* F, double shift,
+                const QuadratureRule& rule, RuleCache& rules)
+      : F_(F), dir_(inner_direction(f.surface, rule, F == nullptr)), shift_(shift),
+        line_(f.surface, dir_, inner_rule(f.surface, dir_, rule, F == nullptr, rules)) {
+    if (!F_ && polynomial_along(f.surface, 0) && polynomial_along(f.surface, 1))
+      total_degree_ = 3 * (f.surface.degree(0) + f.surface.degree(1));
   }
 
   // Gauss points integrating the loop integrand along `c` exactly, or 0 when no exact rule of at most
@@ -89,39 +86,40 @@ public:
 
   int dir() const { return dir_; }
 
-  // F(S(u, v)) (S_u x S_v)_x, the x-flux density in parameter space.
-  double flux(double u, double v) const {
-    double d[9];
-    f_.surface.eval_derivs({u, v}, 1, d);  // S, S_u, S_v
-    const double nx = d[4] * d[8] - d[5] * d[7];
-    return F_({d[0], d[1], d[2]}) * nx;
-  }
-
   // The loop integrand at the curve point (u, v) with derivative (du, dv), for the loop's start line x0.
   double loop_density(double u, double v, double du, double dv, double x0) const {
-    const double x = dir_ == 0 ? u : v;
+    const double x = dir_ == 0 ? u : v, t = dir_ == 0 ? v : u;
     const double lo = std::min(x0, x), hi = std::max(x0, x);
-    const QuadratureRule& rule = *inner_;
-    double sum = 0;
-    for (std::size_t s = 0; s + 1 < breaks_.size() && breaks_[s] < hi; ++s) {
-      const double a = std::max(breaks_[s], lo), b = std::min(breaks_[s + 1], hi);
-      if (b <= a) continue;
-      for (std::size_t q = 0; q < rule.nodes.size(); ++q) {
-        const double y = a + rule.nodes[q] * (b - a);
-        sum += rule.weights[q] * (b - a) * (dir_ == 0 ? flux(y, v) : flux(u, y));
-      }
-    }
+    double sum = F_ ? line_.general(t, lo, hi, *F_) : line_.linear(t, lo, hi, shift_);
     if (x < x0) sum = -sum;
     return dir_ == 0 ? sum * dv : -sum * du;
   }
 
 private:
-  const TrimmedFace& f_;
-  const std::function<double(const std::array<double, 3>&)>& F_;
-  const QuadratureRule* inner_;
-  int dir_ = 0;
+  // Points per span of the inner rule along `dir`: the exact rule where the volume's flux is a polynomial.
+  static int inner_points(const TensorSpline<2>& s, int dir, const QuadratureRule& rule, bool linear) {
+    const int n = static_cast<int>(rule.nodes.size());
+    return linear && polynomial_along(s, dir) ? std::min(n, std::max((3 * s.degree(dir) + 1) / 2, 1)) : n;
+  }
+
+  // The direction whose lines cost fewer flux points per loop point (knot spans times the inner rule's points:
+  // a cylinder of one span around is integrated along its axis, 2 points, not around it, 16); u on a tie.
+  static int inner_direction(const TensorSpline<2>& s, const QuadratureRule& rule, bool linear) {
+    const auto cost = [&](int d) { return (s.knots(d).breakpoints().size() - 1) * static_cast<std::size_t>(inner_points(s, d, rule, linear)); };
+    return cost(1) < cost(0) ? 1 : 0;
+  }
+
+  static const QuadratureRule& inner_rule(const TensorSpline<2>& s, int dir, const QuadratureRule& rule, bool linear,
+                                          RuleCache& rules) {
+    const int n = inner_points(s, dir, rule, linear);
+    return n < static_cast<int>(rule.nodes.size()) ? rules(n) : rule;
+  }
+
+  const std::function<double(const std::array<double, 3>&)>* F_;
+  int dir_;
+  double shift_;
+  LineFlux line_;
   int total_degree_ = 0;  // 3p + 3q when the loop integrand is a polynomial on polynomial curves, else 0
-  std::vector<double> breaks_;
 };
 
 // The loop integral over one smooth piece [a, b] of a trimming curve.
@@ -207,14 +205,14 @@ void knot_line_crossings(const TensorSpline<1>& c, double a, double b, const std
   std::sort(cuts.begin(), cuts.end());
 }
 
-// The face's term: its loop integral, signed by its orientation. `linear_F`: F is x - x0 (the volume), which
-// allows exact rules (FaceIntegrand).
-double face_integral(const TrimmedFace& f, const std::function<double(const std::array<double, 3>&)>& antiderivative,
-                     const QuadratureRule& rule, double relative_tolerance, bool linear_F) {
+// The face's term: its loop integral, signed by its orientation. `antiderivative` null: F is x - shift (the
+// volume), which allows exact rules (FaceIntegrand).
+double face_integral(const TrimmedFace& f, const std::function<double(const std::array<double, 3>&)>* antiderivative,
+                     double shift, const QuadratureRule& rule, double relative_tolerance) {
   constexpr int kMaxHalvings = 12;
   RuleCache rules;
   const int coarse = std::max(1, static_cast<int>(rule.nodes.size()) / 2);
-  const FaceIntegrand g(f, antiderivative, rule, linear_F, rules);
+  const FaceIntegrand g(f, antiderivative, shift, rule, rules);
   // The face's scale: |G| is at most |F| |S_u x S_v| times the domain, estimated from the control box.
   std::array<double, 3> lo, hi;
   f.surface.control_bounds(lo.data(), hi.data());
@@ -273,7 +271,7 @@ double trimmed_integral(const TrimmedBoundary& b, const std::function<double(con
   check_options(opts);
   const QuadratureRule rule = gauss_legendre(opts.points);
   double total = 0;
-  for (const TrimmedFace& f : b.faces) total += face_integral(f, antiderivative, rule, opts.relative_tolerance, false);
+  for (const TrimmedFace& f : b.faces) total += face_integral(f, &antiderivative, 0, rule, opts.relative_tolerance);
   return total;
 }
 
@@ -286,7 +284,6 @@ double trimmed_volume(const TrimmedBoundary& b, const TrimmedIntegralOptions& op
   }
   check_options(opts);
   const QuadratureRule rule = gauss_legendre(opts.points);
-  const std::function<double(const std::array<double, 3>&)> F = [x0](const std::array<double, 3>& x) { return x[0] - x0; };
   // The faces on all threads (F is pure), dealt round-robin (faces differ in cost by orders of magnitude, and
   // neighbours in the list are often alike); their terms summed in face order, so the result does not depend
   // on the thread count.
@@ -295,7 +292,7 @@ double trimmed_volume(const TrimmedBoundary& b, const TrimmedIntegralOptions& op
   std::vector<double> terms(b.faces.size());
   parallel_for(threads, threads, [&](std::ptrdiff_t k) {
     for (std::ptrdiff_t i = k; i < n; i += threads)
-      terms[static_cast<std::size_t>(i)] = face_integral(b.faces[static_cast<std::size_t>(i)], F, rule, opts.relative_tolerance, true);
+      terms[static_cast<std::size_t>(i)] = face_integral(b.faces[static_cast<std::size_t>(i)], nullptr, x0, rule, opts.relative_tolerance);
   });
   double total = 0;
   for (double t : terms) total += t;

@@ -4,7 +4,8 @@
 // integrand in x, the volume integral becomes the sum over faces of the integral of F n_x over the trimmed
 // parameter domain, and Green's theorem turns each of those into an integral along the face's trimming loops
 // of G(u, v) = int_{u0}^{u} F(S) (S_u x S_v)_x du' dv (or its counterpart along v, whichever direction of the
-// face has fewer knot spans), started per loop at the loop's own least coordinate. The loop integrals are
+// face needs fewer flux points: knot spans times the inner rule's points), started per loop at the loop's own
+// least coordinate. G is evaluated by LineFlux (line_flux.hpp). The loop integrals are
 // Gauss-Legendre quadratures over each trimming curve's knot spans cut where it crosses the surface's knot
 // lines: adaptive (a piece is accepted when a rule of half the points agrees, else halved), or, for the volume
 // on polynomial faces and curves, one rule exact for the integrand's degree; G is a Gauss-Legendre sum over the
