@@ -1,5 +1,6 @@
 #include "trivar/cad/offset_fit.hpp"
 
+#include <Eigen/Dense>
 #include <GeomAdaptor_Surface.hxx>
 #include <TColStd_Array1OfReal.hxx>
 #include <gp_Vec.hxx>
@@ -64,38 +65,21 @@ std::array<std::vector<double>, 2> basis_breaks(const Handle(Geom_Surface)& basi
 // The inverse of the Bernstein matrix B_i(k / p) (row k): Bezier coefficients from values at the nodes.
 using NodeMatrix = std::array<std::array<double, kNodes>, kNodes>;
 NodeMatrix inverse_bernstein() {
-  NodeMatrix m{}, inv{};
+  Eigen::Matrix<double, kNodes, kNodes> m;
   for (std::size_t k = 0; k < kNodes; ++k) {
     const double t = static_cast<double>(k) / kFitDegree;
+    double binom = 1;
     for (std::size_t i = 0; i < kNodes; ++i) {
-      double binom = 1;
-      for (std::size_t j = 1; j <= i; ++j) binom = binom * static_cast<double>(kFitDegree + 1 - j) / static_cast<double>(j);
-      m[k][i] = binom * std::pow(t, static_cast<double>(i)) * std::pow(1 - t, static_cast<double>(kFitDegree - static_cast<int>(i)));
+      if (i > 0) binom = binom * static_cast<double>(kFitDegree + 1 - i) / static_cast<double>(i);
+      m(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(i)) =
+          binom * std::pow(t, static_cast<double>(i)) * std::pow(1 - t, static_cast<double>(kFitDegree - static_cast<int>(i)));
     }
-    inv[k][k] = 1;
   }
-  // Gauss-Jordan with partial pivoting (6 x 6, well conditioned).
-  for (std::size_t c = 0; c < kNodes; ++c) {
-    std::size_t piv = c;
-    for (std::size_t r = c + 1; r < kNodes; ++r)
-      if (std::abs(m[r][c]) > std::abs(m[piv][c])) piv = r;
-    std::swap(m[c], m[piv]);
-    std::swap(inv[c], inv[piv]);
-    const double d = m[c][c];
-    for (std::size_t j = 0; j < kNodes; ++j) {
-      m[c][j] /= d;
-      inv[c][j] /= d;
-    }
-    for (std::size_t r = 0; r < kNodes; ++r)
-      if (r != c) {
-        const double f = m[r][c];
-        for (std::size_t j = 0; j < kNodes; ++j) {
-          m[r][j] -= f * m[c][j];
-          inv[r][j] -= f * inv[c][j];
-        }
-      }
-  }
-  return inv;
+  const Eigen::Matrix<double, kNodes, kNodes> inv = m.partialPivLu().inverse();
+  NodeMatrix out{};
+  for (std::size_t r = 0; r < kNodes; ++r)
+    for (std::size_t c = 0; c < kNodes; ++c) out[r][c] = inv(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c));
+  return out;
 }
 
 // Bezier coefficients of each cell's interpolant applied along one direction of a grid of 3-vectors: `n`
