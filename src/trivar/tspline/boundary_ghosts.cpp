@@ -157,7 +157,7 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
       placed[static_cast<std::size_t>(l)] = 1;
       chain.push_back(l);
     }
-    const bool closed = L(chain.back()).next == chain.front();
+    const bool closed = chain.size() > 2 && L(chain.back()).next == chain.front();
     // Ghost faces (a, b, G(b), G(a)) on the outside of each boundary link a -> b of the chain; the link a -> b
     // takes the place of the boundary link as the opposite of the inner face's b -> a.
     int first_side = -1;  // the first face's link G(a) -> a
