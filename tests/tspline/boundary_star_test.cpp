@@ -7,6 +7,8 @@
 
 #include <map>
 #include <random>
+#include <sstream>
+#include <string>
 
 #include "chart_comparison.hpp"
 #include "face_continuity.hpp"
@@ -136,12 +138,12 @@ double boundary_curve_defect(const TMeshSurface& s, const TMesh& m, int sectors,
   return worst;
 }
 
-// Edges used once form one closed loop (the outer boundary): a crack inside would add loops.
-void expect_one_boundary_loop(const TSplineTriangulation& t) {
-  std::map<std::array<std::size_t, 2>, int> use;
+// Edges used once form closed loops (the boundaries; a crack inside would add loops): their number.
+int boundary_loops(const TSplineTriangulation& t) {
+  std::map<std::array<int, 2>, int> use;
   for (const auto& tri : t.triangles)
     for (int k = 0; k < 3; ++k) ++use[{tri[static_cast<std::size_t>(k)], tri[static_cast<std::size_t>((k + 1) % 3)]}];
-  std::map<std::size_t, std::size_t> next;
+  std::map<int, int> next;
   for (const auto& [e, n] : use) {
     EXPECT_EQ(n, 1) << "edge used twice in the same direction";
     if (!use.count({e[1], e[0]})) {
@@ -149,13 +151,40 @@ void expect_one_boundary_loop(const TSplineTriangulation& t) {
       next[e[0]] = e[1];
     }
   }
-  ASSERT_FALSE(next.empty());
-  std::size_t v = next.begin()->first, steps = 0;
-  do {
-    v = next.at(v);
-    ++steps;
-  } while (v != next.begin()->first && steps <= next.size());
-  EXPECT_EQ(steps, next.size()) << "the boundary edges form more than one loop";
+  std::map<int, char> seen;
+  int loops = 0;
+  for (const auto& [start, to] : next) {
+    if (seen.count(start)) continue;
+    ++loops;
+    int v = start;
+    do {
+      seen[v] = 1;
+      const auto it = next.find(v);
+      if (it == next.end()) return -1;  // an open boundary chain
+      v = it->second;
+    } while (v != start && seen.size() <= next.size());
+  }
+  return loops;
+}
+
+// The star faces around star point `star` have one tangent plane there: the largest sine of the angle between
+// their normals and the first one's.
+double tangent_plane_spread(const TMeshSurface& s, int star) {
+  std::array<double, 3> n0{};
+  double worst = 0;
+  for (int f = 0; f < s.num_faces(); ++f) {
+    if (s.method(f) != FaceMethod::star) continue;
+    const auto c4 = s.corners(f);
+    const int corner = static_cast<int>(std::find(c4.begin(), c4.end(), star) - c4.begin());
+    if (corner == 4) continue;
+    const auto o = corner_frame(corner).origin;
+    double x[9];
+    s.eval(f, o[0], o[1], x);
+    const auto n = test::unit_normal(x);
+    if (n0 == std::array<double, 3>{}) n0 = n;
+    worst = std::max(worst, std::hypot(n[1] * n0[2] - n[2] * n0[1], n[2] * n0[0] - n[0] * n0[2], n[0] * n0[1] - n[1] * n0[0]));
+  }
+  return worst;
 }
 
 class BoundaryStarValence : public ::testing::TestWithParam<int> {};
@@ -186,22 +215,10 @@ TEST_P(BoundaryStarValence, LoadsAsOneSmoothSurfaceWithTheTSplineAwayFromTheStar
   std::printf("boundary star of %d faces: %d edges, gap %.2e, normal defect (sin) %.2e, C1 defect %.2e; %d faces as charts "
               "(position %.2e)\n", sectors, c.edges, c.gap, c.normal_angle, c.c1, cmp.compared, cmp.position);
   // One tangent plane at the star point for all its faces.
-  std::array<double, 3> n0{};
-  for (int f = 0; f < s.num_faces(); ++f) {
-    if (s.method(f) != FaceMethod::star) continue;
-    const auto c4 = s.corners(f);
-    const int corner = static_cast<int>(std::find(c4.begin(), c4.end(), s.stars()[0]) - c4.begin());
-    ASSERT_LT(corner, 4);
-    const auto o = corner_frame(corner).origin;
-    double x[9];
-    s.eval(f, o[0], o[1], x);
-    const auto n = test::unit_normal(x);
-    if (n0 == std::array<double, 3>{}) n0 = n;
-    EXPECT_LT(std::hypot(n[1] * n0[2] - n[2] * n0[1], n[2] * n0[0] - n[0] * n0[2], n[0] * n0[1] - n[1] * n0[0]), 1e-9) << f;
-  }
+  EXPECT_LT(tangent_plane_spread(s, s.stars()[0]), 1e-9);
   const TSplineTriangulation t = tessellate(s, 1e-2);
   for (const auto& p : t.points) ASSERT_TRUE(std::isfinite(p[0] + p[1] + p[2]));
-  expect_one_boundary_loop(t);
+  EXPECT_EQ(boundary_loops(t), 1);
   // Bezier patches (exact pieces, one corner patch per star face) within their tolerance of the limit surface.
   if (sectors == 5) {
     const TMeshPatches p = t_mesh_patches(s);
@@ -211,6 +228,85 @@ TEST_P(BoundaryStarValence, LoadsAsOneSmoothSurfaceWithTheTSplineAwayFromTheStar
 }
 
 INSTANTIATE_TEST_SUITE_P(Faces, BoundaryStarValence, ::testing::Values(4, 5, 6));
+
+// The outside link at a boundary star point of K faces: Rhino's flag is the outside's angle / 90 - 1 = 3 - K (as
+// 2, 1, 0 after one, two, three faces); 0 there (the angle clamped) reads as the same mesh; other negative flags
+// are refused. (BoundaryStarValence reads the 3 - K form.)
+TEST(BoundaryStar, OutsideFlagIsTheOutsidesAngleOrZero) {
+  const test::QuadMesh fan = test::half_fan_mesh(4, 7, bump);
+  const std::string angle = tsm_text(fan), clamped = tsm_text(fan, 1.0, true);
+  const io::TsmModel a = io::parse_tsm(angle, "angle.tsm"), b = io::parse_tsm(clamped, "clamped.tsm");
+  // The star point is vertex 0; its outside link's line "l prev next opp 0 -1 edge flag".
+  const auto outside_flag = [](const TMesh& m) {
+    for (const TMeshLink& k : m.links)
+      if (k.vertex == 0 && k.face < 0) return k.flag;
+    return 99;
+  };
+  EXPECT_EQ(outside_flag(a.mesh), -1);
+  EXPECT_EQ(outside_flag(b.mesh), 0);
+  const TMeshSurface sa(a.mesh, 1), sb(b.mesh, 1);
+  ASSERT_EQ(sa.num_faces(), sb.num_faces());
+  EXPECT_EQ(sa.count(FaceMethod::star), 4);
+  for (int f = 0; f < sa.num_faces(); ++f) {
+    EXPECT_EQ(sa.method(f), sb.method(f));
+    double x[9], y[9];
+    sa.eval(f, 0.3, 0.6, x);
+    sb.eval(f, 0.3, 0.6, y);
+    for (int i = 0; i < 9; ++i) EXPECT_EQ(x[i], y[i]) << f;
+  }
+  // -2 after four faces: neither the outside's angle nor a flag of 0..2.
+  std::istringstream in(angle);
+  std::string line, bad;
+  while (std::getline(in, line)) {
+    std::istringstream w(line);
+    std::string tag;
+    int prev = 0, next = 0, opp = 0, vertex = 0, face = 0, edge = 0, flag = 0;
+    if ((w >> tag >> prev >> next >> opp >> vertex >> face >> edge >> flag) && tag == "l" && vertex == 0 && face == -1)
+      line = line.substr(0, line.rfind(' ')) + " -2";
+    bad += line + '\n';
+  }
+  ASSERT_NE(bad, angle);
+  try {
+    (void)io::parse_tsm(bad, "bad.tsm");
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("corner flag -2 on the boundary at vertex 0"), std::string::npos) << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+  }
+}
+
+// A slit of 8 edges inside a grid: its two ends are star points of four faces on one boundary loop, 8 edges apart,
+// so their ghost layers (7 edges either way) overlap and close round the slit as one layer.
+TEST(BoundaryStar, TwoStarPointsAtTheEndsOfASlitShareOneGhostLayer) {
+  const io::TsmModel model = io::parse_tsm(tsm_text(test::slit_mesh(22, 14, 7, 7, 15, bump)), "slit.tsm");
+  EXPECT_EQ(model.report.star_points, 2);
+  const TMesh& m = model.mesh;
+  const TMeshSurface s(m, 1);
+  ASSERT_EQ(s.stars().size(), 2u);
+  EXPECT_EQ(s.count(FaceMethod::star), 8);
+  EXPECT_EQ(s.boundary_star_faces(), 8);
+  EXPECT_EQ(s.count(FaceMethod::star) + s.count(FaceMethod::bicubic) + s.count(FaceMethod::exact), 22 * 14);
+  EXPECT_GT(s.count(FaceMethod::exact), 0);
+  // Faces along the slit whose two rings avoid both star points: the T-spline of their charts (clamped at the
+  // slit's sides).
+  const test::ChartComparison cmp = test::compare_with_charts(m, s, FaceMethod::bicubic);
+  EXPECT_GT(cmp.compared, 4);
+  EXPECT_LT(cmp.position, 1e-12);
+  EXPECT_LT(cmp.derivative, 1e-11);
+  const test::Continuity c = test::continuity(m, [&](int f, double u, double v, double* o) { s.eval(f, u, v, o); });
+  EXPECT_LT(c.gap, 1e-12);
+  EXPECT_LT(c.normal_angle, 1e-10);
+  EXPECT_LT(c.c1, 1e-10);
+  std::printf("slit with two boundary star points: %d edges, gap %.2e, normal defect (sin) %.2e, C1 defect %.2e; %d faces as "
+              "charts (position %.2e)\n", c.edges, c.gap, c.normal_angle, c.c1, cmp.compared, cmp.position);
+  for (int star : s.stars()) EXPECT_LT(tangent_plane_spread(s, star), 1e-9) << star;
+  // The slit's two sides end at the same block points (the same boundary curve): watertight apart from the slit,
+  // whose boundary is the second loop.
+  const TSplineTriangulation t = tessellate(s, 1e-2);
+  for (const auto& p : t.points) ASSERT_TRUE(std::isfinite(p[0] + p[1] + p[2]));
+  EXPECT_EQ(boundary_loops(t), 2);
+}
 
 // What the ghost layer cannot hold is refused with one line naming it.
 TEST(BoundaryStar, RefusesCornersAndUnequalIntervalsNearby) {

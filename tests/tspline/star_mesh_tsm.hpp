@@ -1,8 +1,9 @@
 #pragma once
 // Quad control meshes written as Rhino TSM text (#TS0200 records: f, e, v, l with the corner flags, ec, the
 // grip map and the control points), for the star-point tests: a closed cube of n x n faces per side (eight
-// valence-3 star points), a planar fan of N sectors of m x m faces around one star point of valence N, and a
-// half fan of K sectors around a star point on a straight boundary.
+// valence-3 star points), a planar fan of N sectors of m x m faces around one star point of valence N, a
+// half fan of K sectors around a star point on a straight boundary, and a grid with a slit (two star points on the
+// boundary).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -27,9 +28,10 @@ struct QuadMesh {
   std::map<std::array<int, 2>, double> intervals;  // knot intervals other than the default, by end vertices
 };
 
-// Every edge gets knot interval `interval` (or its entry in m.intervals); boundary links get the outside angle's flag; every boundary vertex
+// Every edge gets knot interval `interval` (or its entry in m.intervals); boundary links get the outside angle's flag
+// (angle / 90 - 1: -1 after four faces at a boundary star point, -2 after five; 0 there with `clamp_outside_flags`); every boundary vertex
 // gets the repeated-knot node block of Bezier end conditions (one layer outwards, its points on the vertex).
-inline std::string tsm_text(const QuadMesh& m, double interval = 1.0) {
+inline std::string tsm_text(const QuadMesh& m, double interval = 1.0, bool clamp_outside_flags = false) {
   struct Link {
     int prev, next, opp = -1, vertex, face, edge = -1, flag;
   };
@@ -61,7 +63,7 @@ inline std::string tsm_text(const QuadMesh& m, double interval = 1.0) {
       continue;
     }
     const int o = static_cast<int>(links.size());
-    links.push_back({-1, -1, l, b, -1, -1, std::max(0, 3 - angle[b])});  // 0 at a boundary star point
+    links.push_back({-1, -1, l, b, -1, -1, clamp_outside_flags ? std::max(0, 3 - angle[b]) : 3 - angle[b]});
     links[l].opp = o;
     outside_from[b] = o;
   }
@@ -89,7 +91,7 @@ inline std::string tsm_text(const QuadMesh& m, double interval = 1.0) {
     const int v = links[o].vertex;
     int l = vertex_link[v], frame = 3;
     while (l != o) {
-      frame = (frame + links[l].flag + 1) % 4;
+      frame = ((frame + links[l].flag + 1) % 4 + 4) % 4;
       l = links[links[l].prev].opp;
     }
     std::array<int, 4> dims{0, 0, 0, 0};
@@ -269,6 +271,31 @@ QuadMesh half_fan_mesh(int sectors, int m, Height height) {
     for (int j = 0; j < m; ++j)
       for (int i = 0; i < m; ++i)
         q.quads.push_back({vertex(k, i, j), vertex(k, i + 1, j), vertex(k, i + 1, j + 1), vertex(k, i, j + 1)});
+  return q;
+}
+
+// The grid of w x h unit faces with a slit along the line y = row from x = first to x = last (its inner vertices
+// doubled: the faces below it take copies at the same points), whose ends are star points of four faces on the
+// boundary; z = height(x, y).
+template <class Height>
+QuadMesh slit_mesh(int w, int h, int row, int first, int last, Height height) {
+  QuadMesh q;
+  const auto id = [&](int i, int j) { return j * (w + 1) + i; };
+  for (int j = 0; j <= h; ++j)
+    for (int i = 0; i <= w; ++i) q.points.push_back({double(i), double(j), height(double(i), double(j))});
+  std::map<int, int> below;  // slit vertex -> its copy for the faces below the slit
+  for (int i = first + 1; i < last; ++i) {
+    below[id(i, row)] = static_cast<int>(q.points.size());
+    q.points.push_back(q.points[static_cast<std::size_t>(id(i, row))]);
+  }
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) {
+      std::array<int, 4> f{id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)};
+      if (j + 1 == row)
+        for (int& v : f)
+          if (below.count(v)) v = below.at(v);
+      q.quads.push_back(f);
+    }
   return q;
 }
 

@@ -166,6 +166,8 @@ TEST(Tsm, MalformedFilesGiveOneLineErrors) {
   expect_tsm_error(replaced(p, "l 3 1 4 0 0 0 0", "l 3 1 5 0 0 0 0"), "inconsistent links");  // opp not mutual
   expect_tsm_error(replaced(p, "l 0 2 5 1 0 1 0", "l 0 2 5 1 0 1 1"), "not rectangular");     // three corners
   expect_tsm_error(replaced(p, "l 0 2 5 1 0 1 0", "l 0 2 5 1 0 1 2"), "not rectangular");     // reflex corner
+  expect_tsm_error(replaced(p, "l 0 2 5 1 0 1 0", "l 0 2 5 1 0 1 -1"), "corner flag -1 is not 0, 1 or 2");  // in a face
+  expect_tsm_error(replaced(p, "l 5 7 0 1 -1 0 2", "l 5 7 0 1 -1 0 -1"), "flag -1 on the boundary at vertex 1");  // a corner's outside
   expect_tsm_error(replaced(p, "e 1 1", "e 1 2"), "contradictory knot intervals");
   expect_tsm_error(replaced(p, "e 1 1", "e 1 x"), "bad knot interval");
   expect_tsm_error(replaced(p, "0m cg 0 4 1 0 0 1 4 5 6", "0m cg 0 4 1 0 0 1 4 5"), "grip block");

@@ -155,7 +155,10 @@ TsmModel TsmReader::build() {
     if (bad(k.edge, ne) || E[static_cast<std::size_t>(k.edge)].words.empty())
       fail(r.line, "link " + std::to_string(i) + " runs along edge " + std::to_string(k.edge) + ", which does not exist");
     if (k.face < -1 || k.face >= nf) fail(r.line, "link " + std::to_string(i) + " names face " + std::to_string(k.face) + ", which does not exist");
-    if (k.flag < 0 || k.flag > 2) fail(r.line, "link " + std::to_string(i) + ": corner flag " + std::to_string(k.flag) + " is not 0, 1 or 2");
+    // An outside link's flag may be negative (checked below against its vertex's faces): the outside's angle at a
+    // boundary star point is 0 or less.
+    if (k.flag > 2 || (k.flag < 0 && k.face >= 0))
+      fail(r.line, "link " + std::to_string(i) + ": corner flag " + std::to_string(k.flag) + " is not 0, 1 or 2");
     links[static_cast<std::size_t>(i)] = k;
   }
   const auto link = [&](int i) -> const RawLink& {
@@ -174,6 +177,25 @@ TsmModel TsmReader::build() {
                      " does not have it as previous link in the same face");
     if (link(k.next).vertex != link(k.opp).vertex)
       fail(line, "inconsistent links: link " + std::to_string(i) + " does not end where its next link starts");
+  }
+  // The flag is the angle / 90 - 1 of the link's face at its vertex; on an outside link the outside's angle,
+  // 360 degrees less the faces' (published Rhino models: 2, 1, 0 after one, two, three faces). At a
+  // boundary star point (four faces or more) that is 3 - (the faces' right angles): -1 after four faces, -2 after
+  // five. Those flags are accepted, and 0 as before (the outside's angle clamped); no other negative flag.
+  {
+    std::vector<int> right_angles(static_cast<std::size_t>(nv), 0);
+    for (const auto& k : links)
+      if (k && k->face >= 0 && !F[static_cast<std::size_t>(k->face)].words.empty()) right_angles[static_cast<std::size_t>(k->vertex)] += k->flag + 1;
+    for (int i = 0; i < nl; ++i) {
+      const auto& k = links[static_cast<std::size_t>(i)];
+      if (!k || k->flag >= 0) continue;
+      const int faces = right_angles[static_cast<std::size_t>(k->vertex)];
+      if (k->flag != 3 - faces)
+        fail(L[static_cast<std::size_t>(i)].line, "link " + std::to_string(i) + ": corner flag " + std::to_string(k->flag) +
+                                                      " on the boundary at vertex " + std::to_string(k->vertex) + ", whose faces' angles sum to " +
+                                                      std::to_string(90 * faces) + " degrees, is not the outside's angle / 90 - 1 (" +
+                                                      std::to_string(3 - faces) + ") nor 0, 1 or 2");
+    }
   }
   // Faces: loops of links, rectangles.
   std::vector<std::vector<int>> loops(static_cast<std::size_t>(nf));
@@ -242,7 +264,7 @@ TsmModel TsmReader::build() {
     int c = l, frame = fd;
     for (int n = 0; n < 8 && mesh.links[static_cast<std::size_t>(c)].frame < 0; ++n) {
       mesh.links[static_cast<std::size_t>(c)].frame = frame;
-      frame = (frame + link(c).flag + 1) % 4;
+      frame = ((frame + link(c).flag + 1) % 4 + 4) % 4;  // a negative outside flag turns clockwise
       c = link(link(c).prev).opp;
     }
   }

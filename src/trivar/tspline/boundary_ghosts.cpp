@@ -1,7 +1,6 @@
 #include "trivar/tspline/boundary_ghosts.hpp"
 
 #include <array>
-#include <deque>
 #include <string>
 
 #include "trivar/core/error.hpp"
@@ -87,6 +86,11 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
     x.links[static_cast<std::size_t>(opp)].opp = o;
   };
   std::vector<int>& ghost = g.ghost;
+  std::vector<char> is_star(m.vertices.size(), 0), in_layer(static_cast<std::size_t>(nl), 0);
+  for (int v : stars) is_star[static_cast<std::size_t>(v)] = 1;
+  // Each star point's chain of boundary links: up to `reach` on either side, between straight vertices. The
+  // layer is their union: the ghost rows of a straight vertex do not depend on the star point that asks for them,
+  // so layers that overlap (star points close along the boundary, or both ends of a slit) are one layer.
   for (int v : stars) {
     std::vector<int> out;
     for (int l : leaving[static_cast<std::size_t>(v)])
@@ -94,42 +98,39 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
     require(out.size() == 1, [&] {
       return "T-mesh: boundary star point " + std::to_string(v) + " lies on " + std::to_string(out.size()) + " boundary arcs; it is evaluated on one";
     });
-    // The chain of boundary links through v: up to `reach` on either side, between straight vertices.
-    std::deque<int> chain;
+    int ahead = 0, behind = 0;
     for (int l = out[0], i = 0; i < reach && l >= 0 && l < nl; ++i, l = L(l).next) {
       const int b = target(l);
       if (b == v || inner_of_straight(b) < 0) break;
-      chain.push_back(l);
+      in_layer[static_cast<std::size_t>(l)] = 1;
+      ++ahead;
     }
-    const std::size_t ahead = chain.size();
     for (int l = L(out[0]).prev, i = 0; i < reach && l >= 0 && l < nl; ++i, l = L(l).prev) {
       const int a = L(l).vertex;
       if (a == v || inner_of_straight(a) < 0) break;
-      chain.push_front(l);
+      in_layer[static_cast<std::size_t>(l)] = 1;
+      ++behind;
     }
-    require(ahead > 0 && chain.size() > ahead, [&] {
+    require(ahead > 0 && behind > 0, [&] {
       return "T-mesh: boundary star point " + std::to_string(v) + " has a corner or a T-junction next to it on the boundary";
     });
-    // Ghost points: P-1 per vertex of the chain, and its point replaced by P0.
-    std::vector<int> verts;
-    for (int l : chain) verts.push_back(L(l).vertex);
-    verts.push_back(target(chain.back()));
-    for (int u : verts) {
-      require(ghost[static_cast<std::size_t>(u)] < 0, [&] {
-        return "T-mesh: boundary vertex " + std::to_string(u) + " lies within " + std::to_string(reach) +
-               " edges of two boundary star points; the ghost layers around them overlap";
-      });
-      const bool star = u == v;
+  }
+  // Ghost points: P-1 per vertex of the layer, and its point replaced by P0.
+  for (int o = 0; o < nl; ++o) {
+    if (!in_layer[static_cast<std::size_t>(o)]) continue;
+    for (int u : {L(o).vertex, target(o)}) {
+      if (ghost[static_cast<std::size_t>(u)] >= 0) continue;
+      const bool star = is_star[static_cast<std::size_t>(u)] != 0;
       Homogeneous q2{};
       if (star) {
         int n = 0;
-        for (int l : leaving[static_cast<std::size_t>(v)])
+        for (int l : leaving[static_cast<std::size_t>(u)])
           if (is_face(L(l).face) && opp_face(l) && target(l) >= 0) {
             const Homogeneous h = homogeneous(point(target(l)));
             for (std::size_t c = 0; c < 4; ++c) q2[c] += h[c];
             ++n;
           }
-        require(n > 0, [&] { return "T-mesh: boundary star point " + std::to_string(v) + " has no interior edge"; });
+        require(n > 0, [&] { return "T-mesh: boundary star point " + std::to_string(u) + " has no interior edge"; });
         for (double& c : q2) c /= n;
       } else {
         q2 = homogeneous(point(inner_of_straight(u)));
@@ -144,18 +145,33 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
       x.vertices.push_back(gv);
       ghost[static_cast<std::size_t>(u)] = static_cast<int>(x.vertices.size()) - 1;
     }
-    // Ghost faces (a, b, G(b), G(a)) on the outside of each boundary link a -> b of the chain; the link a -> b takes
-    // the place of the boundary link as the opposite of the inner face's b -> a.
-    int last_side = -1;  // the previous face's link b -> G(b): the opposite of this face's G(a) -> a
+  }
+  // The layer's runs of consecutive boundary links (a whole boundary loop when it closes).
+  std::vector<char> placed(static_cast<std::size_t>(nl), 0);
+  for (int o = 0; o < nl; ++o) {
+    if (!in_layer[static_cast<std::size_t>(o)] || placed[static_cast<std::size_t>(o)]) continue;
+    int first = o;
+    for (int l = L(o).prev; l >= 0 && l < nl && in_layer[static_cast<std::size_t>(l)] && l != o; l = L(l).prev) first = l;
+    std::vector<int> chain;
+    for (int l = first; l >= 0 && l < nl && in_layer[static_cast<std::size_t>(l)] && !placed[static_cast<std::size_t>(l)]; l = L(l).next) {
+      placed[static_cast<std::size_t>(l)] = 1;
+      chain.push_back(l);
+    }
+    const bool closed = chain.size() > 2 && L(chain.back()).next == chain.front();
+    // Ghost faces (a, b, G(b), G(a)) on the outside of each boundary link a -> b of the chain; the link a -> b
+    // takes the place of the boundary link as the opposite of the inner face's b -> a.
+    int first_side = -1;  // the first face's link G(a) -> a
+    int last_side = -1;   // the previous face's link b -> G(b): the opposite of this face's G(a) -> a
     for (std::size_t i = 0; i < chain.size(); ++i) {
-      const int o = chain[i], a = L(o).vertex, b = target(o), inner = L(o).opp;
-      require(inner >= 0 && inner < nl && L(o).edge >= 0 && L(o).edge < static_cast<int>(m.intervals.size()),
-              [&] { return "T-mesh: boundary link " + std::to_string(o) + " has no opposite link or edge"; });
+      const int c = chain[i], a = L(c).vertex, b = target(c), inner = L(c).opp;
+      require(inner >= 0 && inner < nl && L(c).edge >= 0 && L(c).edge < static_cast<int>(m.intervals.size()),
+              [&] { return "T-mesh: boundary link " + std::to_string(c) + " has no opposite link or edge"; });
       const int f = static_cast<int>(x.faces.size());
       const int ga = ghost[static_cast<std::size_t>(a)], gb = ghost[static_cast<std::size_t>(b)];
-      const double d = m.intervals[static_cast<std::size_t>(L(o).edge)];
-      const int l0 = new_link(a, f, L(o).edge);
-      const int l1 = new_link(b, f, new_edge(d));
+      const double d = m.intervals[static_cast<std::size_t>(L(c).edge)];
+      const bool last = i + 1 == chain.size();
+      const int l0 = new_link(a, f, L(c).edge);
+      const int l1 = new_link(b, f, closed && last ? x.links[static_cast<std::size_t>(first_side)].edge : new_edge(d));
       const int l2 = new_link(gb, f, new_edge(d));
       const int l3 = new_link(ga, f, i == 0 ? new_edge(d) : x.links[static_cast<std::size_t>(last_side)].edge);
       const std::array<int, 4> loop{l0, l1, l2, l3};
@@ -165,14 +181,20 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
       }
       x.links[static_cast<std::size_t>(l0)].opp = inner;
       x.links[static_cast<std::size_t>(inner)].opp = l0;
-      if (i == 0)
-        outside(l3, a);
-      else {
+      if (i == 0) {
+        first_side = l3;
+        if (!closed) outside(l3, a);
+      } else {
         x.links[static_cast<std::size_t>(l3)].opp = last_side;
         x.links[static_cast<std::size_t>(last_side)].opp = l3;
       }
       outside(l2, ga);
-      if (i + 1 == chain.size()) outside(l1, gb);
+      if (last && closed) {
+        x.links[static_cast<std::size_t>(l1)].opp = first_side;
+        x.links[static_cast<std::size_t>(first_side)].opp = l1;
+      } else if (last) {
+        outside(l1, gb);
+      }
       last_side = l1;
       x.faces.push_back({l0, l1, l2, l3});
     }

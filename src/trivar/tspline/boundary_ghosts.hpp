@@ -33,9 +33,11 @@ struct GhostedMesh {
 };
 
 // Ghost layers along the boundary from each star point in `stars` (boundary vertices), up to `reach` edges either
-// way, stopping before a boundary vertex that is not straight (two faces, no T-junction, one block point).
-// Throws trivar::Error (one line) when two star points' layers meet, a star point has more than one boundary
-// arc or no single block point, or a weight of the extended mesh is not positive.
+// way, stopping before a boundary vertex that is not straight (two faces, no T-junction, one block point). Layers
+// that meet (star points within 2 reach edges along the boundary, or the two ends of a slit) are one layer through
+// both star points, closed when it covers a whole boundary loop.
+// Throws trivar::Error (one line) when a star point has more than one boundary arc or no straight neighbour on
+// either side, a vertex of the layer has no single block point, or a weight of the extended mesh is not positive.
 GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach);
 
 }  // namespace trivar
