@@ -248,7 +248,7 @@ std::optional<Profile> curve_profile(Handle(Geom_Curve) c, double a, double b) {
   }
   if (const auto pa = Handle(Geom_Parabola)::DownCast(c); !pa.IsNull()) {
     // O + t^2 / (4 f) X + t Y: one quadratic Bezier, its middle point where the end tangents meet.
-    if (!(b > a)) return std::nullopt;
+    if (!(b > a) || !(pa->Focal() > 0)) return std::nullopt;
     const gp_Ax2 f = pa->Position();
     const double k = 1 / (4 * pa->Focal()), m = 0.5 * (a + b);
     const auto at = [&](double x, double y) { return f.Location().XYZ() + x * f.XDirection().XYZ() + y * f.YDirection().XYZ(); };
