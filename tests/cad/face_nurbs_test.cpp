@@ -1,4 +1,4 @@
-// The exact NURBS form of analytic faces against the kernel's own surfaces: every point of the kernel's
+// The exact NURBS form of analytic and swept faces against the kernel's own surfaces: every point of the kernel's
 // surface at (u, v) is the NURBS point at the mapped parameters (to rounding), iso-line trimming curves map to
 // lines whose images stay on the kernel's curves, and curves the map would bend are refused.
 #include "trivar/cad/face_nurbs.hpp"
@@ -11,6 +11,11 @@
 #include <Geom_BSplineSurface.hxx>
 #include <Geom_BezierCurve.hxx>
 #include <Geom_Circle.hxx>
+#include <Geom_Ellipse.hxx>
+#include <Geom_Hyperbola.hxx>
+#include <Geom_Line.hxx>
+#include <Geom_Parabola.hxx>
+#include <Geom_SurfaceOfRevolution.hxx>
 #include <Geom_SurfaceOfLinearExtrusion.hxx>
 #include <Geom_TrimmedCurve.hxx>
 #include <TColgp_Array1OfPnt.hxx>
@@ -215,30 +220,88 @@ TEST(FaceNurbs, BSplineSurfacesAreTakenAsTheyAre) {
   EXPECT_LT(distance(bs->Value(1.3, 0.2), x), 1e-13);
 }
 
-TEST(FaceNurbs, ExtrusionsOfSplineCurvesAreExactInTheKernelsParameters) {
-  // A rational B-spline curve (a circle arc's conversion, weights != 1) and a Bezier, extruded obliquely.
+// Surfaces of linear extrusion and of revolution of every kind of basis curve trivar converts, each over a
+// parameter box inside its curve's range: a rational B-spline (a circle arc's conversion, weights != 1), a
+// Bezier, a line, a circle, an ellipse, a parabola, a trimmed curve; revolutions also of a meridian touching
+// the axis (a pole) and of a circle off the axis (a torus), over full and partial turns.
+std::vector<KernelSurface> swept_surfaces() {
   TColgp_Array1OfPnt poles(1, 4);
   poles(1) = gp_Pnt(0, 0, 1);
   poles(2) = gp_Pnt(4, 4, 0);
   poles(3) = gp_Pnt(-2, 6, 2);
   poles(4) = gp_Pnt(2, 10, 0);
-  const std::vector<Handle(Geom_Curve)> curves{
-      GeomConvert::CurveToBSplineCurve(new Geom_TrimmedCurve(new Geom_Circle(gp_Ax2(gp_Pnt(1, 2, 3), gp_Dir(0, 0, 1)), 3), 0.2, 4.0)),
-      new Geom_BezierCurve(poles)};
-  for (const Handle(Geom_Curve)& c : curves) {
-    const Handle(Geom_Surface) s = new Geom_SurfaceOfLinearExtrusion(c, gp_Dir(0.2, 0.1, 1));
-    const Box<2> uv{{c->FirstParameter(), -1}, {c->LastParameter(), 3}};
-    const std::optional<cad::FaceNurbs> form = cad::face_nurbs(face_of({"extrusion", s, uv}), uv, 1e-9);
+  const Handle(Geom_Curve) bezier = new Geom_BezierCurve(poles);
+  const Handle(Geom_Curve) rational =
+      GeomConvert::CurveToBSplineCurve(new Geom_TrimmedCurve(new Geom_Circle(gp_Ax2(gp_Pnt(1, 2, 3), gp_Dir(0, 0, 1)), 3), 0.2, 4.0));
+  const gp_Ax2 tilted(gp_Pnt(1.5, -0.5, 2), gp_Dir(0.2, 0.9, 0.3), gp_Dir(1, 0, 0).Crossed(gp_Dir(0.2, 0.9, 0.3)));
+  const Handle(Geom_Curve) line = new Geom_Line(gp_Pnt(2, 1, -1), gp_Dir(0.5, -0.2, 0.8));
+  const Handle(Geom_Curve) circle = new Geom_Circle(tilted, 2.5);
+  const Handle(Geom_Curve) ellipse = new Geom_Ellipse(tilted, 3, 1.25);
+  const Handle(Geom_Curve) parabola = new Geom_Parabola(tilted, 0.8);
+  const gp_Dir dir(0.2, 0.1, 1);
+  std::vector<KernelSurface> v;
+  const auto extrusion = [&](const std::string& n, const Handle(Geom_Curve)& c, double a, double b) {
+    v.push_back({"extrusion of " + n, new Geom_SurfaceOfLinearExtrusion(c, dir), {{a, -1}, {b, 3}}});
+  };
+  extrusion("rational B-spline", rational, rational->FirstParameter(), rational->LastParameter());
+  extrusion("Bezier part", bezier, 0.1, 0.8);
+  extrusion("line", line, -2, 5);
+  extrusion("circle", circle, 0, kTurn);
+  extrusion("circle arc", circle, 1, 3.5);
+  extrusion("ellipse arc", ellipse, -1, 2);
+  extrusion("parabola", parabola, -2, 3);
+  extrusion("trimmed circle", new Geom_TrimmedCurve(circle, 0.5, 2), 0.5, 2);
+  // Revolutions about an oblique axis away from the origin; meridians in a plane through the axis or not.
+  const gp_Ax1 axis(gp_Pnt(-1, 0.5, 0.25), gp_Dir(0.1, -0.2, 1));
+  TColgp_Array1OfPnt mp(1, 4);  // a cubic meridian starting on the axis
+  mp(1) = axis.Location().Translated(gp_Vec(axis.Direction()) * -2);
+  mp(2) = gp_Pnt(2, 1, -1);
+  mp(3) = gp_Pnt(3, -1, 2);
+  mp(4) = gp_Pnt(1, 0.5, 4);
+  const Handle(Geom_Curve) on_axis = new Geom_BezierCurve(mp);
+  const gp_Ax2 meridian_plane(gp_Pnt(3, 0.5, 0.25), gp_Dir(0, 1, 0.2), gp_Dir(1, 0, 0));  // a plane through the axis
+  const auto revolution = [&](const std::string& n, const Handle(Geom_Curve)& c, Box<2> uv) {
+    v.push_back({"revolution of " + n, new Geom_SurfaceOfRevolution(c, axis), uv});
+  };
+  revolution("rational B-spline", rational, {{0, rational->FirstParameter()}, {kTurn, rational->LastParameter()}});
+  revolution("Bezier, partly", bezier, {{0.7, 0.1}, {2.9, 0.9}});
+  revolution("line (a cone)", line, {{0, -2}, {kTurn, 1}});
+  revolution("line, partly", line, {{-1, -2}, {3, 1}});
+  revolution("circle off the axis (a torus)", new Geom_Circle(meridian_plane, 1.5), {{0, 0}, {kTurn, kTurn}});
+  revolution("circle arc, partly", new Geom_Circle(meridian_plane, 1.5), {{2, 0.5}, {4.5, 2}});
+  revolution("ellipse", ellipse, {{0, -1}, {kTurn, 2}});
+  revolution("parabola", parabola, {{0.5, -1}, {5, 2}});
+  revolution("meridian from the axis (a pole)", on_axis, {{0, 0}, {kTurn, 1}});
+  revolution("trimmed Bezier", new Geom_TrimmedCurve(bezier, 0.2, 0.6), {{0, 0.2}, {1.5, 0.6}});
+  return v;
+}
+
+TEST(FaceNurbs, SweptSurfacesAreTheKernelsSurfacesToRounding) {
+  for (const KernelSurface& k : swept_surfaces()) {
+    SCOPED_TRACE(k.name);
+    const std::optional<cad::FaceNurbs> form = cad::face_nurbs(face_of(k), k.uv, 1e-9);
     ASSERT_TRUE(form);
-    EXPECT_FALSE(form->map[0].angular() || form->map[1].angular());
-    double worst = 0;
-    for (int i = 0; i <= 30; ++i)
-      for (int j = 0; j <= 30; ++j) {
-        const double u = uv.lo[0] + i / 30.0 * (uv.hi[0] - uv.lo[0]), v = uv.lo[1] + j / 30.0 * (uv.hi[1] - uv.lo[1]);
+    const Box<2> dom = form->surface.domain();
+    double worst = 0, size = 0;
+    for (int i = 0; i <= 60; ++i)
+      for (int j = 0; j <= 60; ++j) {
+        const double u = k.uv.lo[0] + i / 60.0 * (k.uv.hi[0] - k.uv.lo[0]), v = k.uv.lo[1] + j / 60.0 * (k.uv.hi[1] - k.uv.lo[1]);
+        const Param<2> st = (*form)(u, v);
+        ASSERT_TRUE(dom.contains(st, 1e-12)) << u << " " << v;
         double x[3];
-        form->surface.eval({u, v}, x);
-        worst = std::max(worst, distance(s->Value(u, v), x));
+        form->surface.eval(st, x);
+        gp_Pnt p;
+        k.surface->D0(u, v, p);
+        worst = std::max(worst, distance(p, x));
+        size = std::max(size, p.XYZ().Modulus());
       }
-    EXPECT_LT(worst, 1e-13 * 16);
+    EXPECT_LT(worst, 1e-12 * size);
+    // Bounded by its iso-lines (a pole's degenerate edge included), the face maps directly.
+    EXPECT_TRUE(cad::maps_directly(face_of(k)));
   }
+  // A hyperbola has no rational form in its own (hyperbolic) parameter: left to the kernel's conversion.
+  const KernelSurface h{"extrusion of a hyperbola", new Geom_SurfaceOfLinearExtrusion(new Geom_Hyperbola(gp_Ax2(), 2, 1), gp_Dir(0, 0, 1)),
+                        {{-1, 0}, {1, 1}}};
+  EXPECT_FALSE(cad::face_nurbs(face_of(h), h.uv, 1e-9));
+  EXPECT_FALSE(cad::maps_directly(face_of(h)));
 }

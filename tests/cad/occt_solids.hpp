@@ -5,7 +5,9 @@
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakePolygon.hxx>
 #include <BRepFilletAPI_MakeFillet.hxx>
+#include <BRepBndLib.hxx>
 #include <BRepGProp.hxx>
+#include <Bnd_Box.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakeRevol.hxx>
@@ -17,6 +19,7 @@
 #include <Message_PrinterOStream.hxx>
 #include <STEPControl_Writer.hxx>
 #include <TopExp_Explorer.hxx>
+#include <TopTools_ListOfShape.hxx>
 #include <TopoDS.hxx>
 #include <gp_Ax2.hxx>
 
@@ -62,6 +65,19 @@ inline TopoDS_Shape fused_box_cylinder() {
 }
 
 inline TopoDS_Shape ball() { return BRepPrimAPI_MakeSphere(gp_Pnt(1, 2, 3), 5).Shape(); }
+
+// The faces of the shape lying wholly at or above the height z (to 1e-6): a top to remove when hollowing.
+inline TopTools_ListOfShape faces_above(const TopoDS_Shape& s, double z) {
+  TopTools_ListOfShape out;
+  for (TopExp_Explorer f(s, TopAbs_FACE); f.More(); f.Next()) {
+    Bnd_Box b;
+    BRepBndLib::Add(f.Current(), b);
+    double x0 = 0, y0 = 0, z0 = 0, x1 = 0, y1 = 0, z1 = 0;
+    b.Get(x0, y0, z0, x1, y1, z1);
+    if (z0 > z - 1e-6) out.Append(f.Current());
+  }
+  return out;
+}
 
 inline double occt_volume(const TopoDS_Shape& s) {
   GProp_GProps g;

@@ -15,10 +15,8 @@
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakeWire.hxx>
-#include <BRepBndLib.hxx>
 #include <BRepOffsetAPI_MakeOffsetShape.hxx>
 #include <BRepOffsetAPI_MakeThickSolid.hxx>
-#include <Bnd_Box.hxx>
 #include <TopTools_ListOfShape.hxx>
 #include <BRepPrimAPI_MakePrism.hxx>
 #include <GeomConvert.hxx>
@@ -374,14 +372,7 @@ TEST(OffsetSurface, KernelShellOfAPrismWithABezierSideHasTheExactVolume) {
   // The prism hollowed by the kernel (its top removed, walls 0.4 thick inwards, sharp joins): the prism less
   // the cavity, the prism of height 4 - 0.4 over the profile's inward offset by 0.4.
   const BezierPrism prism = bezier_prism();
-  TopTools_ListOfShape top;
-  for (TopExp_Explorer f(prism.solid, TopAbs_FACE); f.More(); f.Next()) {
-    Bnd_Box b;
-    BRepBndLib::Add(f.Current(), b);
-    double x0 = 0, y0 = 0, z0 = 0, x1 = 0, y1 = 0, z1 = 0;
-    b.Get(x0, y0, z0, x1, y1, z1);
-    if (z0 > 4 - 1e-6) top.Append(f.Current());
-  }
+  const TopTools_ListOfShape top = test::faces_above(prism.solid, 4);
   ASSERT_EQ(top.Extent(), 1);
   BRepOffsetAPI_MakeThickSolid shell;
   shell.MakeThickSolidByJoin(prism.solid, top, -0.4, 1e-7, BRepOffset_Skin, false, false, GeomAbs_Intersection);

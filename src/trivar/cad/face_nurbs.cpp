@@ -19,6 +19,11 @@
 #include <Geom_TrimmedCurve.hxx>
 #include <Geom_BSplineCurve.hxx>
 #include <Geom_BezierCurve.hxx>
+#include <Geom_Circle.hxx>
+#include <Geom_Ellipse.hxx>
+#include <Geom_Line.hxx>
+#include <Geom_Parabola.hxx>
+#include <Geom_SurfaceOfRevolution.hxx>
 #include <Geom_ToroidalSurface.hxx>
 #include <TColStd_Array1OfInteger.hxx>
 #include <TColStd_Array1OfReal.hxx>
@@ -60,7 +65,8 @@ double DirectionMap::derivative(double a) const {
 namespace {
 
 // One direction's curve in the coordinates the surface is multi-affine in: the parameter itself (width 1,
-// degree 1) or (cos a, sin a) (width 2, rational quadratic arcs). Homogeneous weights apart.
+// degree 1), (cos a, sin a) (width 2, rational quadratic arcs) or a curve's points (width 3). Cartesian points,
+// weights apart.
 struct Profile {
   KnotVector knots;
   int width = 1;
@@ -100,7 +106,8 @@ std::optional<Profile> angular_profile(double a, double b) {
 // with control points F(x_i, y_j) and weights w_i w_j is exactly S (partition of unity of the rational basis).
 TensorSpline<2> tensor_surface(const Profile& pu, const Profile& pv, const std::function<gp_XYZ(const double*, const double*)>& f) {
   const std::size_t nu = pu.weights.size(), nv = pv.weights.size();
-  const bool rational = pu.width == 2 || pv.width == 2;
+  const auto weighted = [](const Profile& p) { return std::any_of(p.weights.begin(), p.weights.end(), [](double w) { return w != 1; }); };
+  const bool rational = weighted(pu) || weighted(pv);
   std::vector<double> h;
   h.reserve(nu * nv * 4);
   for (std::size_t j = 0; j < nv; ++j)
@@ -204,31 +211,86 @@ bool fitted_offset(const Handle(Geom_Surface)& s, Handle(Geom_Surface)& basis, d
   return Handle(Geom_ElementarySurface)::DownCast(basis).IsNull();
 }
 
-// The extrusion C(u) + v D of a B-spline or Bezier curve over [v0, v1] (u within the curve's domain): the
-// curve's rational B-spline times a linear factor in v, with the kernel's parameters (the face's curves carry
-// over). Other basis curves (lines, conics) are left to the kernel's conversion.
-std::optional<FaceNurbs> extrusion_nurbs(const Geom_SurfaceOfLinearExtrusion& e, const Box<2>& uv) {
-  Handle(Geom_Curve) c = e.BasisCurve();
+// The curve over [a, b] (its own parameters) as a profile of width 3: a line and a parabola as polynomials, a
+// circle and an ellipse as the angular profile under their affine frame (the angular map, as on a cylinder),
+// B-spline and Bezier curves as they are (their whole domain, which must hold [a, b]). Nothing for other curves
+// (hyperbolas, offset curves), which have no rational form in their own parameter.
+std::optional<Profile> curve_profile(Handle(Geom_Curve) c, double a, double b) {
   for (auto t = Handle(Geom_TrimmedCurve)::DownCast(c); !t.IsNull(); t = Handle(Geom_TrimmedCurve)::DownCast(c)) c = t->BasisCurve();
+  const auto framed = [](std::optional<Profile> p, const std::function<gp_XYZ(const double*)>& f) {
+    if (!p) return p;
+    std::vector<double> pts;
+    for (std::size_t i = 0; i < p->weights.size(); ++i) {
+      const gp_XYZ x = f(&p->points[i * static_cast<std::size_t>(p->width)]);
+      pts.insert(pts.end(), {x.X(), x.Y(), x.Z()});
+    }
+    p->points = std::move(pts);
+    p->width = 3;
+    return p;
+  };
+  if (const auto l = Handle(Geom_Line)::DownCast(c); !l.IsNull()) {
+    const gp_XYZ o = l->Position().Location().XYZ(), d = l->Position().Direction().XYZ();
+    return framed(linear_profile(a, b), [&](const double* t) { return o + t[0] * d; });
+  }
+  if (const auto ci = Handle(Geom_Circle)::DownCast(c); !ci.IsNull()) {
+    const gp_Ax2 f = ci->Position();
+    const double r = ci->Radius();
+    return framed(angular_profile(a, b), [&](const double* q) {
+      return f.Location().XYZ() + r * q[0] * f.XDirection().XYZ() + r * q[1] * f.YDirection().XYZ();
+    });
+  }
+  if (const auto el = Handle(Geom_Ellipse)::DownCast(c); !el.IsNull()) {
+    const gp_Ax2 f = el->Position();
+    const double ra = el->MajorRadius(), rb = el->MinorRadius();
+    return framed(angular_profile(a, b), [&](const double* q) {
+      return f.Location().XYZ() + ra * q[0] * f.XDirection().XYZ() + rb * q[1] * f.YDirection().XYZ();
+    });
+  }
+  if (const auto pa = Handle(Geom_Parabola)::DownCast(c); !pa.IsNull()) {
+    // O + t^2 / (4 f) X + t Y: one quadratic Bezier, its middle point where the end tangents meet.
+    if (!(b > a) || !(pa->Focal() > 0)) return std::nullopt;
+    const gp_Ax2 f = pa->Position();
+    const double k = 1 / (4 * pa->Focal()), m = 0.5 * (a + b);
+    const auto at = [&](double x, double y) { return f.Location().XYZ() + x * f.XDirection().XYZ() + y * f.YDirection().XYZ(); };
+    const std::array<gp_XYZ, 3> q{at(k * a * a, a), at(k * a * b, m), at(k * b * b, b)};
+    Profile p{KnotVector(2, {a, a, a, b, b, b}), 3, {}, {1, 1, 1}, {}};
+    for (const gp_XYZ& x : q) p.points.insert(p.points.end(), {x.X(), x.Y(), x.Z()});
+    return p;
+  }
   if (Handle(Geom_BSplineCurve)::DownCast(c).IsNull() && Handle(Geom_BezierCurve)::DownCast(c).IsNull()) return std::nullopt;
   const TensorSpline<1> curve = to_spline(*GeomConvert::CurveToBSplineCurve(c));
   const Box<1> dom = curve.domain();
   const double slack = 1e-12 * (1 + dom.hi[0] - dom.lo[0]);
-  if (!(uv.hi[1] > uv.lo[1]) || uv.lo[0] < dom.lo[0] - slack || uv.hi[0] > dom.hi[0] + slack) return std::nullopt;
+  if (a < dom.lo[0] - slack || b > dom.hi[0] + slack) return std::nullopt;
+  Profile p{curve.knots(0), 3, {}, {}, {}};
+  for (int i = 0; i < curve.num_coefs(); ++i) {
+    const double* q = curve.coef(i);
+    const double w = curve.weight(i);
+    p.points.insert(p.points.end(), {q[0] / w, q[1] / w, q[2] / w});
+    p.weights.push_back(w);
+  }
+  return p;
+}
+
+// The extrusion C(u) + v D: the curve's profile times a linear factor in v, with the kernel's parameters (or
+// the angular map along a conic), so the face's curves carry over.
+std::optional<FaceNurbs> extrusion_nurbs(const Geom_SurfaceOfLinearExtrusion& e, const Box<2>& uv) {
   const gp_XYZ d = e.Direction().XYZ();
-  const int stride = curve.stride();
-  std::vector<double> h;
-  h.reserve(2 * curve.coefs().size());
-  for (double v : {uv.lo[1], uv.hi[1]})
-    for (int i = 0; i < curve.num_coefs(); ++i) {
-      const double* q = curve.coef(i);
-      const double w = curve.weight(i);
-      h.insert(h.end(), {q[0] + w * v * d.X(), q[1] + w * v * d.Y(), q[2] + w * v * d.Z()});
-      if (stride == 4) h.push_back(q[3]);
-    }
-  return FaceNurbs{TensorSpline<2>({curve.knots(0), KnotVector(1, {uv.lo[1], uv.lo[1], uv.hi[1], uv.hi[1]})}, 3,
-                                   curve.is_rational(), std::move(h)),
-                   {}};
+  return from_profiles(curve_profile(e.BasisCurve(), uv.lo[0], uv.hi[0]), linear_profile(uv.lo[1], uv.hi[1]),
+                       [&](const double* p, const double* q) { return gp_XYZ(p[0], p[1], p[2]) + q[0] * d; });
+}
+
+// The revolution of the meridian C(v) by the angle u about the axis (o, z), right-handed:
+// o + ((C - o) . z) z + cos u (C - o - ((C - o) . z) z) + sin u z ^ (C - o), affine in (cos u, sin u) and in C,
+// so the angular profile times the meridian's profile is exact. A meridian touching the axis gives a pole
+// (coincident control points), as on a sphere.
+std::optional<FaceNurbs> revolution_nurbs(const Geom_SurfaceOfRevolution& r, const Box<2>& uv) {
+  const gp_XYZ o = r.Axis().Location().XYZ(), z = r.Axis().Direction().XYZ();
+  return from_profiles(angular_profile(uv.lo[0], uv.hi[0]), curve_profile(r.BasisCurve(), uv.lo[1], uv.hi[1]),
+                       [&](const double* p, const double* q) {
+                         const gp_XYZ c = gp_XYZ(q[0], q[1], q[2]) - o, along = c.Dot(z) * z;
+                         return o + along + p[0] * (c - along) + p[1] * z.Crossed(c);
+                       });
 }
 
 }  // namespace
@@ -241,6 +303,7 @@ std::optional<FaceNurbs> face_nurbs(const TopoDS_Face& face, const Box<2>& uv, d
   if (const auto bz = Handle(Geom_BezierSurface)::DownCast(s); !bz.IsNull())
     return FaceNurbs{to_spline(*GeomConvert::SurfaceToBSplineSurface(bz)), {}};
   if (const auto ex = Handle(Geom_SurfaceOfLinearExtrusion)::DownCast(s); !ex.IsNull()) return extrusion_nurbs(*ex, uv);
+  if (const auto rv = Handle(Geom_SurfaceOfRevolution)::DownCast(s); !rv.IsNull()) return revolution_nurbs(*rv, uv);
   Handle(Geom_Surface) basis;
   double distance = 0;
   if (fitted_offset(s, basis, distance)) return FaceNurbs{fit_offset_surface(basis, distance, uv, tolerance).surface, {}};

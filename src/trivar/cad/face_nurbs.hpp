@@ -1,8 +1,8 @@
 #pragma once
 // Internal to the cad layer (includes OpenCASCADE): the exact NURBS form of a face's surface built directly
 // from its analytic definition (plane, cylinder, cone, sphere, torus; B-spline and Bezier surfaces as they
-// are; offsets of these; extrusions of B-spline and Bezier curves), with the map from the kernel's surface
-// parameters to the NURBS parameters.
+// are; offsets of these; extrusions and revolutions of lines, circles, ellipses, parabolas, B-spline and
+// Bezier curves), with the map from the kernel's surface parameters to the NURBS parameters.
 //
 // Written here rather than taken from the kernel's BRepBuilderAPI_NurbsConvert because the kernel re-projects
 // every parameter-space curve of a converted periodic face onto the new surface (an approximation, and most
@@ -54,8 +54,9 @@ private:
 };
 
 // The face's surface (orientation ignored) over the parameter box `uv` (the face's UV bounds), or nothing
-// when the surface kind is not handled (revolution, extrusions of lines and conics, ...) or an angular
-// direction spans more than a full turn. Offset surfaces keep their basis's parametrisation: the offset of a plane, cylinder, cone, sphere
+// when the surface kind is not handled (sweeps of hyperbolas or offset curves, ...) or an angular
+// direction spans more than a full turn. A circle or ellipse swept into a face keeps the angular map in its
+// direction, as a cylinder's or torus's angles do. Offset surfaces keep their basis's parametrisation: the offset of a plane, cylinder, cone, sphere
 // or torus is exact (the same kind with a changed radius or position); any other offset is fitted to
 // `tolerance` (model units, offset_fit.hpp). Throws trivar::Error when an offset is undefined on the face (a
 // degenerate basis, an offset collapsing the surface) or its fit too large.
