@@ -10,18 +10,6 @@
 
 namespace trivar {
 
-Incidence Incidence::transposed(int num_targets) const {
-  Incidence t;
-  t.offsets.assign(static_cast<std::size_t>(num_targets) + 1, 0);
-  for (int j : ids) ++t.offsets[static_cast<std::size_t>(j) + 1];
-  for (std::size_t j = 0; j < static_cast<std::size_t>(num_targets); ++j) t.offsets[j + 1] += t.offsets[j];
-  t.ids.resize(ids.size());
-  std::vector<int> fill(t.offsets.begin(), t.offsets.end() - 1);
-  for (int i = 0; i < size(); ++i)
-    for (int j : (*this)[i]) t.ids[static_cast<std::size_t>(fill[static_cast<std::size_t>(j)]++)] = i;
-  return t;
-}
-
 namespace {
 
 // Static k-d tree over points (element centres), median split cycling through the directions; answers "which

@@ -13,24 +13,11 @@
 #include <Eigen/Core>
 
 #include "trivar/core/box.hpp"
+#include "trivar/lr/incidence.hpp"
 #include "trivar/lr/lr_bspline.hpp"
 #include "trivar/spline/bezier_extraction.hpp"
 
 namespace trivar {
-
-// Compressed lists: list i is ids[offsets[i] .. offsets[i+1]), ascending.
-struct Incidence {
-  std::vector<int> offsets{0};
-  std::vector<int> ids;
-
-  int size() const { return static_cast<int>(offsets.size()) - 1; }
-  std::span<const int> operator[](int i) const {
-    return {ids.data() + offsets[static_cast<std::size_t>(i)],
-            static_cast<std::size_t>(offsets[static_cast<std::size_t>(i) + 1] - offsets[static_cast<std::size_t>(i)])};
-  }
-  // The lists the other way round: list j of the result holds every i whose list holds j (j < num_targets).
-  Incidence transposed(int num_targets) const;
-};
 
 // For every B-spline, the elements its support contains (the lists element_supports transposes).
 template <int D>

@@ -36,7 +36,7 @@ inline double dot_row(int p_runtime, const double* row, const double* B) {
 template <int D>
 ElementEvaluator<D>::ElementEvaluator(const Ints<D>& degrees, int dim, bool rational, const Box<D>& domain,
                                       std::span<const LRBSpline<D>> basis, std::span<const Box<D>> elements,
-                                      std::span<const std::vector<int>> element_basis)
+                                      const Incidence& element_basis)
     : degrees_(degrees), dim_(dim), rational_(rational), domain_(domain), elements_(elements.begin(), elements.end()) {
   const int st = dim + (rational ? 1 : 0);
   gc_.resize(basis.size() * static_cast<std::size_t>(st));
@@ -53,7 +53,7 @@ ElementEvaluator<D>::ElementEvaluator(const Ints<D>& degrees, int dim, bool rati
   for (std::size_t e = 0; e < E; ++e) {
     const auto& el = elements[e];
     for (auto& v : distinct) v.clear();
-    for (int id : element_basis[e]) {
+    for (int id : element_basis[static_cast<int>(e)]) {
       Entry en{id, {0, 0, 0, 0}};
       for (int k = 0; k < D; ++k) {
         const auto& y = basis[static_cast<std::size_t>(id)].knots[k];

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "trivar/core/box.hpp"
+#include "trivar/lr/incidence.hpp"
 #include "trivar/lr/lr_bspline.hpp"
 
 namespace trivar {
@@ -25,7 +26,7 @@ public:
   // trivar::Error when an element has more than 255 distinct univariate B-splines in one direction.
   ElementEvaluator(const Ints<D>& degrees, int dim, bool rational, const Box<D>& domain,
                    std::span<const LRBSpline<D>> basis, std::span<const Box<D>> elements,
-                   std::span<const std::vector<int>> element_basis);
+                   const Incidence& element_basis);
 
   // The element containing u (half-open elements, the right end of the domain closed); u inside the domain.
   int find_element(const Param<D>& u) const;

@@ -237,10 +237,16 @@ struct LRSpline<D>::Batch {
   std::size_t sorted_count = 0;    // B-splines before the batch, in id order
   std::vector<int> touched;
   std::vector<Param<D>> centres;   // refresh_lists(): element centres
-  std::vector<int> filtered;       // refresh_lists(): one list being filtered
   std::vector<int> group_head, group_next, bucket_start, bucket_of, by_bucket;  // refresh_lists(): scratch
   std::vector<double> cuts;                                                    // refresh_lists(): scratch
-  std::vector<int*> cursor;        // rebuild_element_lists(), finish(): write positions in the lists
+  std::vector<int> cursor;         // rebuild_element_lists(), finish(): write positions in the lists
+  // The support lists while the batch runs: list b is pool[list_at[b] .. + list_len[b]). The pool starts as
+  // the spline's flat lists (taken at the first resolve, so a rectangle rejected before any change leaves the
+  // spline untouched); a list that changes is written anew at the pool's end, and finish() compacts.
+  std::vector<int> pool;
+  std::vector<std::size_t> list_at;
+  std::vector<int> list_len;
+  bool pooled = false;
   std::size_t first_new_element = 0;  // elements before the batch
   std::size_t base = 0;            // elements whose lists element_basis_ holds
   std::vector<int> origin;         // base element of element base + i
@@ -362,7 +368,7 @@ struct LRSpline<D>::Batch {
     for (int e : touched) {
       const auto& el = s.elements_[static_cast<std::size_t>(e)];
       if (!(el.lo[k] < z && z < el.hi[k])) continue;
-      for (int b : s.element_basis_[static_cast<std::size_t>(base_of(e))])
+      for (int b : s.element_basis_[base_of(e)])
         if (r.contains_across(s.basis_[static_cast<std::size_t>(b)].support())) return true;
     }
     return false;
@@ -376,7 +382,7 @@ struct LRSpline<D>::Batch {
     gather_plane(k, z, &r);
     ++epoch;
     for (int e : touched)
-      for (int b : s.element_basis_[static_cast<std::size_t>(e)]) {
+      for (int b : s.element_basis_[e]) {
         if (stamp[static_cast<std::size_t>(b)] == epoch) continue;
         stamp[static_cast<std::size_t>(b)] = epoch;
         const auto& fn = s.basis_[static_cast<std::size_t>(b)];
@@ -395,6 +401,7 @@ struct LRSpline<D>::Batch {
   // the lists of the pieces that survive from them.
   void resolve() {
     if (touched_base.empty()) return;
+    take_lists();
     std::vector<int> head(base, -1), chain(origin.size(), -1), pieces(base, 0);
     for (std::size_t i = origin.size(); i-- > 0;) {  // so that every chain ascends
       chain[i] = head[static_cast<std::size_t>(origin[i])];
@@ -404,17 +411,23 @@ struct LRSpline<D>::Batch {
     ++epoch;
     for (int o : touched_base) {
       is_touched[static_cast<std::size_t>(o)] = 0;
-      for (int b : s.element_basis_[static_cast<std::size_t>(o)]) {
+      for (int b : s.element_basis_[o]) {
         if (stamp[static_cast<std::size_t>(b)] == epoch) continue;
         stamp[static_cast<std::size_t>(b)] = epoch;
-        auto& L = s.basis_elements_[static_cast<std::size_t>(b)];
-        const std::size_t n = L.size();
+        // The extended list is written at the pool's end: the old list, then the elements split off its own.
+        const std::size_t at = list_at[static_cast<std::size_t>(b)];
+        const std::size_t n = static_cast<std::size_t>(list_len[static_cast<std::size_t>(b)]);
         std::size_t grown = n;
-        for (std::size_t j = 0; j < n; ++j) grown += static_cast<std::size_t>(pieces[static_cast<std::size_t>(L[j])]);
-        L.reserve(grown);
+        for (std::size_t j = 0; j < n; ++j) grown += static_cast<std::size_t>(pieces[static_cast<std::size_t>(pool[at + j])]);
+        const std::size_t out = pool.size();
+        pool.resize(out + grown);
+        std::copy_n(pool.begin() + static_cast<std::ptrdiff_t>(at), n, pool.begin() + static_cast<std::ptrdiff_t>(out));
+        int* w = pool.data() + out + n;
         for (std::size_t j = 0; j < n; ++j)
-          for (int c = head[static_cast<std::size_t>(L[j])]; c >= 0; c = chain[static_cast<std::size_t>(c)])
-            L.push_back(static_cast<int>(base) + c);
+          for (int c = head[static_cast<std::size_t>(pool[at + j])]; c >= 0; c = chain[static_cast<std::size_t>(c)])
+            *w++ = static_cast<int>(base) + c;
+        list_at[static_cast<std::size_t>(b)] = out;
+        list_len[static_cast<std::size_t>(b)] = static_cast<int>(grown);
         extended.push_back(b);
         settled[static_cast<std::size_t>(b)] = -1;
         enqueue(b);
@@ -429,6 +442,20 @@ struct LRSpline<D>::Batch {
       int dir = 0;
       if (!dead[static_cast<std::size_t>(b)] && find_split(b, dir)) split(b, dir, candidates);
     }
+  }
+
+  void take_lists() {
+    if (pooled) return;
+    pooled = true;
+    const std::size_t n = s.basis_.size();
+    list_at.resize(n);
+    list_len.resize(n);
+    for (std::size_t b = 0; b < n; ++b) {
+      list_at[b] = static_cast<std::size_t>(s.basis_elements_.offsets[b]);
+      list_len[b] = s.basis_elements_.offsets[b + 1] - s.basis_elements_.offsets[b];
+    }
+    pool = std::move(s.basis_elements_.ids);
+    s.basis_elements_ = {};
   }
 
   void enqueue(int b) {
@@ -466,18 +493,20 @@ struct LRSpline<D>::Batch {
       const int first = group_head[static_cast<std::size_t>(r)];
       if (first < 0) continue;  // the root's group is done
       group_head[static_cast<std::size_t>(r)] = -1;
-      filter_group(s.basis_elements_[static_cast<std::size_t>(r)], first);
+      filter_group(r, first);
     }
     for (int b : stale) root[static_cast<std::size_t>(b)] = b;
     for (int b : extended)
-      if (dead[static_cast<std::size_t>(b)]) s.basis_elements_[static_cast<std::size_t>(b)] = {};
+      if (dead[static_cast<std::size_t>(b)]) list_len[static_cast<std::size_t>(b)] = 0;
     stale.clear();
     extended.clear();
   }
 
-  // The lists of the survivors chained from stale[first] (through group_next), filtered from their root's
-  // list `from`.
-  void filter_group(const std::vector<int>& from, int first) {
+  // The lists of the survivors chained from stale[first] (through group_next), filtered from the list of their
+  // root r.
+  void filter_group(int r, int first) {
+    const std::size_t from_at = list_at[static_cast<std::size_t>(r)];
+    const std::size_t from_size = static_cast<std::size_t>(list_len[static_cast<std::size_t>(r)]);
     constexpr int last = D - 1;
     cuts.clear();
     std::size_t members = 0;
@@ -495,33 +524,40 @@ struct LRSpline<D>::Batch {
     const bool bucketed = members > 2;
     if (bucketed) {
       bucket_start.assign(cuts.size() + 2, 0);
-      bucket_of.resize(from.size());
-      for (std::size_t j = 0; j < from.size(); ++j) {
+      const int* from = pool.data() + from_at;
+      bucket_of.resize(from_size);
+      for (std::size_t j = 0; j < from_size; ++j) {
         bucket_of[j] = static_cast<int>(bucket(centres[static_cast<std::size_t>(from[j])][last]));
         ++bucket_start[static_cast<std::size_t>(bucket_of[j]) + 1];
       }
       for (std::size_t j = 1; j < bucket_start.size(); ++j) bucket_start[j] += bucket_start[j - 1];
-      by_bucket.resize(from.size());
-      for (std::size_t j = 0; j < from.size(); ++j)
+      by_bucket.resize(from_size);
+      for (std::size_t j = 0; j < from_size; ++j)
         by_bucket[static_cast<std::size_t>(bucket_start[static_cast<std::size_t>(bucket_of[j])]++)] = from[j];
       // bucket_start[j] is now the end of bucket j, the start of bucket j + 1.
     }
     for (int i = first; i >= 0; i = group_next[static_cast<std::size_t>(i)]) {
       const int b = stale[static_cast<std::size_t>(i)];
       const Box<D> S = s.basis_[static_cast<std::size_t>(b)].support();
-      const int* begin = from.data();
-      const int* end = begin + from.size();
+      // Written at the pool's end, sized for every candidate first (the pool may move then, so the candidates
+      // are located after it grew) and cut to what passed.
+      std::size_t lo = 0, hi = from_size;
       if (bucketed) {
         // Centres strictly inside (S.lo, S.hi) lie in the buckets after S.lo's cut up to S.hi's.
-        const std::size_t lo = bucket(S.lo[last]), hi = bucket(S.hi[last]) - 1;
-        begin = by_bucket.data() + (lo == 0 ? 0 : bucket_start[lo - 1]);
-        end = by_bucket.data() + bucket_start[hi];
+        const std::size_t first_bucket = bucket(S.lo[last]), last_bucket = bucket(S.hi[last]) - 1;
+        lo = first_bucket == 0 ? 0 : static_cast<std::size_t>(bucket_start[first_bucket - 1]);
+        hi = static_cast<std::size_t>(bucket_start[last_bucket]);
       }
-      // Filtered into scratch and copied: one allocation of the exact size instead of a list growing by doubling.
-      filtered.clear();
+      const std::size_t out = pool.size();
+      pool.resize(out + (hi - lo));
+      const int* begin = (bucketed ? by_bucket.data() : pool.data() + from_at) + lo;
+      const int* end = begin + (hi - lo);
+      int* w = pool.data() + out;
       for (const int* e = begin; e != end; ++e)
-        if (strictly_inside(centres[static_cast<std::size_t>(*e)], S)) filtered.push_back(*e);
-      s.basis_elements_[static_cast<std::size_t>(b)].assign(filtered.begin(), filtered.end());
+        if (strictly_inside(centres[static_cast<std::size_t>(*e)], S)) *w++ = *e;
+      pool.resize(static_cast<std::size_t>(w - pool.data()));
+      list_at[static_cast<std::size_t>(b)] = out;
+      list_len[static_cast<std::size_t>(b)] = static_cast<int>(pool.size() - out);
     }
   }
 
@@ -530,32 +566,34 @@ struct LRSpline<D>::Batch {
     if (touched_base.empty()) return;
     resolve();
     refresh_lists();
-    rebuild_element_lists(s.basis_elements_, &dead);
+    rebuild_element_lists(&dead);
     base = s.elements_.size();
     origin.clear();
     is_touched.assign(base, 0);
   }
 
-  // element_basis_ as the transpose of `lists`, skipping dead B-splines; each list ascending. With `rename`,
-  // the lists' element e is element rename[e] of element_basis_.
-  void rebuild_element_lists(const std::vector<std::vector<int>>& lists, const std::vector<char>* skip,
-                             const std::vector<int>* rename = nullptr) {
+  // element_basis_ as the transpose of the support lists (in pool), skipping dead B-splines; each list
+  // ascending. With `rename`, the lists' element e is element rename[e] of element_basis_.
+  void rebuild_element_lists(const std::vector<char>* skip, const std::vector<int>* rename = nullptr) {
     const auto id = [&](int e) { return static_cast<std::size_t>(rename ? (*rename)[static_cast<std::size_t>(e)] : e); };
-    std::vector<int> count(s.elements_.size(), 0);
-    for (std::size_t i = 0; i < lists.size(); ++i)
-      if (!skip || !(*skip)[i])
-        for (int e : lists[i]) ++count[id(e)];
-    s.element_basis_.resize(s.elements_.size());
-    // Sized first, then written through one cursor per list: no capacity test per entry.
-    cursor.resize(s.elements_.size());
-    for (std::size_t e = 0; e < s.elements_.size(); ++e) {
-      s.element_basis_[e].clear();
-      s.element_basis_[e].resize(static_cast<std::size_t>(count[e]));
-      cursor[e] = s.element_basis_[e].data();
-    }
-    for (std::size_t i = 0; i < lists.size(); ++i)
-      if (!skip || !(*skip)[i])
-        for (int e : lists[i]) *cursor[id(e)]++ = static_cast<int>(i);
+    auto& out = s.element_basis_;
+    const std::size_t n = s.elements_.size();
+    out.offsets.assign(n + 1, 0);
+    const std::size_t lists = list_at.size();
+    for (std::size_t i = 0; i < lists; ++i)
+      if (!skip || !(*skip)[i]) {
+        const int* L = pool.data() + list_at[i];
+        for (int j = 0; j < list_len[i]; ++j) ++out.offsets[id(L[j]) + 1];
+      }
+    for (std::size_t e = 0; e < n; ++e) out.offsets[e + 1] += out.offsets[e];
+    // Sized first, then written through one cursor per list.
+    out.ids.resize(static_cast<std::size_t>(out.offsets[n]));
+    cursor.assign(out.offsets.begin(), out.offsets.end() - 1);
+    for (std::size_t i = 0; i < lists; ++i)
+      if (!skip || !(*skip)[i]) {
+        const int* L = pool.data() + list_at[i];
+        for (int j = 0; j < list_len[i]; ++j) out.ids[static_cast<std::size_t>(cursor[id(L[j])]++)] = static_cast<int>(i);
+      }
   }
   void add_to_mesh(const Rect& r) {
     Rect n = r;
@@ -698,7 +736,8 @@ struct LRSpline<D>::Batch {
     }
     const int id = static_cast<int>(s.basis_.size());
     s.basis_.push_back(std::move(b));
-    s.basis_elements_.emplace_back();
+    list_at.push_back(pool.size());
+    list_len.push_back(0);
     root.push_back(from);
     stale.push_back(id);
     dead.push_back(0);
@@ -710,6 +749,7 @@ struct LRSpline<D>::Batch {
 
   void finish() {
     if (!changed) return;
+    take_lists();
     resolve();
     refresh_lists();
     std::vector<int> order;
@@ -739,15 +779,19 @@ struct LRSpline<D>::Batch {
     });
     std::inplace_merge(order.begin(), fresh, order.end(), less);
     std::vector<LRBSpline<D>> basis;
-    std::vector<std::vector<int>> basis_elements;
+    std::vector<std::size_t> at;
+    std::vector<int> len;
     basis.reserve(order.size());
-    basis_elements.reserve(order.size());
+    at.reserve(order.size());
+    len.reserve(order.size());
     for (int i : order) {
       basis.push_back(std::move(s.basis_[static_cast<std::size_t>(i)]));
-      basis_elements.push_back(std::move(s.basis_elements_[static_cast<std::size_t>(i)]));
+      at.push_back(list_at[static_cast<std::size_t>(i)]);
+      len.push_back(list_len[static_cast<std::size_t>(i)]);
     }
     s.basis_ = std::move(basis);
-    s.basis_elements_ = std::move(basis_elements);
+    list_at = std::move(at);
+    list_len = std::move(len);
     // The elements in id order: transpose twice (element lists ascending in B-spline id, renumbering the
     // elements on the way, then support lists ascending in element id) without a sort.
     const std::vector<int> corner = corner_order<D>(s.elements_, first_new_element);
@@ -758,12 +802,19 @@ struct LRSpline<D>::Batch {
       elements[i] = s.elements_[static_cast<std::size_t>(corner[i])];
     }
     s.elements_ = std::move(elements);
-    rebuild_element_lists(s.basis_elements_, nullptr, &new_id);
-    // Every support list keeps its size: overwritten in place.
-    cursor.resize(s.basis_elements_.size());
-    for (std::size_t b = 0; b < cursor.size(); ++b) cursor[b] = s.basis_elements_[b].data();
+    rebuild_element_lists(nullptr, &new_id);
+    // Every support list keeps its size; the pool's storage takes the compact lists.
+    auto& support = s.basis_elements_;
+    support.offsets.resize(list_len.size() + 1);
+    support.offsets[0] = 0;
+    for (std::size_t b = 0; b < list_len.size(); ++b) support.offsets[b + 1] = support.offsets[b] + list_len[b];
+    support.ids = std::move(pool);
+    support.ids.resize(static_cast<std::size_t>(support.offsets.back()));
+    cursor.assign(support.offsets.begin(), support.offsets.end() - 1);
+    const auto& element_basis = s.element_basis_;
     for (std::size_t e = 0; e < s.elements_.size(); ++e)
-      for (int b : s.element_basis_[e]) *cursor[static_cast<std::size_t>(b)]++ = static_cast<int>(e);
+      for (int b : element_basis[static_cast<int>(e)]) support.ids[static_cast<std::size_t>(cursor[static_cast<std::size_t>(b)]++)] = static_cast<int>(e);
+    pooled = false;
     std::erase_if(s.mesh_, [](const Rect& r) { return r.multiplicity == 0; });
     s.evaluator_.reset();
   }
@@ -931,7 +982,7 @@ LRSpline<D>::LRSpline(const Ints<D>& degrees, int dim, bool rational, std::vecto
     const Box<D> S = basis_[i].support();
     double volume = 1.0, covered = 0.0;
     for (int k = 0; k < D; ++k) volume *= S.extent(k);
-    for (int e : basis_elements_[i]) {
+    for (int e : basis_elements_[static_cast<int>(i)]) {
       const auto& el = elements_[static_cast<std::size_t>(e)];
       double v = 1.0;
       for (int k = 0; k < D; ++k) v *= el.extent(k);
@@ -958,7 +1009,7 @@ void LRSpline<D>::check_partition_of_unity() const {
   for (std::size_t e = 0; e < elements_.size(); ++e) {
     const Box<D>& el = elements_[e];
     std::fill(sum.begin(), sum.end(), 0.0);
-    for (int b : element_basis_[e]) {
+    for (int b : element_basis_[static_cast<int>(e)]) {
       const LRBSpline<D>& fn = basis_[static_cast<std::size_t>(b)];
       for (int k = 0; k < D; ++k)
         bernstein_coefficients<double>(fn.knots[k], el.lo[k], el.hi[k], rows[k].data());
@@ -979,7 +1030,7 @@ void LRSpline<D>::check_partition_of_unity() const {
         for (int k = 0; k < D; ++k)
           box += (k ? " x [" : "[") + format_number(el.lo[k]) + ", " + format_number(el.hi[k]) + "]";
         return "LRSpline: the scaled B-splines do not sum to one on element " + box + " (" +
-               std::to_string(element_basis_[e].size()) + " B-splines there, Bernstein coefficient " +
+               std::to_string(element_basis_[static_cast<int>(e)].size()) + " B-splines there, Bernstein coefficient " +
                format_number(sum[i]) + "): a B-spline is missing or a scaling factor is wrong";
       });
   }
@@ -998,18 +1049,18 @@ void LRSpline<D>::reorder_elements(std::span<const int> order) {
     new_id[static_cast<std::size_t>(e)] = static_cast<int>(i);
   }
   std::vector<Box<D>> elements(n);
-  std::vector<std::vector<int>> element_basis(n);
+  Incidence element_basis;
+  element_basis.offsets.reserve(n + 1);
+  element_basis.ids.reserve(element_basis_.ids.size());
   for (std::size_t i = 0; i < n; ++i) {
     elements[i] = elements_[static_cast<std::size_t>(order[i])];
-    element_basis[i] = std::move(element_basis_[static_cast<std::size_t>(order[i])]);
+    const auto list = element_basis_[order[i]];
+    element_basis.ids.insert(element_basis.ids.end(), list.begin(), list.end());
+    element_basis.offsets.push_back(static_cast<int>(element_basis.ids.size()));
   }
   elements_ = std::move(elements);
   element_basis_ = std::move(element_basis);
-  // The support lists as the transpose of the element lists, visited in the new order: ascending without a
-  // sort, and each list keeps its storage (its size does not change).
-  for (auto& list : basis_elements_) list.clear();
-  for (std::size_t e = 0; e < n; ++e)
-    for (int b : element_basis_[e]) basis_elements_[static_cast<std::size_t>(b)].push_back(static_cast<int>(e));
+  basis_elements_ = element_basis_.transposed(num_basis());
   evaluator_.reset();
 }
 
@@ -1038,17 +1089,19 @@ template <int D>
 void LRSpline<D>::build_support_lists() {
   ElementGrid<D> grid(domain_, elements_.size());
   for (std::size_t e = 0; e < elements_.size(); ++e) grid.add(static_cast<int>(e), elements_[e]);
-  basis_elements_.assign(basis_.size(), {});
-  element_basis_.assign(elements_.size(), {});
+  basis_elements_ = {};
+  basis_elements_.offsets.reserve(basis_.size() + 1);
+  auto& ids = basis_elements_.ids;
   for (std::size_t i = 0; i < basis_.size(); ++i) {
     const Box<D> S = basis_[i].support();
-    auto& list = basis_elements_[i];
+    const std::size_t first = ids.size();
     grid.query(S, [&](int e) {
-      if (center_inside(elements_[static_cast<std::size_t>(e)], S)) list.push_back(e);
+      if (center_inside(elements_[static_cast<std::size_t>(e)], S)) ids.push_back(e);
     });
-    std::sort(list.begin(), list.end());
-    for (int e : list) element_basis_[static_cast<std::size_t>(e)].push_back(static_cast<int>(i));
+    std::sort(ids.begin() + static_cast<std::ptrdiff_t>(first), ids.end());
+    basis_elements_.offsets.push_back(static_cast<int>(ids.size()));
   }
+  element_basis_ = basis_elements_.transposed(num_elements());
 }
 
 template <int D>
@@ -1091,8 +1144,7 @@ const ElementEvaluator<D>& LRSpline<D>::evaluator() const {
   std::lock_guard lock(evaluator_.mutex);
   if (!evaluator_.owner) {
     evaluator_.owner = std::make_shared<const ElementEvaluator<D>>(
-        degrees_, dim_, rational_, domain_, std::span<const LRBSpline<D>>(basis_), std::span<const Box<D>>(elements_),
-        std::span<const std::vector<int>>(element_basis_));
+        degrees_, dim_, rational_, domain_, std::span<const LRBSpline<D>>(basis_), std::span<const Box<D>>(elements_), element_basis_);
     evaluator_.ready.store(evaluator_.owner.get(), std::memory_order_release);
   }
   return *evaluator_.owner;

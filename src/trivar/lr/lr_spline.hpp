@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "trivar/core/box.hpp"
+#include "trivar/lr/incidence.hpp"
 #include "trivar/lr/lr_bspline.hpp"
 #include "trivar/lr/lr_element.hpp"
 #include "trivar/lr/mesh_rectangle.hpp"
@@ -68,13 +69,13 @@ public:
   const LRBSpline<D>& basis_function(int id) const { return basis_[static_cast<std::size_t>(id)]; }
   std::span<const LRBSpline<D>> basis_functions() const { return basis_; }
   // Elements in the support of B-spline id, ascending.
-  std::span<const int> basis_elements(int id) const { return basis_elements_[static_cast<std::size_t>(id)]; }
+  std::span<const int> basis_elements(int id) const { return basis_elements_[id]; }
 
   int num_elements() const { return static_cast<int>(elements_.size()); }
   const Box<D>& element(int e) const { return elements_[static_cast<std::size_t>(e)]; }
   std::span<const Box<D>> elements() const { return elements_; }
   // B-splines whose support contains element e, ascending.
-  std::span<const int> element_support(int e) const { return element_basis_[static_cast<std::size_t>(e)]; }
+  std::span<const int> element_support(int e) const { return element_basis_[e]; }
 
   const std::vector<MeshRectangle<D>>& mesh() const { return mesh_; }
 
@@ -121,9 +122,9 @@ private:
   bool rational_ = false;
   Box<D> domain_{};
   std::vector<LRBSpline<D>> basis_;
-  std::vector<std::vector<int>> basis_elements_;
+  Incidence basis_elements_;  // per B-spline, its elements ascending
   std::vector<Box<D>> elements_;
-  std::vector<std::vector<int>> element_basis_;
+  Incidence element_basis_;   // per element, its B-splines ascending
   std::vector<MeshRectangle<D>> mesh_;
 
   // Lazily built evaluation data, shared by copies (it is immutable and holds no references into *this).
