@@ -16,7 +16,6 @@
 #include <TopoDS_Iterator.hxx>
 
 #include <algorithm>
-#include <initializer_list>
 #include <numeric>
 #include <vector>
 
@@ -55,22 +54,21 @@ FaceLoops face_loops(const TopoDS_Face& f) {
   return l;
 }
 
-// The face `of` (with its location and orientation) bounded by the given loops of it only.
-TopoDS_Face restricted(const TopoDS_Face& of, const FaceLoops& l, std::initializer_list<const TopoDS_Wire*> loops) {
+// The face `of` (with its location and orientation) bounded by its outer loop and the given other loops only.
+TopoDS_Face restricted(const TopoDS_Face& of, const FaceLoops& l, const std::vector<std::size_t>& inner) {
   TopoDS_Face g = TopoDS::Face(l.face.EmptyCopied());
   BRep_Builder b;
-  for (const TopoDS_Wire* w : loops) b.Add(g, *w);
+  b.Add(g, l.outer);
+  for (const std::size_t i : inner) b.Add(g, l.inner[i]);
   g.Location(of.Location());
   g.Orientation(of.Orientation());
   return g;
 }
 
-// The kernel's verdict on the face, loop by loop and pair of overlapping loops by pair.
+// The kernel's verdict on the face, by groups of loops and by pairs of overlapping loops in different groups.
 bool crowded_face_valid(const TopoDS_Face& f) {
   const FaceLoops l = face_loops(f);
   if (l.outer.IsNull() || !l.only_loops) return BRepCheck_Analyzer(f).IsValid();
-  for (const TopoDS_Wire& w : l.inner)
-    if (!BRepCheck_Analyzer(restricted(f, l, {&l.outer, &w})).IsValid()) return false;
   // Parameter-space boxes of the loops, widened by the edges' tolerance there (loops within tolerance of each
   // other touch for the kernel) and a relative margin for the boxes' own rounding.
   const BRepAdaptor_Surface surface(l.face, false);
@@ -90,16 +88,27 @@ bool crowded_face_valid(const TopoDS_Face& f) {
     const double m = gap + 1e-9 * std::max({std::abs(x.u0), std::abs(x.u1), std::abs(x.v0), std::abs(x.v1), 1.0});
     boxes.push_back({x.u0 - m, x.v0 - m, x.u1 + m, x.v1 + m});
   }
-  // Sweep in u: each loop meets the loops still open at its start.
+  // The loops in groups of neighbours in u, each group checked with the outer loop as one face of at most
+  // crowded_face_loops loops (the outer loop's edges are checked once per group, not once per loop).
   std::vector<std::size_t> order(boxes.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return boxes[a].u0 < boxes[b].u0; });
+  constexpr std::size_t group_size = crowded_face_loops - 1;
+  std::vector<std::size_t> group(boxes.size());
+  for (std::size_t k = 0; k < order.size(); k += group_size) {
+    const std::vector<std::size_t> members(order.begin() + static_cast<std::ptrdiff_t>(k),
+                                           order.begin() + static_cast<std::ptrdiff_t>(std::min(k + group_size, order.size())));
+    for (const std::size_t i : members) group[i] = k;
+    if (!BRepCheck_Analyzer(restricted(f, l, members)).IsValid()) return false;
+  }
+  // Sweep in u: each loop meets the loops still open at its start; pairs in different groups whose boxes
+  // overlap are checked as a face of three loops.
   std::vector<std::size_t> open;
   for (const std::size_t i : order) {
     std::erase_if(open, [&](std::size_t j) { return boxes[j].u1 < boxes[i].u0; });
     for (const std::size_t j : open)
-      if (boxes[j].v0 <= boxes[i].v1 && boxes[i].v0 <= boxes[j].v1 &&
-          !BRepCheck_Analyzer(restricted(f, l, {&l.outer, &l.inner[i], &l.inner[j]})).IsValid())
+      if (group[i] != group[j] && boxes[j].v0 <= boxes[i].v1 && boxes[i].v0 <= boxes[j].v1 &&
+          !BRepCheck_Analyzer(restricted(f, l, {i, j})).IsValid())
         return false;
     open.push_back(i);
   }
