@@ -5,7 +5,6 @@
 #include <BRepBuilderAPI_Copy.hxx>
 #include <BRepBuilderAPI_MakeSolid.hxx>
 #include <BRepBuilderAPI_NurbsConvert.hxx>
-#include <BRepCheck_Analyzer.hxx>
 #include <BRepGProp.hxx>
 #include <BRepLib.hxx>
 #include <BRepMesh_IncrementalMesh.hxx>
@@ -40,6 +39,7 @@
 
 #include "trivar/cad/brep_mapping.hpp"
 #include "trivar/cad/face_nurbs.hpp"
+#include "trivar/cad/solid_validity.hpp"
 #include "trivar/cad/step_transfer.hpp"
 #include "trivar/core/error.hpp"
 
@@ -289,7 +289,7 @@ StepImport import_step(const std::string& path, const ImportOptions& opts) {
       // transfer leaves out: step_transfer.hpp).
       const bool want_volume = opts.kernel_volume;
       auto checked = std::async(std::launch::async, [&solid, want_volume] {
-        const bool valid = BRepCheck_Analyzer(solid).IsValid();
+        const bool valid = is_valid_solid(solid);
         return std::make_pair(valid, valid && want_volume ? std::optional<double>(kernel_volume(solid)) : std::nullopt);
       });
       std::optional<MappedSolid> mapped;
@@ -304,7 +304,7 @@ StepImport import_step(const std::string& path, const ImportOptions& opts) {
         ShapeFix_Shape fix(solid);
         fix.Perform();
         solid = fix.Shape();
-        require(BRepCheck_Analyzer(solid, true, true).IsValid(), path + ": " + sname + " is not a valid solid and could not be repaired");
+        require(is_valid_solid(solid), path + ": " + sname + " is not a valid solid and could not be repaired");
         r.repairs.push_back(sname + ": invalid as read (e.g. missing parameter-space curves, tolerances, intersecting loops); repaired by shape healing");
         if (want_volume) volume = kernel_volume(solid);
         failure = nullptr;
