@@ -57,6 +57,8 @@ FaceLoops face_loops(const TopoDS_Face& f) {
 // The face `of` (with its location and orientation) bounded by its outer loop and the given other loops only.
 TopoDS_Face restricted(const TopoDS_Face& of, const FaceLoops& l, const std::vector<std::size_t>& inner) {
   TopoDS_Face g = TopoDS::Face(l.face.EmptyCopied());
+  // Adding marks the loops as not free, which they already are (they belong to the face): the conversion that
+  // reads the same loops beside the check sees no change.
   BRep_Builder b;
   b.Add(g, l.outer);
   for (const std::size_t i : inner) b.Add(g, l.inner[i]);
