@@ -1,5 +1,6 @@
 #pragma once
 // Test solids built with OpenCASCADE and written to STEP by it: the independent source of the cad tests.
+#include <BRepAdaptor_Surface.hxx>
 #include <BRepAlgoAPI_Cut.hxx>
 #include <BRepAlgoAPI_Fuse.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
@@ -12,12 +13,15 @@
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakeRevol.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
+#include <BRep_Builder.hxx>
+#include <BRep_Tool.hxx>
 #include <GProp_GProps.hxx>
 #include <Interface_Static.hxx>
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
 #include <Message_PrinterOStream.hxx>
 #include <STEPControl_Writer.hxx>
+#include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopTools_ListOfShape.hxx>
 #include <TopoDS.hxx>
@@ -26,10 +30,40 @@
 #include <cmath>
 #include <filesystem>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace trivar::test {
 
 inline const double kPi = 3.14159265358979323846;
+
+// A through hole of a plate along z: centre and radius.
+struct PlateHole {
+  double x, y, r;
+};
+
+// The walls of through holes of a plate 0 <= z <= height (the lateral faces of cylinders, facing the hole's
+// axis), added to `shell`. Returns each hole's bottom and top circle, for the loops of the plate's faces.
+inline std::vector<std::pair<TopoDS_Edge, TopoDS_Edge>> add_hole_walls(TopoDS_Shell& shell, const std::vector<PlateHole>& holes,
+                                                                       double height) {
+  BRep_Builder bb;
+  std::vector<std::pair<TopoDS_Edge, TopoDS_Edge>> circles;
+  for (const PlateHole& h : holes) {
+    const TopoDS_Shape cyl = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(h.x, h.y, 0), gp_Dir(0, 0, 1)), h.r, height).Shape();
+    for (TopExp_Explorer f(cyl, TopAbs_FACE); f.More(); f.Next()) {
+      if (BRepAdaptor_Surface(TopoDS::Face(f.Current())).GetType() != GeomAbs_Cylinder) continue;
+      bb.Add(shell, f.Current().Reversed());
+      std::pair<TopoDS_Edge, TopoDS_Edge> c;
+      for (TopExp_Explorer e(f.Current(), TopAbs_EDGE); e.More(); e.Next()) {
+        const TopoDS_Edge& edge = TopoDS::Edge(e.Current());
+        if (BRep_Tool::IsClosed(edge, TopoDS::Face(f.Current()))) continue;  // the seam
+        (BRep_Tool::Pnt(TopExp::FirstVertex(edge)).Z() > height / 2 ? c.second : c.first) = edge;
+      }
+      circles.push_back(c);
+    }
+  }
+  return circles;
+}
 
 // 40 x 30 x 20 block with two through holes of radius 4 along z.
 inline TopoDS_Shape box_with_holes() {

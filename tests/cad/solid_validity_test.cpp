@@ -64,10 +64,7 @@ TopoDS_Face relooped(const TopoDS_Face& f, const TopoDS_Edge& flip, const TopoDS
 // faces, made face by face so that the loop can be wrong: crossing a hole, outside the plate, inside a hole,
 // oriented as an outer loop, or open (on the top face only; its hole has no wall).
 TopoDS_Shape holed_plate(Defect d) {
-  struct Hole {
-    double x, y, r;
-  };
-  std::vector<Hole> holes;
+  std::vector<test::PlateHole> holes;
   for (int i = 0; i < 6; ++i)
     for (int j = 0; j < 6; ++j) holes.push_back({10.0 + 10 * i, 10.0 + 10 * j, hole_radius});
   switch (d) {
@@ -83,21 +80,7 @@ TopoDS_Shape holed_plate(Defect d) {
   BRep_Builder bb;
   TopoDS_Shell shell;
   bb.MakeShell(shell);
-  std::vector<std::pair<TopoDS_Edge, TopoDS_Edge>> circles;  // bottom, top
-  for (const Hole& h : holes) {
-    const TopoDS_Shape cyl = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(h.x, h.y, 0), gp_Dir(0, 0, 1)), h.r, plate_height).Shape();
-    for (TopExp_Explorer f(cyl, TopAbs_FACE); f.More(); f.Next()) {
-      if (BRepAdaptor_Surface(TopoDS::Face(f.Current())).GetType() != GeomAbs_Cylinder) continue;
-      bb.Add(shell, f.Current().Reversed());
-      std::pair<TopoDS_Edge, TopoDS_Edge> c;
-      for (TopExp_Explorer e(f.Current(), TopAbs_EDGE); e.More(); e.Next()) {
-        const TopoDS_Edge& edge = TopoDS::Edge(e.Current());
-        if (BRep_Tool::IsClosed(edge, TopoDS::Face(f.Current()))) continue;  // the seam
-        (BRep_Tool::Pnt(TopExp::FirstVertex(edge)).Z() > 1 ? c.second : c.first) = edge;
-      }
-      circles.push_back(c);
-    }
-  }
+  const auto circles = test::add_hole_walls(shell, holes, plate_height);  // bottom, top
   const TopoDS_Shape box = BRepPrimAPI_MakeBox(plate_side, plate_side, plate_height).Shape();
   for (TopExp_Explorer f(box, TopAbs_FACE); f.More(); f.Next()) {
     TopoDS_Face face = TopoDS::Face(f.Current());

@@ -370,21 +370,7 @@ TEST(StepImport, OverlappingHoleLoopsAreRefused) {
   TopoDS_Shell shell;
   bb.MakeShell(shell);
   // The hole walls: the lateral faces of two cylinders of radius 2, one apart, with their circles at z = 0, 2.
-  std::vector<std::pair<TopoDS_Edge, TopoDS_Edge>> circles;
-  for (double x : {4.5, 5.5}) {
-    const TopoDS_Shape cyl = BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(x, 5, 0), gp_Dir(0, 0, 1)), 2, 2).Shape();
-    for (TopExp_Explorer f(cyl, TopAbs_FACE); f.More(); f.Next()) {
-      if (BRepAdaptor_Surface(TopoDS::Face(f.Current())).GetType() != GeomAbs_Cylinder) continue;
-      bb.Add(shell, f.Current().Reversed());
-      std::pair<TopoDS_Edge, TopoDS_Edge> c;
-      for (TopExp_Explorer e(f.Current(), TopAbs_EDGE); e.More(); e.Next()) {
-        const TopoDS_Edge& edge = TopoDS::Edge(e.Current());
-        if (BRep_Tool::IsClosed(edge, TopoDS::Face(f.Current()))) continue;  // the seam
-        (BRep_Tool::Pnt(TopExp::FirstVertex(edge)).Z() > 1 ? c.second : c.first) = edge;
-      }
-      circles.push_back(c);
-    }
-  }
+  const auto circles = test::add_hole_walls(shell, {{4.5, 5, 2}, {5.5, 5, 2}}, 2);
   ASSERT_EQ(circles.size(), 2u);
   bool flagged = false;
   for (TopExp_Explorer f(box, TopAbs_FACE); f.More(); f.Next()) {
