@@ -209,7 +209,7 @@ void add_info_command(CLI::App& app, Context&) {
   auto kernel_volume = std::make_shared<bool>(false);
   cmd->add_flag("--kernel-volume", *kernel_volume,
                 "STEP: also compute OpenCASCADE's own volume of each B-rep solid, beside trivar's exact-boundary "
-                "volume (a cross-check; about a tenth more time on a machined part)");
+                "volume (a cross-check that costs extra time)");
   cmd->callback([file, json, check, strict, kernel_volume] {
     if (is_t_spline_file(*file)) {
       require(check->empty(), "info: --check-independence applies to LR splines; T-splines are classified always");

@@ -39,8 +39,8 @@ void add_make_vmodel(CLI::App& make) {
       ->check(positive());
   cmd->add_option("--solid", a->solid, "Convert only this solid (0-based, in file order)")->check(at_least(0));
   cmd->add_flag("--kernel-volume", a->kernel_volume,
-                "Also compute OpenCASCADE's own volume of each solid and print it beside trivar's (a cross-check; "
-                "about a tenth more time on a machined part)");
+                "Also compute OpenCASCADE's own volume of each solid and print it beside trivar's (a cross-check "
+                "that costs extra time)");
   add_material_options(cmd, *a, "along z");
   cmd->add_option("-o,--output", a->out,
                   "Output V-model (.json); several solids give PART.0.json, PART.1.json, ... beside it")

@@ -19,19 +19,20 @@ namespace {
 
 struct ForeignPart {
   const char* file;
-  const char* system;  // the exporter, as the file's header names it
+  const char* system;       // the exporter, as the file's header names it (originating system or preprocessor)
+  const char* originating;  // the header's originating system field, blanks trimmed
   int solids;
   // What the file holds beside its solids, as the import reports it ("" for nothing).
   const char* outside_solids;
 };
 
 const ForeignPart kForeignParts[] = {
-    {"solidworks2013_featuretype.step", "SolidWorks 2013", 1, ""},
-    {"solidworks2018_base_interface_ap203.step", "SolidWorks 2018", 1, ""},
-    {"designmodeler_poultry_ventilation.stp", "DesignModeler STEP Output", 1, ""},
-    {"interop3d_thickness_geometry.stp", "Spatial InterOp 3D", 2, ""},
+    {"solidworks2013_featuretype.step", "SolidWorks 2013", "SolidWorks 2013", 1, ""},
+    {"solidworks2018_base_interface_ap203.step", "SolidWorks 2018", "SolidWorks 2018", 1, ""},
+    {"designmodeler_poultry_ventilation.stp", "DesignModeler STEP Output", "DesignModeler STEP Output", 1, ""},
+    {"interop3d_thickness_geometry.stp", "Spatial InterOp 3D", "", 2, ""},
     // The drawing's isolated construction point (#3943 'Isolated Point 1' in a wireframe representation).
-    {"nist_ctc_01_asme1_ap242.stp", "", 1, "1 vertex outside edges (points)"},
+    {"nist_ctc_01_asme1_ap242.stp", "", "", 1, "1 vertex outside edges (points)"},
 };
 
 std::string foreign_part_path(const char* file) { return std::string(TRIVAR_TEST_DATA) + "/step/cad_systems/" + file; }
@@ -53,7 +54,8 @@ TEST(CadSystemParts, EveryFaceMapsAndVolumesAgreeWithOpenCascade) {
   for (const ForeignPart& p : kForeignParts) {
     SCOPED_TRACE(std::string(p.file) + " (" + p.system + ")");
     const std::string path = foreign_part_path(p.file);
-    const cad::StepImport im = cad::import_step(path);
+    const cad::StepImport im = cad::import_step(path, {.kernel_volume = true});
+    EXPECT_EQ(im.report.originating_system, p.originating);
     EXPECT_EQ(im.report.solids, p.solids);
     const std::string outside = im.report.not_solid.empty() ? "" : im.report.not_solid[0];
     EXPECT_LE(im.report.not_solid.size(), 1u);
@@ -68,6 +70,9 @@ TEST(CadSystemParts, EveryFaceMapsAndVolumesAgreeWithOpenCascade) {
       ASSERT_TRUE(im.solids[i].solid);
       ASSERT_GT(ref[i], 0);
       EXPECT_NEAR(im.solids[i].solid->volume(), ref[i], 1e-6 * ref[i]);
+      // The import's own cross-check (`--kernel-volume`) agrees too.
+      ASSERT_TRUE(im.solids[i].kernel_volume);
+      EXPECT_NEAR(*im.solids[i].kernel_volume, ref[i], 1e-6 * ref[i]);
       EXPECT_TRUE(is_watertight(im.solids[i].solid->boundary().mesh));
       mapped_faces += static_cast<int>(im.solids[i].solid->boundary().faces.size());
     }

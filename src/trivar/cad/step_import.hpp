@@ -21,9 +21,8 @@ struct ImportOptions {
   double chordal_tolerance = 0;
   // Largest angle between the normals of neighbouring mesh triangles on a face, in radians.
   double angular_tolerance = 0.5;
-  // Also compute OpenCASCADE's own volume of each solid (BRepGProp's Gauss rule on the faces as read), as an
-  // independent cross-check of trivar's exact-boundary volume: about a tenth of the import's instructions on
-  // a machined part, so only on request.
+  // Also compute OpenCASCADE's own volume of each solid (BRepGProp's adaptive rule to 1e-9 on the faces as read),
+  // as an independent cross-check of trivar's exact-boundary volume; extra time, so only on request.
   bool kernel_volume = false;
 };
 
