@@ -28,9 +28,16 @@ struct TMeshVertex {
   std::vector<int> block;          // its points, wedge K = N, W, S, E holding dK x (d(K+1) + 1) entries; -1: none
 };
 
+// How the surface ends at the mesh's boundary. bezier: Bezier end conditions (repeated knots, the boundary curve
+// the B-spline of the end-condition block points; Rhino's force-bezier export, Fusion's MULTIPLE_KNOTS).
+// subd_creases: the boundary as a subdivision crease (Fusion's SUBD_CREASES: the boundary curve the uniform cubic
+// B-spline of the boundary control points, corners interpolated).
+enum class EndConditions { bezier, subd_creases };
+
 struct TMesh {
   int degree = 3;  // odd, both directions
   bool force_bezier = true;
+  EndConditions end_conditions = EndConditions::bezier;
   std::vector<TMeshLink> links;
   std::vector<std::vector<int>> faces;  // link loops; empty: a deleted face (a hole)
   std::vector<double> intervals;        // per edge; 0: a deleted edge
