@@ -16,6 +16,7 @@
 
 #include "face_continuity.hpp"
 #include "star_mesh_tsm.hpp"
+#include "triangulation_loops.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/io/tsm_format.hpp"
 #include "trivar/spline/tensor_spline.hpp"
@@ -297,32 +298,6 @@ std::vector<std::array<double, 2>> planar_params(const test::QuadMesh& q) {
   return p;
 }
 
-// Closed loops of the triangulation's boundary edges (edges without their reverse); -1 when an edge is used
-// twice in one direction or a chain does not close. Watertight with one boundary: 1.
-int boundary_loop_count(const TSplineTriangulation& t) {
-  std::map<std::array<int, 2>, int> use;
-  for (const auto& tri : t.triangles)
-    for (int k = 0; k < 3; ++k) ++use[{tri[static_cast<std::size_t>(k)], tri[static_cast<std::size_t>((k + 1) % 3)]}];
-  std::map<int, int> next;
-  for (const auto& [e, n] : use) {
-    if (n != 1) return -1;
-    if (!use.count({e[1], e[0]}) && !next.emplace(e[0], e[1]).second) return -1;
-  }
-  std::map<int, char> seen;
-  int loops = 0;
-  for (const auto& [start, to] : next) {
-    if (seen.count(start)) continue;
-    ++loops;
-    for (int v = start; !seen.count(v);) {
-      seen[v] = 1;
-      const auto it = next.find(v);
-      if (it == next.end()) return -1;
-      v = it->second;
-    }
-  }
-  return loops;
-}
-
 TEST(CreaseEnds, TJunctionNextToTheBoundary) {
   // The grid [-6, 6]^2 with the faces [1, 5] x [4, 5] split at t = 4.5: the boundary vertices (1..5, 6) have
   // the knots 5, 4.5 inwards (d1 = 1, d2 = 1/2).
@@ -372,7 +347,7 @@ TEST(CreaseEnds, TJunctionNextToTheBoundary) {
   EXPECT_GT(inside, 0.05);
   EXPECT_LT(across, 1e-10 * inside);
   const TSplineTriangulation t = tessellate(surface, 1e-3);
-  EXPECT_EQ(boundary_loop_count(t), 1);
+  EXPECT_EQ(test::boundary_loops(t), 1);
   std::printf("crease grid with a T-junction row: %d faces as the reference (%.2e), boundary curve %.2e, second derivative "
               "across %.2e (inside %.2f); %zu triangles\n", cells, dev, curve, across, inside, t.triangles.size());
 }
@@ -450,7 +425,7 @@ TEST(CreaseEnds, TJunctionStemsFromTheBoundary) {
   }
   EXPECT_LT(curve, 1e-12);
   const TSplineTriangulation t = tessellate(surface, 1e-3);
-  EXPECT_EQ(boundary_loop_count(t), 1);
+  EXPECT_EQ(test::boundary_loops(t), 1);
   std::printf("crease grid with T-junction stems from the boundary: second derivative across %.2e (inside %.2f), boundary "
               "curve %.2e\n", across, inside, curve);
 }
@@ -503,7 +478,7 @@ TEST(CreaseEnds, InteriorStarPointWithACreaseBoundary) {
   EXPECT_LT(c.normal_angle, 1e-10);
   EXPECT_LT(c.c1, 1e-10);
   const TSplineTriangulation t = tessellate(surface, 1e-2);
-  EXPECT_EQ(boundary_loop_count(t), 1);
+  EXPECT_EQ(test::boundary_loops(t), 1);
   std::printf("crease fan of valence 5 (%d faces): %d faces as the sectors' natural-end B-splines (%.2e); %zu triangles\n",
               surface.num_faces(), cells, dev, t.triangles.size());
 }
@@ -539,7 +514,7 @@ TEST(CreaseEnds, BoundaryStarPointTakesTheNaturalGhostLayer) {
   EXPECT_LT(distance(extended(star), p0.data()), 1e-15);
   EXPECT_LT(distance(expected, extended(gm.ghost[static_cast<std::size_t>(star)]).data()), 1e-14);
   const TSplineTriangulation t = tessellate(surface, 1e-2);
-  EXPECT_EQ(boundary_loop_count(t), 1);
+  EXPECT_EQ(test::boundary_loops(t), 1);
   std::printf("crease half fan of 4 sectors: %d faces as the sectors' natural-end B-splines (%.2e)\n", cells, dev);
 }
 

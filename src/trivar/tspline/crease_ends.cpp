@@ -4,19 +4,14 @@
 #include <string>
 
 #include "trivar/core/error.hpp"
+#include "trivar/tspline/homogeneous_point.hpp"
 
 namespace trivar {
 
 namespace {
 
-using Homogeneous = std::array<double, 4>;  // (w x, w y, w z, w)
-
-Homogeneous homogeneous(const RationalPoint& p) { return {p.w * p.xyz[0], p.w * p.xyz[1], p.w * p.xyz[2], p.w}; }
-
-RationalPoint rational(const Homogeneous& h) { return {{h[0] / h[3], h[1] / h[3], h[2] / h[3]}, h[3]}; }
-
-Homogeneous mix(const Homogeneous& a, double sa, const Homogeneous& b, double sb) {
-  Homogeneous r{};
+HomogeneousPoint mix(const HomogeneousPoint& a, double sa, const HomogeneousPoint& b, double sb) {
+  HomogeneousPoint r{};
   for (std::size_t i = 0; i < 4; ++i) r[i] = sa * a[i] + sb * b[i];
   return r;
 }
@@ -67,9 +62,9 @@ TMesh bezier_equivalent(const TMesh& m) {
   // do not say which link is straight on; Catmull-Clark there needs equal intervals.
   const auto second_interval = [&](int k) {
     const int u = other_end(k), back = L(k).opp;
-    if (star(u)) return interval(k);
+    if (star(u) || L(back).frame < 0) return interval(k);
     for (int l : leaving[static_cast<std::size_t>(u)])
-      if (L(l).frame >= 0 && L(l).frame == (L(back).frame + 2) % 4) return interval(l);
+      if (L(l).frame == (L(back).frame + 2) % 4) return interval(l);
     for (int s : leaving[static_cast<std::size_t>(u)]) {
       if (!in_face(s) || L(s).flag != 1) continue;
       int c = L(s).next;
@@ -85,7 +80,8 @@ TMesh bezier_equivalent(const TMesh& m) {
   };
   TMesh x = m;
   x.end_conditions = EndConditions::bezier;
-  const auto add_point = [&](const Homogeneous& h) {
+  x.force_bezier = true;
+  const auto add_point = [&](const HomogeneousPoint& h) {
     x.points.push_back(rational(h));
     return static_cast<int>(x.points.size()) - 1;
   };
@@ -96,13 +92,14 @@ TMesh bezier_equivalent(const TMesh& m) {
     if (out.empty()) continue;
     if (out.size() != 1) fail(v, "lies on " + std::to_string(out.size()) + " boundary arcs; a crease boundary is converted on one");
     const int o = out[0];
+    if (L(o).frame < 0) fail(v, "has no frame direction on its outside link; the end-condition block needs one");
     std::vector<int> interior, faces;  // its links inside faces: into the interior, and all
     for (int l : leaving[vi])
       if (in_face(l)) {
         faces.push_back(l);
         if (in_face(L(l).opp)) interior.push_back(l);
       }
-    const Homogeneous p0 = point(v);
+    const HomogeneousPoint p0 = point(v);
     TMeshVertex& xv = x.vertices[vi];
     const std::size_t primary = static_cast<std::size_t>(xv.primary);
     xv.block.clear();
@@ -112,7 +109,7 @@ TMesh bezier_equivalent(const TMesh& m) {
     const int a = angle[vi];
     if (a == 180 || a > 270) {
       if (interior.empty()) fail(v, "is a T-junction on the boundary (no interior edge); a crease boundary needs one at every boundary vertex");
-      Homogeneous p1{};
+      HomogeneousPoint p1{};
       EndWeights w;
       if (a > 270) {  // a star point: the mean of its interior edges' inner ends, equal intervals
         for (int l : interior) p1 = mix(p1, 1, point(other_end(l)), 1.0 / static_cast<double>(interior.size()));
@@ -129,11 +126,11 @@ TMesh bezier_equivalent(const TMesh& m) {
       const int l = faces[0];
       const auto& loop = m.faces[static_cast<std::size_t>(L(l).face)];
       if (loop.size() != 4) fail(v, "is a corner of a face with T-junctions; the crease corner needs a quadrilateral");
-      const Homogeneous p10 = point(other_end(l)), p11 = point(L(L(L(l).next).next).vertex), p01 = point(other_end(o));
+      const HomogeneousPoint p10 = point(other_end(l)), p11 = point(L(L(L(l).next).next).vertex), p01 = point(other_end(o));
       const EndWeights s = end_weights(interval(l), second_interval(l)), t = end_weights(interval(o), second_interval(o));
       x.points[primary] = rational(mix(mix(p0, s.a * t.a, p10, s.b * t.a), 1, mix(p01, s.a * t.b, p11, s.b * t.b), 1));
-      // Wedge `outward` (beyond the edge of o, across which the rule acts along l) holds its node and the
-      // diagonal node; the wedge after it the node beyond the edge of l.
+      // Wedge `outward` (opposite l, beyond the edge of o) holds the node a P00 + b P01 of the rule along o and
+      // the diagonal node P00; the wedge after it (opposite o) the node a P00 + b P10 of the rule along l.
       const int next = (outward + 1) % 4;
       xv.block_dims[static_cast<std::size_t>(outward)] = 1;
       xv.block_dims[static_cast<std::size_t>(next)] = 1;
@@ -141,7 +138,8 @@ TMesh bezier_equivalent(const TMesh& m) {
       // Entries in wedge order N, W, S, E (t_mesh.hpp): wedge `outward` (two entries), then `next` (one).
       xv.block = next == 0 ? std::vector<int>{across_l, across_o, diagonal} : std::vector<int>{across_o, diagonal, across_l};
     } else {
-      fail(v, "has " + std::to_string(a) + " degrees of faces (a concave corner); a crease boundary is converted at straight and convex boundary vertices and boundary star points");
+      fail(v, "has " + std::to_string(a) + " degrees of faces" + (a == 270 ? " (a concave corner)" : "") +
+                  "; a crease boundary is converted at straight and convex boundary vertices and boundary star points");
     }
   }
   return x;

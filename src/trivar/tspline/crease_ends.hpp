@@ -36,7 +36,7 @@
 // Catmull-Clark faces there require. A block point the input carries at a boundary vertex is replaced.
 // Refused (trivar::Error, one line naming the vertex): degree other than 3, a boundary vertex on two boundary
 // arcs, a T-junction on the boundary (no interior edge), a concave corner (270 degrees of faces), a convex
-// corner whose face is not a quadrilateral, a boundary vertex without a control point.
+// corner whose face is not a quadrilateral, a boundary vertex without a control point or frame direction.
 #include "trivar/tspline/t_mesh.hpp"
 
 namespace trivar {
