@@ -479,8 +479,9 @@ TEST(CreaseEnds, InteriorStarPointWithACreaseBoundary) {
   EXPECT_LT(c.c1, 1e-10);
   const TSplineTriangulation t = tessellate(surface, 1e-2);
   EXPECT_EQ(test::boundary_loops(t), 1);
-  std::printf("crease fan of valence 5 (%d faces): %d faces as the sectors' natural-end B-splines (%.2e); %zu triangles\n",
-              surface.num_faces(), cells, dev, t.triangles.size());
+  std::printf("crease fan of valence 5 (%d faces): %d faces as the sectors' natural-end B-splines (%.2e); %d edges: gap %.2e, "
+              "normal defect (sin) %.2e, C1 defect %.2e; %zu triangles\n",
+              surface.num_faces(), cells, dev, c.edges, c.gap, c.normal_angle, c.c1, t.triangles.size());
 }
 
 TEST(CreaseEnds, BoundaryStarPointTakesTheNaturalGhostLayer) {
