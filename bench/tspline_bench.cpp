@@ -8,7 +8,8 @@
 // 5 x 10 x 10 faces (tests/tspline/star_mesh_tsm.hpp): parse + per-face surface build, evaluation on a 16 x 16
 // grid per face (all faces, and the faces at star points alone: the Catmull-Clark subdivision path), and the
 // watertight tessellation; their Bezier patches (t_mesh_patches); Poisson on the planar valence-5 fan of
-// 5 x 8 x 8 faces in the C0 multipatch space of its faces (t_mesh_space).
+// 5 x 8 x 8 faces in the C0 multipatch space of its faces (t_mesh_space). The fan's surface build with a
+// subdivision-crease boundary against Bezier end conditions (crease_build).
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -263,6 +264,25 @@ void boundary_star_build(benchmark::State& state) {
   }
 }
 BENCHMARK(boundary_star_build)->Unit(benchmark::kMillisecond);
+
+// The per-face surface of the valence-5 fan of 5 x 10 x 10 faces from its parsed mesh: range(0) = 0 with Bezier
+// end conditions (block points on the boundary), 1 as a subdivision-crease boundary (no blocks; crease_ends
+// converts it to Bezier end conditions first).
+void crease_build(benchmark::State& state) {
+  trivar::TMesh m = trivar::io::parse_tsm(star_model(1), "fan.tsm").mesh;
+  if (state.range(0) == 1) {
+    m.end_conditions = trivar::EndConditions::subd_creases;
+    for (trivar::TMeshVertex& v : m.vertices) {
+      v.block.clear();
+      v.block_dims = {};
+    }
+  }
+  for (auto _ : state) {
+    const trivar::TMeshSurface s(m, 1);
+    benchmark::DoNotOptimize(s.num_faces());
+  }
+}
+BENCHMARK(crease_build)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 // Poisson on the planar valence-5 fan with T-junctions (5 x 8 x 8 faces, three split): the patches cut until
 // their sides conform, refined n x n; space build, then assembly + solve.

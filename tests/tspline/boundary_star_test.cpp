@@ -13,6 +13,7 @@
 #include "chart_comparison.hpp"
 #include "face_continuity.hpp"
 #include "star_mesh_tsm.hpp"
+#include "triangulation_loops.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/io/tsm_format.hpp"
 #include "trivar/tspline/boundary_ghosts.hpp"
@@ -138,35 +139,6 @@ double boundary_curve_defect(const TMeshSurface& s, const TMesh& m, int sectors,
   return worst;
 }
 
-// Edges used once form closed loops (the boundaries; a crack inside would add loops): their number.
-int boundary_loops(const TSplineTriangulation& t) {
-  std::map<std::array<int, 2>, int> use;
-  for (const auto& tri : t.triangles)
-    for (int k = 0; k < 3; ++k) ++use[{tri[static_cast<std::size_t>(k)], tri[static_cast<std::size_t>((k + 1) % 3)]}];
-  std::map<int, int> next;
-  for (const auto& [e, n] : use) {
-    EXPECT_EQ(n, 1) << "edge used twice in the same direction";
-    if (!use.count({e[1], e[0]})) {
-      EXPECT_EQ(next.count(e[0]), 0u) << "boundary vertex with two outgoing edges";
-      next[e[0]] = e[1];
-    }
-  }
-  std::map<int, char> seen;
-  int loops = 0;
-  for (const auto& [start, to] : next) {
-    if (seen.count(start)) continue;
-    ++loops;
-    int v = start;
-    do {
-      seen[v] = 1;
-      const auto it = next.find(v);
-      if (it == next.end()) return -1;  // an open boundary chain
-      v = it->second;
-    } while (v != start && seen.size() <= next.size());
-  }
-  return loops;
-}
-
 // The star faces around star point `star` have one tangent plane there: the largest sine of the angle between
 // their normals and the first one's.
 double tangent_plane_spread(const TMeshSurface& s, int star) {
@@ -218,7 +190,7 @@ TEST_P(BoundaryStarValence, LoadsAsOneSmoothSurfaceWithTheTSplineAwayFromTheStar
   EXPECT_LT(tangent_plane_spread(s, s.stars()[0]), 1e-9);
   const TSplineTriangulation t = tessellate(s, 1e-2);
   for (const auto& p : t.points) ASSERT_TRUE(std::isfinite(p[0] + p[1] + p[2]));
-  EXPECT_EQ(boundary_loops(t), 1);
+  EXPECT_EQ(test::boundary_loops(t), 1);
   // Bezier patches (exact pieces, one corner patch per star face) within their tolerance of the limit surface.
   if (sectors == 5) {
     const TMeshPatches p = t_mesh_patches(s);
@@ -305,7 +277,7 @@ TEST(BoundaryStar, TwoStarPointsAtTheEndsOfASlitShareOneGhostLayer) {
   // whose boundary is the second loop.
   const TSplineTriangulation t = tessellate(s, 1e-2);
   for (const auto& p : t.points) ASSERT_TRUE(std::isfinite(p[0] + p[1] + p[2]));
-  EXPECT_EQ(boundary_loops(t), 2);
+  EXPECT_EQ(test::boundary_loops(t), 2);
 }
 
 // What the ghost layer cannot hold is refused with one line naming it.

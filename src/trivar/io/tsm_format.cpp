@@ -11,6 +11,7 @@
 #include "trivar/core/atomic_file.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/core/number_format.hpp"
+#include "trivar/tspline/crease_ends.hpp"
 
 namespace trivar::io {
 
@@ -387,7 +388,8 @@ TsmModel TsmReader::build() {
       fail(V[static_cast<std::size_t>(v)].line, "vertex " + std::to_string(v) + " is on no face");
   if (!stars.empty()) return out;
   try {
-    TChart chart = t_spline_chart(mesh, {}, seed, true);
+    // The mesh stays as read (crease flag, points); the spline is that of its Bezier end conditions.
+    TChart chart = t_spline_chart(bezier_equivalent(mesh), {}, seed, true);
     ts = std::move(chart.spline);
   } catch (const Error& e) {
     fail(e.what());

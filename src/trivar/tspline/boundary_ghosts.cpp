@@ -4,17 +4,14 @@
 #include <string>
 
 #include "trivar/core/error.hpp"
+#include "trivar/tspline/homogeneous_point.hpp"
 
 namespace trivar {
 
 namespace {
 
-using Homogeneous = std::array<double, 4>;  // (w x, w y, w z, w)
-
-Homogeneous homogeneous(const RationalPoint& p) { return {p.w * p.xyz[0], p.w * p.xyz[1], p.w * p.xyz[2], p.w}; }
-
-Homogeneous combine(const Homogeneous& a, double sa, const Homogeneous& b, double sb, const Homogeneous& c, double sc) {
-  Homogeneous r{};
+HomogeneousPoint combine(const HomogeneousPoint& a, double sa, const HomogeneousPoint& b, double sb, const HomogeneousPoint& c, double sc) {
+  HomogeneousPoint r{};
   for (std::size_t i = 0; i < 4; ++i) r[i] = sa * a[i] + sb * b[i] + sc * c[i];
   return r;
 }
@@ -39,7 +36,7 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
     return m.points[static_cast<std::size_t>(p)];
   };
   // Q0: the single end-condition block point (the vertex itself without a block at a star point).
-  const auto block = [&](int v, bool star) -> Homogeneous {
+  const auto block = [&](int v, bool star) -> HomogeneousPoint {
     const TMeshVertex& mv = m.vertices[static_cast<std::size_t>(v)];
     if (mv.block.empty() && star) return homogeneous(point(v));
     require(mv.block.size() == 1 && mv.block[0] >= 0, [&] {
@@ -48,9 +45,9 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
     });
     return homogeneous(m.points[static_cast<std::size_t>(mv.block[0])]);
   };
-  const auto add_point = [&](const Homogeneous& h, int v) {
+  const auto add_point = [&](const HomogeneousPoint& h, int v) {
     require(h[3] > 0, [&] { return "T-mesh: the ghost layer at boundary vertex " + std::to_string(v) + " has weight " + std::to_string(h[3]) + " (weights vary too much near a boundary star point)"; });
-    x.points.push_back({{h[0] / h[3], h[1] / h[3], h[2] / h[3]}, h[3]});
+    x.points.push_back(rational(h));
     return static_cast<int>(x.points.size()) - 1;
   };
   // A straight boundary vertex: two faces with corners there, one interior edge; its inner end, else -1.
@@ -121,12 +118,12 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
     for (int u : {L(o).vertex, target(o)}) {
       if (ghost[static_cast<std::size_t>(u)] >= 0) continue;
       const bool star = is_star[static_cast<std::size_t>(u)] != 0;
-      Homogeneous q2{};
+      HomogeneousPoint q2{};
       if (star) {
         int n = 0;
         for (int l : leaving[static_cast<std::size_t>(u)])
           if (is_face(L(l).face) && opp_face(l) && target(l) >= 0) {
-            const Homogeneous h = homogeneous(point(target(l)));
+            const HomogeneousPoint h = homogeneous(point(target(l)));
             for (std::size_t c = 0; c < 4; ++c) q2[c] += h[c];
             ++n;
           }
@@ -135,7 +132,7 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
       } else {
         q2 = homogeneous(point(inner_of_straight(u)));
       }
-      const Homogeneous q0 = block(u, star), q1 = homogeneous(point(u));
+      const HomogeneousPoint q0 = block(u, star), q1 = homogeneous(point(u));
       TMeshVertex& mv = x.vertices[static_cast<std::size_t>(u)];
       mv.primary = add_point(combine(q1, 1.5, q2, -0.5, q0, 0), u);
       mv.block.clear();

@@ -9,6 +9,7 @@
 #include "trivar/core/parallel.hpp"
 #include "trivar/tspline/boundary_ghosts.hpp"
 #include "trivar/tspline/catmull_clark_patch.hpp"
+#include "trivar/tspline/crease_ends.hpp"
 #include "trivar/tspline/non_uniform_catmull_clark.hpp"
 
 namespace trivar {
@@ -239,7 +240,8 @@ struct TMeshSurface::Nurcc {
 TMeshSurface::~TMeshSurface() = default;
 TMeshSurface::TMeshSurface(TMeshSurface&&) noexcept = default;
 
-TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(mesh), stars_(star_points(mesh)) {
+// A crease boundary is evaluated as the Bezier end conditions of the same surface (crease_ends).
+TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(bezier_equivalent(mesh)), stars_(star_points(mesh_)) {
   const TMesh& m = mesh_;
   const int nf = static_cast<int>(m.faces.size()), nv = static_cast<int>(m.vertices.size());
   const auto L = [&](int l) -> const TMeshLink& { return m.links[static_cast<std::size_t>(l)]; };

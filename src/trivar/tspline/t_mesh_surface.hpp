@@ -63,7 +63,8 @@ CornerFrame corner_frame(int corner);
 
 class TMeshSurface {
 public:
-  // threads for the charts' builds (parallel_for; <= 0: all).
+  // threads for the charts' builds (parallel_for; <= 0: all). A crease boundary (subd_creases) is evaluated as
+  // its Bezier end conditions (crease_ends); mesh() is that mesh.
   explicit TMeshSurface(const TMesh& mesh, int threads = 0);
   ~TMeshSurface();
   TMeshSurface(TMeshSurface&&) noexcept;
