@@ -5,11 +5,10 @@
 // positions, normals and first derivatives agree across every interior edge; the tessellation is watertight.
 #include <gtest/gtest.h>
 
-#include <map>
-#include <random>
 #include <sstream>
 #include <string>
 
+#include "boundary_star_checks.hpp"
 #include "chart_comparison.hpp"
 #include "face_continuity.hpp"
 #include "star_mesh_tsm.hpp"
@@ -28,14 +27,9 @@ double bump(double x, double y) { return 0.3 * std::sin(0.7 * x + 0.2) * std::co
 
 // The model of a half fan with its end-condition block points moved off their vertices (the general clamped end:
 // Q0 != Q1), by a random offset each.
-io::TsmModel half_fan_model(int sectors, int m, unsigned seed, double offset = 0.2) {
+io::TsmModel half_fan_model(int sectors, int m, unsigned seed) {
   io::TsmModel model = io::parse_tsm(tsm_text(test::half_fan_mesh(sectors, m, bump)), "half_fan.tsm");
-  std::mt19937 g(seed);
-  std::uniform_real_distribution<double> d(-offset, offset);
-  for (const TMeshVertex& v : model.mesh.vertices)
-    for (int b : v.block)
-      if (b >= 0)
-        for (double& c : model.mesh.points[static_cast<std::size_t>(b)].xyz) c += d(g);
+  test::offset_block_points(model.mesh, seed);
   return model;
 }
 
@@ -138,55 +132,6 @@ double boundary_curve_defect(const TMeshSurface& s, const TMesh& m, int sectors,
   return worst;
 }
 
-// Edges used once form closed loops (the boundaries; a crack inside would add loops): their number.
-int boundary_loops(const TSplineTriangulation& t) {
-  std::map<std::array<int, 2>, int> use;
-  for (const auto& tri : t.triangles)
-    for (int k = 0; k < 3; ++k) ++use[{tri[static_cast<std::size_t>(k)], tri[static_cast<std::size_t>((k + 1) % 3)]}];
-  std::map<int, int> next;
-  for (const auto& [e, n] : use) {
-    EXPECT_EQ(n, 1) << "edge used twice in the same direction";
-    if (!use.count({e[1], e[0]})) {
-      EXPECT_EQ(next.count(e[0]), 0u) << "boundary vertex with two outgoing edges";
-      next[e[0]] = e[1];
-    }
-  }
-  std::map<int, char> seen;
-  int loops = 0;
-  for (const auto& [start, to] : next) {
-    if (seen.count(start)) continue;
-    ++loops;
-    int v = start;
-    do {
-      seen[v] = 1;
-      const auto it = next.find(v);
-      if (it == next.end()) return -1;  // an open boundary chain
-      v = it->second;
-    } while (v != start && seen.size() <= next.size());
-  }
-  return loops;
-}
-
-// The star faces around star point `star` have one tangent plane there: the largest sine of the angle between
-// their normals and the first one's.
-double tangent_plane_spread(const TMeshSurface& s, int star) {
-  std::array<double, 3> n0{};
-  double worst = 0;
-  for (int f = 0; f < s.num_faces(); ++f) {
-    if (s.method(f) != FaceMethod::star) continue;
-    const auto c4 = s.corners(f);
-    const int corner = static_cast<int>(std::find(c4.begin(), c4.end(), star) - c4.begin());
-    if (corner == 4) continue;
-    const auto o = corner_frame(corner).origin;
-    double x[9];
-    s.eval(f, o[0], o[1], x);
-    const auto n = test::unit_normal(x);
-    if (n0 == std::array<double, 3>{}) n0 = n;
-    worst = std::max(worst, std::hypot(n[1] * n0[2] - n[2] * n0[1], n[2] * n0[0] - n[0] * n0[2], n[0] * n0[1] - n[1] * n0[0]));
-  }
-  return worst;
-}
-
 class BoundaryStarValence : public ::testing::TestWithParam<int> {};
 
 TEST_P(BoundaryStarValence, LoadsAsOneSmoothSurfaceWithTheTSplineAwayFromTheStarPoint) {
@@ -215,10 +160,10 @@ TEST_P(BoundaryStarValence, LoadsAsOneSmoothSurfaceWithTheTSplineAwayFromTheStar
   std::printf("boundary star of %d faces: %d edges, gap %.2e, normal defect (sin) %.2e, C1 defect %.2e; %d faces as charts "
               "(position %.2e)\n", sectors, c.edges, c.gap, c.normal_angle, c.c1, cmp.compared, cmp.position);
   // One tangent plane at the star point for all its faces.
-  EXPECT_LT(tangent_plane_spread(s, s.stars()[0]), 1e-9);
+  EXPECT_LT(test::tangent_plane_spread(s, s.stars()[0]), 1e-9);
   const TSplineTriangulation t = tessellate(s, 1e-2);
   for (const auto& p : t.points) ASSERT_TRUE(std::isfinite(p[0] + p[1] + p[2]));
-  EXPECT_EQ(boundary_loops(t), 1);
+  EXPECT_EQ(test::boundary_loops(t), 1);
   // Bezier patches (exact pieces, one corner patch per star face) within their tolerance of the limit surface.
   if (sectors == 5) {
     const TMeshPatches p = t_mesh_patches(s);
@@ -300,16 +245,16 @@ TEST(BoundaryStar, TwoStarPointsAtTheEndsOfASlitShareOneGhostLayer) {
   EXPECT_LT(c.c1, 1e-10);
   std::printf("slit with two boundary star points: %d edges, gap %.2e, normal defect (sin) %.2e, C1 defect %.2e; %d faces as "
               "charts (position %.2e)\n", c.edges, c.gap, c.normal_angle, c.c1, cmp.compared, cmp.position);
-  for (int star : s.stars()) EXPECT_LT(tangent_plane_spread(s, star), 1e-9) << star;
+  for (int star : s.stars()) EXPECT_LT(test::tangent_plane_spread(s, star), 1e-9) << star;
   // The slit's two sides end at the same block points (the same boundary curve): watertight apart from the slit,
   // whose boundary is the second loop.
   const TSplineTriangulation t = tessellate(s, 1e-2);
   for (const auto& p : t.points) ASSERT_TRUE(std::isfinite(p[0] + p[1] + p[2]));
-  EXPECT_EQ(boundary_loops(t), 2);
+  EXPECT_EQ(test::boundary_loops(t), 2);
 }
 
 // What the ghost layer cannot hold is refused with one line naming it.
-TEST(BoundaryStar, RefusesCornersAndUnequalIntervalsNearby) {
+TEST(BoundaryStar, RefusesShortCornerSidesTJunctionsAndUnequalIntervalsNearby) {
   const auto refused = [](const std::string& text, const std::string& fragment) {
     try {
       const io::TsmModel model = io::parse_tsm(text, "bad.tsm");
@@ -321,10 +266,20 @@ TEST(BoundaryStar, RefusesCornersAndUnequalIntervalsNearby) {
       EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
     }
   };
-  // One face per sector: the star point's boundary neighbours are corners.
-  refused(tsm_text(test::half_fan_mesh(4, 1, bump)), "corner or a T-junction next to it");
-  // Two faces per sector: the faces near the star point reach the corners two edges out.
-  refused(tsm_text(test::half_fan_mesh(4, 2, bump)), "T-mesh: face");
+  // One face per sector: the star point's boundary neighbours are corners whose other sides have one edge.
+  refused(tsm_text(test::half_fan_mesh(4, 1, bump)), "a corner with a side of one edge");
+  // A T-junction on the boundary two edges from the star point: the boundary side of sector 0's face [2, 3] x
+  // [0, 1] split at its middle.
+  test::QuadMesh split = test::half_fan_mesh(4, 7, bump);
+  {
+    const std::array<int, 4> f = split.quads[2];
+    const int mid = static_cast<int>(split.points.size());
+    split.points.push_back({2.5, 0, bump(2.5, 0)});
+    split.quads.erase(split.quads.begin() + 2);
+    split.t_faces.push_back({{f[0], mid, f[1], f[2], f[3]}, {0, 1, 0, 0, 0}});
+    split.intervals[{f[0], mid}] = split.intervals[{mid, f[1]}] = 0.5;
+  }
+  refused(tsm_text(split), "T-junction");
   // A knot interval of 2 on the strip of the first faces along spoke 1.
   test::QuadMesh uneven = test::half_fan_mesh(4, 7, bump);
   for (int i = 0; i < 7; ++i) {
