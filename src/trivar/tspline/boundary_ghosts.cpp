@@ -159,6 +159,13 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
     x.links[static_cast<std::size_t>(o)].opp = opp;
     x.links[static_cast<std::size_t>(opp)].opp = o;
   };
+  const auto add_face = [&](const std::array<int, 4>& loop) {
+    for (std::size_t k = 0; k < 4; ++k) {
+      x.links[static_cast<std::size_t>(loop[k])].next = loop[(k + 1) % 4];
+      x.links[static_cast<std::size_t>(loop[k])].prev = loop[(k + 3) % 4];
+    }
+    x.faces.push_back({loop.begin(), loop.end()});
+  };
   const auto link_pair = [&](int a, int b) {
     x.links[static_cast<std::size_t>(a)].opp = b;
     x.links[static_cast<std::size_t>(b)].opp = a;
@@ -232,7 +239,9 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
         // first side is a's unless only nb is a star point, whose rows (from the mean of its interior edges) then
         // enter as they are.
         const int ob = L(L(lf).prev).opp, na = target(lf), nb = L(L(lf).prev).vertex;
-        require(L(lf).frame >= 0 && L(ob).frame >= 0, [&] { return "T-mesh: corner vertex " + std::to_string(u) + " near a boundary star point has no frame for its end-condition block"; });
+        require(L(lf).frame >= 0 && L(ob).frame >= 0, [&] {
+          return "T-mesh: corner vertex " + std::to_string(u) + " near a boundary star point has no frame for its end-condition block";
+        });
         const int out_a = (L(ob).frame + 2) % 4, out_b = (L(lf).frame + 2) % 4;  // outwards across sides a and b
         const Homogeneous qa = corner_block(u, {out_a}), qb = corner_block(u, {out_b}), qd = corner_block(u, {out_a, out_b});
         const bool b_first = is_star[static_cast<std::size_t>(nb)] && !is_star[static_cast<std::size_t>(na)];
@@ -258,20 +267,16 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
   // c -> G_a(c) is `arriving_side`) and its leaving link; returns its side c -> G_b(c).
   const auto corner_face = [&](int c, int arriving_side, double d_in, double d_out) {
     const int f = static_cast<int>(x.faces.size());
-    const int ga = corner_ghost[static_cast<std::size_t>(c)][0], gd = corner_ghost[static_cast<std::size_t>(c)][1], gb = g.ghost[static_cast<std::size_t>(c)];
+    const auto [ga, gd] = corner_ghost[static_cast<std::size_t>(c)];
+    const int gb = g.ghost[static_cast<std::size_t>(c)];
     const int k0 = new_link(c, f, new_edge(d_out));
     const int k1 = new_link(gb, f, new_edge(d_in));
     const int k2 = new_link(gd, f, new_edge(d_out));
     const int k3 = new_link(ga, f, x.links[static_cast<std::size_t>(arriving_side)].edge);
-    const std::array<int, 4> loop{k0, k1, k2, k3};
-    for (std::size_t k = 0; k < 4; ++k) {
-      x.links[static_cast<std::size_t>(loop[k])].next = loop[(k + 1) % 4];
-      x.links[static_cast<std::size_t>(loop[k])].prev = loop[(k + 3) % 4];
-    }
+    add_face({k0, k1, k2, k3});
     link_pair(k3, arriving_side);
     outside(k1, gd);
     outside(k2, ga);
-    x.faces.push_back({k0, k1, k2, k3});
     return k0;
   };
   // The layer's runs of consecutive boundary links (a whole boundary loop when it closes, then started after a
@@ -287,9 +292,8 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
       chain.push_back(l);
     }
     const bool closed = chain.size() > 2 && L(chain.back()).next == chain.front();
-    if (closed)
-      std::rotate(chain.begin(), std::find_if(chain.begin(), chain.end(), [&](int l) { return corner_ghost[static_cast<std::size_t>(L(l).vertex)][0] < 0; }),
-                  chain.end());
+    const auto not_corner = [&](int l) { return corner_ghost[static_cast<std::size_t>(L(l).vertex)][0] < 0; };
+    if (closed) std::rotate(chain.begin(), std::find_if(chain.begin(), chain.end(), not_corner), chain.end());
     // Ghost faces (a, b, G(b), G(a)) on the outside of each boundary link a -> b of the chain; the link a -> b
     // takes the place of the boundary link as the opposite of the inner face's b -> a.
     int first_side = -1;  // the first face's link G(a) -> a
@@ -303,17 +307,14 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
         last_side = corner_face(a, last_side, m.intervals[static_cast<std::size_t>(L(chain[i - 1]).edge)], d);
       const int f = static_cast<int>(x.faces.size());
       const int ga = g.ghost[static_cast<std::size_t>(a)];
-      const int gb = corner_ghost[static_cast<std::size_t>(b)][0] >= 0 ? corner_ghost[static_cast<std::size_t>(b)][0] : g.ghost[static_cast<std::size_t>(b)];
+      const int arriving_ghost = corner_ghost[static_cast<std::size_t>(b)][0];  // b a corner
+      const int gb = arriving_ghost >= 0 ? arriving_ghost : g.ghost[static_cast<std::size_t>(b)];
       const bool last = i + 1 == chain.size();
       const int l0 = new_link(a, f, L(c).edge);
       const int l1 = new_link(b, f, closed && last ? x.links[static_cast<std::size_t>(first_side)].edge : new_edge(d));
       const int l2 = new_link(gb, f, new_edge(d));
       const int l3 = new_link(ga, f, i == 0 ? new_edge(d) : x.links[static_cast<std::size_t>(last_side)].edge);
-      const std::array<int, 4> loop{l0, l1, l2, l3};
-      for (std::size_t k = 0; k < 4; ++k) {
-        x.links[static_cast<std::size_t>(loop[k])].next = loop[(k + 1) % 4];
-        x.links[static_cast<std::size_t>(loop[k])].prev = loop[(k + 3) % 4];
-      }
+      add_face({l0, l1, l2, l3});
       link_pair(l0, inner);
       if (i == 0) {
         first_side = l3;
@@ -327,7 +328,6 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
       else if (last)
         outside(l1, gb);
       last_side = l1;
-      x.faces.push_back({l0, l1, l2, l3});
     }
   }
   return g;
