@@ -49,9 +49,10 @@ struct GhostedMesh {
 // boundary vertices lie within `reach` steps across faces from a star point (on a grid the larger of the two index
 // distances: on a straight boundary `reach` edges) and the layer runs through them: straight vertices (two faces,
 // no T-junction, one block point) and corners whose neighbours along the boundary are straight or star points
-// (so sides of one edge, T-junctions and unequal knot intervals stop it). Layers that meet (star points within
-// 2 reach edges along the boundary, or the two ends of a slit) are one layer through both star points, closed
-// when it covers a whole boundary loop.
+// (sides of one edge and T-junctions stop it; the rules assume equal knot intervals, which TMeshSurface checks
+// on the faces it evaluates through the layer). Layers that meet (star points within 2 reach edges along the
+// boundary, or the two ends of a slit) are one layer through both star points, closed when it covers a whole
+// boundary loop.
 // Throws trivar::Error (one line) when a star point has more than one boundary arc or no vertex the layer runs
 // through on either side, a vertex of the layer has no single block point (a corner: no block of three), or a
 // weight of the extended mesh is not positive.
