@@ -7,22 +7,19 @@
 #include <string>
 
 #include "trivar/core/error.hpp"
+#include "trivar/tspline/homogeneous_point.hpp"
 
 namespace trivar {
 
 namespace {
 
-using Homogeneous = std::array<double, 4>;  // (w x, w y, w z, w)
-
-Homogeneous homogeneous(const RationalPoint& p) { return {p.w * p.xyz[0], p.w * p.xyz[1], p.w * p.xyz[2], p.w}; }
-
 // The 1-D rule across a straight boundary: the clamped cubic's rows Q0 (block point), Q1 (boundary), Q2 (inside)
 // as the uniform B-spline's ghost row P-1 and boundary row P0 (P1 = Q2).
 struct Rows {
-  Homogeneous ghost, point;
+  HomogeneousPoint ghost, point;
 };
 
-Rows rows(const Homogeneous& q0, const Homogeneous& q1, const Homogeneous& q2) {
+Rows rows(const HomogeneousPoint& q0, const HomogeneousPoint& q1, const HomogeneousPoint& q2) {
   Rows r{};
   for (std::size_t i = 0; i < 4; ++i) {
     r.ghost[i] = 6 * q0[i] - 6 * q1[i] + q2[i];
@@ -48,13 +45,13 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
     if (L(l).vertex >= 0) leaving[static_cast<std::size_t>(L(l).vertex)].push_back(l);
   std::vector<char> is_star(nv, 0), in_layer(static_cast<std::size_t>(nl), 0);
   for (int v : stars) is_star[static_cast<std::size_t>(v)] = 1;
-  const auto point = [&](int v) -> Homogeneous {
+  const auto point = [&](int v) -> HomogeneousPoint {
     const int p = m.vertices[static_cast<std::size_t>(v)].primary;
     require(p >= 0, [&] { return "T-mesh: boundary vertex " + std::to_string(v) + " near a boundary star point has no control point"; });
     return homogeneous(m.points[static_cast<std::size_t>(p)]);
   };
   // Q0: the single end-condition block point (the vertex itself without a block at a star point).
-  const auto block = [&](int v) -> Homogeneous {
+  const auto block = [&](int v) -> HomogeneousPoint {
     const TMeshVertex& mv = m.vertices[static_cast<std::size_t>(v)];
     if (mv.block.empty() && is_star[static_cast<std::size_t>(v)]) return point(v);
     require(mv.block.size() == 1 && mv.block[0] >= 0, [&] {
@@ -64,7 +61,7 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
     return homogeneous(m.points[static_cast<std::size_t>(mv.block[0])]);
   };
   // The block point of corner v at the offset `dirs` (directions of its frame, one step each).
-  const auto corner_block = [&](int v, std::initializer_list<int> dirs) -> Homogeneous {
+  const auto corner_block = [&](int v, std::initializer_list<int> dirs) -> HomogeneousPoint {
     static constexpr std::array<std::array<int, 2>, 4> step{{{0, 1}, {-1, 0}, {0, -1}, {1, 0}}};  // N, W, S, E
     std::array<int, 2> want{};
     for (int d : dirs)
@@ -196,12 +193,12 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
   // rows (block, vertex, inside) of each side: its point P(0, 0), a ghost across each side and a diagonal one.
   std::vector<std::array<int, 2>> corner_ghost(nv, {-1, -1});  // a corner's ghosts across its arriving link, diagonal
   const auto vertex_rows = [&](int u) {  // a straight vertex or a star point
-    Homogeneous q2{};
+    HomogeneousPoint q2{};
     if (is_star[static_cast<std::size_t>(u)]) {
       int n = 0;
       for (int l : leaving[static_cast<std::size_t>(u)])
         if (is_face(L(l).face) && opp_face(l) && target(l) >= 0) {
-          const Homogeneous h = point(target(l));
+          const HomogeneousPoint h = point(target(l));
           for (std::size_t c = 0; c < 4; ++c) q2[c] += h[c];
           ++n;
         }
@@ -212,12 +209,12 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
     }
     return rows(block(u), point(u), q2);
   };
-  const auto add_point = [&](const Homogeneous& h, int v) {
+  const auto add_point = [&](const HomogeneousPoint& h, int v) {
     require(h[3] > 0, [&] { return "T-mesh: the ghost layer at boundary vertex " + std::to_string(v) + " has weight " + std::to_string(h[3]) + " (weights vary too much near a boundary star point)"; });
-    x.points.push_back({{h[0] / h[3], h[1] / h[3], h[2] / h[3]}, h[3]});
+    x.points.push_back(rational(h));
     return static_cast<int>(x.points.size()) - 1;
   };
-  const auto new_ghost = [&](const Homogeneous& h, int v) {
+  const auto new_ghost = [&](const HomogeneousPoint& h, int v) {
     TMeshVertex gv;
     gv.primary = add_point(h, v);
     x.vertices.push_back(gv);
@@ -228,7 +225,7 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
     for (int u : {L(o).vertex, target(o)}) {
       if (g.ghost[static_cast<std::size_t>(u)] >= 0) continue;
       const int lf = is_star[static_cast<std::size_t>(u)] ? -1 : corner_link(u);
-      Homogeneous p{}, leaving_ghost{};
+      HomogeneousPoint p{}, leaving_ghost{};
       if (lf < 0) {
         const Rows r = vertex_rows(u);
         p = r.point;
@@ -243,7 +240,7 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
           return "T-mesh: corner vertex " + std::to_string(u) + " near a boundary star point has no frame for its end-condition block";
         });
         const int out_a = (L(ob).frame + 2) % 4, out_b = (L(lf).frame + 2) % 4;  // outwards across sides a and b
-        const Homogeneous qa = corner_block(u, {out_a}), qb = corner_block(u, {out_b}), qd = corner_block(u, {out_a, out_b});
+        const HomogeneousPoint qa = corner_block(u, {out_a}), qb = corner_block(u, {out_b}), qd = corner_block(u, {out_a, out_b});
         const bool b_first = is_star[static_cast<std::size_t>(nb)] && !is_star[static_cast<std::size_t>(na)];
         const int first = b_first ? nb : na, second = b_first ? na : nb;
         const Rows r0 = rows(qd, b_first ? qa : qb, block(second));
@@ -252,7 +249,7 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
         const Rows on_line = rows(r0.point, r1.point, r2.point);  // the corner's point, its ghost across the second side
         const Rows beyond = rows(r0.ghost, r1.ghost, r2.ghost);   // its ghost across the first side, the diagonal one
         p = on_line.point;
-        const Homogeneous& arriving_ghost = b_first ? on_line.ghost : beyond.point;
+        const HomogeneousPoint& arriving_ghost = b_first ? on_line.ghost : beyond.point;
         leaving_ghost = b_first ? beyond.point : on_line.ghost;
         corner_ghost[static_cast<std::size_t>(u)] = {new_ghost(arriving_ghost, u), new_ghost(beyond.ghost, u)};
       }
