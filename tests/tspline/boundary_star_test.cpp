@@ -3,12 +3,18 @@
 // reproduces the clamped bicubic T-spline through the ghost layer; faces whose points avoid the star point are
 // the T-spline of their charts; the boundary curve is the cubic B-spline of the end-condition block points;
 // positions, normals and first derivatives agree across every interior edge; the tessellation is watertight.
+// Near corners of the boundary (the layer goes round them as the tensor product of the clamped ends) the same,
+// and the limit point at a corner is its diagonal block point.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <map>
+#include <numbers>
 #include <random>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "chart_comparison.hpp"
 #include "face_continuity.hpp"
@@ -21,16 +27,17 @@
 #include "trivar/tspline/t_mesh_patches.hpp"
 #include "trivar/tspline/t_mesh_surface.hpp"
 #include "trivar/tspline/t_mesh_tessellation.hpp"
+#include "trivar/tspline/t_spline_surface.hpp"
 
 namespace trivar {
 namespace {
 
 double bump(double x, double y) { return 0.3 * std::sin(0.7 * x + 0.2) * std::cos(0.5 * y) + 0.05 * x * y; }
 
-// The model of a half fan with its end-condition block points moved off their vertices (the general clamped end:
+// The model of a quad mesh with its end-condition block points moved off their vertices (the general clamped end:
 // Q0 != Q1), by a random offset each.
-io::TsmModel half_fan_model(int sectors, int m, unsigned seed, double offset = 0.2) {
-  io::TsmModel model = io::parse_tsm(tsm_text(test::half_fan_mesh(sectors, m, bump)), "half_fan.tsm");
+io::TsmModel offset_model(const test::QuadMesh& q, unsigned seed, double offset = 0.2) {
+  io::TsmModel model = io::parse_tsm(tsm_text(q), "boundary_star.tsm");
   std::mt19937 g(seed);
   std::uniform_real_distribution<double> d(-offset, offset);
   for (const TMeshVertex& v : model.mesh.vertices)
@@ -39,6 +46,8 @@ io::TsmModel half_fan_model(int sectors, int m, unsigned seed, double offset = 0
         for (double& c : model.mesh.points[static_cast<std::size_t>(b)].xyz) c += d(g);
   return model;
 }
+
+io::TsmModel half_fan_model(int sectors, int m, unsigned seed) { return offset_model(test::half_fan_mesh(sectors, m, bump), seed); }
 
 const std::array<double, 3>& point_of(const TMesh& m, int v) {
   return m.points[static_cast<std::size_t>(m.vertices[static_cast<std::size_t>(v)].primary)].xyz;
@@ -281,7 +290,7 @@ TEST(BoundaryStar, TwoStarPointsAtTheEndsOfASlitShareOneGhostLayer) {
 }
 
 // What the ghost layer cannot hold is refused with one line naming it.
-TEST(BoundaryStar, RefusesCornersAndUnequalIntervalsNearby) {
+TEST(BoundaryStar, RefusesShortCornerSidesTJunctionsAndUnequalIntervalsNearby) {
   const auto refused = [](const std::string& text, const std::string& fragment) {
     try {
       const io::TsmModel model = io::parse_tsm(text, "bad.tsm");
@@ -293,10 +302,20 @@ TEST(BoundaryStar, RefusesCornersAndUnequalIntervalsNearby) {
       EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
     }
   };
-  // One face per sector: the star point's boundary neighbours are corners.
-  refused(tsm_text(test::half_fan_mesh(4, 1, bump)), "corner or a T-junction next to it");
-  // Two faces per sector: the faces near the star point reach the corners two edges out.
-  refused(tsm_text(test::half_fan_mesh(4, 2, bump)), "T-mesh: face");
+  // One face per sector: the star point's boundary neighbours are corners whose other sides have one edge.
+  refused(tsm_text(test::half_fan_mesh(4, 1, bump)), "a corner with a side of one edge");
+  // A T-junction on the boundary two edges from the star point: the boundary side of sector 0's face [2, 3] x
+  // [0, 1] split at its middle.
+  test::QuadMesh split = test::half_fan_mesh(4, 7, bump);
+  {
+    const std::array<int, 4> f = split.quads[2];
+    const int mid = static_cast<int>(split.points.size());
+    split.points.push_back({2.5, 0, bump(2.5, 0)});
+    split.quads.erase(split.quads.begin() + 2);
+    split.t_faces.push_back({{f[0], mid, f[1], f[2], f[3]}, {0, 1, 0, 0, 0}});
+    split.intervals[{f[0], mid}] = split.intervals[{mid, f[1]}] = 0.5;
+  }
+  refused(tsm_text(split), "T-junction");
   // A knot interval of 2 on the strip of the first faces along spoke 1.
   test::QuadMesh uneven = test::half_fan_mesh(4, 7, bump);
   for (int i = 0; i < 7; ++i) {
@@ -304,6 +323,247 @@ TEST(BoundaryStar, RefusesCornersAndUnequalIntervalsNearby) {
     uneven.intervals[{f[0], f[3]}] = uneven.intervals[{f[1], f[2]}] = 2;
   }
   refused(tsm_text(uneven), "knot interval");
+}
+
+// Star points near corners of the boundary, and two star points on one open stretch of boundary: the ghost layer
+// goes round the corners as the tensor product of the clamped ends.
+constexpr double kDegree = std::numbers::pi / 180;
+
+// Quad meshes glued from parallelogram sectors: the sector of nu x nv faces at c spanned by the unit directions at
+// angles au < av (degrees); vertices at the same position are one.
+struct SectorMesh {
+  test::QuadMesh q;
+  std::map<std::array<long long, 2>, int> ids;
+
+  int vertex(double x, double y) {
+    const auto [it, fresh] = ids.emplace(std::array<long long, 2>{std::llround(x * 1e6), std::llround(y * 1e6)}, static_cast<int>(q.points.size()));
+    if (fresh) q.points.push_back({x, y, bump(x, y)});
+    return it->second;
+  }
+  std::array<double, 2> at(std::array<double, 2> c, double au, double av, int i, int j) const {
+    return {c[0] + i * std::cos(au * kDegree) + j * std::cos(av * kDegree), c[1] + i * std::sin(au * kDegree) + j * std::sin(av * kDegree)};
+  }
+  void sector(std::array<double, 2> c, double au, double av, int nu, int nv) {
+    for (int j = 0; j < nv; ++j)
+      for (int i = 0; i < nu; ++i) {
+        std::array<int, 4> f{};
+        const std::array<std::array<int, 2>, 4> corner{{{i, j}, {i + 1, j}, {i + 1, j + 1}, {i, j + 1}}};
+        for (std::size_t k = 0; k < 4; ++k) {
+          const auto p = at(c, au, av, corner[k][0], corner[k][1]);
+          f[k] = vertex(p[0], p[1]);
+        }
+        q.quads.push_back(f);
+      }
+  }
+};
+
+// A boundary star point of four faces at the origin (spokes at 0, 45, ..., 180 degrees of lengths `spokes`, sector k
+// spokes[k] x spokes[k + 1] faces): the corners of sector 0 lie spokes[0] edges from it along the boundary.
+SectorMesh corner_fan(const std::array<int, 5>& spokes) {
+  SectorMesh s;
+  for (int k = 0; k < 4; ++k) s.sector({0, 0}, 45.0 * k, 45.0 * (k + 1), spokes[static_cast<std::size_t>(k)], spokes[static_cast<std::size_t>(k) + 1]);
+  return s;
+}
+
+struct Checks {
+  test::ChartComparison charts;
+  test::Continuity continuity;
+  double spread = 0;  // largest over the star points
+  int loops = 0;
+};
+
+// The Catmull-Clark faces whose two rings avoid the star points (more than `charts` of them) against their
+// charts' T-spline, continuity across every interior edge, one tangent plane at each star point, one boundary loop.
+Checks check_surface(const TMesh& m, const TMeshSurface& s, int charts) {
+  Checks c;
+  c.charts = test::compare_with_charts(m, s, FaceMethod::bicubic);
+  c.continuity = test::continuity(m, [&](int f, double u, double v, double* o) { s.eval(f, u, v, o); });
+  for (int star : s.stars()) c.spread = std::max(c.spread, tangent_plane_spread(s, star));
+  const TSplineTriangulation t = tessellate(s, 1e-2);
+  for (const auto& p : t.points) EXPECT_TRUE(std::isfinite(p[0] + p[1] + p[2]));
+  c.loops = test::boundary_loops(t);
+  EXPECT_GT(c.charts.compared, charts);
+  EXPECT_LT(c.charts.position, 1e-12);
+  EXPECT_LT(c.charts.derivative, 1e-11);
+  EXPECT_LT(c.continuity.gap, 1e-12);
+  EXPECT_LT(c.continuity.normal_angle, 1e-10);
+  EXPECT_LT(c.continuity.c1, 1e-10);
+  EXPECT_LT(c.spread, 1e-9);
+  EXPECT_EQ(c.loops, 1);
+  return c;
+}
+
+// The distance from the limit point at corner vertex `corner` (of one face) to the nearest of its end-condition
+// block points (the diagonal one is the clamped ends' value there).
+double corner_to_block(const TMesh& m, const TMeshSurface& s, int corner) {
+  for (int f = 0; f < s.num_faces(); ++f) {
+    const auto c4 = s.corners(f);
+    const int k = static_cast<int>(std::find(c4.begin(), c4.end(), corner) - c4.begin());
+    if (k == 4) continue;
+    double x[9];
+    const auto o = corner_frame(k).origin;
+    s.eval(f, o[0], o[1], x);
+    double best = 1e300;
+    EXPECT_EQ(m.vertices[static_cast<std::size_t>(corner)].block.size(), 3u);
+    for (int b : m.vertices[static_cast<std::size_t>(corner)].block) {
+      const auto& q = m.points[static_cast<std::size_t>(b)].xyz;
+      best = std::min(best, std::hypot(x[0] - q[0], x[1] - q[1], x[2] - q[2]));
+    }
+    return best;
+  }
+  return 1e300;
+}
+
+int vertex_of(const SectorMesh& sm, std::array<double, 2> p) { return sm.ids.at({std::llround(p[0] * 1e6), std::llround(p[1] * 1e6)}); }
+
+class StarNearCorner : public ::testing::TestWithParam<int> {};
+
+TEST_P(StarNearCorner, GhostLayerGoesRoundTheCornerAsTheTSplinesClampedEnds) {
+  const int d = GetParam();  // boundary edges from the star point to the corner
+  SectorMesh sm = corner_fan({d, 7, 7, 7, d});  // corners d edges out on both sides
+  const io::TsmModel model = offset_model(sm.q, 40u + static_cast<unsigned>(d));
+  const TMesh& m = model.mesh;
+  ASSERT_EQ(model.report.star_points, 1);
+  const TMeshSurface s(m, 1);
+  EXPECT_EQ(s.count(FaceMethod::star), 4);
+  EXPECT_EQ(s.boundary_star_faces(), 4);
+  EXPECT_EQ(s.count(FaceMethod::star) + s.count(FaceMethod::bicubic) + s.count(FaceMethod::exact), static_cast<int>(sm.q.quads.size()));
+  // The corner (d, 0) of sector 0 and its face (d - 1, 0).
+  const int corner = vertex_of(sm, sm.at({0, 0}, 0, 45, d, 0));
+  const int corner_face = d - 1;
+  const auto c4 = s.corners(corner_face);
+  ASSERT_NE(std::find(c4.begin(), c4.end(), corner), c4.end());
+  EXPECT_NE(s.method(corner_face), FaceMethod::exact);  // within the star point's Catmull-Clark region
+  // The T-spline of sector 0 as one chart (the star point at its corner, where its rays stop as in the mesh): the
+  // T-spline itself on the faces whose knot vectors stay in the sector (two faces from spoke 1 on), which hold the
+  // corner for d >= 3.
+  std::vector<int> sector0(static_cast<std::size_t>(7 * d));
+  for (int f = 0; f < 7 * d; ++f) sector0[static_cast<std::size_t>(f)] = f;
+  const TChart chart = t_spline_chart(m, sector0, 0, true);
+  const TSplineSurface ts(chart.spline, 1);
+  const auto st = [&](int v) {
+    const TVertex& x = chart.spline.image.vertices[static_cast<std::size_t>(chart.vertex[static_cast<std::size_t>(v)])];
+    return std::array<double, 2>{x.s, x.t};
+  };
+  double sector_position = 0, sector_derivative = 0;
+  int sector_compared = 0;
+  for (int j = 0; j < 7; ++j)
+    for (int i = 2; i < d; ++i) {
+      const int f = j * d + i;
+      const auto c = s.corners(f);
+      const auto p0 = st(c[0]), p1 = st(c[1]), p3 = st(c[3]);
+      ++sector_compared;
+      for (double u : {0.0, 0.3, 0.5, 1.0})
+        for (double v : {0.0, 0.4, 1.0}) {
+          double a[9], b[9];
+          s.eval(f, u, v, a);
+          ts.eval_first_derivatives({p0[0] + u * (p1[0] - p0[0]) + v * (p3[0] - p0[0]), p0[1] + u * (p1[1] - p0[1]) + v * (p3[1] - p0[1])}, b);
+          for (int q = 0; q < 3; ++q) {
+            sector_position = std::max(sector_position, std::abs(a[q] - b[q]));
+            const double du = (p1[0] - p0[0]) * b[3 + q] + (p1[1] - p0[1]) * b[6 + q];
+            const double dv = (p3[0] - p0[0]) * b[3 + q] + (p3[1] - p0[1]) * b[6 + q];
+            sector_derivative = std::max({sector_derivative, std::abs(a[3 + q] - du), std::abs(a[6 + q] - dv)});
+          }
+        }
+    }
+  EXPECT_EQ(sector_compared, 7 * std::max(0, d - 2));
+  EXPECT_LT(sector_position, 1e-12);
+  EXPECT_LT(sector_derivative, 1e-11);
+  // The limit point at both corners: one of the corner's three block points (the diagonal one, where both clamped
+  // ends take their first point), also next to the star point (d = 1, one on either side of the star point).
+  const double to_block = std::max(corner_to_block(m, s, corner), corner_to_block(m, s, vertex_of(sm, sm.at({0, 0}, 135, 180, 0, d))));
+  EXPECT_LT(to_block, 1e-12);
+  const Checks c = check_surface(m, s, 20);
+  std::printf("boundary star %d edges from a corner: sector chart %d faces (position %.2e, derivative %.2e), 2-ring charts %d faces "
+              "(position %.2e), corner to its block point %.2e; %d edges: gap %.2e, normal defect (sin) %.2e, C1 defect %.2e; "
+              "tangent plane spread %.2e\n",
+              d, sector_compared, sector_position, sector_derivative, c.charts.compared, c.charts.position, to_block, c.continuity.edges,
+              c.continuity.gap, c.continuity.normal_angle, c.continuity.c1, c.spread);
+}
+
+INSTANTIATE_TEST_SUITE_P(Edges, StarNearCorner, ::testing::Values(1, 2, 3, 4));
+
+// Two star points of four faces, six edges apart on one open stretch of boundary (S1's spoke 0 is S2's last
+// spoke): their layers (seven edges either way) overlap on the stretch and are one layer there, which goes on
+// round the sectors' corners and ends on both sides before the boundary eight edges out.
+TEST(BoundaryStarPair, LayersOverlappingOnAnOpenStretchAreOneLayer) {
+  SectorMesh sm = corner_fan({6, 7, 7, 7, 8});
+  const std::array<double, 2> s2{6, 0};
+  sm.sector(s2, -170, -100, 7, 7);
+  sm.sector(s2, -100, -25, 7, 7);
+  sm.sector(s2, -25, 45, 7, 7);
+  const io::TsmModel model = offset_model(sm.q, 77u);
+  const TMesh& m = model.mesh;
+  ASSERT_EQ(model.report.star_points, 2);
+  const TMeshSurface s(m, 1);
+  ASSERT_EQ(s.stars().size(), 2u);
+  EXPECT_EQ(s.count(FaceMethod::star), 8);
+  EXPECT_EQ(s.boundary_star_faces(), 8);
+  EXPECT_EQ(s.count(FaceMethod::star) + s.count(FaceMethod::bicubic) + s.count(FaceMethod::exact), static_cast<int>(sm.q.quads.size()));
+  // The extended mesh: every vertex of the stretch between the star points is interior with four faces (one
+  // ghost face per boundary link, shared by both layers), the star points have six, and the layer is open.
+  const GhostedMesh g = ghost_boundary(m, s.stars(), 7);
+  std::vector<int> faces_at(g.mesh.vertices.size(), 0);
+  for (const TMeshLink& k : g.mesh.links)
+    if (k.vertex >= 0 && k.face >= 0) ++faces_at[static_cast<std::size_t>(k.vertex)];
+  for (int star : s.stars()) EXPECT_EQ(faces_at[static_cast<std::size_t>(star)], 6) << star;
+  for (int i = 1; i < 6; ++i) {
+    const int v = sm.ids.at({std::llround(i * 1e6), 0});
+    EXPECT_EQ(faces_at[static_cast<std::size_t>(v)], 4) << i;
+    EXPECT_GE(g.ghost[static_cast<std::size_t>(v)], 0) << i;
+  }
+  int unghosted_boundary = 0;
+  for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+    bool on_boundary = false;
+    for (const TMeshLink& k : m.links) on_boundary = on_boundary || (k.vertex == static_cast<int>(v) && k.face < 0);
+    unghosted_boundary += on_boundary && g.ghost[v] < 0;
+  }
+  EXPECT_GT(unghosted_boundary, 0);
+  const Checks c = check_surface(m, s, 20);
+  std::printf("two boundary star points 6 edges apart: 2-ring charts %d faces (position %.2e); %d edges: gap %.2e, normal defect (sin) "
+              "%.2e, C1 defect %.2e; tangent plane spread %.2e\n",
+              c.charts.compared, c.charts.position, c.continuity.edges, c.continuity.gap, c.continuity.normal_angle, c.continuity.c1, c.spread);
+}
+
+// Four sectors of 2 x 2 faces: every side of the boundary has two edges and ends at corners, all within the star
+// point's layer, which closes round the whole boundary; no face avoids the star point, so the checks are those of
+// the limit surface: continuity, the tangent plane, the corners' block points and a watertight tessellation.
+TEST(BoundaryCorner, EverySideTwoEdgesLong) {
+  SectorMesh sm = corner_fan({2, 2, 2, 2, 2});
+  const io::TsmModel model = offset_model(sm.q, 9u);
+  const TMesh& m = model.mesh;
+  const TMeshSurface s(m, 1);
+  EXPECT_EQ(s.count(FaceMethod::star), 4);
+  EXPECT_EQ(s.count(FaceMethod::star) + s.count(FaceMethod::bicubic), 16);
+  double to_block = 0;
+  int corners = 0;
+  for (int v = 0; v < static_cast<int>(m.vertices.size()); ++v)
+    if (m.vertices[static_cast<std::size_t>(v)].block.size() == 3) {
+      to_block = std::max(to_block, corner_to_block(m, s, v));
+      ++corners;
+    }
+  EXPECT_EQ(corners, 6);
+  EXPECT_LT(to_block, 1e-12);
+  const Checks c = check_surface(m, s, -1);
+  EXPECT_EQ(c.charts.compared, 0);
+}
+
+// A corner in the layer whose end-condition block is not the three points of two clamped ends: one line naming it.
+TEST(BoundaryCorner, RefusesACornerWithoutThreeBlockPoints) {
+  SectorMesh sm = corner_fan({3, 7, 7, 7, 8});
+  io::TsmModel model = offset_model(sm.q, 3u);
+  const int corner = vertex_of(sm, sm.at({0, 0}, 0, 45, 3, 0));
+  model.mesh.vertices[static_cast<std::size_t>(corner)].block.pop_back();
+  try {
+    const TMeshSurface s(model.mesh, 1);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("corner vertex " + std::to_string(corner) + " near a boundary star point has no end-condition block of three points"),
+              std::string::npos)
+        << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+  }
 }
 
 }  // namespace

@@ -1,6 +1,9 @@
 #include "trivar/tspline/boundary_ghosts.hpp"
 
+#include <algorithm>
 #include <array>
+#include <climits>
+#include <initializer_list>
 #include <string>
 
 #include "trivar/core/error.hpp"
@@ -10,16 +13,26 @@ namespace trivar {
 
 namespace {
 
-HomogeneousPoint combine(const HomogeneousPoint& a, double sa, const HomogeneousPoint& b, double sb, const HomogeneousPoint& c, double sc) {
-  HomogeneousPoint r{};
-  for (std::size_t i = 0; i < 4; ++i) r[i] = sa * a[i] + sb * b[i] + sc * c[i];
+// The 1-D rule across a straight boundary: the clamped cubic's rows Q0 (block point), Q1 (boundary), Q2 (inside)
+// as the uniform B-spline's ghost row P-1 and boundary row P0 (P1 = Q2).
+struct Rows {
+  HomogeneousPoint ghost, point;
+};
+
+Rows rows(const HomogeneousPoint& q0, const HomogeneousPoint& q1, const HomogeneousPoint& q2) {
+  Rows r{};
+  for (std::size_t i = 0; i < 4; ++i) {
+    r.ghost[i] = 6 * q0[i] - 6 * q1[i] + q2[i];
+    r.point[i] = 1.5 * q1[i] - 0.5 * q2[i];
+  }
   return r;
 }
 
 }  // namespace
 
 GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach) {
-  GhostedMesh g{m, std::vector<int>(m.vertices.size(), -1)};
+  const std::size_t nv = m.vertices.size();
+  GhostedMesh g{m, std::vector<int>(nv, -1)};
   TMesh& x = g.mesh;
   const auto L = [&](int l) -> const TMeshLink& { return m.links[static_cast<std::size_t>(l)]; };
   const int nl = static_cast<int>(m.links.size());
@@ -27,28 +40,43 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
   const auto is_face = [&](int f) { return f >= 0 && f < static_cast<int>(m.faces.size()) && m.live_face(f); };
   const auto opp_face = [&](int l) { return L(l).opp >= 0 && L(l).opp < nl && is_face(L(L(l).opp).face); };
   // Links leaving each vertex.
-  std::vector<std::vector<int>> leaving(m.vertices.size());
+  std::vector<std::vector<int>> leaving(nv);
   for (int l = 0; l < static_cast<int>(m.links.size()); ++l)
     if (L(l).vertex >= 0) leaving[static_cast<std::size_t>(L(l).vertex)].push_back(l);
-  const auto point = [&](int v) -> const RationalPoint& {
+  std::vector<char> is_star(nv, 0), in_layer(static_cast<std::size_t>(nl), 0);
+  for (int v : stars) is_star[static_cast<std::size_t>(v)] = 1;
+  const auto point = [&](int v) -> HomogeneousPoint {
     const int p = m.vertices[static_cast<std::size_t>(v)].primary;
     require(p >= 0, [&] { return "T-mesh: boundary vertex " + std::to_string(v) + " near a boundary star point has no control point"; });
-    return m.points[static_cast<std::size_t>(p)];
+    return homogeneous(m.points[static_cast<std::size_t>(p)]);
   };
   // Q0: the single end-condition block point (the vertex itself without a block at a star point).
-  const auto block = [&](int v, bool star) -> HomogeneousPoint {
+  const auto block = [&](int v) -> HomogeneousPoint {
     const TMeshVertex& mv = m.vertices[static_cast<std::size_t>(v)];
-    if (mv.block.empty() && star) return homogeneous(point(v));
+    if (mv.block.empty() && is_star[static_cast<std::size_t>(v)]) return point(v);
     require(mv.block.size() == 1 && mv.block[0] >= 0, [&] {
       return "T-mesh: boundary vertex " + std::to_string(v) + " near a boundary star point has " + std::to_string(mv.block.size()) +
              " end-condition block points; the ghost layer needs one";
     });
     return homogeneous(m.points[static_cast<std::size_t>(mv.block[0])]);
   };
-  const auto add_point = [&](const HomogeneousPoint& h, int v) {
-    require(h[3] > 0, [&] { return "T-mesh: the ghost layer at boundary vertex " + std::to_string(v) + " has weight " + std::to_string(h[3]) + " (weights vary too much near a boundary star point)"; });
-    x.points.push_back(rational(h));
-    return static_cast<int>(x.points.size()) - 1;
+  // The block point of corner v at the offset `dirs` (directions of its frame, one step each).
+  const auto corner_block = [&](int v, std::initializer_list<int> dirs) -> HomogeneousPoint {
+    static constexpr std::array<std::array<int, 2>, 4> step{{{0, 1}, {-1, 0}, {0, -1}, {1, 0}}};  // N, W, S, E
+    std::array<int, 2> want{};
+    for (int d : dirs)
+      for (std::size_t c = 0; c < 2; ++c) want[c] += step[static_cast<std::size_t>(d)][c];
+    const TMeshVertex& mv = m.vertices[static_cast<std::size_t>(v)];
+    std::size_t gi = 0;
+    if (mv.block.size() == 3)
+      for (std::size_t k = 0; k < 4; ++k)
+        for (int i = 1; i <= mv.block_dims[k]; ++i)
+          for (int j = 0; j <= mv.block_dims[(k + 1) % 4] && gi < mv.block.size(); ++j, ++gi) {
+            const std::array<int, 2> at{i * step[k][0] + j * step[(k + 1) % 4][0], i * step[k][1] + j * step[(k + 1) % 4][1]};
+            if (at == want && mv.block[gi] >= 0) return homogeneous(m.points[static_cast<std::size_t>(mv.block[gi])]);
+          }
+    throw Error("T-mesh: corner vertex " + std::to_string(v) + " near a boundary star point has no end-condition block of three points (one across "
+                "each side and the diagonal one); the ghost layer needs them");
   };
   // A straight boundary vertex: two faces with corners there, one interior edge; its inner end, else -1.
   const auto inner_of_straight = [&](int v) {
@@ -65,6 +93,52 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
     }
     return faces == 2 && interior == 1 ? inner : -1;
   };
+  // A corner: one face there, a quadrilateral without T-junctions; its link leaving the corner, else -1.
+  const auto corner_link = [&](int v) {
+    int lf = -1, faces = 0;
+    for (int l : leaving[static_cast<std::size_t>(v)])
+      if (is_face(L(l).face)) {
+        ++faces;
+        lf = l;
+      }
+    if (faces != 1) return -1;
+    const auto& loop = m.faces[static_cast<std::size_t>(L(lf).face)];
+    const bool quad = loop.size() == 4 && std::all_of(loop.begin(), loop.end(), [&](int l) { return L(l).flag == 0; });
+    return quad && L(L(lf).prev).opp >= 0 ? lf : -1;
+  };
+  // The layer runs through straight vertices and through corners whose two sides are longer than one edge (their
+  // neighbours straight, or a star point: the 1-D rule needs the next vertex inside on each side).
+  const auto continues = [&](int v) {
+    if (inner_of_straight(v) >= 0) return true;
+    const int lf = corner_link(v);
+    if (lf < 0) return false;
+    for (int n : {target(lf), L(L(lf).prev).vertex})
+      if (!is_star[static_cast<std::size_t>(n)] && inner_of_straight(n) < 0) return false;
+    return true;
+  };
+  // Steps across faces from the nearest star point (on a grid: the larger of the two index distances).
+  std::vector<int> steps(nv, INT_MAX);
+  {
+    std::vector<std::vector<int>> faces_at(nv);
+    for (int f = 0; f < static_cast<int>(m.faces.size()); ++f)
+      if (is_face(f))
+        for (int l : m.faces[static_cast<std::size_t>(f)]) faces_at[static_cast<std::size_t>(L(l).vertex)].push_back(f);
+    std::vector<int> front(stars.begin(), stars.end());
+    for (int v : stars) steps[static_cast<std::size_t>(v)] = 0;
+    for (int r = 1; r <= reach && !front.empty(); ++r) {
+      std::vector<int> next;
+      for (int v : front)
+        for (int f : faces_at[static_cast<std::size_t>(v)])
+          for (int l : m.faces[static_cast<std::size_t>(f)]) {
+            const int w = L(l).vertex;
+            if (steps[static_cast<std::size_t>(w)] > r) {
+              steps[static_cast<std::size_t>(w)] = r;
+              next.push_back(w);
+            }
+          }
+      front = std::move(next);
+    }
+  }
   const auto new_link = [&](int vertex, int face, int edge) {
     TMeshLink k;
     k.vertex = vertex;
@@ -82,12 +156,21 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
     x.links[static_cast<std::size_t>(o)].opp = opp;
     x.links[static_cast<std::size_t>(opp)].opp = o;
   };
-  std::vector<int>& ghost = g.ghost;
-  std::vector<char> is_star(m.vertices.size(), 0), in_layer(static_cast<std::size_t>(nl), 0);
-  for (int v : stars) is_star[static_cast<std::size_t>(v)] = 1;
-  // Each star point's chain of boundary links: up to `reach` on either side, between straight vertices. The
-  // layer is their union: the ghost rows of a straight vertex do not depend on the star point that asks for them,
-  // so layers that overlap (star points close along the boundary, or both ends of a slit) are one layer.
+  const auto add_face = [&](const std::array<int, 4>& loop) {
+    for (std::size_t k = 0; k < 4; ++k) {
+      x.links[static_cast<std::size_t>(loop[k])].next = loop[(k + 1) % 4];
+      x.links[static_cast<std::size_t>(loop[k])].prev = loop[(k + 3) % 4];
+    }
+    x.faces.push_back({loop.begin(), loop.end()});
+  };
+  const auto link_pair = [&](int a, int b) {
+    x.links[static_cast<std::size_t>(a)].opp = b;
+    x.links[static_cast<std::size_t>(b)].opp = a;
+  };
+  // Each star point's chain of boundary links, either way while their vertices lie within `reach` steps and the
+  // layer runs through them. The layer is their union: the ghost rows of a vertex do not depend on the star point
+  // that asks for them, so layers that overlap (star points close along the boundary, or both ends of a slit)
+  // are one layer.
   for (int v : stars) {
     std::vector<int> out;
     for (int l : leaving[static_cast<std::size_t>(v)])
@@ -95,55 +178,106 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
     require(out.size() == 1, [&] {
       return "T-mesh: boundary star point " + std::to_string(v) + " lies on " + std::to_string(out.size()) + " boundary arcs; it is evaluated on one";
     });
+    const auto runs_to = [&](int u) { return u >= 0 && u != v && steps[static_cast<std::size_t>(u)] <= reach && continues(u); };
     int ahead = 0, behind = 0;
-    for (int l = out[0], i = 0; i < reach && l >= 0 && l < nl; ++i, l = L(l).next) {
-      const int b = target(l);
-      if (b == v || inner_of_straight(b) < 0) break;
+    for (int l = out[0]; l >= 0 && l < nl && ahead < nl && runs_to(target(l)); l = L(l).next, ++ahead) in_layer[static_cast<std::size_t>(l)] = 1;
+    for (int l = L(out[0]).prev; l >= 0 && l < nl && behind < nl && runs_to(L(l).vertex); l = L(l).prev, ++behind)
       in_layer[static_cast<std::size_t>(l)] = 1;
-      ++ahead;
-    }
-    for (int l = L(out[0]).prev, i = 0; i < reach && l >= 0 && l < nl; ++i, l = L(l).prev) {
-      const int a = L(l).vertex;
-      if (a == v || inner_of_straight(a) < 0) break;
-      in_layer[static_cast<std::size_t>(l)] = 1;
-      ++behind;
-    }
     require(ahead > 0 && behind > 0, [&] {
-      return "T-mesh: boundary star point " + std::to_string(v) + " has a corner or a T-junction next to it on the boundary";
+      return "T-mesh: boundary star point " + std::to_string(v) +
+             " has a T-junction, a corner with a side of one edge or another star point next to it on the boundary";
     });
   }
-  // Ghost points: P-1 per vertex of the layer, and its point replaced by P0.
+  // Ghost points. A straight vertex or a star point: P-1 and its point replaced by P0. A corner: the tensor
+  // product of the rule across its two sides (the T-spline there is the product of two clamped ends), on the 3 x 3
+  // rows (block, vertex, inside) of each side: its point P(0, 0), a ghost across each side and a diagonal one.
+  std::vector<std::array<int, 2>> corner_ghost(nv, {-1, -1});  // a corner's ghosts across its arriving link, diagonal
+  const auto vertex_rows = [&](int u) {  // a straight vertex or a star point
+    HomogeneousPoint q2{};
+    if (is_star[static_cast<std::size_t>(u)]) {
+      int n = 0;
+      for (int l : leaving[static_cast<std::size_t>(u)])
+        if (is_face(L(l).face) && opp_face(l) && target(l) >= 0) {
+          const HomogeneousPoint h = point(target(l));
+          for (std::size_t c = 0; c < 4; ++c) q2[c] += h[c];
+          ++n;
+        }
+      require(n > 0, [&] { return "T-mesh: boundary star point " + std::to_string(u) + " has no interior edge"; });
+      for (double& c : q2) c /= n;
+    } else {
+      q2 = point(inner_of_straight(u));
+    }
+    return rows(block(u), point(u), q2);
+  };
+  const auto add_point = [&](const HomogeneousPoint& h, int v) {
+    require(h[3] > 0, [&] { return "T-mesh: the ghost layer at boundary vertex " + std::to_string(v) + " has weight " + std::to_string(h[3]) + " (weights vary too much near a boundary star point)"; });
+    x.points.push_back(rational(h));
+    return static_cast<int>(x.points.size()) - 1;
+  };
+  const auto new_ghost = [&](const HomogeneousPoint& h, int v) {
+    TMeshVertex gv;
+    gv.primary = add_point(h, v);
+    x.vertices.push_back(gv);
+    return static_cast<int>(x.vertices.size()) - 1;
+  };
   for (int o = 0; o < nl; ++o) {
     if (!in_layer[static_cast<std::size_t>(o)]) continue;
     for (int u : {L(o).vertex, target(o)}) {
-      if (ghost[static_cast<std::size_t>(u)] >= 0) continue;
-      const bool star = is_star[static_cast<std::size_t>(u)] != 0;
-      HomogeneousPoint q2{};
-      if (star) {
-        int n = 0;
-        for (int l : leaving[static_cast<std::size_t>(u)])
-          if (is_face(L(l).face) && opp_face(l) && target(l) >= 0) {
-            const HomogeneousPoint h = homogeneous(point(target(l)));
-            for (std::size_t c = 0; c < 4; ++c) q2[c] += h[c];
-            ++n;
-          }
-        require(n > 0, [&] { return "T-mesh: boundary star point " + std::to_string(u) + " has no interior edge"; });
-        for (double& c : q2) c /= n;
+      if (g.ghost[static_cast<std::size_t>(u)] >= 0) continue;
+      const int lf = is_star[static_cast<std::size_t>(u)] ? -1 : corner_link(u);
+      HomogeneousPoint p{}, leaving_ghost{};
+      if (lf < 0) {
+        const Rows r = vertex_rows(u);
+        p = r.point;
+        leaving_ghost = r.ghost;
       } else {
-        q2 = homogeneous(point(inner_of_straight(u)));
+        // Side a runs along lf (to na), side b along the boundary link leaving u (to nb); the rule runs across the
+        // first side on the three lines parallel to it (across the second side), then across the second side. The
+        // first side is a's unless only nb is a star point, whose rows (from the mean of its interior edges) then
+        // enter as they are.
+        const int ob = L(L(lf).prev).opp, na = target(lf), nb = L(L(lf).prev).vertex;
+        require(L(lf).frame >= 0 && L(ob).frame >= 0, [&] {
+          return "T-mesh: corner vertex " + std::to_string(u) + " near a boundary star point has no frame for its end-condition block";
+        });
+        const int out_a = (L(ob).frame + 2) % 4, out_b = (L(lf).frame + 2) % 4;  // outwards across sides a and b
+        const HomogeneousPoint qa = corner_block(u, {out_a}), qb = corner_block(u, {out_b}), qd = corner_block(u, {out_a, out_b});
+        const bool b_first = is_star[static_cast<std::size_t>(nb)] && !is_star[static_cast<std::size_t>(na)];
+        const int first = b_first ? nb : na, second = b_first ? na : nb;
+        const Rows r0 = rows(qd, b_first ? qa : qb, block(second));
+        const Rows r1 = rows(b_first ? qb : qa, point(u), point(second));
+        const Rows r2 = vertex_rows(first);
+        const Rows on_line = rows(r0.point, r1.point, r2.point);  // the corner's point, its ghost across the second side
+        const Rows beyond = rows(r0.ghost, r1.ghost, r2.ghost);   // its ghost across the first side, the diagonal one
+        p = on_line.point;
+        const HomogeneousPoint& arriving_ghost = b_first ? on_line.ghost : beyond.point;
+        leaving_ghost = b_first ? beyond.point : on_line.ghost;
+        corner_ghost[static_cast<std::size_t>(u)] = {new_ghost(arriving_ghost, u), new_ghost(beyond.ghost, u)};
       }
-      const HomogeneousPoint q0 = block(u, star), q1 = homogeneous(point(u));
       TMeshVertex& mv = x.vertices[static_cast<std::size_t>(u)];
-      mv.primary = add_point(combine(q1, 1.5, q2, -0.5, q0, 0), u);
+      mv.primary = add_point(p, u);
       mv.block.clear();
       mv.block_dims = {};
-      TMeshVertex gv;
-      gv.primary = add_point(combine(q0, 6, q1, -6, q2, 1), u);
-      x.vertices.push_back(gv);
-      ghost[static_cast<std::size_t>(u)] = static_cast<int>(x.vertices.size()) - 1;
+      g.ghost[static_cast<std::size_t>(u)] = new_ghost(leaving_ghost, u);
     }
   }
-  // The layer's runs of consecutive boundary links (a whole boundary loop when it closes).
+  // The face (c, G_b(c), D(c), G_a(c)) at corner c between the ghost faces of its arriving link (whose side
+  // c -> G_a(c) is `arriving_side`) and its leaving link; returns its side c -> G_b(c).
+  const auto corner_face = [&](int c, int arriving_side, double d_in, double d_out) {
+    const int f = static_cast<int>(x.faces.size());
+    const auto [ga, gd] = corner_ghost[static_cast<std::size_t>(c)];
+    const int gb = g.ghost[static_cast<std::size_t>(c)];
+    const int k0 = new_link(c, f, new_edge(d_out));
+    const int k1 = new_link(gb, f, new_edge(d_in));
+    const int k2 = new_link(gd, f, new_edge(d_out));
+    const int k3 = new_link(ga, f, x.links[static_cast<std::size_t>(arriving_side)].edge);
+    add_face({k0, k1, k2, k3});
+    link_pair(k3, arriving_side);
+    outside(k1, gd);
+    outside(k2, ga);
+    return k0;
+  };
+  // The layer's runs of consecutive boundary links (a whole boundary loop when it closes, then started after a
+  // vertex that is not a corner).
   std::vector<char> placed(static_cast<std::size_t>(nl), 0);
   for (int o = 0; o < nl; ++o) {
     if (!in_layer[static_cast<std::size_t>(o)] || placed[static_cast<std::size_t>(o)]) continue;
@@ -155,45 +289,42 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
       chain.push_back(l);
     }
     const bool closed = chain.size() > 2 && L(chain.back()).next == chain.front();
+    const auto not_corner = [&](int l) { return corner_ghost[static_cast<std::size_t>(L(l).vertex)][0] < 0; };
+    if (closed) std::rotate(chain.begin(), std::find_if(chain.begin(), chain.end(), not_corner), chain.end());
     // Ghost faces (a, b, G(b), G(a)) on the outside of each boundary link a -> b of the chain; the link a -> b
     // takes the place of the boundary link as the opposite of the inner face's b -> a.
     int first_side = -1;  // the first face's link G(a) -> a
-    int last_side = -1;   // the previous face's link b -> G(b): the opposite of this face's G(a) -> a
+    int last_side = -1;   // the previous face's link b -> G(b) (or the corner face's c -> G_b(c)): the opposite of this face's G(a) -> a
     for (std::size_t i = 0; i < chain.size(); ++i) {
       const int c = chain[i], a = L(c).vertex, b = target(c), inner = L(c).opp;
       require(inner >= 0 && inner < nl && L(c).edge >= 0 && L(c).edge < static_cast<int>(m.intervals.size()),
               [&] { return "T-mesh: boundary link " + std::to_string(c) + " has no opposite link or edge"; });
-      const int f = static_cast<int>(x.faces.size());
-      const int ga = ghost[static_cast<std::size_t>(a)], gb = ghost[static_cast<std::size_t>(b)];
       const double d = m.intervals[static_cast<std::size_t>(L(c).edge)];
+      if (i > 0 && corner_ghost[static_cast<std::size_t>(a)][0] >= 0)
+        last_side = corner_face(a, last_side, m.intervals[static_cast<std::size_t>(L(chain[i - 1]).edge)], d);
+      const int f = static_cast<int>(x.faces.size());
+      const int ga = g.ghost[static_cast<std::size_t>(a)];
+      const int arriving_ghost = corner_ghost[static_cast<std::size_t>(b)][0];  // b a corner
+      const int gb = arriving_ghost >= 0 ? arriving_ghost : g.ghost[static_cast<std::size_t>(b)];
       const bool last = i + 1 == chain.size();
       const int l0 = new_link(a, f, L(c).edge);
       const int l1 = new_link(b, f, closed && last ? x.links[static_cast<std::size_t>(first_side)].edge : new_edge(d));
       const int l2 = new_link(gb, f, new_edge(d));
       const int l3 = new_link(ga, f, i == 0 ? new_edge(d) : x.links[static_cast<std::size_t>(last_side)].edge);
-      const std::array<int, 4> loop{l0, l1, l2, l3};
-      for (std::size_t k = 0; k < 4; ++k) {
-        x.links[static_cast<std::size_t>(loop[k])].next = loop[(k + 1) % 4];
-        x.links[static_cast<std::size_t>(loop[k])].prev = loop[(k + 3) % 4];
-      }
-      x.links[static_cast<std::size_t>(l0)].opp = inner;
-      x.links[static_cast<std::size_t>(inner)].opp = l0;
+      add_face({l0, l1, l2, l3});
+      link_pair(l0, inner);
       if (i == 0) {
         first_side = l3;
         if (!closed) outside(l3, a);
       } else {
-        x.links[static_cast<std::size_t>(l3)].opp = last_side;
-        x.links[static_cast<std::size_t>(last_side)].opp = l3;
+        link_pair(l3, last_side);
       }
       outside(l2, ga);
-      if (last && closed) {
-        x.links[static_cast<std::size_t>(l1)].opp = first_side;
-        x.links[static_cast<std::size_t>(first_side)].opp = l1;
-      } else if (last) {
+      if (last && closed)
+        link_pair(l1, first_side);
+      else if (last)
         outside(l1, gb);
-      }
       last_side = l1;
-      x.faces.push_back({l0, l1, l2, l3});
     }
   }
   return g;

@@ -17,6 +17,17 @@
 // Q0 its own block point (or the point itself without a block). The rules are applied to homogeneous points
 // (w x, w).
 //
+// Corners (a boundary vertex of one face). With Bezier end conditions the T-spline near a corner is the tensor
+// product of two clamped ends: on the 3 x 3 rows Q(i, j) (i = 0 block, 1 boundary, 2 inside, across each side)
+// it is the uniform bicubic B-spline of P = (M x M) Q with M the rule above. So the layer goes round the corner:
+// the corner's point becomes P(0, 0) = 9/4 Q11 - 3/4 (Q12 + Q21) + 1/4 Q22, it gets a ghost across each side and a
+// diagonal one (its block's three points Q01, Q10, Q00 enter these), and a ghost face (corner, ghost, diagonal
+// ghost, ghost) joins the two sides' ghost faces, where the corner is a regular vertex of the extended mesh. The
+// neighbours' rows across the sides are their own rows of the straight rule, which is the product exactly (their
+// inner neighbour is the corner face's far corner); a star point one edge from the corner enters with its own
+// rows (the product taken across its side first), so the corner's limit point is still its diagonal block point
+// Q00 and the boundary curve along its other side the cubic B-spline of the block points.
+//
 // The boundary curve is then the cubic B-spline of the block points wherever the 4 x 4 points of the boundary's
 // faces avoid the star point and g (from two faces along the boundary on); next to the star point it is the
 // Catmull-Clark limit curve of the extended mesh (C1, with the tangent plane of the star point).
@@ -29,15 +40,22 @@ namespace trivar {
 
 struct GhostedMesh {
   TMesh mesh;                 // the input with ghost vertices, points, links and faces appended (input ids kept)
-  std::vector<int> ghost;  // per input vertex: its ghost vertex in `mesh` (its own point there is P0), -1: none
+  // per input vertex: its ghost vertex in `mesh` across the boundary link leaving it (its own point there is P0;
+  // a corner's P(0, 0)), -1: none
+  std::vector<int> ghost;
 };
 
-// Ghost layers along the boundary from each star point in `stars` (boundary vertices), up to `reach` edges either
-// way, stopping before a boundary vertex that is not straight (two faces, no T-junction, one block point). Layers
-// that meet (star points within 2 reach edges along the boundary, or the two ends of a slit) are one layer through
-// both star points, closed when it covers a whole boundary loop.
-// Throws trivar::Error (one line) when a star point has more than one boundary arc or no straight neighbour on
-// either side, a vertex of the layer has no single block point, or a weight of the extended mesh is not positive.
+// Ghost layers along the boundary from each star point in `stars` (boundary vertices), either way as long as the
+// boundary vertices lie within `reach` steps across faces from a star point (on a grid the larger of the two index
+// distances: on a straight boundary `reach` edges) and the layer runs through them: straight vertices (two faces,
+// no T-junction, one block point) and corners whose neighbours along the boundary are straight or star points
+// (sides of one edge and T-junctions stop it; the rules assume equal knot intervals, which TMeshSurface checks
+// on the faces it evaluates through the layer). Layers that meet (star points within 2 reach edges along the
+// boundary, or the two ends of a slit) are one layer through both star points, closed when it covers a whole
+// boundary loop.
+// Throws trivar::Error (one line) when a star point has more than one boundary arc or no vertex the layer runs
+// through on either side, a vertex of the layer has no single block point (a corner: no block of three), or a
+// weight of the extended mesh is not positive.
 GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach);
 
 }  // namespace trivar

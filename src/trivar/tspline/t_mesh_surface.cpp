@@ -256,8 +256,9 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(bezier_equiva
       boundary[static_cast<std::size_t>(k.vertex)] = 1;
   }
   const int depth = m.degree + 1;
-  // Star points on the boundary: interior ones of the control mesh with a ghost layer (boundary_ghosts), far
-  // enough along the boundary for the 4 x 4 points of every Catmull-Clark face (depth rings, one more for the points).
+  // Star points on the boundary: interior ones of the control mesh with a ghost layer (boundary_ghosts) over the
+  // boundary vertices of every face within (p + 1) / 2 rings of a Catmull-Clark face (depth + 2 rings of the star
+  // points' faces, whose vertices lie depth + 3 steps across faces from the star points).
   std::vector<int> boundary_stars;
   for (int s : stars_)
     if (boundary[static_cast<std::size_t>(s)]) boundary_stars.push_back(s);

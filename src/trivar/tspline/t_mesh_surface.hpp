@@ -28,13 +28,14 @@
 // the star points' faces that fails these (a boundary, a T-junction or unequal intervals nearby) is exact
 // instead when a chart of p up to (its distance - 1) rings around it holds its knot vectors (so a star point
 // needs 7 faces to the boundary, not 8); otherwise the face's reason is the error (what is still refused:
-// T-junctions and repeated knots within two rings of a star point's faces, unequal intervals or corners near a
-// star point on the boundary, two star points with unequal intervals within three rings of each other, degrees
-// other than 3). A star point on the boundary is an interior one of the mesh with a ghost layer along the
-// boundary (boundary_ghosts: the Bezier end condition as a uniform bicubic net), so its faces are star faces of
-// valence K + 2 and the faces near it bicubic faces of that mesh, the T-spline wherever their points avoid it. The
-// surface there is then the Catmull-Clark limit surface of the control mesh, which on faces without a star
-// corner is the uniform bicubic B-spline = the T-spline. Continuity: C2 across every edge away from star points
+// T-junctions and repeated knots within two rings of a star point's faces, unequal intervals, T-junctions or
+// corners with a side of one edge near a star point on the boundary, two star points with unequal intervals
+// within three rings of each other, degrees other than 3). A star point on the boundary is an interior one of the
+// mesh with a ghost layer along the boundary (boundary_ghosts: the Bezier end condition as a uniform bicubic net,
+// round corners as the tensor product of the two clamped ends), so its faces are star faces of valence K + 2 and
+// the faces near it bicubic faces of that mesh, the T-spline wherever their points avoid it. The surface there
+// is then the Catmull-Clark limit surface of the control mesh, which on faces without a star corner is the
+// uniform bicubic B-spline = the T-spline. Continuity: C2 across every edge away from star points
 // (T-spline and uniform B-spline pieces meet as one spline); C1 across the edges at a star point except at the
 // point itself, where the surface is G1 (tangent-plane continuous; the face parametrisations are singular there
 // for valence != 4). tests/tspline/star_point_test.cpp measures positions, normals and first derivatives across
