@@ -78,17 +78,13 @@ SubdividedFace::SubdividedFace(const TMesh& m, int face) {
     require(l == l0, [&] { return "vertex " + std::to_string(L(l0).vertex) + " has more than 64 faces"; });
     return ring;
   };
-  const auto faces_around = [&](const std::vector<int>& front) {
-    std::vector<int> out;
-    for (int f : front)
-      for (int l : loop_of(f))
-        for (int k : around(l))
-          if (std::find(out.begin(), out.end(), L(k).face) == out.end()) out.push_back(L(k).face);
-    return out;
-  };
   require(loop_of(face).size() == 4, "the face is not a quadrilateral");
-  const std::vector<int> ring1 = faces_around({face});
-  faces_around(ring1);  // checks the second ring, which the vertex points of the first ring's corners take
+  // The first ring: the faces sharing a vertex with the face (their sub-faces hold every sub-face's 2N + 8 points).
+  // The vertex points of their corners take the second ring (checked by `around`).
+  std::vector<int> ring1;
+  for (int l : loop_of(face))
+    for (int k : around(l))
+      if (std::find(ring1.begin(), ring1.end(), L(k).face) == ring1.end()) ring1.push_back(L(k).face);
 
   const auto point = [&](int x) -> WeightedPoint {
     const TMeshVertex& mv = m.vertices[static_cast<std::size_t>(x)];
