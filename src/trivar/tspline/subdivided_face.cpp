@@ -127,9 +127,11 @@ SubdividedFace::SubdividedFace(const TMesh& m, int face) {
   };
   const auto edge_point = [&](int l) {
     return local(1, L(l).edge, [&] {
-      const WeightedPoint a = point(L(l).vertex), b = point(L(L(l).next).vertex), f = face_point(L(l).face), g = face_point(L(L(l).opp).face);
-      return WeightedPoint{(a[0] + b[0] + f[0] + g[0]) / 4, (a[1] + b[1] + f[1] + g[1]) / 4, (a[2] + b[2] + f[2] + g[2]) / 4,
-                (a[3] + b[3] + f[3] + g[3]) / 4};
+      const WeightedPoint a = point(L(l).vertex), b = point(L(L(l).next).vertex), f = face_point(L(l).face),
+                          g = face_point(L(L(l).opp).face);
+      WeightedPoint r{};
+      for (std::size_t c = 0; c < 4; ++c) r[c] = (a[c] + b[c] + f[c] + g[c]) / 4;
+      return r;
     });
   };
   // The sub-faces of the first ring: at corner i of face g, (vertex point, edge point of the side to corner i + 1,
