@@ -27,8 +27,9 @@
 // The faces within p + 2 rings of a star point (bicubic and star) need, and are checked to have, degree 3,
 // no T-junction and no boundary within (p + 1) / 2 rings of them, control points
 // without repeated-knot nodes, and at most one star corner per face or else equal intervals (subdivided).
-// Weights other than 1 are rational Catmull-Clark: the rules act on the homogeneous points (w x, w) and the limit is projected, which on faces
-// without a star corner is the rational uniform bicubic B-spline sum w P B / sum w B, i.e. the T-spline (the
+// Weights other than 1 are rational Catmull-Clark: the rules act on the homogeneous points (w x, w) and the
+// limit is projected, which on faces without a star corner is the rational uniform bicubic B-spline
+// sum w P B / sum w B, i.e. the T-spline (the
 // rules are linear, so Stam's evaluation of the homogeneous mesh is exact; projection keeps C1 across edges and
 // the tangent plane at the star point). A face more than p rings from
 // the star points' faces that fails these (a boundary, a T-junction or unequal intervals nearby) is exact
