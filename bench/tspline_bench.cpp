@@ -246,6 +246,22 @@ void non_uniform_star_eval(benchmark::State& state) {
 }
 BENCHMARK(non_uniform_star_eval)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
+// The cube of 1 x 1 faces per side (8 valence-3 star points, every face with four star corners): each face through
+// one local Catmull-Clark step (subdivided_face). Build (range(0) = 0) or 16 x 16 points per face (1).
+void subdivided_cube(benchmark::State& state) {
+  const std::string text = trivar::test::tsm_text(trivar::test::cube_mesh(1));
+  if (state.range(0) == 0) {
+    for (auto _ : state) {
+      const trivar::TMeshSurface s(trivar::io::parse_tsm(text, "cube.tsm").mesh, 1);
+      benchmark::DoNotOptimize(s.num_faces());
+    }
+    return;
+  }
+  const trivar::TMeshSurface s(trivar::io::parse_tsm(text, "cube.tsm").mesh, 1);
+  eval_faces(state, s, false);
+}
+BENCHMARK(subdivided_cube)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
 // A star point of 5 faces on a straight boundary (half_fan_mesh: 5 sectors of 10 x 10 faces, end-condition blocks
 // on the boundary): Catmull-Clark of valence 7 on the mesh with its ghost layer. range(0) = 1: only the faces at
 // the star point, 0: all faces; the build (ghost layer, charts) is timed by boundary_star_build.

@@ -277,8 +277,9 @@ py::dict info(const PyTSpline& t) {
   }
   if (t.mesh) {
     d["faces_exact"] = t.mesh->count(FaceMethod::exact);
-    d["faces_catmull_clark"] = t.mesh->count(FaceMethod::bicubic) + t.mesh->count(FaceMethod::star);
+    d["faces_catmull_clark"] = t.mesh->count(FaceMethod::bicubic) + t.mesh->count(FaceMethod::star) + t.mesh->count(FaceMethod::subdivided);
     d["faces_at_star_points"] = t.mesh->count(FaceMethod::star);
+    d["faces_subdivided"] = t.mesh->count(FaceMethod::subdivided);
   }
   return d;
 }

@@ -133,14 +133,15 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
   for (int v : s.stars()) ++valences[s.valence(v)];
   const int nu = s.count(FaceMethod::non_uniform);
   const int bs = s.boundary_star_faces();
-  const int faces = s.count(FaceMethod::exact) + s.count(FaceMethod::bicubic) + s.count(FaceMethod::star) + nu;
+  const int sub = s.count(FaceMethod::subdivided);
+  const int faces = s.count(FaceMethod::exact) + s.count(FaceMethod::bicubic) + s.count(FaceMethod::star) + nu + sub;
   const char* continuity = "C2 across every edge away from star points; C1 across the edges at a star point; G1 at star points";
   nlohmann::json j{{"file", path}, {"kind", "T-spline surface with star points"}, {"format", l.format},
                    {"degrees", {s.mesh().degree, s.mesh().degree}}, {"units", r.units}, {"faces", faces},
                    {"star_points", r.star_points}, {"faces_exact", s.count(FaceMethod::exact)},
-                   {"faces_catmull_clark", s.count(FaceMethod::bicubic) + s.count(FaceMethod::star)},
+                   {"faces_catmull_clark", s.count(FaceMethod::bicubic) + s.count(FaceMethod::star) + sub},
                    {"faces_at_star_points", s.count(FaceMethod::star)}, {"faces_at_boundary_star_points", bs},
-                   {"faces_non_uniform_catmull_clark", nu},
+                   {"faces_non_uniform_catmull_clark", nu}, {"faces_subdivided", sub},
                    {"non_uniform_star_points", s.non_uniform_stars()}, {"continuity", continuity},
                    {"deleted_slots", r.deleted}, {"deleted_faces", r.holes}, {"skipped_records", r.skipped_records}};
   for (const auto& [n, c] : valences) j["star_valences"][std::to_string(n)] = c;
@@ -156,12 +157,15 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
               r.star_points, vs.c_str());
   std::printf("  %d faces exact (the T-spline in a chart of their neighbourhood), %d faces within %d rings of a star "
               "point by the Catmull-Clark limit surface (%d at a star point, evaluated exactly by subdivision)\n",
-              s.count(FaceMethod::exact), s.count(FaceMethod::bicubic) + s.count(FaceMethod::star), s.mesh().degree + 2,
+              s.count(FaceMethod::exact), s.count(FaceMethod::bicubic) + s.count(FaceMethod::star) + sub, s.mesh().degree + 2,
               s.count(FaceMethod::star));
   if (nu > 0)
     std::printf("  %d faces around %d star points with unequal knot intervals by non-uniform Catmull-Clark (knot-interval "
                 "weighted rules, exact B-spline cells per subdivision level; C2 away from the star point, its tangent "
                 "plane reached in the limit, slowly for large interval ratios)\n", nu, s.non_uniform_stars());
+  if (sub > 0)
+    std::printf("  %d of them with several star corners or at star points joined by an edge, through one local "
+                "Catmull-Clark step (each quarter a bicubic or Stam patch of the subdivided points)\n", sub);
   if (bs > 0)
     std::printf("  %d faces at star points on the boundary by Catmull-Clark of the control mesh extended by a ghost layer "
                 "(the T-spline's Bezier end condition where regular; boundary curve the cubic B-spline of the block points "

@@ -217,6 +217,31 @@ TEST_F(TSplineCli, NonUniformStarPointModel) {
   EXPECT_NE(g2.out.find("5 corner patches at star points"), std::string::npos) << g2.out;
 }
 
+// The cube of 1 x 1 faces per side (four star corners per face): info counts the faces taken through one local
+// Catmull-Clark step, the Bezier patches are their quarters', and -lap_S u + u = 1 on the closed surface of those
+// patches has the solution u = 1.
+TEST_F(TSplineCli, CoarseCageThroughLocalSubdivision) {
+  std::ofstream((work_ / "cage.tsm").string()) << trivar::test::tsm_text(trivar::test::cube_mesh(1));
+  const Result info = ok("info cage.tsm");
+  EXPECT_NE(info.out.find("6 of them with several star corners"), std::string::npos) << info.out;
+  EXPECT_NE(ok("info cage.tsm --json").out.find("\"faces_subdivided\": 6"), std::string::npos);
+  // The centre of face 0 (the side x = -1) is the limit of its face point F = (-1, 0, 0) after one step, a regular
+  // vertex: (16 F + 4 sum E + sum V) / 36 with the edge points E (x = -3/4) and the corners' vertex points
+  // V = (1/3) v + (1/9) (sum of neighbours + sum of face points) (x = -5/9): x = -68/81.
+  const auto centre = numbers_after(ok("eval cage.tsm 0 0.5 0.5").out, "S");
+  ASSERT_EQ(centre.size(), 3u);
+  EXPECT_NEAR(centre[0], -68.0 / 81, 1e-15);
+  EXPECT_NEAR(centre[1], 0, 1e-15);
+  EXPECT_NEAR(centre[2], 0, 1e-15);
+  const Result g2 = ok("convert cage.tsm cage.g2");
+  EXPECT_NE(g2.out.find("24 corner patches at star points"), std::string::npos) << g2.out;
+  const Result c = ok("solve poisson cage.tsm --solver cholmod --refine 2");
+  EXPECT_NE(c.out.find("6 faces as 24 patches"), std::string::npos) << c.out;
+  const auto one = numbers_after(c.out, "u: max");
+  ASSERT_FALSE(one.empty()) << c.out;
+  EXPECT_NEAR(one[0], 1.0, 1e-9);
+}
+
 // -lap u = 1, u = 0 on the boundary of the planar valence-3 fan of 3 x 8 x 8 faces (star point at the origin):
 // the C0 multipatch space of its face patches. The domain lies in the disk of radius 8 around the star point and
 // holds the disk of radius 6.5 (its boundary lies 6.78 to 7.84 from it), so by comparison with the disks' solutions

@@ -228,10 +228,19 @@ TMeshPatches t_mesh_patches(const TMeshSurface& s, const TMeshPatchOptions& opti
   const auto patch_eval = [&s](int f) -> HomogeneousEval {
     return [&s, f](double x, double y, double* o) { s.eval_patch_homogeneous(f, x, y, o); };
   };
+  // A subdivided face's quarter in its own patch frame.
+  const auto quarter_eval = [&s](int f, int q) -> HomogeneousEval {
+    const SubdividedFace& z = s.subdivided(f);
+    return [&z, q](double x, double y, double* o) { z.eval_quarter(q, x, y, o); };
+  };
   std::vector<Star> stars;
-  for (int f = 0; f < s.num_faces(); ++f)
+  for (int f = 0; f < s.num_faces(); ++f) {
     if (s.method(f) == FaceMethod::star || (s.method(f) == FaceMethod::non_uniform && s.star_corner(f)))
       stars.push_back({f, patch_eval(f), {}});
+    if (s.method(f) == FaceMethod::subdivided)
+      for (int q = 0; q < 4; ++q)
+        if (s.subdivided(f).valence(q) != 4) stars.push_back({f, quarter_eval(f, q), {}});
+  }
   for (int k = options.levels >= 0 ? options.levels : 0;; ++k) {
     const double h = std::ldexp(1.0, -k);
     double dev = 0;
@@ -248,6 +257,21 @@ TMeshPatches t_mesh_patches(const TMeshSurface& s, const TMeshPatchOptions& opti
     });
   }
   std::size_t next_star = 0;
+  // The next star's rings of exact patches (split x split B-spline cells per square) and its corner patch.
+  const auto star_patches = [&](int f, const CornerFrame& fr, int split) {
+    const Star& st = stars[next_star++];
+    for (int j = 1; j <= r.levels; ++j) {
+      const double h = std::ldexp(1.0, -j), c = h / split;
+      for (const auto& lo : {std::array<double, 2>{h, 0}, std::array<double, 2>{h, h}, std::array<double, 2>{0, h}})
+        for (int b = 0; b < split; ++b)
+          for (int a = 0; a < split; ++a) {
+            const double x = lo[0] + a * c, y = lo[1] + b * c;
+            r.patches.push_back(net_to_face(f, interpolate_patch(st.eval, x, y, c), {{x, y}, {x + c, y + c}}, fr, true));
+          }
+    }
+    const double h = std::ldexp(1.0, -r.levels);
+    r.patches.push_back(net_to_face(f, st.corner, {{0, 0}, {h, h}}, fr, false));
+  };
   for (int f = 0; f < s.num_faces(); ++f) {
     switch (s.method(f)) {
       case FaceMethod::none: break;
@@ -266,24 +290,21 @@ TMeshPatches t_mesh_patches(const TMeshSurface& s, const TMeshPatchOptions& opti
           break;
         }
         [[fallthrough]];
-      case FaceMethod::star: {
-        const Star& st = stars[next_star++];
-        const CornerFrame fr = corner_frame(s.patch_corner(f));
+      case FaceMethod::star:
         // Stam's rings are one bicubic piece per square; the non-uniform scheme's are 2 x 2 B-spline cells.
-        const int split = s.method(f) == FaceMethod::star ? 1 : 2;
-        for (int j = 1; j <= r.levels; ++j) {
-          const double h = std::ldexp(1.0, -j), c = h / split;
-          for (const auto& lo : {std::array<double, 2>{h, 0}, std::array<double, 2>{h, h}, std::array<double, 2>{0, h}})
-            for (int b = 0; b < split; ++b)
-              for (int a = 0; a < split; ++a) {
-                const double x = lo[0] + a * c, y = lo[1] + b * c;
-                r.patches.push_back(net_to_face(f, interpolate_patch(st.eval, x, y, c), {{x, y}, {x + c, y + c}}, fr, true));
-              }
-        }
-        const double h = std::ldexp(1.0, -r.levels);
-        r.patches.push_back(net_to_face(f, st.corner, {{0, 0}, {h, h}}, fr, false));
+        star_patches(f, corner_frame(s.patch_corner(f)), s.method(f) == FaceMethod::star ? 1 : 2);
         break;
-      }
+      case FaceMethod::subdivided:
+        for (int q = 0; q < 4; ++q) {
+          // The quarter's frame in the face: corner q's, at half scale.
+          const CornerFrame c = corner_frame(q);
+          const CornerFrame fr{c.origin, {c.a[0] / 2, c.a[1] / 2}, {c.b[0] / 2, c.b[1] / 2}};
+          if (s.subdivided(f).valence(q) != 4)
+            star_patches(f, fr, 1);
+          else
+            r.patches.push_back(net_to_face(f, interpolate_patch(quarter_eval(f, q), 0, 0, 1), {{0, 0}, {1, 1}}, fr, true));
+        }
+        break;
     }
   }
   for (const FacePatch& p : r.patches) ++(p.exact ? r.exact_patches : r.corner_patches);

@@ -9,6 +9,8 @@
 //                  [h, 2h] x [0, h], [h, 2h]^2 and [0, h] x [h, 2h] with h = 2^-j of the patch frame, is
 //                  three bicubic patches of the limit surface, exact; only the corner [0, h]^2, h = 2^-levels,
 //                  at the star point is constructed (below) and deviates from the limit surface.
+//   subdivided     per quarter (the sub-face of one local Catmull-Clark step, [0, 1/2]^2 etc. of the face): one
+//                  bicubic patch, or a star face's rings and corner patch at half scale.
 // The corner patch (bicubic Bezier b_ij, i along u' from the star point):
 //   b_3j, b_i3  its sides away from the star point: the limit surface's exact cubics there (C0 exactly with
 //               the exact patches beside it);

@@ -21,6 +21,7 @@ const char* face_method_name(FaceMethod m) {
     case FaceMethod::bicubic: return "bicubic";
     case FaceMethod::star: return "star";
     case FaceMethod::non_uniform: return "non-uniform";
+    case FaceMethod::subdivided: return "subdivided";
   }
   return "?";
 }
@@ -414,9 +415,23 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(bezier_equiva
       near_exact.push_back({f, where() + why});
       continue;
     }
-    require(star_corners <= 1, [&] { return where() + "it has " + std::to_string(star_corners) + " star corners; subdivide the control mesh once so that every face has at most one"; });
-    Gather gth = gather(cm, loop[static_cast<std::size_t>(corner)]);
-    require(gth.error.empty(), [&] { return where() + gth.error; });
+    Gather gth = star_corners <= 1 ? gather(cm, loop[static_cast<std::size_t>(corner)]) : Gather{};
+    if (star_corners > 1 || !gth.error.empty()) {
+      // Several star corners, or star points joined by an edge: one local Catmull-Clark step (subdivided_face).
+      const std::string what = star_corners > 1 ? "it has " + std::to_string(star_corners) + " star corners" : gth.error;
+      require(unequal.empty(), [&] {
+        return where() + what + " and " + unequal + "; the local subdivision of such faces takes equal intervals: subdivide the control mesh once so that every face has at most one star corner";
+      });
+      try {
+        subdivided_.emplace_back(cm, f);
+      } catch (const Error& e) {
+        throw Error(where() + what + "; its local Catmull-Clark step: " + e.what());
+      }
+      face.method = FaceMethod::subdivided;
+      face.subdivided = static_cast<int>(subdivided_.size()) - 1;
+      face.rational = subdivided_.back().rational();
+      continue;
+    }
     if (!unequal.empty()) {
       // Unequal intervals: a face whose 16 points avoid the star points is the bicubic B-spline on its knots;
       // one whose points hold a star point needs its star's non-uniform Catmull-Clark sectors.
@@ -624,8 +639,13 @@ void TMeshSurface::eval(int face, double u, double v, double* out) const {
 
 void TMeshSurface::eval_patch_homogeneous(int face, double up, double vp, double* out) const {
   const Face& f = faces_[static_cast<std::size_t>(face)];
-  require(f.method == FaceMethod::bicubic || f.method == FaceMethod::star || f.method == FaceMethod::non_uniform,
+  require(f.method == FaceMethod::bicubic || f.method == FaceMethod::star || f.method == FaceMethod::non_uniform ||
+              f.method == FaceMethod::subdivided,
           [&] { return "T-mesh: face " + std::to_string(face) + " is not a Catmull-Clark face"; });
+  if (f.method == FaceMethod::subdivided) {
+    subdivided_[static_cast<std::size_t>(f.subdivided)].eval(up, vp, out);
+    return;
+  }
   if (f.method == FaceMethod::non_uniform) {
     const Nurcc& z = *nurcc_[static_cast<std::size_t>(f.nurcc)];
     z.star.eval(z.points, f.sector, f.cell[0] + up, f.cell[1] + vp, out);
@@ -649,6 +669,12 @@ void TMeshSurface::eval_patch_homogeneous(int face, double up, double vp, double
   }
 }
 
+const SubdividedFace& TMeshSurface::subdivided(int face) const {
+  const Face& f = faces_[static_cast<std::size_t>(face)];
+  require(f.method == FaceMethod::subdivided, [&] { return "T-mesh: face " + std::to_string(face) + " is not a subdivided face"; });
+  return subdivided_[static_cast<std::size_t>(f.subdivided)];
+}
+
 TMeshSurface::ChartFrame TMeshSurface::chart_frame(int face) const {
   const Face& f = faces_[static_cast<std::size_t>(face)];
   require(f.method == FaceMethod::exact, [&] { return "T-mesh: face " + std::to_string(face) + " is not an exact face"; });
@@ -663,7 +689,7 @@ std::vector<std::array<double, 3>> TMeshSurface::patch_points(int face) const {
     return p;
   }
   require(f.method == FaceMethod::bicubic || f.method == FaceMethod::star,
-          [&] { return "T-mesh: face " + std::to_string(face) + " is not a Catmull-Clark face"; });
+          [&] { return "T-mesh: face " + std::to_string(face) + " is not a Catmull-Clark face of one patch"; });
   const TMesh& cm = cc_mesh();
   std::vector<std::array<double, 3>> p(f.points.size());
   for (std::size_t i = 0; i < p.size(); ++i)

@@ -18,11 +18,18 @@
 //                  bicubic B-spline away from the star point and uniform Catmull-Clark for equal intervals),
 //                  evaluated exactly as B-spline cells of the subdivision levels. It needs the three rings to be
 //                  quadrilaterals without T-junctions around vertices of four faces, off the boundary.
+//   subdivided     faces with several star corners, or whose corner's neighbours are star points (star points
+//                  joined by an edge; coarse cages such as a cube of one face per side): one uniform
+//                  Catmull-Clark step of the face's two rings (subdivided_face), each quarter of the face a
+//                  bicubic or star patch of the subdivided points (u, v in [0, 1/2]^2 etc. mapped to the
+//                  sub-face's [0, 1]^2, derivatives times 2); exactly the limit surface still. Equal knot
+//                  intervals only (non-uniform Catmull-Clark would need its sectors around both star points).
 // The faces within p + 2 rings of a star point (bicubic and star) need, and are checked to have, degree 3,
 // no T-junction and no boundary within (p + 1) / 2 rings of them, control points
-// without repeated-knot nodes, and at most one star corner per face. Weights other than 1 are rational
-// Catmull-Clark: the rules act on the homogeneous points (w x, w) and the limit is projected, which on faces
-// without a star corner is the rational uniform bicubic B-spline sum w P B / sum w B, i.e. the T-spline (the
+// without repeated-knot nodes, and at most one star corner per face or else equal intervals (subdivided).
+// Weights other than 1 are rational Catmull-Clark: the rules act on the homogeneous points (w x, w) and the
+// limit is projected, which on faces without a star corner is the rational uniform bicubic B-spline
+// sum w P B / sum w B, i.e. the T-spline (the
 // rules are linear, so Stam's evaluation of the homogeneous mesh is exact; projection keeps C1 across edges and
 // the tangent plane at the star point). A face more than p rings from
 // the star points' faces that fails these (a boundary, a T-junction or unequal intervals nearby) is exact
@@ -30,10 +37,11 @@
 // needs 7 faces to the boundary, not 8); otherwise the face's reason is the error (what is still refused:
 // T-junctions and repeated knots within two rings of a star point's faces, unequal intervals, T-junctions or
 // corners with a side of one edge near a star point on the boundary, two star points with unequal intervals
-// within three rings of each other, degrees other than 3). A star point on the boundary is an interior one of the
-// mesh with a ghost layer along the boundary (boundary_ghosts: the Bezier end condition as a uniform bicubic net,
-// round corners as the tensor product of the two clamped ends), so its faces are star faces of valence K + 2 and
-// the faces near it bicubic faces of that mesh, the T-spline wherever their points avoid it. The surface there
+// within three rings of each other, unequal intervals within two rings of a face with several star corners,
+// degrees other than 3). A star point on the boundary is an interior one of the mesh with a ghost layer along
+// the boundary (boundary_ghosts: the Bezier end condition as a uniform bicubic net, round corners as the tensor
+// product of the two clamped ends), so its faces are star faces of valence K + 2 and the faces near it bicubic
+// faces of that mesh, the T-spline wherever their points avoid it. The surface there
 // is then the Catmull-Clark limit surface of the control mesh, which on faces without a star corner is the
 // uniform bicubic B-spline = the T-spline. Continuity: C2 across every edge away from star points
 // (T-spline and uniform B-spline pieces meet as one spline); C1 across the edges at a star point except at the
@@ -47,12 +55,13 @@
 #include <optional>
 #include <vector>
 
+#include "trivar/tspline/subdivided_face.hpp"
 #include "trivar/tspline/t_mesh.hpp"
 #include "trivar/tspline/t_spline_surface.hpp"
 
 namespace trivar {
 
-enum class FaceMethod { none, exact, bicubic, star, non_uniform };
+enum class FaceMethod { none, exact, bicubic, star, non_uniform, subdivided };
 const char* face_method_name(FaceMethod m);
 
 // The frame of a Catmull-Clark patch starting at corner c (0..3, counter-clockwise from the face's first corner)
@@ -94,7 +103,8 @@ public:
   // corner_frame.
   std::vector<std::array<double, 3>> patch_points(int face) const;
   // The same face in its patch frame (u', v'): the homogeneous limit surface (w x, w y, w z, w) and its d/du',
-  // d/dv' (12 values: value, d/du', d/dv', four each; at a star point the derivatives are directions).
+  // d/dv' (12 values: value, d/du', d/dv', four each; at a star point the derivatives are directions). A
+  // subdivided face's patch frame is the face's own (u, v).
   void eval_patch_homogeneous(int face, double up, double vp, double* out) const;
   bool rational_patch(int face) const { return faces_[static_cast<std::size_t>(face)].rational; }
   int patch_corner(int face) const { return faces_[static_cast<std::size_t>(face)].corner; }
@@ -103,6 +113,8 @@ public:
   bool star_corner(int face) const { return faces_[static_cast<std::size_t>(face)].cell == std::array<int, 2>{0, 0}; }
   // Star points evaluated by non-uniform Catmull-Clark (unequal knot intervals around them).
   int non_uniform_stars() const { return static_cast<int>(nurcc_.size()); }
+  // A subdivided face: its four quarters after one local Catmull-Clark step.
+  const SubdividedFace& subdivided(int face) const;
 
 private:
   struct Face {
@@ -119,6 +131,7 @@ private:
     int nurcc = -1, sector = 0;    // non_uniform: index into nurcc_, the sector and the face's cell in it
     std::array<int, 2> cell{-1, -1};
     bool boundary_star = false;    // star: the star point is on the boundary
+    int subdivided = -1;           // subdivided: index into subdivided_
   };
   struct Nurcc;  // a star point evaluated by non-uniform Catmull-Clark: its subdivision and homogeneous points
   TMesh mesh_;
@@ -126,6 +139,7 @@ private:
   std::vector<Face> faces_;
   std::vector<std::unique_ptr<TSplineSurface>> charts_;
   std::vector<std::unique_ptr<Nurcc>> nurcc_;
+  std::vector<SubdividedFace> subdivided_;
   std::unique_ptr<TMesh> ghosted_;  // with star points on the boundary: the mesh with their ghost layers
   // The control mesh of the Catmull-Clark faces (bicubic and star: their `points` are its vertices).
   const TMesh& cc_mesh() const { return ghosted_ ? *ghosted_ : mesh_; }
