@@ -443,7 +443,11 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(mesh), stars_
   }
   // Exact faces: the T-spline in a chart of their neighbourhood. A chart of depth + k rings around a face serves
   // every face within k rings of it (their neighbourhoods lie inside), so faces are grouped greedily: a cluster
-  // around the first face not yet served, k as large as the star points allow (up to 4; without star points all it reaches).
+  // around the first face not yet served, k as large as the star points allow (up to 4; without star points all it
+  // reaches). A mesh without star points but with a closed strip (a torus, a tube) has no chart of all its faces,
+  // and a chart must not wrap round the strip: clusters of one ring in charts of reach + 1 rings, split into single
+  // faces in charts of reach rings where those wrap (too short strips: an error).
+  const bool periodic = stars_.empty() && has_closed_strip(m);
   struct Cluster {
     int centre, rings;
     std::vector<int> members;
@@ -459,10 +463,10 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(mesh), stars_
       // Without star points the chart of all the faces it reaches (the global T-spline: small charts of a
       // model whose end-condition blocks or slits end inside them can have blending functions the chart's border
       // collapses).
-      const int k = stars_.empty() ? nf : std::min(4, star_dist[static_cast<std::size_t>(f)] == INT_MAX ? 4 : star_dist[static_cast<std::size_t>(f)] - depth - 1);
+      const int k = periodic ? 1 : stars_.empty() ? nf : std::min(4, star_dist[static_cast<std::size_t>(f)] == INT_MAX ? 4 : star_dist[static_cast<std::size_t>(f)] - depth - 1);
       std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX);
       dist[static_cast<std::size_t>(f)] = 0;
-      Cluster c{f, depth + k, {}, {}};
+      Cluster c{f, (periodic ? reach : depth) + k, {}, {}};
       for (int g : rings({f}, k, dist))
         if (faces_[static_cast<std::size_t>(g)].method == FaceMethod::exact && !served[static_cast<std::size_t>(g)]) {
           served[static_cast<std::size_t>(g)] = 1;
@@ -471,84 +475,99 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(mesh), stars_
       clusters.push_back(std::move(c));
     }
   }
-  charts_.resize(clusters.size());
-  std::vector<std::string> errors(clusters.size());
+  std::vector<std::string> errors;
   // A chart is exact for its members when no blending function that is nonzero on a member has a knot vector
   // cut by the chart's border inside the mesh (a ray stopped there: its support box reaches a border edge whose
   // other side is a face outside the chart). Otherwise the chart grows by a ring, as long as it holds no star point.
-  parallel_for(static_cast<std::ptrdiff_t>(clusters.size()), threads, [&](std::ptrdiff_t i) {
-    const Cluster& cl = clusters[static_cast<std::size_t>(i)];
-    const int centre_dist = star_dist[static_cast<std::size_t>(cl.centre)];
-    try {
-      for (int r = cl.rings;; ++r) {
-        require(r < centre_dist && r <= cl.rings + 8, [&] {
-          return "the T-spline's knot vectors on face " + std::to_string(cl.centre) + " reach beyond " + std::to_string(r - 1) +
-                 " face rings" + (r >= centre_dist ? " (to a star point)" : "");
-        });
-        std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX);
-        dist[static_cast<std::size_t>(cl.centre)] = 0;
-        const std::vector<int> hood = rings({cl.centre}, r, dist);
-        TChart c = t_spline_chart(m, hood, cl.centre, false);
-        const auto at = [&](int v) {
-          const TVertex& x = c.spline.image.vertices[static_cast<std::size_t>(c.vertex[static_cast<std::size_t>(v)])];
-          return std::array<double, 2>{x.s, x.t};
-        };
-        std::vector<Box<2>> border;  // edges of the chart with a face outside it on the other side
-        for (int l = 0; l < static_cast<int>(m.links.size()); ++l) {
-          const TMeshLink& k = L(l);
-          if (k.face < 0 || c.face[static_cast<std::size_t>(k.face)] < 0) continue;
-          const int g = L(k.opp).face;
-          if (g < 0 || c.face[static_cast<std::size_t>(g)] >= 0) continue;
-          const auto p = at(k.vertex), q = at(L(k.opp).vertex);
-          border.push_back({{std::min(p[0], q[0]), std::min(p[1], q[1])}, {std::max(p[0], q[0]), std::max(p[1], q[1])}});
-        }
-        std::vector<Face> frames;
-        std::vector<Box<2>> boxes;
-        for (int g : cl.members) {
-          // The face's frame in the chart: its first corner, the next corner and the last one.
-          const auto& loop = m.faces[static_cast<std::size_t>(g)];
-          std::vector<int> corners;
-          for (int l : loop)
-            if (L(l).flag == 0) corners.push_back(L(l).vertex);
-          Face fr = faces_[static_cast<std::size_t>(g)];
-          const auto o = at(corners[0]), a = at(corners[1]), b = at(corners[3]);
-          fr.origin = o;
-          fr.axis_u = {a[0] - o[0], a[1] - o[1]};
-          fr.axis_v = {b[0] - o[0], b[1] - o[1]};
-          frames.push_back(fr);
-          const auto x = at(corners[2]);
-          boxes.push_back({{std::min(o[0], x[0]), std::min(o[1], x[1])}, {std::max(o[0], x[0]), std::max(o[1], x[1])}});
-        }
-        auto surface = std::make_unique<TSplineSurface>(c.spline, 1);
-        bool cut = false;
-        for (const auto& f : surface->basis()) {
-          const Box<2> sb{{f.knots[0].front(), f.knots[1].front()}, {f.knots[0].back(), f.knots[1].back()}};
-          const auto on_member = std::any_of(boxes.begin(), boxes.end(), [&](const Box<2>& b) {
-            return sb.lo[0] < b.hi[0] && b.lo[0] < sb.hi[0] && sb.lo[1] < b.hi[1] && b.lo[1] < sb.hi[1];
+  const auto serve = [&](std::size_t first) {
+    charts_.resize(clusters.size());
+    errors.resize(clusters.size());
+    parallel_for(static_cast<std::ptrdiff_t>(clusters.size() - first), threads, [&](std::ptrdiff_t n) {
+      const std::ptrdiff_t i = static_cast<std::ptrdiff_t>(first) + n;
+      const Cluster& cl = clusters[static_cast<std::size_t>(i)];
+      const int centre_dist = star_dist[static_cast<std::size_t>(cl.centre)];
+      try {
+        for (int r = cl.rings;; ++r) {
+          require(r < centre_dist && r <= cl.rings + 8, [&] {
+            return "the T-spline's knot vectors on face " + std::to_string(cl.centre) + " reach beyond " + std::to_string(r - 1) +
+                   " face rings" + (r >= centre_dist ? " (to a star point)" : "");
           });
-          if (!on_member) continue;
-          // A border edge through the support's interior cuts it; one along its side does not (the rays that
-          // end there meet that edge in the chart as in the mesh).
-          cut = std::any_of(border.begin(), border.end(), [&](const Box<2>& e) {
-            return e.lo[0] < sb.hi[0] && sb.lo[0] < e.hi[0] && e.lo[1] < sb.hi[1] && sb.lo[1] < e.hi[1];
-          });
-          if (cut) break;
+          std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX);
+          dist[static_cast<std::size_t>(cl.centre)] = 0;
+          const std::vector<int> hood = rings({cl.centre}, r, dist);
+          TChart c = t_spline_chart(m, hood, cl.centre, false);
+          const auto at = [&](int v) {
+            const TVertex& x = c.spline.image.vertices[static_cast<std::size_t>(c.vertex[static_cast<std::size_t>(v)])];
+            return std::array<double, 2>{x.s, x.t};
+          };
+          std::vector<Box<2>> border;  // edges of the chart with a face outside it on the other side
+          for (int l = 0; l < static_cast<int>(m.links.size()); ++l) {
+            const TMeshLink& k = L(l);
+            if (k.face < 0 || c.face[static_cast<std::size_t>(k.face)] < 0) continue;
+            const int g = L(k.opp).face;
+            if (g < 0 || c.face[static_cast<std::size_t>(g)] >= 0) continue;
+            const auto p = at(k.vertex), q = at(L(k.opp).vertex);
+            border.push_back({{std::min(p[0], q[0]), std::min(p[1], q[1])}, {std::max(p[0], q[0]), std::max(p[1], q[1])}});
+          }
+          std::vector<Face> frames;
+          std::vector<Box<2>> boxes;
+          for (int g : cl.members) {
+            // The face's frame in the chart: its first corner, the next corner and the last one.
+            const auto& loop = m.faces[static_cast<std::size_t>(g)];
+            std::vector<int> corners;
+            for (int l : loop)
+              if (L(l).flag == 0) corners.push_back(L(l).vertex);
+            Face fr = faces_[static_cast<std::size_t>(g)];
+            const auto o = at(corners[0]), a = at(corners[1]), b = at(corners[3]);
+            fr.origin = o;
+            fr.axis_u = {a[0] - o[0], a[1] - o[1]};
+            fr.axis_v = {b[0] - o[0], b[1] - o[1]};
+            frames.push_back(fr);
+            const auto x = at(corners[2]);
+            boxes.push_back({{std::min(o[0], x[0]), std::min(o[1], x[1])}, {std::max(o[0], x[0]), std::max(o[1], x[1])}});
+          }
+          auto surface = std::make_unique<TSplineSurface>(c.spline, 1);
+          bool cut = false;
+          for (const auto& f : surface->basis()) {
+            const Box<2> sb{{f.knots[0].front(), f.knots[1].front()}, {f.knots[0].back(), f.knots[1].back()}};
+            const auto on_member = std::any_of(boxes.begin(), boxes.end(), [&](const Box<2>& b) {
+              return sb.lo[0] < b.hi[0] && b.lo[0] < sb.hi[0] && sb.lo[1] < b.hi[1] && b.lo[1] < sb.hi[1];
+            });
+            if (!on_member) continue;
+            // A border edge through the support's interior cuts it; one along its side does not (the rays that
+            // end there meet that edge in the chart as in the mesh).
+            cut = std::any_of(border.begin(), border.end(), [&](const Box<2>& e) {
+              return e.lo[0] < sb.hi[0] && sb.lo[0] < e.hi[0] && e.lo[1] < sb.hi[1] && sb.lo[1] < e.hi[1];
+            });
+            if (cut) break;
+          }
+          if (cut) continue;
+          for (std::size_t j = 0; j < cl.members.size(); ++j) {
+            Face& face = faces_[static_cast<std::size_t>(cl.members[j])];
+            face = frames[j];
+            face.chart = static_cast<int>(i);
+          }
+          charts_[static_cast<std::size_t>(i)] = std::move(surface);
+          break;
         }
-        if (cut) continue;
-        for (std::size_t j = 0; j < cl.members.size(); ++j) {
-          Face& face = faces_[static_cast<std::size_t>(cl.members[j])];
-          face = frames[j];
-          face.chart = static_cast<int>(i);
-        }
-        charts_[static_cast<std::size_t>(i)] = std::move(surface);
-        break;
+      } catch (const Error& e) {
+        errors[static_cast<std::size_t>(i)] =
+            cl.why.empty() ? "T-mesh: face " + std::to_string(cl.centre) + ": its chart: " + e.what() +
+                                 (periodic ? " (the mesh has a closed strip of faces, too short for a chart of the face's knot vectors)" : "")
+                           : cl.why + " (nor is it the T-spline of a chart without star points: " + e.what() + ")";
       }
-    } catch (const Error& e) {
-      errors[static_cast<std::size_t>(i)] =
-          cl.why.empty() ? "T-mesh: face " + std::to_string(cl.centre) + ": its chart: " + e.what()
-                         : cl.why + " (nor is it the T-spline of a chart without star points: " + e.what() + ")";
-    }
-  });
+    });
+  };
+  serve(0);
+  if (periodic) {
+    const std::size_t first = clusters.size();
+    for (std::size_t i = 0; i < first; ++i)
+      if (!errors[i].empty() && clusters[i].members.size() > 1) {
+        errors[i].clear();
+        for (int g : clusters[i].members) clusters.push_back({g, reach, {g}, {}});
+      }
+    if (clusters.size() > first) serve(first);
+  }
   for (const std::string& e : errors) require(e.empty(), e);
 }
 
