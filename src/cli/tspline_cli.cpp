@@ -184,8 +184,9 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
     std::printf("  %d faces, %d star points (%s); no global (s, t): faces are evaluated in their own (u, v)\n", faces,
                 r.star_points, vs.c_str());
   if (s.stars().empty())
-    std::printf("  %d faces exact (the T-spline in a chart of their neighbourhood, not wrapping round the strip)\n",
-                s.count(FaceMethod::exact));
+    std::printf("  %d faces exact (the T-spline in a chart of their neighbourhood, not wrapping round the strip), %d "
+                "the bicubic B-spline cell of their 16 points (round strips too short for such charts)\n",
+                s.count(FaceMethod::exact), s.count(FaceMethod::bicubic));
   else
     std::printf("  %d faces exact (the T-spline in a chart of their neighbourhood), %d faces within %d rings of a star "
                 "point by the Catmull-Clark limit surface (%d at a star point, evaluated exactly by subdivision)\n",

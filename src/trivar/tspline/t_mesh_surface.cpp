@@ -352,6 +352,62 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(mesh), stars_
   std::vector<NearExact> near_exact;
   std::vector<char> is_star(cm.vertices.size(), 0);
   for (int s : stars_) is_star[static_cast<std::size_t>(s)] = 1;
+  // The Catmull-Clark region's conditions on a face's neighbourhood (near a star point, or round a closed strip
+  // too short for charts). A face's uniform bicubic patch is the T-spline there when the (p + 1) / 2 rings around
+  // it are uniform quadrilaterals inside the mesh: its 16 nodes are the corners of the first ring and their rays
+  // cross (p + 1) / 2 lines. Empty when they hold; `unequal` names unequal knot intervals there.
+  const int cc_depth = (m.degree + 1) / 2;
+  const auto regular = [&](int f, std::string& unequal) -> std::string {
+    if (m.degree != 3) return "star points are evaluated for degree 3, not " + std::to_string(m.degree);
+    std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX);
+    dist[static_cast<std::size_t>(f)] = 0;
+    const std::vector<int> hood = rings({f}, cc_depth, dist);
+    const double d0 = m.intervals[static_cast<std::size_t>(L(m.faces[static_cast<std::size_t>(f)].front()).edge)];
+    for (int g : hood)
+      for (int l : m.faces[static_cast<std::size_t>(g)]) {
+        if (m.faces[static_cast<std::size_t>(g)].size() != 4)
+          return "face " + std::to_string(g) + " nearby has a T-junction; the Catmull-Clark evaluation around star points needs none within " + std::to_string(cc_depth) + " rings";
+        if (boundary[static_cast<std::size_t>(L(l).vertex)] && !ghosted[static_cast<std::size_t>(L(l).vertex)])
+          return "boundary vertex " + std::to_string(L(l).vertex) + " is within " + std::to_string(cc_depth) + " rings; the Catmull-Clark evaluation around star points needs none";
+        const double d = m.intervals[static_cast<std::size_t>(L(l).edge)];
+        if (std::abs(d - d0) > 1e-12 * d0 && unequal.empty())
+          unequal = "edge " + std::to_string(L(l).edge) + " nearby has knot interval " + std::to_string(d) + ", not " + std::to_string(d0);
+      }
+    return {};
+  };
+  // The bicubic or star patch of a face whose neighbourhood is regular, its star point (if any) at `corner`.
+  const auto set_patch = [&](int f, int corner, int star_corners, const std::string& unequal, const std::string& where) {
+    Face& face = faces_[static_cast<std::size_t>(f)];
+    const auto& loop = m.faces[static_cast<std::size_t>(f)];
+    Gather gth = gather(cm, loop[static_cast<std::size_t>(corner)]);
+    require(gth.error.empty(), [&] { return where + gth.error; });
+    if (!unequal.empty()) {
+      // Unequal intervals: a face whose 16 points avoid the star points is the bicubic B-spline on its knots;
+      // one whose points hold a star point needs its star's non-uniform Catmull-Clark sectors.
+      for (int x : gth.points)
+        require(!is_star[static_cast<std::size_t>(x)], [&] {
+          const std::string& sw = nurcc_why[static_cast<std::size_t>(x)];
+          return where + unequal + "; non-uniform Catmull-Clark at star point " + std::to_string(x) + " needs its three rings of faces: " +
+                 (sw.empty() ? std::string("degree 3") : sw);
+        });
+      face.knots = cell_knots(m, loop[static_cast<std::size_t>(corner)]);
+      require(face.knots.has_value(), [&] { return where + unequal + "; its knot lines are not straight through vertices of four faces"; });
+    }
+    for (int x : gth.points) {
+      const TMeshVertex& mv = cm.vertices[static_cast<std::size_t>(x)];
+      require(mv.primary >= 0 && mv.block.empty(), [&] {
+        return where + "vertex " + std::to_string(x) + " has no control point or repeated-knot nodes; the Catmull-Clark evaluation around star points needs one point per vertex";
+      });
+      const RationalPoint& pt = cm.points[static_cast<std::size_t>(mv.primary)];
+      face.wx.push_back({pt.w * pt.xyz[0], pt.w * pt.xyz[1], pt.w * pt.xyz[2]});
+      face.w.push_back({pt.w, 0, 0});
+      face.rational = face.rational || pt.w != 1.0;
+    }
+    face.method = star_corners ? FaceMethod::star : FaceMethod::bicubic;
+    face.boundary_star = star_corners && boundary[static_cast<std::size_t>(L(loop[static_cast<std::size_t>(corner)]).vertex)];
+    face.corner = corner;
+    face.points = std::move(gth.points);
+  };
   for (int f = 0; f < nf; ++f) {
     if (!m.live_face(f)) continue;
     Face& face = faces_[static_cast<std::size_t>(f)];
@@ -371,29 +427,8 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(mesh), stars_
       for (const auto& p : nurcc_[static_cast<std::size_t>(z.star)]->points) face.rational = face.rational || p[3] != 1.0;
       continue;
     }
-    // Near a star point: the Catmull-Clark region's conditions on the neighbourhood. A face's uniform bicubic
-    // patch is the T-spline there when the (p + 1) / 2 rings around it are uniform quadrilaterals inside the
-    // mesh: its 16 nodes are the corners of the first ring and their rays cross (p + 1) / 2 lines.
-    const int cc_depth = (m.degree + 1) / 2;
     std::string unequal;  // unequal knot intervals within cc_depth rings: exact as a non-uniform bicubic face
-    const std::string why = [&]() -> std::string {
-      if (m.degree != 3) return "star points are evaluated for degree 3, not " + std::to_string(m.degree);
-      std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX);
-      dist[static_cast<std::size_t>(f)] = 0;
-      const std::vector<int> hood = rings({f}, cc_depth, dist);
-      const double d0 = m.intervals[static_cast<std::size_t>(L(m.faces[static_cast<std::size_t>(f)].front()).edge)];
-      for (int g : hood)
-        for (int l : m.faces[static_cast<std::size_t>(g)]) {
-          if (m.faces[static_cast<std::size_t>(g)].size() != 4)
-            return "face " + std::to_string(g) + " nearby has a T-junction; the Catmull-Clark evaluation around star points needs none within " + std::to_string(cc_depth) + " rings";
-          if (boundary[static_cast<std::size_t>(L(l).vertex)] && !ghosted[static_cast<std::size_t>(L(l).vertex)])
-            return "boundary vertex " + std::to_string(L(l).vertex) + " is within " + std::to_string(cc_depth) + " rings; the Catmull-Clark evaluation around star points needs none";
-          const double d = m.intervals[static_cast<std::size_t>(L(l).edge)];
-          if (std::abs(d - d0) > 1e-12 * d0 && unequal.empty())
-            unequal = "edge " + std::to_string(L(l).edge) + " nearby has knot interval " + std::to_string(d) + ", not " + std::to_string(d0);
-        }
-      return {};
-    }();
+    const std::string why = regular(f, unequal);
     const auto where = [&] { return "T-mesh: face " + std::to_string(f) + " (within " + std::to_string(depth + 1) + " face rings of a star point): "; };
     const auto& loop = m.faces[static_cast<std::size_t>(f)];
     int corner = 0, star_corners = 0;
@@ -412,41 +447,15 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(mesh), stars_
       continue;
     }
     require(star_corners <= 1, [&] { return where() + "it has " + std::to_string(star_corners) + " star corners; subdivide the control mesh once so that every face has at most one"; });
-    Gather gth = gather(cm, loop[static_cast<std::size_t>(corner)]);
-    require(gth.error.empty(), [&] { return where() + gth.error; });
-    if (!unequal.empty()) {
-      // Unequal intervals: a face whose 16 points avoid the star points is the bicubic B-spline on its knots;
-      // one whose points hold a star point needs its star's non-uniform Catmull-Clark sectors.
-      for (int x : gth.points)
-        require(!is_star[static_cast<std::size_t>(x)], [&] {
-          const std::string& sw = nurcc_why[static_cast<std::size_t>(x)];
-          return where() + unequal + "; non-uniform Catmull-Clark at star point " + std::to_string(x) + " needs its three rings of faces: " +
-                 (sw.empty() ? std::string("degree 3") : sw);
-        });
-      face.knots = cell_knots(m, loop[static_cast<std::size_t>(corner)]);
-      require(face.knots.has_value(), [&] { return where() + unequal + "; its knot lines are not straight through vertices of four faces"; });
-    }
-    for (int x : gth.points) {
-      const TMeshVertex& mv = cm.vertices[static_cast<std::size_t>(x)];
-      require(mv.primary >= 0 && mv.block.empty(), [&] {
-        return where() + "vertex " + std::to_string(x) + " has no control point or repeated-knot nodes; the Catmull-Clark evaluation around star points needs one point per vertex";
-      });
-      const RationalPoint& pt = cm.points[static_cast<std::size_t>(mv.primary)];
-      face.wx.push_back({pt.w * pt.xyz[0], pt.w * pt.xyz[1], pt.w * pt.xyz[2]});
-      face.w.push_back({pt.w, 0, 0});
-      face.rational = face.rational || pt.w != 1.0;
-    }
-    face.method = star_corners ? FaceMethod::star : FaceMethod::bicubic;
-    face.boundary_star = star_corners && boundary[static_cast<std::size_t>(L(loop[static_cast<std::size_t>(corner)]).vertex)];
-    face.corner = corner;
-    face.points = std::move(gth.points);
+    set_patch(f, corner, star_corners, unequal, where());
   }
   // Exact faces: the T-spline in a chart of their neighbourhood. A chart of depth + k rings around a face serves
   // every face within k rings of it (their neighbourhoods lie inside), so faces are grouped greedily: a cluster
   // around the first face not yet served, k as large as the star points allow (up to 4; without star points all it
   // reaches). A mesh without star points but with a closed strip (a torus, a tube) has no chart of all its faces,
   // and a chart must not wrap round the strip: clusters of one ring in charts of reach + 1 rings, split into single
-  // faces in charts of reach rings where those wrap (too short strips: an error).
+  // faces in charts of reach rings where those wrap (degree 3: strips of 8 faces and more), and on shorter strips
+  // the bicubic B-spline cells of regular neighbourhoods.
   const bool periodic = stars_.empty() && has_closed_strip(m);
   struct Cluster {
     int centre, rings;
@@ -562,11 +571,26 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(mesh), stars_
   if (periodic) {
     const std::size_t first = clusters.size();
     for (std::size_t i = 0; i < first; ++i)
-      if (!errors[i].empty() && clusters[i].members.size() > 1) {
+      if (!errors[i].empty() && clusters[i].rings > reach) {
         errors[i].clear();
-        for (int g : clusters[i].members) clusters.push_back({g, reach, {g}, {}});
+        const std::vector<int> members = clusters[i].members;  // the clusters grow below
+        for (int g : members) clusters.push_back({g, reach, {g}, {}});
       }
     if (clusters.size() > first) serve(first);
+    // Where a strip is too short even for those, a face whose neighbourhood is regular is the bicubic B-spline
+    // cell of its 16 points on its knots, the T-spline there (no chart needed).
+    for (std::size_t i = first; i < clusters.size(); ++i) {
+      if (errors[i].empty()) continue;
+      const int f = clusters[i].centre;
+      std::string unequal;
+      const std::string why = regular(f, unequal);
+      if (!why.empty()) {
+        errors[i] += " (nor is it a regular bicubic patch: " + why + ")";
+        continue;
+      }
+      set_patch(f, 0, 0, unequal, "T-mesh: face " + std::to_string(f) + " (round a short closed strip): ");
+      errors[i].clear();
+    }
   }
   for (const std::string& e : errors) require(e.empty(), e);
 }
