@@ -358,7 +358,7 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(mesh), stars_
   // cross (p + 1) / 2 lines. Empty when they hold; `unequal` names unequal knot intervals there.
   const int cc_depth = (m.degree + 1) / 2;
   const auto regular = [&](int f, std::string& unequal) -> std::string {
-    if (m.degree != 3) return "star points are evaluated for degree 3, not " + std::to_string(m.degree);
+    if (m.degree != 3) return "the Catmull-Clark evaluation is for degree 3, not " + std::to_string(m.degree);
     std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX);
     dist[static_cast<std::size_t>(f)] = 0;
     const std::vector<int> hood = rings({f}, cc_depth, dist);
