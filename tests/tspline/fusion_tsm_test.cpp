@@ -367,6 +367,9 @@ TEST(FusionTsm, MalformedFilesGiveOneLineErrors) {
   expect_fusion_error(with(box, "l 3 1 ", "l 3 99 "), "names a link that does not exist");
   expect_fusion_error(with(box, "f 4 0", "f 400 0"), "names link 400, which does not exist");
   expect_fusion_error(with(box, "\nv 0 NORTH", "\nv 0 UP"), "needs an outgoing link and a direction");
+  // A crease between two faces (the cube has no boundary); on the boundary of a grid, ec records are read.
+  expect_fusion_error(with(box, "\ntol ", "ec 3 0\n\ntol "), "edge 3 between two faces is a crease (ec)");
+  EXPECT_EQ(io::parse_tsm(with(fusion_text(grid_cage(1, 1)), "\ntol ", "ec 0 0\n\ntol "), "g.tsm").mesh.conditions.size(), 1u);
   // Edge knots other than the intervals.
   std::string ek;
   for (int e = 0; e < 48; ++e) ek += e == 5 ? "106ek 0\n" : "106ek 1\n";

@@ -124,30 +124,32 @@ TsmModel TsmReader::build() {
   if (auto r = setting("degree")) degree = number<int>(*r, 0, "degree");
   if (degree < 1 || degree % 2 == 0)
     fail(setting("degree")->line, "degree " + std::to_string(degree) + ": TSM grip maps are read for odd degrees");
-  if (auto r = setting("units"))
-    for (std::size_t i = 0; i < r->words.size(); ++i) rep.units += (i ? " " : "") + std::string(r->words[i]);
-  if (auto r = setting("tol")) rep.tolerance = number<double>(*r, 0, "tolerance");
-  if (auto r = setting("ver")) rep.version = number<int>(*r, 0, "version");
-  const auto word = [&](std::string_view kind) {
-    const auto r = setting(kind);
+  // A setting's words as written, joined by spaces.
+  const auto words = [&](std::string_view kind) {
     std::string w;
-    if (r)
-      for (std::size_t i = 0; i < r->words.size(); ++i) w += (i ? " " : "") + std::string(r->words[i]);
+    if (const auto r = setting(kind))
+      for (std::string_view x : r->words) {
+        if (!w.empty()) w += ' ';
+        w += x;
+      }
     return w;
   };
-  rep.cap_type = word("cap-type");
-  rep.star_smoothness = word("star-smoothness");
-  rep.behavior_version = word("behavior-version");
-  rep.compat_version = word("compat-version");
+  rep.units = words("units");
+  if (auto r = setting("tol")) rep.tolerance = number<double>(*r, 0, "tolerance");
+  if (auto r = setting("ver")) rep.version = number<int>(*r, 0, "version");
+  rep.cap_type = words("cap-type");
+  rep.star_smoothness = words("star-smoothness");
+  rep.behavior_version = words("behavior-version");
+  rep.compat_version = words("compat-version");
   if (auto r = setting("geom-tol")) rep.geom_tolerance = number<double>(*r, 0, "geometric tolerance");
   // Fusion's end conditions: MULTIPLE_KNOTS the repeated knots of Bezier end conditions, SUBD_CREASES the boundary
   // as a subdivision crease; its star points: NURCCS, the knot-interval-weighted Catmull-Clark evaluated here.
   EndConditions ends = EndConditions::bezier;
-  rep.end_conditions = word("end-conditions");
+  rep.end_conditions = words("end-conditions");
   if (rep.end_conditions == "SUBD_CREASES") ends = EndConditions::subd_creases;
   else if (!rep.end_conditions.empty() && rep.end_conditions != "MULTIPLE_KNOTS")
     fail(setting("end-conditions")->line, "end-conditions " + rep.end_conditions + " is not read (MULTIPLE_KNOTS or SUBD_CREASES)");
-  rep.star_knot_rule = word("star-knot-rule");
+  rep.star_knot_rule = words("star-knot-rule");
   if (!rep.star_knot_rule.empty() && rep.star_knot_rule != "NURCCS")
     fail(setting("star-knot-rule")->line, "star-knot-rule " + rep.star_knot_rule + " is not read (NURCCS: knot-interval-weighted Catmull-Clark)");
   TSpline& ts = out.spline;
@@ -311,6 +313,11 @@ TsmModel TsmReader::build() {
     if (!r.words.empty()) {
       const int e = number<int>(r, 0, "edge");
       if (e < 0 || e >= ne || E[static_cast<std::size_t>(e)].words.empty()) fail(r.line, "edge condition names edge " + std::to_string(e) + ", which does not exist");
+      // Fusion marks crease edges so; on the boundary the end conditions say what the edge is, inside the mesh
+      // it would be a sharp crease, which is not evaluated.
+      const TMeshLink& k = mesh.links[static_cast<std::size_t>(number<int>(E[static_cast<std::size_t>(e)], 0, "link"))];
+      if (!rep.end_conditions.empty() && k.face >= 0 && mesh.links[static_cast<std::size_t>(k.opp)].face >= 0)
+        fail(r.line, "edge " + std::to_string(e) + " between two faces is a crease (ec); creases inside the mesh are not read");
       mesh.conditions.push_back({e, number<int>(r, 1, "condition") != 0 ? 1 : 0});
     }
   std::vector<int> valence(static_cast<std::size_t>(nv), 0), straight(static_cast<std::size_t>(nv), 0);

@@ -22,7 +22,7 @@
 // each vertex has one grip: the `0g` records in vertex order (one per vertex slot, a deleted vertex's a bare
 // `0g`, or one per live vertex). `106ek` records that repeat the edges' knot intervals (-1 for a deleted edge),
 // and the editor's selections 100edges, 100verts, 50000grip, carry no geometry; other edge knots, end
-// conditions or star rules are errors.
+// conditions or star rules, and `ec` creases between two faces, are errors.
 //
 // Parametrisation: link directions follow from the corners (each face is a counter-clockwise rectangle, turning
 // left at every corner), propagated across edges; vertex parameters are sums of knot intervals along links
