@@ -1,7 +1,8 @@
-// libFuzzer target for the Rhino .tsm reader: any input must read or throw trivar::Error; every T-spline read
-// must build (blending functions, Bezier elements), evaluate with first derivatives at its domain's corners and
-// centre, classify and tessellate coarsely, throwing nothing but trivar::Error; a model with star points builds
-// its per-face surface, evaluates every face's corners and centre and tessellates coarsely. A violation traps.
+// libFuzzer target for the .tsm reader (Rhino's and Fusion 360's files): any input must read or throw
+// trivar::Error; every T-spline read must build (blending functions, Bezier elements), evaluate with first
+// derivatives at its domain's corners and centre, classify and tessellate coarsely, throwing nothing but
+// trivar::Error; a model without a global (s, t) (star points, a closed strip of faces) builds its per-face
+// surface, evaluates every face's corners and centre and tessellates coarsely. A violation traps.
 // Build and run: see fuzz/CMakeLists.txt (seeds: fuzz/tsm).
 #include <cstddef>
 #include <cstdint>
@@ -22,7 +23,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     const io::TsmModel m = io::parse_tsm(std::string_view(reinterpret_cast<const char*>(data), size), "fuzz.tsm");
     double out[9];
-    if (m.report.star_points > 0) {
+    if (m.spline.image.faces.empty()) {
       const TMeshSurface s(m.mesh, 1);
       for (int f = 0; f < s.num_faces(); ++f)
         if (s.method(f) != FaceMethod::none)

@@ -1,8 +1,9 @@
 // TSplineSurface: T-spline surfaces from Rhino .tsm files, trivar's T-spline JSON and STEP files (the seed-002
 // T_SPLINE_SURFACE entities or a Part 42 locally refined surface of T-spline type), as `trivar info|eval|convert`
 // read them: evaluation on NumPy batches, the partition-of-unity defect, the analysis-suitability
-// classification, tessellation and writing. A .tsm model with star points has no global (s, t): it is
-// evaluated per face in the face's own (u, v) and tessellated; the spline queries name that in their errors.
+// classification, tessellation and writing. A .tsm model with star points or a closed strip of faces (a torus)
+// has no global (s, t): it is evaluated per face in the face's own (u, v) and tessellated; the spline queries name
+// that in their errors.
 #include <cmath>
 #include <memory>
 #include <optional>
@@ -145,7 +146,7 @@ void write_tspline(const PyTSpline& t, const std::string& path, const std::strin
     require(ext == ".tsm" || patches, "write: a T-spline with star points is written as .tsm or as Bezier patches (.g2, "
                                       ".json, .xml, .stp), or tessellated, not '" + ext + "'");
     py::gil_scoped_release release;
-    if (!patches) return io::write_tsm(path, t.mesh->mesh());
+    if (!patches) return io::write_tsm(path, t.mesh->mesh(), t.tsm ? *t.tsm : io::TsmReport{});
     // Exact except one corner patch per face at a star point, within 1e-6 of the size (t_mesh_patches).
     std::vector<AnySpline> out;
     for (FacePatch& f : t_mesh_patches(*t.mesh).patches) out.emplace_back(std::move(f.surface));
@@ -220,7 +221,7 @@ py::object read_tsm_file(const std::string& path, int threads) {
   {
     py::gil_scoped_release release;
     m = io::read_tsm(path);
-    if (m.report.star_points > 0) {
+    if (m.spline.image.faces.empty()) {  // star points or a closed strip of faces: no global (s, t)
       try {
         t.mesh = std::make_shared<const TMeshSurface>(m.mesh, threads);
       } catch (const Error& e) {
@@ -274,6 +275,12 @@ py::dict info(const PyTSpline& t) {
     d["star_points"] = r.star_points;
     d["repeated_knot_nodes"] = r.repeated_knot_nodes;
     d["skipped_records"] = r.skipped_records;
+    if (!r.end_conditions.empty()) {  // Fusion 360's settings
+      d["end_conditions"] = r.end_conditions;
+      d["star_knot_rule"] = r.star_knot_rule;
+      d["behavior_version"] = r.behavior_version;
+      d["compat_version"] = r.compat_version;
+    }
   }
   if (t.mesh) {
     d["faces_exact"] = t.mesh->count(FaceMethod::exact);
@@ -296,8 +303,8 @@ void bind_tspline(py::module_& m) {
   py::class_<PyTSpline>(m, "TSplineSurface",
                         "A T-spline surface (Rhino .tsm, trivar JSON, STEP T_SPLINE_SURFACE or Part 42 T-spline type),\n"
                         "from trivar.read. Evaluated as sum w P B / sum w B (also when the blending functions do not\n"
-                        "sum to one); NaN outside the T-faces. A .tsm model with star points has no global (s, t): use\n"
-                        "evaluate_face and tessellate.")
+                        "sum to one); NaN outside the T-faces. A .tsm model with star points or a closed strip of faces\n"
+                        "(a torus) has no global (s, t): use evaluate_face and tessellate.")
       .def_readonly("format", &PyTSpline::format, "The file form it was read from.")
       .def_property_readonly(
           "star_points", [](const PyTSpline& t) { return t.tsm ? t.tsm->star_points : 0; },

@@ -55,8 +55,8 @@ struct Loaded {
   std::optional<io::TsmReport> tsm;
   std::string step_type;  // Part 42 locally_refined_spline_type when read from that form
   std::unique_ptr<TSplineSurface> surface;  // empty for a TSM model with star points
-  std::unique_ptr<TMeshSurface> mesh;       // a TSM model with star points: evaluated per face
-  std::unique_ptr<TMesh> tsm_mesh;          // a TSM model without star points: its mesh (for surface analysis)
+  std::unique_ptr<TMeshSurface> mesh;       // a TSM model without a global (s, t): evaluated per face
+  std::unique_ptr<TMesh> tsm_mesh;          // a TSM model with one: its mesh (for surface analysis)
 };
 
 Loaded load(const std::string& path) {
@@ -66,7 +66,7 @@ Loaded load(const std::string& path) {
     io::TsmModel m = io::read_tsm(path);
     l.format = "TSM #TS0200";
     l.tsm = std::move(m.report);
-    if (l.tsm->star_points > 0) {
+    if (m.spline.image.faces.empty()) {  // star points or a closed strip of faces
       try {
         l.mesh = std::make_unique<TMeshSurface>(m.mesh);
       } catch (const Error& e) {
@@ -112,6 +112,26 @@ void write_triangulation(const std::string& out, const TSplineTriangulation& m, 
   std::printf("%s: %zu triangles, chordal tolerance %s\n", out.c_str(), m.triangles.size(), fmt(tol).c_str());
 }
 
+// Fusion 360's settings of a TSM file (none in Rhino's).
+std::string fusion_settings(const io::TsmReport& r) {
+  if (r.end_conditions.empty() && r.star_knot_rule.empty() && r.behavior_version.empty()) return {};
+  std::string s = "end conditions " + (r.end_conditions.empty() ? std::string("(none)") : r.end_conditions);
+  if (!r.star_knot_rule.empty()) s += ", star knot rule " + r.star_knot_rule;
+  if (!r.cap_type.empty()) s += ", cap type " + r.cap_type;
+  s += ", version " + std::to_string(r.version);
+  if (!r.behavior_version.empty()) s += ", behavior version " + r.behavior_version;
+  if (!r.compat_version.empty()) s += ", compat version " + r.compat_version;
+  if (!r.grip_map) s += "; no grip map (one control point per vertex)";
+  return s;
+}
+
+void add_fusion_settings(nlohmann::json& j, const io::TsmReport& r) {
+  if (fusion_settings(r).empty()) return;
+  j["fusion"] = {{"end_conditions", r.end_conditions}, {"star_knot_rule", r.star_knot_rule}, {"cap_type", r.cap_type},
+                 {"version", r.version}, {"behavior_version", r.behavior_version},
+                 {"compat_version", r.compat_version}, {"grip_map", r.grip_map}};
+}
+
 }  // namespace
 
 bool is_t_spline_file(const std::string& path) {
@@ -125,7 +145,8 @@ bool is_t_spline_file(const std::string& path) {
   return text.find("T_SPLINE_SURFACE(") != std::string::npos || text.find("_T_SPLINE.") != std::string::npos;
 }
 
-// A T-mesh with star points: faces by evaluation method, the star points, the continuity the methods give.
+// A T-mesh without a global (s, t) (star points, a closed strip of faces): faces by evaluation method, the star
+// points, the continuity the methods give.
 void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
   const TMeshSurface& s = *l.mesh;
   const io::TsmReport& r = *l.tsm;
@@ -135,8 +156,10 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
   const int bs = s.boundary_star_faces();
   const int sub = s.count(FaceMethod::subdivided);
   const int faces = s.count(FaceMethod::exact) + s.count(FaceMethod::bicubic) + s.count(FaceMethod::star) + nu + sub;
-  const char* continuity = "C2 across every edge away from star points; C1 across the edges at a star point; G1 at star points";
-  nlohmann::json j{{"file", path}, {"kind", "T-spline surface with star points"}, {"format", l.format},
+  const char* continuity = s.stars().empty() ? "C2 across every edge"
+                                               : "C2 across every edge away from star points; C1 across the edges at a star point; G1 at star points";
+  const char* kind = s.stars().empty() ? "T-spline surface with a closed strip of faces" : "T-spline surface with star points";
+  nlohmann::json j{{"file", path}, {"kind", kind}, {"format", l.format},
                    {"degrees", {s.mesh().degree, s.mesh().degree}}, {"units", r.units}, {"faces", faces},
                    {"star_points", r.star_points}, {"faces_exact", s.count(FaceMethod::exact)},
                    {"faces_catmull_clark", s.count(FaceMethod::bicubic) + s.count(FaceMethod::star) + sub},
@@ -145,20 +168,31 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
                    {"non_uniform_star_points", s.non_uniform_stars()}, {"continuity", continuity},
                    {"deleted_slots", r.deleted}, {"deleted_faces", r.holes}, {"skipped_records", r.skipped_records}};
   for (const auto& [n, c] : valences) j["star_valences"][std::to_string(n)] = c;
+  add_fusion_settings(j, r);
   if (json) {
     std::printf("%s\n", j.dump(2).c_str());
     return;
   }
   std::string vs;
   for (const auto& [n, c] : valences) vs += (vs.empty() ? "" : ", ") + std::to_string(c) + " of valence " + std::to_string(n);
-  std::printf("%s: T-spline surface with star points (%s), degree %d%s\n", path.c_str(), l.format.c_str(), s.mesh().degree,
+  std::printf("%s: %s (%s), degree %d%s\n", path.c_str(), kind, l.format.c_str(), s.mesh().degree,
               r.units.empty() ? "" : (", units " + r.units).c_str());
-  std::printf("  %d faces, %d star points (%s); no global (s, t): faces are evaluated in their own (u, v)\n", faces,
-              r.star_points, vs.c_str());
-  std::printf("  %d faces exact (the T-spline in a chart of their neighbourhood), %d faces within %d rings of a star "
-              "point by the Catmull-Clark limit surface (%d at a star point, evaluated exactly by subdivision)\n",
-              s.count(FaceMethod::exact), s.count(FaceMethod::bicubic) + s.count(FaceMethod::star) + sub, s.mesh().degree + 2,
-              s.count(FaceMethod::star));
+  if (const std::string f = fusion_settings(r); !f.empty()) std::printf("  Fusion 360: %s\n", f.c_str());
+  if (s.stars().empty())
+    std::printf("  %d faces, no star point; a closed strip of faces (a torus, a tube) leaves no global (s, t): faces are "
+                "evaluated in their own (u, v)\n", faces);
+  else
+    std::printf("  %d faces, %d star points (%s); no global (s, t): faces are evaluated in their own (u, v)\n", faces,
+                r.star_points, vs.c_str());
+  if (s.stars().empty())
+    std::printf("  %d faces exact (the T-spline in a chart of their neighbourhood, not wrapping round the strip), %d "
+                "the bicubic B-spline cell of their 16 points (round strips too short for such charts)\n",
+                s.count(FaceMethod::exact), s.count(FaceMethod::bicubic));
+  else
+    std::printf("  %d faces exact (the T-spline in a chart of their neighbourhood), %d faces within %d rings of a star "
+                "point by the Catmull-Clark limit surface (%d at a star point, evaluated exactly by subdivision)\n",
+                s.count(FaceMethod::exact), s.count(FaceMethod::bicubic) + s.count(FaceMethod::star) + sub, s.mesh().degree + 2,
+                s.count(FaceMethod::star));
   if (nu > 0)
     std::printf("  %d faces around %d star points with unequal knot intervals by non-uniform Catmull-Clark (knot-interval "
                 "weighted rules, exact B-spline cells per subdivision level; C2 away from the star point, its tangent "
@@ -224,6 +258,7 @@ void print_tspline_info(const std::string& path, bool json) {
     j["deleted_faces"] = r.holes;
     j["repeated_knot_nodes"] = r.repeated_knot_nodes;
     j["skipped_records"] = r.skipped_records;
+    add_fusion_settings(j, r);
   }
   if (json) {
     std::printf("%s\n", j.dump(2).c_str());
@@ -231,6 +266,8 @@ void print_tspline_info(const std::string& path, bool json) {
   }
   std::printf("%s: T-spline surface (%s), degrees %d x %d%s\n", path.c_str(), l.format.c_str(), surf.degrees()[0],
               surf.degrees()[1], l.tsm && !l.tsm->units.empty() ? (", units " + l.tsm->units).c_str() : "");
+  if (l.tsm)
+    if (const std::string f = fusion_settings(*l.tsm); !f.empty()) std::printf("  Fusion 360: %s\n", f.c_str());
   if (l.layers) {
     const TSpline& ts = *l.layers;
     std::printf("  T-image: %zu vertices, %zu edges, %zu links, %zu faces, %zu edge conditions\n",
@@ -307,7 +344,7 @@ void convert_tspline(const std::string& in, const std::string& out, const TSplin
   const std::string ext = io::file_extension(out);
   if (l.mesh) {
     if (ext == ".tsm") {
-      io::write_tsm(out, l.mesh->mesh());
+      io::write_tsm(out, l.mesh->mesh(), *l.tsm);
       return;
     }
     if (ext == ".g2" || ext == ".json" || ext == ".xml" || is_step_file(out)) {
@@ -372,7 +409,11 @@ void convert_tspline(const std::string& in, const std::string& out, const TSplin
   }
   if (ext == ".tsm") {
     require(l.layers.has_value(), "convert: " + in + " holds the blending functions only; .tsm needs the three layers");
-    io::write_tsm(out, *l.layers);
+    // A Fusion 360 file keeps its mesh and settings; others are written from the T-spline's layers.
+    if (l.tsm_mesh && !fusion_settings(*l.tsm).empty())
+      io::write_tsm(out, *l.tsm_mesh, *l.tsm);
+    else
+      io::write_tsm(out, *l.layers);
     return;
   }
   if (ext == ".json") {

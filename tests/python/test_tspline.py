@@ -167,3 +167,24 @@ def test_malformed_tsm(tmp_path):
     bad.write_text("#TS0200\nf 0 0\nv 7 EAST\n")
     with pytest.raises(trivar.Error, match="bad.tsm"):
         trivar.read(str(bad))
+
+
+def test_fusion_torus(tmp_path):
+    """A torus cage as Fusion 360 writes it (its settings, one grip per vertex, no grip map): no star point, but
+    a closed strip of faces, so no global (s, t); a closed surface of genus 1; written back in Fusion's form."""
+    [s] = trivar.read(os.path.join(DATA, "tsm", "fusion_torus.tsm"))
+    assert s.star_points == 0 and s.num_faces == 64
+    info = s.info()
+    assert info["end_conditions"] == "SUBD_CREASES" and info["star_knot_rule"] == "NURCCS"
+    assert info["faces_exact"] == 64 and info["behavior_version"] == "14.2.0"
+    m = s.tessellate(tolerance=0.05)
+    edges = np.sort(np.concatenate([m.triangles[:, [0, 1]], m.triangles[:, [1, 2]], m.triangles[:, [2, 0]]]), axis=1)
+    unique, counts = np.unique(edges, axis=0, return_counts=True)
+    assert np.all(counts == 2) and len(m.vertices) - len(unique) + len(m.triangles) == 0
+    s.write(str(tmp_path / "t.tsm"))
+    text = open(tmp_path / "t.tsm").read()
+    assert "end-conditions SUBD_CREASES" in text and "\n0m " not in text
+    [back] = trivar.read(str(tmp_path / "t.tsm"))
+    uv = np.array([[0.0, 0.0], [0.3, 0.7], [1.0, 1.0]])
+    for f in (0, 27, 63):
+        assert np.array_equal(back.evaluate_face(f, uv), s.evaluate_face(f, uv))

@@ -116,7 +116,8 @@ TsmModel TsmReader::build() {
   TsmReport& rep = out.report;
   static const std::vector<std::string> geometry{"degree", "cap-type", "star-smoothness", "units",
                                                  "force-bezier-end-conditions", "tol", "ver", "f", "e", "v",
-                                                 "l", "ec", "0g", "0m"};
+                                                 "l", "ec", "0g", "0m", "end-conditions", "star-knot-rule",
+                                                 "geom-tol", "behavior-version", "compat-version", "106ek"};
   for (const auto& [kind, recs] : kinds_)
     if (std::find(geometry.begin(), geometry.end(), kind) == geometry.end())
       rep.skipped_records[kind] = static_cast<int>(recs.size());
@@ -124,10 +125,34 @@ TsmModel TsmReader::build() {
   if (auto r = setting("degree")) degree = number<int>(*r, 0, "degree");
   if (degree < 1 || degree % 2 == 0)
     fail(setting("degree")->line, "degree " + std::to_string(degree) + ": TSM grip maps are read for odd degrees");
-  if (auto r = setting("units"))
-    for (std::size_t i = 0; i < r->words.size(); ++i) rep.units += (i ? " " : "") + std::string(r->words[i]);
+  // A setting's words as written, joined by spaces.
+  const auto words = [&](std::string_view kind) {
+    std::string w;
+    if (const auto r = setting(kind))
+      for (std::string_view x : r->words) {
+        if (!w.empty()) w += ' ';
+        w += x;
+      }
+    return w;
+  };
+  rep.units = words("units");
   if (auto r = setting("tol")) rep.tolerance = number<double>(*r, 0, "tolerance");
   if (auto r = setting("ver")) rep.version = number<int>(*r, 0, "version");
+  rep.cap_type = words("cap-type");
+  rep.star_smoothness = words("star-smoothness");
+  rep.behavior_version = words("behavior-version");
+  rep.compat_version = words("compat-version");
+  if (auto r = setting("geom-tol")) rep.geom_tolerance = number<double>(*r, 0, "geometric tolerance");
+  // Fusion's end conditions: MULTIPLE_KNOTS the repeated knots of Bezier end conditions, SUBD_CREASES the boundary
+  // as a subdivision crease; its star points: NURCCS, the knot-interval-weighted Catmull-Clark evaluated here.
+  EndConditions ends = EndConditions::bezier;
+  rep.end_conditions = words("end-conditions");
+  if (rep.end_conditions == "SUBD_CREASES") ends = EndConditions::subd_creases;
+  else if (!rep.end_conditions.empty() && rep.end_conditions != "MULTIPLE_KNOTS")
+    fail(setting("end-conditions")->line, "end-conditions " + rep.end_conditions + " is not read (MULTIPLE_KNOTS or SUBD_CREASES)");
+  rep.star_knot_rule = words("star-knot-rule");
+  if (!rep.star_knot_rule.empty() && rep.star_knot_rule != "NURCCS")
+    fail(setting("star-knot-rule")->line, "star-knot-rule " + rep.star_knot_rule + " is not read (NURCCS: knot-interval-weighted Catmull-Clark)");
   TSpline& ts = out.spline;
   ts.degrees = {degree, degree};
   if (auto r = setting("force-bezier-end-conditions")) ts.force_bezier = number<int>(*r, 0, "flag") != 0;
@@ -224,6 +249,7 @@ TsmModel TsmReader::build() {
   TMesh& mesh = out.mesh;
   mesh.degree = degree;
   mesh.force_bezier = ts.force_bezier;
+  mesh.end_conditions = ends;
   mesh.intervals.assign(static_cast<std::size_t>(ne), 0.0);
   for (int e = 0; e < ne; ++e) {
     const Record& r = E[static_cast<std::size_t>(e)];
@@ -238,6 +264,21 @@ TsmModel TsmReader::build() {
     d = number<double>(r, 1, "knot interval");
     if (!(d > 0) || !std::isfinite(d))
       fail(r.line, "edge " + std::to_string(e) + ": knot interval " + std::string(r.words[1]) + " is not positive");
+  }
+  // Fusion's edge knots: one per edge slot, read only where they repeat the edge's knot interval (-1: a deleted
+  // edge); they then carry nothing new.
+  if (const auto& K = all("106ek"); !K.empty()) {
+    if (static_cast<int>(K.size()) != ne)
+      fail(K.front().line, std::to_string(K.size()) + " edge knot records (106ek) for " + std::to_string(ne) + " edges");
+    for (int e = 0; e < ne; ++e) {
+      const Record& r = K[static_cast<std::size_t>(e)];
+      const double k = number<double>(r, 0, "edge knot"), d = mesh.intervals[static_cast<std::size_t>(e)];
+      const bool same = d > 0 ? std::abs(k - d) <= 1e-12 * std::max(1.0, d) : k == -1;
+      if (!same)
+        fail(r.line, "edge knot (106ek) " + std::string(r.words[0]) + " of edge " + std::to_string(e) + " is not its knot interval " +
+                         (d > 0 ? std::string(E[static_cast<std::size_t>(e)].words[1]) : std::string("(deleted: -1)")) + "; other edge knots are not read");
+    }
+    rep.skipped_records["106ek"] = static_cast<int>(K.size());
   }
   // The half-edge mesh; each link's direction in its vertex's frame, walking round the vertex from the link its
   // `v` record names (the next link counter-clockwise turns by the angle of the face between them).
@@ -273,6 +314,11 @@ TsmModel TsmReader::build() {
     if (!r.words.empty()) {
       const int e = number<int>(r, 0, "edge");
       if (e < 0 || e >= ne || E[static_cast<std::size_t>(e)].words.empty()) fail(r.line, "edge condition names edge " + std::to_string(e) + ", which does not exist");
+      // Fusion marks crease edges so; on the boundary the end conditions say what the edge is, inside the mesh
+      // it would be a sharp crease, which is not evaluated.
+      const TMeshLink& k = mesh.links[static_cast<std::size_t>(number<int>(E[static_cast<std::size_t>(e)], 0, "link"))];
+      if (!rep.end_conditions.empty() && k.face >= 0 && mesh.links[static_cast<std::size_t>(k.opp)].face >= 0)
+        fail(r.line, "edge " + std::to_string(e) + " between two faces is a crease (ec); creases inside the mesh are not read");
       mesh.conditions.push_back({e, number<int>(r, 1, "condition") != 0 ? 1 : 0});
     }
   std::vector<int> valence(static_cast<std::size_t>(nv), 0), straight(static_cast<std::size_t>(nv), 0);
@@ -310,6 +356,32 @@ TsmModel TsmReader::build() {
       fail(line, "grip " + std::to_string(g) + " belongs to vertex " + std::to_string(grip_vertex[static_cast<std::size_t>(g)]) + ", not " + std::to_string(v));
   };
   std::vector<int> block_line(static_cast<std::size_t>(nv), 0);  // blocks are checked once the map is complete
+  rep.grip_map = !grip_map_.empty();
+  if (!rep.grip_map && ng > 0) {
+    // Fusion's files: the grips in vertex order, one per vertex slot (a deleted vertex's grip deleted too) or
+    // one per live vertex.
+    const int live = static_cast<int>(std::count_if(mesh.vertices.begin(), mesh.vertices.end(), [](const TMeshVertex& x) { return x.live; }));
+    if (ng != nv && ng != live)
+      fail(G.back().line, "no grip map (0m) and " + std::to_string(ng) + " control points (0g) for " + std::to_string(live) +
+                              " vertices: without a grip map each vertex has one, in vertex order");
+    int g = 0;
+    for (int v = 0; v < nv; ++v) {
+      TMeshVertex& x = mesh.vertices[static_cast<std::size_t>(v)];
+      if (!x.live) {
+        if (ng != nv) continue;
+        if (!deleted_grip[static_cast<std::size_t>(g)])
+          fail(G[static_cast<std::size_t>(g)].line, "control point " + std::to_string(g) + " of the deleted vertex " + std::to_string(v) + " is not deleted");
+        grip_vertex.push_back(-1);
+        ++g;
+        continue;
+      }
+      if (deleted_grip[static_cast<std::size_t>(g)])
+        fail(G[static_cast<std::size_t>(g)].line, "control point " + std::to_string(g) + " of vertex " + std::to_string(v) + " is deleted");
+      x.primary = g++;
+      grip_vertex.push_back(v);
+      used[static_cast<std::size_t>(x.primary)] = 1;
+    }
+  }
   for (const Record& r : grip_map_) {
     if (r.words.empty()) fail(r.line, "empty grip map record");
     const std::string_view w = r.words[0];
@@ -386,7 +458,7 @@ TsmModel TsmReader::build() {
   for (int v = 0; v < nv; ++v)
     if (mesh.vertices[static_cast<std::size_t>(v)].live && valence[static_cast<std::size_t>(v)] == 0)
       fail(V[static_cast<std::size_t>(v)].line, "vertex " + std::to_string(v) + " is on no face");
-  if (!stars.empty()) return out;
+  if (!stars.empty() || has_closed_strip(mesh)) return out;
   try {
     // The mesh stays as read (crease flag, points); the spline is that of its Bezier end conditions.
     TChart chart = t_spline_chart(bezier_equivalent(mesh), {}, seed, true);
@@ -431,10 +503,10 @@ void write_grip(std::ostream& os, const RationalPoint& p) {
 }
 
 // The text first, so that nothing is written on error.
-template <class Model>
-void write_tsm_file(const std::string& path, const Model& model) {
+template <class Write>
+void write_tsm_file(const std::string& path, const Write& write) {
   std::ostringstream text;
-  write_tsm(text, model);
+  write(text);
   write_file_atomically(path, [&](std::ostream& os) { os << text.str(); });
 }
 
@@ -586,10 +658,15 @@ void write_tsm(std::ostream& os, const TSpline& ts) {
   os << "\ntol 1e-05\nver 1\n";
 }
 
-void write_tsm(const std::string& path, const TSpline& ts) { write_tsm_file(path, ts); }
+void write_tsm(const std::string& path, const TSpline& ts) {
+  write_tsm_file(path, [&](std::ostream& os) { write_tsm(os, ts); });
+}
 
-void write_tsm(std::ostream& os, const TMesh& m) {
+void write_tsm(std::ostream& os, const TMesh& m, const TsmReport& settings) {
   static constexpr std::array<const char*, 4> kName{"NORTH", "WEST", "SOUTH", "EAST"};
+  // Fusion's dialect for a mesh read from its files, and for subdivision-crease boundaries, which only it has.
+  const bool fusion = !settings.end_conditions.empty() || m.end_conditions == EndConditions::subd_creases;
+  const auto or_else = [](const std::string& s, const char* fallback) { return s.empty() ? std::string(fallback) : s; };
   // Each grip's vertex (its own node or a block node); grips no vertex names are deleted slots.
   std::vector<int> grip_vertex(m.points.size(), -1);
   std::vector<char> primary(m.points.size(), 0);
@@ -603,8 +680,17 @@ void write_tsm(std::ostream& os, const TMesh& m) {
     for (int g : x.block)
       if (g >= 0) grip_vertex[static_cast<std::size_t>(g)] = static_cast<int>(v);
   }
-  os << "#TS0200\n\ndegree " << m.degree << "\ncap-type 1\nstar-smoothness 0\nunits 1 millimeters\n"
-     << "force-bezier-end-conditions " << (m.force_bezier ? 1 : 0) << '\n';
+  // Without a grip map (as Fusion writes) when every live vertex has one grip, its own number, and no block.
+  bool positional = fusion && !settings.grip_map && m.points.size() == m.vertices.size();
+  for (std::size_t v = 0; v < m.vertices.size() && positional; ++v)
+    positional = m.vertices[v].live ? m.vertices[v].primary == static_cast<int>(v) && m.vertices[v].block.empty() : grip_vertex[v] < 0;
+  os << "#TS0200\n\ndegree " << m.degree << "\ncap-type " << or_else(settings.cap_type, fusion ? "G1CAPS" : "1")
+     << "\nstar-smoothness " << or_else(settings.star_smoothness, "0") << "\nunits " << or_else(settings.units, "1 millimeters") << '\n';
+  if (fusion)
+    os << "end-conditions " << (m.end_conditions == EndConditions::subd_creases ? "SUBD_CREASES" : "MULTIPLE_KNOTS")
+       << "\nstar-knot-rule " << or_else(settings.star_knot_rule, "NURCCS") << '\n';
+  else
+    os << "force-bezier-end-conditions " << (m.force_bezier ? 1 : 0) << '\n';
   for (const auto& loop : m.faces) {
     if (loop.empty()) os << "f\n";
     else os << "f " << loop.front() << " 0\n";
@@ -640,15 +726,17 @@ void write_tsm(std::ostream& os, const TMesh& m) {
     else os << "l " << k.prev << ' ' << k.next << ' ' << k.opp << ' ' << k.vertex << ' ' << k.face << ' ' << k.edge << ' ' << k.flag << '\n';
   }
   for (const auto& [e, flag] : m.conditions) os << "ec " << e << ' ' << flag << '\n';
-  os << "0m odd-grip-map\n";
-  for (std::size_t g = 0; g < m.points.size(); ++g) os << "0m " << (primary[g] ? "gvp " : "gv ") << grip_vertex[g] << '\n';
-  for (std::size_t v = 0; v < m.vertices.size(); ++v) {
-    const TMeshVertex& x = m.vertices[v];
-    if (!x.live || x.block.empty()) continue;
-    os << "0m cg " << v << " 4";
-    for (int d : x.block_dims) os << ' ' << d;
-    for (int g : x.block) os << ' ' << g;
-    os << '\n';
+  if (!positional) {
+    os << "0m odd-grip-map\n";
+    for (std::size_t g = 0; g < m.points.size(); ++g) os << "0m " << (primary[g] ? "gvp " : "gv ") << grip_vertex[g] << '\n';
+    for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+      const TMeshVertex& x = m.vertices[v];
+      if (!x.live || x.block.empty()) continue;
+      os << "0m cg " << v << " 4";
+      for (int d : x.block_dims) os << ' ' << d;
+      for (int g : x.block) os << ' ' << g;
+      os << '\n';
+    }
   }
   for (std::size_t g = 0; g < m.points.size(); ++g) {
     if (grip_vertex[g] < 0) {
@@ -657,9 +745,19 @@ void write_tsm(std::ostream& os, const TMesh& m) {
     }
     write_grip(os, m.points[g]);
   }
-  os << "\ntol 1e-05\nver 1\n";
+  os << "\ntol ";
+  write_number(os, settings.tolerance > 0 ? settings.tolerance : 1e-5);
+  if (fusion) {
+    os << "\ngeom-tol ";
+    write_number(os, settings.geom_tolerance > 0 ? settings.geom_tolerance : 1e-5);
+  }
+  os << "\nver " << (settings.version != 0 ? settings.version : 1) << '\n';
+  if (!settings.behavior_version.empty()) os << "behavior-version " << settings.behavior_version << '\n';
+  if (!settings.compat_version.empty()) os << "compat-version " << settings.compat_version << '\n';
 }
 
-void write_tsm(const std::string& path, const TMesh& m) { write_tsm_file(path, m); }
+void write_tsm(const std::string& path, const TMesh& m, const TsmReport& settings) {
+  write_tsm_file(path, [&](std::ostream& os) { write_tsm(os, m, settings); });
+}
 
 }  // namespace trivar::io

@@ -15,11 +15,21 @@
 // dK x (dK+1 + 1) grips, -1: none). Other records (editor state: 100001uv, 100001uvr, 50000grip, symmetry
 // 105sym/105plane/105a) carry no geometry: they are counted and reported, as is any unknown record.
 //
+// Autodesk Fusion 360 (TSplineBody.saveAsTSMFile) writes the same records with other settings: cap-type G1CAPS,
+// `end-conditions MULTIPLE_KNOTS` (Bezier end conditions) or `SUBD_CREASES` (the boundary as a subdivision
+// crease) instead of force-bezier-end-conditions, `star-knot-rule NURCCS` (knot-interval-weighted Catmull-Clark
+// at star points), and after the grips geom-tol, behavior-version and compat-version. Without `0m` records
+// each vertex has one grip: the `0g` records in vertex order (one per vertex slot, a deleted vertex's a bare
+// `0g`, or one per live vertex). `106ek` records that repeat the edges' knot intervals (-1 for a deleted edge),
+// and the editor's selections 100edges, 100verts, 50000grip, carry no geometry; other edge knots, end
+// conditions or star rules, and `ec` creases between two faces, are errors.
+//
 // Parametrisation: link directions follow from the corners (each face is a counter-clockwise rectangle, turning
 // left at every corner), propagated across edges; vertex parameters are sums of knot intervals along links
 // from vertex 0, with values that agree to 1e-9 of the domain size merged (interval sums are rounded).
-// Star points (extraordinary vertices) have no global (s, t) parametrisation: such a model is kept as its mesh
-// (TsmModel::mesh, evaluated per face by TMeshSurface) and TsmModel::spline stays empty.
+// Star points (extraordinary vertices) and closed strips of faces (a torus, a tube: `has_closed_strip`) leave no
+// global (s, t) parametrisation: such a model is kept as its mesh (TsmModel::mesh, evaluated per face by
+// TMeshSurface) and TsmModel::spline stays empty.
 #include <iosfwd>
 #include <map>
 #include <string>
@@ -40,10 +50,18 @@ struct TsmReport {
   int star_points = 0;
   int repeated_knot_nodes = 0;                 // nodes added by the Bezier end-condition blocks
   std::map<std::string, int> skipped_records;  // record kind -> count (editor state and unknown kinds)
+  // The other settings as written, for writing the model back: Rhino gives cap-type 1 and no more; Fusion 360
+  // cap-type G1CAPS and the rest (empty or 0 when absent).
+  std::string cap_type, star_smoothness;
+  std::string end_conditions;  // MULTIPLE_KNOTS or SUBD_CREASES (Fusion); empty: Rhino's force-bezier-end-conditions
+  std::string star_knot_rule;  // NURCCS
+  double geom_tolerance = 0;
+  std::string behavior_version, compat_version;
+  bool grip_map = true;        // false: no 0m records, one grip per vertex in vertex order (Fusion)
 };
 
 struct TsmModel {
-  TSpline spline;  // the global T-spline; empty (no faces) when the mesh has star points
+  TSpline spline;  // the global T-spline; empty (no faces) when the mesh has star points or a closed strip
   TMesh mesh;      // the half-edge mesh as read
   TsmReport report;
 };
@@ -63,8 +81,11 @@ TsmModel read_tsm(const std::string& path);
 void write_tsm(std::ostream& os, const TSpline& ts);
 void write_tsm(const std::string& path, const TSpline& ts);
 // Writes the half-edge mesh as read (also one with star points): every slot keeps its number (deleted ones as
-// bare keywords), so read_tsm gives the same mesh. Written atomically.
-void write_tsm(std::ostream& os, const TMesh& mesh);
-void write_tsm(const std::string& path, const TMesh& mesh);
+// bare keywords), so read_tsm gives the same mesh. `settings`: the report of the file it was read from, whose
+// settings are written back (Fusion's dialect when it has end-conditions or the mesh subdivision-crease
+// boundaries; then without a grip map when the file had none and every live vertex's one grip has its number);
+// the default writes Rhino's settings. Written atomically.
+void write_tsm(std::ostream& os, const TMesh& mesh, const TsmReport& settings = {});
+void write_tsm(const std::string& path, const TMesh& mesh, const TsmReport& settings = {});
 
 }  // namespace trivar::io

@@ -35,6 +35,55 @@ std::vector<int> star_points(const TMesh& m) {
   return stars;
 }
 
+bool has_closed_strip(const TMesh& m) {
+  const int nl = static_cast<int>(m.links.size());
+  // Each link of a live face: its side (0..3 from the face's first corner). A strip in the face entered through
+  // link l leaves through the links of the opposite side into the faces beyond them: a directed graph on the
+  // links, whose cycles are the closed strips.
+  std::vector<int> side(static_cast<std::size_t>(nl), -1);
+  std::vector<std::array<std::vector<int>, 4>> sides(m.faces.size());
+  for (int f = 0; f < static_cast<int>(m.faces.size()); ++f) {
+    if (!m.live_face(f)) continue;
+    const auto& loop = m.faces[static_cast<std::size_t>(f)];
+    const std::size_t start = static_cast<std::size_t>(std::find(loop.begin(), loop.end(), m.first_corner(f)) - loop.begin());
+    int k = -1;
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const int l = loop[(start + i) % loop.size()];
+      if (m.links[static_cast<std::size_t>(l)].flag == 0) ++k;
+      side[static_cast<std::size_t>(l)] = k;
+      sides[static_cast<std::size_t>(f)][static_cast<std::size_t>(k)].push_back(l);
+    }
+  }
+  const auto successors = [&](int l) -> const std::vector<int>& {
+    const TMeshLink& k = m.links[static_cast<std::size_t>(l)];
+    return sides[static_cast<std::size_t>(k.face)][static_cast<std::size_t>((side[static_cast<std::size_t>(l)] + 2) % 4)];
+  };
+  // Depth-first search for a cycle (0 unvisited, 1 on the path, 2 done), without recursion.
+  std::vector<char> state(static_cast<std::size_t>(nl), 0);
+  for (int root = 0; root < nl; ++root) {
+    if (side[static_cast<std::size_t>(root)] < 0 || state[static_cast<std::size_t>(root)]) continue;
+    std::vector<std::pair<int, std::size_t>> path{{root, 0}};
+    state[static_cast<std::size_t>(root)] = 1;
+    while (!path.empty()) {
+      auto& [l, i] = path.back();
+      const std::vector<int>& out = successors(l);
+      if (i == out.size()) {
+        state[static_cast<std::size_t>(l)] = 2;
+        path.pop_back();
+        continue;
+      }
+      const int n = m.links[static_cast<std::size_t>(out[i++])].opp;
+      if (side[static_cast<std::size_t>(n)] < 0) continue;  // the strip leaves the mesh
+      if (state[static_cast<std::size_t>(n)] == 1) return true;
+      if (state[static_cast<std::size_t>(n)] == 0) {
+        state[static_cast<std::size_t>(n)] = 1;
+        path.push_back({n, 0});
+      }
+    }
+  }
+  return false;
+}
+
 TChart t_spline_chart(const TMesh& m, std::span<const int> faces, int seed, bool all_connected) {
   const int nf = static_cast<int>(m.faces.size()), nl = static_cast<int>(m.links.size()),
             nv = static_cast<int>(m.vertices.size()), ne = static_cast<int>(m.intervals.size());

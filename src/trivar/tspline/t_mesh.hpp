@@ -54,6 +54,11 @@ struct TMesh {
 // degrees, or a boundary vertex whose faces' angles exceed 270.
 std::vector<int> star_points(const TMesh& m);
 
+// Whether the mesh holds a closed strip: faces, each entered through one side and left through the opposite one,
+// that come back to the first (round a torus or a tube). The knot intervals lay such a strip out along a straight
+// line, so it cannot close in the plane: the mesh has no global (s, t) even without star points.
+bool has_closed_strip(const TMesh& m);
+
 // The chart of a set of faces (empty: all live faces): the faces reached from `seed` across shared edges, laid
 // out by their knot intervals with the seed's first corner link going east and the smallest (s, t) at 0, and
 // the T-spline on it (nodes of the chart's vertices, their end-condition blocks turned into the chart's frame).

@@ -356,6 +356,61 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(bezier_equiva
   std::vector<NearExact> near_exact;
   std::vector<char> is_star(cm.vertices.size(), 0);
   for (int s : stars_) is_star[static_cast<std::size_t>(s)] = 1;
+  // The Catmull-Clark region's conditions on a face's neighbourhood (near a star point, or round a closed strip
+  // too short for charts). A face's uniform bicubic patch is the T-spline there when the (p + 1) / 2 rings around
+  // it are uniform quadrilaterals inside the mesh: its 16 nodes are the corners of the first ring and their rays
+  // cross (p + 1) / 2 lines. Empty when they hold; `unequal` names unequal knot intervals there.
+  const int cc_depth = (m.degree + 1) / 2;
+  const auto regular = [&](int f, std::string& unequal) -> std::string {
+    if (m.degree != 3) return "the Catmull-Clark evaluation is for degree 3, not " + std::to_string(m.degree);
+    std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX);
+    dist[static_cast<std::size_t>(f)] = 0;
+    const std::vector<int> hood = rings({f}, cc_depth, dist);
+    const double d0 = m.intervals[static_cast<std::size_t>(L(m.faces[static_cast<std::size_t>(f)].front()).edge)];
+    for (int g : hood)
+      for (int l : m.faces[static_cast<std::size_t>(g)]) {
+        if (m.faces[static_cast<std::size_t>(g)].size() != 4)
+          return "face " + std::to_string(g) + " nearby has a T-junction; the Catmull-Clark evaluation around star points needs none within " + std::to_string(cc_depth) + " rings";
+        if (boundary[static_cast<std::size_t>(L(l).vertex)] && !ghosted[static_cast<std::size_t>(L(l).vertex)])
+          return "boundary vertex " + std::to_string(L(l).vertex) + " is within " + std::to_string(cc_depth) + " rings; the Catmull-Clark evaluation around star points needs none";
+        const double d = m.intervals[static_cast<std::size_t>(L(l).edge)];
+        if (std::abs(d - d0) > 1e-12 * d0 && unequal.empty())
+          unequal = "edge " + std::to_string(L(l).edge) + " nearby has knot interval " + std::to_string(d) + ", not " + std::to_string(d0);
+      }
+    return {};
+  };
+  // The bicubic or star patch of a face whose neighbourhood is regular, its star point (if any) at `corner`.
+  const auto set_patch = [&](int f, int corner, int star_corners, const std::string& unequal, const std::string& where, Gather gth) {
+    Face& face = faces_[static_cast<std::size_t>(f)];
+    const auto& loop = m.faces[static_cast<std::size_t>(f)];
+    require(gth.error.empty(), [&] { return where + gth.error; });
+    if (!unequal.empty()) {
+      // Unequal intervals: a face whose 16 points avoid the star points is the bicubic B-spline on its knots;
+      // one whose points hold a star point needs its star's non-uniform Catmull-Clark sectors.
+      for (int x : gth.points)
+        require(!is_star[static_cast<std::size_t>(x)], [&] {
+          const std::string& sw = nurcc_why[static_cast<std::size_t>(x)];
+          return where + unequal + "; non-uniform Catmull-Clark at star point " + std::to_string(x) + " needs its three rings of faces: " +
+                 (sw.empty() ? std::string("degree 3") : sw);
+        });
+      face.knots = cell_knots(m, loop[static_cast<std::size_t>(corner)]);
+      require(face.knots.has_value(), [&] { return where + unequal + "; its knot lines are not straight through vertices of four faces"; });
+    }
+    for (int x : gth.points) {
+      const TMeshVertex& mv = cm.vertices[static_cast<std::size_t>(x)];
+      require(mv.primary >= 0 && mv.block.empty(), [&] {
+        return where + "vertex " + std::to_string(x) + " has no control point or repeated-knot nodes; the Catmull-Clark evaluation around star points needs one point per vertex";
+      });
+      const RationalPoint& pt = cm.points[static_cast<std::size_t>(mv.primary)];
+      face.wx.push_back({pt.w * pt.xyz[0], pt.w * pt.xyz[1], pt.w * pt.xyz[2]});
+      face.w.push_back({pt.w, 0, 0});
+      face.rational = face.rational || pt.w != 1.0;
+    }
+    face.method = star_corners ? FaceMethod::star : FaceMethod::bicubic;
+    face.boundary_star = star_corners && boundary[static_cast<std::size_t>(L(loop[static_cast<std::size_t>(corner)]).vertex)];
+    face.corner = corner;
+    face.points = std::move(gth.points);
+  };
   for (int f = 0; f < nf; ++f) {
     if (!m.live_face(f)) continue;
     Face& face = faces_[static_cast<std::size_t>(f)];
@@ -375,29 +430,8 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(bezier_equiva
       for (const auto& p : nurcc_[static_cast<std::size_t>(z.star)]->points) face.rational = face.rational || p[3] != 1.0;
       continue;
     }
-    // Near a star point: the Catmull-Clark region's conditions on the neighbourhood. A face's uniform bicubic
-    // patch is the T-spline there when the (p + 1) / 2 rings around it are uniform quadrilaterals inside the
-    // mesh: its 16 nodes are the corners of the first ring and their rays cross (p + 1) / 2 lines.
-    const int cc_depth = (m.degree + 1) / 2;
     std::string unequal;  // unequal knot intervals within cc_depth rings: exact as a non-uniform bicubic face
-    const std::string why = [&]() -> std::string {
-      if (m.degree != 3) return "star points are evaluated for degree 3, not " + std::to_string(m.degree);
-      std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX);
-      dist[static_cast<std::size_t>(f)] = 0;
-      const std::vector<int> hood = rings({f}, cc_depth, dist);
-      const double d0 = m.intervals[static_cast<std::size_t>(L(m.faces[static_cast<std::size_t>(f)].front()).edge)];
-      for (int g : hood)
-        for (int l : m.faces[static_cast<std::size_t>(g)]) {
-          if (m.faces[static_cast<std::size_t>(g)].size() != 4)
-            return "face " + std::to_string(g) + " nearby has a T-junction; the Catmull-Clark evaluation around star points needs none within " + std::to_string(cc_depth) + " rings";
-          if (boundary[static_cast<std::size_t>(L(l).vertex)] && !ghosted[static_cast<std::size_t>(L(l).vertex)])
-            return "boundary vertex " + std::to_string(L(l).vertex) + " is within " + std::to_string(cc_depth) + " rings; the Catmull-Clark evaluation around star points needs none";
-          const double d = m.intervals[static_cast<std::size_t>(L(l).edge)];
-          if (std::abs(d - d0) > 1e-12 * d0 && unequal.empty())
-            unequal = "edge " + std::to_string(L(l).edge) + " nearby has knot interval " + std::to_string(d) + ", not " + std::to_string(d0);
-        }
-      return {};
-    }();
+    const std::string why = regular(f, unequal);
     const auto where = [&] { return "T-mesh: face " + std::to_string(f) + " (within " + std::to_string(depth + 1) + " face rings of a star point): "; };
     const auto& loop = m.faces[static_cast<std::size_t>(f)];
     int corner = 0, star_corners = 0;
@@ -432,36 +466,16 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(bezier_equiva
       face.rational = subdivided_.back().rational();
       continue;
     }
-    if (!unequal.empty()) {
-      // Unequal intervals: a face whose 16 points avoid the star points is the bicubic B-spline on its knots;
-      // one whose points hold a star point needs its star's non-uniform Catmull-Clark sectors.
-      for (int x : gth.points)
-        require(!is_star[static_cast<std::size_t>(x)], [&] {
-          const std::string& sw = nurcc_why[static_cast<std::size_t>(x)];
-          return where() + unequal + "; non-uniform Catmull-Clark at star point " + std::to_string(x) + " needs its three rings of faces: " +
-                 (sw.empty() ? std::string("degree 3") : sw);
-        });
-      face.knots = cell_knots(m, loop[static_cast<std::size_t>(corner)]);
-      require(face.knots.has_value(), [&] { return where() + unequal + "; its knot lines are not straight through vertices of four faces"; });
-    }
-    for (int x : gth.points) {
-      const TMeshVertex& mv = cm.vertices[static_cast<std::size_t>(x)];
-      require(mv.primary >= 0 && mv.block.empty(), [&] {
-        return where() + "vertex " + std::to_string(x) + " has no control point or repeated-knot nodes; the Catmull-Clark evaluation around star points needs one point per vertex";
-      });
-      const RationalPoint& pt = cm.points[static_cast<std::size_t>(mv.primary)];
-      face.wx.push_back({pt.w * pt.xyz[0], pt.w * pt.xyz[1], pt.w * pt.xyz[2]});
-      face.w.push_back({pt.w, 0, 0});
-      face.rational = face.rational || pt.w != 1.0;
-    }
-    face.method = star_corners ? FaceMethod::star : FaceMethod::bicubic;
-    face.boundary_star = star_corners && boundary[static_cast<std::size_t>(L(loop[static_cast<std::size_t>(corner)]).vertex)];
-    face.corner = corner;
-    face.points = std::move(gth.points);
+    set_patch(f, corner, star_corners, unequal, where(), std::move(gth));
   }
   // Exact faces: the T-spline in a chart of their neighbourhood. A chart of depth + k rings around a face serves
   // every face within k rings of it (their neighbourhoods lie inside), so faces are grouped greedily: a cluster
-  // around the first face not yet served, k as large as the star points allow (up to 4; without star points all it reaches).
+  // around the first face not yet served, k as large as the star points allow (up to 4; without star points all it
+  // reaches). A mesh without star points but with a closed strip (a torus, a tube) has no chart of all its faces,
+  // and a chart must not wrap round the strip: clusters of one ring in charts of reach + 1 rings, split into single
+  // faces in charts of reach rings where those wrap (degree 3: strips of 8 faces and more), and on shorter strips
+  // the bicubic B-spline cells of regular neighbourhoods.
+  const bool periodic = stars_.empty() && has_closed_strip(m);
   struct Cluster {
     int centre, rings;
     std::vector<int> members;
@@ -477,10 +491,10 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(bezier_equiva
       // Without star points the chart of all the faces it reaches (the global T-spline: small charts of a
       // model whose end-condition blocks or slits end inside them can have blending functions the chart's border
       // collapses).
-      const int k = stars_.empty() ? nf : std::min(4, star_dist[static_cast<std::size_t>(f)] == INT_MAX ? 4 : star_dist[static_cast<std::size_t>(f)] - depth - 1);
+      const int k = periodic ? 1 : stars_.empty() ? nf : std::min(4, star_dist[static_cast<std::size_t>(f)] == INT_MAX ? 4 : star_dist[static_cast<std::size_t>(f)] - depth - 1);
       std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX);
       dist[static_cast<std::size_t>(f)] = 0;
-      Cluster c{f, depth + k, {}, {}};
+      Cluster c{f, (periodic ? reach : depth) + k, {}, {}};
       for (int g : rings({f}, k, dist))
         if (faces_[static_cast<std::size_t>(g)].method == FaceMethod::exact && !served[static_cast<std::size_t>(g)]) {
           served[static_cast<std::size_t>(g)] = 1;
@@ -489,84 +503,115 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(bezier_equiva
       clusters.push_back(std::move(c));
     }
   }
-  charts_.resize(clusters.size());
-  std::vector<std::string> errors(clusters.size());
+  std::vector<std::string> errors;
   // A chart is exact for its members when no blending function that is nonzero on a member has a knot vector
   // cut by the chart's border inside the mesh (a ray stopped there: its support box reaches a border edge whose
   // other side is a face outside the chart). Otherwise the chart grows by a ring, as long as it holds no star point.
-  parallel_for(static_cast<std::ptrdiff_t>(clusters.size()), threads, [&](std::ptrdiff_t i) {
-    const Cluster& cl = clusters[static_cast<std::size_t>(i)];
-    const int centre_dist = star_dist[static_cast<std::size_t>(cl.centre)];
-    try {
-      for (int r = cl.rings;; ++r) {
-        require(r < centre_dist && r <= cl.rings + 8, [&] {
-          return "the T-spline's knot vectors on face " + std::to_string(cl.centre) + " reach beyond " + std::to_string(r - 1) +
-                 " face rings" + (r >= centre_dist ? " (to a star point)" : "");
-        });
-        std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX);
-        dist[static_cast<std::size_t>(cl.centre)] = 0;
-        const std::vector<int> hood = rings({cl.centre}, r, dist);
-        TChart c = t_spline_chart(m, hood, cl.centre, false);
-        const auto at = [&](int v) {
-          const TVertex& x = c.spline.image.vertices[static_cast<std::size_t>(c.vertex[static_cast<std::size_t>(v)])];
-          return std::array<double, 2>{x.s, x.t};
-        };
-        std::vector<Box<2>> border;  // edges of the chart with a face outside it on the other side
-        for (int l = 0; l < static_cast<int>(m.links.size()); ++l) {
-          const TMeshLink& k = L(l);
-          if (k.face < 0 || c.face[static_cast<std::size_t>(k.face)] < 0) continue;
-          const int g = L(k.opp).face;
-          if (g < 0 || c.face[static_cast<std::size_t>(g)] >= 0) continue;
-          const auto p = at(k.vertex), q = at(L(k.opp).vertex);
-          border.push_back({{std::min(p[0], q[0]), std::min(p[1], q[1])}, {std::max(p[0], q[0]), std::max(p[1], q[1])}});
-        }
-        std::vector<Face> frames;
-        std::vector<Box<2>> boxes;
-        for (int g : cl.members) {
-          // The face's frame in the chart: its first corner, the next corner and the last one.
-          const auto& loop = m.faces[static_cast<std::size_t>(g)];
-          std::vector<int> corners;
-          for (int l : loop)
-            if (L(l).flag == 0) corners.push_back(L(l).vertex);
-          Face fr = faces_[static_cast<std::size_t>(g)];
-          const auto o = at(corners[0]), a = at(corners[1]), b = at(corners[3]);
-          fr.origin = o;
-          fr.axis_u = {a[0] - o[0], a[1] - o[1]};
-          fr.axis_v = {b[0] - o[0], b[1] - o[1]};
-          frames.push_back(fr);
-          const auto x = at(corners[2]);
-          boxes.push_back({{std::min(o[0], x[0]), std::min(o[1], x[1])}, {std::max(o[0], x[0]), std::max(o[1], x[1])}});
-        }
-        auto surface = std::make_unique<TSplineSurface>(c.spline, 1);
-        bool cut = false;
-        for (const auto& f : surface->basis()) {
-          const Box<2> sb{{f.knots[0].front(), f.knots[1].front()}, {f.knots[0].back(), f.knots[1].back()}};
-          const auto on_member = std::any_of(boxes.begin(), boxes.end(), [&](const Box<2>& b) {
-            return sb.lo[0] < b.hi[0] && b.lo[0] < sb.hi[0] && sb.lo[1] < b.hi[1] && b.lo[1] < sb.hi[1];
+  const auto serve = [&](std::size_t first) {
+    charts_.resize(clusters.size());
+    errors.resize(clusters.size());
+    parallel_for(static_cast<std::ptrdiff_t>(clusters.size() - first), threads, [&](std::ptrdiff_t n) {
+      const std::ptrdiff_t i = static_cast<std::ptrdiff_t>(first) + n;
+      const Cluster& cl = clusters[static_cast<std::size_t>(i)];
+      const int centre_dist = star_dist[static_cast<std::size_t>(cl.centre)];
+      try {
+        for (int r = cl.rings;; ++r) {
+          require(r < centre_dist && r <= cl.rings + 8, [&] {
+            return "the T-spline's knot vectors on face " + std::to_string(cl.centre) + " reach beyond " + std::to_string(r - 1) +
+                   " face rings" + (r >= centre_dist ? " (to a star point)" : "");
           });
-          if (!on_member) continue;
-          // A border edge through the support's interior cuts it; one along its side does not (the rays that
-          // end there meet that edge in the chart as in the mesh).
-          cut = std::any_of(border.begin(), border.end(), [&](const Box<2>& e) {
-            return e.lo[0] < sb.hi[0] && sb.lo[0] < e.hi[0] && e.lo[1] < sb.hi[1] && sb.lo[1] < e.hi[1];
-          });
-          if (cut) break;
+          std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX);
+          dist[static_cast<std::size_t>(cl.centre)] = 0;
+          const std::vector<int> hood = rings({cl.centre}, r, dist);
+          TChart c = t_spline_chart(m, hood, cl.centre, false);
+          const auto at = [&](int v) {
+            const TVertex& x = c.spline.image.vertices[static_cast<std::size_t>(c.vertex[static_cast<std::size_t>(v)])];
+            return std::array<double, 2>{x.s, x.t};
+          };
+          std::vector<Box<2>> border;  // edges of the chart with a face outside it on the other side
+          for (int l = 0; l < static_cast<int>(m.links.size()); ++l) {
+            const TMeshLink& k = L(l);
+            if (k.face < 0 || c.face[static_cast<std::size_t>(k.face)] < 0) continue;
+            const int g = L(k.opp).face;
+            if (g < 0 || c.face[static_cast<std::size_t>(g)] >= 0) continue;
+            const auto p = at(k.vertex), q = at(L(k.opp).vertex);
+            border.push_back({{std::min(p[0], q[0]), std::min(p[1], q[1])}, {std::max(p[0], q[0]), std::max(p[1], q[1])}});
+          }
+          std::vector<Face> frames;
+          std::vector<Box<2>> boxes;
+          for (int g : cl.members) {
+            // The face's frame in the chart: its first corner, the next corner and the last one.
+            const auto& loop = m.faces[static_cast<std::size_t>(g)];
+            std::vector<int> corners;
+            for (int l : loop)
+              if (L(l).flag == 0) corners.push_back(L(l).vertex);
+            Face fr = faces_[static_cast<std::size_t>(g)];
+            const auto o = at(corners[0]), a = at(corners[1]), b = at(corners[3]);
+            fr.origin = o;
+            fr.axis_u = {a[0] - o[0], a[1] - o[1]};
+            fr.axis_v = {b[0] - o[0], b[1] - o[1]};
+            frames.push_back(fr);
+            const auto x = at(corners[2]);
+            boxes.push_back({{std::min(o[0], x[0]), std::min(o[1], x[1])}, {std::max(o[0], x[0]), std::max(o[1], x[1])}});
+          }
+          auto surface = std::make_unique<TSplineSurface>(c.spline, 1);
+          bool cut = false;
+          for (const auto& f : surface->basis()) {
+            const Box<2> sb{{f.knots[0].front(), f.knots[1].front()}, {f.knots[0].back(), f.knots[1].back()}};
+            const auto on_member = std::any_of(boxes.begin(), boxes.end(), [&](const Box<2>& b) {
+              return sb.lo[0] < b.hi[0] && b.lo[0] < sb.hi[0] && sb.lo[1] < b.hi[1] && b.lo[1] < sb.hi[1];
+            });
+            if (!on_member) continue;
+            // A border edge through the support's interior cuts it; one along its side does not (the rays that
+            // end there meet that edge in the chart as in the mesh).
+            cut = std::any_of(border.begin(), border.end(), [&](const Box<2>& e) {
+              return e.lo[0] < sb.hi[0] && sb.lo[0] < e.hi[0] && e.lo[1] < sb.hi[1] && sb.lo[1] < e.hi[1];
+            });
+            if (cut) break;
+          }
+          if (cut) continue;
+          for (std::size_t j = 0; j < cl.members.size(); ++j) {
+            Face& face = faces_[static_cast<std::size_t>(cl.members[j])];
+            face = frames[j];
+            face.chart = static_cast<int>(i);
+          }
+          charts_[static_cast<std::size_t>(i)] = std::move(surface);
+          break;
         }
-        if (cut) continue;
-        for (std::size_t j = 0; j < cl.members.size(); ++j) {
-          Face& face = faces_[static_cast<std::size_t>(cl.members[j])];
-          face = frames[j];
-          face.chart = static_cast<int>(i);
-        }
-        charts_[static_cast<std::size_t>(i)] = std::move(surface);
-        break;
+      } catch (const Error& e) {
+        errors[static_cast<std::size_t>(i)] =
+            cl.why.empty() ? "T-mesh: face " + std::to_string(cl.centre) + ": its chart: " + e.what() +
+                                 (periodic ? " (the mesh has a closed strip of faces, too short for a chart of the face's knot vectors)" : "")
+                           : cl.why + " (nor is it the T-spline of a chart without star points: " + e.what() + ")";
       }
-    } catch (const Error& e) {
-      errors[static_cast<std::size_t>(i)] =
-          cl.why.empty() ? "T-mesh: face " + std::to_string(cl.centre) + ": its chart: " + e.what()
-                         : cl.why + " (nor is it the T-spline of a chart without star points: " + e.what() + ")";
+    });
+  };
+  serve(0);
+  if (periodic) {
+    const std::size_t first = clusters.size();
+    for (std::size_t i = 0; i < first; ++i)
+      if (!errors[i].empty() && clusters[i].rings > reach) {
+        errors[i].clear();
+        const std::vector<int> members = clusters[i].members;  // the clusters grow below
+        for (int g : members) clusters.push_back({g, reach, {g}, {}});
+      }
+    if (clusters.size() > first) serve(first);
+    // Where a strip is too short even for those, a face whose neighbourhood is regular is the bicubic B-spline
+    // cell of its 16 points on its knots, the T-spline there (no chart needed).
+    for (std::size_t i = first; i < clusters.size(); ++i) {
+      if (errors[i].empty()) continue;
+      const int f = clusters[i].centre;
+      std::string unequal;
+      const std::string why = regular(f, unequal);
+      if (!why.empty()) {
+        errors[i] += " (nor is it a regular bicubic patch: " + why + ")";
+        continue;
+      }
+      set_patch(f, 0, 0, unequal, "T-mesh: face " + std::to_string(f) + " (round a short closed strip): ",
+                gather(cm, m.faces[static_cast<std::size_t>(f)][0]));
+      errors[i].clear();
     }
-  });
+  }
   for (const std::string& e : errors) require(e.empty(), e);
 }
 
