@@ -146,7 +146,7 @@ void write_tspline(const PyTSpline& t, const std::string& path, const std::strin
     require(ext == ".tsm" || patches, "write: a T-spline with star points is written as .tsm or as Bezier patches (.g2, "
                                       ".json, .xml, .stp), or tessellated, not '" + ext + "'");
     py::gil_scoped_release release;
-    if (!patches) return io::write_tsm(path, t.mesh->mesh(), t.tsm ? *t.tsm : io::TsmReport{});
+    if (!patches) return io::write_tsm(path, t.mesh->source_mesh(), t.tsm ? *t.tsm : io::TsmReport{});
     // Exact except one corner patch per face at a star point, within 1e-6 of the size (t_mesh_patches).
     std::vector<AnySpline> out;
     for (FacePatch& f : t_mesh_patches(*t.mesh).patches) out.emplace_back(std::move(f.surface));

@@ -344,7 +344,7 @@ void convert_tspline(const std::string& in, const std::string& out, const TSplin
   const std::string ext = io::file_extension(out);
   if (l.mesh) {
     if (ext == ".tsm") {
-      io::write_tsm(out, l.mesh->mesh(), *l.tsm);
+      io::write_tsm(out, l.mesh->source_mesh(), *l.tsm);
       return;
     }
     if (ext == ".g2" || ext == ".json" || ext == ".xml" || is_step_file(out)) {

@@ -5,6 +5,7 @@
 // box (eight valence-3 star points) and open grids.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <ctime>
 #include <cmath>
 #include <cstdio>
@@ -314,6 +315,8 @@ TEST(FusionTsm, BoxCageLimitPoints) {
 // sum P B / sum B. A single quad is then the bilinear patch of its corners (the clamped bicubic of its
 // degree-elevated net).
 TEST(FusionTsm, OpenGridWithMultipleKnotsIsTheClampedBicubic) {
+  // Without a grip map the boundary's repeated-knot nodes sit on the boundary vertices: the clamped bicubic of the
+  // cage with its boundary rows doubled, a partition of unity up to the boundary (evaluated there too).
   for (const auto& [nx, ny] : {std::array<int, 2>{1, 1}, std::array<int, 2>{3, 2}}) {
     const test::QuadMesh cage = grid_cage(nx, ny);
     const io::TsmModel m = io::parse_tsm(fusion_text(cage, "MULTIPLE_KNOTS", 0.5), "grid.tsm");
@@ -326,8 +329,8 @@ TEST(FusionTsm, OpenGridWithMultipleKnotsIsTheClampedBicubic) {
     };
     const KnotVector ks = clamped(nx), kt = clamped(ny);
     double worst = 0;
-    for (double s : {0.01, 0.2, 0.45, 0.7, 0.99})
-      for (double t : {0.02, 0.3, 0.5, 0.98}) {
+    for (double s : {0.0, 0.01, 0.2, 0.45, 0.7, 0.99, 1.0})
+      for (double t : {0.0, 0.02, 0.3, 0.5, 0.98, 1.0}) {
         const double x = s * 0.5 * nx, y = t * 0.5 * ny;
         double ns[4], nt[4];
         const int ss = ks.find_span(x), st = kt.find_span(y);
@@ -337,8 +340,9 @@ TEST(FusionTsm, OpenGridWithMultipleKnotsIsTheClampedBicubic) {
         double den = 0;
         for (int b = 0; b < 4; ++b)
           for (int a = 0; a < 4; ++a) {
-            const int i = ss - 3 + a - 1, j = st - 3 + b - 1;  // function i + 1 of the clamped basis is vertex i's
-            if (i < 0 || i > nx || j < 0 || j > ny) continue;
+            // Function k of the clamped basis is vertex k - 1's; the first and last are the boundary vertices'
+            // repeated-knot nodes, placed on them.
+            const int i = std::clamp(ss - 3 + a - 1, 0, nx), j = std::clamp(st - 3 + b - 1, 0, ny);
             const double w = ns[a] * nt[b];
             den += w;
             for (int c = 0; c < 3; ++c) num[static_cast<std::size_t>(c)] += w * cage.points[static_cast<std::size_t>(j * (nx + 1) + i)][static_cast<std::size_t>(c)];
@@ -346,10 +350,13 @@ TEST(FusionTsm, OpenGridWithMultipleKnotsIsTheClampedBicubic) {
         double o[3];
         surf.eval({x, y}, o);
         for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(o[c] - num[static_cast<std::size_t>(c)] / den));
+        // One face: the cubic Bezier of the rows P0, P0, P1, P1 in each direction, the bilinear patch of the
+        // corners at (h(s), h(t)) with h = 3 s^2 - 2 s^3.
         if (nx == 1 && ny == 1)
           for (int c = 0; c < 3; ++c) {
             const auto P = [&](int i) { return cage.points[static_cast<std::size_t>(i)][static_cast<std::size_t>(c)]; };
-            EXPECT_NEAR(o[c], (1 - s) * (1 - t) * P(0) + s * (1 - t) * P(1) + s * t * P(3) + (1 - s) * t * P(2), 1e-13);
+            const double hs = s * s * (3 - 2 * s), ht = t * t * (3 - 2 * t);
+            EXPECT_NEAR(o[c], (1 - hs) * (1 - ht) * P(0) + hs * (1 - ht) * P(1) + hs * ht * P(3) + (1 - hs) * ht * P(2), 1e-13);
           }
       }
     EXPECT_LT(worst, 1e-13) << nx << " x " << ny;

@@ -1,5 +1,6 @@
 #include "trivar/tspline/crease_ends.hpp"
 
+#include <algorithm>
 #include <array>
 #include <string>
 
@@ -25,12 +26,15 @@ EndWeights end_weights(double d1, double d2) { return {(d1 + d2) / (2 * d1 + d2)
 }  // namespace
 
 TMesh bezier_equivalent(const TMesh& m) {
-  if (m.end_conditions == EndConditions::bezier) return m;
+  // Bezier end conditions: as they are, unless no vertex carries a block (a file without grip map), where the
+  // repeated-knot nodes of every boundary vertex sit on the vertex itself.
+  const bool crease = m.end_conditions == EndConditions::subd_creases;
+  if (!crease && std::any_of(m.vertices.begin(), m.vertices.end(), [](const TMeshVertex& v) { return !v.block.empty(); })) return m;
   const std::size_t nv = m.vertices.size();
   const int nl = static_cast<int>(m.links.size());
   const auto L = [&](int l) -> const TMeshLink& { return m.links[static_cast<std::size_t>(l)]; };
   const auto fail = [](int v, const std::string& what) { throw Error("T-mesh: boundary vertex " + std::to_string(v) + " " + what); };
-  require(m.degree == 3, [&] { return "T-mesh: subdivision-crease boundaries are defined for degree 3, not " + std::to_string(m.degree); });
+  require(!crease || m.degree == 3, [&] { return "T-mesh: subdivision-crease boundaries are defined for degree 3, not " + std::to_string(m.degree); });
   const auto in_face = [&](int l) { return L(l).face >= 0 && m.live_face(L(l).face); };
   std::vector<std::vector<int>> leaving(nv);
   std::vector<int> angle(nv, 0);  // the faces' angles at the vertex, in degrees
@@ -107,6 +111,16 @@ TMesh bezier_equivalent(const TMesh& m) {
     // Block positions in the vertex frame: outwards is counter-clockwise after the outside link.
     const int outward = (L(o).frame + 1) % 4;
     const int a = angle[vi];
+    if (!crease) {
+      // A boundary star point keeps no block (its ghost layer takes the vertex as Q0).
+      if (a > 270) continue;
+      if (a == 270) fail(v, "is a concave corner without end-condition block points; place them in the file's grip map");
+      if (m.degree != 3) fail(v, "has no end-condition block points; without a grip map they are placed for degree 3, not " + std::to_string(m.degree));
+      xv.block_dims[static_cast<std::size_t>(outward)] = 1;
+      if (a == 90) xv.block_dims[static_cast<std::size_t>((outward + 1) % 4)] = 1;
+      for (int k = 0; k < (a == 90 ? 3 : 1); ++k) xv.block.push_back(add_point(p0));
+      continue;
+    }
     if (a == 180 || a > 270) {
       if (interior.empty()) fail(v, "is a T-junction on the boundary (no interior edge); a crease boundary needs one at every boundary vertex");
       HomogeneousPoint p1{};

@@ -41,7 +41,11 @@
 
 namespace trivar {
 
-// The mesh itself when its end conditions are already Bezier.
+// Bezier end conditions with no block point anywhere (a TSM file without grip map, as Fusion writes with
+// MULTIPLE_KNOTS): the repeated-knot nodes of each straight boundary vertex and convex corner are placed on the
+// vertex itself (the clamped end of the boundary rows as they are; the boundary curve is the B-spline of the
+// boundary points), boundary star points keep none (their ghost layer takes the vertex), a concave corner or a
+// degree other than 3 is refused. Other Bezier meshes are returned as they are.
 TMesh bezier_equivalent(const TMesh& m);
 
 }  // namespace trivar

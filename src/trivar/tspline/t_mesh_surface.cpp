@@ -242,7 +242,10 @@ TMeshSurface::~TMeshSurface() = default;
 TMeshSurface::TMeshSurface(TMeshSurface&&) noexcept = default;
 
 // A crease boundary is evaluated as the Bezier end conditions of the same surface (crease_ends).
-TMeshSurface::TMeshSurface(const TMesh& mesh, int threads) : mesh_(bezier_equivalent(mesh)), stars_(star_points(mesh_)) {
+TMeshSurface::TMeshSurface(const TMesh& mesh, int threads)
+    : mesh_(bezier_equivalent(mesh)),
+      source_(mesh.end_conditions == EndConditions::bezier ? nullptr : std::make_unique<TMesh>(mesh)),
+      stars_(star_points(mesh_)) {
   const TMesh& m = mesh_;
   const int nf = static_cast<int>(m.faces.size()), nv = static_cast<int>(m.vertices.size());
   const auto L = [&](int l) -> const TMeshLink& { return m.links[static_cast<std::size_t>(l)]; };

@@ -80,6 +80,8 @@ public:
   TMeshSurface(TMeshSurface&&) noexcept;
 
   const TMesh& mesh() const { return mesh_; }
+  // The mesh as given (a crease boundary as read, for writing it back); mesh() when no conversion was needed.
+  const TMesh& source_mesh() const { return source_ ? *source_ : mesh_; }
   int num_faces() const { return static_cast<int>(faces_.size()); }  // mesh face ids (deleted faces: none)
   FaceMethod method(int face) const { return faces_[static_cast<std::size_t>(face)].method; }
   int count(FaceMethod m) const;
@@ -135,6 +137,7 @@ private:
   };
   struct Nurcc;  // a star point evaluated by non-uniform Catmull-Clark: its subdivision and homogeneous points
   TMesh mesh_;
+  std::unique_ptr<TMesh> source_;  // the mesh as given, when mesh_ is its Bezier end-condition form
   std::vector<int> stars_;
   std::vector<Face> faces_;
   std::vector<std::unique_ptr<TSplineSurface>> charts_;
