@@ -1,7 +1,9 @@
 #pragma once
 // Incidence: compressed lists of ids (offsets + one flat array), as the element / B-spline incidence of a locally
 // refined spline ("which B-splines live on which element" and back). One allocation for all lists instead of one
-// per list, and a transposition that writes into presized storage.
+// per list, and a transposition that writes into the storage it is given.
+#include <algorithm>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -19,17 +21,42 @@ struct Incidence {
   }
   // The lists the other way round: list j of the result holds every i whose list holds j (j < num_targets),
   // ascending.
-  Incidence transposed(int num_targets) const {
-    Incidence t;
-    t.offsets.assign(static_cast<std::size_t>(num_targets) + 1, 0);
-    for (int j : ids) ++t.offsets[static_cast<std::size_t>(j) + 1];
-    for (std::size_t j = 0; j < static_cast<std::size_t>(num_targets); ++j) t.offsets[j + 1] += t.offsets[j];
-    t.ids.resize(ids.size());
-    std::vector<int> fill(t.offsets.begin(), t.offsets.end() - 1);
-    for (int i = 0; i < size(); ++i)
-      for (int j : (*this)[i]) t.ids[static_cast<std::size_t>(fill[static_cast<std::size_t>(j)]++)] = i;
-    return t;
-  }
+  Incidence transposed(int num_targets) const;
 };
+
+// The lists list(0), ..., list(num_lists - 1) (spans of ids j) the other way round, into `out`: list target(j)
+// of `out` holds every i whose list holds j, ascending (target(j) < num_targets). An empty list(i) leaves i out;
+// target renumbers the ids on the way. A caller that knows how long the result's lists are gives their lengths
+// as `sizes` (num_targets of them), which saves a pass over all ids to count them. `out`'s storage is reused: a
+// refinement transposes its lists after every batch, and storage that is large enough is neither allocated nor
+// zero-filled again.
+template <class Lists, class Target = std::identity>
+void transpose_into(Incidence& out, int num_targets, int num_lists, Lists list, Target target = {},
+                    std::span<const int> sizes = {}) {
+  const auto n = static_cast<std::size_t>(num_targets);
+  auto& at = out.offsets;
+  // Each length goes two places up, so that after the running sum at[t + 1] is where list t starts; writing list
+  // t moves it to where the list ends, its final value as offset t + 1, so no separate write positions are needed.
+  at.resize(n + 2);
+  at[0] = at[1] = 0;
+  if (sizes.empty()) {
+    std::fill(at.begin() + 2, at.end(), 0);
+    for (int i = 0; i < num_lists; ++i)
+      for (int j : list(i)) ++at[static_cast<std::size_t>(target(j)) + 2];
+  } else {
+    std::copy(sizes.begin(), sizes.end(), at.begin() + 2);
+  }
+  for (std::size_t t = 2; t < n + 2; ++t) at[t] += at[t - 1];
+  out.ids.resize(static_cast<std::size_t>(at[n + 1]));
+  for (int i = 0; i < num_lists; ++i)
+    for (int j : list(i)) out.ids[static_cast<std::size_t>(at[static_cast<std::size_t>(target(j)) + 1]++)] = i;
+  at.pop_back();
+}
+
+inline Incidence Incidence::transposed(int num_targets) const {
+  Incidence t;
+  transpose_into(t, num_targets, size(), [this](int i) { return (*this)[i]; });
+  return t;
+}
 
 }  // namespace trivar

@@ -239,7 +239,6 @@ struct LRSpline<D>::Batch {
   std::vector<Param<D>> centres;   // refresh_lists(): element centres
   std::vector<int> group_head, group_next, bucket_start, bucket_of, by_bucket;  // refresh_lists(): scratch
   std::vector<double> cuts;                                                    // refresh_lists(): scratch
-  std::vector<int> cursor;         // rebuild_element_lists(), finish(): write positions in the lists
   // The support lists while the batch runs: list b is pool[list_at[b] .. + list_len[b]). The pool starts as
   // the spline's flat lists (taken at the first resolve, so a rectangle rejected before any change leaves the
   // spline untouched); a list that changes is written anew at the pool's end, and finish() compacts.
@@ -566,35 +565,21 @@ struct LRSpline<D>::Batch {
     if (touched_base.empty()) return;
     resolve();
     refresh_lists();
-    rebuild_element_lists(&dead);
+    // Dead B-splines keep their lists in the pool but belong to no element.
+    transpose_into(s.element_basis_, s.num_elements(), s.num_basis(), [this](int b) {
+      return dead[static_cast<std::size_t>(b)] ? std::span<const int>{} : pooled_list(b);
+    });
     base = s.elements_.size();
     origin.clear();
     is_touched.assign(base, 0);
   }
 
-  // element_basis_ as the transpose of the support lists (in pool), skipping dead B-splines; each list
-  // ascending. With `rename`, the lists' element e is element rename[e] of element_basis_.
-  void rebuild_element_lists(const std::vector<char>* skip, const std::vector<int>* rename = nullptr) {
-    const auto id = [&](int e) { return static_cast<std::size_t>(rename ? (*rename)[static_cast<std::size_t>(e)] : e); };
-    auto& out = s.element_basis_;
-    const std::size_t n = s.elements_.size();
-    out.offsets.assign(n + 1, 0);
-    const std::size_t lists = list_at.size();
-    for (std::size_t i = 0; i < lists; ++i)
-      if (!skip || !(*skip)[i]) {
-        const int* L = pool.data() + list_at[i];
-        for (int j = 0; j < list_len[i]; ++j) ++out.offsets[id(L[j]) + 1];
-      }
-    for (std::size_t e = 0; e < n; ++e) out.offsets[e + 1] += out.offsets[e];
-    // Sized first, then written through one cursor per list.
-    out.ids.resize(static_cast<std::size_t>(out.offsets[n]));
-    cursor.assign(out.offsets.begin(), out.offsets.end() - 1);
-    for (std::size_t i = 0; i < lists; ++i)
-      if (!skip || !(*skip)[i]) {
-        const int* L = pool.data() + list_at[i];
-        for (int j = 0; j < list_len[i]; ++j) out.ids[static_cast<std::size_t>(cursor[id(L[j])]++)] = static_cast<int>(i);
-      }
+  // Support list b in the pool.
+  std::span<const int> pooled_list(int b) const {
+    const auto i = static_cast<std::size_t>(b);
+    return {pool.data() + list_at[i], static_cast<std::size_t>(list_len[i])};
   }
+
   void add_to_mesh(const Rect& r) {
     Rect n = r;
     const auto [it, is_new] = planes.try_emplace({r.dir, r.value});
@@ -802,18 +787,13 @@ struct LRSpline<D>::Batch {
       elements[i] = s.elements_[static_cast<std::size_t>(corner[i])];
     }
     s.elements_ = std::move(elements);
-    rebuild_element_lists(nullptr, &new_id);
-    // Every support list keeps its size; the pool's storage takes the compact lists.
-    auto& support = s.basis_elements_;
-    support.offsets.resize(list_len.size() + 1);
-    support.offsets[0] = 0;
-    for (std::size_t b = 0; b < list_len.size(); ++b) support.offsets[b + 1] = support.offsets[b] + list_len[b];
-    support.ids = std::move(pool);
-    support.ids.resize(static_cast<std::size_t>(support.offsets.back()));
-    cursor.assign(support.offsets.begin(), support.offsets.end() - 1);
-    const auto& element_basis = s.element_basis_;
-    for (std::size_t e = 0; e < s.elements_.size(); ++e)
-      for (int b : element_basis[static_cast<int>(e)]) support.ids[static_cast<std::size_t>(cursor[static_cast<std::size_t>(b)]++)] = static_cast<int>(e);
+    transpose_into(s.element_basis_, s.num_elements(), s.num_basis(), [this](int b) { return pooled_list(b); },
+                   [&](int e) { return new_id[static_cast<std::size_t>(e)]; });
+    // The support lists, sorted, into the pool's storage, which is large enough and needs no zero fill; every
+    // list keeps its length.
+    s.basis_elements_.ids = std::move(pool);
+    transpose_into(s.basis_elements_, s.num_basis(), s.num_elements(), [this](int e) { return s.element_basis_[e]; },
+                   std::identity{}, list_len);
     pooled = false;
     std::erase_if(s.mesh_, [](const Rect& r) { return r.multiplicity == 0; });
     s.evaluator_.reset();
