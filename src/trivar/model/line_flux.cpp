@@ -102,8 +102,8 @@ double LineFlux::sum(double t, double lo, double hi, const Fn& F) const {
       }
       const double* Su = dir_ == 0 ? Ss : St;
       const double* Sv = dir_ == 0 ? St : Ss;
-      const double nx = Su[1] * Sv[2] - Su[2] * Sv[1];
-      sum += rule_.weights[q] * (b - a) * (F(S) * nx);
+      const std::array<double, 3> n{Su[1] * Sv[2] - Su[2] * Sv[1], Su[2] * Sv[0] - Su[0] * Sv[2], Su[0] * Sv[1] - Su[1] * Sv[0]};
+      sum += rule_.weights[q] * (b - a) * F(S, n);
     }
   }
   return sum;
@@ -120,12 +120,20 @@ double LineFlux::dispatch(double t, double lo, double hi, const Fn& F) const {
   }
 }
 
+// The flux functions see the point and the whole normal; they are inlined, so the normal components a flux
+// does not read cost nothing.
 double LineFlux::linear(double t, double lo, double hi, double shift) const {
-  return dispatch(t, lo, hi, [shift](const std::array<double, 3>& x) { return x[0] - shift; });
+  return dispatch(t, lo, hi, [shift](const std::array<double, 3>& x, const std::array<double, 3>& n) { return (x[0] - shift) * n[0]; });
 }
 
 double LineFlux::general(double t, double lo, double hi, const std::function<double(const std::array<double, 3>&)>& F) const {
-  return dispatch(t, lo, hi, F);
+  return dispatch(t, lo, hi, [&F](const std::array<double, 3>& x, const std::array<double, 3>& n) { return F(x) * n[0]; });
+}
+
+double LineFlux::normal(double t, double lo, double hi, int component) const {
+  return dispatch(t, lo, hi, [component](const std::array<double, 3>&, const std::array<double, 3>& n) {
+    return n[static_cast<std::size_t>(component)];
+  });
 }
 
 }  // namespace trivar

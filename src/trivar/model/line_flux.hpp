@@ -30,6 +30,8 @@ public:
   // domain. `linear`: F(x) = x[0] - shift (the volume), `general`: any F.
   double linear(double t, double lo, double hi, double shift) const;
   double general(double t, double lo, double hi, const std::function<double(const std::array<double, 3>&)>& F) const;
+  // The same sums of (S_u x S_v)_component alone (the area vector's density).
+  double normal(double t, double lo, double hi, int component) const;
 
 private:
   template <int P, bool kRational, class Fn>

@@ -52,6 +52,14 @@ private:
 // cheaper choice.
 constexpr int kMaxExactPoints = 40;
 
+// What a face integrates over its trimmed domain: F(S) (S_u x S_v)_x for a given F; (x - shift) (S_u x S_v)_x
+// (the volume's flux); or the component `normal` of S_u x S_v (the area vector's). The last two allow exact rules.
+struct Flux {
+  const std::function<double(const std::array<double, 3>&)>* F = nullptr;
+  double shift = 0;
+  int normal = -1;
+};
+
 // The inner integral runs along the surface direction where it is cheaper (its cost per loop point is the
 // number of knot spans times the inner rule's points): with dir = 0, G(u, v) = int_{x0}^{u} flux(s, v) ds and the loop
 // integrand is G c_v'; with dir = 1, G(u, v) = int_{x0}^{v} flux(u, s) ds and it is -G c_u' (Green's theorem
@@ -65,19 +73,20 @@ constexpr int kMaxExactPoints = 40;
 // trimming curve of degree r is too, the loop integrand on a piece between knot-line crossings is a polynomial
 // of degree (3p + 3q) r - 1 in the curve parameter (G has total degree 3p + 3q - 1), integrated exactly without
 // adaptive halving.
+//
+// The area vector's fluxes, the components of S_u x S_v, are polynomials of degree 2p - 1 in s under the same
+// conditions (and of total degree 2p + 2q - 1), so the volume's rules integrate them exactly too.
 class FaceIntegrand {
 public:
-  // `F` null: F(x) = x[0] - shift (the volume), which allows exact rules.
-  FaceIntegrand(const TrimmedFace& f, const std::function<double(const std::array<double, 3>&)>* F, double shift,
-                const QuadratureRule& rule, RuleCache& rules)
-      : F_(F), dir_(inner_direction(f.surface, rule, F == nullptr)), shift_(shift),
-        line_(f.surface, dir_, inner_rule(f.surface, dir_, rule, F == nullptr, rules)) {
-    if (!F_ && polynomial_along(f.surface, 0) && polynomial_along(f.surface, 1))
+  FaceIntegrand(const TrimmedFace& f, const Flux& flux, const QuadratureRule& rule, RuleCache& rules)
+      : flux_(flux), dir_(inner_direction(f.surface, rule, flux.F == nullptr)),
+        line_(f.surface, dir_, inner_rule(f.surface, dir_, rule, flux.F == nullptr, rules)) {
+    if (!flux_.F && polynomial_along(f.surface, 0) && polynomial_along(f.surface, 1))
       total_degree_ = 3 * (f.surface.degree(0) + f.surface.degree(1));
   }
 
   // Gauss points integrating the loop integrand along `c` exactly, or 0 when no exact rule of at most
-  // kMaxExactPoints points exists (rational face or curve, or an integrand other than the volume's).
+  // kMaxExactPoints points exists (rational face or curve, or a general F).
   int exact_points(const TensorSpline<1>& c) const {
     if (total_degree_ == 0 || !polynomial(c)) return 0;
     const int n = (total_degree_ * c.degree(0) + 1) / 2;
@@ -90,7 +99,9 @@ public:
   double loop_density(double u, double v, double du, double dv, double x0) const {
     const double x = dir_ == 0 ? u : v, t = dir_ == 0 ? v : u;
     const double lo = std::min(x0, x), hi = std::max(x0, x);
-    double sum = F_ ? line_.general(t, lo, hi, *F_) : line_.linear(t, lo, hi, shift_);
+    double sum = flux_.F ? line_.general(t, lo, hi, *flux_.F)
+                 : flux_.normal >= 0 ? line_.normal(t, lo, hi, flux_.normal)
+                                     : line_.linear(t, lo, hi, flux_.shift);
     if (x < x0) sum = -sum;
     return dir_ == 0 ? sum * dv : -sum * du;
   }
@@ -115,9 +126,8 @@ private:
     return n < static_cast<int>(rule.nodes.size()) ? rules(n) : rule;
   }
 
-  const std::function<double(const std::array<double, 3>&)>* F_;
+  Flux flux_;
   int dir_;
-  double shift_;
   LineFlux line_;
   int total_degree_ = 0;  // 3p + 3q when the loop integrand is a polynomial on polynomial curves, else 0
 };
@@ -205,20 +215,19 @@ void knot_line_crossings(const TensorSpline<1>& c, double a, double b, const std
   std::sort(cuts.begin(), cuts.end());
 }
 
-// The face's term: its loop integral, signed by its orientation. `antiderivative` null: F is x - shift (the
-// volume), which allows exact rules (FaceIntegrand).
-double face_integral(const TrimmedFace& f, const std::function<double(const std::array<double, 3>&)>* antiderivative,
-                     double shift, const QuadratureRule& rule, double relative_tolerance) {
+// The face's term: its loop integral, signed by its orientation.
+double face_integral(const TrimmedFace& f, const Flux& flux, const QuadratureRule& rule, double relative_tolerance) {
   constexpr int kMaxHalvings = 12;
   RuleCache rules;
   const int coarse = std::max(1, static_cast<int>(rule.nodes.size()) / 2);
-  const FaceIntegrand g(f, antiderivative, shift, rule, rules);
-  // The face's scale: |G| is at most |F| |S_u x S_v| times the domain, estimated from the control box.
+  const FaceIntegrand g(f, flux, rule, rules);
+  // The face's scale: |G| is at most |F| |S_u x S_v| times the domain, estimated from the control box (an
+  // area for the area vector, a volume otherwise).
   std::array<double, 3> lo, hi;
   f.surface.control_bounds(lo.data(), hi.data());
   double scale = 0;
   for (int k = 0; k < 3; ++k) scale = std::max(scale, hi[k] - lo[k]);
-  const double tol = relative_tolerance * std::max(scale * scale * scale, 1e-300);
+  const double tol = relative_tolerance * std::max(flux.normal >= 0 ? scale * scale : scale * scale * scale, 1e-300);
   const std::array<std::vector<double>, 2> knot_lines{f.surface.knots(0).breakpoints(), f.surface.knots(1).breakpoints()};
   double face = 0;
   std::vector<double> cuts;
@@ -264,6 +273,19 @@ void check_options(const TrimmedIntegralOptions& opts) {
   require(opts.points >= 1 && opts.relative_tolerance > 0, "trimmed integral: points must be >= 1 and the tolerance > 0");
 }
 
+// term(i) for i < n on all threads, dealt round-robin (faces differ in cost by orders of magnitude, and
+// neighbours in the list are often alike); the caller sums them in order, so its result does not depend on
+// the thread count. `term` must be pure.
+template <class Term>
+std::vector<double> parallel_terms(std::ptrdiff_t n, const Term& term) {
+  const int threads = static_cast<int>(std::min<std::ptrdiff_t>(resolve_threads(0), std::max<std::ptrdiff_t>(n, 1)));
+  std::vector<double> terms(static_cast<std::size_t>(n));
+  parallel_for(threads, threads, [&](std::ptrdiff_t k) {
+    for (std::ptrdiff_t i = k; i < n; i += threads) terms[static_cast<std::size_t>(i)] = term(i);
+  });
+  return terms;
+}
+
 }  // namespace
 
 double trimmed_integral(const TrimmedBoundary& b, const std::function<double(const std::array<double, 3>&)>& antiderivative,
@@ -271,7 +293,7 @@ double trimmed_integral(const TrimmedBoundary& b, const std::function<double(con
   check_options(opts);
   const QuadratureRule rule = gauss_legendre(opts.points);
   double total = 0;
-  for (const TrimmedFace& f : b.faces) total += face_integral(f, &antiderivative, 0, rule, opts.relative_tolerance);
+  for (const TrimmedFace& f : b.faces) total += face_integral(f, {.F = &antiderivative}, rule, opts.relative_tolerance);
   return total;
 }
 
@@ -284,18 +306,23 @@ double trimmed_volume(const TrimmedBoundary& b, const TrimmedIntegralOptions& op
   }
   check_options(opts);
   const QuadratureRule rule = gauss_legendre(opts.points);
-  // The faces on all threads (F is pure), dealt round-robin (faces differ in cost by orders of magnitude, and
-  // neighbours in the list are often alike); their terms summed in face order, so the result does not depend
-  // on the thread count.
-  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(b.faces.size());
-  const int threads = static_cast<int>(std::min<std::ptrdiff_t>(resolve_threads(0), std::max<std::ptrdiff_t>(n, 1)));
-  std::vector<double> terms(b.faces.size());
-  parallel_for(threads, threads, [&](std::ptrdiff_t k) {
-    for (std::ptrdiff_t i = k; i < n; i += threads)
-      terms[static_cast<std::size_t>(i)] = face_integral(b.faces[static_cast<std::size_t>(i)], nullptr, x0, rule, opts.relative_tolerance);
-  });
   double total = 0;
-  for (double t : terms) total += t;
+  for (double t : parallel_terms(static_cast<std::ptrdiff_t>(b.faces.size()), [&](std::ptrdiff_t i) {
+         return face_integral(b.faces[static_cast<std::size_t>(i)], {.shift = x0}, rule, opts.relative_tolerance);
+       }))
+    total += t;
+  return total;
+}
+
+std::array<double, 3> trimmed_area_vector(const TrimmedBoundary& b, const TrimmedIntegralOptions& opts) {
+  check_options(opts);
+  const QuadratureRule rule = gauss_legendre(opts.points);
+  // One term per face and component.
+  const std::vector<double> terms = parallel_terms(3 * static_cast<std::ptrdiff_t>(b.faces.size()), [&](std::ptrdiff_t i) {
+    return face_integral(b.faces[static_cast<std::size_t>(i / 3)], {.normal = static_cast<int>(i % 3)}, rule, opts.relative_tolerance);
+  });
+  std::array<double, 3> total{};
+  for (std::size_t i = 0; i < terms.size(); ++i) total[i % 3] += terms[i];
   return total;
 }
 
