@@ -6,7 +6,6 @@
 #include <STEPControl_Reader.hxx>
 #include <TopExp_Explorer.hxx>
 
-#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -75,13 +74,14 @@ TEST(CadSystemParts, EveryFaceMapsAndVolumesAgreeWithOpenCascade) {
       ASSERT_TRUE(im.solids[i].kernel_volume);
       EXPECT_NEAR(*im.solids[i].kernel_volume, ref[i], 1e-6 * ref[i]);
       EXPECT_TRUE(is_watertight(im.solids[i].solid->boundary().mesh));
-      // The faces close: their normals integrate to zero up to rounding.
+      // The faces close within their tolerances; all but the NIST part's to rounding (its faces leave 5e-8 of
+      // the area open, as OpenCASCADE sees it too: closure_defect_test).
       ASSERT_TRUE(im.solids[i].closure);
       const ClosureDefect& c = *im.solids[i].closure;
-      std::printf("%s %s: closure defect %.3g, relative %.3g, volume uncertainty %.3g (volume %.6g), allowance %.3g\n", p.file,
-                  im.solids[i].name.c_str(), c.norm, c.relative, c.volume_uncertainty, ref[i], c.allowance);
-      EXPECT_LE(c.relative, 1e-12);
       EXPECT_TRUE(c.closed());
+      if (std::string(p.file).rfind("nist", 0) != 0) {
+        EXPECT_LE(c.relative, 1e-14);
+      }
       mapped_faces += static_cast<int>(im.solids[i].solid->boundary().faces.size());
     }
     EXPECT_EQ(mapped_faces, im.report.faces);  // no face of the file left out
