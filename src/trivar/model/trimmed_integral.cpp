@@ -4,6 +4,9 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <type_traits>
+
+#include <Eigen/Core>
 
 #include "trivar/core/error.hpp"
 #include "trivar/core/gauss_legendre.hpp"
@@ -52,13 +55,27 @@ private:
 // cheaper choice.
 constexpr int kMaxExactPoints = 40;
 
-// What a face integrates over its trimmed domain: F(S) (S_u x S_v)_x for a given F; (x - shift) (S_u x S_v)_x
-// (the volume's flux); or the component `normal` of S_u x S_v (the area vector's). The last two allow exact rules.
+// What a face integrates over its trimmed domain. With a value type V = double: F(S) (S_u x S_v)_x for a given F,
+// or (x - shift) (S_u x S_v)_x when F is null (the volume's flux); with V = Vec3: S_u x S_v, the area vector's
+// three components together (one line sum gives all three). The last two allow exact rules.
 struct Flux {
   const std::function<double(const std::array<double, 3>&)>* F = nullptr;
   double shift = 0;
-  int normal = -1;
 };
+
+using Vec3 = Eigen::Vector3d;
+
+template <class V>
+V zero() {
+  if constexpr (std::is_same_v<V, double>)
+    return 0.0;
+  else
+    return V::Zero();
+}
+
+// What the adaptive rule compares with its tolerance: for the area vector every component must agree.
+double magnitude(double x) { return std::abs(x); }
+double magnitude(const Vec3& v) { return v.cwiseAbs().maxCoeff(); }
 
 // The inner integral runs along the surface direction where it is cheaper (its cost per loop point is the
 // number of knot spans times the inner rule's points): with dir = 0, G(u, v) = int_{x0}^{u} flux(s, v) ds and the loop
@@ -76,6 +93,7 @@ struct Flux {
 //
 // The area vector's fluxes, the components of S_u x S_v, are polynomials of degree 2p - 1 in s under the same
 // conditions (and of total degree 2p + 2q - 1), so the volume's rules integrate them exactly too.
+template <class V>
 class FaceIntegrand {
 public:
   FaceIntegrand(const TrimmedFace& f, const Flux& flux, const QuadratureRule& rule, RuleCache& rules)
@@ -96,17 +114,24 @@ public:
   int dir() const { return dir_; }
 
   // The loop integrand at the curve point (u, v) with derivative (du, dv), for the loop's start line x0.
-  double loop_density(double u, double v, double du, double dv, double x0) const {
+  V loop_density(double u, double v, double du, double dv, double x0) const {
     const double x = dir_ == 0 ? u : v, t = dir_ == 0 ? v : u;
     const double lo = std::min(x0, x), hi = std::max(x0, x);
-    double sum = flux_.F ? line_.general(t, lo, hi, *flux_.F)
-                 : flux_.normal >= 0 ? line_.normal(t, lo, hi, flux_.normal)
-                                     : line_.linear(t, lo, hi, flux_.shift);
+    V sum = line_sum(t, lo, hi);
     if (x < x0) sum = -sum;
-    return dir_ == 0 ? sum * dv : -sum * du;
+    return dir_ == 0 ? V(sum * dv) : V(-sum * du);
   }
 
 private:
+  V line_sum(double t, double lo, double hi) const {
+    if constexpr (std::is_same_v<V, double>) {
+      return flux_.F ? line_.general(t, lo, hi, *flux_.F) : line_.linear(t, lo, hi, flux_.shift);
+    } else {
+      const std::array<double, 3> a = line_.area(t, lo, hi);
+      return V(a[0], a[1], a[2]);
+    }
+  }
+
   // Points per span of the inner rule along `dir`: the exact rule where the volume's flux is a polynomial.
   static int inner_points(const TensorSpline<2>& s, int dir, const QuadratureRule& rule, bool linear) {
     const int n = static_cast<int>(rule.nodes.size());
@@ -133,8 +158,9 @@ private:
 };
 
 // The loop integral over one smooth piece [a, b] of a trimming curve.
-double piece(const FaceIntegrand& g, const TensorSpline<1>& c, const QuadratureRule& rule, double a, double b, double x0) {
-  double sum = 0;
+template <class V>
+V piece(const FaceIntegrand<V>& g, const TensorSpline<1>& c, const QuadratureRule& rule, double a, double b, double x0) {
+  V sum = zero<V>();
   for (std::size_t q = 0; q < rule.nodes.size(); ++q) {
     const double t = a + rule.nodes[q] * (b - a);
     double d[4];
@@ -144,22 +170,24 @@ double piece(const FaceIntegrand& g, const TensorSpline<1>& c, const QuadratureR
   return sum;
 }
 
-double adaptive(const FaceIntegrand& g, const TensorSpline<1>& c, const QuadratureRule& rule, double a, double b,
-                double x0, double whole, double tol, int depth) {
+template <class V>
+V adaptive(const FaceIntegrand<V>& g, const TensorSpline<1>& c, const QuadratureRule& rule, double a, double b,
+           double x0, const V& whole, double tol, int depth) {
   const double m = 0.5 * (a + b);
-  const double left = piece(g, c, rule, a, m, x0), right = piece(g, c, rule, m, b, x0);
+  const V left = piece(g, c, rule, a, m, x0), right = piece(g, c, rule, m, b, x0);
   // Kinks of G (where the curve crosses a knot line of the surface) slow convergence; halving isolates them.
-  if (depth == 0 || std::abs(left + right - whole) <= tol) return left + right;
-  return adaptive(g, c, rule, a, m, x0, left, tol / 2, depth - 1) + adaptive(g, c, rule, m, b, x0, right, tol / 2, depth - 1);
+  if (depth == 0 || magnitude(V(left + right - whole)) <= tol) return V(left + right);
+  return V(adaptive(g, c, rule, a, m, x0, left, tol / 2, depth - 1) + adaptive(g, c, rule, m, b, x0, right, tol / 2, depth - 1));
 }
 
 // The loop integral over [a, b]: the rule's sum, accepted when a rule of half as many points agrees with it
 // within the tolerance (the error of the finer rule is far below their difference on smooth pieces: one piece
 // costs 1.5 rules instead of the 3 of comparing halves), else adaptive halving.
-double estimated(const FaceIntegrand& g, const TensorSpline<1>& c, const QuadratureRule& rule, const QuadratureRule& coarse,
-                 double a, double b, double x0, double tol, int depth) {
-  const double whole = piece(g, c, rule, a, b, x0);
-  if (std::abs(whole - piece(g, c, coarse, a, b, x0)) <= tol) return whole;
+template <class V>
+V estimated(const FaceIntegrand<V>& g, const TensorSpline<1>& c, const QuadratureRule& rule, const QuadratureRule& coarse,
+            double a, double b, double x0, double tol, int depth) {
+  const V whole = piece(g, c, rule, a, b, x0);
+  if (magnitude(V(whole - piece(g, c, coarse, a, b, x0))) <= tol) return whole;
   return adaptive(g, c, rule, a, b, x0, whole, tol, depth);
 }
 
@@ -216,20 +244,21 @@ void knot_line_crossings(const TensorSpline<1>& c, double a, double b, const std
 }
 
 // The face's term: its loop integral, signed by its orientation.
-double face_integral(const TrimmedFace& f, const Flux& flux, const QuadratureRule& rule, double relative_tolerance) {
+template <class V>
+V face_integral(const TrimmedFace& f, const Flux& flux, const QuadratureRule& rule, double relative_tolerance) {
   constexpr int kMaxHalvings = 12;
   RuleCache rules;
   const int coarse = std::max(1, static_cast<int>(rule.nodes.size()) / 2);
-  const FaceIntegrand g(f, flux, rule, rules);
+  const FaceIntegrand<V> g(f, flux, rule, rules);
   // The face's scale: |G| is at most |F| |S_u x S_v| times the domain, estimated from the control box (an
   // area for the area vector, a volume otherwise).
   std::array<double, 3> lo, hi;
   f.surface.control_bounds(lo.data(), hi.data());
   double scale = 0;
   for (int k = 0; k < 3; ++k) scale = std::max(scale, hi[k] - lo[k]);
-  const double tol = relative_tolerance * std::max(flux.normal >= 0 ? scale * scale : scale * scale * scale, 1e-300);
+  const double tol = relative_tolerance * std::max(std::is_same_v<V, double> ? scale * scale * scale : scale * scale, 1e-300);
   const std::array<std::vector<double>, 2> knot_lines{f.surface.knots(0).breakpoints(), f.surface.knots(1).breakpoints()};
-  double face = 0;
+  V face = zero<V>();
   std::vector<double> cuts;
   const auto along = [&](const TensorSpline<1>& c, double x0) {
     const std::vector<double> br = c.knots(0).breakpoints();
@@ -266,7 +295,7 @@ double face_integral(const TrimmedFace& f, const Flux& flux, const QuadratureRul
         along(TensorSpline<1>({KnotVector(1, {0, 0, 1, 1})}, 2, false, {end[0], end[1], start[0], start[1]}), x0);
     }
   }
-  return f.reversed ? -face : face;
+  return f.reversed ? V(-face) : face;
 }
 
 void check_options(const TrimmedIntegralOptions& opts) {
@@ -277,9 +306,9 @@ void check_options(const TrimmedIntegralOptions& opts) {
 // neighbours in the list are often alike); the caller sums them in order, so its result does not depend on
 // the thread count. `term` must be pure.
 template <class Term>
-std::vector<double> parallel_terms(std::ptrdiff_t n, const Term& term) {
+auto parallel_terms(std::ptrdiff_t n, const Term& term) {
   const int threads = static_cast<int>(std::min<std::ptrdiff_t>(resolve_threads(0), std::max<std::ptrdiff_t>(n, 1)));
-  std::vector<double> terms(static_cast<std::size_t>(n));
+  std::vector<decltype(term(std::ptrdiff_t{0}))> terms(static_cast<std::size_t>(n));
   parallel_for(threads, threads, [&](std::ptrdiff_t k) {
     for (std::ptrdiff_t i = k; i < n; i += threads) terms[static_cast<std::size_t>(i)] = term(i);
   });
@@ -293,7 +322,7 @@ double trimmed_integral(const TrimmedBoundary& b, const std::function<double(con
   check_options(opts);
   const QuadratureRule rule = gauss_legendre(opts.points);
   double total = 0;
-  for (const TrimmedFace& f : b.faces) total += face_integral(f, {.F = &antiderivative}, rule, opts.relative_tolerance);
+  for (const TrimmedFace& f : b.faces) total += face_integral<double>(f, {.F = &antiderivative}, rule, opts.relative_tolerance);
   return total;
 }
 
@@ -308,7 +337,7 @@ double trimmed_volume(const TrimmedBoundary& b, const TrimmedIntegralOptions& op
   const QuadratureRule rule = gauss_legendre(opts.points);
   double total = 0;
   for (double t : parallel_terms(static_cast<std::ptrdiff_t>(b.faces.size()), [&](std::ptrdiff_t i) {
-         return face_integral(b.faces[static_cast<std::size_t>(i)], {.shift = x0}, rule, opts.relative_tolerance);
+         return face_integral<double>(b.faces[static_cast<std::size_t>(i)], {.shift = x0}, rule, opts.relative_tolerance);
        }))
     total += t;
   return total;
@@ -317,13 +346,12 @@ double trimmed_volume(const TrimmedBoundary& b, const TrimmedIntegralOptions& op
 std::array<double, 3> trimmed_area_vector(const TrimmedBoundary& b, const TrimmedIntegralOptions& opts) {
   check_options(opts);
   const QuadratureRule rule = gauss_legendre(opts.points);
-  // One term per face and component.
-  const std::vector<double> terms = parallel_terms(3 * static_cast<std::ptrdiff_t>(b.faces.size()), [&](std::ptrdiff_t i) {
-    return face_integral(b.faces[static_cast<std::size_t>(i / 3)], {.normal = static_cast<int>(i % 3)}, rule, opts.relative_tolerance);
-  });
-  std::array<double, 3> total{};
-  for (std::size_t i = 0; i < terms.size(); ++i) total[i % 3] += terms[i];
-  return total;
+  Vec3 total = Vec3::Zero();
+  for (const Vec3& t : parallel_terms(static_cast<std::ptrdiff_t>(b.faces.size()), [&](std::ptrdiff_t i) {
+         return face_integral<Vec3>(b.faces[static_cast<std::size_t>(i)], {}, rule, opts.relative_tolerance);
+       }))
+    total += t;
+  return {total[0], total[1], total[2]};
 }
 
 }  // namespace trivar
