@@ -56,17 +56,17 @@ private:
 constexpr int kMaxExactPoints = 40;
 
 // What a face integrates over its trimmed domain. With a value type V = double: F(S) (S_u x S_v)_x for a given F,
-// or (x - shift) (S_u x S_v)_x when F is null (the volume's flux); with V = Vec3: S_u x S_v, the area vector's
+// or (x - shift) (S_u x S_v)_x when F is null (the volume's flux); with V = AreaVec: S_u x S_v, the area vector's
 // three components together (one line sum gives all three). The last two allow exact rules.
 struct Flux {
   const std::function<double(const std::array<double, 3>&)>* F = nullptr;
   double shift = 0;
 };
 
-using Vec3 = Eigen::Vector3d;
+using AreaVec = Eigen::Vector3d;
 
 template <class V>
-V zero() {
+V zero_value() {
   if constexpr (std::is_same_v<V, double>)
     return 0.0;
   else
@@ -74,8 +74,8 @@ V zero() {
 }
 
 // What the adaptive rule compares with its tolerance: for the area vector every component must agree.
-double magnitude(double x) { return std::abs(x); }
-double magnitude(const Vec3& v) { return v.cwiseAbs().maxCoeff(); }
+double flux_magnitude(double x) { return std::abs(x); }
+double flux_magnitude(const AreaVec& v) { return v.cwiseAbs().maxCoeff(); }
 
 // The inner integral runs along the surface direction where it is cheaper (its cost per loop point is the
 // number of knot spans times the inner rule's points): with dir = 0, G(u, v) = int_{x0}^{u} flux(s, v) ds and the loop
@@ -160,7 +160,7 @@ private:
 // The loop integral over one smooth piece [a, b] of a trimming curve.
 template <class V>
 V piece(const FaceIntegrand<V>& g, const TensorSpline<1>& c, const QuadratureRule& rule, double a, double b, double x0) {
-  V sum = zero<V>();
+  V sum = zero_value<V>();
   for (std::size_t q = 0; q < rule.nodes.size(); ++q) {
     const double t = a + rule.nodes[q] * (b - a);
     double d[4];
@@ -176,7 +176,7 @@ V adaptive(const FaceIntegrand<V>& g, const TensorSpline<1>& c, const Quadrature
   const double m = 0.5 * (a + b);
   const V left = piece(g, c, rule, a, m, x0), right = piece(g, c, rule, m, b, x0);
   // Kinks of G (where the curve crosses a knot line of the surface) slow convergence; halving isolates them.
-  if (depth == 0 || magnitude(V(left + right - whole)) <= tol) return V(left + right);
+  if (depth == 0 || flux_magnitude(V(left + right - whole)) <= tol) return V(left + right);
   return V(adaptive(g, c, rule, a, m, x0, left, tol / 2, depth - 1) + adaptive(g, c, rule, m, b, x0, right, tol / 2, depth - 1));
 }
 
@@ -187,7 +187,7 @@ template <class V>
 V estimated(const FaceIntegrand<V>& g, const TensorSpline<1>& c, const QuadratureRule& rule, const QuadratureRule& coarse,
             double a, double b, double x0, double tol, int depth) {
   const V whole = piece(g, c, rule, a, b, x0);
-  if (magnitude(V(whole - piece(g, c, coarse, a, b, x0))) <= tol) return whole;
+  if (flux_magnitude(V(whole - piece(g, c, coarse, a, b, x0))) <= tol) return whole;
   return adaptive(g, c, rule, a, b, x0, whole, tol, depth);
 }
 
@@ -258,7 +258,7 @@ V face_integral(const TrimmedFace& f, const Flux& flux, const QuadratureRule& ru
   for (int k = 0; k < 3; ++k) scale = std::max(scale, hi[k] - lo[k]);
   const double tol = relative_tolerance * std::max(std::is_same_v<V, double> ? scale * scale * scale : scale * scale, 1e-300);
   const std::array<std::vector<double>, 2> knot_lines{f.surface.knots(0).breakpoints(), f.surface.knots(1).breakpoints()};
-  V face = zero<V>();
+  V face = zero_value<V>();
   std::vector<double> cuts;
   const auto along = [&](const TensorSpline<1>& c, double x0) {
     const std::vector<double> br = c.knots(0).breakpoints();
@@ -346,9 +346,9 @@ double trimmed_volume(const TrimmedBoundary& b, const TrimmedIntegralOptions& op
 std::array<double, 3> trimmed_area_vector(const TrimmedBoundary& b, const TrimmedIntegralOptions& opts) {
   check_options(opts);
   const QuadratureRule rule = gauss_legendre(opts.points);
-  Vec3 total = Vec3::Zero();
-  for (const Vec3& t : parallel_terms(static_cast<std::ptrdiff_t>(b.faces.size()), [&](std::ptrdiff_t i) {
-         return face_integral<Vec3>(b.faces[static_cast<std::size_t>(i)], {}, rule, opts.relative_tolerance);
+  AreaVec total = AreaVec::Zero();
+  for (const AreaVec& t : parallel_terms(static_cast<std::ptrdiff_t>(b.faces.size()), [&](std::ptrdiff_t i) {
+         return face_integral<AreaVec>(b.faces[static_cast<std::size_t>(i)], {}, rule, opts.relative_tolerance);
        }))
     total += t;
   return {total[0], total[1], total[2]};
