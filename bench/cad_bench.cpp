@@ -29,6 +29,7 @@
 #include "trivar/cad/step_import.hpp"
 #include "trivar/am/slicer.hpp"
 #include "trivar/iga/trimmed_space.hpp"
+#include "trivar/model/closure_defect.hpp"
 #include "trivar/model/trimmed_integral.hpp"
 
 namespace {
@@ -212,6 +213,19 @@ void BM_ExactVolume(benchmark::State& state) {
   state.counters["volume"] = volume;
 }
 BENCHMARK(BM_ExactVolume)->Arg(0)->Arg(7)->Arg(8)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
+
+// The closure defect the import adds per solid (`closure_defect`: the area vector's three components by the
+// volume's quadrature, the mesh's area, the edges' lengths) on the boundaries BM_ExactVolume integrates.
+void BM_ClosureDefect(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const trivar::cad::StepImport im = trivar::cad::import_step(n == 0 ? plate(28) : machined_part(n));
+  const trivar::TrimmedBoundary& b = im.solids.at(0).solid->boundary();
+  trivar::ClosureDefect d;
+  for (auto _ : state) d = trivar::closure_defect(b);
+  state.counters["faces"] = static_cast<double>(b.faces.size());
+  state.counters["relative"] = d.relative;
+}
+BENCHMARK(BM_ClosureDefect)->Arg(0)->Arg(7)->Arg(8)->Unit(benchmark::kMillisecond)->UseRealTime()->MeasureProcessCPUTime();
 
 void BM_ContainsRandomPoints(benchmark::State& state) {
   const trivar::cad::StepImport im = trivar::cad::import_step(plate(12));

@@ -20,7 +20,7 @@ nlohmann::json brep_info_json(const std::string& file, bool kernel_volume) {
   nlohmann::json j{{"solids", r.solids},       {"shells", r.shells},       {"faces", r.faces},
                    {"edges", r.edges},         {"vertices", r.vertices},   {"faces_by_kind", r.faces_by_kind},
                    {"not_solid", r.not_solid}, {"repairs", r.repairs},     {"unmapped_faces", nlohmann::json::array()},
-                   {"solid_info", nlohmann::json::array()}};
+                   {"open_boundaries", r.open_boundaries}, {"solid_info", nlohmann::json::array()}};
   for (const cad::UnmappedFace& f : r.unmapped) j["unmapped_faces"].push_back({{"name", f.name}, {"reason", f.reason}});
   for (const cad::ImportedSolid& s : im.solids) {
     nlohmann::json d{{"name", s.name}, {"mapped", s.solid != nullptr}};
@@ -31,6 +31,11 @@ nlohmann::json brep_info_json(const std::string& file, bool kernel_volume) {
       d["triangles"] = s.solid->boundary().mesh.triangles.size();
       d["chordal_tolerance"] = s.solid->boundary().chordal_tolerance;
     }
+    if (s.closure)
+      d["closure"] = {{"area_vector", s.closure->area_vector},  {"norm", s.closure->norm},
+                      {"area", s.closure->area},                {"relative", s.closure->relative},
+                      {"volume_uncertainty", s.closure->volume_uncertainty}, {"allowance", s.closure->allowance},
+                      {"closed", s.closure->closed()}};
     j["solid_info"].push_back(std::move(d));
   }
   return j;
@@ -62,7 +67,14 @@ void print_brep_info(const std::string& file, bool kernel_volume) {
                 s["name"].get<std::string>().c_str(), s["faces"].get<std::size_t>(), fmt(s["volume"].get<double>()).c_str(),
                 kernel.empty() ? "" : ("; OpenCASCADE " + kernel).c_str(), s["triangles"].get<std::size_t>(),
                 fmt(s["chordal_tolerance"].get<double>()).c_str());
+    if (s.contains("closure")) {
+      const nlohmann::json& c = s["closure"];
+      std::printf("    closure: integral of the normal over the faces %s (%s of the area %s; volume uncertain by %s)\n",
+                  fmt(c["norm"].get<double>()).c_str(), fmt(c["relative"].get<double>()).c_str(),
+                  fmt(c["area"].get<double>()).c_str(), fmt(c["volume_uncertainty"].get<double>()).c_str());
+    }
   }
+  for (const auto& w : j["open_boundaries"]) std::printf("  warning: %s\n", w.get<std::string>().c_str());
 }
 
 }  // namespace trivar::cli

@@ -73,6 +73,7 @@ void add_make_vmodel(CLI::App& make) {
                     (n > 3 ? "; ..." : "") + "); nothing written");
       }
     for (const std::string& r : im.report.repairs) std::fprintf(stderr, "trivar: warning: %s: %s\n", a->in.c_str(), r.c_str());
+    for (const std::string& r : im.report.open_boundaries) std::fprintf(stderr, "trivar: warning: %s: %s\n", a->in.c_str(), r.c_str());
     for (std::size_t k = 0; k < chosen.size(); ++k) {
       const cad::ImportedSolid& s = im.solids[chosen[k]];
       Box<3> box = s.solid->bounding_box();

@@ -64,6 +64,22 @@ TEST(VmodelCli, StepSolidBecomesATrimmedModelThatReadsBack) {
   ASSERT_NE(iat, std::string::npos) << ik.out;
   EXPECT_NEAR(std::stod(ik.out.substr(iat + 14)), ref, 1e-6 * ref) << ik.out;
   EXPECT_EQ(run("info " + step, dir).out.find("; OpenCASCADE "), std::string::npos);
+  // The closure defect of the closed part: at rounding level, no warning; the JSON has its measures.
+  EXPECT_NE(ik.out.find("    closure: integral of the normal over the faces "), std::string::npos) << ik.out;
+  EXPECT_EQ(ik.out.find("warning:"), std::string::npos) << ik.out;
+  const CliRun ij = run("info " + step + " --json", dir);
+  ASSERT_EQ(ij.code, 0) << ij.err;
+  const nlohmann::json brep = nlohmann::json::parse(ij.out)["brep"];
+  EXPECT_TRUE(brep["open_boundaries"].empty());
+  const nlohmann::json& closure = brep["solid_info"].at(0)["closure"];
+  EXPECT_TRUE(closure["closed"].get<bool>());
+  EXPECT_LE(closure["relative"].get<double>(), 1e-12);
+  // The mesh's area against the part's: 2 (40 x 30 - 2 pi 16) + 2 (40 + 30) 20 + 2 (2 pi 4) 20, the holes'
+  // walls inscribed within the chordal tolerance.
+  const double area = 2 * (1200 - 32 * test::kPi) + 2800 + 320 * test::kPi;
+  EXPECT_NEAR(closure["area"].get<double>(), area, 1e-2 * area);
+  EXPECT_NEAR(closure["volume_uncertainty"].get<double>(), closure["norm"].get<double>() * std::sqrt(40.0 * 40 + 30 * 30 + 20 * 20),
+              1e-2 * closure["volume_uncertainty"].get<double>());
   // Mass of a linear density rho = x by exact-boundary quadrature: the first moment M_x of the part, which for
   // the block with two symmetric holes is the volume times the centroid x = 20.
   Attribute rho = Attribute::expression({"x"}, Attribute::Space::model);

@@ -32,6 +32,7 @@
 #include <XSControl_WorkSession.hxx>
 
 #include <cmath>
+#include <cstdio>
 #include <exception>
 #include <filesystem>
 #include <future>
@@ -258,6 +259,17 @@ MappedSolid map_solid(const TopoDS_Shape& solid, const Namer& name, const std::s
 
 }  // namespace
 
+std::string open_boundary_warning(const std::string& solid, const ClosureDefect& d) {
+  const auto g = [](double x) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3g", x);
+    return std::string(buf);
+  };
+  return solid + ": the boundary does not close (integral of the normal " + g(d.norm) + " = " + g(d.relative) +
+         " of the area, above the " + g(d.allowance) + " its tolerances allow): the volume depends on the reference point of the divergence theorem by up to " +
+         g(d.volume_uncertainty);
+}
+
 StepImport import_step(const std::string& path, const ImportOptions& opts) {
   silence_kernel();
   require(opts.chordal_tolerance >= 0 && opts.angular_tolerance > 0,
@@ -295,7 +307,7 @@ StepImport import_step(const std::string& path, const ImportOptions& opts) {
     for (TopExp_Explorer x(shape, TopAbs_SOLID); x.More(); x.Next(), ++index) {
       TopoDS_Shape solid = x.Current();
       const std::string sname = name(solid, "solid " + std::to_string(index));
-      ImportedSolid imported{sname, nullptr, std::nullopt};
+      ImportedSolid imported{sname, nullptr, std::nullopt, std::nullopt};
       store_plane_pcurves(solid);
       // The validity check (and the kernel's volume when asked for) runs beside the conversion, which reads the
       // same solid and builds a copy; an invalid solid discards the conversion and is converted again after
@@ -340,6 +352,8 @@ StepImport import_step(const std::string& path, const ImportOptions& opts) {
         } catch (const Error& e) {
           throw Error(path + ": " + sname + ": " + e.what());
         }
+        imported.closure = closure_defect(imported.solid->boundary());
+        if (!imported.closure->closed()) r.open_boundaries.push_back(open_boundary_warning(sname, *imported.closure));
       }
       out.solids.push_back(std::move(imported));
     }

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "trivar/model/closure_defect.hpp"
 #include "trivar/model/trimmed_solid.hpp"
 
 namespace trivar::cad {
@@ -44,6 +45,9 @@ struct BrepReport {
   std::vector<std::string> not_solid;
   std::vector<UnmappedFace> unmapped;
   std::vector<std::string> repairs;  // "solid 1: 3 edges without parameter-space curves repaired"
+  // One line per mapped solid whose faces do not close beyond their tolerances (ClosureDefect::closed()):
+  // open_boundary_warning().
+  std::vector<std::string> open_boundaries;
 };
 
 struct ImportedSolid {
@@ -51,12 +55,18 @@ struct ImportedSolid {
   std::shared_ptr<const TrimmedSolid> solid;   // null when a face could not be mapped (see the report)
   // OpenCASCADE's volume of the solid as read (BRepGProp), when ImportOptions::kernel_volume asked for it.
   std::optional<double> kernel_volume;
+  // How far the mapped faces are from closing (closure_defect.hpp), when the solid is mapped.
+  std::optional<ClosureDefect> closure;
 };
 
 struct StepImport {
   BrepReport report;
   std::vector<ImportedSolid> solids;
 };
+
+// The report's line for a solid whose boundary does not close: "<solid>: the boundary does not close (|A| = ...,
+// ... of its area): the volume depends on the reference point of the divergence theorem by up to ...".
+std::string open_boundary_warning(const std::string& solid, const ClosureDefect& d);
 
 // Reads and maps every solid. Throws trivar::Error "<path>: ..." (one line) for an unreadable file, a file the
 // kernel cannot transfer, or a solid that stays invalid after repair. Solids with unmapped faces are returned

@@ -25,8 +25,8 @@ LineFlux::LineFlux(const TensorSpline<2>& s, int dir, const QuadratureRule& rule
   }
 }
 
-template <int P, bool kRational, class Fn>
-double LineFlux::sum(double t, double lo, double hi, const Fn& F) const {
+template <int P, bool kRational, class Acc>
+void LineFlux::sum(double t, double lo, double hi, const Acc& add) const {
   constexpr int st = kRational ? 4 : 3;
   const KnotVector& kr = s_.knots(dir_);
   const KnotVector& kf = s_.knots(1 - dir_);
@@ -35,7 +35,7 @@ double LineFlux::sum(double t, double lo, double hi, const Fn& F) const {
   const std::ptrdiff_t last = static_cast<std::ptrdiff_t>(span_.size()) - 1;
   const std::ptrdiff_t k0 = std::clamp<std::ptrdiff_t>(std::upper_bound(breaks_.begin(), breaks_.end(), lo) - breaks_.begin() - 1, 0, last);
   const std::ptrdiff_t k1 = std::clamp<std::ptrdiff_t>(std::lower_bound(breaks_.begin(), breaks_.end(), hi) - breaks_.begin() - 1, 0, last);
-  if (!(hi > lo) || k1 < k0) return 0;
+  if (!(hi > lo) || k1 < k0) return;
 
   // Contract the fixed direction: the homogeneous control values of the line's points and cross derivatives.
   const double tc = std::clamp(t, kf.start(), kf.end());
@@ -61,7 +61,6 @@ double LineFlux::sum(double t, double lo, double hi, const Fn& F) const {
   }
 
   const std::size_t nq = rule_.nodes.size();
-  double sum = 0;
   for (std::ptrdiff_t k = k0; k <= k1; ++k) {
     const std::size_t ks = static_cast<std::size_t>(k);
     const double a = std::max(breaks_[ks], lo), b = std::min(breaks_[ks + 1], hi);
@@ -102,30 +101,43 @@ double LineFlux::sum(double t, double lo, double hi, const Fn& F) const {
       }
       const double* Su = dir_ == 0 ? Ss : St;
       const double* Sv = dir_ == 0 ? St : Ss;
-      const double nx = Su[1] * Sv[2] - Su[2] * Sv[1];
-      sum += rule_.weights[q] * (b - a) * (F(S) * nx);
+      const std::array<double, 3> n{Su[1] * Sv[2] - Su[2] * Sv[1], Su[2] * Sv[0] - Su[0] * Sv[2], Su[0] * Sv[1] - Su[1] * Sv[0]};
+      add(rule_.weights[q] * (b - a), S, n);
     }
   }
+}
+
+template <class Acc>
+void LineFlux::dispatch(double t, double lo, double hi, const Acc& add) const {
+  const bool r = s_.is_rational();
+  switch (s_.degree(dir_)) {
+    case 1: return r ? sum<1, true>(t, lo, hi, add) : sum<1, false>(t, lo, hi, add);
+    case 2: return r ? sum<2, true>(t, lo, hi, add) : sum<2, false>(t, lo, hi, add);
+    case 3: return r ? sum<3, true>(t, lo, hi, add) : sum<3, false>(t, lo, hi, add);
+    default: return r ? sum<-1, true>(t, lo, hi, add) : sum<-1, false>(t, lo, hi, add);
+  }
+}
+
+// The accumulators see the weight, the point and the whole normal; they are inlined, so the normal components
+// one does not read cost nothing.
+double LineFlux::linear(double t, double lo, double hi, double shift) const {
+  double sum = 0;
+  dispatch(t, lo, hi, [&sum, shift](double w, const std::array<double, 3>& x, const std::array<double, 3>& n) { sum += w * ((x[0] - shift) * n[0]); });
   return sum;
 }
 
-template <class Fn>
-double LineFlux::dispatch(double t, double lo, double hi, const Fn& F) const {
-  const bool r = s_.is_rational();
-  switch (s_.degree(dir_)) {
-    case 1: return r ? sum<1, true>(t, lo, hi, F) : sum<1, false>(t, lo, hi, F);
-    case 2: return r ? sum<2, true>(t, lo, hi, F) : sum<2, false>(t, lo, hi, F);
-    case 3: return r ? sum<3, true>(t, lo, hi, F) : sum<3, false>(t, lo, hi, F);
-    default: return r ? sum<-1, true>(t, lo, hi, F) : sum<-1, false>(t, lo, hi, F);
-  }
-}
-
-double LineFlux::linear(double t, double lo, double hi, double shift) const {
-  return dispatch(t, lo, hi, [shift](const std::array<double, 3>& x) { return x[0] - shift; });
-}
-
 double LineFlux::general(double t, double lo, double hi, const std::function<double(const std::array<double, 3>&)>& F) const {
-  return dispatch(t, lo, hi, F);
+  double sum = 0;
+  dispatch(t, lo, hi, [&sum, &F](double w, const std::array<double, 3>& x, const std::array<double, 3>& n) { sum += w * (F(x) * n[0]); });
+  return sum;
+}
+
+std::array<double, 3> LineFlux::area(double t, double lo, double hi) const {
+  std::array<double, 3> sum{};
+  dispatch(t, lo, hi, [&sum](double w, const std::array<double, 3>&, const std::array<double, 3>& n) {
+    for (std::size_t k = 0; k < 3; ++k) sum[k] += w * n[k];
+  });
+  return sum;
 }
 
 }  // namespace trivar

@@ -1,6 +1,7 @@
 #pragma once
-// LineFlux: Gauss sums of F(S) (S_u x S_v)_x along the parameter lines of one direction of a surface, the inner
-// integral of the exact-boundary quadrature (trimmed_integral), asked for at every point of every trimming loop.
+// LineFlux: Gauss sums of F(S) (S_u x S_v)_x (or of S_u x S_v itself) along the parameter lines of one direction
+// of a surface, the inner integral of the exact-boundary quadrature (trimmed_integral), asked for at every point
+// of every trimming loop.
 //
 // A general surface evaluation with first derivatives at each node recomputes both directions' B-splines, by
 // the generic derivative triangle for degree pairs without a fixed-degree kernel (most rational faces: the
@@ -30,12 +31,15 @@ public:
   // domain. `linear`: F(x) = x[0] - shift (the volume), `general`: any F.
   double linear(double t, double lo, double hi, double shift) const;
   double general(double t, double lo, double hi, const std::function<double(const std::array<double, 3>&)>& F) const;
+  // The same sums of S_u x S_v (the area vector's density), its three components in one pass.
+  std::array<double, 3> area(double t, double lo, double hi) const;
 
 private:
-  template <int P, bool kRational, class Fn>
-  double sum(double t, double lo, double hi, const Fn& F) const;
-  template <class Fn>
-  double dispatch(double t, double lo, double hi, const Fn& F) const;
+  // Calls add(weight, S, S_u x S_v) at every node.
+  template <int P, bool kRational, class Acc>
+  void sum(double t, double lo, double hi, const Acc& add) const;
+  template <class Acc>
+  void dispatch(double t, double lo, double hi, const Acc& add) const;
 
   const TensorSpline<2>& s_;
   const QuadratureRule& rule_;

@@ -4,6 +4,9 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <type_traits>
+
+#include <Eigen/Core>
 
 #include "trivar/core/error.hpp"
 #include "trivar/core/gauss_legendre.hpp"
@@ -52,6 +55,28 @@ private:
 // cheaper choice.
 constexpr int kMaxExactPoints = 40;
 
+// What a face integrates over its trimmed domain. With a value type V = double: F(S) (S_u x S_v)_x for a given F,
+// or (x - shift) (S_u x S_v)_x when F is null (the volume's flux); with V = AreaVec: S_u x S_v, the area vector's
+// three components together (one line sum gives all three). The last two allow exact rules.
+struct Flux {
+  const std::function<double(const std::array<double, 3>&)>* F = nullptr;
+  double shift = 0;
+};
+
+using AreaVec = Eigen::Vector3d;
+
+template <class V>
+V zero_value() {
+  if constexpr (std::is_same_v<V, double>)
+    return 0.0;
+  else
+    return V::Zero();
+}
+
+// What the adaptive rule compares with its tolerance: for the area vector every component must agree.
+double flux_magnitude(double x) { return std::abs(x); }
+double flux_magnitude(const AreaVec& v) { return v.cwiseAbs().maxCoeff(); }
+
 // The inner integral runs along the surface direction where it is cheaper (its cost per loop point is the
 // number of knot spans times the inner rule's points): with dir = 0, G(u, v) = int_{x0}^{u} flux(s, v) ds and the loop
 // integrand is G c_v'; with dir = 1, G(u, v) = int_{x0}^{v} flux(u, s) ds and it is -G c_u' (Green's theorem
@@ -65,19 +90,21 @@ constexpr int kMaxExactPoints = 40;
 // trimming curve of degree r is too, the loop integrand on a piece between knot-line crossings is a polynomial
 // of degree (3p + 3q) r - 1 in the curve parameter (G has total degree 3p + 3q - 1), integrated exactly without
 // adaptive halving.
+//
+// The area vector's fluxes, the components of S_u x S_v, are polynomials of degree 2p - 1 in s under the same
+// conditions (and of total degree 2p + 2q - 1), so the volume's rules integrate them exactly too.
+template <class V>
 class FaceIntegrand {
 public:
-  // `F` null: F(x) = x[0] - shift (the volume), which allows exact rules.
-  FaceIntegrand(const TrimmedFace& f, const std::function<double(const std::array<double, 3>&)>* F, double shift,
-                const QuadratureRule& rule, RuleCache& rules)
-      : F_(F), dir_(inner_direction(f.surface, rule, F == nullptr)), shift_(shift),
-        line_(f.surface, dir_, inner_rule(f.surface, dir_, rule, F == nullptr, rules)) {
-    if (!F_ && polynomial_along(f.surface, 0) && polynomial_along(f.surface, 1))
+  FaceIntegrand(const TrimmedFace& f, const Flux& flux, const QuadratureRule& rule, RuleCache& rules)
+      : flux_(flux), dir_(inner_direction(f.surface, rule, flux.F == nullptr)),
+        line_(f.surface, dir_, inner_rule(f.surface, dir_, rule, flux.F == nullptr, rules)) {
+    if (!flux_.F && polynomial_along(f.surface, 0) && polynomial_along(f.surface, 1))
       total_degree_ = 3 * (f.surface.degree(0) + f.surface.degree(1));
   }
 
   // Gauss points integrating the loop integrand along `c` exactly, or 0 when no exact rule of at most
-  // kMaxExactPoints points exists (rational face or curve, or an integrand other than the volume's).
+  // kMaxExactPoints points exists (rational face or curve, or a general F).
   int exact_points(const TensorSpline<1>& c) const {
     if (total_degree_ == 0 || !polynomial(c)) return 0;
     const int n = (total_degree_ * c.degree(0) + 1) / 2;
@@ -87,15 +114,24 @@ public:
   int dir() const { return dir_; }
 
   // The loop integrand at the curve point (u, v) with derivative (du, dv), for the loop's start line x0.
-  double loop_density(double u, double v, double du, double dv, double x0) const {
+  V loop_density(double u, double v, double du, double dv, double x0) const {
     const double x = dir_ == 0 ? u : v, t = dir_ == 0 ? v : u;
     const double lo = std::min(x0, x), hi = std::max(x0, x);
-    double sum = F_ ? line_.general(t, lo, hi, *F_) : line_.linear(t, lo, hi, shift_);
+    V sum = line_sum(t, lo, hi);
     if (x < x0) sum = -sum;
-    return dir_ == 0 ? sum * dv : -sum * du;
+    return dir_ == 0 ? V(sum * dv) : V(-sum * du);
   }
 
 private:
+  V line_sum(double t, double lo, double hi) const {
+    if constexpr (std::is_same_v<V, double>) {
+      return flux_.F ? line_.general(t, lo, hi, *flux_.F) : line_.linear(t, lo, hi, flux_.shift);
+    } else {
+      const std::array<double, 3> a = line_.area(t, lo, hi);
+      return V(a[0], a[1], a[2]);
+    }
+  }
+
   // Points per span of the inner rule along `dir`: the exact rule where the volume's flux is a polynomial.
   static int inner_points(const TensorSpline<2>& s, int dir, const QuadratureRule& rule, bool linear) {
     const int n = static_cast<int>(rule.nodes.size());
@@ -115,16 +151,16 @@ private:
     return n < static_cast<int>(rule.nodes.size()) ? rules(n) : rule;
   }
 
-  const std::function<double(const std::array<double, 3>&)>* F_;
+  Flux flux_;
   int dir_;
-  double shift_;
   LineFlux line_;
   int total_degree_ = 0;  // 3p + 3q when the loop integrand is a polynomial on polynomial curves, else 0
 };
 
 // The loop integral over one smooth piece [a, b] of a trimming curve.
-double piece(const FaceIntegrand& g, const TensorSpline<1>& c, const QuadratureRule& rule, double a, double b, double x0) {
-  double sum = 0;
+template <class V>
+V piece(const FaceIntegrand<V>& g, const TensorSpline<1>& c, const QuadratureRule& rule, double a, double b, double x0) {
+  V sum = zero_value<V>();
   for (std::size_t q = 0; q < rule.nodes.size(); ++q) {
     const double t = a + rule.nodes[q] * (b - a);
     double d[4];
@@ -134,22 +170,24 @@ double piece(const FaceIntegrand& g, const TensorSpline<1>& c, const QuadratureR
   return sum;
 }
 
-double adaptive(const FaceIntegrand& g, const TensorSpline<1>& c, const QuadratureRule& rule, double a, double b,
-                double x0, double whole, double tol, int depth) {
+template <class V>
+V adaptive(const FaceIntegrand<V>& g, const TensorSpline<1>& c, const QuadratureRule& rule, double a, double b,
+           double x0, const V& whole, double tol, int depth) {
   const double m = 0.5 * (a + b);
-  const double left = piece(g, c, rule, a, m, x0), right = piece(g, c, rule, m, b, x0);
+  const V left = piece(g, c, rule, a, m, x0), right = piece(g, c, rule, m, b, x0);
   // Kinks of G (where the curve crosses a knot line of the surface) slow convergence; halving isolates them.
-  if (depth == 0 || std::abs(left + right - whole) <= tol) return left + right;
-  return adaptive(g, c, rule, a, m, x0, left, tol / 2, depth - 1) + adaptive(g, c, rule, m, b, x0, right, tol / 2, depth - 1);
+  if (depth == 0 || flux_magnitude(V(left + right - whole)) <= tol) return V(left + right);
+  return V(adaptive(g, c, rule, a, m, x0, left, tol / 2, depth - 1) + adaptive(g, c, rule, m, b, x0, right, tol / 2, depth - 1));
 }
 
 // The loop integral over [a, b]: the rule's sum, accepted when a rule of half as many points agrees with it
 // within the tolerance (the error of the finer rule is far below their difference on smooth pieces: one piece
 // costs 1.5 rules instead of the 3 of comparing halves), else adaptive halving.
-double estimated(const FaceIntegrand& g, const TensorSpline<1>& c, const QuadratureRule& rule, const QuadratureRule& coarse,
-                 double a, double b, double x0, double tol, int depth) {
-  const double whole = piece(g, c, rule, a, b, x0);
-  if (std::abs(whole - piece(g, c, coarse, a, b, x0)) <= tol) return whole;
+template <class V>
+V estimated(const FaceIntegrand<V>& g, const TensorSpline<1>& c, const QuadratureRule& rule, const QuadratureRule& coarse,
+            double a, double b, double x0, double tol, int depth) {
+  const V whole = piece(g, c, rule, a, b, x0);
+  if (flux_magnitude(V(whole - piece(g, c, coarse, a, b, x0))) <= tol) return whole;
   return adaptive(g, c, rule, a, b, x0, whole, tol, depth);
 }
 
@@ -205,22 +243,22 @@ void knot_line_crossings(const TensorSpline<1>& c, double a, double b, const std
   std::sort(cuts.begin(), cuts.end());
 }
 
-// The face's term: its loop integral, signed by its orientation. `antiderivative` null: F is x - shift (the
-// volume), which allows exact rules (FaceIntegrand).
-double face_integral(const TrimmedFace& f, const std::function<double(const std::array<double, 3>&)>* antiderivative,
-                     double shift, const QuadratureRule& rule, double relative_tolerance) {
+// The face's term: its loop integral, signed by its orientation.
+template <class V>
+V face_integral(const TrimmedFace& f, const Flux& flux, const QuadratureRule& rule, double relative_tolerance) {
   constexpr int kMaxHalvings = 12;
   RuleCache rules;
   const int coarse = std::max(1, static_cast<int>(rule.nodes.size()) / 2);
-  const FaceIntegrand g(f, antiderivative, shift, rule, rules);
-  // The face's scale: |G| is at most |F| |S_u x S_v| times the domain, estimated from the control box.
+  const FaceIntegrand<V> g(f, flux, rule, rules);
+  // The face's scale: |G| is at most |F| |S_u x S_v| times the domain, estimated from the control box (an
+  // area for the area vector, a volume otherwise).
   std::array<double, 3> lo, hi;
   f.surface.control_bounds(lo.data(), hi.data());
   double scale = 0;
   for (int k = 0; k < 3; ++k) scale = std::max(scale, hi[k] - lo[k]);
-  const double tol = relative_tolerance * std::max(scale * scale * scale, 1e-300);
+  const double tol = relative_tolerance * std::max(std::is_same_v<V, double> ? scale * scale * scale : scale * scale, 1e-300);
   const std::array<std::vector<double>, 2> knot_lines{f.surface.knots(0).breakpoints(), f.surface.knots(1).breakpoints()};
-  double face = 0;
+  V face = zero_value<V>();
   std::vector<double> cuts;
   const auto along = [&](const TensorSpline<1>& c, double x0) {
     const std::vector<double> br = c.knots(0).breakpoints();
@@ -257,11 +295,24 @@ double face_integral(const TrimmedFace& f, const std::function<double(const std:
         along(TensorSpline<1>({KnotVector(1, {0, 0, 1, 1})}, 2, false, {end[0], end[1], start[0], start[1]}), x0);
     }
   }
-  return f.reversed ? -face : face;
+  return f.reversed ? V(-face) : face;
 }
 
 void check_options(const TrimmedIntegralOptions& opts) {
   require(opts.points >= 1 && opts.relative_tolerance > 0, "trimmed integral: points must be >= 1 and the tolerance > 0");
+}
+
+// term(i) for i < n on all threads, dealt round-robin (faces differ in cost by orders of magnitude, and
+// neighbours in the list are often alike); the caller sums them in order, so its result does not depend on
+// the thread count. `term` must be pure.
+template <class Term>
+auto parallel_terms(std::ptrdiff_t n, const Term& term) {
+  const int threads = static_cast<int>(std::min<std::ptrdiff_t>(resolve_threads(0), std::max<std::ptrdiff_t>(n, 1)));
+  std::vector<decltype(term(std::ptrdiff_t{0}))> terms(static_cast<std::size_t>(n));
+  parallel_for(threads, threads, [&](std::ptrdiff_t k) {
+    for (std::ptrdiff_t i = k; i < n; i += threads) terms[static_cast<std::size_t>(i)] = term(i);
+  });
+  return terms;
 }
 
 }  // namespace
@@ -271,7 +322,7 @@ double trimmed_integral(const TrimmedBoundary& b, const std::function<double(con
   check_options(opts);
   const QuadratureRule rule = gauss_legendre(opts.points);
   double total = 0;
-  for (const TrimmedFace& f : b.faces) total += face_integral(f, &antiderivative, 0, rule, opts.relative_tolerance);
+  for (const TrimmedFace& f : b.faces) total += face_integral<double>(f, {.F = &antiderivative}, rule, opts.relative_tolerance);
   return total;
 }
 
@@ -284,19 +335,23 @@ double trimmed_volume(const TrimmedBoundary& b, const TrimmedIntegralOptions& op
   }
   check_options(opts);
   const QuadratureRule rule = gauss_legendre(opts.points);
-  // The faces on all threads (F is pure), dealt round-robin (faces differ in cost by orders of magnitude, and
-  // neighbours in the list are often alike); their terms summed in face order, so the result does not depend
-  // on the thread count.
-  const std::ptrdiff_t n = static_cast<std::ptrdiff_t>(b.faces.size());
-  const int threads = static_cast<int>(std::min<std::ptrdiff_t>(resolve_threads(0), std::max<std::ptrdiff_t>(n, 1)));
-  std::vector<double> terms(b.faces.size());
-  parallel_for(threads, threads, [&](std::ptrdiff_t k) {
-    for (std::ptrdiff_t i = k; i < n; i += threads)
-      terms[static_cast<std::size_t>(i)] = face_integral(b.faces[static_cast<std::size_t>(i)], nullptr, x0, rule, opts.relative_tolerance);
-  });
   double total = 0;
-  for (double t : terms) total += t;
+  for (double t : parallel_terms(static_cast<std::ptrdiff_t>(b.faces.size()), [&](std::ptrdiff_t i) {
+         return face_integral<double>(b.faces[static_cast<std::size_t>(i)], {.shift = x0}, rule, opts.relative_tolerance);
+       }))
+    total += t;
   return total;
+}
+
+std::array<double, 3> trimmed_area_vector(const TrimmedBoundary& b, const TrimmedIntegralOptions& opts) {
+  check_options(opts);
+  const QuadratureRule rule = gauss_legendre(opts.points);
+  AreaVec total = AreaVec::Zero();
+  for (const AreaVec& t : parallel_terms(static_cast<std::ptrdiff_t>(b.faces.size()), [&](std::ptrdiff_t i) {
+         return face_integral<AreaVec>(b.faces[static_cast<std::size_t>(i)], {}, rule, opts.relative_tolerance);
+       }))
+    total += t;
+  return {total[0], total[1], total[2]};
 }
 
 }  // namespace trivar

@@ -14,6 +14,7 @@
 // (conics, spheres, tori) converge spectrally. A loop whose curves meet only within a tolerance (a kernel's vertices) is
 // closed across each gap by a straight segment in the face's parameters, so a gap costs its square, not G times
 // its length.
+#include <array>
 #include <functional>
 
 #include "trivar/model/trimmed_boundary.hpp"
@@ -30,6 +31,13 @@ struct TrimmedIntegralOptions {
 // Volume enclosed by the faces (positive for outward orientation); the faces on all threads, the same result
 // for any thread count.
 double trimmed_volume(const TrimmedBoundary& b, const TrimmedIntegralOptions& opts = {});
+
+// The area vector of the faces: the integral of the outward normal over them, sum over faces of S_u x S_v
+// (S_v x S_u when reversed) over the trimmed domain, by the volume's quadrature with all three components in
+// one pass (exact on polynomial faces and curves). Zero for a closed boundary (the divergence theorem for a
+// constant field); else the volume, which trimmed_volume() takes by the divergence theorem with the field
+// (x - x0, 0, 0), changes by -d times its x component when x0 moves by d.
+std::array<double, 3> trimmed_area_vector(const TrimmedBoundary& b, const TrimmedIntegralOptions& opts = {});
 
 // Integral of a density over the enclosed region. `antiderivative(x)` returns int_{x0}^{x[0]} rho(s, x[1],
 // x[2]) ds for a fixed x0 (any value left of the region); it is called from one thread.
