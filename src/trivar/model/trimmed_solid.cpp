@@ -187,36 +187,36 @@ TrimmedSolid::TrimmedSolid(TrimmedBoundary boundary) : boundary_(std::move(bound
           }
           constexpr int kFirst = 4, kMost = 64;
           const double a = br[s], len = br[s + 1] - br[s];
-          int n = kFirst;
-          ends.resize(n + 1);
-          mids.resize(n);
-          for (int k = 0; k <= n; ++k) ends[k] = at(k < n ? a + len * k / n : br[s + 1]);
-          for (int k = 0; k < n; ++k) mids[k] = at(a + len * (k + 0.5) / n);
+          int chords = kFirst;
+          ends.resize(chords + 1);
+          mids.resize(chords);
+          for (int k = 0; k <= chords; ++k) ends[k] = at(k < chords ? a + len * k / chords : br[s + 1]);
+          for (int k = 0; k < chords; ++k) mids[k] = at(a + len * (k + 0.5) / chords);
           for (;;) {
             double worst = 0;
-            for (int k = 0; k < n && worst <= gap_3d; ++k) {
+            for (int k = 0; k < chords && worst <= gap_3d; ++k) {
               const P2 chord{(ends[k][0] + ends[k + 1][0]) / 2, (ends[k][1] + ends[k + 1][1]) / 2};
               P3 x, y;
               surface.eval({mids[k][0], mids[k][1]}, x.data());
               surface.eval({chord[0], chord[1]}, y.data());
               worst = std::max(worst, norm(sub(x, y)));
             }
-            if (worst <= gap_3d || n == kMost) break;
+            if (worst <= gap_3d || chords == kMost) break;
             // Halve every chord: the midpoints become ends, and the quarter points the new midpoints.
-            finer_ends.resize(2 * n + 1);
-            finer_mids.resize(2 * n);
-            for (int k = 0; k < n; ++k) {
+            finer_ends.resize(2 * chords + 1);
+            finer_mids.resize(2 * chords);
+            for (int k = 0; k < chords; ++k) {
               finer_ends[2 * k] = ends[k];
               finer_ends[2 * k + 1] = mids[k];
-              finer_mids[2 * k] = at(a + len * (k + 0.25) / n);
-              finer_mids[2 * k + 1] = at(a + len * (k + 0.75) / n);
+              finer_mids[2 * k] = at(a + len * (k + 0.25) / chords);
+              finer_mids[2 * k + 1] = at(a + len * (k + 0.75) / chords);
             }
-            finer_ends[2 * n] = ends[n];
+            finer_ends[2 * chords] = ends[chords];
             std::swap(ends, finer_ends);
             std::swap(mids, finer_mids);
-            n *= 2;
+            chords *= 2;
           }
-          for (int k = 0; k < n; ++k) {
+          for (int k = 0; k < chords; ++k) {
             const P2 &q = ends[k], &e = ends[k + 1], &m = mids[k];
             trim_slack_[f] = std::max(trim_slack_[f], std::hypot(m[0] - (q[0] + e[0]) / 2, m[1] - (q[1] + e[1]) / 2));
             poly.push_back(q);
