@@ -17,6 +17,7 @@
 #include "trivar/io/threemf_writer.hpp"
 #include "trivar/io/vmodel_json.hpp"
 #include "trivar/io/vmodel_vtk.hpp"
+#include "trivar/model/closure_defect.hpp"
 #include "trivar/model/model_tessellation.hpp"
 #include "trivar/model/trimmed_tessellation.hpp"
 
@@ -280,17 +281,24 @@ void bind_files(py::module_& m) {
                         ? ""
                         : " (" + im.report.unmapped.front().name + ": " + im.report.unmapped.front().reason + ")");
           });
-          models.append(py::module_::import("types").attr("SimpleNamespace")(
-              py::arg("name") = s.name, py::arg("model") = trimmed_model(s.solid),
-              py::arg("kernel_volume") = s.kernel_volume ? py::object(py::float_(*s.kernel_volume)) : py::object(py::none())));
+          const auto ns = py::module_::import("types").attr("SimpleNamespace");
+          const ClosureDefect& c = *s.closure;
+          models.append(ns(py::arg("name") = s.name, py::arg("model") = trimmed_model(s.solid),
+                           py::arg("kernel_volume") = s.kernel_volume ? py::object(py::float_(*s.kernel_volume)) : py::object(py::none()),
+                           py::arg("closure") = ns(py::arg("area_vector") = py::make_tuple(c.area_vector[0], c.area_vector[1], c.area_vector[2]),
+                                                   py::arg("norm") = c.norm, py::arg("area") = c.area, py::arg("relative") = c.relative,
+                                                   py::arg("volume_uncertainty") = c.volume_uncertainty,
+                                                   py::arg("allowance") = c.allowance, py::arg("closed") = c.closed())));
         }
         return models;
       },
       py::arg("path"), py::arg("tolerance") = 0.0, py::arg("kernel_volume") = false,
-      "The B-rep solids of a STEP file, each as (name, model, kernel_volume): a trimmed one-cell V-model (as\n"
-      "`trivar make vmodel`: exact NURBS faces with trimming loops; volume, tessellate, slice and write work on\n"
-      "it) and, with kernel_volume=True, OpenCASCADE's volume of the solid as read (else None). tolerance:\n"
-      "chordal tolerance of the boundary mesh (0: 1e-3 of the part's diagonal).");
+      "The B-rep solids of a STEP file, each as (name, model, kernel_volume, closure): a trimmed one-cell V-model\n"
+      "(as `trivar make vmodel`: exact NURBS faces with trimming loops; volume, tessellate, slice and write work\n"
+      "on it), with kernel_volume=True OpenCASCADE's volume of the solid as read (else None), and how far its\n"
+      "faces are from closing (area_vector: the integral of the outward normal, zero for a closed boundary; norm,\n"
+      "area, relative, volume_uncertainty, allowance, closed). tolerance: chordal tolerance of the boundary mesh\n"
+      "(0: 1e-3 of the part's diagonal).");
 }
 
 }  // namespace trivar::python

@@ -94,6 +94,9 @@ def test_step_brep_import_of_a_box(tmp_path):
     assert m.trimmed and m.num_cells == 1
     # The exact volume, and OpenCASCADE's (another kernel's) reading of the same file.
     assert abs(m.volume() - 30.0) < 1e-9 and abs(solid.kernel_volume - 30.0) < 1e-6
+    # Six faces that close: the integral of the normal vanishes, the area is the box's 62.
+    c = solid.closure
+    assert c.closed and c.norm < 1e-12 * c.area and abs(c.area - 62.0) < 1e-9 and len(c.area_vector) == 3
     t = m.tessellate()
     assert t.watertight and abs(t.volume - 30.0) < 1e-9
     s = m.slice(layer_thickness=1.0, dpi=[25.4], z_range=[0.0, 5.0])
