@@ -7,18 +7,17 @@
 
 #include "trivar/core/error.hpp"
 #include "trivar/tspline/catmull_clark_patch.hpp"
+#include "trivar/tspline/homogeneous_point.hpp"
 #include "trivar/tspline/t_mesh_surface.hpp"
 
 namespace trivar {
 
 namespace {
 
-using WeightedPoint = std::array<double, 4>;  // (w x, w y, w z, w)
-
 // The subdivided neighbourhood: points and counter-clockwise quadrilaterals, with each directed edge's quad and
 // the position of its start in it.
 struct LocalQuads {
-  std::vector<WeightedPoint> points;
+  std::vector<HomogeneousPoint> points;
   std::vector<std::array<int, 4>> quads;
   std::map<std::pair<int, int>, std::pair<int, int>> edges;
 
@@ -86,19 +85,19 @@ SubdividedFace::SubdividedFace(const TMesh& m, int face) {
     for (int k : around(l))
       if (std::find(ring1.begin(), ring1.end(), L(k).face) == ring1.end()) ring1.push_back(L(k).face);
 
-  const auto point = [&](int x) -> WeightedPoint {
+  const auto point = [&](int x) -> HomogeneousPoint {
     const TMeshVertex& mv = m.vertices[static_cast<std::size_t>(x)];
     require(mv.primary >= 0 && mv.block.empty(), [&] {
       return "vertex " + std::to_string(x) + " has no control point or repeated-knot nodes; the local Catmull-Clark step needs one point per vertex";
     });
     const RationalPoint& pt = m.points[static_cast<std::size_t>(mv.primary)];
     rational_ = rational_ || pt.w != 1.0;
-    return {pt.w * pt.xyz[0], pt.w * pt.xyz[1], pt.w * pt.xyz[2], pt.w};
+    return homogeneous(pt);
   };
   const auto face_point = [&](int f) {
-    WeightedPoint s{};
+    HomogeneousPoint s{};
     for (int l : loop_of(f)) {
-      const WeightedPoint x = point(L(l).vertex);
+      const HomogeneousPoint x = point(L(l).vertex);
       for (std::size_t c = 0; c < 4; ++c) s[c] += 0.25 * x[c];
     }
     return s;
@@ -116,10 +115,10 @@ SubdividedFace::SubdividedFace(const TMesh& m, int face) {
       const std::vector<int> ring = around(l0);
       const double n = static_cast<double>(ring.size());
       // (F + 2 R + (n - 3) P) / n = (n - 2) / n P + (sum of edge neighbours + sum of face points) / n^2
-      WeightedPoint r = point(L(l0).vertex);
+      HomogeneousPoint r = point(L(l0).vertex);
       for (double& c : r) c *= (n - 2) / n;
       for (int l : ring) {
-        const WeightedPoint e = point(L(L(l).next).vertex), f = face_point(L(l).face);
+        const HomogeneousPoint e = point(L(L(l).next).vertex), f = face_point(L(l).face);
         for (std::size_t c = 0; c < 4; ++c) r[c] += (e[c] + f[c]) / (n * n);
       }
       return r;
@@ -127,9 +126,9 @@ SubdividedFace::SubdividedFace(const TMesh& m, int face) {
   };
   const auto edge_point = [&](int l) {
     return local(1, L(l).edge, [&] {
-      const WeightedPoint a = point(L(l).vertex), b = point(L(L(l).next).vertex), f = face_point(L(l).face),
+      const HomogeneousPoint a = point(L(l).vertex), b = point(L(L(l).next).vertex), f = face_point(L(l).face),
                           g = face_point(L(L(l).opp).face);
-      WeightedPoint r{};
+      HomogeneousPoint r{};
       for (std::size_t c = 0; c < 4; ++c) r[c] = (a[c] + b[c] + f[c] + g[c]) / 4;
       return r;
     });
@@ -154,7 +153,7 @@ SubdividedFace::SubdividedFace(const TMesh& m, int face) {
     const std::vector<int> idx = gather_local(lq, own[q]);
     z.valence = static_cast<int>(idx.size() - 8) / 2;
     for (int x : idx) {
-      const WeightedPoint& h = lq.points[static_cast<std::size_t>(x)];
+      const HomogeneousPoint& h = lq.points[static_cast<std::size_t>(x)];
       z.points.push_back(h);
       z.wx.push_back({h[0], h[1], h[2]});
       z.w.push_back({h[3], 0, 0});
