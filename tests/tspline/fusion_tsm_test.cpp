@@ -20,6 +20,7 @@
 #include "star_mesh_tsm.hpp"
 #include "face_continuity.hpp"
 #include "support/temp_dir.hpp"
+#include "tsm_error.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/io/tsm_format.hpp"
 #include "trivar/spline/basis.hpp"
@@ -156,18 +157,6 @@ double deviation_from_periodic_bspline(const TMeshSurface& s, const test::QuadMe
         for (int d = 0; d < 9; ++d) worst = std::max(worst, std::abs(a[d] - b[d]));
       }
   return worst;
-}
-
-void expect_fusion_error(const std::string& text, const std::string& fragment) {
-  try {
-    io::parse_tsm(text, "fusion.tsm");
-    ADD_FAILURE() << "no error for " << fragment;
-  } catch (const Error& e) {
-    const std::string msg = e.what();
-    EXPECT_NE(msg.find(fragment), std::string::npos) << msg;
-    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
-    EXPECT_EQ(msg.rfind("fusion.tsm:", 0), 0u) << msg;
-  }
 }
 
 std::string with(std::string s, const std::string& from, const std::string& to) {
@@ -365,23 +354,23 @@ TEST(FusionTsm, OpenGridWithMultipleKnotsIsTheClampedBicubic) {
 
 TEST(FusionTsm, MalformedFilesGiveOneLineErrors) {
   const std::string box = fusion_text(test::cube_mesh(2));
-  expect_fusion_error(with(box, "end-conditions SUBD_CREASES", "end-conditions PERIODIC"), "end-conditions PERIODIC is not read");
-  expect_fusion_error(with(box, "star-knot-rule NURCCS", "star-knot-rule CATMULL_CLARK"), "star-knot-rule CATMULL_CLARK is not read");
+  test::expect_tsm_error(with(box, "end-conditions SUBD_CREASES", "end-conditions PERIODIC"), "end-conditions PERIODIC is not read");
+  test::expect_tsm_error(with(box, "star-knot-rule NURCCS", "star-knot-rule CATMULL_CLARK"), "star-knot-rule CATMULL_CLARK is not read");
   // One control point too many, one deleted.
-  expect_fusion_error(with(box, "\ntol ", "0g 1 2 3 1\n\ntol "), "27 control points (0g) for 26 vertices");
-  expect_fusion_error(with(box, "0g 1 1 1 1\n", "0g\n"), "is deleted");
+  test::expect_tsm_error(with(box, "\ntol ", "0g 1 2 3 1\n\ntol "), "27 control points (0g) for 26 vertices");
+  test::expect_tsm_error(with(box, "0g 1 1 1 1\n", "0g\n"), "is deleted");
   // Dangling ids.
-  expect_fusion_error(with(box, "l 3 1 ", "l 3 99 "), "names a link that does not exist");
-  expect_fusion_error(with(box, "f 4 0", "f 400 0"), "names link 400, which does not exist");
-  expect_fusion_error(with(box, "\nv 0 NORTH", "\nv 0 UP"), "needs an outgoing link and a direction");
+  test::expect_tsm_error(with(box, "l 3 1 ", "l 3 99 "), "names a link that does not exist");
+  test::expect_tsm_error(with(box, "f 4 0", "f 400 0"), "names link 400, which does not exist");
+  test::expect_tsm_error(with(box, "\nv 0 NORTH", "\nv 0 UP"), "needs an outgoing link and a direction");
   // A crease between two faces (the cube has no boundary); on the boundary of a grid, ec records are read.
-  expect_fusion_error(with(box, "\ntol ", "ec 3 0\n\ntol "), "edge 3 between two faces is a crease (ec)");
+  test::expect_tsm_error(with(box, "\ntol ", "ec 3 0\n\ntol "), "edge 3 between two faces is a crease (ec)");
   EXPECT_EQ(io::parse_tsm(with(fusion_text(grid_cage(1, 1)), "\ntol ", "ec 0 0\n\ntol "), "g.tsm").mesh.conditions.size(), 1u);
   // Edge knots other than the intervals.
   std::string ek;
   for (int e = 0; e < 48; ++e) ek += e == 5 ? "106ek 0\n" : "106ek 1\n";
-  expect_fusion_error(with(box, "\ntol ", ek + "\ntol "), "edge knot (106ek) 0 of edge 5 is not its knot interval 1");
-  expect_fusion_error(with(box, "\ntol ", "106ek 1\n\ntol "), "1 edge knot records (106ek) for 48 edges");
+  test::expect_tsm_error(with(box, "\ntol ", ek + "\ntol "), "edge knot (106ek) 0 of edge 5 is not its knot interval 1");
+  test::expect_tsm_error(with(box, "\ntol ", "106ek 1\n\ntol "), "1 edge knot records (106ek) for 48 edges");
 }
 
 // Written back in Fusion's dialect (no grip map, its settings) and read again: the same mesh, settings and

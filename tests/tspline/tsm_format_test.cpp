@@ -3,6 +3,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "tsm_error.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/io/tsm_format.hpp"
 #include "trivar/spline/tensor_spline.hpp"
@@ -74,18 +75,6 @@ TEST(Tsm, GripBlocksAreReadInTheVertexFrame) {
     crlf += c;
   }
   expect_patch(crlf);
-}
-
-void expect_tsm_error(const std::string& text, const std::string& fragment) {
-  try {
-    io::parse_tsm(text, "bad.tsm");
-    ADD_FAILURE() << "no error for " << fragment;
-  } catch (const Error& e) {
-    const std::string msg = e.what();
-    EXPECT_NE(msg.find(fragment), std::string::npos) << msg;
-    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
-    EXPECT_EQ(msg.rfind("bad.tsm:", 0), 0u) << msg;
-  }
 }
 
 // Three quadrilaterals around vertex 0 (a cube corner): the face angles there sum to 270 degrees, a star point.
@@ -161,18 +150,18 @@ l 12 16 10 1 -1 8 1
 
 TEST(Tsm, MalformedFilesGiveOneLineErrors) {
   const std::string p = patch_text();
-  expect_tsm_error(replaced(p, "#TS0200", "#TS0100"), "#TS0200");
-  expect_tsm_error(replaced(p, "l 3 1 4 0 0 0 0", "l 3 1 44 0 0 0 0"), "does not exist");     // dangling id
-  expect_tsm_error(replaced(p, "l 3 1 4 0 0 0 0", "l 3 1 5 0 0 0 0"), "inconsistent links");  // opp not mutual
-  expect_tsm_error(replaced(p, "l 0 2 5 1 0 1 0", "l 0 2 5 1 0 1 1"), "not rectangular");     // three corners
-  expect_tsm_error(replaced(p, "l 0 2 5 1 0 1 0", "l 0 2 5 1 0 1 2"), "not rectangular");     // reflex corner
-  expect_tsm_error(replaced(p, "l 0 2 5 1 0 1 0", "l 0 2 5 1 0 1 -1"), "corner flag -1 is not 0, 1 or 2");  // in a face
-  expect_tsm_error(replaced(p, "l 5 7 0 1 -1 0 2", "l 5 7 0 1 -1 0 -1"), "flag -1 on the boundary at vertex 1");  // a corner's outside
-  expect_tsm_error(replaced(p, "e 1 1", "e 1 2"), "contradictory knot intervals");
-  expect_tsm_error(replaced(p, "e 1 1", "e 1 x"), "bad knot interval");
-  expect_tsm_error(replaced(p, "0m cg 0 4 1 0 0 1 4 5 6", "0m cg 0 4 1 0 0 1 4 5"), "grip block");
-  expect_tsm_error(replaced(p, "0m gvp 3", "0m gv 3"), "neither a primary grip nor in a grip block");
-  expect_tsm_error(replaced(p, "f 0 0", "f 9 0"), "does not exist");
+  test::expect_tsm_error(replaced(p, "#TS0200", "#TS0100"), "#TS0200");
+  test::expect_tsm_error(replaced(p, "l 3 1 4 0 0 0 0", "l 3 1 44 0 0 0 0"), "does not exist");     // dangling id
+  test::expect_tsm_error(replaced(p, "l 3 1 4 0 0 0 0", "l 3 1 5 0 0 0 0"), "inconsistent links");  // opp not mutual
+  test::expect_tsm_error(replaced(p, "l 0 2 5 1 0 1 0", "l 0 2 5 1 0 1 1"), "not rectangular");     // three corners
+  test::expect_tsm_error(replaced(p, "l 0 2 5 1 0 1 0", "l 0 2 5 1 0 1 2"), "not rectangular");     // reflex corner
+  test::expect_tsm_error(replaced(p, "l 0 2 5 1 0 1 0", "l 0 2 5 1 0 1 -1"), "corner flag -1 is not 0, 1 or 2");  // in a face
+  test::expect_tsm_error(replaced(p, "l 5 7 0 1 -1 0 2", "l 5 7 0 1 -1 0 -1"), "flag -1 on the boundary at vertex 1");  // a corner's outside
+  test::expect_tsm_error(replaced(p, "e 1 1", "e 1 2"), "contradictory knot intervals");
+  test::expect_tsm_error(replaced(p, "e 1 1", "e 1 x"), "bad knot interval");
+  test::expect_tsm_error(replaced(p, "0m cg 0 4 1 0 0 1 4 5 6", "0m cg 0 4 1 0 0 1 4 5"), "grip block");
+  test::expect_tsm_error(replaced(p, "0m gvp 3", "0m gv 3"), "neither a primary grip nor in a grip block");
+  test::expect_tsm_error(replaced(p, "f 0 0", "f 9 0"), "does not exist");
 }
 
 }  // namespace
