@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "fusion_cages.hpp"
+#include "knot_grid.hpp"
 #include "star_mesh_tsm.hpp"
 #include "support/temp_dir.hpp"
 #include "tsm_error.hpp"
@@ -331,10 +332,49 @@ TEST(SharpCrease, CreaseLoopRoundATorus) {
   for (int v = 0; v < nu * nv; ++v) tube.at[v] = {static_cast<double>(v / nv), static_cast<double>(v % nv)};
   const double dev = deviation(s, std::vector<int>(static_cast<std::size_t>(nu * nv), 0), {tube});
   EXPECT_LT(dev, 1e-11);
-  const TSplineTriangulation t = tessellate(s, 1e-2);
+  const TSplineTriangulation t = tessellate(s, 5e-2);
   EXPECT_EQ(test::euler_characteristic_of_closed(t), 0);
   std::printf("torus 12 x 8 with a crease loop: max deviation from the natural-end x periodic bicubic %.2e, %zu triangles "
               "closed\n", dev, t.triangles.size());
+}
+
+// Unequal knot intervals, across and along the crease: each side is that side alone as a crease-boundary mesh
+// (crease_ends_test.cpp checks those against the natural-end B-spline), and both give one crease curve.
+TEST(SharpCrease, UnequalIntervalsEachSideIsThatSideAlone) {
+  const std::vector<double> s{0, 0.7, 1.9, 2.4, 3.6, 4.1, 5.5}, t{0, 1.2, 1.7, 3.0, 3.4};
+  const int c = 3, ns = static_cast<int>(s.size()) - 1, nt = static_cast<int>(t.size()) - 1;
+  const test::Grid full = test::grid(s, t);
+  TMesh m = test::crease_mesh(full.quads);
+  const auto column = [&](int v) { return v % (ns + 1); };
+  for (std::size_t l = 0; l < m.links.size(); ++l) {
+    const TMeshLink& k = m.links[l];
+    if (static_cast<int>(l) < k.opp && column(k.vertex) == c && column(m.links[static_cast<std::size_t>(k.opp)].vertex) == c &&
+        k.face >= 0 && m.links[static_cast<std::size_t>(k.opp)].face >= 0)
+      m.conditions.push_back({k.edge, 1});
+  }
+  ASSERT_EQ(crease_edges(m).size(), static_cast<std::size_t>(nt));
+  const TMeshSurface whole(m, 1);
+  const TMeshSurface left(test::crease_mesh(test::grid({s.begin(), s.begin() + c + 1}, t).quads), 1);
+  const TMeshSurface right(test::crease_mesh(test::grid({s.begin() + c, s.end()}, t).quads), 1);
+  double dev = 0, gap = 0;
+  for (int j = 0; j < nt; ++j)
+    for (int i = 0; i < ns; ++i)
+      for (double u : {0.0, 0.4, 1.0})
+        for (double v : {0.0, 0.55, 1.0}) {
+          double a[9], b[9];
+          whole.eval(j * ns + i, u, v, a);
+          if (i < c) left.eval(j * c + i, u, v, b);
+          else right.eval(j * (ns - c) + i - c, u, v, b);
+          for (int d = 0; d < 9; ++d) dev = std::max(dev, std::abs(a[d] - b[d]));
+          if (i == c && u == 0) {
+            whole.eval(j * ns + i - 1, 1, v, b);
+            for (int d = 0; d < 3; ++d) gap = std::max(gap, std::abs(a[d] - b[d]));
+          }
+        }
+  EXPECT_LT(dev, 1e-12);
+  EXPECT_LT(gap, 1e-13);
+  std::printf("grid 6 x 4 with unequal intervals and a crease: max deviation from its sides alone %.2e, gap along the "
+              "crease %.2e\n", dev, gap);
 }
 
 // What the cut does not define, refused with one line naming the vertex (grid 4 x 4: vertex (i, j) = 5 j + i).
