@@ -20,6 +20,7 @@
 
 #include "fusion_cages.hpp"
 #include "knot_grid.hpp"
+#include "osd_reference.hpp"
 #include "star_mesh_tsm.hpp"
 #include "support/temp_dir.hpp"
 #include "tsm_error.hpp"
@@ -375,6 +376,103 @@ TEST(SharpCrease, UnequalIntervalsEachSideIsThatSideAlone) {
   EXPECT_LT(gap, 1e-13);
   std::printf("grid 6 x 4 with unequal intervals and a crease: max deviation from its sides alone %.2e, gap along the "
               "crease %.2e\n", dev, gap);
+}
+
+// OpenSubdiv's limit surface of the cage with the crease edges infinitely sharp (and its boundary a crease with
+// sharp corners, as SUBD_CREASES): the largest difference (value, d/du, d/dv) at 5 x 5 points per face (Bfr's
+// quadrilateral parametrisation is the face's (u, v)), leaving out face corners at vertices of three or five and
+// more faces, where Bfr approximates within 2^-level of the vertex.
+double osd_deviation(const TMeshSurface& s, const test::QuadMesh& cage, const std::function<bool(int, int)>& crease) {
+  test::PolyMesh poly;
+  poly.points = cage.points;
+  std::vector<int> faces_at(cage.points.size(), 0);
+  std::set<std::array<int, 2>> sharp;
+  for (const auto& q : cage.quads) {
+    poly.faces.push_back({q.begin(), q.end()});
+    for (int k = 0; k < 4; ++k) {
+      const int a = q[static_cast<std::size_t>(k)], b = q[static_cast<std::size_t>((k + 1) % 4)];
+      ++faces_at[static_cast<std::size_t>(a)];
+      if (crease(a, b)) sharp.insert({std::min(a, b), std::max(a, b)});
+    }
+  }
+  poly.sharp_edges.assign(sharp.begin(), sharp.end());
+  const test::OsdLimitSurface ref(poly, 10);
+  double worst = 0;
+  for (int f = 0; f < s.num_faces(); ++f)
+    for (double u : {0.0, 0.25, 0.5, 0.75, 1.0})
+      for (double v : {0.0, 0.25, 0.5, 0.75, 1.0}) {
+        if ((u == 0 || u == 1) && (v == 0 || v == 1)) {
+          const int corner = u == 0 ? (v == 0 ? 0 : 3) : (v == 0 ? 1 : 2);
+          const int n = faces_at[static_cast<std::size_t>(cage.quads[static_cast<std::size_t>(f)][static_cast<std::size_t>(corner)])];
+          if (n == 3 || n >= 5) continue;
+        }
+        double a[9];
+        s.eval(f, u, v, a);
+        const test::LimitSample b = ref.eval(f, u, v);
+        for (int k = 0; k < 3; ++k) {
+          const auto ku = static_cast<std::size_t>(k);
+          worst = std::max({worst, std::abs(a[k] - b.p[ku]), std::abs(a[3 + k] - b.du[ku]), std::abs(a[6 + k] - b.dv[ku])});
+        }
+      }
+  return worst;
+}
+
+// The creased cages above against OpenSubdiv's infinitely sharp creases.
+TEST(SharpCrease, OpenSubdivInfinitelySharpCreases) {
+  const Cube cube = moved_cube(3);
+  const auto cube_edges = [&](int a, int b) { return on_cube_edge(cube, 3, a, b); };
+  const double d_cube = osd_deviation(TMeshSurface(io::parse_tsm(creased_text(cube.cage, cube_edges), "c.tsm").mesh, 1), cube.cage, cube_edges);
+  const test::QuadMesh grid = test::grid_cage(7, 4);
+  const auto column = [](int a, int b) { return a % 8 == 4 && b % 8 == 4; };
+  const double d_grid = osd_deviation(TMeshSurface(io::parse_tsm(creased_text(grid, column), "g.tsm").mesh, 1), grid, column);
+  const test::QuadMesh cross = test::grid_cage(6, 4);
+  const auto crossing = [](int a, int b) { return (a % 7 == 3 && b % 7 == 3) || (a / 7 == 2 && b / 7 == 2); };
+  const double d_cross = osd_deviation(TMeshSurface(io::parse_tsm(creased_text(cross, crossing), "x.tsm").mesh, 1), cross, crossing);
+  const test::QuadMesh torus = test::torus_cage(12, 8);
+  const auto loop = [](int a, int b) { return a / 8 == 0 && b / 8 == 0; };
+  const double d_torus = osd_deviation(TMeshSurface(io::parse_tsm(creased_text(torus, loop), "t.tsm").mesh, 1), torus, loop);
+  EXPECT_LT(d_cube, 1e-12);
+  EXPECT_LT(d_grid, 1e-12);
+  EXPECT_LT(d_cross, 1e-12);
+  EXPECT_LT(d_torus, 1e-11);
+  std::printf("against OpenSubdiv's infinitely sharp creases (value, d/du, d/dv): creased cube %.2e, grid with a crease "
+              "%.2e, crossing creases %.2e, torus crease loop %.2e\n", d_cube, d_grid, d_cross, d_torus);
+}
+
+// A crease loop round a cube cage of 14 x 14 faces per side, half way between its star points (7 faces from them,
+// what the Catmull-Clark evaluation near a boundary needs): each half is an open box with four valence-3 star
+// points, against OpenSubdiv; at 6 faces (a cage of 12) the star points' faces are refused with one line naming
+// a crease vertex of the file.
+TEST(SharpCrease, CreaseLoopBetweenStarPoints) {
+  for (int n : {12, 14}) {
+    const Cube cube = moved_cube(n);
+    const auto meridian = [&](int a, int b) { return cube.grid[static_cast<std::size_t>(a)][0] == n / 2 && cube.grid[static_cast<std::size_t>(b)][0] == n / 2; };
+    const io::TsmModel model = io::parse_tsm(creased_text(cube.cage, meridian), "m.tsm");
+    EXPECT_EQ(model.report.crease_edges, 4 * n);
+    if (n == 12) {
+      try {
+        const TMeshSurface s(model.mesh, 1);
+        ADD_FAILURE() << "no error with the crease 6 faces from the star points";
+      } catch (const Error& e) {
+        // The crease vertex named is the file's (one side keeps its number, the others name it).
+        const std::string msg = e.what();
+        const auto at = msg.find("boundary vertex ");
+        ASSERT_NE(at, std::string::npos) << msg;
+        EXPECT_NE(msg.find(" is within 2 rings"), std::string::npos) << msg;
+        const int v = std::stoi(msg.substr(at + 16));
+        ASSERT_LT(v, static_cast<int>(cube.grid.size())) << msg;
+        EXPECT_EQ(cube.grid[static_cast<std::size_t>(v)][0], n / 2) << msg;
+      }
+      continue;
+    }
+    const TMeshSurface s(model.mesh, 1);
+    EXPECT_EQ(s.stars().size(), 8u);
+    EXPECT_EQ(s.count(FaceMethod::star), 24);
+    const double dev = osd_deviation(s, cube.cage, meridian);
+    EXPECT_LT(dev, 1e-12);
+    std::printf("cube 14 x 14 per side with a crease loop between its star points: %d faces exact, %d bicubic, %d at star "
+                "points; against OpenSubdiv %.2e\n", s.count(FaceMethod::exact), s.count(FaceMethod::bicubic), s.count(FaceMethod::star), dev);
+  }
 }
 
 // What the cut does not define, refused with one line naming the vertex (grid 4 x 4: vertex (i, j) = 5 j + i).
