@@ -184,15 +184,19 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
   if (const std::string f = fusion_settings(r); !f.empty()) std::printf("  Fusion 360: %s\n", f.c_str());
   if (creases)
     std::printf("  %d faces, %d sharp crease edges (ec between two faces: infinitely sharp subdivision creases), %d star "
-                "points; the mesh is cut open along the creases (each side a crease boundary): faces are evaluated in their "
-                "own (u, v)\n", faces, r.crease_edges, r.star_points);
+                "points (%zu%s%s after the mesh is cut open along the creases, each side a crease boundary); faces are "
+                "evaluated in their own (u, v)\n", faces, r.crease_edges, r.star_points, s.stars().size(),
+                vs.empty() ? "" : ": ", vs.c_str());
   else if (s.stars().empty())
     std::printf("  %d faces, no star point; a closed strip of faces (a torus, a tube) leaves no global (s, t): faces are "
                 "evaluated in their own (u, v)\n", faces);
   else
     std::printf("  %d faces, %d star points (%s); no global (s, t): faces are evaluated in their own (u, v)\n", faces,
                 r.star_points, vs.c_str());
-  if (s.stars().empty())
+  if (s.stars().empty() && creases)
+    std::printf("  %d faces exact (the T-spline of their side in a chart of their neighbourhood), %d the bicubic B-spline "
+                "cell of their 16 points (round closed strips of a side)\n", s.count(FaceMethod::exact), s.count(FaceMethod::bicubic));
+  else if (s.stars().empty())
     std::printf("  %d faces exact (the T-spline in a chart of their neighbourhood, not wrapping round the strip), %d "
                 "the bicubic B-spline cell of their 16 points (round strips too short for such charts)\n",
                 s.count(FaceMethod::exact), s.count(FaceMethod::bicubic));
