@@ -1,10 +1,11 @@
 #pragma once
-// Quad cages written as Autodesk Fusion 360 writes TSM files (its settings, no grip map, every vertex NORTH), and
-// the check that a triangulation is a closed two-manifold.
+// Quad cages written as Autodesk Fusion 360 writes TSM files (its settings, no grip map, every vertex NORTH), the
+// check that a triangulation is a closed two-manifold, and the command line run on such files.
 #include <gtest/gtest.h>
 
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <numbers>
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include "star_mesh_tsm.hpp"
+#include "support/temp_dir.hpp"
 #include "trivar/tspline/t_spline_tessellation.hpp"
 
 namespace trivar::test {
@@ -135,6 +137,17 @@ inline TSplineTriangulation obj_triangles(const std::string& path) {
     t.triangles.push_back(tri);
   }
   return t;
+}
+
+// The command line with `args`, its output (stdout and stderr) in dir; a non-zero exit fails the test.
+inline std::string run_cli(const TempDir& dir, const std::string& args) {
+  const std::string out = dir.file("out.txt");
+  const int rc = std::system((std::string(TRIVAR_CLI_PATH) + " " + args + " > " + out + " 2>&1").c_str());
+  std::ifstream in(out);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  EXPECT_EQ(rc, 0) << args << "\n" << ss.str();
+  return ss.str();
 }
 
 }  // namespace trivar::test

@@ -330,15 +330,7 @@ TEST(FusionTsm, CommandLine) {
   const std::string torus = dir.file("torus.tsm"), box = dir.file("box.tsm");
   std::ofstream(torus) << fusion_text(torus_cage(16, 10));
   std::ofstream(box) << fusion_text(test::cube_mesh(3), "MULTIPLE_KNOTS");
-  const auto run = [&](const std::string& args) {
-    const std::string out = dir.file("out.txt");
-    const int rc = std::system((std::string(TRIVAR_CLI_PATH) + " " + args + " > " + out + " 2>&1").c_str());
-    std::ifstream in(out);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    EXPECT_EQ(rc, 0) << args << "\n" << ss.str();
-    return ss.str();
-  };
+  const auto run = [&](const std::string& args) { return test::run_cli(dir, args); };
   const std::string info = run("info " + torus);
   EXPECT_NE(info.find("closed strip of faces"), std::string::npos) << info;
   EXPECT_NE(info.find("Fusion 360: end conditions SUBD_CREASES, star knot rule NURCCS, cap type G1CAPS, version 992, "

@@ -552,15 +552,7 @@ TEST(SharpCrease, CommandLine) {
   const std::string box = dir.file("box.tsm");
   const Cube cube = moved_cube(3);
   std::ofstream(box) << creased_text(cube.cage, [&](int a, int b) { return on_cube_edge(cube, 3, a, b); });
-  const auto run = [&](const std::string& args) {
-    const std::string out = dir.file("out.txt");
-    const int rc = std::system((std::string(TRIVAR_CLI_PATH) + " " + args + " > " + out + " 2>&1").c_str());
-    std::ifstream in(out);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    EXPECT_EQ(rc, 0) << args << "\n" << ss.str();
-    return ss.str();
-  };
+  const auto run = [&](const std::string& args) { return test::run_cli(dir, args); };
   const std::string info = run("info " + box);
   EXPECT_NE(info.find("T-spline surface with sharp creases"), std::string::npos) << info;
   EXPECT_NE(info.find("54 faces, 36 sharp crease edges"), std::string::npos) << info;
