@@ -25,6 +25,7 @@
 #include "support/temp_dir.hpp"
 #include "tsm_error.hpp"
 #include "trivar/core/error.hpp"
+#include "trivar/iga/t_mesh_space.hpp"
 #include "trivar/io/tsm_format.hpp"
 #include "trivar/spline/basis.hpp"
 #include "trivar/spline/tensor_spline.hpp"
@@ -473,6 +474,20 @@ TEST(SharpCrease, CreaseLoopBetweenStarPoints) {
     std::printf("cube 14 x 14 per side with a crease loop between its star points: %d faces exact, %d bicubic, %d at star "
                 "points; against OpenSubdiv %.2e\n", s.count(FaceMethod::exact), s.count(FaceMethod::bicubic), s.count(FaceMethod::star), dev);
   }
+}
+
+// The analysis space of the creased cube (iga/t_mesh_space): the patches' sides along a crease are identified by
+// their control points (both sides carry the crease curve), so the C0 space is closed and counts as the cube's
+// without creases: 9 functions inside each face, 3 inside each edge, one per vertex for 2 x 2 elements per face.
+TEST(SharpCrease, AnalysisSpaceIsConformingAcrossTheCreases) {
+  const Cube cube = moved_cube(3);
+  const TMeshSurface s(io::parse_tsm(creased_text(cube.cage, [&](int a, int b) { return on_cube_edge(cube, 3, a, b); }), "c.tsm").mesh, 1);
+  TMeshSpaceReport rep;
+  const TMeshSurfaceSpace space = t_mesh_surface_space(s, 2, &rep);
+  EXPECT_EQ(rep.faces, 54);
+  EXPECT_EQ(rep.corner_patches, 0);
+  EXPECT_TRUE(space.space.boundary.empty());
+  EXPECT_EQ(space.space.num_basis, 9 * 54 + 3 * 108 + 56);
 }
 
 // What the cut does not define, refused with one line naming the vertex (grid 4 x 4: vertex (i, j) = 5 j + i).
