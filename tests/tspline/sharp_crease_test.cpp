@@ -561,7 +561,8 @@ TEST(SharpCrease, ReadWriteReadKeepsTheCreases) {
       }
 }
 
-// The command line: info counts the crease edges, convert writes a closed triangle mesh and the TSM back.
+// The command line: info counts the crease edges, convert writes a closed triangle mesh, STEP patches and the TSM
+// back.
 TEST(SharpCrease, CommandLine) {
   const test::TempDir dir;
   const std::string box = dir.file("box.tsm");
@@ -574,6 +575,7 @@ TEST(SharpCrease, CommandLine) {
   EXPECT_NE(run("info " + box + " --json").find("\"crease_edges\": 36"), std::string::npos);
   run("convert " + box + " " + dir.file("t.obj"));
   EXPECT_EQ(test::euler_characteristic_of_closed(test::obj_triangles(dir.file("t.obj"))), 2);
+  EXPECT_NE(run("convert " + box + " " + dir.file("box.stp")).find("54 Bezier patches (54 exact"), std::string::npos);
   run("convert " + box + " " + dir.file("back.tsm"));
   EXPECT_EQ(io::read_tsm(dir.file("back.tsm")).report.crease_edges, 36);
 }
