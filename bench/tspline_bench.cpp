@@ -300,6 +300,32 @@ void crease_build(benchmark::State& state) {
 }
 BENCHMARK(crease_build)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
+// The per-face surface of a grid of 20 x 20 faces (the valence-4 fan) with a crease boundary: range(0) = 0 as it
+// is, 1 with a sharp crease along its middle line x = 0 (20 edges; sharp_creases cuts the mesh open before
+// crease_ends converts both sides).
+void sharp_crease_build(benchmark::State& state) {
+  const auto q = trivar::test::fan_mesh(4, 10, [](double x, double y) { return 0.05 * x * x - 0.03 * x * y; });
+  trivar::TMesh m = trivar::io::parse_tsm(trivar::test::tsm_text(q), "grid.tsm").mesh;
+  m.end_conditions = trivar::EndConditions::subd_creases;
+  for (trivar::TMeshVertex& v : m.vertices) {
+    v.block.clear();
+    v.block_dims = {};
+  }
+  const auto on_line = [&](int v) { return std::abs(q.points[static_cast<std::size_t>(v)][0]) < 1e-9; };
+  if (state.range(0) == 1)
+    for (std::size_t l = 0; l < m.links.size(); ++l) {
+      const trivar::TMeshLink& k = m.links[l];
+      if (k.vertex >= 0 && static_cast<int>(l) < k.opp && k.face >= 0 && m.links[static_cast<std::size_t>(k.opp)].face >= 0 &&
+          on_line(k.vertex) && on_line(m.links[static_cast<std::size_t>(k.opp)].vertex))
+        m.conditions.push_back({k.edge, 0});
+    }
+  for (auto _ : state) {
+    const trivar::TMeshSurface s(m, 1);
+    benchmark::DoNotOptimize(s.num_faces());
+  }
+}
+BENCHMARK(sharp_crease_build)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
 // Poisson on the planar valence-5 fan with T-junctions (5 x 8 x 8 faces, three split): the patches cut until
 // their sides conform, refined n x n; space build, then assembly + solve.
 trivar::TMeshSurface planar_t_fan() {

@@ -221,7 +221,7 @@ py::object read_tsm_file(const std::string& path, int threads) {
   {
     py::gil_scoped_release release;
     m = io::read_tsm(path);
-    if (m.spline.image.faces.empty()) {  // star points or a closed strip of faces: no global (s, t)
+    if (m.spline.image.faces.empty()) {  // star points, a closed strip of faces or sharp creases: no global (s, t)
       try {
         t.mesh = std::make_shared<const TMeshSurface>(m.mesh, threads);
       } catch (const Error& e) {
@@ -273,6 +273,7 @@ py::dict info(const PyTSpline& t) {
     d["deleted_faces"] = r.holes;
     d["t_junctions"] = r.t_junctions;
     d["star_points"] = r.star_points;
+    d["crease_edges"] = r.crease_edges;
     d["repeated_knot_nodes"] = r.repeated_knot_nodes;
     d["skipped_records"] = r.skipped_records;
     if (!r.end_conditions.empty()) {  // Fusion 360's settings
@@ -349,7 +350,8 @@ void bind_tspline(py::module_& m) {
       .def("info", &info,
            "What `trivar info` reports beyond the properties: format, T-image / T-connect / T-pointset sizes, the\n"
            ".tsm report (units, tolerance, version, deleted_slots, deleted_faces, t_junctions, star_points,\n"
-           "repeated_knot_nodes, skipped_records) and, with star points, the faces by evaluation method.")
+           "crease_edges (sharp creases: ec between two faces of a SUBD_CREASES file), repeated_knot_nodes,\n"
+           "skipped_records) and, with star points, the faces by evaluation method.")
       .def("classify", &classification, py::arg("exact") = true,
            "Analysis-suitability as `trivar info`: t_junctions, gap_t_junctions (of those, facing each other across\n"
            "gaps no ray crosses: no extension), analysis_suitable, crossing_extensions,\n"

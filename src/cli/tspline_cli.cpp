@@ -156,12 +156,16 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
   const int bs = s.boundary_star_faces();
   const int sub = s.count(FaceMethod::subdivided);
   const int faces = s.count(FaceMethod::exact) + s.count(FaceMethod::bicubic) + s.count(FaceMethod::star) + nu + sub;
-  const char* continuity = s.stars().empty() ? "C2 across every edge"
-                                               : "C2 across every edge away from star points; C1 across the edges at a star point; G1 at star points";
-  const char* kind = s.stars().empty() ? "T-spline surface with a closed strip of faces" : "T-spline surface with star points";
+  const bool creases = r.crease_edges > 0;
+  std::string continuity = s.stars().empty() ? "C2 across every edge"
+                                             : "C2 across every edge away from star points; C1 across the edges at a star point; G1 at star points";
+  if (creases) continuity = (s.stars().empty() ? "C2 across every edge" : continuity) + " but the sharp creases, C0 across those";
+  const char* kind = creases ? "T-spline surface with sharp creases"
+                   : s.stars().empty() ? "T-spline surface with a closed strip of faces"
+                                       : "T-spline surface with star points";
   nlohmann::json j{{"file", path}, {"kind", kind}, {"format", l.format},
                    {"degrees", {s.mesh().degree, s.mesh().degree}}, {"units", r.units}, {"faces", faces},
-                   {"star_points", r.star_points}, {"faces_exact", s.count(FaceMethod::exact)},
+                   {"star_points", r.star_points}, {"crease_edges", r.crease_edges}, {"faces_exact", s.count(FaceMethod::exact)},
                    {"faces_catmull_clark", s.count(FaceMethod::bicubic) + s.count(FaceMethod::star) + sub},
                    {"faces_at_star_points", s.count(FaceMethod::star)}, {"faces_at_boundary_star_points", bs},
                    {"faces_non_uniform_catmull_clark", nu}, {"faces_subdivided", sub},
@@ -178,13 +182,21 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
   std::printf("%s: %s (%s), degree %d%s\n", path.c_str(), kind, l.format.c_str(), s.mesh().degree,
               r.units.empty() ? "" : (", units " + r.units).c_str());
   if (const std::string f = fusion_settings(r); !f.empty()) std::printf("  Fusion 360: %s\n", f.c_str());
-  if (s.stars().empty())
+  if (creases)
+    std::printf("  %d faces, %d sharp crease edges (ec between two faces: infinitely sharp subdivision creases), %d star "
+                "points (%zu%s%s after the mesh is cut open along the creases, each side a crease boundary); faces are "
+                "evaluated in their own (u, v)\n", faces, r.crease_edges, r.star_points, s.stars().size(),
+                vs.empty() ? "" : ": ", vs.c_str());
+  else if (s.stars().empty())
     std::printf("  %d faces, no star point; a closed strip of faces (a torus, a tube) leaves no global (s, t): faces are "
                 "evaluated in their own (u, v)\n", faces);
   else
     std::printf("  %d faces, %d star points (%s); no global (s, t): faces are evaluated in their own (u, v)\n", faces,
                 r.star_points, vs.c_str());
-  if (s.stars().empty())
+  if (s.stars().empty() && creases)
+    std::printf("  %d faces exact (the T-spline of their side in a chart of their neighbourhood), %d the bicubic B-spline "
+                "cell of their 16 points (round closed strips of a side)\n", s.count(FaceMethod::exact), s.count(FaceMethod::bicubic));
+  else if (s.stars().empty())
     std::printf("  %d faces exact (the T-spline in a chart of their neighbourhood, not wrapping round the strip), %d "
                 "the bicubic B-spline cell of their 16 points (round strips too short for such charts)\n",
                 s.count(FaceMethod::exact), s.count(FaceMethod::bicubic));
@@ -204,7 +216,7 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
     std::printf("  %d faces at star points on the boundary by Catmull-Clark of the control mesh extended by a ghost layer "
                 "(the T-spline's Bezier end condition where regular; boundary curve the cubic B-spline of the block points "
                 "from two faces along the boundary on)\n", bs);
-  std::printf("  continuity: %s\n", continuity);
+  std::printf("  continuity: %s\n", continuity.c_str());
   if (!r.skipped_records.empty()) {
     std::string k;
     for (const auto& [name, n] : r.skipped_records) k += (k.empty() ? "" : ", ") + name + " x" + std::to_string(n);
@@ -306,7 +318,7 @@ void eval_tspline(const std::string& path, const std::vector<double>& params, in
   const Loaded l = load(path);
   if (l.mesh) {
     require(params.size() == 3 && params[0] == std::floor(params[0]),
-            "eval: " + path + " has star points and no global (s, t): give FACE U V (u, v in [0, 1] on the face)");
+            "eval: " + path + " has no global (s, t) (star points, a closed strip of faces or sharp creases): give FACE U V (u, v in [0, 1] on the face)");
     const int face = static_cast<int>(params[0]);
     require(face >= 0 && face < l.mesh->num_faces() && l.mesh->method(face) != FaceMethod::none,
             "eval: " + path + " has no face " + fmt(params[0]));
@@ -365,7 +377,7 @@ void convert_tspline(const std::string& in, const std::string& out, const TSplin
       return;
     }
     require(ext == ".stl" || ext == ".obj" || ext == ".vtu",
-            "convert: " + in + " has star points (no global (s, t)); it converts to .tsm, to Bezier patches (.g2, .json, .xml, .stp), or to .stl, .obj or .vtu triangles, not '" + ext + "'");
+            "convert: " + in + " has no global (s, t) (star points, a closed strip of faces or sharp creases); it converts to .tsm, to Bezier patches (.g2, .json, .xml, .stp), or to .stl, .obj or .vtu triangles, not '" + ext + "'");
     double tol = o.tolerance;
     if (tol <= 0) {
       Box<3> b = Box<3>::empty();

@@ -188,3 +188,26 @@ def test_fusion_torus(tmp_path):
     uv = np.array([[0.0, 0.0], [0.3, 0.7], [1.0, 1.0]])
     for f in (0, 27, 63):
         assert np.array_equal(back.evaluate_face(f, uv), s.evaluate_face(f, uv))
+
+
+def test_fusion_sharp_creases(tmp_path):
+    """A box cage (3 x 3 faces per side, points moved off the cube) as Fusion 360 writes it with its twelve edges
+    marked `ec` (sharp creases, 36 edges): six open patches meeting at the creases, evaluated per face; the
+    triangles share the creases' points (a closed surface of genus 0); written back with the ec records."""
+    [s] = trivar.read(os.path.join(DATA, "tsm", "fusion_creased_box.tsm"))
+    info = s.info()
+    assert info["crease_edges"] == 36 and info["star_points"] == 8 and s.num_faces == 54
+    m = s.tessellate(tolerance=0.01)
+    edges = np.sort(np.concatenate([m.triangles[:, [0, 1]], m.triangles[:, [1, 2]], m.triangles[:, [2, 0]]]), axis=1)
+    unique, counts = np.unique(edges, axis=0, return_counts=True)
+    assert np.all(counts == 2) and len(m.vertices) - len(unique) + len(m.triangles) == 2
+    # The cube corner at (-1, -1, -1) is interpolated by the three faces there (sharp corners).
+    uv = np.array([[0.0, 0.0]])
+    assert np.allclose(s.evaluate_face(0, uv)[0][0], [-1.0141120008059867, -0.92999999999999994, -1.05], atol=1e-14)
+    s.write(str(tmp_path / "c.tsm"))
+    text = open(tmp_path / "c.tsm").read()
+    assert text.count("\nec ") == 36
+    [back] = trivar.read(str(tmp_path / "c.tsm"))
+    uv = np.array([[0.0, 0.0], [0.3, 0.7], [1.0, 1.0]])
+    for f in (0, 20, 53):
+        assert np.array_equal(back.evaluate_face(f, uv), s.evaluate_face(f, uv))

@@ -17,6 +17,7 @@
 #include <sstream>
 #include <tuple>
 
+#include "fusion_cages.hpp"
 #include "star_mesh_tsm.hpp"
 #include "face_continuity.hpp"
 #include "support/temp_dir.hpp"
@@ -32,104 +33,10 @@
 namespace trivar {
 namespace {
 
-// A quad cage in Fusion's form: links per face in order, an outside link for every boundary edge (its corner flag
-// the outside's angle / 90 - 1 at its start), every interval `interval`, and the settings and tail Fusion writes.
-std::string fusion_text(const test::QuadMesh& m, const std::string& end_conditions = "SUBD_CREASES", double interval = 1.0,
-                        const std::string& extra = "") {
-  struct Link {
-    int prev, next, opp = -1, vertex, face, edge = -1, flag = 0;
-  };
-  std::vector<Link> links;
-  std::map<std::array<int, 2>, int> by_ends;
-  std::vector<int> faces_at(m.points.size(), 0);
-  for (int f = 0; f < static_cast<int>(m.quads.size()); ++f)
-    for (int k = 0; k < 4; ++k) {
-      const int l = static_cast<int>(links.size());
-      links.push_back({4 * f + (k + 3) % 4, 4 * f + (k + 1) % 4, -1, m.quads[f][k], f});
-      by_ends[{m.quads[f][k], m.quads[f][(k + 1) % 4]}] = l;
-      ++faces_at[m.quads[f][k]];
-    }
-  const int inner = static_cast<int>(links.size());
-  std::map<int, int> outside_from;
-  for (int l = 0; l < inner; ++l) {
-    const int a = links[l].vertex, b = links[links[l].next].vertex;
-    if (auto it = by_ends.find({b, a}); it != by_ends.end()) {
-      links[l].opp = it->second;
-      continue;
-    }
-    links[l].opp = static_cast<int>(links.size());
-    outside_from[b] = static_cast<int>(links.size());
-    links.push_back({-1, -1, l, b, -1, -1, 3 - faces_at[b]});
-  }
-  for (int o = inner; o < static_cast<int>(links.size()); ++o) {
-    const int to = links[links[o].opp].vertex;
-    links[o].next = outside_from.at(to);
-    links[outside_from.at(to)].prev = o;
-  }
-  std::vector<int> edge_link;
-  for (int l = 0; l < static_cast<int>(links.size()); ++l)
-    if (links[l].edge < 0) {
-      links[l].edge = links[links[l].opp].edge = static_cast<int>(edge_link.size());
-      edge_link.push_back(l);
-    }
-  std::vector<int> vertex_link(m.points.size(), -1);
-  for (int l = 0; l < static_cast<int>(links.size()); ++l)
-    if (vertex_link[links[l].vertex] < 0) vertex_link[links[l].vertex] = l;
-  std::ostringstream os;
-  os.precision(17);
-  os << "#TS0200\n\ndegree 3\ncap-type G1CAPS\nstar-smoothness 0\nunits 1 meters\nend-conditions " << end_conditions
-     << "\nstar-knot-rule NURCCS\n";
-  for (std::size_t f = 0; f < m.quads.size(); ++f) os << "f " << 4 * f << " 0\n";
-  for (int l : edge_link) os << "e " << l << ' ' << interval << '\n';
-  for (int l : vertex_link) os << "v " << l << " NORTH\n";
-  for (const Link& k : links)
-    os << "l " << k.prev << ' ' << k.next << ' ' << k.opp << ' ' << k.vertex << ' ' << k.face << ' ' << k.edge << ' ' << k.flag << '\n';
-  for (const auto& p : m.points) os << "0g " << p[0] << ' ' << p[1] << ' ' << p[2] << " 1\n";
-  os << extra << "\ntol 1.00000000000000008e-05\ngeom-tol 1.00000000000000008e-05\nver 992\nbehavior-version 14.2.0\n"
-     << "compat-version 13.3.0\n";
-  return os.str();
-}
-
-// The torus cage of nu x nv vertices, vertex (i, j) = i * nv + j, face (i, j) from vertex (i, j) along i, then j.
-test::QuadMesh torus_cage(int nu, int nv) {
-  test::QuadMesh m;
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j) {
-      const double a = 2 * std::numbers::pi * i / nu, b = 2 * std::numbers::pi * j / nv;
-      // A little unevenness, so that no symmetry hides a wrong wrap.
-      const double r = 6 + 0.7 * std::sin(3.0 * a + b);
-      m.points.push_back({(20 + r * std::cos(b)) * std::cos(a), (20 + r * std::cos(b)) * std::sin(a), r * std::sin(b)});
-    }
-  const auto id = [&](int i, int j) { return ((i % nu + nu) % nu) * nv + (j % nv + nv) % nv; };
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j) m.quads.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
-  return m;
-}
-
-// An open grid of nx x ny faces in the plane z = height(x, y), vertex (i, j) = j * (nx + 1) + i.
-test::QuadMesh grid_cage(int nx, int ny) {
-  test::QuadMesh m;
-  for (int j = 0; j <= ny; ++j)
-    for (int i = 0; i <= nx; ++i) m.points.push_back({1.0 * i, 1.3 * j, std::sin(1.0 + i - 0.5 * j) + 0.1 * i * j});
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) {
-      const int a = j * (nx + 1) + i;
-      m.quads.push_back({a, a + 1, a + nx + 2, a + nx + 1});
-    }
-  return m;
-}
-
-// Triangles as closed, orientable, two-manifold, and their Euler characteristic V - E + F.
-long euler_characteristic_of_closed(const TSplineTriangulation& t) {
-  std::map<std::array<int, 2>, int> directed;
-  for (const auto& tri : t.triangles)
-    for (int k = 0; k < 3; ++k) ++directed[{tri[static_cast<std::size_t>(k)], tri[static_cast<std::size_t>((k + 1) % 3)]}];
-  for (const auto& [e, n] : directed) {
-    EXPECT_EQ(n, 1) << "edge " << e[0] << "-" << e[1] << " used twice in one direction";
-    EXPECT_EQ(directed.count({e[1], e[0]}), 1u) << "boundary edge " << e[0] << "-" << e[1];
-  }
-  return static_cast<long>(t.points.size()) - static_cast<long>(directed.size() / 2) + static_cast<long>(t.triangles.size());
-}
+using test::euler_characteristic_of_closed;
+using test::fusion_text;
+using test::grid_cage;
+using test::torus_cage;
 
 // The largest difference (value, d/du, d/dv) at 20 points per face between the surface of a torus cage
 // (torus_cage) and its periodic uniform bicubic B-spline, built on the unclamped knots -3 .. n + 3 with the
@@ -363,8 +270,12 @@ TEST(FusionTsm, MalformedFilesGiveOneLineErrors) {
   test::expect_tsm_error(with(box, "l 3 1 ", "l 3 99 "), "names a link that does not exist");
   test::expect_tsm_error(with(box, "f 4 0", "f 400 0"), "names link 400, which does not exist");
   test::expect_tsm_error(with(box, "\nv 0 NORTH", "\nv 0 UP"), "needs an outgoing link and a direction");
-  // A crease between two faces (the cube has no boundary); on the boundary of a grid, ec records are read.
-  test::expect_tsm_error(with(box, "\ntol ", "ec 3 0\n\ntol "), "edge 3 between two faces is a crease (ec)");
+  // A crease between two faces: with MULTIPLE_KNOTS an error; one crease edge alone (the cube has no boundary)
+  // ends inside the mesh at both ends (sharp_crease_test.cpp has the accepted creases). On the boundary of a
+  // grid, ec records are read.
+  test::expect_tsm_error(with(with(box, "\ntol ", "ec 3 0\n\ntol "), "SUBD_CREASES", "MULTIPLE_KNOTS"),
+                         "edge 3 between two faces is a crease (ec); creases inside the mesh are read with end-conditions SUBD_CREASES, not MULTIPLE_KNOTS");
+  test::expect_tsm_error(with(box, "\ntol ", "ec 3 0\n\ntol "), "(a dart");
   EXPECT_EQ(io::parse_tsm(with(fusion_text(grid_cage(1, 1)), "\ntol ", "ec 0 0\n\ntol "), "g.tsm").mesh.conditions.size(), 1u);
   // Edge knots other than the intervals.
   std::string ek;
@@ -419,15 +330,7 @@ TEST(FusionTsm, CommandLine) {
   const std::string torus = dir.file("torus.tsm"), box = dir.file("box.tsm");
   std::ofstream(torus) << fusion_text(torus_cage(16, 10));
   std::ofstream(box) << fusion_text(test::cube_mesh(3), "MULTIPLE_KNOTS");
-  const auto run = [&](const std::string& args) {
-    const std::string out = dir.file("out.txt");
-    const int rc = std::system((std::string(TRIVAR_CLI_PATH) + " " + args + " > " + out + " 2>&1").c_str());
-    std::ifstream in(out);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    EXPECT_EQ(rc, 0) << args << "\n" << ss.str();
-    return ss.str();
-  };
+  const auto run = [&](const std::string& args) { return test::run_cli(dir, args); };
   const std::string info = run("info " + torus);
   EXPECT_NE(info.find("closed strip of faces"), std::string::npos) << info;
   EXPECT_NE(info.find("Fusion 360: end conditions SUBD_CREASES, star knot rule NURCCS, cap type G1CAPS, version 992, "
@@ -438,23 +341,7 @@ TEST(FusionTsm, CommandLine) {
   for (const std::string& file : {torus, box}) {
     run("convert " + file + " " + dir.file("t.obj"));
     // The OBJ's vertices and faces: closed, of the cage's Euler characteristic.
-    std::ifstream obj(dir.file("t.obj"));
-    TSplineTriangulation t;
-    for (std::string line; std::getline(obj, line);) {
-      std::istringstream ls(line);
-      std::string kind;
-      ls >> kind;
-      if (kind == "v") t.points.push_back({});
-      if (kind != "f") continue;
-      std::array<int, 3> tri{};
-      for (int& x : tri) {
-        std::string w;
-        ls >> w;
-        x = std::stoi(w) - 1;
-      }
-      t.triangles.push_back(tri);
-    }
-    EXPECT_EQ(euler_characteristic_of_closed(t), file == torus ? 0 : 2);
+    EXPECT_EQ(euler_characteristic_of_closed(test::obj_triangles(dir.file("t.obj"))), file == torus ? 0 : 2);
   }
   EXPECT_NE(run("convert " + box + " " + dir.file("t.stp")).find("Bezier patches"), std::string::npos);
   run("convert " + box + " " + dir.file("t.tsm"));

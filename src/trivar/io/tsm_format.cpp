@@ -12,6 +12,7 @@
 #include "trivar/core/error.hpp"
 #include "trivar/core/number_format.hpp"
 #include "trivar/tspline/crease_ends.hpp"
+#include "trivar/tspline/sharp_creases.hpp"
 
 namespace trivar::io {
 
@@ -314,11 +315,12 @@ TsmModel TsmReader::build() {
     if (!r.words.empty()) {
       const int e = number<int>(r, 0, "edge");
       if (e < 0 || e >= ne || E[static_cast<std::size_t>(e)].words.empty()) fail(r.line, "edge condition names edge " + std::to_string(e) + ", which does not exist");
-      // Fusion marks crease edges so; on the boundary the end conditions say what the edge is, inside the mesh
-      // it would be a sharp crease, which is not evaluated.
+      // Fusion marks crease edges so; on the boundary the end conditions say what the edge is, inside a
+      // SUBD_CREASES mesh it is a sharp crease (sharp_creases). Bezier end conditions have no crease rule.
       const TMeshLink& k = mesh.links[static_cast<std::size_t>(number<int>(E[static_cast<std::size_t>(e)], 0, "link"))];
-      if (!rep.end_conditions.empty() && k.face >= 0 && mesh.links[static_cast<std::size_t>(k.opp)].face >= 0)
-        fail(r.line, "edge " + std::to_string(e) + " between two faces is a crease (ec); creases inside the mesh are not read");
+      if (ends == EndConditions::bezier && !rep.end_conditions.empty() && k.face >= 0 && mesh.links[static_cast<std::size_t>(k.opp)].face >= 0)
+        fail(r.line, "edge " + std::to_string(e) + " between two faces is a crease (ec); creases inside the mesh are read with end-conditions SUBD_CREASES, not " +
+                         rep.end_conditions);
       mesh.conditions.push_back({e, number<int>(r, 1, "condition") != 0 ? 1 : 0});
     }
   std::vector<int> valence(static_cast<std::size_t>(nv), 0), straight(static_cast<std::size_t>(nv), 0);
@@ -458,6 +460,16 @@ TsmModel TsmReader::build() {
   for (int v = 0; v < nv; ++v)
     if (mesh.vertices[static_cast<std::size_t>(v)].live && valence[static_cast<std::size_t>(v)] == 0)
       fail(V[static_cast<std::size_t>(v)].line, "vertex " + std::to_string(v) + " is on no face");
+  rep.crease_edges = static_cast<int>(crease_edges(mesh).size());
+  if (rep.crease_edges > 0) {
+    // Cut open along its creases the mesh may fall apart: no global (s, t); its sides are checked here.
+    try {
+      (void)bezier_equivalent(mesh);
+    } catch (const Error& e) {
+      fail(e.what());
+    }
+    return out;
+  }
   if (!stars.empty() || has_closed_strip(mesh)) return out;
   try {
     // The mesh stays as read (crease flag, points); the spline is that of its Bezier end conditions.

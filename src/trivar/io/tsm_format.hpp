@@ -22,7 +22,9 @@
 // each vertex has one grip: the `0g` records in vertex order (one per vertex slot, a deleted vertex's a bare
 // `0g`, or one per live vertex). `106ek` records that repeat the edges' knot intervals (-1 for a deleted edge),
 // and the editor's selections 100edges, 100verts, 50000grip, carry no geometry; other edge knots, end
-// conditions or star rules, and `ec` creases between two faces, are errors.
+// conditions or star rules are errors. An `ec` record on an edge between two faces of a SUBD_CREASES mesh makes it a
+// sharp crease (tspline/sharp_creases: an infinitely sharp subdivision crease; an assumption, no such file from
+// Fusion was available): the model is kept as its mesh; with MULTIPLE_KNOTS it is an error.
 //
 // Parametrisation: link directions follow from the corners (each face is a counter-clockwise rectangle, turning
 // left at every corner), propagated across edges; vertex parameters are sums of knot intervals along links
@@ -48,6 +50,7 @@ struct TsmReport {
   int holes = 0;                               // faces without a link (deleted)
   int t_junctions = 0;
   int star_points = 0;
+  int crease_edges = 0;                        // sharp creases: `ec` edges between two faces (SUBD_CREASES)
   int repeated_knot_nodes = 0;                 // nodes added by the Bezier end-condition blocks
   std::map<std::string, int> skipped_records;  // record kind -> count (editor state and unknown kinds)
   // The other settings as written, for writing the model back: Rhino gives cap-type 1 and no more; Fusion 360
@@ -61,7 +64,7 @@ struct TsmReport {
 };
 
 struct TsmModel {
-  TSpline spline;  // the global T-spline; empty (no faces) when the mesh has star points or a closed strip
+  TSpline spline;  // the global T-spline; empty (no faces) when the mesh has star points, a closed strip or creases
   TMesh mesh;      // the half-edge mesh as read
   TsmReport report;
 };

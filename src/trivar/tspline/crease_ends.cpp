@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <array>
+#include <optional>
 #include <string>
 
 #include "trivar/core/error.hpp"
 #include "trivar/tspline/homogeneous_point.hpp"
+#include "trivar/tspline/sharp_creases.hpp"
 
 namespace trivar {
 
@@ -25,7 +27,11 @@ EndWeights end_weights(double d1, double d2) { return {(d1 + d2) / (2 * d1 + d2)
 
 }  // namespace
 
-TMesh bezier_equivalent(const TMesh& m) {
+TMesh bezier_equivalent(const TMesh& given) {
+  // Sharp creases inside the mesh: cut open, their sides crease boundaries like the outer one.
+  std::optional<TMesh> split;
+  if (!crease_edges(given).empty()) split = split_creases(given);
+  const TMesh& m = split ? *split : given;
   // Bezier end conditions: as they are, unless no vertex carries a block (a file without grip map), where the
   // repeated-knot nodes of every boundary vertex sit on the vertex itself.
   const bool crease = m.end_conditions == EndConditions::subd_creases;
@@ -33,7 +39,10 @@ TMesh bezier_equivalent(const TMesh& m) {
   const std::size_t nv = m.vertices.size();
   const int nl = static_cast<int>(m.links.size());
   const auto L = [&](int l) -> const TMeshLink& { return m.links[static_cast<std::size_t>(l)]; };
-  const auto fail = [](int v, const std::string& what) { throw Error("T-mesh: boundary vertex " + std::to_string(v) + " " + what); };
+  const auto fail = [&](int v, const std::string& what) {
+    const int from = m.vertices[static_cast<std::size_t>(v)].split_from;
+    throw Error("T-mesh: boundary vertex " + (from >= 0 ? std::to_string(from) + " (a side of its sharp crease)" : std::to_string(v)) + " " + what);
+  };
   require(!crease || m.degree == 3, [&] { return "T-mesh: subdivision-crease boundaries are defined for degree 3, not " + std::to_string(m.degree); });
   const auto in_face = [&](int l) { return L(l).face >= 0 && m.live_face(L(l).face); };
   std::vector<std::vector<int>> leaving(nv);

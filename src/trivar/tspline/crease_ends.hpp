@@ -34,7 +34,8 @@
 // boundary_ghosts is the natural ghost 2 P0 - mean (the boundary curve there is the Catmull-Clark limit of the
 // extended mesh, as for Bezier end conditions). Intervals next to a star point are taken equal (d2 = d1), as the
 // Catmull-Clark faces there require. A block point the input carries at a boundary vertex is replaced.
-// Refused (trivar::Error, one line naming the vertex): degree other than 3, a boundary vertex on two boundary
+// Sharp creases inside the mesh (sharp_creases) are cut open first, so that their sides are crease boundaries
+// too. Refused (trivar::Error, one line naming the vertex): degree other than 3, a boundary vertex on two boundary
 // arcs, a T-junction on the boundary (no interior edge), a concave corner (270 degrees of faces), a convex
 // corner whose face is not a quadrilateral, a boundary vertex without a control point or frame direction.
 #include "trivar/tspline/t_mesh.hpp"

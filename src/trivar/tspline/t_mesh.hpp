@@ -26,6 +26,7 @@ struct TMeshVertex {
   int primary = -1;                // control point of the vertex's own node
   std::array<int, 4> block_dims{};  // Bezier end-condition block: dK node layers towards frame direction K
   std::vector<int> block;          // its points, wedge K = N, W, S, E holding dK x (d(K+1) + 1) entries; -1: none
+  int split_from = -1;             // a side of a sharp crease vertex cut open (split_creases): that vertex
 };
 
 // How the surface ends at the mesh's boundary. bezier: Bezier end conditions (repeated knots, the boundary curve
@@ -43,7 +44,8 @@ struct TMesh {
   std::vector<double> intervals;        // per edge; 0: a deleted edge
   std::vector<TMeshVertex> vertices;
   std::vector<RationalPoint> points;
-  std::vector<std::array<int, 2>> conditions;  // edge conditions (edge, flag)
+  std::vector<std::array<int, 2>> conditions;  // edge conditions (edge, flag); between two faces of a
+                                               // subd_creases mesh, sharp creases (sharp_creases)
 
   bool live_face(int f) const { return !faces[static_cast<std::size_t>(f)].empty(); }
   // The face's first corner link (flag 0): its canonical frame starts at that link's vertex going east.

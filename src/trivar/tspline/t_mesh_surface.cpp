@@ -375,7 +375,11 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads)
         if (m.faces[static_cast<std::size_t>(g)].size() != 4)
           return "face " + std::to_string(g) + " nearby has a T-junction; the Catmull-Clark evaluation around star points needs none within " + std::to_string(cc_depth) + " rings";
         if (boundary[static_cast<std::size_t>(L(l).vertex)] && !ghosted[static_cast<std::size_t>(L(l).vertex)])
-          return "boundary vertex " + std::to_string(L(l).vertex) + " is within " + std::to_string(cc_depth) + " rings; the Catmull-Clark evaluation around star points needs none";
+        {
+          const int v = L(l).vertex, from = m.vertices[static_cast<std::size_t>(v)].split_from;  // a side of a sharp crease: the file's vertex
+          return "boundary vertex " + (from >= 0 ? std::to_string(from) + " (a side of its sharp crease)" : std::to_string(v)) + " is within " +
+                 std::to_string(cc_depth) + " rings; the Catmull-Clark evaluation around star points needs none";
+        }
         const double d = m.intervals[static_cast<std::size_t>(L(l).edge)];
         if (std::abs(d - d0) > 1e-12 * d0 && unequal.empty())
           unequal = "edge " + std::to_string(L(l).edge) + " nearby has knot interval " + std::to_string(d) + ", not " + std::to_string(d0);

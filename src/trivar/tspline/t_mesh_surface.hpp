@@ -80,7 +80,8 @@ public:
   TMeshSurface(TMeshSurface&&) noexcept;
 
   const TMesh& mesh() const { return mesh_; }
-  // The mesh as given (a crease boundary as read, for writing it back); mesh() when no conversion was needed.
+  // The mesh as given (a crease boundary and sharp creases as read, for writing it back and for the topology
+  // its tessellation welds); mesh() when no conversion was needed.
   const TMesh& source_mesh() const { return source_ ? *source_ : mesh_; }
   int num_faces() const { return static_cast<int>(faces_.size()); }  // mesh face ids (deleted faces: none)
   FaceMethod method(int face) const { return faces_[static_cast<std::size_t>(face)].method; }
