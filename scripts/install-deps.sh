@@ -13,6 +13,7 @@ packages=(
   libxml2-dev  # G+Smo XML files
   clang-14 libclang-rt-14-dev libomp-14-dev
   petsc-dev slepc-dev libopenmpi-dev openmpi-bin  # distributed assembly and solvers (iga_petsc/), mpiexec for its tests
+  libosd-dev  # OpenSubdiv: test reference for Catmull-Clark limit surfaces (tests/tspline)
   valgrind  # bench/check counts the instructions of the hot kernels with callgrind
   # OpenCASCADE: STEP B-rep import, exact NURBS conversion, trimmed-face tessellation, test solids
   libocct-data-exchange-dev libocct-modeling-algorithms-dev libocct-modeling-data-dev libocct-foundation-dev
