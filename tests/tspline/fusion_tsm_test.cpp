@@ -17,6 +17,7 @@
 #include <sstream>
 #include <tuple>
 
+#include "fusion_tsm.hpp"
 #include "star_mesh_tsm.hpp"
 #include "face_continuity.hpp"
 #include "support/temp_dir.hpp"
@@ -31,93 +32,6 @@
 
 namespace trivar {
 namespace {
-
-// A quad cage in Fusion's form: links per face in order, an outside link for every boundary edge (its corner flag
-// the outside's angle / 90 - 1 at its start), every interval `interval`, and the settings and tail Fusion writes.
-std::string fusion_text(const test::QuadMesh& m, const std::string& end_conditions = "SUBD_CREASES", double interval = 1.0,
-                        const std::string& extra = "") {
-  struct Link {
-    int prev, next, opp = -1, vertex, face, edge = -1, flag = 0;
-  };
-  std::vector<Link> links;
-  std::map<std::array<int, 2>, int> by_ends;
-  std::vector<int> faces_at(m.points.size(), 0);
-  for (int f = 0; f < static_cast<int>(m.quads.size()); ++f)
-    for (int k = 0; k < 4; ++k) {
-      const int l = static_cast<int>(links.size());
-      links.push_back({4 * f + (k + 3) % 4, 4 * f + (k + 1) % 4, -1, m.quads[f][k], f});
-      by_ends[{m.quads[f][k], m.quads[f][(k + 1) % 4]}] = l;
-      ++faces_at[m.quads[f][k]];
-    }
-  const int inner = static_cast<int>(links.size());
-  std::map<int, int> outside_from;
-  for (int l = 0; l < inner; ++l) {
-    const int a = links[l].vertex, b = links[links[l].next].vertex;
-    if (auto it = by_ends.find({b, a}); it != by_ends.end()) {
-      links[l].opp = it->second;
-      continue;
-    }
-    links[l].opp = static_cast<int>(links.size());
-    outside_from[b] = static_cast<int>(links.size());
-    links.push_back({-1, -1, l, b, -1, -1, 3 - faces_at[b]});
-  }
-  for (int o = inner; o < static_cast<int>(links.size()); ++o) {
-    const int to = links[links[o].opp].vertex;
-    links[o].next = outside_from.at(to);
-    links[outside_from.at(to)].prev = o;
-  }
-  std::vector<int> edge_link;
-  for (int l = 0; l < static_cast<int>(links.size()); ++l)
-    if (links[l].edge < 0) {
-      links[l].edge = links[links[l].opp].edge = static_cast<int>(edge_link.size());
-      edge_link.push_back(l);
-    }
-  std::vector<int> vertex_link(m.points.size(), -1);
-  for (int l = 0; l < static_cast<int>(links.size()); ++l)
-    if (vertex_link[links[l].vertex] < 0) vertex_link[links[l].vertex] = l;
-  std::ostringstream os;
-  os.precision(17);
-  os << "#TS0200\n\ndegree 3\ncap-type G1CAPS\nstar-smoothness 0\nunits 1 meters\nend-conditions " << end_conditions
-     << "\nstar-knot-rule NURCCS\n";
-  for (std::size_t f = 0; f < m.quads.size(); ++f) os << "f " << 4 * f << " 0\n";
-  for (int l : edge_link) os << "e " << l << ' ' << interval << '\n';
-  for (int l : vertex_link) os << "v " << l << " NORTH\n";
-  for (const Link& k : links)
-    os << "l " << k.prev << ' ' << k.next << ' ' << k.opp << ' ' << k.vertex << ' ' << k.face << ' ' << k.edge << ' ' << k.flag << '\n';
-  for (const auto& p : m.points) os << "0g " << p[0] << ' ' << p[1] << ' ' << p[2] << " 1\n";
-  os << extra << "\ntol 1.00000000000000008e-05\ngeom-tol 1.00000000000000008e-05\nver 992\nbehavior-version 14.2.0\n"
-     << "compat-version 13.3.0\n";
-  return os.str();
-}
-
-// The torus cage of nu x nv vertices, vertex (i, j) = i * nv + j, face (i, j) from vertex (i, j) along i, then j.
-test::QuadMesh torus_cage(int nu, int nv) {
-  test::QuadMesh m;
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j) {
-      const double a = 2 * std::numbers::pi * i / nu, b = 2 * std::numbers::pi * j / nv;
-      // A little unevenness, so that no symmetry hides a wrong wrap.
-      const double r = 6 + 0.7 * std::sin(3.0 * a + b);
-      m.points.push_back({(20 + r * std::cos(b)) * std::cos(a), (20 + r * std::cos(b)) * std::sin(a), r * std::sin(b)});
-    }
-  const auto id = [&](int i, int j) { return ((i % nu + nu) % nu) * nv + (j % nv + nv) % nv; };
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j) m.quads.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
-  return m;
-}
-
-// An open grid of nx x ny faces in the plane z = height(x, y), vertex (i, j) = j * (nx + 1) + i.
-test::QuadMesh grid_cage(int nx, int ny) {
-  test::QuadMesh m;
-  for (int j = 0; j <= ny; ++j)
-    for (int i = 0; i <= nx; ++i) m.points.push_back({1.0 * i, 1.3 * j, std::sin(1.0 + i - 0.5 * j) + 0.1 * i * j});
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) {
-      const int a = j * (nx + 1) + i;
-      m.quads.push_back({a, a + 1, a + nx + 2, a + nx + 1});
-    }
-  return m;
-}
 
 // Triangles as closed, orientable, two-manifold, and their Euler characteristic V - E + F.
 long euler_characteristic_of_closed(const TSplineTriangulation& t) {
@@ -166,7 +80,7 @@ std::string with(std::string s, const std::string& from, const std::string& to) 
 }
 
 TEST(FusionTsm, SettingsAndGripsInVertexOrder) {
-  const std::string text = fusion_text(grid_cage(3, 2), "MULTIPLE_KNOTS", 1.0,
+  const std::string text = test::fusion_text(test::grid_cage(3, 2), "MULTIPLE_KNOTS", 1.0,
                                        "100edges 0 2\n100verts 1\n50000grip 0\n50000grip 3\n106ek 1\n");
   // 106ek: one record per edge slot, repeating the intervals; the grid has 17 edges.
   std::string ek;
@@ -196,8 +110,8 @@ TEST(FusionTsm, SettingsAndGripsInVertexOrder) {
 // the unclamped uniform knots -3 .. n + 3 with the control points wrapped.
 TEST(FusionTsm, TorusIsThePeriodicBicubicBSpline) {
   const int nu = 16, nv = 10;
-  const test::QuadMesh cage = torus_cage(nu, nv);
-  const std::string text = fusion_text(cage);
+  const test::QuadMesh cage = test::torus_cage(nu, nv);
+  const std::string text = test::fusion_text(cage);
   const std::clock_t t0 = std::clock();  // CPU time: the test runs on one thread
   const io::TsmModel m = io::parse_tsm(text, "torus.tsm");
   EXPECT_EQ(m.report.star_points, 0);
@@ -226,8 +140,8 @@ TEST(FusionTsm, TorusIsThePeriodicBicubicBSpline) {
 // has the boundary within two rings of every face: neither, an error.
 TEST(FusionTsm, ShortClosedStrips) {
   for (const auto& [nu, nv, exact] : {std::array<int, 3>{8, 8, 64}, std::array<int, 3>{12, 6, 0}, std::array<int, 3>{4, 3, 0}}) {
-    const test::QuadMesh cage = torus_cage(nu, nv);
-    const TMeshSurface s(io::parse_tsm(fusion_text(cage), "t.tsm").mesh, 1);
+    const test::QuadMesh cage = test::torus_cage(nu, nv);
+    const TMeshSurface s(io::parse_tsm(test::fusion_text(cage), "t.tsm").mesh, 1);
     EXPECT_EQ(s.count(FaceMethod::exact), exact);
     EXPECT_EQ(s.count(FaceMethod::bicubic), nu * nv - exact);
     const double worst = deviation_from_periodic_bspline(s, cage, nu, nv);
@@ -239,7 +153,7 @@ TEST(FusionTsm, ShortClosedStrips) {
     for (int i = 0; i < 7; ++i) tube.points.push_back({std::cos(2 * std::numbers::pi * i / 7), std::sin(2 * std::numbers::pi * i / 7), 0.5 * j});
   for (int j = 0; j < 3; ++j)
     for (int i = 0; i < 7; ++i) tube.quads.push_back({7 * j + i, 7 * j + (i + 1) % 7, 7 * (j + 1) + (i + 1) % 7, 7 * (j + 1) + i});
-  const io::TsmModel m = io::parse_tsm(fusion_text(tube, "MULTIPLE_KNOTS"), "tube.tsm");
+  const io::TsmModel m = io::parse_tsm(test::fusion_text(tube, "MULTIPLE_KNOTS"), "tube.tsm");
   EXPECT_TRUE(m.spline.image.faces.empty());
   try {
     const TMeshSurface s(m.mesh, 1);
@@ -256,7 +170,7 @@ TEST(FusionTsm, ShortClosedStrips) {
 TEST(FusionTsm, BoxCageLimitPoints) {
   const test::QuadMesh cage = test::cube_mesh(3);
   const std::clock_t t0 = std::clock();
-  const io::TsmModel m = io::parse_tsm(fusion_text(cage), "box.tsm");
+  const io::TsmModel m = io::parse_tsm(test::fusion_text(cage), "box.tsm");
   EXPECT_EQ(m.report.star_points, 8);
   EXPECT_TRUE(m.spline.image.faces.empty());
   const TMeshSurface s(m.mesh, 1);
@@ -307,8 +221,8 @@ TEST(FusionTsm, OpenGridWithMultipleKnotsIsTheClampedBicubic) {
   // Without a grip map the boundary's repeated-knot nodes sit on the boundary vertices: the clamped bicubic of the
   // cage with its boundary rows doubled, a partition of unity up to the boundary (evaluated there too).
   for (const auto& [nx, ny] : {std::array<int, 2>{1, 1}, std::array<int, 2>{3, 2}}) {
-    const test::QuadMesh cage = grid_cage(nx, ny);
-    const io::TsmModel m = io::parse_tsm(fusion_text(cage, "MULTIPLE_KNOTS", 0.5), "grid.tsm");
+    const test::QuadMesh cage = test::grid_cage(nx, ny);
+    const io::TsmModel m = io::parse_tsm(test::fusion_text(cage, "MULTIPLE_KNOTS", 0.5), "grid.tsm");
     const TSplineSurface surf(m.spline);
     const auto clamped = [](int n) {
       std::vector<double> k{0, 0, 0};
@@ -353,7 +267,7 @@ TEST(FusionTsm, OpenGridWithMultipleKnotsIsTheClampedBicubic) {
 }
 
 TEST(FusionTsm, MalformedFilesGiveOneLineErrors) {
-  const std::string box = fusion_text(test::cube_mesh(2));
+  const std::string box = test::fusion_text(test::cube_mesh(2));
   test::expect_tsm_error(with(box, "end-conditions SUBD_CREASES", "end-conditions PERIODIC"), "end-conditions PERIODIC is not read");
   test::expect_tsm_error(with(box, "star-knot-rule NURCCS", "star-knot-rule CATMULL_CLARK"), "star-knot-rule CATMULL_CLARK is not read");
   // One control point too many, one deleted.
@@ -365,7 +279,7 @@ TEST(FusionTsm, MalformedFilesGiveOneLineErrors) {
   test::expect_tsm_error(with(box, "\nv 0 NORTH", "\nv 0 UP"), "needs an outgoing link and a direction");
   // A crease between two faces (the cube has no boundary); on the boundary of a grid, ec records are read.
   test::expect_tsm_error(with(box, "\ntol ", "ec 3 0\n\ntol "), "edge 3 between two faces is a crease (ec)");
-  EXPECT_EQ(io::parse_tsm(with(fusion_text(grid_cage(1, 1)), "\ntol ", "ec 0 0\n\ntol "), "g.tsm").mesh.conditions.size(), 1u);
+  EXPECT_EQ(io::parse_tsm(with(test::fusion_text(test::grid_cage(1, 1)), "\ntol ", "ec 0 0\n\ntol "), "g.tsm").mesh.conditions.size(), 1u);
   // Edge knots other than the intervals.
   std::string ek;
   for (int e = 0; e < 48; ++e) ek += e == 5 ? "106ek 0\n" : "106ek 1\n";
@@ -376,8 +290,8 @@ TEST(FusionTsm, MalformedFilesGiveOneLineErrors) {
 // Written back in Fusion's dialect (no grip map, its settings) and read again: the same mesh, settings and
 // surface, bit for bit.
 TEST(FusionTsm, ReadWriteReadRoundTrip) {
-  for (const std::string& text : {fusion_text(torus_cage(12, 10)), fusion_text(test::cube_mesh(3)),
-                                  fusion_text(grid_cage(3, 2), "MULTIPLE_KNOTS", 0.5)}) {
+  for (const std::string& text : {test::fusion_text(test::torus_cage(12, 10)), test::fusion_text(test::cube_mesh(3)),
+                                  test::fusion_text(test::grid_cage(3, 2), "MULTIPLE_KNOTS", 0.5)}) {
     const io::TsmModel a = io::parse_tsm(text, "a.tsm");
     std::ostringstream os;
     io::write_tsm(os, a.mesh, a.report);
@@ -417,8 +331,8 @@ TEST(FusionTsm, ReadWriteReadRoundTrip) {
 TEST(FusionTsm, CommandLine) {
   const test::TempDir dir;
   const std::string torus = dir.file("torus.tsm"), box = dir.file("box.tsm");
-  std::ofstream(torus) << fusion_text(torus_cage(16, 10));
-  std::ofstream(box) << fusion_text(test::cube_mesh(3), "MULTIPLE_KNOTS");
+  std::ofstream(torus) << test::fusion_text(test::torus_cage(16, 10));
+  std::ofstream(box) << test::fusion_text(test::cube_mesh(3), "MULTIPLE_KNOTS");
   const auto run = [&](const std::string& args) {
     const std::string out = dir.file("out.txt");
     const int rc = std::system((std::string(TRIVAR_CLI_PATH) + " " + args + " > " + out + " 2>&1").c_str());
