@@ -133,8 +133,7 @@ QuadMesh prism_cage(int n, int m, int h) {
   for (int r = 1; r < h; ++r)
     for (int v : rim) {
       const double t = double(r) / h, bulge = 1 + 0.15 * std::sin(std::numbers::pi * t);
-      const P3& a = q.points[static_cast<std::size_t>(v)];
-      const P3& b = q.points[static_cast<std::size_t>(v + cap)];
+      const P3 a = q.points[static_cast<std::size_t>(v)], b = q.points[static_cast<std::size_t>(v + cap)];
       ring[static_cast<std::size_t>(r)].push_back(static_cast<int>(q.points.size()));
       q.points.push_back({bulge * a[0], bulge * a[1], (1 - t) * a[2] + t * b[2]});
     }
