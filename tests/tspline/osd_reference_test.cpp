@@ -1,7 +1,8 @@
 // The OpenSubdiv reference (osd_reference) against closed forms, before it is trusted as a reference for trivar:
 // a regular grid is the uniform bicubic B-spline of its points (inside) and of its points extended by the natural
-// ghost rows 2 P0 - P1 (at the boundary, with sharp corners), the limit point of an interior vertex of valence n is
-// the Catmull-Clark limit mask, and the face parametrisations of quadrilaterals and N-gons are as documented.
+// ghost rows 2 P0 - P1 (at the boundary, with sharp corners), a chain of sharp edges is the cubic B-spline of its
+// vertices, the limit point of an interior vertex of valence n is the Catmull-Clark limit mask, and the face
+// parametrisations of quadrilaterals and N-gons are as documented.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -94,6 +95,29 @@ TEST(OsdReference, RegularGridIsTheUniformBicubicBSpline) {
         }
   EXPECT_LT(worst_inner, 1e-13);
   EXPECT_LT(worst_boundary, 1e-13);
+}
+
+TEST(OsdReference, SharpEdgeChainIsTheCubicBSplineOfItsVertices) {
+  // A chain of infinitely sharp edges across a grid along row 2: on both sides its limit curve is the uniform
+  // cubic B-spline of the chain's vertices (the crease rules (1, 6, 1) / 8 and midpoints), whatever the rows off it.
+  GridMesh g = grid_mesh(6, 5, 5);
+  for (int i = 0; i < g.nx; ++i) g.mesh.sharp_edges.push_back({g.id(i, 2), g.id(i + 1, 2)});
+  const OsdLimitSurface osd(g.mesh);
+  const OsdLimitSurface smooth(grid_mesh(6, 5, 5).mesh);
+  double worst = 0, off = 0;
+  for (int i = 1; i + 1 < g.nx; ++i)
+    for (double t : {0.0, 0.35, 0.8}) {
+      const auto w = bspline_basis(t);
+      P3 x{};
+      for (int k = 0; k < 4; ++k)
+        for (int c = 0; c < 3; ++c) x[c] += w[k] * g.mesh.points[static_cast<std::size_t>(g.id(i - 1 + k, 2))][c];
+      for (const auto& [face, v] : {std::pair{i + 1 * g.nx, 1.0}, std::pair{i + 2 * g.nx, 0.0}}) {
+        worst = std::max(worst, gap(osd.eval(face, t, v).p, x));
+        off = std::max(off, gap(smooth.eval(face, t, v).p, x));
+      }
+    }
+  EXPECT_LT(worst, 1e-14);
+  EXPECT_GT(off, 1e-3);  // without the crease the rows beside it pull the surface off the curve
 }
 
 TEST(OsdReference, LimitPointOfAnInteriorVertexIsTheCatmullClarkMask) {
