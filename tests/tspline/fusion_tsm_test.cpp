@@ -1,8 +1,8 @@
 // TSM files as Autodesk Fusion 360 writes them (TSplineBody.saveAsTSMFile): its settings (end-conditions,
 // star-knot-rule, the version fields), no grip map (one control point per vertex in vertex order), every vertex
-// direction NORTH, and closed cages. The cages are written here the way the public descriptions of Fusion's
-// output give them (no file exported by Fusion was available): a torus (no star point, periodic both ways), a
-// box (eight valence-3 star points) and open grids.
+// direction NORTH, and closed cages. The cages are written (fusion_cages.hpp) the way the public descriptions of
+// Fusion's output give them (no file exported by Fusion was available): a torus (no star point, periodic both
+// ways), a box (eight valence-3 star points) and open grids.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -73,7 +73,7 @@ std::string with(std::string s, const std::string& from, const std::string& to) 
 }
 
 TEST(FusionTsm, SettingsAndGripsInVertexOrder) {
-  const std::string text = fusion_text(grid_cage(3, 2), "MULTIPLE_KNOTS", 1.0,
+  const std::string text = test::fusion_text(test::grid_cage(3, 2), "MULTIPLE_KNOTS", 1.0,
                                        "100edges 0 2\n100verts 1\n50000grip 0\n50000grip 3\n106ek 1\n");
   // 106ek: one record per edge slot, repeating the intervals; the grid has 17 edges.
   std::string ek;
@@ -103,8 +103,8 @@ TEST(FusionTsm, SettingsAndGripsInVertexOrder) {
 // the unclamped uniform knots -3 .. n + 3 with the control points wrapped.
 TEST(FusionTsm, TorusIsThePeriodicBicubicBSpline) {
   const int nu = 16, nv = 10;
-  const test::QuadMesh cage = torus_cage(nu, nv);
-  const std::string text = fusion_text(cage);
+  const test::QuadMesh cage = test::torus_cage(nu, nv);
+  const std::string text = test::fusion_text(cage);
   const std::clock_t t0 = std::clock();  // CPU time: the test runs on one thread
   const io::TsmModel m = io::parse_tsm(text, "torus.tsm");
   EXPECT_EQ(m.report.star_points, 0);
@@ -133,8 +133,8 @@ TEST(FusionTsm, TorusIsThePeriodicBicubicBSpline) {
 // has the boundary within two rings of every face: neither, an error.
 TEST(FusionTsm, ShortClosedStrips) {
   for (const auto& [nu, nv, exact] : {std::array<int, 3>{8, 8, 64}, std::array<int, 3>{12, 6, 0}, std::array<int, 3>{4, 3, 0}}) {
-    const test::QuadMesh cage = torus_cage(nu, nv);
-    const TMeshSurface s(io::parse_tsm(fusion_text(cage), "t.tsm").mesh, 1);
+    const test::QuadMesh cage = test::torus_cage(nu, nv);
+    const TMeshSurface s(io::parse_tsm(test::fusion_text(cage), "t.tsm").mesh, 1);
     EXPECT_EQ(s.count(FaceMethod::exact), exact);
     EXPECT_EQ(s.count(FaceMethod::bicubic), nu * nv - exact);
     const double worst = deviation_from_periodic_bspline(s, cage, nu, nv);
@@ -146,7 +146,7 @@ TEST(FusionTsm, ShortClosedStrips) {
     for (int i = 0; i < 7; ++i) tube.points.push_back({std::cos(2 * std::numbers::pi * i / 7), std::sin(2 * std::numbers::pi * i / 7), 0.5 * j});
   for (int j = 0; j < 3; ++j)
     for (int i = 0; i < 7; ++i) tube.quads.push_back({7 * j + i, 7 * j + (i + 1) % 7, 7 * (j + 1) + (i + 1) % 7, 7 * (j + 1) + i});
-  const io::TsmModel m = io::parse_tsm(fusion_text(tube, "MULTIPLE_KNOTS"), "tube.tsm");
+  const io::TsmModel m = io::parse_tsm(test::fusion_text(tube, "MULTIPLE_KNOTS"), "tube.tsm");
   EXPECT_TRUE(m.spline.image.faces.empty());
   try {
     const TMeshSurface s(m.mesh, 1);
@@ -163,7 +163,7 @@ TEST(FusionTsm, ShortClosedStrips) {
 TEST(FusionTsm, BoxCageLimitPoints) {
   const test::QuadMesh cage = test::cube_mesh(3);
   const std::clock_t t0 = std::clock();
-  const io::TsmModel m = io::parse_tsm(fusion_text(cage), "box.tsm");
+  const io::TsmModel m = io::parse_tsm(test::fusion_text(cage), "box.tsm");
   EXPECT_EQ(m.report.star_points, 8);
   EXPECT_TRUE(m.spline.image.faces.empty());
   const TMeshSurface s(m.mesh, 1);
@@ -214,8 +214,8 @@ TEST(FusionTsm, OpenGridWithMultipleKnotsIsTheClampedBicubic) {
   // Without a grip map the boundary's repeated-knot nodes sit on the boundary vertices: the clamped bicubic of the
   // cage with its boundary rows doubled, a partition of unity up to the boundary (evaluated there too).
   for (const auto& [nx, ny] : {std::array<int, 2>{1, 1}, std::array<int, 2>{3, 2}}) {
-    const test::QuadMesh cage = grid_cage(nx, ny);
-    const io::TsmModel m = io::parse_tsm(fusion_text(cage, "MULTIPLE_KNOTS", 0.5), "grid.tsm");
+    const test::QuadMesh cage = test::grid_cage(nx, ny);
+    const io::TsmModel m = io::parse_tsm(test::fusion_text(cage, "MULTIPLE_KNOTS", 0.5), "grid.tsm");
     const TSplineSurface surf(m.spline);
     const auto clamped = [](int n) {
       std::vector<double> k{0, 0, 0};
@@ -260,7 +260,7 @@ TEST(FusionTsm, OpenGridWithMultipleKnotsIsTheClampedBicubic) {
 }
 
 TEST(FusionTsm, MalformedFilesGiveOneLineErrors) {
-  const std::string box = fusion_text(test::cube_mesh(2));
+  const std::string box = test::fusion_text(test::cube_mesh(2));
   test::expect_tsm_error(with(box, "end-conditions SUBD_CREASES", "end-conditions PERIODIC"), "end-conditions PERIODIC is not read");
   test::expect_tsm_error(with(box, "star-knot-rule NURCCS", "star-knot-rule CATMULL_CLARK"), "star-knot-rule CATMULL_CLARK is not read");
   // One control point too many, one deleted.
@@ -287,8 +287,8 @@ TEST(FusionTsm, MalformedFilesGiveOneLineErrors) {
 // Written back in Fusion's dialect (no grip map, its settings) and read again: the same mesh, settings and
 // surface, bit for bit.
 TEST(FusionTsm, ReadWriteReadRoundTrip) {
-  for (const std::string& text : {fusion_text(torus_cage(12, 10)), fusion_text(test::cube_mesh(3)),
-                                  fusion_text(grid_cage(3, 2), "MULTIPLE_KNOTS", 0.5)}) {
+  for (const std::string& text : {test::fusion_text(test::torus_cage(12, 10)), test::fusion_text(test::cube_mesh(3)),
+                                  test::fusion_text(test::grid_cage(3, 2), "MULTIPLE_KNOTS", 0.5)}) {
     const io::TsmModel a = io::parse_tsm(text, "a.tsm");
     std::ostringstream os;
     io::write_tsm(os, a.mesh, a.report);

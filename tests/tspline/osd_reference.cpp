@@ -53,7 +53,7 @@ struct OsdLimitSurface::Impl {
   }
 };
 
-OsdLimitSurface::OsdLimitSurface(const PolyMesh& mesh, int approx_level) : impl_(std::make_unique<Impl>()) {
+OsdLimitSurface::OsdLimitSurface(const PolyMesh& mesh) : impl_(std::make_unique<Impl>()) {
   for (const auto& p : mesh.points) impl_->coords.insert(impl_->coords.end(), p.begin(), p.end());
   std::vector<int> sizes, indices, creases;
   for (const auto& f : mesh.faces) {
@@ -80,7 +80,7 @@ OsdLimitSurface::OsdLimitSurface(const PolyMesh& mesh, int approx_level) : impl_
   if (!impl_->refiner) throw std::runtime_error("OpenSubdiv: invalid topology");
 
   osd::Bfr::SurfaceFactory::Options limit;
-  limit.SetApproxLevelSmooth(approx_level).SetApproxLevelSharp(approx_level);
+  limit.SetApproxLevelSmooth(10).SetApproxLevelSharp(10);
   impl_->factory = std::make_unique<osd::Bfr::RefinerSurfaceFactory<>>(*impl_->refiner, limit);
 }
 

@@ -397,7 +397,7 @@ double osd_deviation(const TMeshSurface& s, const test::QuadMesh& cage, const st
     }
   }
   poly.sharp_edges.assign(sharp.begin(), sharp.end());
-  const test::OsdLimitSurface ref(poly, 10);
+  const test::OsdLimitSurface ref(poly);
   double worst = 0;
   for (int f = 0; f < s.num_faces(); ++f)
     for (double u : {0.0, 0.25, 0.5, 0.75, 1.0})

@@ -2,14 +2,15 @@
 // Quad control meshes written as Rhino TSM text (#TS0200 records: f, e, v, l with the corner flags, ec, the
 // grip map and the control points), for the star-point tests: a closed cube of n x n faces per side (eight
 // valence-3 star points), a planar fan of N sectors of m x m faces around one star point of valence N, a
-// half fan of K sectors around a star point on a straight boundary, and a grid with a slit (two star points on the
-// boundary).
+// half fan of K sectors around a star point on a straight boundary, a grid with a slit (two star points on the
+// boundary), and a cube with an edge turned (star points of valence 3 and 5 joined by edges).
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
 #include <numbers>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -159,6 +160,41 @@ inline QuadMesh cube_mesh(int n) {
         }
     }
   return m;
+}
+
+// cube_mesh(4) with the edge between two adjacent quads inside one side turned: its ends drop to valence 3, the
+// ends of the new diagonal rise to 5, each valence-3 point joined by an edge to a valence-5 one. The valence-3
+// points move off the hexagon's centre (else the quads would have straight angles).
+inline QuadMesh turned_edge_cube() {
+  QuadMesh m = cube_mesh(4);
+  const auto inside_side = [&](int v) {
+    int on = 0;
+    for (double x : m.points[static_cast<std::size_t>(v)]) on += std::abs(std::abs(x) - 1) < 1e-12;
+    return on == 1;
+  };
+  for (std::size_t a = 0; a < m.quads.size(); ++a)
+    for (std::size_t b = 0; b < m.quads.size(); ++b)
+      for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) {
+          auto A = m.quads[a], B = m.quads[b];
+          std::rotate(A.begin(), A.begin() + i, A.end());
+          std::rotate(B.begin(), B.begin() + j, B.end());
+          if (A[0] != B[1] || A[1] != B[0]) continue;  // the edge p -> q of A is q -> p in B
+          const std::array<int, 6> h{A[1], A[2], A[3], A[0], B[2], B[3]};  // the hexagon, counter-clockwise
+          if (!std::all_of(h.begin(), h.end(), inside_side)) continue;
+          m.quads[a] = {h[1], h[2], h[3], h[4]};
+          m.quads[b] = {h[4], h[5], h[0], h[1]};
+          std::array<double, 3> c{};
+          for (int v : h)
+            for (std::size_t k = 0; k < 3; ++k) c[k] += m.points[static_cast<std::size_t>(v)][k] / 6;
+          for (int v : {h[0], h[3]})
+            for (std::size_t k = 0; k < 3; ++k) {
+              double& x = m.points[static_cast<std::size_t>(v)][k];
+              x += 0.5 * (x - c[k]);
+            }
+          return m;
+        }
+  throw std::logic_error("turned_edge_cube: no two quads inside one side");
 }
 
 // N sectors of m x m faces around a star point of valence N at the origin; z = height(x, y).

@@ -22,42 +22,6 @@ namespace {
 using P4h = std::array<double, 4>;
 constexpr std::array<std::array<double, 2>, 4> kCornerUv{{{0, 0}, {1, 0}, {1, 1}, {0, 1}}};
 
-// cube_mesh(4) with the edge between two adjacent quads inside one side turned: its ends drop to valence 3, the
-// ends of the new diagonal rise to 5, each valence-3 point joined by an edge to a valence-5 one. The valence-3
-// points move off the hexagon's centre (else the quads would have straight angles).
-test::QuadMesh turned_edge_cube() {
-  test::QuadMesh m = test::cube_mesh(4);
-  const auto inside_side = [&](int v) {
-    int on = 0;
-    for (double x : m.points[static_cast<std::size_t>(v)]) on += std::abs(std::abs(x) - 1) < 1e-12;
-    return on == 1;
-  };
-  for (std::size_t a = 0; a < m.quads.size(); ++a)
-    for (std::size_t b = 0; b < m.quads.size(); ++b)
-      for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 4; ++j) {
-          auto A = m.quads[a], B = m.quads[b];
-          std::rotate(A.begin(), A.begin() + i, A.end());
-          std::rotate(B.begin(), B.begin() + j, B.end());
-          if (A[0] != B[1] || A[1] != B[0]) continue;  // the edge p -> q of A is q -> p in B
-          const std::array<int, 6> h{A[1], A[2], A[3], A[0], B[2], B[3]};  // the hexagon, counter-clockwise
-          if (!std::all_of(h.begin(), h.end(), inside_side)) continue;
-          m.quads[a] = {h[1], h[2], h[3], h[4]};
-          m.quads[b] = {h[4], h[5], h[0], h[1]};
-          std::array<double, 3> c{};
-          for (int v : h)
-            for (std::size_t k = 0; k < 3; ++k) c[k] += m.points[static_cast<std::size_t>(v)][k] / 6;
-          for (int v : {h[0], h[3]})
-            for (std::size_t k = 0; k < 3; ++k) {
-              double& x = m.points[static_cast<std::size_t>(v)][k];
-              x += 0.5 * (x - c[k]);
-            }
-          return m;
-        }
-  ADD_FAILURE() << "no two quads inside one side";
-  return m;
-}
-
 // The closed-form Catmull-Clark limit point of vertex v of valence n: (n^2 v + 4 sum e_j + sum f_j) / (n (n + 5))
 // with e_j its edge neighbours and f_j the diagonal corners of its faces.
 std::array<double, 3> limit_point_formula(const test::QuadMesh& m, int v) {
@@ -145,7 +109,7 @@ TEST(SubdividedFaces, CubeOfOneFacePerSide) {
 }
 
 TEST(SubdividedFaces, AdjacentStarPointsOfValenceThreeAndFive) {
-  const Cage c(turned_edge_cube());
+  const Cage c(test::turned_edge_cube());
   const TMeshSurface s(c.model.mesh);
   std::map<int, int> valences;
   for (int v : s.stars()) ++valences[s.valence(v)];
@@ -287,7 +251,7 @@ TEST(SubdividedFaces, CubeIsItsCageSubdividedOnce) {
 }
 
 TEST(SubdividedFaces, BezierPatchesOfTheQuarters) {
-  const Cage c(turned_edge_cube());
+  const Cage c(test::turned_edge_cube());
   const TMeshSurface s(c.model.mesh);
   const TMeshPatches p = t_mesh_patches(s);
   int on_subdivided = 0;

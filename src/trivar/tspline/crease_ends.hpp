@@ -32,7 +32,9 @@
 // blending functions of the first three rows are tensor products of their rows. A boundary star point takes the
 // equal-interval rule with P1 the mean of the inner ends of its interior edges, so the ghost layer of
 // boundary_ghosts is the natural ghost 2 P0 - mean (the boundary curve there is the Catmull-Clark limit of the
-// extended mesh, as for Bezier end conditions). Intervals next to a star point are taken equal (d2 = d1), as the
+// extended mesh, as for Bezier end conditions). That is not the crease rule at the star point (boundary vertex
+// (P- + 6 P + P+) / 8, which OpenSubdiv applies): there the limit point leaves the B-spline of the boundary points
+// (tests/tspline/osd_comparison_test.cpp measures it). Intervals next to a star point are taken equal (d2 = d1), as the
 // Catmull-Clark faces there require. A block point the input carries at a boundary vertex is replaced.
 // Sharp creases inside the mesh (sharp_creases) are cut open first, so that their sides are crease boundaries
 // too. Refused (trivar::Error, one line naming the vertex): degree other than 3, a boundary vertex on two boundary
