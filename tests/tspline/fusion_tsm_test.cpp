@@ -184,7 +184,9 @@ TEST(FusionTsm, SettingsAndGripsInVertexOrder) {
   EXPECT_EQ(r.compat_version, "13.3.0");
   EXPECT_EQ(r.geom_tolerance, 1e-5);
   EXPECT_FALSE(r.grip_map);
-  EXPECT_EQ(r.skipped_records, (std::map<std::string, int>{{"100edges", 1}, {"100verts", 1}, {"50000grip", 2}, {"106ek", 17}}));
+  EXPECT_EQ(r.skipped_records, (std::map<std::string, int>{{"50000grip", 2}, {"106ek", 17}}));
+  EXPECT_EQ(m.mesh.crease_edges, (std::vector<int>{0, 2}));  // Fusion's crease lists, kept on the mesh
+  EXPECT_EQ(m.mesh.crease_vertices, (std::vector<int>{1}));
   ASSERT_EQ(m.mesh.points.size(), 12u);
   for (int v = 0; v < 12; ++v) EXPECT_EQ(m.mesh.vertices[static_cast<std::size_t>(v)].primary, v);
   EXPECT_FALSE(m.spline.image.faces.empty());  // an open grid: the global T-spline

@@ -44,6 +44,9 @@ struct TMesh {
   std::vector<TMeshVertex> vertices;
   std::vector<RationalPoint> points;
   std::vector<std::array<int, 2>> conditions;  // edge conditions (edge, flag)
+  // Fusion's crease lists (`100edges`, `100verts`): the edges and vertices its editor marks as creased, kept
+  // as read for writing back and for a crease evaluation; the surface (TMeshSurface) does not use them yet.
+  std::vector<int> crease_edges, crease_vertices;
 
   bool live_face(int f) const { return !faces[static_cast<std::size_t>(f)].empty(); }
   // The face's first corner link (flag 0): its canonical frame starts at that link's vertex going east.
