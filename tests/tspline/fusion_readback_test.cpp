@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "face_continuity.hpp"
+#include "triangulation_loops.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/io/tsm_format.hpp"
 #include "trivar/tspline/t_mesh_surface.hpp"
@@ -160,6 +161,9 @@ TEST(FusionReadback, SelfIntersectingBoxLoads) {
   }
   EXPECT_EQ(found, 1);
   EXPECT_EQ(closed_triangulation_euler(tessellate(s, 0.1)), 2);
+  const test::Continuity c = test::continuity(s.mesh(), [&](int f, double u, double v, double* o) { s.eval(f, u, v, o); });
+  EXPECT_LT(c.gap, 1e-12);
+  EXPECT_LT(c.normal_angle, 1e-9);
 }
 
 // The cylinders: 8 points on a circle of radius 10 per ring, rings at z = 0, 10, 20, 30, 40. Round the middle
@@ -241,6 +245,12 @@ TEST(FusionReadback, OpenCylinder) {
     }
   }
   EXPECT_EQ(boundary, 32);
+  // Watertight (no crack: the two boundary circles are the only loops) and C2 across the 56 inner edges.
+  EXPECT_EQ(test::boundary_loops(tessellate(s, 0.1)), 2);
+  const test::Continuity c = test::continuity(s.mesh(), [&](int f, double u, double v, double* o) { s.eval(f, u, v, o); });
+  EXPECT_EQ(c.edges, 56);
+  EXPECT_LT(c.gap, 1e-12);
+  EXPECT_LT(c.c1, 1e-12);
   // Written back as read: no grip map, one point per vertex (the block points are the evaluation's).
   EXPECT_EQ(s.mesh().points.size(), 56u);
   std::ostringstream os;
@@ -270,7 +280,7 @@ void expect_surface_refusal(const TMesh& m, const std::string& fragment) {
 
 // Refused: unequal knot intervals among star points closer than non-uniform Catmull-Clark's three rings (the
 // 3 x 3 box's corners are three edges apart). The `inconsistent knot` box is consistent as Fusion wrote it back:
-// one strip of faces round the box carries 1.02 across (opposite sides equal to 4e-16), the rest 1 to 2e-15,
+// one strip of faces round the box carries 1.02 across (opposite sides equal to 9e-16), the rest 1 to 2.2e-15,
 // and its 108 106ek records repeat the edges' intervals.
 TEST(FusionReadback, UnequalIntervalsAmongCloseStarPointsAreRefused) {
   const io::TsmModel m = read_fusion_file("a3_box3_inconsistent_knot3_readback.tsm");
@@ -281,7 +291,7 @@ TEST(FusionReadback, UnequalIntervalsAmongCloseStarPointsAreRefused) {
     EXPECT_TRUE(std::abs(d - 1) < 3e-15 || std::abs(d - 1.02) < 3e-15) << d;
     wide += std::abs(d - 1.02) < 3e-15;
   }
-  EXPECT_EQ(wide, 12);  // the strip's 12 faces, one edge across each (the other side is its neighbour's)
+  EXPECT_EQ(wide, 12);  // a ring of 12 faces round the box, 12 edges between them
   expect_surface_refusal(m.mesh, "edge 10 nearby has knot interval 1.020000, not 1.000000; non-uniform Catmull-Clark at star point 0 needs its three rings of faces");
 }
 
