@@ -34,16 +34,14 @@ std::array<double, 2> corner_uv(int k) {
   return uv[static_cast<std::size_t>(k)];
 }
 
-// V - E + F of a closed, orientable two-manifold triangulation (every directed edge once, its reverse present).
-long closed_triangulation_euler(const TSplineTriangulation& t) {
-  std::map<std::array<int, 2>, int> directed;
-  for (const auto& tri : t.triangles)
-    for (int k = 0; k < 3; ++k) ++directed[{tri[static_cast<std::size_t>(k)], tri[static_cast<std::size_t>((k + 1) % 3)]}];
-  for (const auto& [e, n] : directed) {
-    EXPECT_EQ(n, 1) << "edge " << e[0] << "-" << e[1] << " used twice in one direction";
-    EXPECT_EQ(directed.count({e[1], e[0]}), 1u) << "boundary edge " << e[0] << "-" << e[1];
-  }
-  return static_cast<long>(t.points.size()) - static_cast<long>(directed.size() / 2) + static_cast<long>(t.triangles.size());
+// A closed cage's surface: its tessellation t watertight with Euler characteristic 2 (a sphere), and across its
+// `edges` edges no gap and one tangent plane.
+void expect_closed_and_tangent_continuous(const TMeshSurface& s, const TSplineTriangulation& t, int edges) {
+  EXPECT_EQ(test::closed_euler_characteristic(t), 2);
+  const test::Continuity c = test::continuity(s.mesh(), [&](int f, double u, double v, double* o) { s.eval(f, u, v, o); });
+  EXPECT_EQ(c.edges, edges);
+  EXPECT_LT(c.gap, 1e-12);
+  EXPECT_LT(c.normal_angle, 1e-9);
 }
 
 // Every star point's limit position, evaluated at the star corner of each of its faces.
@@ -95,11 +93,7 @@ TEST(FusionReadback, BoxInCentimetres) {
     EXPECT_NEAR(lo[i], -10, 1e-12);
     EXPECT_NEAR(hi[i], 10, 1e-12);
   }
-  EXPECT_EQ(closed_triangulation_euler(t), 2);
-  const test::Continuity c = test::continuity(s.mesh(), [&](int f, double u, double v, double* o) { s.eval(f, u, v, o); });
-  EXPECT_EQ(c.edges, 108);
-  EXPECT_LT(c.gap, 1e-12);
-  EXPECT_LT(c.normal_angle, 1e-9);
+  expect_closed_and_tangent_continuous(s, t, 108);
 }
 
 // The same box with Fusion's crease list: the 12 edges round the top side (z = 10) in 100edges, an empty
@@ -160,10 +154,7 @@ TEST(FusionReadback, SelfIntersectingBoxLoads) {
     ++found;
   }
   EXPECT_EQ(found, 1);
-  EXPECT_EQ(closed_triangulation_euler(tessellate(s, 0.1)), 2);
-  const test::Continuity c = test::continuity(s.mesh(), [&](int f, double u, double v, double* o) { s.eval(f, u, v, o); });
-  EXPECT_LT(c.gap, 1e-12);
-  EXPECT_LT(c.normal_angle, 1e-9);
+  expect_closed_and_tangent_continuous(s, tessellate(s, 0.1), 108);
 }
 
 // The cylinders: 8 points on a circle of radius 10 per ring, rings at z = 0, 10, 20, 30, 40. Round the middle
@@ -210,11 +201,7 @@ TEST(FusionReadback, CappedCylinder) {
   // Each cap is four quadrilaterals (centre and three ring points): the odd ring points have three faces.
   EXPECT_EQ(s.stars().size(), 8u);
   expect_octagon_b_spline_ring(s);
-  EXPECT_EQ(closed_triangulation_euler(tessellate(s, 0.1)), 2);
-  const test::Continuity c = test::continuity(s.mesh(), [&](int f, double u, double v, double* o) { s.eval(f, u, v, o); });
-  EXPECT_EQ(c.edges, 80);
-  EXPECT_LT(c.gap, 1e-12);
-  EXPECT_LT(c.normal_angle, 1e-9);
+  expect_closed_and_tangent_continuous(s, tessellate(s, 0.1), 80);
 }
 
 // The open tube: MULTIPLE_KNOTS without a grip map, `ec e 0` on its 16 boundary edges. Its boundary is
@@ -303,7 +290,7 @@ TEST(FusionReadback, UnequalIntervalsAmongCloseStarPointsAreRefused) {
 TEST(FusionReadback, TJunctionsInAStarPointsRingAreRefused) {
   const io::TsmModel m = read_fusion_file("a3_box3_tjunc_ring2_readback.tsm");
   EXPECT_EQ(m.report.t_junctions, 4);
-  expect_surface_refusal(m.mesh, "face 10 has a T-junction at vertex 59 within 1 face rings of star point 16's faces");
+  expect_surface_refusal(m.mesh, "face 10 has a T-junction at vertex 59 within 1 face ring of star point 16's faces");
 }
 
 }  // namespace

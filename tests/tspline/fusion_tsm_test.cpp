@@ -19,6 +19,7 @@
 
 #include "star_mesh_tsm.hpp"
 #include "face_continuity.hpp"
+#include "triangulation_loops.hpp"
 #include "support/temp_dir.hpp"
 #include "tsm_error.hpp"
 #include "trivar/core/error.hpp"
@@ -119,18 +120,6 @@ test::QuadMesh grid_cage(int nx, int ny) {
   return m;
 }
 
-// Triangles as closed, orientable, two-manifold, and their Euler characteristic V - E + F.
-long euler_characteristic_of_closed(const TSplineTriangulation& t) {
-  std::map<std::array<int, 2>, int> directed;
-  for (const auto& tri : t.triangles)
-    for (int k = 0; k < 3; ++k) ++directed[{tri[static_cast<std::size_t>(k)], tri[static_cast<std::size_t>((k + 1) % 3)]}];
-  for (const auto& [e, n] : directed) {
-    EXPECT_EQ(n, 1) << "edge " << e[0] << "-" << e[1] << " used twice in one direction";
-    EXPECT_EQ(directed.count({e[1], e[0]}), 1u) << "boundary edge " << e[0] << "-" << e[1];
-  }
-  return static_cast<long>(t.points.size()) - static_cast<long>(directed.size() / 2) + static_cast<long>(t.triangles.size());
-}
-
 // The largest difference (value, d/du, d/dv) at 20 points per face between the surface of a torus cage
 // (torus_cage) and its periodic uniform bicubic B-spline, built on the unclamped knots -3 .. n + 3 with the
 // control points wrapped.
@@ -216,7 +205,7 @@ TEST(FusionTsm, TorusIsThePeriodicBicubicBSpline) {
   EXPECT_LT(worst, 1e-12);
 
   const TSplineTriangulation t = tessellate(s, 1e-2);
-  EXPECT_EQ(euler_characteristic_of_closed(t), 0);
+  EXPECT_EQ(test::closed_euler_characteristic(t), 0);
   const test::Continuity c = test::continuity(s.mesh(), [&](int f, double u, double v, double* o) { s.eval(f, u, v, o); });
   EXPECT_EQ(c.edges, 2 * nu * nv);
   EXPECT_LT(c.gap, 1e-12);
@@ -297,7 +286,7 @@ TEST(FusionTsm, BoxCageLimitPoints) {
   EXPECT_EQ(c.edges, 108);
   EXPECT_LT(c.gap, 1e-14);
   EXPECT_LT(c.normal_angle, 1e-12);
-  EXPECT_EQ(euler_characteristic_of_closed(tessellate(s, 1e-3)), 2);
+  EXPECT_EQ(test::closed_euler_characteristic(tessellate(s, 1e-3)), 2);
 }
 
 // An open grid with Bezier end conditions (MULTIPLE_KNOTS) and no end-condition blocks: each vertex's blending
@@ -456,7 +445,7 @@ TEST(FusionTsm, CommandLine) {
       }
       t.triangles.push_back(tri);
     }
-    EXPECT_EQ(euler_characteristic_of_closed(t), file == torus ? 0 : 2);
+    EXPECT_EQ(test::closed_euler_characteristic(t), file == torus ? 0 : 2);
   }
   EXPECT_NE(run("convert " + box + " " + dir.file("t.stp")).find("Bezier patches"), std::string::npos);
   run("convert " + box + " " + dir.file("t.tsm"));

@@ -437,8 +437,9 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads)
         for (int l : m.faces[static_cast<std::size_t>(g)])
           if (star < 0 && is_star[static_cast<std::size_t>(L(l).vertex)]) star = L(l).vertex;
     }
-    throw Error("T-mesh: face " + std::to_string(f) + " has a T-junction" + t_junction_at(f) + " within " +
-                std::to_string(star_dist[static_cast<std::size_t>(f)]) + " face rings of star point " + std::to_string(star) +
+    const int d = star_dist[static_cast<std::size_t>(f)];
+    throw Error("T-mesh: face " + std::to_string(f) + " has a T-junction" + t_junction_at(f) + " within " + std::to_string(d) +
+                (d == 1 ? " face ring" : " face rings") + " of star point " + std::to_string(star) +
                 "'s faces; no evaluation rule covers T-junctions within " + std::to_string(reach) +
                 " rings of a star point (the T-spline's blending functions there reach the star point, the Catmull-Clark rules take quadrilaterals without T-junctions)");
   }
