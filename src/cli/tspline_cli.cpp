@@ -145,8 +145,6 @@ bool is_t_spline_file(const std::string& path) {
   return text.find("T_SPLINE_SURFACE(") != std::string::npos || text.find("_T_SPLINE.") != std::string::npos;
 }
 
-// A T-mesh without a global (s, t) (star points, a closed strip of faces): faces by evaluation method, the star
-// points, the continuity the methods give.
 // Fusion's crease lists (100edges, 100verts) as read: kept and written back, not evaluated.
 void add_crease_lists(nlohmann::json& j, const TMesh& m) {
   if (m.crease_edges.empty() && m.crease_vertices.empty()) return;
@@ -160,6 +158,8 @@ void print_crease_lists(const TMesh& m) {
               "without creases)\n", m.crease_edges.size(), m.crease_vertices.size());
 }
 
+// A T-mesh without a global (s, t) (star points, a closed strip of faces): faces by evaluation method, the star
+// points, the continuity the methods give.
 void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
   const TMeshSurface& s = *l.mesh;
   const io::TsmReport& r = *l.tsm;

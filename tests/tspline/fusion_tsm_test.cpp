@@ -1,8 +1,8 @@
 // TSM files as Autodesk Fusion 360 writes them (TSplineBody.saveAsTSMFile): its settings (end-conditions,
 // star-knot-rule, the version fields), no grip map (one control point per vertex in vertex order), every vertex
 // direction NORTH, and closed cages. The cages are written here the way the public descriptions of Fusion's
-// output give them (no file exported by Fusion was available): a torus (no star point, periodic both ways), a
-// box (eight valence-3 star points) and open grids.
+// output give them: a torus (no star point, periodic both ways), a box (eight valence-3 star points) and open
+// grids. Files Fusion itself wrote: fusion_readback_test.cpp.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -21,8 +21,9 @@
 // at star points), and after the grips geom-tol, behavior-version and compat-version. Without `0m` records
 // each vertex has one grip: the `0g` records in vertex order (one per vertex slot, a deleted vertex's a bare
 // `0g`, or one per live vertex). `106ek` records that repeat the edges' knot intervals (-1 for a deleted edge),
-// and the editor's selections 100edges, 100verts, 50000grip, carry no geometry; other edge knots, end
-// conditions or star rules, and `ec` creases between two faces, are errors.
+// and 50000grip carry no geometry; `100edges` / `100verts` list the creased edges and vertices (kept as
+// TMesh::crease_edges / crease_vertices and written back, not evaluated; in Rhino's files editor selections,
+// skipped); other edge knots, end conditions or star rules, and `ec` creases between two faces, are errors.
 //
 // Parametrisation: link directions follow from the corners (each face is a counter-clockwise rectangle, turning
 // left at every corner), propagated across edges; vertex parameters are sums of knot intervals along links
