@@ -145,6 +145,19 @@ bool is_t_spline_file(const std::string& path) {
   return text.find("T_SPLINE_SURFACE(") != std::string::npos || text.find("_T_SPLINE.") != std::string::npos;
 }
 
+// Fusion's crease lists (100edges, 100verts) as read: kept and written back, not evaluated.
+void add_crease_lists(nlohmann::json& j, const TMesh& m) {
+  if (m.crease_edges.empty() && m.crease_vertices.empty()) return;
+  j["crease_edges"] = m.crease_edges;
+  j["crease_vertices"] = m.crease_vertices;
+}
+
+void print_crease_lists(const TMesh& m) {
+  if (m.crease_edges.empty() && m.crease_vertices.empty()) return;
+  std::printf("  creases listed (100edges, 100verts): %zu edges, %zu vertices; not evaluated (the surface is the mesh's "
+              "without creases)\n", m.crease_edges.size(), m.crease_vertices.size());
+}
+
 // A T-mesh without a global (s, t) (star points, a closed strip of faces): faces by evaluation method, the star
 // points, the continuity the methods give.
 void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
@@ -173,6 +186,7 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
                    {"deleted_slots", r.deleted}, {"deleted_faces", r.holes}, {"skipped_records", r.skipped_records}};
   for (const auto& [n, c] : valences) j["star_valences"][std::to_string(n)] = c;
   add_fusion_settings(j, r);
+  add_crease_lists(j, s.source_mesh());
   if (json) {
     std::printf("%s\n", j.dump(2).c_str());
     return;
@@ -217,6 +231,7 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
                 "(the T-spline's Bezier end condition where regular; boundary curve the cubic B-spline of the block points "
                 "from two faces along the boundary on)\n", bs);
   std::printf("  continuity: %s\n", continuity.c_str());
+  print_crease_lists(s.source_mesh());
   if (!r.skipped_records.empty()) {
     std::string k;
     for (const auto& [name, n] : r.skipped_records) k += (k.empty() ? "" : ", ") + name + " x" + std::to_string(n);
@@ -271,6 +286,7 @@ void print_tspline_info(const std::string& path, bool json) {
     j["repeated_knot_nodes"] = r.repeated_knot_nodes;
     j["skipped_records"] = r.skipped_records;
     add_fusion_settings(j, r);
+    add_crease_lists(j, *l.tsm_mesh);
   }
   if (json) {
     std::printf("%s\n", j.dump(2).c_str());
@@ -306,6 +322,7 @@ void print_tspline_info(const std::string& path, bool json) {
                 as.c_str(), cls->crossing_extensions, cls->dual.compatible ? "yes" : "no",
                 cls->rectangular_domain ? "" : "; the domain is not a rectangle", cls->standard ? "yes" : "no",
                 cls->semi_standard ? "yes" : "no", to_string(cls->independence), cls->part42_type().c_str());
+  if (l.tsm_mesh) print_crease_lists(*l.tsm_mesh);
   if (l.tsm && !l.tsm->skipped_records.empty()) {
     std::string s;
     for (const auto& [k, n] : l.tsm->skipped_records) s += (s.empty() ? "" : ", ") + k + " x" + std::to_string(n);

@@ -106,18 +106,6 @@ inline QuadMesh grid_cage(int nx, int ny) {
   return m;
 }
 
-// Triangles as closed, orientable, two-manifold, and their Euler characteristic V - E + F.
-inline long euler_characteristic_of_closed(const TSplineTriangulation& t) {
-  std::map<std::array<int, 2>, int> directed;
-  for (const auto& tri : t.triangles)
-    for (int k = 0; k < 3; ++k) ++directed[{tri[static_cast<std::size_t>(k)], tri[static_cast<std::size_t>((k + 1) % 3)]}];
-  for (const auto& [e, n] : directed) {
-    EXPECT_EQ(n, 1) << "edge " << e[0] << "-" << e[1] << " used twice in one direction";
-    EXPECT_EQ(directed.count({e[1], e[0]}), 1u) << "boundary edge " << e[0] << "-" << e[1];
-  }
-  return static_cast<long>(t.points.size()) - static_cast<long>(directed.size() / 2) + static_cast<long>(t.triangles.size());
-}
-
 // The triangles of an OBJ file (vertices counted, faces of three vertex numbers).
 inline TSplineTriangulation obj_triangles(const std::string& path) {
   std::ifstream obj(path);

@@ -3,6 +3,7 @@
 // direction NORTH, and closed cages. The cages are written (fusion_cages.hpp) the way the public descriptions of
 // Fusion's output give them (no file exported by Fusion was available): a torus (no star point, periodic both
 // ways), a box (eight valence-3 star points) and open grids.
+// Files Fusion itself wrote: fusion_readback_test.cpp.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -20,6 +21,7 @@
 #include "fusion_cages.hpp"
 #include "star_mesh_tsm.hpp"
 #include "face_continuity.hpp"
+#include "triangulation_loops.hpp"
 #include "support/temp_dir.hpp"
 #include "tsm_error.hpp"
 #include "trivar/core/error.hpp"
@@ -33,7 +35,6 @@
 namespace trivar {
 namespace {
 
-using test::euler_characteristic_of_closed;
 using test::fusion_text;
 using test::grid_cage;
 using test::torus_cage;
@@ -74,7 +75,7 @@ std::string with(std::string s, const std::string& from, const std::string& to) 
 
 TEST(FusionTsm, SettingsAndGripsInVertexOrder) {
   const std::string text = test::fusion_text(test::grid_cage(3, 2), "MULTIPLE_KNOTS", 1.0,
-                                       "100edges 0 2\n100verts 1\n50000grip 0\n50000grip 3\n106ek 1\n");
+                                       "100edges 0 3\n100verts 1\n50000grip 0\n50000grip 3\n106ek 1\n");
   // 106ek: one record per edge slot, repeating the intervals; the grid has 17 edges.
   std::string ek;
   for (int e = 0; e < 17; ++e) ek += "106ek 1\n";
@@ -91,7 +92,9 @@ TEST(FusionTsm, SettingsAndGripsInVertexOrder) {
   EXPECT_EQ(r.compat_version, "13.3.0");
   EXPECT_EQ(r.geom_tolerance, 1e-5);
   EXPECT_FALSE(r.grip_map);
-  EXPECT_EQ(r.skipped_records, (std::map<std::string, int>{{"100edges", 1}, {"100verts", 1}, {"50000grip", 2}, {"106ek", 17}}));
+  EXPECT_EQ(r.skipped_records, (std::map<std::string, int>{{"50000grip", 2}, {"106ek", 17}}));
+  EXPECT_EQ(m.mesh.crease_edges, (std::vector<int>{0, 3}));  // Fusion's crease lists (boundary edges), kept on the mesh
+  EXPECT_EQ(m.mesh.crease_vertices, (std::vector<int>{1}));
   ASSERT_EQ(m.mesh.points.size(), 12u);
   for (int v = 0; v < 12; ++v) EXPECT_EQ(m.mesh.vertices[static_cast<std::size_t>(v)].primary, v);
   EXPECT_FALSE(m.spline.image.faces.empty());  // an open grid: the global T-spline
@@ -121,7 +124,7 @@ TEST(FusionTsm, TorusIsThePeriodicBicubicBSpline) {
   EXPECT_LT(worst, 1e-12);
 
   const TSplineTriangulation t = tessellate(s, 1e-2);
-  EXPECT_EQ(euler_characteristic_of_closed(t), 0);
+  EXPECT_EQ(test::closed_euler_characteristic(t), 0);
   const test::Continuity c = test::continuity(s.mesh(), [&](int f, double u, double v, double* o) { s.eval(f, u, v, o); });
   EXPECT_EQ(c.edges, 2 * nu * nv);
   EXPECT_LT(c.gap, 1e-12);
@@ -202,7 +205,7 @@ TEST(FusionTsm, BoxCageLimitPoints) {
   EXPECT_EQ(c.edges, 108);
   EXPECT_LT(c.gap, 1e-14);
   EXPECT_LT(c.normal_angle, 1e-12);
-  EXPECT_EQ(euler_characteristic_of_closed(tessellate(s, 1e-3)), 2);
+  EXPECT_EQ(test::closed_euler_characteristic(tessellate(s, 1e-3)), 2);
 }
 
 // An open grid with Bezier end conditions (MULTIPLE_KNOTS) and no end-condition blocks: each vertex's blending
@@ -276,6 +279,10 @@ TEST(FusionTsm, MalformedFilesGiveOneLineErrors) {
   test::expect_tsm_error(with(with(box, "\ntol ", "ec 3 0\n\ntol "), "SUBD_CREASES", "MULTIPLE_KNOTS"),
                          "edge 3 between two faces is a crease (ec); creases inside the mesh are read with end-conditions SUBD_CREASES, not MULTIPLE_KNOTS");
   test::expect_tsm_error(with(box, "\ntol ", "ec 3 0\n\ntol "), "(a dart");
+  // The same from Fusion's crease list.
+  test::expect_tsm_error(with(with(box, "\ntol ", "100edges 3\n100verts\n\ntol "), "SUBD_CREASES", "MULTIPLE_KNOTS"),
+                         "crease edge 3 lies between two faces; creases inside the mesh are read with end-conditions SUBD_CREASES, not MULTIPLE_KNOTS");
+  test::expect_tsm_error(with(box, "\ntol ", "100edges 3\n100verts\n\ntol "), "(a dart");
   EXPECT_EQ(io::parse_tsm(with(fusion_text(grid_cage(1, 1)), "\ntol ", "ec 0 0\n\ntol "), "g.tsm").mesh.conditions.size(), 1u);
   // Edge knots other than the intervals.
   std::string ek;
@@ -341,7 +348,7 @@ TEST(FusionTsm, CommandLine) {
   for (const std::string& file : {torus, box}) {
     run("convert " + file + " " + dir.file("t.obj"));
     // The OBJ's vertices and faces: closed, of the cage's Euler characteristic.
-    EXPECT_EQ(euler_characteristic_of_closed(test::obj_triangles(dir.file("t.obj"))), file == torus ? 0 : 2);
+    EXPECT_EQ(test::closed_euler_characteristic(test::obj_triangles(dir.file("t.obj"))), file == torus ? 0 : 2);
   }
   EXPECT_NE(run("convert " + box + " " + dir.file("t.stp")).find("Bezier patches"), std::string::npos);
   run("convert " + box + " " + dir.file("t.tsm"));

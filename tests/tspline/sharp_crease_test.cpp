@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "fusion_cages.hpp"
+#include "triangulation_loops.hpp"
 #include "knot_grid.hpp"
 #include "osd_reference.hpp"
 #include "star_mesh_tsm.hpp"
@@ -220,7 +221,7 @@ TEST(SharpCrease, CubeWithCreasedEdgesIsSixNaturalEndPatches) {
   EXPECT_EQ(vertices_checked, 6 * (4 + 8 * 2));  // per side: its 4 corners in one face, 8 edge vertices in two
   EXPECT_LT(crease_rule, 1e-13);
   const TSplineTriangulation t = tessellate(s, 1e-3);
-  EXPECT_EQ(test::euler_characteristic_of_closed(t), 2);
+  EXPECT_EQ(test::closed_euler_characteristic(t), 2);
   std::printf("creased cube 3 x 3 per side: max deviation from the six natural-end patches %.2e, crease rule at %d face "
               "corners %.2e, %zu triangles closed\n", dev, vertices_checked, crease_rule, t.triangles.size());
 }
@@ -335,7 +336,7 @@ TEST(SharpCrease, CreaseLoopRoundATorus) {
   const double dev = deviation(s, std::vector<int>(static_cast<std::size_t>(nu * nv), 0), {tube});
   EXPECT_LT(dev, 1e-11);
   const TSplineTriangulation t = tessellate(s, 5e-2);
-  EXPECT_EQ(test::euler_characteristic_of_closed(t), 0);
+  EXPECT_EQ(test::closed_euler_characteristic(t), 0);
   std::printf("torus 12 x 8 with a crease loop: max deviation from the natural-end x periodic bicubic %.2e, %zu triangles "
               "closed\n", dev, t.triangles.size());
 }
@@ -574,7 +575,7 @@ TEST(SharpCrease, CommandLine) {
   EXPECT_NE(info.find("54 faces, 36 sharp crease edges"), std::string::npos) << info;
   EXPECT_NE(run("info " + box + " --json").find("\"crease_edges\": 36"), std::string::npos);
   run("convert " + box + " " + dir.file("t.obj"));
-  EXPECT_EQ(test::euler_characteristic_of_closed(test::obj_triangles(dir.file("t.obj"))), 2);
+  EXPECT_EQ(test::closed_euler_characteristic(test::obj_triangles(dir.file("t.obj"))), 2);
   EXPECT_NE(run("convert " + box + " " + dir.file("box.stp")).find("54 Bezier patches (54 exact"), std::string::npos);
   run("convert " + box + " " + dir.file("back.tsm"));
   EXPECT_EQ(io::read_tsm(dir.file("back.tsm")).report.crease_edges, 36);

@@ -119,8 +119,11 @@ TsmModel TsmReader::build() {
                                                  "force-bezier-end-conditions", "tol", "ver", "f", "e", "v",
                                                  "l", "ec", "0g", "0m", "end-conditions", "star-knot-rule",
                                                  "geom-tol", "behavior-version", "compat-version", "106ek"};
+  // Fusion lists its creased edges and vertices in 100edges / 100verts; Rhino's records of those names are
+  // editor selections.
+  const bool fusion = setting("end-conditions").has_value();
   for (const auto& [kind, recs] : kinds_)
-    if (std::find(geometry.begin(), geometry.end(), kind) == geometry.end())
+    if (std::find(geometry.begin(), geometry.end(), kind) == geometry.end() && !(fusion && (kind == "100edges" || kind == "100verts")))
       rep.skipped_records[kind] = static_cast<int>(recs.size());
   int degree = 3;
   if (auto r = setting("degree")) degree = number<int>(*r, 0, "degree");
@@ -323,6 +326,26 @@ TsmModel TsmReader::build() {
                          rep.end_conditions);
       mesh.conditions.push_back({e, number<int>(r, 1, "condition") != 0 ? 1 : 0});
     }
+  // Fusion's crease lists: edge and vertex numbers, kept on the mesh. Crease edges between two faces are sharp
+  // creases (sharp_creases), which only a subdivision-crease mesh defines.
+  const auto crease_list = [&](std::string_view kind, int count, const std::vector<Record>& slots, std::vector<int>& out) {
+    if (!fusion) return;
+    for (const Record& r : all(kind))
+      for (std::size_t i = 0; i < r.words.size(); ++i) {
+        const int x = number<int>(r, i, kind == "100edges" ? "crease edge" : "crease vertex");
+        if (x < 0 || x >= count || slots[static_cast<std::size_t>(x)].words.empty())
+          fail(r.line, std::string(kind) + " names " + (kind == "100edges" ? "edge " : "vertex ") + std::to_string(x) + ", which does not exist");
+        if (kind == "100edges" && ends == EndConditions::bezier) {
+          const TMeshLink& k = mesh.links[static_cast<std::size_t>(number<int>(E[static_cast<std::size_t>(x)], 0, "link"))];
+          if (k.face >= 0 && mesh.links[static_cast<std::size_t>(k.opp)].face >= 0)
+            fail(r.line, "crease edge " + std::to_string(x) + " lies between two faces; creases inside the mesh are read with end-conditions SUBD_CREASES, not " +
+                             rep.end_conditions);
+        }
+        out.push_back(x);
+      }
+  };
+  crease_list("100edges", ne, E, mesh.crease_edges);
+  crease_list("100verts", nv, V, mesh.crease_vertices);
   std::vector<int> valence(static_cast<std::size_t>(nv), 0), straight(static_cast<std::size_t>(nv), 0);
   for (int l = 0; l < nl; ++l)
     if (links[static_cast<std::size_t>(l)]) {
@@ -756,6 +779,14 @@ void write_tsm(std::ostream& os, const TMesh& m, const TsmReport& settings) {
       continue;
     }
     write_grip(os, m.points[g]);
+  }
+  // Fusion's crease lists, both records when either has entries (Fusion writes an empty 100verts so).
+  if (fusion && !(m.crease_edges.empty() && m.crease_vertices.empty())) {
+    os << "100edges";
+    for (int e : m.crease_edges) os << ' ' << e;
+    os << "\n100verts";
+    for (int v : m.crease_vertices) os << ' ' << v;
+    os << '\n';
   }
   os << "\ntol ";
   write_number(os, settings.tolerance > 0 ? settings.tolerance : 1e-5);

@@ -21,10 +21,11 @@
 // at star points), and after the grips geom-tol, behavior-version and compat-version. Without `0m` records
 // each vertex has one grip: the `0g` records in vertex order (one per vertex slot, a deleted vertex's a bare
 // `0g`, or one per live vertex). `106ek` records that repeat the edges' knot intervals (-1 for a deleted edge),
-// and the editor's selections 100edges, 100verts, 50000grip, carry no geometry; other edge knots, end
-// conditions or star rules are errors. An `ec` record on an edge between two faces of a SUBD_CREASES mesh makes it a
-// sharp crease (tspline/sharp_creases: an infinitely sharp subdivision crease; an assumption, no such file from
-// Fusion was available): the model is kept as its mesh; with MULTIPLE_KNOTS it is an error.
+// and 50000grip carry no geometry; `100edges` / `100verts` list the creased edges and vertices (Fusion's crease
+// lists, kept as TMesh::crease_edges / crease_vertices and written back; in Rhino's files editor selections,
+// skipped). Other edge knots, end conditions or star rules are errors. In a SUBD_CREASES mesh the listed edges,
+// and an `ec` record on an edge between two faces, are sharp creases (tspline/sharp_creases: infinitely sharp
+// subdivision creases): the model is kept as its mesh; with MULTIPLE_KNOTS they are an error.
 //
 // Parametrisation: link directions follow from the corners (each face is a counter-clockwise rectangle, turning
 // left at every corner), propagated across edges; vertex parameters are sums of knot intervals along links

@@ -25,11 +25,13 @@ std::vector<int> crease_edges(const TMesh& m) {
     if (k.vertex >= 0 && k.edge >= 0 && k.edge < static_cast<int>(link_of.size()) && link_of[static_cast<std::size_t>(k.edge)] < 0)
       link_of[static_cast<std::size_t>(k.edge)] = l;
   }
-  for (const auto& [e, flag] : m.conditions) {
-    if (e < 0 || e >= static_cast<int>(link_of.size()) || link_of[static_cast<std::size_t>(e)] < 0) continue;
+  const auto add = [&](int e) {
+    if (e < 0 || e >= static_cast<int>(link_of.size()) || link_of[static_cast<std::size_t>(e)] < 0) return;
     const int l = link_of[static_cast<std::size_t>(e)];
     if (in_face(m, l) && in_face(m, m.links[static_cast<std::size_t>(l)].opp)) out.push_back(e);
-  }
+  };
+  for (const auto& [e, flag] : m.conditions) add(e);
+  for (int e : m.crease_edges) add(e);
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
   return out;

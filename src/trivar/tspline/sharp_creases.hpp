@@ -1,9 +1,9 @@
 #pragma once
-// Sharp creases inside a T-mesh: the edges an edge condition marks between two faces of a mesh whose boundary is a
-// subdivision crease (EndConditions::subd_creases; Fusion's `ec` records with SUBD_CREASES), taken as infinitely
-// sharp subdivision creases. The surface is C0 across them, the crease curve the cubic B-spline of the crease
-// vertices (with their knot intervals), and each side the surface that side has when the crease is its open
-// crease boundary. So the mesh is cut open along them (`split_creases`): every crease vertex gets one copy per
+// Sharp creases inside a T-mesh: the edges between two faces of a mesh whose boundary is a subdivision crease
+// (EndConditions::subd_creases) that its crease list (TMesh::crease_edges, Fusion's `100edges`) or an edge
+// condition (an `ec` record) marks, taken as infinitely sharp subdivision creases. The surface is C0 across
+// them, the crease curve the cubic B-spline of the crease vertices (with their knot intervals), and each side the
+// surface that side has when the crease is its open crease boundary. So the mesh is cut open along them (`split_creases`): every crease vertex gets one copy per
 // side wedge, each with its own copy of the control point, and the links across a crease become boundary links.
 // The crease boundary conversion (crease_ends) and everything after it then apply unchanged.
 //

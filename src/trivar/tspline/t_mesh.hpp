@@ -46,6 +46,9 @@ struct TMesh {
   std::vector<RationalPoint> points;
   std::vector<std::array<int, 2>> conditions;  // edge conditions (edge, flag); between two faces of a
                                                // subd_creases mesh, sharp creases (sharp_creases)
+  // Fusion's crease lists (`100edges`, `100verts`): the edges and vertices its editor marks as creased, kept
+  // as read for writing back; the crease edges are sharp creases of a subd_creases mesh (sharp_creases).
+  std::vector<int> crease_edges, crease_vertices;
 
   bool live_face(int f) const { return !faces[static_cast<std::size_t>(f)].empty(); }
   // The face's first corner link (flag 0): its canonical frame starts at that link's vertex going east.

@@ -241,10 +241,12 @@ struct TMeshSurface::Nurcc {
 TMeshSurface::~TMeshSurface() = default;
 TMeshSurface::TMeshSurface(TMeshSurface&&) noexcept = default;
 
-// A crease boundary is evaluated as the Bezier end conditions of the same surface (crease_ends).
+// A crease boundary, or Bezier end conditions without block points, is evaluated as the Bezier end conditions
+// of the same surface with its block points (crease_ends); the mesh as given is kept for writing it back.
 TMeshSurface::TMeshSurface(const TMesh& mesh, int threads)
     : mesh_(bezier_equivalent(mesh)),
-      source_(mesh.end_conditions == EndConditions::bezier ? nullptr : std::make_unique<TMesh>(mesh)),
+      source_(mesh.end_conditions == EndConditions::bezier && mesh_.points.size() == mesh.points.size() ? nullptr
+                                                                                                        : std::make_unique<TMesh>(mesh)),
       stars_(star_points(mesh_)) {
   const TMesh& m = mesh_;
   const int nf = static_cast<int>(m.faces.size()), nv = static_cast<int>(m.vertices.size());
@@ -364,6 +366,12 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads)
   // it are uniform quadrilaterals inside the mesh: its 16 nodes are the corners of the first ring and their rays
   // cross (p + 1) / 2 lines. Empty when they hold; `unequal` names unequal knot intervals there.
   const int cc_depth = (m.degree + 1) / 2;
+  // " at vertex V": the first T-junction (a straight corner, flag 1) of face g.
+  const auto t_junction_at = [&](int g) -> std::string {
+    for (int l : m.faces[static_cast<std::size_t>(g)])
+      if (L(l).flag == 1) return " at vertex " + std::to_string(L(l).vertex);
+    return {};
+  };
   const auto regular = [&](int f, std::string& unequal) -> std::string {
     if (m.degree != 3) return "the Catmull-Clark evaluation is for degree 3, not " + std::to_string(m.degree);
     std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX);
@@ -373,7 +381,8 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads)
     for (int g : hood)
       for (int l : m.faces[static_cast<std::size_t>(g)]) {
         if (m.faces[static_cast<std::size_t>(g)].size() != 4)
-          return "face " + std::to_string(g) + " nearby has a T-junction; the Catmull-Clark evaluation around star points needs none within " + std::to_string(cc_depth) + " rings";
+          return "face " + std::to_string(g) + " nearby has a T-junction" + t_junction_at(g) +
+                 "; the Catmull-Clark evaluation around star points needs none within " + std::to_string(cc_depth) + " rings";
         if (boundary[static_cast<std::size_t>(L(l).vertex)] && !ghosted[static_cast<std::size_t>(L(l).vertex)])
         {
           const int v = L(l).vertex, from = m.vertices[static_cast<std::size_t>(v)].split_from;  // a side of a sharp crease: the file's vertex
@@ -418,6 +427,26 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads)
     face.corner = corner;
     face.points = std::move(gth.points);
   };
+  // A T-junction within `reach` rings of a star point's faces leaves the faces round it without a rule (neither
+  // the T-spline's, whose blending functions there would reach the star point, nor Catmull-Clark's, Stam's or the
+  // non-uniform one, which are for quadrilateral meshes without T-junctions): the mesh is refused, naming it and
+  // the nearest star point, before any other reason of the faces around it.
+  for (int f = 0; f < nf; ++f) {
+    if (!m.live_face(f) || m.faces[static_cast<std::size_t>(f)].size() == 4 || star_dist[static_cast<std::size_t>(f)] > reach) continue;
+    int star = -1;
+    for (int k = 0; star < 0; ++k) {
+      std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX);
+      dist[static_cast<std::size_t>(f)] = 0;
+      for (int g : rings({f}, k, dist))
+        for (int l : m.faces[static_cast<std::size_t>(g)])
+          if (star < 0 && is_star[static_cast<std::size_t>(L(l).vertex)]) star = L(l).vertex;
+    }
+    const int d = star_dist[static_cast<std::size_t>(f)];
+    throw Error("T-mesh: face " + std::to_string(f) + " has a T-junction" + t_junction_at(f) + " within " + std::to_string(d) +
+                (d == 1 ? " face ring" : " face rings") + " of star point " + std::to_string(star) +
+                "'s faces; no evaluation rule covers T-junctions within " + std::to_string(reach) +
+                " rings of a star point (the T-spline's blending functions there reach the star point, the Catmull-Clark rules take quadrilaterals without T-junctions)");
+  }
   for (int f = 0; f < nf; ++f) {
     if (!m.live_face(f)) continue;
     Face& face = faces_[static_cast<std::size_t>(f)];

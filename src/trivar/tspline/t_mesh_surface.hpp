@@ -73,15 +73,16 @@ CornerFrame corner_frame(int corner);
 
 class TMeshSurface {
 public:
-  // threads for the charts' builds (parallel_for; <= 0: all). A crease boundary (subd_creases) is evaluated as
-  // its Bezier end conditions (crease_ends); mesh() is that mesh.
+  // threads for the charts' builds (parallel_for; <= 0: all). A crease boundary (subd_creases), or a Bezier
+  // boundary without block points (Fusion's MULTIPLE_KNOTS without grip map), is evaluated as its Bezier end
+  // conditions with block points (crease_ends); mesh() is that mesh.
   explicit TMeshSurface(const TMesh& mesh, int threads = 0);
   ~TMeshSurface();
   TMeshSurface(TMeshSurface&&) noexcept;
 
   const TMesh& mesh() const { return mesh_; }
-  // The mesh as given (a crease boundary and sharp creases as read, for writing it back and for the topology
-  // its tessellation welds); mesh() when no conversion was needed.
+  // The mesh as given (a crease boundary, sharp creases or a boundary without block points as read, for writing
+  // it back and for the topology its tessellation welds); mesh() when no conversion was needed.
   const TMesh& source_mesh() const { return source_ ? *source_ : mesh_; }
   int num_faces() const { return static_cast<int>(faces_.size()); }  // mesh face ids (deleted faces: none)
   FaceMethod method(int face) const { return faces_[static_cast<std::size_t>(face)].method; }

@@ -1,0 +1,275 @@
+// TSM files written by Autodesk Fusion 360 itself (tests/data/tsm/fusion, read back from Fusion with
+// TSplineBody.getTSMDescription; README.md there): what trivar reads from them and the surface it evaluates,
+// against closed forms of the Catmull-Clark limit surface and of the uniform cubic B-spline.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "face_continuity.hpp"
+#include "triangulation_loops.hpp"
+#include "trivar/core/error.hpp"
+#include "trivar/io/tsm_format.hpp"
+#include "trivar/tspline/t_mesh_surface.hpp"
+#include "trivar/tspline/t_mesh_tessellation.hpp"
+
+namespace trivar {
+namespace {
+
+io::TsmModel read_fusion_file(const std::string& name) { return io::read_tsm(std::string(TRIVAR_TEST_DATA) + "/tsm/fusion/" + name); }
+
+std::array<double, 3> control_point(const TMesh& m, int v) {
+  return m.points[static_cast<std::size_t>(m.vertices[static_cast<std::size_t>(v)].primary)].xyz;
+}
+
+// The face-local (u, v) of corner k (counter-clockwise from the first corner).
+std::array<double, 2> corner_uv(int k) {
+  static constexpr std::array<std::array<double, 2>, 4> uv{{{0, 0}, {1, 0}, {1, 1}, {0, 1}}};
+  return uv[static_cast<std::size_t>(k)];
+}
+
+// A closed cage's surface: its tessellation t watertight with Euler characteristic 2 (a sphere), and across its
+// `edges` edges no gap and one tangent plane.
+void expect_closed_and_tangent_continuous(const TMeshSurface& s, const TSplineTriangulation& t, int edges) {
+  EXPECT_EQ(test::closed_euler_characteristic(t), 2);
+  const test::Continuity c = test::continuity(s.mesh(), [&](int f, double u, double v, double* o) { s.eval(f, u, v, o); });
+  EXPECT_EQ(c.edges, edges);
+  EXPECT_LT(c.gap, 1e-12);
+  EXPECT_LT(c.normal_angle, 1e-9);
+}
+
+// Every star point's limit position, evaluated at the star corner of each of its faces.
+template <class Check>
+void at_star_corners(const TMeshSurface& s, const Check& check) {
+  for (int f = 0; f < s.num_faces(); ++f) {
+    const auto c = s.corners(f);
+    for (int k = 0; k < 4; ++k)
+      if (std::find(s.stars().begin(), s.stars().end(), c[static_cast<std::size_t>(k)]) != s.stars().end()) {
+        double o[9];
+        s.eval(f, corner_uv(k)[0], corner_uv(k)[1], o);
+        check(c[static_cast<std::size_t>(k)], std::array<double, 3>{o[0], o[1], o[2]});
+      }
+  }
+}
+
+// The box cages: 3 x 3 faces per side of the cube [-10, 10]^3 (inner vertices at +-10/3), a valence-3 star
+// point at each corner, every interval 1.
+TEST(FusionReadback, BoxInCentimetres) {
+  const io::TsmModel m = read_fusion_file("gen_box3_cm_readback.tsm");
+  EXPECT_EQ(m.report.units, "1 centimeters");
+  EXPECT_EQ(m.report.end_conditions, "MULTIPLE_KNOTS");
+  EXPECT_EQ(m.report.version, 2);
+  EXPECT_EQ(m.report.behavior_version, "4.0.1");
+  EXPECT_FALSE(m.report.grip_map);
+  ASSERT_EQ(m.mesh.faces.size(), 54u);
+  const TMeshSurface s(m.mesh);
+  EXPECT_EQ(s.stars().size(), 8u);
+  // The Catmull-Clark limit of a valence-n vertex: (n^2 P + 4 sum e + sum f) / (n (n + 5)); at the corner
+  // (10, 10, 10) with edge neighbours (a, 10, 10) ... and face neighbours (a, a, 10) ..., a = 10/3, every
+  // coordinate is (9 * 10 + 4 (a + 20) + (2 a + 10)) / 24 = 25/3.
+  int corners = 0;
+  at_star_corners(s, [&](int v, const std::array<double, 3>& p) {
+    const auto cp = control_point(s.mesh(), v);
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(p[static_cast<std::size_t>(i)], std::copysign(25.0 / 3, cp[static_cast<std::size_t>(i)]), 1e-12);
+    ++corners;
+  });
+  EXPECT_EQ(corners, 24);
+  // A side's centre face has four regular corners and eight quadrilaterals round it: the bicubic patch of its 16
+  // points, which all lie on the side's plane. With every control point in [-10, 10]^3 the box is [-10, 10]^3.
+  const TSplineTriangulation t = tessellate(s, 0.05);
+  std::array<double, 3> lo{1e9, 1e9, 1e9}, hi{-1e9, -1e9, -1e9};
+  for (const auto& p : t.points)
+    for (std::size_t i = 0; i < 3; ++i) {
+      lo[i] = std::min(lo[i], p[i]);
+      hi[i] = std::max(hi[i], p[i]);
+    }
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_NEAR(lo[i], -10, 1e-12);
+    EXPECT_NEAR(hi[i], 10, 1e-12);
+  }
+  expect_closed_and_tangent_continuous(s, t, 108);
+}
+
+// The same box with Fusion's crease list: the 12 edges round the top side (z = 10) in 100edges, an empty
+// 100verts, SUBD_CREASES, a grip map with `0m odd-grip-map`. The crease loop turns at the top side's corners,
+// valence-3 star points: refused in one line naming the first.
+TEST(FusionReadback, CreaseLoopThroughStarPointsIsRefused) {
+  try {
+    read_fusion_file("gen_box3_crease_list_readback.tsm");
+    ADD_FAILURE() << "read";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("gen_box3_crease_list_readback.tsm: T-mesh: crease vertex 16 has a side of 90 degrees of faces (a star point on the crease)"),
+              std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+  }
+}
+
+// The box with the four inner control points of the top side moved to z = -25, below the bottom side (z = -10):
+// the surface passes through itself. trivar evaluates it (self-intersection is a matter of the geometry, not
+// checked). The top centre face is the bicubic patch of its 16 points: at its centre the weights
+// (1, 23, 23, 1) / 48 per direction give z = (529 (-25) + 47 * 10) / 576.
+TEST(FusionReadback, SelfIntersectingBoxLoads) {
+  const io::TsmModel m = read_fusion_file("r2_box3_self_intersecting.tsm");
+  EXPECT_EQ(m.report.version, 1);
+  EXPECT_TRUE(m.report.behavior_version.empty());
+  const TMeshSurface s(m.mesh);
+  int found = 0;
+  for (int f = 0; f < s.num_faces(); ++f) {
+    const auto c = s.corners(f);
+    if (!std::all_of(c.begin(), c.end(), [&](int v) { return control_point(s.mesh(), v)[2] == -25; })) continue;
+    double o[9];
+    s.eval(f, 0.5, 0.5, o);
+    EXPECT_NEAR(o[0], 0, 1e-12);
+    EXPECT_NEAR(o[1], 0, 1e-12);
+    EXPECT_NEAR(o[2], (529.0 * -25 + 47.0 * 10) / 576, 1e-12);
+    ++found;
+  }
+  EXPECT_EQ(found, 1);
+  expect_closed_and_tangent_continuous(s, tessellate(s, 0.1), 108);
+}
+
+// The cylinders: 8 points on a circle of radius 10 per ring, rings at z = 0, 10, 20, 30, 40. Round the middle
+// ring (z = 20) the faces have regular corners and quadrilaterals round them, so the surface is the uniform
+// bicubic B-spline of the rings at z = 10, 20, 30: at a vertex of the middle ring z = 20 and the radius that of
+// the closed uniform cubic B-spline of the octagon, 10 (4 + 2 cos(pi/4)) / 6; halfway between two vertices
+// 10 (46 cos(pi/8) + 2 cos(3 pi/8)) / 48.
+template <class Check>
+void at_middle_ring(const TMeshSurface& s, const Check& check) {
+  for (int f = 0; f < s.num_faces(); ++f) {
+    const auto c = s.corners(f);
+    for (int k = 0; k < 4; ++k) {
+      const bool here = control_point(s.mesh(), c[static_cast<std::size_t>(k)])[2] == 20;
+      const bool next = control_point(s.mesh(), c[static_cast<std::size_t>((k + 1) % 4)])[2] == 20;
+      if (!here) continue;
+      double o[9];
+      s.eval(f, corner_uv(k)[0], corner_uv(k)[1], o);
+      check(false, o);
+      if (!next) continue;
+      const auto a = corner_uv(k), b = corner_uv((k + 1) % 4);
+      s.eval(f, (a[0] + b[0]) / 2, (a[1] + b[1]) / 2, o);
+      check(true, o);
+    }
+  }
+}
+
+void expect_octagon_b_spline_ring(const TMeshSurface& s) {
+  const double at_vertex = 10 * (2 + std::cos(2 * std::numbers::pi / 8)) / 3;
+  const double halfway = 10 * (46 * std::cos(std::numbers::pi / 8) + 2 * std::cos(3 * std::numbers::pi / 8)) / 48;
+  int vertices = 0, middles = 0;
+  at_middle_ring(s, [&](bool middle, const double* o) {
+    EXPECT_NEAR(o[2], 20, 1e-12);
+    EXPECT_NEAR(std::hypot(o[0], o[1]), middle ? halfway : at_vertex, 1e-12);
+    ++(middle ? middles : vertices);
+  });
+  EXPECT_EQ(vertices, 32);  // 8 vertices, 4 faces each
+  EXPECT_EQ(middles, 16);   // 8 edges, 2 faces each
+}
+
+TEST(FusionReadback, CappedCylinder) {
+  const io::TsmModel m = read_fusion_file("gen_cyl8x4_capped_readback.tsm");
+  const TMeshSurface s(m.mesh);
+  ASSERT_EQ(s.num_faces(), 40);
+  // Each cap is four quadrilaterals (centre and three ring points): the odd ring points have three faces.
+  EXPECT_EQ(s.stars().size(), 8u);
+  expect_octagon_b_spline_ring(s);
+  expect_closed_and_tangent_continuous(s, tessellate(s, 0.1), 80);
+}
+
+// The open tube: MULTIPLE_KNOTS without a grip map, `ec e 0` on its 16 boundary edges. Its boundary is
+// trivar's reading of that case (crease_ends: the repeated-knot nodes on the boundary vertices, the boundary
+// curve the cubic B-spline of the boundary points), not known from Fusion; the middle ring does not depend on it
+// (the clamped knots 0, 0, 0, 0, 1, 2, 3, 4, 4, 4, 4 give the rows 10, 20, 30 the weights 1/6, 2/3, 1/6 at 2).
+TEST(FusionReadback, OpenCylinder) {
+  const io::TsmModel m = read_fusion_file("gen_cyl8x4_open_readback.tsm");
+  EXPECT_EQ(m.mesh.conditions.size(), 16u);
+  for (const auto& [e, flag] : m.mesh.conditions) EXPECT_EQ(flag, 0) << e;
+  const TMeshSurface s(m.mesh);
+  ASSERT_EQ(s.num_faces(), 32);
+  EXPECT_TRUE(s.stars().empty());
+  expect_octagon_b_spline_ring(s);
+  // The boundary rings: z = 0 and 40, the octagon's B-spline radius at the vertices.
+  const double at_vertex = 10 * (2 + std::cos(2 * std::numbers::pi / 8)) / 3;
+  int boundary = 0;
+  for (int f = 0; f < s.num_faces(); ++f) {
+    const auto c = s.corners(f);
+    for (int k = 0; k < 4; ++k) {
+      const double z = control_point(s.mesh(), c[static_cast<std::size_t>(k)])[2];
+      if (z != 0 && z != 40) continue;
+      double o[9];
+      s.eval(f, corner_uv(k)[0], corner_uv(k)[1], o);
+      EXPECT_NEAR(o[2], z, 1e-12);
+      EXPECT_NEAR(std::hypot(o[0], o[1]), at_vertex, 1e-12);
+      ++boundary;
+    }
+  }
+  EXPECT_EQ(boundary, 32);
+  // Watertight (no crack: the two boundary circles are the only loops) and C2 across the 56 inner edges.
+  EXPECT_EQ(test::boundary_loops(tessellate(s, 0.1)), 2);
+  const test::Continuity c = test::continuity(s.mesh(), [&](int f, double u, double v, double* o) { s.eval(f, u, v, o); });
+  EXPECT_EQ(c.edges, 56);
+  EXPECT_LT(c.gap, 1e-12);
+  EXPECT_LT(c.c1, 1e-12);
+  // Written back as read: no grip map, one point per vertex (the block points are the evaluation's).
+  EXPECT_EQ(s.mesh().points.size(), 56u);
+  std::ostringstream os;
+  io::write_tsm(os, s.source_mesh(), m.report);
+  EXPECT_EQ(os.str().find("0m "), std::string::npos);
+  EXPECT_EQ(io::parse_tsm(os.str(), "again.tsm").mesh.points.size(), 40u);
+}
+
+// The open 3 x 3 grid: the global T-spline (no star point, no closed strip).
+TEST(FusionReadback, GridLoadsAsGlobalTSpline) {
+  const io::TsmModel m = read_fusion_file("gen_grid3x3_multiknots_readback.tsm");
+  EXPECT_FALSE(m.spline.image.faces.empty());
+  EXPECT_EQ(m.mesh.conditions.size(), 12u);
+}
+
+// The refusal of a mesh's surface: one line holding `fragment`.
+void expect_surface_refusal(const TMesh& m, const std::string& fragment) {
+  try {
+    const TMeshSurface s(m);
+    ADD_FAILURE() << "loaded; expected " << fragment;
+  } catch (const Error& e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+    EXPECT_NE(msg.find(fragment), std::string::npos) << msg;
+  }
+}
+
+// Refused: unequal knot intervals among star points closer than non-uniform Catmull-Clark's three rings (the
+// 3 x 3 box's corners are three edges apart). The `inconsistent knot` box is consistent as Fusion wrote it back:
+// one strip of faces round the box carries 1.02 across (opposite sides equal to 9e-16), the rest 1 to 2.2e-15,
+// and its 108 106ek records repeat the edges' intervals.
+TEST(FusionReadback, UnequalIntervalsAmongCloseStarPointsAreRefused) {
+  const io::TsmModel m = read_fusion_file("a3_box3_inconsistent_knot3_readback.tsm");
+  EXPECT_EQ(m.report.skipped_records.at("106ek"), 108);
+  EXPECT_EQ(m.report.version, 289);
+  int wide = 0;
+  for (double d : m.mesh.intervals) {
+    EXPECT_TRUE(std::abs(d - 1) < 3e-15 || std::abs(d - 1.02) < 3e-15) << d;
+    wide += std::abs(d - 1.02) < 3e-15;
+  }
+  EXPECT_EQ(wide, 12);  // a ring of 12 faces round the box, 12 edges between them
+  expect_surface_refusal(m.mesh, "edge 10 nearby has knot interval 1.020000, not 1.000000; non-uniform Catmull-Clark at star point 0 needs its three rings of faces");
+}
+
+// The box whose top side's centre face is split 2 x 2: T-junctions on the four faces round it, each next to
+// two corner faces of star points, and a strip of faces of interval 2 round the box at x < -10/3. The T-junctions
+// are in the faces whose Catmull-Clark patches hold the star points (the corner face's 2N + 8 points take the
+// faces beyond its two inner sides, here T-faces): no rule covers them, the refusal names the T-face, its
+// T-junction and the star point.
+TEST(FusionReadback, TJunctionsInAStarPointsRingAreRefused) {
+  const io::TsmModel m = read_fusion_file("a3_box3_tjunc_ring2_readback.tsm");
+  EXPECT_EQ(m.report.t_junctions, 4);
+  expect_surface_refusal(m.mesh, "face 10 has a T-junction at vertex 59 within 1 face ring of star point 16's faces");
+}
+
+}  // namespace
+}  // namespace trivar
