@@ -135,13 +135,8 @@ void star_build(benchmark::State& state) {
 }
 BENCHMARK(star_build)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
-// 16 x 16 points on every face with a surface (only the faces of method `only` if `star_only`), per iteration.
-void eval_faces(benchmark::State& state, const trivar::TMeshSurface& s, bool star_only,
-                trivar::FaceMethod only = trivar::FaceMethod::star) {
-  std::vector<int> faces;
-  for (int f = 0; f < s.num_faces(); ++f)
-    if (s.method(f) != trivar::FaceMethod::none && (!star_only || s.method(f) == only))
-      faces.push_back(f);
+// 16 x 16 points on each of `faces`, per iteration.
+void eval_face_list(benchmark::State& state, const trivar::TMeshSurface& s, const std::vector<int>& faces) {
   double out[9];
   for (auto _ : state)
     for (int f : faces)
@@ -151,6 +146,16 @@ void eval_faces(benchmark::State& state, const trivar::TMeshSurface& s, bool sta
           benchmark::DoNotOptimize(out);
         }
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(faces.size()) * 256);
+}
+
+// 16 x 16 points on every face with a surface (only the faces of method `only` if `star_only`), per iteration.
+void eval_faces(benchmark::State& state, const trivar::TMeshSurface& s, bool star_only,
+                trivar::FaceMethod only = trivar::FaceMethod::star) {
+  std::vector<int> faces;
+  for (int f = 0; f < s.num_faces(); ++f)
+    if (s.method(f) != trivar::FaceMethod::none && (!star_only || s.method(f) == only))
+      faces.push_back(f);
+  eval_face_list(state, s, faces);
 }
 
 // range(1) = 1: only the faces at star points.
@@ -299,6 +304,42 @@ void crease_build(benchmark::State& state) {
   }
 }
 BENCHMARK(crease_build)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+// The star point of 5 faces on a straight boundary of boundary_star_eval as a subdivision-crease boundary (no
+// blocks): a crease vertex of 5 faces, its faces within 4 rings by local subdivision (crease_face). range(0) = 0:
+// the build; 1: 16 x 16 points on the faces by local subdivision; 2: on all faces; 3: on the 5 faces at the vertex.
+void crease_star(benchmark::State& state) {
+  trivar::TMesh m = trivar::io::parse_tsm(trivar::test::tsm_text(trivar::test::half_fan_mesh(
+                                              5, 10, [](double x, double y) { return 0.05 * x * x - 0.03 * x * y; })),
+                                          "crease_star.tsm").mesh;
+  m.end_conditions = trivar::EndConditions::subd_creases;
+  for (trivar::TMeshVertex& v : m.vertices) {
+    v.block.clear();
+    v.block_dims = {};
+  }
+  if (state.range(0) == 0) {
+    for (auto _ : state) {
+      const trivar::TMeshSurface s(m, 1);
+      benchmark::DoNotOptimize(s.num_faces());
+    }
+    return;
+  }
+  const trivar::TMeshSurface s(m, 1);
+  if (state.range(0) < 3) {
+    eval_faces(state, s, state.range(0) == 1, trivar::FaceMethod::crease);
+    return;
+  }
+  std::vector<int> faces;  // the faces at the vertex (an irregular corner)
+  for (int f = 0; f < s.num_faces(); ++f)
+    if (s.method(f) == trivar::FaceMethod::crease)
+      for (int c = 0; c < 4; ++c)
+        if (s.crease_face(f).irregular(c)) {
+          faces.push_back(f);
+          break;
+        }
+  eval_face_list(state, s, faces);
+}
+BENCHMARK(crease_star)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond);
 
 // The per-face surface of a grid of 20 x 20 faces (the valence-4 fan) with a crease boundary: range(0) = 0 as it
 // is, 1 with a sharp crease along its middle line x = 0 (20 edges; sharp_creases cuts the mesh open before

@@ -168,7 +168,8 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
   const int nu = s.count(FaceMethod::non_uniform);
   const int bs = s.boundary_star_faces();
   const int sub = s.count(FaceMethod::subdivided);
-  const int faces = s.count(FaceMethod::exact) + s.count(FaceMethod::bicubic) + s.count(FaceMethod::star) + nu + sub;
+  const int cr = s.count(FaceMethod::crease);
+  const int faces = s.count(FaceMethod::exact) + s.count(FaceMethod::bicubic) + s.count(FaceMethod::star) + nu + sub + cr;
   const bool creases = r.crease_edges > 0;
   std::string continuity = s.stars().empty() ? "C2 across every edge"
                                              : "C2 across every edge away from star points; C1 across the edges at a star point; G1 at star points";
@@ -181,7 +182,7 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
                    {"star_points", r.star_points}, {"crease_edges", r.crease_edges}, {"faces_exact", s.count(FaceMethod::exact)},
                    {"faces_catmull_clark", s.count(FaceMethod::bicubic) + s.count(FaceMethod::star) + sub},
                    {"faces_at_star_points", s.count(FaceMethod::star)}, {"faces_at_boundary_star_points", bs},
-                   {"faces_non_uniform_catmull_clark", nu}, {"faces_subdivided", sub},
+                   {"faces_non_uniform_catmull_clark", nu}, {"faces_subdivided", sub}, {"faces_crease_subdivision", cr},
                    {"non_uniform_star_points", s.non_uniform_stars()}, {"continuity", continuity},
                    {"deleted_slots", r.deleted}, {"deleted_faces", r.holes}, {"skipped_records", r.skipped_records}};
   for (const auto& [n, c] : valences) j["star_valences"][std::to_string(n)] = c;
@@ -226,6 +227,10 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
   if (sub > 0)
     std::printf("  %d of them with several star corners or at star points joined by an edge, through one local "
                 "Catmull-Clark step (each quarter a bicubic or Stam patch of the subdivided points)\n", sub);
+  if (cr > 0)
+    std::printf("  %d faces within %d rings of irregular vertices of a crease boundary (a crease turning, a star point on "
+                "it, a corner with a side of several faces) by repeated local Catmull-Clark subdivision with the crease "
+                "rules (exact; the limit position at the vertex itself)\n", cr, s.mesh().degree + 1);
   if (bs > 0)
     std::printf("  %d faces at star points on the boundary by Catmull-Clark of the control mesh extended by a ghost layer "
                 "(the T-spline's Bezier end condition where regular; boundary curve the cubic B-spline of the block points "

@@ -21,8 +21,8 @@
 #include "trivar/core/error.hpp"
 #include "trivar/io/tsm_format.hpp"
 #include "trivar/spline/tensor_spline.hpp"
-#include "trivar/tspline/boundary_ghosts.hpp"
 #include "trivar/tspline/crease_ends.hpp"
+#include "trivar/tspline/sharp_creases.hpp"
 #include "trivar/tspline/t_mesh_surface.hpp"
 #include "trivar/tspline/t_mesh_tessellation.hpp"
 
@@ -451,36 +451,26 @@ TEST(CreaseEnds, InteriorStarPointWithACreaseBoundary) {
               surface.num_faces(), cells, dev, c.edges, c.gap, c.normal_angle, c.c1, t.triangles.size());
 }
 
-TEST(CreaseEnds, BoundaryStarPointTakesTheNaturalGhostLayer) {
-  // Four sectors around a star point on the straight boundary (the x axis): the ghost layer of boundary_ghosts
-  // is then 2 P0 - mean of the inner neighbours at the star point and 2 P0 - P1 along the boundary, so the faces
-  // whose points avoid the star point are the sectors' natural-end B-splines, also the boundary faces along the
-  // x axis (the crease there).
+TEST(CreaseEnds, BoundaryStarPointIsLeftToLocalSubdivision) {
+  // Four sectors around a star point on the straight boundary (the x axis): a crease vertex of four faces, which
+  // has no Bezier form. The conversion leaves its point and gives it no block; its faces are evaluated by local
+  // subdivision (crease_face, checked against OpenSubdiv in crease_face_test), and the faces whose points avoid
+  // it are the sectors' natural-end B-splines, also the boundary faces along the x axis (the crease there).
   const int m = 7;
   const test::QuadMesh q = test::half_fan_mesh(4, m, wave);
   const TMesh mesh = crease_mesh(q);
   const TMeshSurface surface(mesh, 1);
-  EXPECT_EQ(surface.boundary_star_faces(), 4);
+  EXPECT_EQ(surface.boundary_star_faces(), 0);
+  EXPECT_GT(surface.count(FaceMethod::crease), 0);
   int cells = 0;
   const double dev = sector_deviation(surface, q, 4, m, std::numbers::pi / 4, true, &cells);
   EXPECT_EQ(cells, 4 * (m * m - 2 * m) + 2 * (m - 2));
   EXPECT_LT(dev, 1e-12);
-  // The ghost layer of the converted mesh at the star point: the point itself stays, its ghost is 2 P0 - the
-  // mean of the ends of its three interior edges (the spokes 1, 2, 3 at distance 1).
   const int star = surface.stars()[0];
-  const std::array<int, 1> stars{star};
-  const GhostedMesh gm = ghost_boundary(bezier_equivalent(mesh), stars, 3);
-  const auto& p0 = q.points[static_cast<std::size_t>(star)];
-  std::array<double, 3> expected = {2 * p0[0], 2 * p0[1], 2 * p0[2]};
-  for (int k = 1; k <= 3; ++k) {
-    const double x = std::cos(std::numbers::pi * k / 4), y = std::sin(std::numbers::pi * k / 4);
-    for (const auto& p : q.points)
-      if (std::abs(p[0] - x) + std::abs(p[1] - y) < 1e-9)
-        for (std::size_t c = 0; c < 3; ++c) expected[c] -= p[c] / 3;
-  }
-  const auto extended = [&](int v) { return gm.mesh.points[static_cast<std::size_t>(gm.mesh.vertices[static_cast<std::size_t>(v)].primary)].xyz; };
-  EXPECT_LT(distance(extended(star), p0.data()), 1e-15);
-  EXPECT_LT(distance(expected, extended(gm.ghost[static_cast<std::size_t>(star)]).data()), 1e-14);
+  const TMesh x = bezier_equivalent(mesh);
+  const TMeshVertex& sv = x.vertices[static_cast<std::size_t>(star)];
+  EXPECT_TRUE(sv.block.empty());
+  EXPECT_LT(distance(x.points[static_cast<std::size_t>(sv.primary)].xyz, q.points[static_cast<std::size_t>(star)].data()), 1e-15);
   const TSplineTriangulation t = tessellate(surface, 1e-2);
   EXPECT_EQ(test::boundary_loops(t), 1);
   std::printf("crease half fan of 4 sectors: %d faces as the sectors' natural-end B-splines (%.2e)\n", cells, dev);
@@ -509,7 +499,7 @@ TEST(CreaseEnds, BezierEndConditionsAreKept) {
   EXPECT_GT(converted.points.size(), crease.points.size());
 }
 
-TEST(CreaseEnds, RefusesWhatItDoesNotDefine) {
+TEST(CreaseEnds, LeavesConcaveCornersAndRefusesOtherDegrees) {
   // An L-shaped grid: the inner corner has 270 degrees of faces.
   Grid g = grid(uniform(4, 1.0), uniform(4, 1.0));
   std::vector<std::array<int, 4>> kept;
@@ -526,13 +516,15 @@ TEST(CreaseEnds, RefusesWhatItDoesNotDefine) {
       v = it->second;
     }
   l.quads = kept;
+  // Its inner corner is a crease vertex of three faces: no Bezier form, left to local subdivision (its point kept,
+  // no block).
   const TMesh m = crease_mesh(l);
-  try {
-    bezier_equivalent(m);
-    ADD_FAILURE() << "a concave corner was converted";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("concave corner"), std::string::npos) << e.what();
-  }
+  const std::vector<int> irregular = irregular_crease_vertices(m);
+  ASSERT_EQ(irregular.size(), 1u);
+  const TMesh converted = bezier_equivalent(m);
+  const TMeshVertex& corner = converted.vertices[static_cast<std::size_t>(irregular[0])];
+  EXPECT_TRUE(corner.block.empty());
+  EXPECT_EQ(corner.primary, m.vertices[static_cast<std::size_t>(irregular[0])].primary);
   TMesh even = crease_mesh(grid(uniform(3, 1.0), uniform(3, 1.0)).quads);
   even.degree = 5;
   EXPECT_THROW(bezier_equivalent(even), Error);

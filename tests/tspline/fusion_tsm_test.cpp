@@ -75,7 +75,7 @@ std::string with(std::string s, const std::string& from, const std::string& to) 
 
 TEST(FusionTsm, SettingsAndGripsInVertexOrder) {
   const std::string text = test::fusion_text(test::grid_cage(3, 2), "MULTIPLE_KNOTS", 1.0,
-                                       "100edges 0 3\n100verts 1\n50000grip 0\n50000grip 3\n106ek 1\n");
+                                       "100edges 0 3\n100verts\n50000grip 0\n50000grip 3\n106ek 1\n");
   // 106ek: one record per edge slot, repeating the intervals; the grid has 17 edges.
   std::string ek;
   for (int e = 0; e < 17; ++e) ek += "106ek 1\n";
@@ -94,7 +94,7 @@ TEST(FusionTsm, SettingsAndGripsInVertexOrder) {
   EXPECT_FALSE(r.grip_map);
   EXPECT_EQ(r.skipped_records, (std::map<std::string, int>{{"50000grip", 2}, {"106ek", 17}}));
   EXPECT_EQ(m.mesh.crease_edges, (std::vector<int>{0, 3}));  // Fusion's crease lists (boundary edges), kept on the mesh
-  EXPECT_EQ(m.mesh.crease_vertices, (std::vector<int>{1}));
+  EXPECT_TRUE(m.mesh.crease_vertices.empty());
   ASSERT_EQ(m.mesh.points.size(), 12u);
   for (int v = 0; v < 12; ++v) EXPECT_EQ(m.mesh.vertices[static_cast<std::size_t>(v)].primary, v);
   EXPECT_FALSE(m.spline.image.faces.empty());  // an open grid: the global T-spline
@@ -283,6 +283,10 @@ TEST(FusionTsm, MalformedFilesGiveOneLineErrors) {
   test::expect_tsm_error(with(with(box, "\ntol ", "100edges 3\n100verts\n\ntol "), "SUBD_CREASES", "MULTIPLE_KNOTS"),
                          "crease edge 3 lies between two faces; creases inside the mesh are read with end-conditions SUBD_CREASES, not MULTIPLE_KNOTS");
   test::expect_tsm_error(with(box, "\ntol ", "100edges 3\n100verts\n\ntol "), "(a dart");
+  // Creased vertices: with MULTIPLE_KNOTS an error; inside the mesh on no crease a cone point, refused.
+  test::expect_tsm_error(with(with(box, "\ntol ", "100edges\n100verts 5\n\ntol "), "SUBD_CREASES", "MULTIPLE_KNOTS"),
+                         "creased vertex 5: creased vertices are read with end-conditions SUBD_CREASES, not MULTIPLE_KNOTS");
+  test::expect_tsm_error(with(box, "\ntol ", "100edges\n100verts 5\n\ntol "), "creased vertex 5 lies inside the mesh on no crease edge (a cone point");
   EXPECT_EQ(io::parse_tsm(with(fusion_text(grid_cage(1, 1)), "\ntol ", "ec 0 0\n\ntol "), "g.tsm").mesh.conditions.size(), 1u);
   // Edge knots other than the intervals.
   std::string ek;

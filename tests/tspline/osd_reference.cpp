@@ -71,6 +71,10 @@ OsdLimitSurface::OsdLimitSurface(const PolyMesh& mesh) : impl_(std::make_unique<
   desc.numCreases = static_cast<int>(mesh.sharp_edges.size());
   desc.creaseVertexIndexPairs = creases.data();
   desc.creaseWeights = weights.data();
+  const std::vector<float> corner_weights(mesh.sharp_vertices.size(), osd::Sdc::Crease::SHARPNESS_INFINITE);
+  desc.numCorners = static_cast<int>(mesh.sharp_vertices.size());
+  desc.cornerVertexIndices = mesh.sharp_vertices.data();
+  desc.cornerWeights = corner_weights.data();
 
   osd::Sdc::Options options;
   options.SetVtxBoundaryInterpolation(mesh.sharp_corners ? osd::Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER

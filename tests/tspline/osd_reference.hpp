@@ -31,6 +31,7 @@ struct PolyMesh {
   std::vector<std::array<double, 3>> points;
   std::vector<std::vector<int>> faces;
   std::vector<std::array<int, 2>> sharp_edges;  // infinitely sharp creases (end vertices)
+  std::vector<int> sharp_vertices;              // infinitely sharp (corner) vertices
   // Boundary rule: every boundary edge is an infinitely sharp crease (Sdc::Options::VTX_BOUNDARY_EDGE_ONLY), and
   // with sharp_corners also every boundary vertex of a single face is a sharp corner, interpolated
   // (VTX_BOUNDARY_EDGE_AND_CORNER).

@@ -335,6 +335,8 @@ TsmModel TsmReader::build() {
         const int x = number<int>(r, i, kind == "100edges" ? "crease edge" : "crease vertex");
         if (x < 0 || x >= count || slots[static_cast<std::size_t>(x)].words.empty())
           fail(r.line, std::string(kind) + " names " + (kind == "100edges" ? "edge " : "vertex ") + std::to_string(x) + ", which does not exist");
+        if (kind == "100verts" && ends == EndConditions::bezier)
+          fail(r.line, "creased vertex " + std::to_string(x) + ": creased vertices are read with end-conditions SUBD_CREASES, not " + rep.end_conditions);
         if (kind == "100edges" && ends == EndConditions::bezier) {
           const TMeshLink& k = mesh.links[static_cast<std::size_t>(number<int>(E[static_cast<std::size_t>(x)], 0, "link"))];
           if (k.face >= 0 && mesh.links[static_cast<std::size_t>(k.opp)].face >= 0)
@@ -484,8 +486,9 @@ TsmModel TsmReader::build() {
     if (mesh.vertices[static_cast<std::size_t>(v)].live && valence[static_cast<std::size_t>(v)] == 0)
       fail(V[static_cast<std::size_t>(v)].line, "vertex " + std::to_string(v) + " is on no face");
   rep.crease_edges = static_cast<int>(crease_edges(mesh).size());
-  if (rep.crease_edges > 0) {
-    // Cut open along its creases the mesh may fall apart: no global (s, t); its sides are checked here.
+  if (has_creases(mesh)) {
+    // Cut open along its creases the mesh may fall apart, and creased vertices are corners: no global (s, t); its
+    // sides are checked here.
     try {
       (void)bezier_equivalent(mesh);
     } catch (const Error& e) {
@@ -493,7 +496,9 @@ TsmModel TsmReader::build() {
     }
     return out;
   }
-  if (!stars.empty() || has_closed_strip(mesh)) return out;
+  // Irregular vertices of a crease boundary (a concave corner: a crease vertex of three faces) have no Bezier
+  // form either: evaluated by local subdivision per face.
+  if (!stars.empty() || has_closed_strip(mesh) || !irregular_crease_vertices(mesh).empty()) return out;
   try {
     // The mesh stays as read (crease flag, points); the spline is that of its Bezier end conditions.
     TChart chart = t_spline_chart(bezier_equivalent(mesh), {}, seed, true);

@@ -21,7 +21,7 @@ HomogeneousPoint mix(const HomogeneousPoint& a, double sa, const HomogeneousPoin
 
 // The natural end across the boundary along one inward line: Q1 = a P0 + b P1.
 struct EndWeights {
-  double a = 2.0 / 3, b = 1.0 / 3;
+  double a, b;
 };
 EndWeights end_weights(double d1, double d2) { return {(d1 + d2) / (2 * d1 + d2), d1 / (2 * d1 + d2)}; }
 
@@ -30,7 +30,7 @@ EndWeights end_weights(double d1, double d2) { return {(d1 + d2) / (2 * d1 + d2)
 TMesh bezier_equivalent(const TMesh& given) {
   // Sharp creases inside the mesh: cut open, their sides crease boundaries like the outer one.
   std::optional<TMesh> split;
-  if (!crease_edges(given).empty()) split = split_creases(given);
+  if (has_creases(given)) split = split_creases(given);
   const TMesh& m = split ? *split : given;
   // Bezier end conditions: as they are, unless no vertex carries a block (a file without grip map), where the
   // repeated-knot nodes of every boundary vertex sit on the vertex itself.
@@ -98,9 +98,13 @@ TMesh bezier_equivalent(const TMesh& given) {
     x.points.push_back(rational(h));
     return static_cast<int>(x.points.size()) - 1;
   };
+  // Irregular crease-boundary vertices have no Bezier form: their faces are evaluated by local subdivision
+  // (crease_face), the charts of the others keep away from them; their points stay as they are.
+  std::vector<char> irregular(nv, 0);
+  for (int v : irregular_crease_vertices(m)) irregular[static_cast<std::size_t>(v)] = 1;
   for (std::size_t vi = 0; vi < nv; ++vi) {
     const int v = static_cast<int>(vi);
-    if (!m.vertices[vi].live) continue;
+    if (!m.vertices[vi].live || irregular[vi]) continue;
     const std::vector<int> out = boundary_links(v);
     if (out.empty()) continue;
     if (out.size() != 1) fail(v, "lies on " + std::to_string(out.size()) + " boundary arcs; a crease boundary is converted on one");
@@ -130,17 +134,10 @@ TMesh bezier_equivalent(const TMesh& given) {
       for (int k = 0; k < (a == 90 ? 3 : 1); ++k) xv.block.push_back(add_point(p0));
       continue;
     }
-    if (a == 180 || a > 270) {
+    if (a == 180) {
       if (interior.empty()) fail(v, "is a T-junction on the boundary (no interior edge); a crease boundary needs one at every boundary vertex");
-      HomogeneousPoint p1{};
-      EndWeights w;
-      if (a > 270) {  // a star point: the mean of its interior edges' inner ends, equal intervals
-        for (int l : interior) p1 = mix(p1, 1, point(other_end(l)), 1.0 / static_cast<double>(interior.size()));
-      } else {
-        p1 = point(other_end(interior[0]));
-        w = end_weights(interval(interior[0]), second_interval(interior[0]));
-      }
-      x.points[primary] = rational(mix(p0, w.a, p1, w.b));
+      const EndWeights w = end_weights(interval(interior[0]), second_interval(interior[0]));
+      x.points[primary] = rational(mix(p0, w.a, point(other_end(interior[0])), w.b));
       xv.block_dims[static_cast<std::size_t>(outward)] = 1;
       xv.block = {add_point(p0)};
     } else if (a == 90) {
@@ -162,7 +159,7 @@ TMesh bezier_equivalent(const TMesh& given) {
       xv.block = next == 0 ? std::vector<int>{across_l, across_o, diagonal} : std::vector<int>{across_o, diagonal, across_l};
     } else {
       fail(v, "has " + std::to_string(a) + " degrees of faces" + (a == 270 ? " (a concave corner)" : "") +
-                  "; a crease boundary is converted at straight and convex boundary vertices and boundary star points");
+                  "; a crease boundary is converted at straight and convex boundary vertices");
     }
   }
   return x;

@@ -29,17 +29,16 @@
 // T-junction the edge runs into), P1 the inner end of the interior edge. The boundary curve is then still the
 // B-spline of the boundary points (Q0 = P0 at every boundary vertex) and the surface a T-spline with Bezier end
 // conditions (C2 wherever the T-spline is); the zero second derivative across the boundary is exact where the
-// blending functions of the first three rows are tensor products of their rows. A boundary star point takes the
-// equal-interval rule with P1 the mean of the inner ends of its interior edges, so the ghost layer of
-// boundary_ghosts is the natural ghost 2 P0 - mean (the boundary curve there is the Catmull-Clark limit of the
-// extended mesh, as for Bezier end conditions). That is not the crease rule at the star point (boundary vertex
-// (P- + 6 P + P+) / 8, which OpenSubdiv applies): there the limit point leaves the B-spline of the boundary points
-// (tests/tspline/osd_comparison_test.cpp measures it). Intervals next to a star point are taken equal (d2 = d1), as the
-// Catmull-Clark faces there require. A block point the input carries at a boundary vertex is replaced.
+// blending functions of the first three rows are tensor products of their rows. Boundary vertices that are no
+// regular crease patch corner (irregular_crease_vertices: boundary star points, a crease turning at a vertex, a
+// concave corner, a corner with a side of several faces) have no Bezier form: they keep their points and no
+// block, and their faces are evaluated by local subdivision (crease_face, in TMeshSurface). Intervals next to a
+// star point are taken equal (d2 = d1), as the Catmull-Clark faces there require. A block point the input carries
+// at a boundary vertex is replaced.
 // Sharp creases inside the mesh (sharp_creases) are cut open first, so that their sides are crease boundaries
 // too. Refused (trivar::Error, one line naming the vertex): degree other than 3, a boundary vertex on two boundary
-// arcs, a T-junction on the boundary (no interior edge), a concave corner (270 degrees of faces), a convex
-// corner whose face is not a quadrilateral, a boundary vertex without a control point or frame direction.
+// arcs, a T-junction on the boundary (no interior edge), a convex corner whose face is not a quadrilateral, a
+// boundary vertex without a control point or frame direction.
 #include "trivar/tspline/t_mesh.hpp"
 
 namespace trivar {

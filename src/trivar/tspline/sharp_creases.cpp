@@ -37,9 +37,16 @@ std::vector<int> crease_edges(const TMesh& m) {
   return out;
 }
 
+bool has_creases(const TMesh& m) {
+  return m.end_conditions == EndConditions::subd_creases && (!m.crease_vertices.empty() || !crease_edges(m).empty());
+}
+
 TMesh split_creases(const TMesh& m) {
   const std::vector<int> creases = crease_edges(m);
-  if (creases.empty()) return m;
+  // Creased vertices (Fusion's `100verts`): corners whatever their sharp edges.
+  if (!has_creases(m)) return m;
+  std::vector<char> creased(m.vertices.size(), 0);
+  for (int v : m.crease_vertices) creased[static_cast<std::size_t>(v)] = 1;
   const int nl = static_cast<int>(m.links.size());
   const auto L = [&](int l) -> const TMeshLink& { return m.links[static_cast<std::size_t>(l)]; };
   const auto fail = [](int v, const std::string& what) { throw Error("T-mesh: crease vertex " + std::to_string(v) + " " + what); };
@@ -70,13 +77,18 @@ TMesh split_creases(const TMesh& m) {
   for (std::size_t vi = 0; vi < nv; ++vi) {
     const int v = static_cast<int>(vi);
     if (!m.vertices[vi].live || leaving[vi].empty()) continue;
-    int creases_here = 0, outside = 0, right_angles_round = 0;
+    int creases_here = 0, outside = 0;
     for (int l : leaving[vi]) {
       if (crease[static_cast<std::size_t>(L(l).edge)]) ++creases_here;
       if (!in_face(m, l)) ++outside;
-      else right_angles_round += L(l).flag + 1;
     }
-    if (creases_here == 0) continue;
+    if (creases_here == 0) {
+      if (!creased[vi]) continue;
+      if (outside == 0)
+        throw Error("T-mesh: creased vertex " + std::to_string(v) + " lies inside the mesh on no crease edge (a cone point of the surface); creased vertices are evaluated on creases and on the boundary");
+      x.vertices[vi].crease_rule = CreaseRule::corner;
+      continue;
+    }
     if (outside == 0 && creases_here == 1)
       fail(v, "ends its crease inside the mesh (a dart: subdivision smooths there, so the crease cannot be cut open); a crease runs from boundary to boundary, closes, or meets other creases");
     if (outside > 1) fail(v, "lies on " + std::to_string(outside) + " boundary arcs; a crease is cut open at a vertex on one");
@@ -102,20 +114,14 @@ TMesh split_creases(const TMesh& m) {
     const auto outside_link = [&](int l) { return l >= nl || !in_face(m, l); };
     const auto first = std::find_if(round.begin(), round.end(), outside_link);
     std::rotate(round.begin(), first + 1, round.end());
-    const bool corner = creases_here + 2 * outside >= 3;
+    const bool corner = creases_here + 2 * outside >= 3 || creased[vi];
     int wedge = 0;
     for (std::size_t i = 0; i < round.size();) {
       std::size_t j = i;
       int right_angles = 0;
       while (!outside_link(round[j])) right_angles += L(round[j++]).flag + 1;
+      // Its rule is the original vertex's, whatever the side's faces (one face: a crease turning there).
       const int o = round[j];
-      if (corner && right_angles != 1)
-        fail(v, "is a corner of " + std::to_string(creases_here + 2 * outside) + " sharp edges with a side of " + std::to_string(90 * right_angles) +
-                    " degrees of faces; crease corners are evaluated with one quadrilateral per side (90 degrees)");
-      if (!corner && right_angles != 2)
-        fail(v, "has a side of " + std::to_string(90 * right_angles) + " degrees of faces (" +
-                    (right_angles_round == 4 ? "the crease turns there" : "a star point on the crease") +
-                    "); a crease is evaluated running straight through vertices of four faces");
       int id = v;
       if (wedge++ > 0) {
         id = static_cast<int>(x.vertices.size());
@@ -127,6 +133,7 @@ TMesh split_creases(const TMesh& m) {
         }
         x.vertices.push_back(copy);
       }
+      x.vertices[static_cast<std::size_t>(id)].crease_rule = corner ? CreaseRule::corner : CreaseRule::crease;
       for (std::size_t k = i; k <= j; ++k) x.links[static_cast<std::size_t>(round[k])].vertex = id;
       // The outside link: the outside's angle / 90 - 1 as flag, its previous link the one arriving along the
       // wedge's first link.
@@ -138,6 +145,42 @@ TMesh split_creases(const TMesh& m) {
     }
   }
   return x;
+}
+
+std::vector<CreaseRule> boundary_rules(const TMesh& m) {
+  const std::size_t nv = m.vertices.size();
+  std::vector<int> faces(nv, 0), flags(nv, 0);
+  std::vector<char> boundary(nv, 0);
+  for (const TMeshLink& k : m.links) {
+    if (k.vertex < 0) continue;
+    const auto v = static_cast<std::size_t>(k.vertex);
+    if (k.face >= 0 && m.live_face(k.face)) {
+      ++faces[v];
+      flags[v] += k.flag;
+    } else {
+      boundary[v] = 1;
+    }
+  }
+  std::vector<CreaseRule> r(nv, CreaseRule::none);
+  for (std::size_t v = 0; v < nv; ++v) {
+    if (!boundary[v] || !m.vertices[v].live) continue;
+    r[v] = m.vertices[v].crease_rule;
+    // The mesh's own boundary: a corner at a vertex of one quadrilateral corner.
+    if (r[v] == CreaseRule::none) r[v] = faces[v] == 1 && flags[v] == 0 ? CreaseRule::corner : CreaseRule::crease;
+  }
+  return r;
+}
+
+std::vector<int> irregular_crease_vertices(const TMesh& m) {
+  std::vector<int> out;
+  if (m.end_conditions != EndConditions::subd_creases) return out;
+  const std::vector<CreaseRule> rules = boundary_rules(m);
+  std::vector<int> faces(m.vertices.size(), 0);
+  for (const TMeshLink& k : m.links)
+    if (k.vertex >= 0 && k.face >= 0 && m.live_face(k.face)) ++faces[static_cast<std::size_t>(k.vertex)];
+  for (std::size_t v = 0; v < rules.size(); ++v)
+    if ((rules[v] == CreaseRule::crease && faces[v] != 2) || (rules[v] == CreaseRule::corner && faces[v] != 1)) out.push_back(static_cast<int>(v));
+  return out;
 }
 
 }  // namespace trivar

@@ -7,15 +7,16 @@
 // side wedge, each with its own copy of the control point, and the links across a crease become boundary links.
 // The crease boundary conversion (crease_ends) and everything after it then apply unchanged.
 //
-// Which crease vertices are cut. A vertex is corner-like when three or more sharp edges meet there (crease
-// edges, and the two boundary edges of a boundary vertex): subdivision interpolates it (the corner rule), and
-// every side wedge must be a convex corner (one face, 90 degrees) for crease_ends' corner rule. A vertex with
-// two crease edges and no boundary takes the crease rule (the crease curve runs smoothly through it): both
-// wedges must be straight (180 degrees), since crease_ends would make a 90-degree wedge a corner and refuses
-// 270 degrees. Refused (trivar::Error, one line naming the vertex): a crease ending at an interior vertex (a
-// dart: subdivision smooths there and the cut is undefined), a crease turning at a vertex of two crease edges,
-// a crease through a star point, a corner-like vertex with a side wedge of other than one face, a vertex whose
-// links are not one fan.
+// Which crease vertices are cut, and their rule (TMeshVertex::crease_rule, on every side, from the original vertex
+// whatever the side's faces). A vertex is a corner when three or more sharp edges meet there (crease edges, and
+// the two boundary edges of a boundary vertex), or when the mesh's crease list names it (TMesh::crease_vertices,
+// Fusion's `100verts`; on a crease or the boundary): subdivision interpolates it. A vertex with two crease edges and no
+// boundary takes the crease rule (the crease curve runs through it), also where the crease turns (one side then
+// has one face) or runs through a star point. Sides that are not a regular crease patch (a crease vertex of other
+// than two faces, a corner of other than one: irregular_crease_vertices) are evaluated by local subdivision
+// (crease_face). Refused (trivar::Error, one line naming the vertex): a crease ending at an interior vertex (a
+// dart: subdivision smooths there and the cut is undefined), a creased vertex inside the mesh on no crease (a
+// cone point), a vertex on two boundary arcs, a vertex whose links are not one fan.
 #include <vector>
 
 #include "trivar/tspline/t_mesh.hpp"
@@ -26,9 +27,21 @@ namespace trivar {
 // carry no geometry, as in Rhino's files).
 std::vector<int> crease_edges(const TMesh& m);
 
+// Whether split_creases changes the mesh: a subdivision-crease mesh with crease edges or creased vertices.
+bool has_creases(const TMesh& m);
+
 // The mesh cut open along its crease edges (the mesh itself when it has none). Faces, their links and the edge
 // of each crease edge's first link keep their numbers; the copies of a crease vertex (TMeshVertex::split_from),
 // their control points, the outside links and the edges of the second side are appended.
 TMesh split_creases(const TMesh& m);
+
+// Per vertex of a subdivision-crease mesh (after split_creases), the rule of its crease boundary: its
+// crease_rule where the split set one, else corner at a vertex of one quadrilateral corner and crease at the
+// other boundary vertices (the mesh's own boundary, as Fusion's SUBD_CREASES); none inside.
+std::vector<CreaseRule> boundary_rules(const TMesh& m);
+
+// The boundary vertices of a subdivision-crease mesh (after split_creases) that are no regular crease patch
+// corner: a crease vertex of other than two faces, a corner of other than one. None for Bezier end conditions.
+std::vector<int> irregular_crease_vertices(const TMesh& m);
 
 }  // namespace trivar

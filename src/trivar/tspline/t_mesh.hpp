@@ -21,12 +21,17 @@ struct TMeshLink {
   int frame = -1;                      // its direction (north, west, south, east) in the vertex's own frame
 };
 
+// The subdivision rule of a vertex on a sharp crease of a subdivision-crease mesh: crease (two sharp edges: the
+// crease curve runs through), corner (three or more, counting the boundary's: interpolated).
+enum class CreaseRule : unsigned char { none, crease, corner };
+
 struct TMeshVertex {
   bool live = true;
   int primary = -1;                // control point of the vertex's own node
   std::array<int, 4> block_dims{};  // Bezier end-condition block: dK node layers towards frame direction K
   std::vector<int> block;          // its points, wedge K = N, W, S, E holding dK x (d(K+1) + 1) entries; -1: none
   int split_from = -1;             // a side of a sharp crease vertex cut open (split_creases): that vertex
+  CreaseRule crease_rule = CreaseRule::none;  // a vertex cut open by split_creases (every side): its rule
 };
 
 // How the surface ends at the mesh's boundary. bezier: Bezier end conditions (repeated knots, the boundary curve

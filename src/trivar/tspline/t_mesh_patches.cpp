@@ -233,6 +233,18 @@ TMeshPatches t_mesh_patches(const TMeshSurface& s, const TMeshPatchOptions& opti
     const SubdividedFace& z = s.subdivided(f);
     return [&z, q](double x, double y, double* o) { z.eval_quarter(q, x, y, o); };
   };
+  // A crease face's quarter at corner q in the quarter's frame (corner_frame(q) at half scale).
+  const auto crease_quarter_eval = [&s](int f, int q) -> HomogeneousEval {
+    return [&z = s.crease_face(f), fr = corner_frame(q)](double x, double y, double* o) {
+      double h[12];
+      z.eval(fr.origin[0] + (x * fr.a[0] + y * fr.b[0]) / 2, fr.origin[1] + (x * fr.a[1] + y * fr.b[1]) / 2, h);
+      for (int c = 0; c < 4; ++c) {
+        o[c] = h[c];
+        o[4 + c] = (fr.a[0] * h[4 + c] + fr.a[1] * h[8 + c]) / 2;
+        o[8 + c] = (fr.b[0] * h[4 + c] + fr.b[1] * h[8 + c]) / 2;
+      }
+    };
+  };
   std::vector<Star> stars;
   for (int f = 0; f < s.num_faces(); ++f) {
     if (s.method(f) == FaceMethod::star || (s.method(f) == FaceMethod::non_uniform && s.star_corner(f)))
@@ -240,6 +252,9 @@ TMeshPatches t_mesh_patches(const TMeshSurface& s, const TMeshPatchOptions& opti
     if (s.method(f) == FaceMethod::subdivided)
       for (int q = 0; q < 4; ++q)
         if (s.subdivided(f).valence(q) != 4) stars.push_back({f, quarter_eval(f, q), {}});
+    if (s.method(f) == FaceMethod::crease)
+      for (int q = 0; q < 4; ++q)
+        if (s.crease_face(f).irregular(q)) stars.push_back({f, crease_quarter_eval(f, q), {}});
   }
   for (int k = options.levels >= 0 ? options.levels : 0;; ++k) {
     const double h = std::ldexp(1.0, -k);
@@ -295,14 +310,18 @@ TMeshPatches t_mesh_patches(const TMeshSurface& s, const TMeshPatchOptions& opti
         star_patches(f, corner_frame(s.patch_corner(f)), s.method(f) == FaceMethod::star ? 1 : 2);
         break;
       case FaceMethod::subdivided:
+      case FaceMethod::crease:
         for (int q = 0; q < 4; ++q) {
-          // The quarter's frame in the face: corner q's, at half scale.
+          // The quarter's frame in the face: corner q's, at half scale. A crease face's quarters away from its
+          // irregular corners are bicubic B-splines (their corners are regular after one step).
           const CornerFrame c = corner_frame(q);
           const CornerFrame fr{c.origin, {c.a[0] / 2, c.a[1] / 2}, {c.b[0] / 2, c.b[1] / 2}};
-          if (s.subdivided(f).valence(q) != 4)
+          const bool subdivided = s.method(f) == FaceMethod::subdivided;
+          if (subdivided ? s.subdivided(f).valence(q) != 4 : s.crease_face(f).irregular(q))
             star_patches(f, fr, 1);
           else
-            r.patches.push_back(net_to_face(f, interpolate_patch(quarter_eval(f, q), 0, 0, 1), {{0, 0}, {1, 1}}, fr, true));
+            r.patches.push_back(net_to_face(f, interpolate_patch(subdivided ? quarter_eval(f, q) : crease_quarter_eval(f, q), 0, 0, 1),
+                                            {{0, 0}, {1, 1}}, fr, true));
         }
         break;
     }

@@ -11,6 +11,7 @@
 #include "trivar/tspline/catmull_clark_patch.hpp"
 #include "trivar/tspline/crease_ends.hpp"
 #include "trivar/tspline/non_uniform_catmull_clark.hpp"
+#include "trivar/tspline/sharp_creases.hpp"
 
 namespace trivar {
 
@@ -22,6 +23,7 @@ const char* face_method_name(FaceMethod m) {
     case FaceMethod::star: return "star";
     case FaceMethod::non_uniform: return "non-uniform";
     case FaceMethod::subdivided: return "subdivided";
+    case FaceMethod::crease: return "crease";
   }
   return "?";
 }
@@ -231,6 +233,55 @@ std::optional<std::array<std::array<double, 6>, 2>> cell_knots(const TMesh& m, i
   return k;
 }
 
+// The crease net of face f of the mesh cut open along its creases (`m`, with the points of `given`): its two face
+// rings `hood` (f first), `rules` its boundary_rules; `where` begins the errors. Refused in one line: T-junctions,
+// unequal knot intervals, vertices without one control point.
+CreaseNet crease_net(const TMesh& m, const TMesh& given, const std::vector<CreaseRule>& rules, int f, const std::vector<int>& hood,
+                     const std::string& where) {
+  const auto L = [&](int l) -> const TMeshLink& { return m.links[static_cast<std::size_t>(l)]; };
+  const auto name = [&](int v) {
+    const int from = m.vertices[static_cast<std::size_t>(v)].split_from;  // a side of a sharp crease: the file's vertex
+    return std::to_string(from >= 0 ? from : v);
+  };
+  CreaseNet net;
+  std::vector<int> id(m.vertices.size(), -1);
+  const double d0 = m.intervals[static_cast<std::size_t>(L(m.faces[static_cast<std::size_t>(f)].front()).edge)];
+  for (int g : hood) {
+    const auto& loop = m.faces[static_cast<std::size_t>(g)];
+    require(loop.size() == 4, [&] { return where + "face " + std::to_string(g) + " nearby has a T-junction; local subdivision takes quadrilaterals"; });
+    int start = 0;
+    if (g == f)
+      while (loop[static_cast<std::size_t>(start)] != m.first_corner(f)) ++start;
+    std::array<int, 4> quad{};
+    std::array<bool, 4> sharp{};
+    for (std::size_t k = 0; k < 4; ++k) {
+      const int l = loop[(static_cast<std::size_t>(start) + k) % 4], v = L(l).vertex;
+      const double d = m.intervals[static_cast<std::size_t>(L(l).edge)];
+      require(std::abs(d - d0) <= 1e-12 * d0, [&] {
+        return where + "edge " + std::to_string(L(l).edge) + " nearby has knot interval " + std::to_string(d) + ", not " + std::to_string(d0) +
+               "; local subdivision takes equal intervals";
+      });
+      const int o = L(l).opp;
+      sharp[k] = L(o).face < 0 || !m.live_face(L(o).face);
+      if (id[static_cast<std::size_t>(v)] < 0) {
+        const TMeshVertex& gv = given.vertices[static_cast<std::size_t>(v)];
+        require(gv.primary >= 0 && gv.block.empty(), [&] {
+          return where + "vertex " + name(v) + " has no control point or repeated-knot nodes; local subdivision needs one point per vertex";
+        });
+        const RationalPoint& p = given.points[static_cast<std::size_t>(gv.primary)];
+        id[static_cast<std::size_t>(v)] = static_cast<int>(net.points.size());
+        net.points.push_back({p.w * p.xyz[0], p.w * p.xyz[1], p.w * p.xyz[2], p.w});
+        const CreaseRule r = rules[static_cast<std::size_t>(v)];
+        net.rules.push_back(r == CreaseRule::none ? VertexRule::smooth : r == CreaseRule::crease ? VertexRule::crease : VertexRule::corner);
+      }
+      quad[k] = id[static_cast<std::size_t>(v)];
+    }
+    net.quads.push_back(quad);
+    net.sharp.push_back(sharp);
+  }
+  return net;
+}
+
 }  // namespace
 
 struct TMeshSurface::Nurcc {
@@ -252,6 +303,19 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads)
   const int nf = static_cast<int>(m.faces.size()), nv = static_cast<int>(m.vertices.size());
   const auto L = [&](int l) -> const TMeshLink& { return m.links[static_cast<std::size_t>(l)]; };
   faces_.resize(static_cast<std::size_t>(nf));
+  // A crease boundary's irregular vertices (crease vertices of other than two faces, corners of other than one):
+  // their faces are evaluated by local subdivision of the mesh cut open along its creases (the vertices, faces and
+  // links of mesh_, the points as given), as are the faces near star points that are too close to a crease
+  // boundary for Stam's patches.
+  std::unique_ptr<TMesh> split;
+  std::vector<int> irregular;
+  std::vector<CreaseRule> rules;  // of the split mesh's boundary vertices, once needed
+  if (mesh.end_conditions == EndConditions::subd_creases) {
+    split = std::make_unique<TMesh>(has_creases(mesh) ? split_creases(mesh) : mesh);
+    irregular = irregular_crease_vertices(*split);
+  }
+  std::vector<char> is_irregular(static_cast<std::size_t>(nv), 0);
+  for (int v : irregular) is_irregular[static_cast<std::size_t>(v)] = 1;
   std::vector<std::vector<int>> vertex_faces(static_cast<std::size_t>(nv));
   std::vector<char> boundary(static_cast<std::size_t>(nv), 0);
   for (const TMeshLink& k : m.links) {
@@ -267,7 +331,7 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads)
   // points' faces, whose vertices lie depth + 3 steps across faces from the star points).
   std::vector<int> boundary_stars;
   for (int s : stars_)
-    if (boundary[static_cast<std::size_t>(s)]) boundary_stars.push_back(s);
+    if (boundary[static_cast<std::size_t>(s)] && !is_irregular[static_cast<std::size_t>(s)]) boundary_stars.push_back(s);
   std::vector<char> ghosted(static_cast<std::size_t>(nv), 0);
   if (!boundary_stars.empty()) {
     GhostedMesh gm = ghost_boundary(m, boundary_stars, depth + 3);
@@ -295,17 +359,23 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads)
   // The face rings the supports of the blending functions on a face span on a uniform quad mesh: their anchors
   // lie (p - 1) / 2 rings out and their supports (p + 1) / 2 further.
   const int reach = m.degree;
-  std::vector<int> star_dist(static_cast<std::size_t>(nf), INT_MAX);
-  {
-    std::vector<int> front;
-    for (int s : stars_)
+  // Face distances from the star points and irregular crease-boundary vertices (charts keep away from both), and
+  // from the latter alone.
+  const auto distances = [&](const std::vector<int>& from) {
+    std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX), front;
+    for (int s : from)
       for (int f : vertex_faces[static_cast<std::size_t>(s)])
-        if (star_dist[static_cast<std::size_t>(f)] != 0) {
-          star_dist[static_cast<std::size_t>(f)] = 0;
+        if (dist[static_cast<std::size_t>(f)] != 0) {
+          dist[static_cast<std::size_t>(f)] = 0;
           front.push_back(f);
         }
-    rings(front, depth + 5, star_dist);  // far enough to size the clusters below
-  }
+    rings(front, depth + 5, dist);  // far enough to size the clusters below
+    return dist;
+  };
+  std::vector<int> singular = stars_;
+  for (int v : irregular)
+    if (std::find(stars_.begin(), stars_.end(), v) == stars_.end()) singular.push_back(v);
+  const std::vector<int> star_dist = distances(singular), crease_dist = distances(irregular);
   // Star points with unequal knot intervals on their three rings of faces: non-uniform Catmull-Clark on the
   // faces of the cells (0, 0), (1, 0), (1, 1), (0, 1) of every sector (the faces whose 4 x 4 points hold the star
   // point). With equal intervals the uniform evaluation below applies (the same surface, Stam's exact method).
@@ -315,7 +385,7 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads)
   std::vector<NurccFace> nurcc_of(static_cast<std::size_t>(nf));
   std::vector<std::string> nurcc_why(static_cast<std::size_t>(nv));  // a star point whose sectors could not be gathered
   for (int v : stars_) {
-    if (m.degree != 3) continue;
+    if (m.degree != 3 || is_irregular[static_cast<std::size_t>(v)]) continue;
     Sectors sec = gather_sectors(m, v);
     if (!sec.error.empty()) {
       nurcc_why[static_cast<std::size_t>(v)] = sec.error;
@@ -447,9 +517,25 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads)
                 "'s faces; no evaluation rule covers T-junctions within " + std::to_string(reach) +
                 " rings of a star point (the T-spline's blending functions there reach the star point, the Catmull-Clark rules take quadrilaterals without T-junctions)");
   }
+  // Local subdivision of the face's two face rings with the crease rules (crease_face).
+  const auto local_subdivision = [&](int f, const std::string& why) {
+    if (rules.empty()) rules = boundary_rules(*split);
+    std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX);
+    dist[static_cast<std::size_t>(f)] = 0;
+    const std::string where = "T-mesh: face " + std::to_string(f) + " (" + why + ", evaluated by local subdivision): ";
+    crease_faces_.emplace_back(crease_net(m, *split, rules, f, rings({f}, 2, dist), where));
+    Face& face = faces_[static_cast<std::size_t>(f)];
+    face.method = FaceMethod::crease;
+    face.crease = static_cast<int>(crease_faces_.size()) - 1;
+    face.rational = crease_faces_.back().rational();
+  };
   for (int f = 0; f < nf; ++f) {
     if (!m.live_face(f)) continue;
     Face& face = faces_[static_cast<std::size_t>(f)];
+    if (crease_dist[static_cast<std::size_t>(f)] <= depth) {
+      local_subdivision(f, "within " + std::to_string(depth + 1) + " face rings of an irregular vertex of a crease boundary");
+      continue;
+    }
     if (star_dist[static_cast<std::size_t>(f)] > depth) {
       face.method = FaceMethod::exact;
       exact.push_back(f);
@@ -476,6 +562,11 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads)
         corner = c;
         ++star_corners;
       }
+    if (!why.empty() && split && star_dist[static_cast<std::size_t>(f)] <= reach) {
+      // A star point near a crease boundary: local subdivision handles both.
+      local_subdivision(f, "near a star point and a crease boundary: " + why);
+      continue;
+    }
     if (!why.empty()) {
       // A face beyond the reach of its blending functions' supports from the star points' faces may still be
       // the T-spline of a chart that holds no star point (a boundary, a T-junction or unequal intervals nearby):
@@ -511,7 +602,7 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads)
   // and a chart must not wrap round the strip: clusters of one ring in charts of reach + 1 rings, split into single
   // faces in charts of reach rings where those wrap (degree 3: strips of 8 faces and more), and on shorter strips
   // the bicubic B-spline cells of regular neighbourhoods.
-  const bool periodic = stars_.empty() && has_closed_strip(m);
+  const bool periodic = singular.empty() && has_closed_strip(m);
   struct Cluster {
     int centre, rings;
     std::vector<int> members;
@@ -527,7 +618,7 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads)
       // Without star points the chart of all the faces it reaches (the global T-spline: small charts of a
       // model whose end-condition blocks or slits end inside them can have blending functions the chart's border
       // collapses).
-      const int k = periodic ? 1 : stars_.empty() ? nf : std::min(4, star_dist[static_cast<std::size_t>(f)] == INT_MAX ? 4 : star_dist[static_cast<std::size_t>(f)] - depth - 1);
+      const int k = periodic ? 1 : singular.empty() ? nf : std::min(4, star_dist[static_cast<std::size_t>(f)] == INT_MAX ? 4 : star_dist[static_cast<std::size_t>(f)] - depth - 1);
       std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX);
       dist[static_cast<std::size_t>(f)] = 0;
       Cluster c{f, (periodic ? reach : depth) + k, {}, {}};
@@ -721,10 +812,14 @@ void TMeshSurface::eval(int face, double u, double v, double* out) const {
 void TMeshSurface::eval_patch_homogeneous(int face, double up, double vp, double* out) const {
   const Face& f = faces_[static_cast<std::size_t>(face)];
   require(f.method == FaceMethod::bicubic || f.method == FaceMethod::star || f.method == FaceMethod::non_uniform ||
-              f.method == FaceMethod::subdivided,
+              f.method == FaceMethod::subdivided || f.method == FaceMethod::crease,
           [&] { return "T-mesh: face " + std::to_string(face) + " is not a Catmull-Clark face"; });
   if (f.method == FaceMethod::subdivided) {
     subdivided_[static_cast<std::size_t>(f.subdivided)].eval(up, vp, out);
+    return;
+  }
+  if (f.method == FaceMethod::crease) {
+    crease_faces_[static_cast<std::size_t>(f.crease)].eval(up, vp, out);
     return;
   }
   if (f.method == FaceMethod::non_uniform) {
@@ -748,6 +843,12 @@ void TMeshSurface::eval_patch_homogeneous(int face, double up, double vp, double
     for (int c = 0; c < 3; ++c) out[4 * k + c] = x[3 * k + c];
     out[4 * k + 3] = w[3 * k];
   }
+}
+
+const CreaseFace& TMeshSurface::crease_face(int face) const {
+  const Face& f = faces_[static_cast<std::size_t>(face)];
+  require(f.method == FaceMethod::crease, [&] { return "T-mesh: face " + std::to_string(face) + " is not a crease face"; });
+  return crease_faces_[static_cast<std::size_t>(f.crease)];
 }
 
 const SubdividedFace& TMeshSurface::subdivided(int face) const {

@@ -24,6 +24,12 @@
 //                  bicubic or star patch of the subdivided points (u, v in [0, 1/2]^2 etc. mapped to the
 //                  sub-face's [0, 1]^2, derivatives times 2); exactly the limit surface still. Equal knot
 //                  intervals only (non-uniform Catmull-Clark would need its sectors around both star points).
+//   crease         in a subdivision-crease mesh, the faces within p + 1 rings of an irregular vertex of a crease
+//                  boundary (irregular_crease_vertices: a crease vertex of other than two faces, a corner of other
+//                  than one; boundary star points among them), and faces near star points too close to a crease
+//                  boundary for the patches above: repeated local Catmull-Clark subdivision with the crease rules
+//                  of the mesh cut open along its creases (crease_face), exactly the limit surface. Equal knot
+//                  intervals and quadrilaterals in their two face rings.
 // The faces within p + 2 rings of a star point (bicubic and star) need, and are checked to have, degree 3,
 // no T-junction and no boundary within (p + 1) / 2 rings of them, control points
 // without repeated-knot nodes, and at most one star corner per face or else equal intervals (subdivided).
@@ -38,7 +44,8 @@
 // T-junctions and repeated knots within two rings of a star point's faces, unequal intervals, T-junctions or
 // corners with a side of one edge near a star point on the boundary, two star points with unequal intervals
 // within three rings of each other, unequal intervals within two rings of a face with several star corners,
-// degrees other than 3). A star point on the boundary is an interior one of the mesh with a ghost layer along
+// degrees other than 3). A star point on a Bezier end-condition boundary is an interior one of the mesh with a
+// ghost layer along
 // the boundary (boundary_ghosts: the Bezier end condition as a uniform bicubic net, round corners as the tensor
 // product of the two clamped ends), so its faces are star faces of valence K + 2 and the faces near it bicubic
 // faces of that mesh, the T-spline wherever their points avoid it. The surface there
@@ -55,13 +62,14 @@
 #include <optional>
 #include <vector>
 
+#include "trivar/tspline/crease_face.hpp"
 #include "trivar/tspline/subdivided_face.hpp"
 #include "trivar/tspline/t_mesh.hpp"
 #include "trivar/tspline/t_spline_surface.hpp"
 
 namespace trivar {
 
-enum class FaceMethod { none, exact, bicubic, star, non_uniform, subdivided };
+enum class FaceMethod { none, exact, bicubic, star, non_uniform, subdivided, crease };
 const char* face_method_name(FaceMethod m);
 
 // The frame of a Catmull-Clark patch starting at corner c (0..3, counter-clockwise from the face's first corner)
@@ -75,7 +83,8 @@ class TMeshSurface {
 public:
   // threads for the charts' builds (parallel_for; <= 0: all). A crease boundary (subd_creases), or a Bezier
   // boundary without block points (Fusion's MULTIPLE_KNOTS without grip map), is evaluated as its Bezier end
-  // conditions with block points (crease_ends); mesh() is that mesh.
+  // conditions with block points (crease_ends), but near a crease boundary's irregular vertices by local
+  // subdivision (crease faces); mesh() is that mesh.
   explicit TMeshSurface(const TMesh& mesh, int threads = 0);
   ~TMeshSurface();
   TMeshSurface(TMeshSurface&&) noexcept;
@@ -119,6 +128,8 @@ public:
   int non_uniform_stars() const { return static_cast<int>(nurcc_.size()); }
   // A subdivided face: its four quarters after one local Catmull-Clark step.
   const SubdividedFace& subdivided(int face) const;
+  // A face near an irregular vertex of a crease boundary, evaluated by local subdivision.
+  const CreaseFace& crease_face(int face) const;
 
 private:
   struct Face {
@@ -136,6 +147,7 @@ private:
     std::array<int, 2> cell{-1, -1};
     bool boundary_star = false;    // star: the star point is on the boundary
     int subdivided = -1;           // subdivided: index into subdivided_
+    int crease = -1;               // crease: index into crease_faces_
   };
   struct Nurcc;  // a star point evaluated by non-uniform Catmull-Clark: its subdivision and homogeneous points
   TMesh mesh_;
@@ -145,6 +157,7 @@ private:
   std::vector<std::unique_ptr<TSplineSurface>> charts_;
   std::vector<std::unique_ptr<Nurcc>> nurcc_;
   std::vector<SubdividedFace> subdivided_;
+  std::vector<CreaseFace> crease_faces_;
   std::unique_ptr<TMesh> ghosted_;  // with star points on the boundary: the mesh with their ghost layers
   // The control mesh of the Catmull-Clark faces (bicubic and star: their `points` are its vertices).
   const TMesh& cc_mesh() const { return ghosted_ ? *ghosted_ : mesh_; }

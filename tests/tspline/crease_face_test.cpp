@@ -1,0 +1,296 @@
+// Irregular vertices of crease boundaries in subdivision-crease T-meshes (boundary star points, a crease turning
+// at a vertex, a corner with a side of several faces), evaluated by local subdivision (crease_face), against
+// OpenSubdiv's Catmull-Clark limit surface with the same infinitely sharp creases (an independent implementation:
+// Bfr is exact to rounding farther than 2^-L from irregular vertices, L = 10 here, and interpolates the limit
+// point at them).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "fusion_cages.hpp"
+#include "osd_reference.hpp"
+#include "star_mesh_tsm.hpp"
+#include "support/temp_dir.hpp"
+#include "triangulation_loops.hpp"
+#include "tsm_error.hpp"
+#include "trivar/core/error.hpp"
+#include "trivar/io/tsm_format.hpp"
+#include "trivar/tspline/crease_face.hpp"
+#include "trivar/tspline/sharp_creases.hpp"
+#include "trivar/tspline/t_mesh_surface.hpp"
+#include "trivar/tspline/t_mesh_tessellation.hpp"
+
+namespace trivar::crease_face_test {
+namespace {
+
+using Crease = std::function<bool(int, int)>;
+
+double wavy(double x, double y) { return 0.3 * std::sin(0.9 * x + 0.4 * y) + 0.05 * x * y; }
+
+// A Fusion cage (SUBD_CREASES) with the edges `crease` picks and the vertices `creased` in Fusion's crease lists
+// (`100edges`, `100verts`).
+std::string creased_cage(const test::QuadMesh& cage, const Crease& crease, const std::vector<int>& creased = {}) {
+  const TMesh plain = io::parse_tsm(test::fusion_text(cage), "plain.tsm").mesh;
+  std::set<int> edges;
+  for (const TMeshLink& k : plain.links)
+    if (k.vertex >= 0 && crease(k.vertex, plain.links[static_cast<std::size_t>(k.opp)].vertex)) edges.insert(k.edge);
+  std::string lists = "100edges";
+  for (int e : edges) lists += " " + std::to_string(e);
+  lists += "\n100verts";
+  for (int v : creased) lists += " " + std::to_string(v);
+  return test::fusion_text(cage, "SUBD_CREASES", 1.0, lists + "\n");
+}
+
+struct OsdDeviation {
+  double off_vertices = 0;  // value, d/du, d/dv away from the face corners
+  double at_vertices = 0;   // limit positions at the face corners
+  int samples = 0;
+};
+
+// The surface against OpenSubdiv at 8 x 8 points per face of every face (Bfr's quadrilateral parametrisation is
+// the face's (u, v)); the nearest lie 2e-3 from a corner, beyond Bfr's 2^-10. Tolerance 1e-12: both are exact
+// up to rounding of points of size up to about 4, and the derivatives 2e-3 from an irregular corner come from a
+// sub-face of level 9, scaled by 2^9 (about 1e-15 * 4 * 512 = 2e-12 at worst; measured below 5e-13).
+OsdDeviation against_osd(const TMeshSurface& s, const test::QuadMesh& cage, const Crease& crease, const std::vector<int>& creased = {}) {
+  test::PolyMesh poly;
+  poly.points = cage.points;
+  std::set<std::array<int, 2>> sharp;
+  for (const auto& q : cage.quads) {
+    poly.faces.push_back({q.begin(), q.end()});
+    for (int k = 0; k < 4; ++k) {
+      const int a = q[static_cast<std::size_t>(k)], b = q[static_cast<std::size_t>((k + 1) % 4)];
+      if (crease(a, b)) sharp.insert({std::min(a, b), std::max(a, b)});
+    }
+  }
+  poly.sharp_edges.assign(sharp.begin(), sharp.end());
+  poly.sharp_vertices = creased;
+  const test::OsdLimitSurface ref(poly);
+  EXPECT_EQ(s.num_faces(), static_cast<int>(cage.quads.size()));
+  OsdDeviation d;
+  for (int f = 0; f < s.num_faces(); ++f)
+    for (double u : {0.0, 2e-3, 0.1, 0.3, 0.5, 0.77, 0.998, 1.0})
+      for (double v : {0.0, 2e-3, 0.1, 0.3, 0.5, 0.77, 0.998, 1.0}) {
+        double a[9];
+        s.eval(f, u, v, a);
+        const test::LimitSample b = ref.eval(f, u, v);
+        const bool corner = (u == 0 || u == 1) && (v == 0 || v == 1);
+        for (std::size_t k = 0; k < 3; ++k) {
+          d.at_vertices = std::max(d.at_vertices, corner ? std::abs(a[k] - b.p[k]) : 0.0);
+          if (!corner) d.off_vertices = std::max({d.off_vertices, std::abs(a[k] - b.p[k]), std::abs(a[3 + k] - b.du[k]), std::abs(a[6 + k] - b.dv[k])});
+        }
+        ++d.samples;
+      }
+  return d;
+}
+
+// The grid cage's vertex (i, j) of grid_cage(n, n).
+struct GridIndex {
+  int n;
+  int i(int v) const { return v % (n + 1); }
+  int j(int v) const { return v / (n + 1); }
+};
+
+TEST(CreaseFace, BoundaryStarPointsAgainstOpenSubdiv) {
+  // Half fans of 3, 4, 5 sectors of 7 x 7 faces round a vertex on the straight boundary: crease vertices of 3, 4, 5
+  // faces (the boundary is a crease; 3 faces: a concave corner of the T-mesh).
+  for (int sectors : {3, 4, 5}) {
+    const test::QuadMesh cage = test::half_fan_mesh(sectors, 7, wavy);
+    const TMeshSurface s(io::parse_tsm(test::fusion_text(cage), "fan.tsm").mesh, 1);
+    EXPECT_EQ(s.boundary_star_faces(), 0);
+    EXPECT_GT(s.count(FaceMethod::crease), sectors * 16);  // the sectors' faces within 4 rings
+    const OsdDeviation d = against_osd(s, cage, [](int, int) { return false; });
+    EXPECT_LT(d.off_vertices, 1e-12) << sectors;
+    EXPECT_LT(d.at_vertices, 1e-13) << sectors;
+    // At the vertex (cage vertex 0, face 0's first corner): the normal of the derivatives there against the
+    // normals 2^-30 from it along the face's diagonal and along the boundary spoke (its side v = 0), and against
+    // OpenSubdiv's limit tangents (Far's limit masks). With 3 faces the surface has one tangent plane there and the
+    // evaluation gives it (from the eigenstructure); with 4 and 5 faces the crease rules leave the surface without
+    // one (the normals along the spoke and along the diagonal tend to planes apart, as OpenSubdiv's surface does:
+    // they agree to rounding beyond 2e-3), and the derivatives there are those 2^-30 along the diagonal.
+    const auto normal = [](const double* x) {
+      const std::array<double, 3> n{x[4] * x[8] - x[5] * x[7], x[5] * x[6] - x[3] * x[8], x[3] * x[7] - x[4] * x[6]};
+      const double l = std::hypot(n[0], n[1], n[2]);
+      return std::array<double, 3>{n[0] / l, n[1] / l, n[2] / l};
+    };
+    const auto angle = [](const std::array<double, 3>& a, const std::array<double, 3>& b) {
+      return std::hypot(a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]);
+    };
+    const double h = std::ldexp(1.0, -30);
+    double at[9], diagonal[9], spoke[9];
+    s.eval(0, 0, 0, at);
+    s.eval(0, h, h, diagonal);
+    s.eval(0, h, 0, spoke);
+    const auto n0 = normal(at);
+    const double to_diagonal = angle(n0, normal(diagonal)), to_spoke = angle(n0, normal(spoke));
+    test::PolyMesh poly{cage.points, {}, {}, {}, true};
+    for (const auto& q : cage.quads) poly.faces.push_back({q.begin(), q.end()});
+    const test::LimitSample lim = test::OsdLimitSurface(poly).vertex_limits()[0];
+    const double ld[9] = {0, 0, 0, lim.du[0], lim.du[1], lim.du[2], lim.dv[0], lim.dv[1], lim.dv[2]};
+    const double to_osd = angle(n0, normal(ld));
+    if (sectors == 3) {
+      EXPECT_LT(to_diagonal, 1e-4);
+      EXPECT_LT(to_spoke, 1e-5);
+    } else {
+      EXPECT_GT(angle(normal(diagonal), normal(spoke)), 1e-3);
+    }
+    std::printf("  at the vertex: normal to the normals 2^-30 away along the diagonal %.2e rad, along the spoke %.2e rad; "
+                "to OpenSubdiv's limit tangents %.2e rad\n", to_diagonal, to_spoke, to_osd);
+    std::printf("crease half fan of %d sectors of 7 x 7 faces: %d faces by local subdivision, %d exact; against OpenSubdiv "
+                "(%d samples) %.2e (value, d/du, d/dv), limit points %.2e\n",
+                sectors, s.count(FaceMethod::crease), s.count(FaceMethod::exact), d.samples, d.off_vertices, d.at_vertices);
+  }
+}
+
+TEST(CreaseFace, CreaseTurningAtAVertexOfFourFaces) {
+  // Grid of 6 x 6: a crease up from the boundary at i = 3 to (3, 3), turning there along j = 3 to the boundary. At
+  // (3, 3) the side of one face is a crease vertex (the crease curve's (P_prev + 4 P + P_next) / 6), not a corner.
+  const GridIndex g{6};
+  const test::QuadMesh cage = test::grid_cage(6, 6);
+  const Crease turn = [&](int a, int b) {
+    return (g.i(a) == 3 && g.i(b) == 3 && std::max(g.j(a), g.j(b)) <= 3) || (g.j(a) == 3 && g.j(b) == 3 && std::min(g.i(a), g.i(b)) >= 3);
+  };
+  const io::TsmModel model = io::parse_tsm(creased_cage(cage, turn), "turn.tsm");
+  EXPECT_EQ(model.report.crease_edges, 6);
+  const TMeshSurface s(model.mesh, 1);
+  const OsdDeviation d = against_osd(s, cage, turn);
+  EXPECT_LT(d.off_vertices, 1e-12);
+  EXPECT_LT(d.at_vertices, 1e-13);
+  // The limit point at the turn from the face of the one-face side ((3, 2) -> face 2 * 6 + 3, corner 3 at (3, 3)).
+  const auto p = [&](int i, int j) { return cage.points[static_cast<std::size_t>(j * 7 + i)]; };
+  double o[9];
+  s.eval(2 * 6 + 3, 0, 1, o);
+  double rule = 0;
+  for (std::size_t k = 0; k < 3; ++k) rule = std::max(rule, std::abs(o[k] - (p(3, 2)[k] + 4 * p(3, 3)[k] + p(4, 3)[k]) / 6));
+  EXPECT_LT(rule, 1e-15);
+  std::printf("grid with a crease turning at a vertex of four faces: %d faces by local subdivision; against OpenSubdiv %.2e, "
+              "limit points %.2e, crease rule at the turn %.2e\n", s.count(FaceMethod::crease), d.off_vertices, d.at_vertices, rule);
+}
+
+TEST(CreaseFace, CornerWithASideOfTwoFaces) {
+  // Grid of 6 x 6: a crease across at i = 3 and one from (3, 3) to the right boundary: three sharp edges at (3, 3),
+  // a corner whose left side has two faces.
+  const GridIndex g{6};
+  const test::QuadMesh cage = test::grid_cage(6, 6);
+  const Crease tee = [&](int a, int b) {
+    return (g.i(a) == 3 && g.i(b) == 3) || (g.j(a) == 3 && g.j(b) == 3 && std::min(g.i(a), g.i(b)) >= 3);
+  };
+  const TMeshSurface s(io::parse_tsm(creased_cage(cage, tee), "tee.tsm").mesh, 1);
+  const OsdDeviation d = against_osd(s, cage, tee);
+  EXPECT_LT(d.off_vertices, 1e-12);
+  EXPECT_LT(d.at_vertices, 1e-13);
+  // Interpolated from the side of two faces (face (2, 3) -> 3 * 6 + 2, corner 1 at (3, 3)).
+  double o[9];
+  s.eval(3 * 6 + 2, 1, 0, o);
+  const auto& p = cage.points[3 * 7 + 3];
+  EXPECT_LT(std::max({std::abs(o[0] - p[0]), std::abs(o[1] - p[1]), std::abs(o[2] - p[2])}), 1e-15);
+  std::printf("grid with a corner of three creases and a side of two faces: %d faces by local subdivision; against "
+              "OpenSubdiv %.2e, limit points %.2e\n", s.count(FaceMethod::crease), d.off_vertices, d.at_vertices);
+}
+
+TEST(CreaseFace, CreasedVertexOnACreaseIsACorner) {
+  // Grid of 6 x 6 with a straight crease across at i = 3 and its middle vertex (3, 3) in Fusion's creased vertex
+  // list: a corner (interpolated, the crease curve kinked there) with two faces on each side, against
+  // OpenSubdiv's infinitely sharp vertex. A creased vertex on the boundary (6, 0), a corner of two faces, too.
+  const GridIndex g{6};
+  const test::QuadMesh cage = test::grid_cage(6, 6);
+  const Crease across = [&](int a, int b) { return g.i(a) == 3 && g.i(b) == 3; };
+  const std::vector<int> creased{3 * 7 + 3, 3 * 7 + 6};
+  const TMeshSurface s(io::parse_tsm(creased_cage(cage, across, creased), "creased_vertex.tsm").mesh, 1);
+  EXPECT_GT(s.count(FaceMethod::crease), 0);
+  const OsdDeviation d = against_osd(s, cage, across, creased);
+  EXPECT_LT(d.off_vertices, 1e-12);
+  EXPECT_LT(d.at_vertices, 1e-13);
+  // Interpolated: the corner of face (3, 3) -> 3 * 6 + 3 at its first corner (3, 3), and of face (5, 3) at its
+  // second corner (6, 3).
+  double o[9];
+  s.eval(3 * 6 + 3, 0, 0, o);
+  const auto& p = cage.points[3 * 7 + 3];
+  EXPECT_LT(std::max({std::abs(o[0] - p[0]), std::abs(o[1] - p[1]), std::abs(o[2] - p[2])}), 1e-15);
+  s.eval(3 * 6 + 5, 1, 0, o);
+  const auto& q = cage.points[3 * 7 + 6];
+  EXPECT_LT(std::max({std::abs(o[0] - q[0]), std::abs(o[1] - q[1]), std::abs(o[2] - q[2])}), 1e-15);
+  std::printf("grid with a creased vertex on its crease and one on its boundary: %d faces by local subdivision; against "
+              "OpenSubdiv %.2e, limit points %.2e\n", s.count(FaceMethod::crease), d.off_vertices, d.at_vertices);
+}
+
+// The cube cage of 3 x 3 faces per side, points moved off the cube, and which vertices lie round its top (z = 1).
+struct TopBox {
+  test::QuadMesh cage = test::cube_mesh(3);
+  std::vector<char> rim;  // on the top face's border
+  TopBox() {
+    for (auto& p : cage.points) {
+      rim.push_back(std::abs(p[2] - 1) < 1e-9 && (std::abs(std::abs(p[0]) - 1) < 1e-9 || std::abs(std::abs(p[1]) - 1) < 1e-9));
+      const auto q = p;
+      p = {q[0] + 0.1 * std::sin(2 * q[1] + q[2]), q[1] + 0.07 * std::cos(q[0] - q[2]), q[2] * (1 + 0.05 * q[0] * q[1])};
+    }
+  }
+  // Cage edges join grid neighbours, so an edge between two vertices of the border runs along it.
+  bool rim_edge(int a, int b) const { return rim[static_cast<std::size_t>(a)] && rim[static_cast<std::size_t>(b)]; }
+};
+
+TEST(CreaseFace, BoxWithItsTopRimCreased) {
+  // Fusion's box of 3 x 3 faces per side with the 12 edges round its top face creased: the crease turns at the
+  // four top corners, valence-3 star points of the cage, whose top side has one face (a crease vertex of one
+  // face) and whose other side two. Closed: the triangulation has Euler characteristic 2.
+  const TopBox box;
+  const Crease rim = [&](int a, int b) { return box.rim_edge(a, b); };
+  const io::TsmModel model = io::parse_tsm(creased_cage(box.cage, rim), "box.tsm");
+  EXPECT_EQ(model.report.crease_edges, 12);
+  const TMeshSurface s(model.mesh, 1);
+  EXPECT_EQ(irregular_crease_vertices(s.mesh()).size(), 0u);  // the converted mesh has Bezier end conditions
+  EXPECT_GT(s.count(FaceMethod::crease), 0);
+  const OsdDeviation d = against_osd(s, box.cage, rim);
+  EXPECT_LT(d.off_vertices, 1e-12);
+  EXPECT_LT(d.at_vertices, 1e-13);
+  const TSplineTriangulation t = tessellate(s, 1e-3);
+  EXPECT_EQ(test::closed_euler_characteristic(t), 2);
+  std::printf("box 3 x 3 per side, top rim creased: %d faces by local subdivision, %d exact, %d at star points; against "
+              "OpenSubdiv %.2e, limit points %.2e; %zu triangles closed\n", s.count(FaceMethod::crease), s.count(FaceMethod::exact),
+              s.count(FaceMethod::star), d.off_vertices, d.at_vertices, t.triangles.size());
+}
+
+// The command line counts the faces by local subdivision, writes a closed triangle mesh and STEP patches.
+TEST(CreaseFace, CommandLineCounts) {
+  const test::TempDir dir;
+  const TopBox box;
+  const std::string path = dir.file("box.tsm");
+  std::ofstream(path) << creased_cage(box.cage, [&](int a, int b) { return box.rim_edge(a, b); });
+  const TMeshSurface s(io::read_tsm(path).mesh, 1);
+  const std::string info = test::run_cli(dir, "info " + path);
+  EXPECT_NE(info.find(std::to_string(s.count(FaceMethod::crease)) + " faces within 4 rings of irregular vertices of a crease boundary"),
+            std::string::npos) << info;
+  EXPECT_NE(test::run_cli(dir, "info " + path + " --json").find("\"faces_crease_subdivision\": " + std::to_string(s.count(FaceMethod::crease))),
+            std::string::npos);
+  test::run_cli(dir, "convert " + path + " " + dir.file("box.obj"));
+  EXPECT_EQ(test::closed_euler_characteristic(test::obj_triangles(dir.file("box.obj"))), 2);
+  const std::string step = test::run_cli(dir, "convert " + path + " " + dir.file("box.stp"));
+  EXPECT_NE(step.find("Bezier patches"), std::string::npos) << step;
+  std::printf("%s", step.c_str());
+}
+
+TEST(CreaseFace, RefusesUnequalIntervalsNearAnIrregularVertex) {
+  // A half fan of 4 sectors with every knot interval 1 but one of 0.5: refused in one line naming the edge.
+  const test::QuadMesh cage = test::half_fan_mesh(4, 5, wavy);
+  TMesh m = io::parse_tsm(test::fusion_text(cage), "fan.tsm").mesh;
+  m.intervals[3] = 0.5;
+  try {
+    const TMeshSurface s(m, 1);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("edge 3 nearby has knot interval 0.5"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("local subdivision takes equal intervals"), std::string::npos) << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+  }
+}
+
+}  // namespace
+}  // namespace trivar::crease_face_test
