@@ -91,6 +91,13 @@ OsdDeviation against_osd(const TMeshSurface& s, const test::QuadMesh& cage, cons
   return d;
 }
 
+// How far the surface at face (u, v) lies from the point p (a corner that interpolates its control point).
+double gap_to(const TMeshSurface& s, int face, double u, double v, const std::array<double, 3>& p) {
+  double o[9];
+  s.eval(face, u, v, o);
+  return std::max({std::abs(o[0] - p[0]), std::abs(o[1] - p[1]), std::abs(o[2] - p[2])});
+}
+
 // The grid cage's vertex (i, j) of grid_cage(n, n).
 struct GridIndex {
   int n;
@@ -187,10 +194,7 @@ TEST(CreaseFace, CornerWithASideOfTwoFaces) {
   EXPECT_LT(d.off_vertices, 1e-12);
   EXPECT_LT(d.at_vertices, 1e-13);
   // Interpolated from the side of two faces (face (2, 3) -> 3 * 6 + 2, corner 1 at (3, 3)).
-  double o[9];
-  s.eval(3 * 6 + 2, 1, 0, o);
-  const auto& p = cage.points[3 * 7 + 3];
-  EXPECT_LT(std::max({std::abs(o[0] - p[0]), std::abs(o[1] - p[1]), std::abs(o[2] - p[2])}), 1e-15);
+  EXPECT_LT(gap_to(s, 3 * 6 + 2, 1, 0, cage.points[3 * 7 + 3]), 1e-15);
   std::printf("grid with a corner of three creases and a side of two faces: %d faces by local subdivision; against "
               "OpenSubdiv %.2e, limit points %.2e\n", s.count(FaceMethod::crease), d.off_vertices, d.at_vertices);
 }
@@ -198,7 +202,7 @@ TEST(CreaseFace, CornerWithASideOfTwoFaces) {
 TEST(CreaseFace, CreasedVertexOnACreaseIsACorner) {
   // Grid of 6 x 6 with a straight crease across at i = 3 and its middle vertex (3, 3) in Fusion's creased vertex
   // list: a corner (interpolated, the crease curve kinked there) with two faces on each side, against
-  // OpenSubdiv's infinitely sharp vertex. A creased vertex on the boundary (6, 0), a corner of two faces, too.
+  // OpenSubdiv's infinitely sharp vertex. A creased vertex on the boundary, (6, 3), a corner of two faces, too.
   const GridIndex g{6};
   const test::QuadMesh cage = test::grid_cage(6, 6);
   const Crease across = [&](int a, int b) { return g.i(a) == 3 && g.i(b) == 3; };
@@ -210,13 +214,8 @@ TEST(CreaseFace, CreasedVertexOnACreaseIsACorner) {
   EXPECT_LT(d.at_vertices, 1e-13);
   // Interpolated: the corner of face (3, 3) -> 3 * 6 + 3 at its first corner (3, 3), and of face (5, 3) at its
   // second corner (6, 3).
-  double o[9];
-  s.eval(3 * 6 + 3, 0, 0, o);
-  const auto& p = cage.points[3 * 7 + 3];
-  EXPECT_LT(std::max({std::abs(o[0] - p[0]), std::abs(o[1] - p[1]), std::abs(o[2] - p[2])}), 1e-15);
-  s.eval(3 * 6 + 5, 1, 0, o);
-  const auto& q = cage.points[3 * 7 + 6];
-  EXPECT_LT(std::max({std::abs(o[0] - q[0]), std::abs(o[1] - q[1]), std::abs(o[2] - q[2])}), 1e-15);
+  EXPECT_LT(gap_to(s, 3 * 6 + 3, 0, 0, cage.points[3 * 7 + 3]), 1e-15);
+  EXPECT_LT(gap_to(s, 3 * 6 + 5, 1, 0, cage.points[3 * 7 + 6]), 1e-15);
   std::printf("grid with a creased vertex on its crease and one on its boundary: %d faces by local subdivision; against "
               "OpenSubdiv %.2e, limit points %.2e\n", s.count(FaceMethod::crease), d.off_vertices, d.at_vertices);
 }
