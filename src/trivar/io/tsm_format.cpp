@@ -318,8 +318,9 @@ TsmModel TsmReader::build() {
     if (!r.words.empty()) {
       const int e = number<int>(r, 0, "edge");
       if (e < 0 || e >= ne || E[static_cast<std::size_t>(e)].words.empty()) fail(r.line, "edge condition names edge " + std::to_string(e) + ", which does not exist");
-      // Fusion marks crease edges so; on the boundary the end conditions say what the edge is, inside a
-      // SUBD_CREASES mesh it is a sharp crease (sharp_creases). Bezier end conditions have no crease rule.
+      // Fusion writes them on open boundary edges, where the end conditions say what the edge is; between two
+      // faces of a SUBD_CREASES mesh one is taken as a sharp crease like those of `100edges` (sharp_creases).
+      // Bezier end conditions have no crease rule.
       const TMeshLink& k = mesh.links[static_cast<std::size_t>(number<int>(E[static_cast<std::size_t>(e)], 0, "link"))];
       if (ends == EndConditions::bezier && !rep.end_conditions.empty() && k.face >= 0 && mesh.links[static_cast<std::size_t>(k.opp)].face >= 0)
         fail(r.line, "edge " + std::to_string(e) + " between two faces is a crease (ec); creases inside the mesh are read with end-conditions SUBD_CREASES, not " +
