@@ -1,5 +1,6 @@
 #include "trivar/tspline/non_uniform_subdivision.hpp"
 
+#include <algorithm>
 #include <climits>
 #include <cmath>
 #include <string>
@@ -200,6 +201,13 @@ TMesh nurcc_step(const TMesh& m) {
 }
 
 int nurcc_steps_needed(const TMesh& m, int apart) {
+  double lo = INFINITY, hi = 0;
+  for (double d : m.intervals)
+    if (d > 0) {
+      lo = std::min(lo, d);
+      hi = std::max(hi, d);
+    }
+  if (hi - lo <= 1e-12 * hi) return 0;  // equal intervals: uniform Catmull-Clark needs no steps
   const std::vector<int> stars = star_points(m);
   if (stars.size() < 2 || !unsupported(m).empty()) return 0;
   const Spokes sp = spokes(m);

@@ -546,6 +546,16 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads, int global_steps)
       local_subdivision(f, "within " + std::to_string(depth + 1) + " face rings of an irregular vertex of a crease boundary");
       continue;
     }
+    if (star_dist[static_cast<std::size_t>(f)] > depth && steps_ > 0) {
+      // A mesh refined by global steps is closed and has no T-junction: away from star points the T-spline of
+      // a face is the bicubic B-spline cell of its 16 points on its knots, without a chart.
+      std::string unequal;
+      const std::string why = regular(f, unequal);
+      require(why.empty(), [&] { return "T-mesh: face " + std::to_string(f) + " after the global steps: " + why; });
+      set_patch(f, 0, 0, unequal, "T-mesh: face " + std::to_string(f) + " after the global steps: ",
+                gather(cm, m.faces[static_cast<std::size_t>(f)][0]));
+      continue;
+    }
     if (star_dist[static_cast<std::size_t>(f)] > depth) {
       face.method = FaceMethod::exact;
       exact.push_back(f);
