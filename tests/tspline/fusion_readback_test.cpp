@@ -18,6 +18,7 @@
 #include "triangulation_loops.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/io/tsm_format.hpp"
+#include "trivar/tspline/t_mesh_patches.hpp"
 #include "trivar/tspline/t_mesh_surface.hpp"
 #include "trivar/tspline/t_mesh_tessellation.hpp"
 
@@ -360,6 +361,11 @@ TEST(FusionReadback, UnequalIntervalsAmongCloseStarPointsAreSteppedApart) {
   std::printf("  %d faces (non-uniform %d, bicubic %d, exact %d), %zu triangles; across %d edges: gap %.1e, normals %.1e, "
               "C1 %.1e\n", s.num_faces(), s.count(FaceMethod::non_uniform), s.count(FaceMethod::bicubic),
               s.count(FaceMethod::exact), t.triangles.size(), c.edges, c.gap, c.normal_angle, c.c1);
+  // Bezier patches of the refined faces: the 24 star faces' corner patches within the default tolerance.
+  const TMeshPatches p = t_mesh_patches(s);
+  EXPECT_EQ(p.corner_patches, 24);
+  EXPECT_EQ(p.exact_patches + p.corner_patches, static_cast<int>(p.patches.size()));
+  EXPECT_LE(p.deviation, p.tolerance);
 }
 
 // The box whose top side's centre face is split 2 x 2: T-junctions on the four faces round it, each next to
