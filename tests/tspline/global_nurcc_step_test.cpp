@@ -153,7 +153,7 @@ TEST(GlobalNurccStep, UnequalIntervalsFarApartMatchNonUniformStar) {
   // and bicubic cells on the unequal knots), or 1 from four of them and 5 from the others (after the step 2, still
   // non-uniform, and 10). The faces' sides are compared too: where the intervals jump, each face's derivatives
   // are its own (one-sided).
-  for (const auto [strip, wide, nurcc_stars, stepped_nurcc] : {std::tuple{3, 1.02, 8, 0}, std::tuple{1, 1.5, 4, 4}}) {
+  for (const auto& [strip, wide, nurcc_stars, stepped_nurcc] : {std::tuple{3, 1.02, 8, 0}, std::tuple{1, 1.5, 4, 4}}) {
     const TMesh mesh = stepped_box(7, strip, wide);
     const TMeshSurface s(mesh, 1);
     EXPECT_EQ(s.global_steps(), 0);

@@ -72,6 +72,19 @@ Spokes spokes(const TMesh& m) {
   return s;
 }
 
+// Whether the knot intervals of the links that `take` accepts are equal (to 1e-12 relative).
+template <class Take>
+bool equal_intervals(const TMesh& m, const Take& take) {
+  double lo = INFINITY, hi = 0;
+  for (int l = 0; l < static_cast<int>(m.links.size()); ++l)
+    if (take(l)) {
+      const double d = m.intervals[static_cast<std::size_t>(m.links[static_cast<std::size_t>(l)].edge)];
+      lo = std::min(lo, d);
+      hi = std::max(hi, d);
+    }
+  return hi - lo <= 1e-12 * hi;
+}
+
 }  // namespace
 
 TMesh nurcc_step(const TMesh& m) {
@@ -201,13 +214,8 @@ TMesh nurcc_step(const TMesh& m) {
 }
 
 int nurcc_steps_needed(const TMesh& m, int apart) {
-  double lo = INFINITY, hi = 0;
-  for (double d : m.intervals)
-    if (d > 0) {
-      lo = std::min(lo, d);
-      hi = std::max(hi, d);
-    }
-  if (hi - lo <= 1e-12 * hi) return 0;  // equal intervals: uniform Catmull-Clark needs no steps
+  const auto live = [&](int l) { return m.links[static_cast<std::size_t>(l)].vertex >= 0; };
+  if (equal_intervals(m, live)) return 0;  // uniform Catmull-Clark needs no steps
   const std::vector<int> stars = star_points(m);
   if (stars.size() < 2 || !unsupported(m).empty()) return 0;
   const Spokes sp = spokes(m);
@@ -231,14 +239,11 @@ int nurcc_steps_needed(const TMesh& m, int apart) {
   int closest = INT_MAX;
   for (int s : stars) {
     const std::vector<int> dist = distances(s);
-    double lo = INFINITY, hi = 0;
-    for (int l = 0; l < static_cast<int>(m.links.size()); ++l)
-      if (L(l).vertex >= 0 && L(l).face >= 0 && dist[static_cast<std::size_t>(L(l).vertex)] <= 4 &&
-          dist[static_cast<std::size_t>(L(L(l).next).vertex)] <= 4) {
-        lo = std::min(lo, m.intervals[static_cast<std::size_t>(L(l).edge)]);
-        hi = std::max(hi, m.intervals[static_cast<std::size_t>(L(l).edge)]);
-      }
-    if (hi - lo <= 1e-12 * hi) continue;
+    if (equal_intervals(m, [&](int l) {
+          return L(l).vertex >= 0 && L(l).face >= 0 && dist[static_cast<std::size_t>(L(l).vertex)] <= 4 &&
+                 dist[static_cast<std::size_t>(L(L(l).next).vertex)] <= 4;
+        }))
+      continue;
     for (int t : stars)
       if (t != s) closest = std::min(closest, dist[static_cast<std::size_t>(t)]);
   }

@@ -44,8 +44,8 @@
 // T-junctions and repeated knots within two rings of a star point's faces, unequal intervals, T-junctions or
 // corners with a side of one edge near a star point on the boundary, two star points with unequal intervals
 // within three rings of each other unless the mesh is closed, quadrilateral and without creases (then global
-// non-uniform Catmull-Clark steps move them apart first, see the constructor), unequal intervals within two rings of a face with several star corners,
-// degrees other than 3). A star point on a Bezier end-condition boundary is an interior one of the mesh with a
+// non-uniform Catmull-Clark steps move them apart first, see the constructor), unequal intervals within two
+// rings of a face with several star corners, degrees other than 3). A star point on a Bezier end-condition boundary is an interior one of the mesh with a
 // ghost layer along
 // the boundary (boundary_ghosts: the Bezier end condition as a uniform bicubic net, round corners as the tensor
 // product of the two clamped ends), so its faces are star faces of valence K + 2 and the faces near it bicubic
