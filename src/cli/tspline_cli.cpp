@@ -183,7 +183,8 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
                    {"faces_catmull_clark", s.count(FaceMethod::bicubic) + s.count(FaceMethod::star) + sub},
                    {"faces_at_star_points", s.count(FaceMethod::star)}, {"faces_at_boundary_star_points", bs},
                    {"faces_non_uniform_catmull_clark", nu}, {"faces_subdivided", sub}, {"faces_crease_subdivision", cr},
-                   {"non_uniform_star_points", s.non_uniform_stars()}, {"continuity", continuity},
+                   {"non_uniform_star_points", s.non_uniform_stars()}, {"global_steps", s.global_steps()},
+                   {"faces_as_given", static_cast<int>(s.source_mesh().faces.size())}, {"continuity", continuity},
                    {"deleted_slots", r.deleted}, {"deleted_faces", r.holes}, {"skipped_records", r.skipped_records}};
   for (const auto& [n, c] : valences) j["star_valences"][std::to_string(n)] = c;
   add_fusion_settings(j, r);
@@ -208,6 +209,11 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
   else
     std::printf("  %d faces, %d star points (%s); no global (s, t): faces are evaluated in their own (u, v)\n", faces,
                 r.star_points, vs.c_str());
+  if (s.global_steps() > 0)
+    std::printf("  refined first by %d global non-uniform Catmull-Clark steps (star points fewer than %d edges apart with "
+                "unequal knot intervals; the limit surface is unchanged): each of the %zu faces as given is %d x %d faces, "
+                "and the faces counted and evaluated are the refined mesh's (written back as given)\n", s.global_steps(),
+                TMeshSurface::kStarsApart, s.source_mesh().faces.size(), 1 << s.global_steps(), 1 << s.global_steps());
   if (s.stars().empty() && creases)
     std::printf("  %d faces exact (the T-spline of their side in a chart of their neighbourhood), %d the bicubic B-spline "
                 "cell of their 16 points (round closed strips of a side)\n", s.count(FaceMethod::exact), s.count(FaceMethod::bicubic));
@@ -215,6 +221,10 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
     std::printf("  %d faces exact (the T-spline in a chart of their neighbourhood, not wrapping round the strip), %d "
                 "the bicubic B-spline cell of their 16 points (round strips too short for such charts)\n",
                 s.count(FaceMethod::exact), s.count(FaceMethod::bicubic));
+  else if (s.global_steps() > 0)
+    std::printf("  %d faces by the Catmull-Clark limit surface (%d at a star point, evaluated exactly by subdivision; the "
+                "others bicubic B-spline cells on their knots, the T-spline)\n",
+                s.count(FaceMethod::exact) + s.count(FaceMethod::bicubic) + s.count(FaceMethod::star) + sub, s.count(FaceMethod::star));
   else
     std::printf("  %d faces exact (the T-spline in a chart of their neighbourhood), %d faces within %d rings of a star "
                 "point by the Catmull-Clark limit surface (%d at a star point, evaluated exactly by subdivision)\n",

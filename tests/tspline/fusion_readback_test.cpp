@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <numbers>
 #include <sstream>
@@ -17,6 +18,7 @@
 #include "triangulation_loops.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/io/tsm_format.hpp"
+#include "trivar/tspline/t_mesh_patches.hpp"
 #include "trivar/tspline/t_mesh_surface.hpp"
 #include "trivar/tspline/t_mesh_tessellation.hpp"
 
@@ -303,11 +305,14 @@ void expect_surface_refusal(const TMesh& m, const std::string& fragment) {
   }
 }
 
-// Refused: unequal knot intervals among star points closer than non-uniform Catmull-Clark's three rings (the
-// 3 x 3 box's corners are three edges apart). The `inconsistent knot` box is consistent as Fusion wrote it back:
-// one strip of faces round the box carries 1.02 across (opposite sides equal to 9e-16), the rest 1 to 2.2e-15,
-// and its 108 106ek records repeat the edges' intervals.
-TEST(FusionReadback, UnequalIntervalsAmongCloseStarPointsAreRefused) {
+// Unequal knot intervals among star points closer than non-uniform Catmull-Clark's three rings (the 3 x 3 box's
+// corners are three edges apart): two global non-uniform Catmull-Clark steps (3 -> 12 edges apart), then each
+// star point's own sectors. The `inconsistent knot` box is consistent as Fusion wrote it back: one strip of faces
+// round the box carries 1.02 across (opposite sides equal to 9e-16), the rest 1 to 2.2e-15, and its 108 106ek
+// records repeat the edges' intervals. The strip is the middle one of its axis, so the box with its intervals is
+// symmetric under the three mirrors: the eight corner limit points are mirror images; with every interval 1 they
+// would be (25/3, 25/3, 25/3) (BoxInCentimetres).
+TEST(FusionReadback, UnequalIntervalsAmongCloseStarPointsAreSteppedApart) {
   const io::TsmModel m = read_fusion_file("a3_box3_inconsistent_knot3_readback.tsm");
   EXPECT_EQ(m.report.skipped_records.at("106ek"), 108);
   EXPECT_EQ(m.report.version, 289);
@@ -317,7 +322,50 @@ TEST(FusionReadback, UnequalIntervalsAmongCloseStarPointsAreRefused) {
     wide += std::abs(d - 1.02) < 3e-15;
   }
   EXPECT_EQ(wide, 12);  // a ring of 12 faces round the box, 12 edges between them
-  expect_surface_refusal(m.mesh, "edge 10 nearby has knot interval 1.020000, not 1.000000; non-uniform Catmull-Clark at star point 0 needs its three rings of faces");
+  const TMeshSurface s(m.mesh, 1);
+  EXPECT_EQ(s.global_steps(), 2);
+  EXPECT_EQ(s.num_faces(), 16 * 54);
+  EXPECT_EQ(s.source_mesh().faces.size(), 54u);
+  EXPECT_EQ(s.stars().size(), 8u);
+  EXPECT_EQ(s.non_uniform_stars(), 0);  // after the steps the strip lies beyond the corners' three rings
+  std::map<int, std::array<double, 3>> limit;
+  double spread = 0;
+  at_star_corners(s, [&](int v, const std::array<double, 3>& p) {
+    const auto [it, fresh] = limit.emplace(v, p);
+    spread = std::max(spread, std::hypot(p[0] - it->second[0], p[1] - it->second[1], p[2] - it->second[2]));
+  });
+  ASSERT_EQ(limit.size(), 8u);
+  EXPECT_LT(spread, 1e-12);  // the three faces at a corner agree
+  const std::array<double, 3> first = limit.begin()->second;
+  double mirror = 0, uniform = 0;
+  for (const auto& [v, p] : limit) {
+    const auto cp = control_point(s.mesh(), v);
+    for (std::size_t i = 0; i < 3; ++i) {
+      EXPECT_GT(p[i] * cp[i], 0);
+      mirror = std::max(mirror, std::abs(std::abs(p[i]) - std::abs(first[i])));
+      uniform = std::max(uniform, std::abs(std::abs(p[i]) - 25.0 / 3));
+    }
+  }
+  EXPECT_LT(mirror, 1e-12);
+  EXPECT_GT(uniform, 1e-4);  // the intervals move the limit points
+  EXPECT_LT(uniform, 0.05);
+  std::printf("box 3 x 3 with the 1.02 strip: corner limit point (%.12f, %.12f, %.12f) (mirror images to %.1e; uniform "
+              "25/3 off by %.2e)\n", std::abs(first[0]), std::abs(first[1]), std::abs(first[2]), mirror, uniform);
+  const TSplineTriangulation t = tessellate(s, 0.05);
+  EXPECT_EQ(test::closed_euler_characteristic(t), 2);
+  const test::Continuity c = test::continuity(s.mesh(), [&](int f, double u, double v, double* o) { s.eval(f, u, v, o); });
+  EXPECT_EQ(c.edges, 16 * 108);
+  EXPECT_LT(c.gap, 1e-12);
+  EXPECT_LT(c.normal_angle, 1e-9);
+  EXPECT_LT(c.c1, 0.02 + 1e-9);  // C1 in the knots: across the strip's sides the derivatives differ by the ratio 1.02
+  std::printf("  %d faces (non-uniform %d, bicubic %d, exact %d), %zu triangles; across %d edges: gap %.1e, normals %.1e, "
+              "C1 %.1e\n", s.num_faces(), s.count(FaceMethod::non_uniform), s.count(FaceMethod::bicubic),
+              s.count(FaceMethod::exact), t.triangles.size(), c.edges, c.gap, c.normal_angle, c.c1);
+  // Bezier patches of the refined faces: the 24 star faces' corner patches within the default tolerance.
+  const TMeshPatches p = t_mesh_patches(s);
+  EXPECT_EQ(p.corner_patches, 24);
+  EXPECT_EQ(p.exact_patches + p.corner_patches, static_cast<int>(p.patches.size()));
+  EXPECT_LE(p.deviation, p.tolerance);
 }
 
 // The box whose top side's centre face is split 2 x 2: T-junctions on the four faces round it, each next to

@@ -315,6 +315,31 @@ void nurcc_fan_checks(bool weights) {
   EXPECT_EQ(p.exact_patches, 300 + 15 * 4 + 5 * 3 * 4 * p.levels);  // faces, 4 cells per second-ring face, 12 per level
 }
 
+// A face's sides belong to it: where the knot intervals jump at a side, the derivatives there are the one-sided
+// limits from inside the face (in its own parametrisation), not the neighbour's (which differ by the ratio of
+// the intervals).
+TEST(NonUniformStar, FaceSidesAreLimitsFromInside) {
+  const TMesh mesh = nurcc_fan(5, 8, false);
+  const TMeshSurface s(mesh, 1);
+  double worst = 0;
+  int sides = 0;
+  for (int f = 0; f < s.num_faces(); ++f) {
+    if (s.method(f) != FaceMethod::non_uniform) continue;
+    for (double t : {0.3, 0.7})
+      for (const auto& [on, in] : {std::array<std::array<double, 2>, 2>{{{1, t}, {1 - 1e-9, t}}}, {{{t, 1}, {t, 1 - 1e-9}}},
+                                   {{{0, t}, {1e-9, t}}}, {{{t, 0}, {t, 1e-9}}}}) {
+        double a[9], b[9];
+        s.eval(f, on[0], on[1], a);
+        s.eval(f, in[0], in[1], b);
+        const double size = std::max(std::hypot(b[3], b[4], b[5]), std::hypot(b[6], b[7], b[8]));
+        for (int k = 3; k < 9; ++k) worst = std::max(worst, std::abs(a[k] - b[k]) / size);
+        ++sides;
+      }
+  }
+  EXPECT_EQ(sides, 20 * 2 * 4);
+  EXPECT_LT(worst, 1e-6);
+}
+
 TEST(NonUniformStar, TMeshWithUnequalIntervalsIsWatertight) { nurcc_fan_checks(false); }
 TEST(NonUniformStar, RationalTMeshWithUnequalIntervalsIsWatertight) { nurcc_fan_checks(true); }
 

@@ -58,9 +58,9 @@ public:
   Comb pt(int k, int i, int j) const { return {{id(k, i, j), 1.0}}; }
   static Comb curve(const Comb& p, const Comb& q, double before, double d, double after) {
     Comb c;
-    const double s = 2 * (before + d + after);
-    add(c, p, (d + 2 * after) / s);
-    add(c, q, (2 * before + d) / s);
+    const auto [wp, wq] = nurcc_curve_weights(before, d, after);
+    add(c, p, wp);
+    add(c, q, wq);
     return c;
   }
   Comb face(int k, int a, int b) const {
@@ -68,8 +68,7 @@ public:
     if (a < 0) return face(k + 1, b, -a - 1);
     const double du = w(k, a), nu = w(k, a + 1), pu = 0.5 * (ucol(k, a - 1, b) + ucol(k, a - 1, b + 1));
     const double dv = w(k + 1, b), nv = w(k + 1, b + 1), pv = 0.5 * (vrow(k, a, b - 1) + vrow(k, a + 1, b - 1));
-    const double su = 2 * (pu + du + nu), sv = 2 * (pv + dv + nv);
-    const std::array<double, 2> wu{(du + 2 * nu) / su, (2 * pu + du) / su}, wv{(dv + 2 * nv) / sv, (2 * pv + dv) / sv};
+    const std::array<double, 2> wu = nurcc_curve_weights(pu, du, nu), wv = nurcc_curve_weights(pv, dv, nv);
     Comb c;
     for (int t = 0; t < 2; ++t)
       for (int s = 0; s < 2; ++s) add(c, pt(k, a + s, b + t), wu[static_cast<std::size_t>(s)] * wv[static_cast<std::size_t>(t)]);
@@ -103,29 +102,26 @@ public:
                                   {vrow(k, a, b - 1), w(k + 1, b), vrow(k, a, b - 2), pt(k, a, b - 1)}}};
     const std::array<Comb, 4> f{face(k, a, b), face(k, a - 1, b), face(k, a - 1, b - 1), face(k, a, b - 1)};
     const Comb p = pt(k, a, b);
+    const std::array<double, 4> spokes{s[0].d, s[1].d, s[2].d, s[3].d};  // each spoke's o is the opposite one's d
+    const VertexWeights vw = nurcc_vertex_weights(spokes);
     Comb c;
     for (std::size_t m = 0; m < 4; ++m) {
-      const double am = s[m].o / (2 * (s[m].d + s[m].o)), an = s[(m + 1) % 4].o / (2 * (s[(m + 1) % 4].d + s[(m + 1) % 4].o));
-      add(c, f[m], am * an);
-      add(c, curve(p, s[m].q, s[m].o, s[m].d, s[m].n), am / 2);
+      add(c, f[m], vw.faces[m]);
+      add(c, curve(p, s[m].q, s[m].o, s[m].d, s[m].n), vw.curves[m]);
     }
-    add(c, p, 0.25);
+    add(c, p, vw.self);
     return c;
   }
-  Comb star() const {
-    const double n = n_;
+  // The vertex rule of the star point: the general one (nurcc_vertex_weights) with the first intervals of its
+  // spokes.
+  Comb star(std::span<const double> spokes) const {
+    const VertexWeights vw = nurcc_vertex_weights(spokes);
     Comb c;
-    double rest = 1;
     for (int k = 0; k < n_; ++k) {
-      const double ak = across_(k) / (2 * (w(k, 0) + across_(k)));
-      const int k1 = (k + 1) % n_;
-      const double ak1 = across_(k1) / (2 * (w(k1, 0) + across_(k1)));
-      const double wf = 16 / (n * n) * ak * ak1, wm = 8 / (n * n) * ak;
-      add(c, face(k, 0, 0), wf);
-      add(c, curve(pt(k, 0, 0), pt(k, 1, 0), across_(k), w(k, 0), w(k, 1)), wm);
-      rest -= wf + wm;
+      add(c, face(k, 0, 0), vw.faces[static_cast<std::size_t>(k)]);
+      add(c, curve(pt(k, 0, 0), pt(k, 1, 0), across_(k), w(k, 0), w(k, 1)), vw.curves[static_cast<std::size_t>(k)]);
     }
-    c[0] += rest;
+    c[0] += vw.self;
     return c;
   }
 
@@ -136,6 +132,42 @@ private:
 };
 
 }  // namespace
+
+std::array<double, 2> nurcc_curve_weights(double before, double d, double after) {
+  const double s = 2 * (before + d + after);
+  return {(d + 2 * after) / s, (2 * before + d) / s};
+}
+
+double nurcc_across(std::span<const double> spokes, int k) {
+  const int n = static_cast<int>(spokes.size());
+  double s = 0, t = 0;
+  for (int m = 0; m < n; ++m) {
+    const double c = std::max(0.0, -std::cos(2 * std::numbers::pi * (m - k) / n));
+    if (c < 1e-12) continue;
+    s += c * spokes[static_cast<std::size_t>(m)];
+    t += c;
+  }
+  return s / t;
+}
+
+// At a vertex of four faces the weights 16 / N^2 a_k a_(k+1) and 8 / N^2 a_k are the tensor product rule's
+// a_s a_t and a_s / 2 (a_s + a_(s+2) = 1/2, so the vertex keeps 1/4): one formula for all valences.
+VertexWeights nurcc_vertex_weights(std::span<const double> spokes) {
+  const int n = static_cast<int>(spokes.size());
+  const double nn = static_cast<double>(n) * n;
+  std::vector<double> a(static_cast<std::size_t>(n));
+  for (int k = 0; k < n; ++k) {
+    const double o = nurcc_across(spokes, k);
+    a[static_cast<std::size_t>(k)] = o / (2 * (spokes[static_cast<std::size_t>(k)] + o));
+  }
+  VertexWeights vw;
+  for (int k = 0; k < n; ++k) {
+    vw.faces.push_back(16 / nn * a[static_cast<std::size_t>(k)] * a[static_cast<std::size_t>((k + 1) % n)]);
+    vw.curves.push_back(8 / nn * a[static_cast<std::size_t>(k)]);
+    vw.self -= vw.faces.back() + vw.curves.back();
+  }
+  return vw;
+}
 
 NonUniformStar::NonUniformStar(int valence, std::vector<std::array<double, 4>> intervals)
     : n_(valence), u_(std::move(intervals)) {
@@ -152,15 +184,12 @@ double NonUniformStar::interval(int level, int spoke, int i) const {
   return u_[static_cast<std::size_t>(spoke)][static_cast<std::size_t>(std::min(i >> std::min(level, 3), 3))];
 }
 
-double NonUniformStar::across(int spoke) const {
-  double s = 0, t = 0;
-  for (int m = 0; m < n_; ++m) {
-    const double c = std::max(0.0, -std::cos(2 * std::numbers::pi * (m - spoke) / n_));
-    if (c < 1e-12) continue;
-    s += c * u_[static_cast<std::size_t>(m)][0];
-    t += c;
-  }
-  return s / t;
+double NonUniformStar::across(int spoke) const { return nurcc_across(first_intervals(), spoke); }
+
+std::vector<double> NonUniformStar::first_intervals() const {
+  std::vector<double> d;
+  for (const auto& r : u_) d.push_back(r[0]);
+  return d;
 }
 
 void NonUniformStar::build_step(int level, std::vector<Row>& rows) const {
@@ -172,7 +201,7 @@ void NonUniformStar::build_step(int level, std::vector<Row>& rows) const {
     for (const auto& [i, w] : c)
       if (w != 0) row.emplace_back(i, w);
   };
-  put(0, r.star());
+  put(0, r.star(first_intervals()));
   for (int k = 0; k < n_; ++k)
     for (int i = 1; i <= kW; ++i)
       for (int j = 0; j <= kW; ++j) {
@@ -321,7 +350,8 @@ void NonUniformStar::apply(int level, int radius, int sector, const std::vector<
   }
 }
 
-void NonUniformStar::eval(std::span<const std::array<double, 4>> points, int sector, double x, double y, double* out) const {
+void NonUniformStar::eval(std::span<const std::array<double, 4>> points, int sector, double x, double y, double* out,
+                          std::optional<std::array<int, 2>> face) const {
   require(static_cast<int>(points.size()) == size(), "non-uniform Catmull-Clark: wrong number of control points");
   require(sector >= 0 && sector < n_ && x >= 0 && y >= 0 && std::max(x, y) <= 2,
           "non-uniform Catmull-Clark: (x, y) outside the star point's faces");
@@ -356,11 +386,14 @@ void NonUniformStar::eval(std::span<const std::array<double, 4>> points, int sec
     for (int i = 1; i <= kRings; ++i)
       for (int j = 0; j <= kRings; ++j)
         p[static_cast<std::size_t>(1 + k * kW * (kW + 1) + (i - 1) * (kW + 1) + j)] = rel(points[static_cast<std::size_t>(index(k, i, j))]);
-  // Level of the exact cell: max(x, y) 2^level in [2, 4); x = y = 0 (or beyond double range): the star point.
+  // Level of the exact cell: max(x, y) 2^level in [2, 4); x = y = 0 (or beyond double range): the star point. In
+  // the face (0, 0) the cells of its outer sides are those below them: max(x, y) 2^level in (2, 4].
+  const bool closed = face && (*face)[0] == 0 && (*face)[1] == 0;
+  const auto below = [closed](double t) { return closed ? t <= 2 : t < 2; };
   int level = 0, levels = 1;
-  for (double t = 2 * mx; t < 2 && levels < 1100; t *= 2) ++levels;
+  for (double t = 2 * mx; below(t) && levels < 1100; t *= 2) ++levels;
   double sx = x, sy = y;
-  while ((level == 0 || std::max(sx, sy) < 2) && level < 1100) {  // level 0 holds points up to 3 only
+  while ((level == 0 || below(std::max(sx, sy))) && level < 1100) {  // level 0 holds points up to 3 only
     // The last step makes the cell's points (up to 5 per direction) from points up to 3; the steps before
     // need only those (points up to 3 from points up to 2).
     // The cell's points lie in the sectors k - 1 .. k + 1 and off the star point.
@@ -377,7 +410,12 @@ void NonUniformStar::eval(std::span<const std::array<double, 4>> points, int sec
     std::fill(out + 4, out + 12, 0.0);
     return;
   }
-  const int a = std::min(static_cast<int>(sx), 3), b = std::min(static_cast<int>(sy), 3);
+  // The cell, inside the face when given (its cells of this level end at (face + 1) 2^level).
+  const auto cell = [&](double t, int d) {
+    const int c = std::min(static_cast<int>(t), 3);
+    return face && level < 30 ? std::min(c, (((*face)[static_cast<std::size_t>(d)] + 1) << level) - 1) : c;
+  };
+  const int a = cell(sx, 0), b = cell(sy, 1);
   // The cell's knots in its own units, 6 per direction around [a, a + 1] and [b, b + 1].
   double ku[6], kv[6];
   const double cu = r.ucol(sector, a, b < 1 ? 1 : b), cv = r.vrow(sector, a < 1 ? 1 : a, b);

@@ -39,11 +39,28 @@
 // when they differ much (large interval ratios, high valence): tests/tspline/non_uniform_star_test.cpp measures
 // the normals' spread near the point (0 at 1e-8 for valence 3, 0.14 rad for valence 8 at interval ratio 6).
 #include <array>
+#include <optional>
 #include <span>
 #include <utility>
 #include <vector>
 
 namespace trivar {
+
+// The rules' weights, shared by the star point's sector windows (NonUniformStar) and the global step of a whole
+// control mesh (nurcc_step).
+// The edge curve point M of an edge of interval d between P and Q (before: the interval beyond P, after: beyond
+// Q on the same line): the weights of P and Q.
+std::array<double, 2> nurcc_curve_weights(double before, double d, double after);
+// The interval beyond a vertex opposite its spoke k, from its spokes' intervals (valence 4: the opposite spoke's;
+// else the mean weighted by max(0, -cos(2 pi (m - k) / N))).
+double nurcc_across(std::span<const double> spokes, int k);
+// The vertex rule's weights at a vertex of valence N = spokes.size(): of the face between spokes k and k + 1
+// (faces[k]) and of the edge curve point of spoke k (curves[k]); the vertex itself gets the rest.
+struct VertexWeights {
+  std::vector<double> faces, curves;
+  double self = 1;
+};
+VertexWeights nurcc_vertex_weights(std::span<const double> spokes);
 
 class NonUniformStar {
 public:
@@ -58,7 +75,11 @@ public:
   // Homogeneous value, d/dx, d/dy (12 values) at (x, y) of sector k, 0 <= x, y and max(x, y) <= 2 (the
   // faces (0, 0), (1, 0), (1, 1), (0, 1) of the sector). At the star point the derivatives are two
   // directions spanning the tangent plane, along spoke k and spoke k + 1 in the characteristic map.
-  void eval(std::span<const std::array<double, 4>> points, int sector, double x, double y, double* out) const;
+  // With `face` (the level-0 face (0, 0), (1, 0), (1, 1) or (0, 1) of the sector the point is taken in), a point
+  // on that face's sides is evaluated as the limit from inside it, so its derivatives are the face's own where the
+  // knot intervals jump at the side; without, in the cell that holds (x, y), cells half-open upwards.
+  void eval(std::span<const std::array<double, 4>> points, int sector, double x, double y, double* out,
+            std::optional<std::array<int, 2>> face = std::nullopt) const;
   // The second and third eigenvalues of the stationary map on the one-ring (Catmull-Clark: equal).
   std::array<double, 2> subdominant() const { return lambda_; }
 
@@ -83,6 +104,7 @@ private:
              std::vector<std::array<double, 4>>& q) const;
   double interval(int level, int spoke, int i) const;  // U at that level, in units of the level's halving
   double across(int spoke) const;
+  std::vector<double> first_intervals() const;  // U_k[0] per spoke
 };
 
 }  // namespace trivar

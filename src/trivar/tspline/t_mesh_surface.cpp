@@ -11,6 +11,7 @@
 #include "trivar/tspline/catmull_clark_patch.hpp"
 #include "trivar/tspline/crease_ends.hpp"
 #include "trivar/tspline/non_uniform_catmull_clark.hpp"
+#include "trivar/tspline/non_uniform_subdivision.hpp"
 #include "trivar/tspline/sharp_creases.hpp"
 
 namespace trivar {
@@ -282,6 +283,13 @@ CreaseNet crease_net(const TMesh& m, const TMesh& given, const std::vector<Creas
   return net;
 }
 
+// The mesh after `steps` global non-uniform Catmull-Clark steps.
+TMesh refined(const TMesh& m, int steps) {
+  TMesh r = nurcc_step(m);
+  for (int i = 1; i < steps; ++i) r = nurcc_step(r);
+  return r;
+}
+
 }  // namespace
 
 struct TMeshSurface::Nurcc {
@@ -294,10 +302,12 @@ TMeshSurface::TMeshSurface(TMeshSurface&&) noexcept = default;
 
 // A crease boundary, or Bezier end conditions without block points, is evaluated as the Bezier end conditions
 // of the same surface with its block points (crease_ends); the mesh as given is kept for writing it back.
-TMeshSurface::TMeshSurface(const TMesh& mesh, int threads)
-    : mesh_(bezier_equivalent(mesh)),
-      source_(mesh.end_conditions == EndConditions::bezier && mesh_.points.size() == mesh.points.size() ? nullptr
-                                                                                                        : std::make_unique<TMesh>(mesh)),
+TMeshSurface::TMeshSurface(const TMesh& mesh, int threads, int global_steps)
+    : steps_(global_steps >= 0 ? global_steps : nurcc_steps_needed(mesh, kStarsApart)),
+      mesh_(steps_ > 0 ? refined(mesh, steps_) : bezier_equivalent(mesh)),
+      source_(steps_ == 0 && mesh.end_conditions == EndConditions::bezier && mesh_.points.size() == mesh.points.size()
+                  ? nullptr
+                  : std::make_unique<TMesh>(mesh)),
       stars_(star_points(mesh_)) {
   const TMesh& m = mesh_;
   const int nf = static_cast<int>(m.faces.size()), nv = static_cast<int>(m.vertices.size());
@@ -534,6 +544,16 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads)
     Face& face = faces_[static_cast<std::size_t>(f)];
     if (crease_dist[static_cast<std::size_t>(f)] <= depth) {
       local_subdivision(f, "within " + std::to_string(depth + 1) + " face rings of an irregular vertex of a crease boundary");
+      continue;
+    }
+    if (star_dist[static_cast<std::size_t>(f)] > depth && steps_ > 0) {
+      // A mesh refined by global steps is closed and has no T-junction: away from star points the T-spline of
+      // a face is the bicubic B-spline cell of its 16 points on its knots, without a chart.
+      std::string unequal;
+      const std::string why = regular(f, unequal);
+      require(why.empty(), [&] { return "T-mesh: face " + std::to_string(f) + " after the global steps: " + why; });
+      set_patch(f, 0, 0, unequal, "T-mesh: face " + std::to_string(f) + " after the global steps: ",
+                gather(cm, m.faces[static_cast<std::size_t>(f)][0]));
       continue;
     }
     if (star_dist[static_cast<std::size_t>(f)] > depth) {
@@ -824,7 +844,7 @@ void TMeshSurface::eval_patch_homogeneous(int face, double up, double vp, double
   }
   if (f.method == FaceMethod::non_uniform) {
     const Nurcc& z = *nurcc_[static_cast<std::size_t>(f.nurcc)];
-    z.star.eval(z.points, f.sector, f.cell[0] + up, f.cell[1] + vp, out);
+    z.star.eval(z.points, f.sector, f.cell[0] + up, f.cell[1] + vp, out, f.cell);
     return;
   }
   // The rules are linear: once on w x, once on the weights (all 1: W = 1, W' = 0).

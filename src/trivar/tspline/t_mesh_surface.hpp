@@ -43,8 +43,9 @@
 // needs 7 faces to the boundary, not 8); otherwise the face's reason is the error (what is still refused:
 // T-junctions and repeated knots within two rings of a star point's faces, unequal intervals, T-junctions or
 // corners with a side of one edge near a star point on the boundary, two star points with unequal intervals
-// within three rings of each other, unequal intervals within two rings of a face with several star corners,
-// degrees other than 3). A star point on a Bezier end-condition boundary is an interior one of the mesh with a
+// within three rings of each other unless the mesh is closed, quadrilateral and without creases (then global
+// non-uniform Catmull-Clark steps move them apart first, see the constructor), unequal intervals within two
+// rings of a face with several star corners, degrees other than 3). A star point on a Bezier end-condition boundary is an interior one of the mesh with a
 // ghost layer along
 // the boundary (boundary_ghosts: the Bezier end condition as a uniform bicubic net, round corners as the tensor
 // product of the two clamped ends), so its faces are star faces of valence K + 2 and the faces near it bicubic
@@ -85,7 +86,13 @@ public:
   // boundary without block points (Fusion's MULTIPLE_KNOTS without grip map), is evaluated as its Bezier end
   // conditions with block points (crease_ends), but near a crease boundary's irregular vertices by local
   // subdivision (crease faces); mesh() is that mesh.
-  explicit TMeshSurface(const TMesh& mesh, int threads = 0);
+  // Star points fewer than kStarsApart edges apart with unequal knot intervals around one of them (closed
+  // quadrilateral meshes, nurcc_step's scope): the mesh is first refined by global non-uniform Catmull-Clark steps
+  // (non_uniform_subdivision) until they are that far apart, which leaves the limit surface unchanged; mesh() and
+  // the faces are then the refined mesh's (face F lies in face F >> 2 global_steps() of the mesh as given).
+  // global_steps >= 0 forces that many steps.
+  static constexpr int kStarsApart = 7;
+  explicit TMeshSurface(const TMesh& mesh, int threads = 0, int global_steps = -1);
   ~TMeshSurface();
   TMeshSurface(TMeshSurface&&) noexcept;
 
@@ -93,6 +100,12 @@ public:
   // The mesh as given (a crease boundary, sharp creases or a boundary without block points as read, for writing
   // it back and for the topology its tessellation welds); mesh() when no conversion was needed.
   const TMesh& source_mesh() const { return source_ ? *source_ : mesh_; }
+  // The mesh whose faces are the surface's faces, with the edges and vertices they share (for welding a
+  // tessellation): source_mesh() (whose faces mesh() keeps), or mesh() after global steps.
+  const TMesh& face_mesh() const { return steps_ > 0 ? mesh_ : source_mesh(); }
+  // Global non-uniform Catmull-Clark steps applied to the mesh as given (each face became 4^steps faces).
+  int global_steps() const { return steps_; }
+  int source_face(int face) const { return face >> (2 * steps_); }
   int num_faces() const { return static_cast<int>(faces_.size()); }  // mesh face ids (deleted faces: none)
   FaceMethod method(int face) const { return faces_[static_cast<std::size_t>(face)].method; }
   int count(FaceMethod m) const;
@@ -150,6 +163,7 @@ private:
     int crease = -1;               // crease: index into crease_faces_
   };
   struct Nurcc;  // a star point evaluated by non-uniform Catmull-Clark: its subdivision and homogeneous points
+  int steps_ = 0;
   TMesh mesh_;
   std::unique_ptr<TMesh> source_;  // the mesh as given, when mesh_ is its Bezier end-condition form
   std::vector<int> stars_;

@@ -60,7 +60,7 @@ TSplineTriangulation tessellate(const TMeshSurface& s, double tolerance, int max
   // The topology as given: the mesh evaluated may be cut open along sharp creases (faces and their links keep
   // their numbers), and the two sides of a crease edge share its samples and vertices, so the triangles stay
   // one closed surface across it (both sides evaluate the same crease curve).
-  const TMesh& m = s.source_mesh();
+  const TMesh& m = s.face_mesh();
   const int nf = s.num_faces();
   const auto L = [&](int l) -> const TMeshLink& { return m.links[static_cast<std::size_t>(l)]; };
   // Each edge's samples, as positions in (0, 1) from the start of its reference link (the smaller link id).

@@ -4,7 +4,8 @@
 // triangulated on the tensor grid of the samples of its sides, and samples are carried across faces (a
 // T-junction face passes the samples of its long side to the short sides opposite) until every side's samples
 // are the grid lines of its face: no T-vertices, so no cracks. Edges and vertices are those of the mesh as given
-// (TMeshSurface::source_mesh), so a sharp crease's two sides share their points too. Counts come from second differences of the
+// (TMeshSurface::face_mesh: the mesh as given, or its refinement by global steps), so a sharp crease's two sides
+// share their points too. Counts come from second differences of the
 // surface on a 9 x 9 grid per face (the bilinear interpolant of n x n sub-cells deviates by about
 // D / (8 n^2)).
 #include "trivar/tspline/t_mesh_surface.hpp"
