@@ -45,11 +45,11 @@
 // corners with a side of one edge near a star point on the boundary, two star points with unequal intervals
 // within three rings of each other unless the mesh is closed, quadrilateral and without creases (then global
 // non-uniform Catmull-Clark steps move them apart first, see the constructor), unequal intervals within two
-// rings of a face with several star corners, degrees other than 3). A star point on a Bezier end-condition boundary is an interior one of the mesh with a
-// ghost layer along
-// the boundary (boundary_ghosts: the Bezier end condition as a uniform bicubic net, round corners as the tensor
-// product of the two clamped ends), so its faces are star faces of valence K + 2 and the faces near it bicubic
-// faces of that mesh, the T-spline wherever their points avoid it. The surface there
+// rings of a face with several star corners, degrees other than 3). A star point on a Bezier end-condition
+// boundary is an interior one of the mesh with a ghost layer along the boundary (boundary_ghosts: the Bezier
+// end condition as a uniform bicubic net, round corners as the tensor product of the two clamped ends), so its
+// faces are star faces of valence K + 2 and the faces near it bicubic faces of that mesh, the T-spline wherever
+// their points avoid it. The surface there
 // is then the Catmull-Clark limit surface of the control mesh, which on faces without a star corner is the
 // uniform bicubic B-spline = the T-spline. Continuity: C2 across every edge away from star points
 // (T-spline and uniform B-spline pieces meet as one spline); C1 across the edges at a star point except at the
