@@ -154,8 +154,8 @@ void add_crease_lists(nlohmann::json& j, const TMesh& m) {
 
 void print_crease_lists(const TMesh& m) {
   if (m.crease_edges.empty() && m.crease_vertices.empty()) return;
-  std::printf("  creases listed (100edges, 100verts): %zu edges, %zu vertices; not evaluated (the surface is the mesh's "
-              "without creases)\n", m.crease_edges.size(), m.crease_vertices.size());
+  std::printf("  creases listed (100edges, 100verts): %zu edges, %zu vertices%s\n", m.crease_edges.size(), m.crease_vertices.size(),
+              m.end_conditions == EndConditions::subd_creases ? " (sharp creases and corners)" : "");
 }
 
 // A T-mesh without a global (s, t) (star points, a closed strip of faces): faces by evaluation method, the star
@@ -199,7 +199,7 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
               r.units.empty() ? "" : (", units " + r.units).c_str());
   if (const std::string f = fusion_settings(r); !f.empty()) std::printf("  Fusion 360: %s\n", f.c_str());
   if (creases)
-    std::printf("  %d faces, %d sharp crease edges (ec between two faces: infinitely sharp subdivision creases), %d star "
+    std::printf("  %d faces, %d sharp crease edges (listed in 100edges or ec between two faces: infinitely sharp subdivision creases), %d star "
                 "points (%zu%s%s after the mesh is cut open along the creases, each side a crease boundary); faces are "
                 "evaluated in their own (u, v)\n", faces, r.crease_edges, r.star_points, s.stars().size(),
                 vs.empty() ? "" : ": ", vs.c_str());
