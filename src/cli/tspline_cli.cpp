@@ -145,7 +145,7 @@ bool is_t_spline_file(const std::string& path) {
   return text.find("T_SPLINE_SURFACE(") != std::string::npos || text.find("_T_SPLINE.") != std::string::npos;
 }
 
-// Fusion's crease lists (100edges, 100verts) as read: kept and written back, not evaluated.
+// Fusion's crease lists (100edges, 100verts) as read: kept and written back.
 void add_crease_lists(nlohmann::json& j, const TMesh& m) {
   if (m.crease_edges.empty() && m.crease_vertices.empty()) return;
   j["crease_edges"] = m.crease_edges;

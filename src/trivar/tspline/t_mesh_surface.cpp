@@ -463,9 +463,9 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads, int global_steps)
         if (m.faces[static_cast<std::size_t>(g)].size() != 4)
           return "face " + std::to_string(g) + " nearby has a T-junction" + t_junction_at(g) +
                  "; the Catmull-Clark evaluation around star points needs none within " + std::to_string(cc_depth) + " rings";
-        if (boundary[static_cast<std::size_t>(L(l).vertex)] && !ghosted[static_cast<std::size_t>(L(l).vertex)])
-        {
-          const int v = L(l).vertex, from = m.vertices[static_cast<std::size_t>(v)].split_from;  // a side of a sharp crease: the file's vertex
+        if (boundary[static_cast<std::size_t>(L(l).vertex)] && !ghosted[static_cast<std::size_t>(L(l).vertex)]) {
+          // A side of a sharp crease: named by the file's vertex.
+          const int v = L(l).vertex, from = m.vertices[static_cast<std::size_t>(v)].split_from;
           return "boundary vertex " + (from >= 0 ? std::to_string(from) + " (a side of its sharp crease)" : std::to_string(v)) + " is within " +
                  std::to_string(cc_depth) + " rings; the Catmull-Clark evaluation around star points needs none";
         }
