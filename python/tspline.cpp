@@ -72,10 +72,12 @@ py::array evaluate(const PyTSpline& t, const Array& u, int threads) {
   return out;
 }
 
-// Value and first derivatives (F, 3, 3) on face `face` of a model with star points at (u, v) in [0, 1]^2.
+// Value and first derivatives (F, 3, 3) on face `face` (the file's ids, also after global steps) of a model with
+// star points at (u, v) in [0, 1]^2.
 py::array evaluate_face(const PyTSpline& t, int face, const Array& uv) {
   require(t.mesh != nullptr, "evaluate_face: this T-spline has a global (s, t); use evaluate or derivatives");
-  require(face >= 0 && face < t.mesh->num_faces() && t.mesh->method(face) != FaceMethod::none,
+  require(face >= 0 && static_cast<std::size_t>(face) < t.mesh->source_mesh().faces.size() &&
+              t.mesh->method(t.mesh->refined_point(face, 0, 0).face) != FaceMethod::none,
           "evaluate_face: no face " + std::to_string(face));
   bool single = false;
   const auto params = params_of<2>(uv, single);
@@ -86,7 +88,7 @@ py::array evaluate_face(const PyTSpline& t, int face, const Array& uv) {
   auto out = new_array({static_cast<py::ssize_t>(params.size()), 3, 3});
   {
     py::gil_scoped_release release;
-    for (std::size_t i = 0; i < params.size(); ++i) t.mesh->eval(face, params[i][0], params[i][1], out.mutable_data() + 9 * i);
+    for (std::size_t i = 0; i < params.size(); ++i) t.mesh->eval_source(face, params[i][0], params[i][1], out.mutable_data() + 9 * i);
   }
   if (single) return out.attr("reshape")(3, 3);
   return out;
@@ -288,6 +290,10 @@ py::dict info(const PyTSpline& t) {
     d["faces_catmull_clark"] = t.mesh->count(FaceMethod::bicubic) + t.mesh->count(FaceMethod::star) + t.mesh->count(FaceMethod::subdivided);
     d["faces_at_star_points"] = t.mesh->count(FaceMethod::star);
     d["faces_subdivided"] = t.mesh->count(FaceMethod::subdivided);
+    d["faces_non_uniform"] = t.mesh->count(FaceMethod::non_uniform);
+    d["faces_crease"] = t.mesh->count(FaceMethod::crease);
+    // The counts above are of the refined faces: 4^global_steps per face as given.
+    d["global_steps"] = t.mesh->global_steps();
   }
   return d;
 }
@@ -328,9 +334,10 @@ void bind_tspline(py::module_& m) {
       .def_property_readonly(
           "num_faces",
           [](const PyTSpline& t) {
-            return t.mesh ? t.mesh->num_faces() : static_cast<int>(t.layers ? t.layers->image.faces.size() : 0);
+            return t.mesh ? static_cast<int>(t.mesh->source_mesh().faces.size())
+                          : static_cast<int>(t.layers ? t.layers->image.faces.size() : 0);
           },
-          "Faces of the T-mesh (0 when only the blending functions are known).")
+          "Faces of the T-mesh as given, the ids evaluate_face takes (0 when only the blending functions are known).")
       .def_property_readonly(
           "elements",
           [](const PyTSpline& t) {
@@ -351,7 +358,7 @@ void bind_tspline(py::module_& m) {
            "What `trivar info` reports beyond the properties: format, T-image / T-connect / T-pointset sizes, the\n"
            ".tsm report (units, tolerance, version, deleted_slots, deleted_faces, t_junctions, star_points,\n"
            "crease_edges (sharp creases: ec between two faces of a SUBD_CREASES file), repeated_knot_nodes,\n"
-           "skipped_records) and, with star points, the faces by evaluation method.")
+           "skipped_records) and, with star points, the faces by evaluation method (refined faces after global_steps).")
       .def("classify", &classification, py::arg("exact") = true,
            "Analysis-suitability as `trivar info`: t_junctions, gap_t_junctions (of those, facing each other across\n"
            "gaps no ray crosses: no extension), analysis_suitable, crossing_extensions,\n"
@@ -383,7 +390,7 @@ void bind_tspline(py::module_& m) {
       .def("__repr__", [](const PyTSpline& t) {
         if (t.mesh)
           return "<trivar.TSplineSurface degree " + std::to_string(t.mesh->mesh().degree) + ", " +
-                 std::to_string(t.mesh->num_faces()) + " faces, " + std::to_string(t.tsm->star_points) + " star points>";
+                 std::to_string(t.mesh->source_mesh().faces.size()) + " faces, " + std::to_string(t.tsm->star_points) + " star points>";
         return "<trivar.TSplineSurface degrees (" + std::to_string(t.surface->degrees()[0]) + ", " +
                std::to_string(t.surface->degrees()[1]) + "), " + std::to_string(t.surface->basis().size()) +
                " blending functions, " + std::to_string(t.surface->elements().size()) + " elements>";

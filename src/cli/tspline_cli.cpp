@@ -212,7 +212,7 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
   if (s.global_steps() > 0)
     std::printf("  refined first by %d global non-uniform Catmull-Clark steps (star points fewer than %d edges apart with "
                 "unequal knot intervals; the limit surface is unchanged): each of the %zu faces as given is %d x %d faces, "
-                "and the faces counted and evaluated are the refined mesh's (written back as given)\n", s.global_steps(),
+                "and the faces counted are the refined mesh's (eval takes the faces as given; written back as given)\n", s.global_steps(),
                 TMeshSurface::kStarsApart, s.source_mesh().faces.size(), 1 << s.global_steps(), 1 << s.global_steps());
   if (s.stars().empty() && creases)
     std::printf("  %d faces exact (the T-spline of their side in a chart of their neighbourhood), %d the bicubic B-spline "
@@ -351,13 +351,15 @@ void eval_tspline(const std::string& path, const std::vector<double>& params, in
   if (l.mesh) {
     require(params.size() == 3 && params[0] == std::floor(params[0]),
             "eval: " + path + " has no global (s, t) (star points, a closed strip of faces or sharp creases): give FACE U V (u, v in [0, 1] on the face)");
+    // The file's face ids, also after global steps refined the mesh.
     const int face = static_cast<int>(params[0]);
-    require(face >= 0 && face < l.mesh->num_faces() && l.mesh->method(face) != FaceMethod::none,
+    require(face >= 0 && static_cast<std::size_t>(face) < l.mesh->source_mesh().faces.size() &&
+                l.mesh->method(l.mesh->refined_point(face, 0, 0).face) != FaceMethod::none,
             "eval: " + path + " has no face " + fmt(params[0]));
     require(params[1] >= 0 && params[1] <= 1 && params[2] >= 0 && params[2] <= 1,
             "eval: (u, v) = (" + fmt(params[1]) + ", " + fmt(params[2]) + ") is outside the face's [0, 1]^2");
     double out[9];
-    l.mesh->eval(face, params[1], params[2], out);
+    l.mesh->eval_source(face, params[1], params[2], out);
     std::printf("S   = %s\n", fmt(out, 3).c_str());
     if (order == 1) {
       std::printf("S_u = %s\n", fmt(out + 3, 3).c_str());

@@ -211,3 +211,26 @@ def test_fusion_sharp_creases(tmp_path):
     uv = np.array([[0.0, 0.0], [0.3, 0.7], [1.0, 1.0]])
     for f in (0, 20, 53):
         assert np.array_equal(back.evaluate_face(f, uv), s.evaluate_face(f, uv))
+
+
+def test_stepped_box_faces_as_given():
+    """Fusion's box with a strip of faces at interval 1.02 (star points 3 edges apart) is refined by two global
+    non-uniform Catmull-Clark steps before it is evaluated; evaluate_face still takes the file's 54 faces: their
+    corners are the limit points of the file's 56 vertices (3 faces at each of the 8 star points, 4 elsewhere), and
+    the derivatives are d/du, d/dv of the face as given (central differences)."""
+    [s] = trivar.read(os.path.join(DATA, "tsm", "fusion", "a3_box3_inconsistent_knot3_readback.tsm"))
+    info = s.info()
+    assert s.num_faces == 54 and info["global_steps"] == 2 and info["star_points"] == 8
+    corners = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
+    points = np.concatenate([s.evaluate_face(f, corners)[:, 0] for f in range(54)])
+    distinct, counts = np.unique(np.round(points, 9), axis=0, return_counts=True)
+    assert len(distinct) == 56 and sorted(counts.tolist()) == [3] * 8 + [4] * 48
+    h = 1e-6
+    uv = np.array([[0.3, 0.7], [0.61, 0.2]])
+    for f in (0, 17, 53):
+        d = s.evaluate_face(f, uv)
+        du = (s.evaluate_face(f, uv + [h, 0])[:, 0] - s.evaluate_face(f, uv - [h, 0])[:, 0]) / (2 * h)
+        dv = (s.evaluate_face(f, uv + [0, h])[:, 0] - s.evaluate_face(f, uv - [0, h])[:, 0]) / (2 * h)
+        assert np.allclose(d[:, 1], du, atol=1e-6) and np.allclose(d[:, 2], dv, atol=1e-6)
+    with pytest.raises(Exception, match="no face 54"):
+        s.evaluate_face(54, uv)

@@ -7,6 +7,9 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <numbers>
 #include <sstream>
@@ -14,6 +17,7 @@
 #include <vector>
 
 #include "face_continuity.hpp"
+#include "fusion_cages.hpp"
 #include "osd_reference.hpp"
 #include "triangulation_loops.hpp"
 #include "trivar/core/error.hpp"
@@ -366,6 +370,58 @@ TEST(FusionReadback, UnequalIntervalsAmongCloseStarPointsAreSteppedApart) {
   EXPECT_EQ(p.corner_patches, 24);
   EXPECT_EQ(p.exact_patches + p.corner_patches, static_cast<int>(p.patches.size()));
   EXPECT_LE(p.deviation, p.tolerance);
+}
+
+// After the steps the file's faces are still what eval_source and the command line's `eval FACE U V` take: the
+// corners of the 54 faces as given are the limit points of the file's 56 vertices, 3 faces at each of the 8 star
+// points and 4 at the others (a face id or (u, v) taken as a refined face's would land inside faces), and the
+// derivatives are d/du of the face as given (central differences).
+TEST(FusionReadback, SteppedBoxIsEvaluatedOnTheFilesFaces) {
+  const TMeshSurface s(read_fusion_file("a3_box3_inconsistent_knot3_readback.tsm").mesh, 1);
+  ASSERT_EQ(s.global_steps(), 2);
+  std::vector<std::array<double, 3>> points;
+  std::vector<int> faces_at;
+  for (int f = 0; f < 54; ++f)
+    for (const auto& [u, v] : {std::pair{0.0, 0.0}, {1.0, 0.0}, {1.0, 1.0}, {0.0, 1.0}}) {
+      double x[9];
+      s.eval_source(f, u, v, x);
+      std::size_t i = 0;
+      while (i < points.size() && std::hypot(points[i][0] - x[0], points[i][1] - x[1], points[i][2] - x[2]) > 1e-11) ++i;
+      if (i == points.size()) points.push_back({x[0], x[1], x[2]}), faces_at.push_back(0);
+      ++faces_at[i];
+    }
+  EXPECT_EQ(points.size(), 56u);
+  EXPECT_EQ(std::count(faces_at.begin(), faces_at.end(), 3), 8);
+  EXPECT_EQ(std::count(faces_at.begin(), faces_at.end(), 4), 48);
+  const double h = 1e-6;
+  double fd = 0;
+  for (int f = 0; f < 54; f += 7)
+    for (const auto& [u, v] : {std::pair{0.3, 0.7}, {0.61, 0.2}}) {
+      double x[9], a[9], b[9], c[9], d[9];
+      s.eval_source(f, u, v, x);
+      s.eval_source(f, u + h, v, a);
+      s.eval_source(f, u - h, v, b);
+      s.eval_source(f, u, v + h, c);
+      s.eval_source(f, u, v - h, d);
+      for (int k = 0; k < 3; ++k)
+        fd = std::max({fd, std::abs((a[k] - b[k]) / (2 * h) - x[3 + k]), std::abs((c[k] - d[k]) / (2 * h) - x[6 + k])});
+    }
+  EXPECT_LT(fd, 1e-6);
+  const test::TempDir dir;
+  const std::string file = std::string(TRIVAR_TEST_DATA) + "/tsm/fusion/a3_box3_inconsistent_knot3_readback.tsm";
+  double x[9];
+  s.eval_source(53, 0.25, 0.75, x);
+  const std::string out = test::run_cli(dir, "eval " + file + " 53 0.25 0.75");
+  std::istringstream printed(out.substr(std::min(out.size(), out.find("S   = ") + 6)));
+  double cli[3] = {NAN, NAN, NAN};
+  printed >> cli[0] >> cli[1] >> cli[2];
+  EXPECT_LT(std::hypot(cli[0] - x[0], cli[1] - x[1], cli[2] - x[2]), 1e-14 * std::hypot(x[0], x[1], x[2])) << out;
+  const std::string refused = dir.file("refused.txt");
+  EXPECT_NE(std::system((std::string(TRIVAR_CLI_PATH) + " eval " + file + " 54 0.5 0.5 > " + refused + " 2>&1").c_str()), 0);
+  std::ifstream in(refused);
+  const std::string line((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(line.find("has no face 54"), std::string::npos) << line;
+  std::printf("box with the 1.02 strip, faces as given: 56 corner points (8 of 3 faces), finite differences %.1e\n", fd);
 }
 
 // The box whose top side's centre face is split 2 x 2: T-junctions on the four faces round it, each next to

@@ -25,25 +25,6 @@
 namespace trivar {
 namespace {
 
-// The refined face holding (u, v) of face f after `steps` global steps (sub-face c of face f is face 4 f + c: the
-// quarters [0, 1/2]^2, [1/2, 1] x [0, 1/2], [1/2, 1]^2, [0, 1/2] x [1/2, 1]), its (u, v) and d(u')/du.
-struct RefinedPoint {
-  int face;
-  double u, v, scale;
-};
-
-RefinedPoint refined_point(int f, double u, double v, int steps) {
-  RefinedPoint r{f, u, v, 1};
-  for (int k = 0; k < steps; ++k) {
-    const int i = r.u >= 0.5 ? 1 : 0, j = r.v >= 0.5 ? 1 : 0;
-    r.face = 4 * r.face + (j == 0 ? i : 3 - i);
-    r.u = 2 * r.u - i;
-    r.v = 2 * r.v - j;
-    r.scale *= 2;
-  }
-  return r;
-}
-
 // A cube cage of n x n faces per side with its points moved off the cube (no symmetry hides a wrong frame) and
 // knot interval `wide` on the strip of faces round the box between x grid lines `strip` and strip + 1.
 TMesh stepped_box(int n, int strip, double wide) {
@@ -78,19 +59,18 @@ struct StepDeviation {
   double position = 0, derivative = 0;  // relative to the derivatives' size
 };
 
-// Surface `a` (the mesh as given) against `b` (after `steps` global steps) on every face of a.
-StepDeviation step_deviation(const TMeshSurface& a, const TMeshSurface& b, int steps, const std::vector<int>& faces) {
+// Surface `a` (the mesh as given) against `b` (after global steps, evaluated on the faces as given).
+StepDeviation step_deviation(const TMeshSurface& a, const TMeshSurface& b, const std::vector<int>& faces) {
   StepDeviation d;
   for (int f : faces)
     for (const auto& [u, v] : stepped_samples()) {
-      const RefinedPoint r = refined_point(f, u, v, steps);
       double x[9], y[9];
       a.eval(f, u, v, x);
-      b.eval(r.face, r.u, r.v, y);
+      b.eval_source(f, u, v, y);
       d.position = std::max(d.position, std::hypot(x[0] - y[0], x[1] - y[1], x[2] - y[2]));
       if ((u == 0 || u == 1) && (v == 0 || v == 1)) continue;  // at a star corner the derivatives are directions
       const double size = std::max({std::hypot(x[3], x[4], x[5]), std::hypot(x[6], x[7], x[8]), 1e-300});
-      for (int k = 3; k < 9; ++k) d.derivative = std::max(d.derivative, std::abs(x[k] - r.scale * y[k]) / size);
+      for (int k = 3; k < 9; ++k) d.derivative = std::max(d.derivative, std::abs(x[k] - y[k]) / size);
     }
   return d;
 }
@@ -113,7 +93,7 @@ TEST(GlobalNurccStep, EqualIntervalsLeaveTheSurfaceUnchanged) {
   ASSERT_EQ(s2.num_faces(), 16 * 54);
   EXPECT_EQ(s2.source_face(16 * 7 + 5), 7);
   EXPECT_EQ(s2.source_mesh().faces.size(), 54u);
-  const StepDeviation d1 = step_deviation(s, s1, 1, all_faces(s)), d2 = step_deviation(s, s2, 2, all_faces(s));
+  const StepDeviation d1 = step_deviation(s, s1, all_faces(s)), d2 = step_deviation(s, s2, all_faces(s));
   EXPECT_LT(d1.position, 1e-13);
   EXPECT_LT(d1.derivative, 1e-11);
   EXPECT_LT(d2.position, 1e-13);
@@ -129,15 +109,14 @@ TEST(GlobalNurccStep, EqualIntervalsLeaveTheSurfaceUnchanged) {
   double osd_position = 0, osd_derivative = 0;
   for (int f = 0; f < s.num_faces(); ++f)
     for (const auto& [u, v] : stepped_samples()) {
-      const RefinedPoint r = refined_point(f, u, v, 2);
       double y[9];
-      s2.eval(r.face, r.u, r.v, y);
+      s2.eval_source(f, u, v, y);
       const test::LimitSample o = osd.eval(f, u, v);
       osd_position = std::max(osd_position, std::hypot(y[0] - o.p[0], y[1] - o.p[1], y[2] - o.p[2]));
       const bool corner = (u == 0 || u == 1) && (v == 0 || v == 1);  // the star corners' parametrisation is singular
       if (!corner)
-        osd_derivative = std::max({osd_derivative, std::hypot(r.scale * y[3] - o.du[0], r.scale * y[4] - o.du[1], r.scale * y[5] - o.du[2]),
-                                   std::hypot(r.scale * y[6] - o.dv[0], r.scale * y[7] - o.dv[1], r.scale * y[8] - o.dv[2])});
+        osd_derivative = std::max({osd_derivative, std::hypot(y[3] - o.du[0], y[4] - o.du[1], y[5] - o.du[2]),
+                                   std::hypot(y[6] - o.dv[0], y[7] - o.dv[1], y[8] - o.dv[2])});
     }
   EXPECT_LT(osd_position, 1e-12);
   EXPECT_LT(osd_derivative, 1e-10);
@@ -162,7 +141,7 @@ TEST(GlobalNurccStep, UnequalIntervalsFarApartMatchNonUniformStar) {
     EXPECT_EQ(s1.non_uniform_stars(), stepped_nurcc);
     std::vector<int> nurcc, other;
     for (int f = 0; f < s.num_faces(); ++f) (s.method(f) == FaceMethod::non_uniform ? nurcc : other).push_back(f);
-    const StepDeviation dn = step_deviation(s, s1, 1, nurcc), dx = step_deviation(s, s1, 1, other);
+    const StepDeviation dn = step_deviation(s, s1, nurcc), dx = step_deviation(s, s1, other);
     EXPECT_LT(dn.position, 1e-13);
     EXPECT_LT(dn.derivative, 1e-11);
     EXPECT_LT(dx.position, 1e-13);
@@ -188,12 +167,11 @@ TEST(GlobalNurccStep, CloseStarPointsWithUnequalIntervalsAreStepped) {
   // Three steps: the same surface.
   const TMeshSurface s3(mesh, 1, 3);
   double gap = 0;
-  for (int f = 0; f < s.num_faces(); ++f)
+  for (int f = 0; f < static_cast<int>(mesh.faces.size()); ++f)
     for (const auto& [u, v] : stepped_samples()) {
-      const RefinedPoint r = refined_point(f, u, v, 1);
       double x[9], y[9];
-      s.eval(f, u, v, x);
-      s3.eval(r.face, r.u, r.v, y);
+      s.eval_source(f, u, v, x);
+      s3.eval_source(f, u, v, y);
       gap = std::max(gap, std::hypot(x[0] - y[0], x[1] - y[1], x[2] - y[2]));
     }
   EXPECT_LT(gap, 1e-13);

@@ -787,6 +787,28 @@ std::array<int, 4> TMeshSurface::corners(int face) const {
   return c;
 }
 
+TMeshSurface::FacePoint TMeshSurface::refined_point(int source_face, double u, double v) const {
+  require(source_face >= 0 && static_cast<std::size_t>(source_face) < source_mesh().faces.size(),
+          [&] { return "T-mesh: no face " + std::to_string(source_face); });
+  require(u >= 0 && u <= 1 && v >= 0 && v <= 1, [&] { return "T-mesh: (u, v) = (" + std::to_string(u) + ", " + std::to_string(v) + ") outside [0, 1]^2"; });
+  FacePoint p{source_face, u, v, 1};
+  // nurcc_step's numbering: quarter 0, 1, 2, 3 at (u, v) in [0, 1/2]^2, [1/2, 1] x [0, 1/2], [1/2, 1]^2, [0, 1/2] x [1/2, 1].
+  for (int k = 0; k < steps_; ++k) {
+    const int i = p.u >= 0.5 ? 1 : 0, j = p.v >= 0.5 ? 1 : 0;
+    p.face = 4 * p.face + (j == 0 ? i : 3 - i);
+    p.u = 2 * p.u - i;
+    p.v = 2 * p.v - j;
+    p.scale *= 2;
+  }
+  return p;
+}
+
+void TMeshSurface::eval_source(int source_face, double u, double v, double* out) const {
+  const FacePoint p = refined_point(source_face, u, v);
+  eval(p.face, p.u, p.v, out);
+  for (int k = 3; k < 9; ++k) out[k] *= p.scale;
+}
+
 void TMeshSurface::eval(int face, double u, double v, double* out) const {
   require(face >= 0 && face < num_faces() && faces_[static_cast<std::size_t>(face)].method != FaceMethod::none,
           [&] { return "T-mesh: no face " + std::to_string(face); });

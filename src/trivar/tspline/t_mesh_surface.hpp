@@ -89,7 +89,8 @@ public:
   // Star points fewer than kStarsApart edges apart with unequal knot intervals around one of them (closed
   // quadrilateral meshes, nurcc_step's scope): the mesh is first refined by global non-uniform Catmull-Clark steps
   // (non_uniform_subdivision) until they are that far apart, which leaves the limit surface unchanged; mesh() and
-  // the faces are then the refined mesh's (face F lies in face F >> 2 global_steps() of the mesh as given).
+  // the faces are then the refined mesh's (face F lies in face F >> 2 global_steps() of the mesh as given;
+  // eval_source evaluates the faces as given).
   // global_steps >= 0 forces that many steps.
   static constexpr int kStarsApart = 7;
   explicit TMeshSurface(const TMesh& mesh, int threads = 0, int global_steps = -1);
@@ -106,6 +107,16 @@ public:
   // Global non-uniform Catmull-Clark steps applied to the mesh as given (each face became 4^steps faces).
   int global_steps() const { return steps_; }
   int source_face(int face) const { return face >> (2 * steps_); }
+  // A point (u, v) in [0, 1]^2 of face `face` of the mesh as given (source_mesh()'s ids and frames): the face of
+  // the surface that holds it, the point in that face's frame, and that frame's d(u)/d(u as given) (2^steps; a
+  // point on a side between two refined faces is taken by the one above it).
+  struct FacePoint {
+    int face;
+    double u, v, scale;
+  };
+  FacePoint refined_point(int source_face, double u, double v) const;
+  // eval on a face of the mesh as given (its (u, v) and derivatives): what users of the file name a face by.
+  void eval_source(int source_face, double u, double v, double* out) const;
   int num_faces() const { return static_cast<int>(faces_.size()); }  // mesh face ids (deleted faces: none)
   FaceMethod method(int face) const { return faces_[static_cast<std::size_t>(face)].method; }
   int count(FaceMethod m) const;
