@@ -22,8 +22,9 @@
 namespace trivar {
 
 // How subdivision moves a vertex: smooth (interior), crease (on a crease boundary: the curve rule with its two
-// boundary neighbours), corner (interpolated).
-enum class VertexRule : unsigned char { smooth, crease, corner };
+// boundary neighbours), corner (interpolated), dart (the end of a slit, one crease boundary through it: the smooth
+// rule over its fan of faces, the slit's two sides counted as one edge).
+enum class VertexRule : unsigned char { smooth, crease, corner, dart };
 
 // A net of quadrilaterals round one face: quads[0] is the face (corner 0 at (u, v) = (0, 0), corner 1 at (1, 0),
 // counter-clockwise), and the net holds its two face rings (the quads sharing a vertex with a quad that shares a

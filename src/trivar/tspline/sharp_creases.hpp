@@ -40,8 +40,16 @@ TMesh split_creases(const TMesh& m);
 // other boundary vertices (the mesh's own boundary, as Fusion's SUBD_CREASES); none inside.
 std::vector<CreaseRule> boundary_rules(const TMesh& m);
 
-// The boundary vertices of a subdivision-crease mesh (after split_creases) that are no regular crease patch
-// corner: a crease vertex of other than two faces, a corner of other than one. None for Bezier end conditions.
+// The vertices of a subdivision-crease mesh (after split_creases) that are no regular crease patch corner: a crease
+// vertex of other than two faces, a corner of other than one (cone points among them), a dart. None for Bezier end
+// conditions.
 std::vector<int> irregular_crease_vertices(const TMesh& m);
+
+// A mesh's darts (creases ending inside it) and cone points (creased vertices inside it on no crease), after
+// split_creases (vertex ids of that mesh, which keeps the given vertices' ids).
+struct CreaseSingularities {
+  std::vector<int> darts, cone_points;
+};
+CreaseSingularities crease_singularities(const TMesh& m);
 
 }  // namespace trivar
