@@ -408,6 +408,50 @@ void sharp_crease_build(benchmark::State& state) {
 }
 BENCHMARK(sharp_crease_build)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
+// Darts: the grid of sharp_crease_build with a sharp crease of 3 edges from its centre along x = 0, ending inside
+// the mesh at both ends (two darts), the faces within 4 rings of them by local subdivision (crease_face).
+// range(0) = 0: the build; 1: 16 x 16 points on the faces by local subdivision; 2: on the 8 faces at the darts.
+void dart_crease(benchmark::State& state) {
+  const auto q = trivar::test::fan_mesh(4, 10, [](double x, double y) { return 0.05 * x * x - 0.03 * x * y; });
+  trivar::TMesh m = trivar::io::parse_tsm(trivar::test::tsm_text(q), "grid.tsm").mesh;
+  m.end_conditions = trivar::EndConditions::subd_creases;
+  for (trivar::TMeshVertex& v : m.vertices) {
+    v.block.clear();
+    v.block_dims = {};
+  }
+  const auto on_crease = [&](int v) {
+    const auto& p = q.points[static_cast<std::size_t>(v)];
+    return std::abs(p[0]) < 1e-9 && p[1] > -1e-9 && p[1] < 3.5;
+  };
+  for (std::size_t l = 0; l < m.links.size(); ++l) {
+    const trivar::TMeshLink& k = m.links[l];
+    if (k.vertex >= 0 && static_cast<int>(l) < k.opp && on_crease(k.vertex) && on_crease(m.links[static_cast<std::size_t>(k.opp)].vertex))
+      m.crease_edges.push_back(k.edge);
+  }
+  if (state.range(0) == 0) {
+    for (auto _ : state) {
+      const trivar::TMeshSurface s(m, 1);
+      benchmark::DoNotOptimize(s.num_faces());
+    }
+    return;
+  }
+  const trivar::TMeshSurface s(m, 1);
+  if (state.range(0) == 1) {
+    eval_faces(state, s, true, trivar::FaceMethod::crease);
+    return;
+  }
+  std::vector<int> faces;  // the faces at the darts (irregular corners)
+  for (int f = 0; f < s.num_faces(); ++f)
+    if (s.method(f) == trivar::FaceMethod::crease)
+      for (int c = 0; c < 4; ++c)
+        if (s.crease_face(f).irregular(c)) {
+          faces.push_back(f);
+          break;
+        }
+  eval_face_list(state, s, faces);
+}
+BENCHMARK(dart_crease)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+
 // Poisson on the planar valence-5 fan with T-junctions (5 x 8 x 8 faces, three split): the patches cut until
 // their sides conform, refined n x n; space build, then assembly + solve.
 trivar::TMeshSurface planar_t_fan() {
