@@ -373,6 +373,33 @@ TEST(Cone, ConePointsOfValenceFourAndFive) {
   }
 }
 
+// A crease ending inside the mesh at a creased vertex: a corner there (interpolated, OpenSubdiv's infinitely sharp
+// vertex), a dart at its other end. Grid 6 x 6, sharp edge (3, 3) - (3, 4), (3, 3) creased.
+TEST(Cone, CreasedEndOfACreaseIsACorner) {
+  const int n = 6;
+  const test::QuadMesh cage = test::grid_cage(n, n);
+  const int a = grid_vertex(n, 3, 3), b = grid_vertex(n, 3, 4);
+  const Sharp edge = [&](int x, int y) { return std::min(x, y) == a && std::max(x, y) == b; };
+  const TMeshSurface s(io::parse_tsm(dart_cage(cage, edge, {a}), "corner.tsm").mesh, 1);
+  const CreaseSingularities ends = crease_singularities(s.mesh());
+  EXPECT_EQ(ends.darts, std::vector<int>{b});
+  EXPECT_TRUE(ends.cone_points.empty());  // on its crease: a corner of one fan, not a cone point
+  const test::OsdLimitSurface ref(osd_cage(cage, edge, {a}));
+  const Deviation d = against_osd(s, ref);
+  EXPECT_LT(d.off_vertices, 1e-12);
+  EXPECT_LT(d.at_vertices, 1e-13);
+  double to_point = 0;
+  for (const auto& [f, c] : faces_at(s, a)) {
+    const auto& uv = kCornerUv[static_cast<std::size_t>(c)];
+    double o[9];
+    s.eval(f, uv[0], uv[1], o);
+    for (std::size_t k = 0; k < 3; ++k) to_point = std::max(to_point, std::abs(o[k] - cage.points[static_cast<std::size_t>(a)][k]));
+  }
+  EXPECT_LT(to_point, 1e-15);
+  std::printf("grid 6 x 6, a sharp edge from a creased vertex to a dart: against OpenSubdiv %.2e, limit points %.2e; the "
+              "corner to its control point %.2e\n", d.off_vertices, d.at_vertices, to_point);
+}
+
 // The command line on a TSM with darts and a cone point: info counts them (text and JSON), eval evaluates a face at
 // a dart as the library does, convert writes one triangle surface with one boundary loop.
 TEST(Dart, CommandLine) {
