@@ -38,19 +38,6 @@ using Sharp = std::function<bool(int, int)>;
 
 double ripple(double x, double y) { return 0.3 * std::sin(0.9 * x + 0.4 * y) + 0.05 * x * y; }
 
-// The cage as Fusion writes it with the edges `sharp` picks in `100edges` and `creased` in `100verts`.
-std::string dart_cage(const test::QuadMesh& cage, const Sharp& sharp, const std::vector<int>& creased = {}) {
-  const TMesh plain = io::parse_tsm(test::fusion_text(cage), "plain.tsm").mesh;
-  std::set<int> edges;
-  for (const TMeshLink& k : plain.links)
-    if (k.vertex >= 0 && sharp(k.vertex, plain.links[static_cast<std::size_t>(k.opp)].vertex)) edges.insert(k.edge);
-  std::string lists = "100edges";
-  for (int e : edges) lists += " " + std::to_string(e);
-  lists += "\n100verts";
-  for (int v : creased) lists += " " + std::to_string(v);
-  return test::fusion_text(cage, "SUBD_CREASES", 1.0, lists + "\n");
-}
-
 // OpenSubdiv's control mesh of the cage with the same sharp edges and vertices; `coordinates` replaces the points
 // (homogeneous parts of a rational cage).
 test::PolyMesh osd_cage(const test::QuadMesh& cage, const Sharp& sharp, const std::vector<int>& creased, const std::vector<P3>& coordinates = {}) {
@@ -190,6 +177,23 @@ double edge_gap(const TMeshSurface& s) {
 // The grid cage's vertex (i, j) of grid_cage(n, n).
 int grid_vertex(int n, int i, int j) { return j * (n + 1) + i; }
 
+// The surface against OpenSubdiv: every face (against_osd), every dart (at_dart), and positions across edges.
+struct DartCheck {
+  Deviation d;
+  double gap = 0;
+};
+DartCheck check_darts(const TMeshSurface& s, const test::QuadMesh& cage, const Sharp& sharp, const std::string& what) {
+  const test::OsdLimitSurface ref(osd_cage(cage, sharp, {}));
+  const OsdLevels levels = osd_levels(ref);
+  DartCheck c{against_osd(s, ref), edge_gap(s)};
+  EXPECT_LT(c.d.off_vertices, 1e-12) << what;
+  EXPECT_LT(c.d.at_vertices, 1e-13) << what;
+  EXPECT_LT(c.gap, 1e-13) << what;
+  for (int v : crease_singularities(s.mesh()).darts)
+    expect_dart(at_dart(s, ref, levels, v), what + ": " + std::to_string(v) + " of " + std::to_string(faces_at(s, v).size()) + " faces");
+  return c;
+}
+
 // A grid of 7 x 7 faces with one sharp edge in the middle, (3, 3) - (3, 4): two darts. Against OpenSubdiv on every
 // face, the limit points and tangent planes at both darts; positions continuous across every edge; the
 // tessellation one surface with one boundary loop.
@@ -198,26 +202,19 @@ TEST(Dart, OneSharpEdgeBetweenTwoDarts) {
   const test::QuadMesh cage = test::grid_cage(n, n);
   const int a = grid_vertex(n, 3, 3), b = grid_vertex(n, 3, 4);
   const Sharp edge = [&](int x, int y) { return std::min(x, y) == a && std::max(x, y) == b; };
-  const io::TsmModel model = io::parse_tsm(dart_cage(cage, edge), "darts.tsm");
+  const io::TsmModel model = io::parse_tsm(test::fusion_creased_text(cage, edge), "darts.tsm");
   EXPECT_EQ(model.report.crease_edges, 1);
   const TMeshSurface s(model.mesh, 1);
   const CreaseSingularities ends = crease_singularities(s.mesh());
   EXPECT_EQ(ends.darts, (std::vector<int>{a, b}));
   EXPECT_TRUE(ends.cone_points.empty());
   EXPECT_GE(s.count(FaceMethod::crease), 40);
-  const test::OsdLimitSurface ref(osd_cage(cage, edge, {}));
-  const OsdLevels levels = osd_levels(ref);
-  const Deviation d = against_osd(s, ref);
-  EXPECT_LT(d.off_vertices, 1e-12);
-  EXPECT_LT(d.at_vertices, 1e-13);
-  for (int v : {a, b}) expect_dart(at_dart(s, ref, levels, v), std::to_string(v));
-  const double gap = edge_gap(s);
-  EXPECT_LT(gap, 1e-13);
+  const DartCheck d = check_darts(s, cage, edge, "one edge");
   const TSplineTriangulation t = tessellate(s, 1e-3);
   EXPECT_EQ(test::boundary_loops(t), 1);
   std::printf("grid 7 x 7 with one sharp edge between two darts: %d faces by local subdivision; against OpenSubdiv %.2e "
               "(value, d/du, d/dv), limit points %.2e; position gap across edges %.2e; %zu triangles, one boundary loop\n",
-              s.count(FaceMethod::crease), d.off_vertices, d.at_vertices, gap, t.triangles.size());
+              s.count(FaceMethod::crease), d.d.off_vertices, d.d.at_vertices, d.gap, t.triangles.size());
 }
 
 // A crease from the boundary, (3, 0) up to (3, 3), ending in a dart; with weights other than 1 too (rational
@@ -227,22 +224,15 @@ TEST(Dart, CreaseFromTheBoundaryEndsInADart) {
   const test::QuadMesh cage = test::grid_cage(n, n);
   const Sharp chain = [&](int x, int y) { return x % (n + 1) == 3 && y % (n + 1) == 3 && std::max(x, y) / (n + 1) <= 3; };
   const int dart = grid_vertex(n, 3, 3);
-  const io::TsmModel model = io::parse_tsm(dart_cage(cage, chain), "chain.tsm");
+  const io::TsmModel model = io::parse_tsm(test::fusion_creased_text(cage, chain), "chain.tsm");
   EXPECT_EQ(model.report.crease_edges, 3);
   {
     const TMeshSurface s(model.mesh, 1);
     EXPECT_EQ(crease_singularities(s.mesh()).darts, std::vector<int>{dart});
-    const test::OsdLimitSurface ref(osd_cage(cage, chain, {}));
-    const OsdLevels levels = osd_levels(ref);
-    const Deviation d = against_osd(s, ref);
-    EXPECT_LT(d.off_vertices, 1e-12);
-    EXPECT_LT(d.at_vertices, 1e-13);
-    expect_dart(at_dart(s, ref, levels, dart), std::to_string(dart));
-    const double gap = edge_gap(s);
-    EXPECT_LT(gap, 1e-13);
+    const DartCheck d = check_darts(s, cage, chain, "chain");
     EXPECT_EQ(test::boundary_loops(tessellate(s, 1e-3)), 1);
     std::printf("grid 7 x 7, crease from the boundary ending in a dart: against OpenSubdiv %.2e, limit points %.2e; "
-                "position gap across edges %.2e\n", d.off_vertices, d.at_vertices, gap);
+                "position gap across edges %.2e\n", d.d.off_vertices, d.d.at_vertices, d.gap);
   }
   TMesh weighted = model.mesh;
   std::vector<P3> wx(cage.points.size()), w(cage.points.size());
@@ -282,21 +272,15 @@ TEST(Dart, DartsAtStarPoints) {
       return std::abs(p[1]) < 1e-9 && p[0] > -1e-9 && p[0] < 2.5;
     };
     const Sharp spoke = [&](int x, int y) { return on_spoke(x) && on_spoke(y); };
-    const io::TsmModel model = io::parse_tsm(dart_cage(cage, spoke), "fan.tsm");
+    const io::TsmModel model = io::parse_tsm(test::fusion_creased_text(cage, spoke), "fan.tsm");
     EXPECT_EQ(model.report.crease_edges, 2);
     const TMeshSurface s(model.mesh, 1);
     const std::vector<int> darts = crease_singularities(s.mesh()).darts;
     ASSERT_EQ(darts.size(), 2u);
     EXPECT_EQ(darts[0], 0);  // the star point
-    const test::OsdLimitSurface ref(osd_cage(cage, spoke, {}));
-    const OsdLevels levels = osd_levels(ref);
-    const Deviation d = against_osd(s, ref);
-    EXPECT_LT(d.off_vertices, 1e-12) << valence;
-    EXPECT_LT(d.at_vertices, 1e-13) << valence;
-    for (int v : darts) expect_dart(at_dart(s, ref, levels, v), std::to_string(v) + " of " + std::to_string(faces_at(s, v).size()) + " faces");
-    EXPECT_LT(edge_gap(s), 1e-13);
+    const DartCheck d = check_darts(s, cage, spoke, "fan of " + std::to_string(valence));
     std::printf("fan of %d sectors with a dart at its star point: %d faces by local subdivision; against OpenSubdiv %.2e, "
-                "limit points %.2e\n", valence, s.count(FaceMethod::crease), d.off_vertices, d.at_vertices);
+                "limit points %.2e\n", valence, s.count(FaceMethod::crease), d.d.off_vertices, d.d.at_vertices);
   }
 }
 
@@ -316,24 +300,17 @@ TEST(Dart, CreaseIntoAFaceOfAClosedBox) {
   const auto at = [&](int v, std::array<int, 3> g) { return grid[static_cast<std::size_t>(v)] == g; };
   const auto either = [&](int x, int y, std::array<int, 3> g, std::array<int, 3> h) { return (at(x, g) && at(y, h)) || (at(x, h) && at(y, g)); };
   const Sharp path = [&](int x, int y) { return either(x, y, {0, 0, 3}, {1, 0, 3}) || either(x, y, {1, 0, 3}, {1, 1, 3}); };
-  const io::TsmModel model = io::parse_tsm(dart_cage(cage, path), "box.tsm");
+  const io::TsmModel model = io::parse_tsm(test::fusion_creased_text(cage, path), "box.tsm");
   EXPECT_EQ(model.report.crease_edges, 2);
   const TMeshSurface s(model.mesh, 1);
   const std::vector<int> darts = crease_singularities(s.mesh()).darts;
   ASSERT_EQ(darts.size(), 2u);
-  const test::OsdLimitSurface ref(osd_cage(cage, path, {}));
-  const OsdLevels levels = osd_levels(ref);
-  const Deviation d = against_osd(s, ref);
-  EXPECT_LT(d.off_vertices, 1e-12);
-  EXPECT_LT(d.at_vertices, 1e-13);
-  for (int v : darts) expect_dart(at_dart(s, ref, levels, v), std::to_string(v) + " of " + std::to_string(faces_at(s, v).size()) + " faces");
-  const double gap = edge_gap(s);
-  EXPECT_LT(gap, 1e-13);
+  const DartCheck d = check_darts(s, cage, path, "box");
   const TSplineTriangulation t = tessellate(s, 1e-3);
   EXPECT_EQ(test::closed_euler_characteristic(t), 2);
   std::printf("box 3 x 3 per side with a crease from a corner into the top face: %d faces by local subdivision; against "
               "OpenSubdiv %.2e, limit points %.2e; position gap across edges %.2e; %zu triangles closed\n",
-              s.count(FaceMethod::crease), d.off_vertices, d.at_vertices, gap, t.triangles.size());
+              s.count(FaceMethod::crease), d.d.off_vertices, d.d.at_vertices, d.gap, t.triangles.size());
 }
 
 // Cone points: a creased vertex inside the mesh on no crease, of 4 faces (grid 6 x 6, vertex (3, 3)) and of 5 (the
@@ -344,7 +321,7 @@ TEST(Cone, ConePointsOfValenceFourAndFive) {
   const test::QuadMesh fan = test::fan_mesh(5, 6, ripple);
   for (const auto& [cage, cone] : {std::pair{grid, grid_vertex(6, 3, 3)}, std::pair{fan, 0}}) {
     const Sharp none = [](int, int) { return false; };
-    const io::TsmModel model = io::parse_tsm(dart_cage(cage, none, {cone}), "cone.tsm");
+    const io::TsmModel model = io::parse_tsm(test::fusion_creased_text(cage, none, {cone}), "cone.tsm");
     const TMeshSurface s(model.mesh, 1);
     const CreaseSingularities ends = crease_singularities(s.mesh());
     EXPECT_TRUE(ends.darts.empty());
@@ -380,7 +357,7 @@ TEST(Cone, CreasedEndOfACreaseIsACorner) {
   const test::QuadMesh cage = test::grid_cage(n, n);
   const int a = grid_vertex(n, 3, 3), b = grid_vertex(n, 3, 4);
   const Sharp edge = [&](int x, int y) { return std::min(x, y) == a && std::max(x, y) == b; };
-  const TMeshSurface s(io::parse_tsm(dart_cage(cage, edge, {a}), "corner.tsm").mesh, 1);
+  const TMeshSurface s(io::parse_tsm(test::fusion_creased_text(cage, edge, {a}), "corner.tsm").mesh, 1);
   const CreaseSingularities ends = crease_singularities(s.mesh());
   EXPECT_EQ(ends.darts, std::vector<int>{b});
   EXPECT_TRUE(ends.cone_points.empty());  // on its crease: a corner of one fan, not a cone point
@@ -409,7 +386,7 @@ TEST(Dart, CommandLine) {
   const int a = grid_vertex(n, 3, 3), b = grid_vertex(n, 3, 4);
   const Sharp edge = [&](int x, int y) { return std::min(x, y) == a && std::max(x, y) == b; };
   const std::string path = dir.file("darts.tsm");
-  std::ofstream(path) << dart_cage(cage, edge, {grid_vertex(n, 5, 2)});
+  std::ofstream(path) << test::fusion_creased_text(cage, edge, {grid_vertex(n, 5, 2)});
   const std::string info = test::run_cli(dir, "info " + path);
   EXPECT_NE(info.find("2 darts"), std::string::npos) << info;
   EXPECT_NE(info.find("1 cone points"), std::string::npos) << info;
