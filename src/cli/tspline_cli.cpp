@@ -209,15 +209,15 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
                 "points (%zu%s%s after the mesh is cut open along the creases, each side a crease boundary); faces are "
                 "evaluated in their own (u, v)\n", faces, r.crease_edges, r.star_points, s.stars().size(),
                 vs.empty() ? "" : ": ", vs.c_str());
-  if (darts > 0 || cones > 0)
-    std::printf("  %d darts (a crease ending inside the mesh: the smooth rule there, the crease a slit up to it) and %d cone "
-                "points (a creased vertex inside the mesh on no crease: interpolated, no tangent plane)\n", darts, cones);
   else if (s.stars().empty())
     std::printf("  %d faces, no star point; a closed strip of faces (a torus, a tube) leaves no global (s, t): faces are "
                 "evaluated in their own (u, v)\n", faces);
   else
     std::printf("  %d faces, %d star points (%s); no global (s, t): faces are evaluated in their own (u, v)\n", faces,
                 r.star_points, vs.c_str());
+  if (darts > 0 || cones > 0)
+    std::printf("  %d darts (a crease ending inside the mesh: the smooth rule there, the crease a slit up to it) and %d cone "
+                "points (a creased vertex inside the mesh on no crease: interpolated, no tangent plane)\n", darts, cones);
   if (s.global_steps() > 0)
     std::printf("  refined first by %d global non-uniform Catmull-Clark steps (star points fewer than %d edges apart with "
                 "unequal knot intervals; the limit surface is unchanged): each of the %zu faces as given is %d x %d faces, "

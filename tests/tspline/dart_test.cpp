@@ -390,6 +390,8 @@ TEST(Dart, CommandLine) {
   const std::string info = test::run_cli(dir, "info " + path);
   EXPECT_NE(info.find("2 darts"), std::string::npos) << info;
   EXPECT_NE(info.find("1 cone points"), std::string::npos) << info;
+  EXPECT_EQ(info.find("closed strip"), std::string::npos) << info;  // one description of the mesh
+  std::printf("%s", info.c_str());
   const std::string json = test::run_cli(dir, "info " + path + " --json");
   EXPECT_NE(json.find("\"darts\": 2"), std::string::npos) << json;
   EXPECT_NE(json.find("\"cone_points\": 1"), std::string::npos) << json;
