@@ -14,8 +14,8 @@
 // corner itself the limit position is the limit mask (crease (P_prev + 4 P + P_next) / 6, corner P, smooth
 // (n^2 P + 4 sum E + sum D) / (n (n + 5)); a dart's from the left eigenvector of eigenvalue 1 of its one-ring
 // subdivision matrix, as the slit's midpoint rule moves it off the smooth mask), the tangent plane the
-// eigenstructure's where it has one (Eigen's EigenSolver; none at a cone point). The subdivision levels towards each irregular corner are cached as the 4 x 4 points of their
-// regular sub-faces.
+// eigenstructure's where it has one (Eigen's EigenSolver; none at a cone point). The subdivision levels towards
+// each irregular corner are cached as the 4 x 4 points of their regular sub-faces.
 // The rules are linear: they act on homogeneous points (w x, w) (rational Catmull-Clark). Hand-written: no
 // packaged library evaluates subdivision surfaces with crease boundaries.
 #include <array>
