@@ -414,6 +414,9 @@ TEST(Dart, CommandLine) {
   for (std::size_t k = 0; k < 3; ++k) EXPECT_NEAR(printed[k], o[k], 1e-9) << out;
   test::run_cli(dir, "convert " + path + " " + dir.file("darts.obj"));
   EXPECT_EQ(test::boundary_loops(test::obj_triangles(dir.file("darts.obj"))), 1);
+  const std::string step = test::run_cli(dir, "convert " + path + " " + dir.file("darts.stp"));
+  EXPECT_NE(step.find("Bezier patches"), std::string::npos) << step;
+  std::printf("%s", step.c_str());
 }
 
 }  // namespace
