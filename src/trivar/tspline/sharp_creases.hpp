@@ -10,8 +10,8 @@
 // Which crease vertices are cut, and their rule (TMeshVertex::crease_rule, on every side, from the original vertex
 // whatever the side's faces). A vertex is a corner when three or more sharp edges meet there (crease edges, and
 // the two boundary edges of a boundary vertex), or when the mesh's crease list names it (TMesh::crease_vertices,
-// Fusion's `100verts`; on a crease or the boundary): subdivision interpolates it. A vertex with two crease edges and no
-// boundary takes the crease rule (the crease curve runs through it), also where the crease turns (one side then
+// Fusion's `100verts`; on a crease, on the boundary or inside): subdivision interpolates it. A vertex with two
+// crease edges and no boundary takes the crease rule (the crease curve runs through it), also where the crease turns (one side then
 // has one face) or runs through a star point. Sides that are not a regular crease patch (a crease vertex of other
 // than two faces, a corner of other than one: irregular_crease_vertices) are evaluated by local subdivision
 // (crease_face). A crease ending at a vertex inside the mesh (a dart; not creased) is cut up to that vertex, which
