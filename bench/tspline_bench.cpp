@@ -346,18 +346,33 @@ void crease_build(benchmark::State& state) {
 }
 BENCHMARK(crease_build)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
-// The star point of 5 faces on a straight boundary of boundary_star_eval as a subdivision-crease boundary (no
-// blocks): a crease vertex of 5 faces, its faces within 4 rings by local subdivision (crease_face). range(0) = 0:
-// the build; 1: 16 x 16 points on the faces by local subdivision; 2: on all faces; 3: on the 5 faces at the vertex.
-void crease_star(benchmark::State& state) {
-  trivar::TMesh m = trivar::io::parse_tsm(trivar::test::tsm_text(trivar::test::half_fan_mesh(
-                                              5, 10, [](double x, double y) { return 0.05 * x * x - 0.03 * x * y; })),
-                                          "crease_star.tsm").mesh;
+// A parsed mesh as a subdivision-crease mesh without end-condition blocks (Fusion's SUBD_CREASES).
+trivar::TMesh crease_mesh(const std::string& text) {
+  trivar::TMesh m = trivar::io::parse_tsm(text, "crease.tsm").mesh;
   m.end_conditions = trivar::EndConditions::subd_creases;
   for (trivar::TMeshVertex& v : m.vertices) {
     v.block.clear();
     v.block_dims = {};
   }
+  return m;
+}
+
+// The faces by local subdivision with an irregular corner.
+std::vector<int> irregular_corner_faces(const trivar::TMeshSurface& s) {
+  std::vector<int> faces;
+  for (int f = 0; f < s.num_faces(); ++f)
+    if (s.method(f) == trivar::FaceMethod::crease)
+      for (int c = 0; c < 4; ++c)
+        if (s.crease_face(f).irregular(c)) {
+          faces.push_back(f);
+          break;
+        }
+  return faces;
+}
+
+// A subdivision-crease mesh's surface: range(0) = 0: the build; 1: 16 x 16 points on the faces by local
+// subdivision; 2: on all faces; 3: on the faces at its irregular vertices.
+void crease_surface_bench(benchmark::State& state, const trivar::TMesh& m) {
   if (state.range(0) == 0) {
     for (auto _ : state) {
       const trivar::TMeshSurface s(m, 1);
@@ -366,19 +381,18 @@ void crease_star(benchmark::State& state) {
     return;
   }
   const trivar::TMeshSurface s(m, 1);
-  if (state.range(0) < 3) {
+  if (state.range(0) < 3)
     eval_faces(state, s, state.range(0) == 1, trivar::FaceMethod::crease);
-    return;
-  }
-  std::vector<int> faces;  // the faces at the vertex (an irregular corner)
-  for (int f = 0; f < s.num_faces(); ++f)
-    if (s.method(f) == trivar::FaceMethod::crease)
-      for (int c = 0; c < 4; ++c)
-        if (s.crease_face(f).irregular(c)) {
-          faces.push_back(f);
-          break;
-        }
-  eval_face_list(state, s, faces);
+  else
+    eval_face_list(state, s, irregular_corner_faces(s));
+}
+
+// The star point of 5 faces on a straight boundary of boundary_star_eval as a subdivision-crease boundary (no
+// blocks): a crease vertex of 5 faces, its faces within 4 rings by local subdivision (crease_face). range(0) = 0:
+// the build; 1: 16 x 16 points on the faces by local subdivision; 2: on all faces; 3: on the 5 faces at the vertex.
+void crease_star(benchmark::State& state) {
+  crease_surface_bench(state, crease_mesh(trivar::test::tsm_text(
+                                  trivar::test::half_fan_mesh(5, 10, [](double x, double y) { return 0.05 * x * x - 0.03 * x * y; }))));
 }
 BENCHMARK(crease_star)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond);
 
@@ -387,12 +401,7 @@ BENCHMARK(crease_star)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillise
 // crease_ends converts both sides).
 void sharp_crease_build(benchmark::State& state) {
   const auto q = trivar::test::fan_mesh(4, 10, [](double x, double y) { return 0.05 * x * x - 0.03 * x * y; });
-  trivar::TMesh m = trivar::io::parse_tsm(trivar::test::tsm_text(q), "grid.tsm").mesh;
-  m.end_conditions = trivar::EndConditions::subd_creases;
-  for (trivar::TMeshVertex& v : m.vertices) {
-    v.block.clear();
-    v.block_dims = {};
-  }
+  trivar::TMesh m = crease_mesh(trivar::test::tsm_text(q));
   const auto on_line = [&](int v) { return std::abs(q.points[static_cast<std::size_t>(v)][0]) < 1e-9; };
   if (state.range(0) == 1)
     for (std::size_t l = 0; l < m.links.size(); ++l) {
@@ -407,6 +416,25 @@ void sharp_crease_build(benchmark::State& state) {
   }
 }
 BENCHMARK(sharp_crease_build)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+// Darts: the grid of sharp_crease_build with a sharp crease of 3 edges from its centre along x = 0, ending inside
+// the mesh at both ends (two darts), the faces within 4 rings of them by local subdivision (crease_face).
+// range(0) as crease_surface_bench (3: the 8 faces at the darts).
+void dart_crease(benchmark::State& state) {
+  const auto q = trivar::test::fan_mesh(4, 10, [](double x, double y) { return 0.05 * x * x - 0.03 * x * y; });
+  trivar::TMesh m = crease_mesh(trivar::test::tsm_text(q));
+  const auto on_crease = [&](int v) {
+    const auto& p = q.points[static_cast<std::size_t>(v)];
+    return std::abs(p[0]) < 1e-9 && p[1] > -1e-9 && p[1] < 3.5;
+  };
+  for (std::size_t l = 0; l < m.links.size(); ++l) {
+    const trivar::TMeshLink& k = m.links[l];
+    if (k.vertex >= 0 && static_cast<int>(l) < k.opp && on_crease(k.vertex) && on_crease(m.links[static_cast<std::size_t>(k.opp)].vertex))
+      m.crease_edges.push_back(k.edge);
+  }
+  crease_surface_bench(state, m);
+}
+BENCHMARK(dart_crease)->Arg(0)->Arg(1)->Arg(3)->Unit(benchmark::kMillisecond);
 
 // Poisson on the planar valence-5 fan with T-junctions (5 x 8 x 8 faces, three split): the patches cut until
 // their sides conform, refined n x n; space build, then assembly + solve.

@@ -30,6 +30,7 @@
 #include "trivar/tspline/bezier_patches.hpp"
 #include "trivar/tspline/classification.hpp"
 #include "trivar/tspline/lr_form.hpp"
+#include "trivar/tspline/sharp_creases.hpp"
 #include "trivar/tspline/t_mesh_patches.hpp"
 #include "trivar/tspline/t_mesh_surface.hpp"
 #include "trivar/tspline/t_mesh_tessellation.hpp"
@@ -170,16 +171,21 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
   const int sub = s.count(FaceMethod::subdivided);
   const int cr = s.count(FaceMethod::crease);
   const int faces = s.count(FaceMethod::exact) + s.count(FaceMethod::bicubic) + s.count(FaceMethod::star) + nu + sub + cr;
-  const bool creases = r.crease_edges > 0;
+  const CreaseSingularities ends = crease_singularities(s.mesh());
+  const int darts = static_cast<int>(ends.darts.size()), cones = static_cast<int>(ends.cone_points.size());
+  const bool creases = r.crease_edges > 0 || cones > 0;
   std::string continuity = s.stars().empty() ? "C2 across every edge"
                                              : "C2 across every edge away from star points; C1 across the edges at a star point; G1 at star points";
   if (creases) continuity = (s.stars().empty() ? "C2 across every edge" : continuity) + " but the sharp creases, C0 across those";
-  const char* kind = creases ? "T-spline surface with sharp creases"
+  if (cones > 0) continuity += "; no tangent plane at the cone points";
+  const char* kind = r.crease_edges > 0 ? "T-spline surface with sharp creases"
+                   : creases ? "T-spline surface with cone points"
                    : s.stars().empty() ? "T-spline surface with a closed strip of faces"
                                        : "T-spline surface with star points";
   nlohmann::json j{{"file", path}, {"kind", kind}, {"format", l.format},
                    {"degrees", {s.mesh().degree, s.mesh().degree}}, {"units", r.units}, {"faces", faces},
-                   {"star_points", r.star_points}, {"crease_edges", r.crease_edges}, {"faces_exact", s.count(FaceMethod::exact)},
+                   {"star_points", r.star_points}, {"crease_edges", r.crease_edges}, {"darts", darts}, {"cone_points", cones},
+                   {"faces_exact", s.count(FaceMethod::exact)},
                    {"faces_catmull_clark", s.count(FaceMethod::bicubic) + s.count(FaceMethod::star) + sub},
                    {"faces_at_star_points", s.count(FaceMethod::star)}, {"faces_at_boundary_star_points", bs},
                    {"faces_non_uniform_catmull_clark", nu}, {"faces_subdivided", sub}, {"faces_crease_subdivision", cr},
@@ -209,6 +215,9 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
   else
     std::printf("  %d faces, %d star points (%s); no global (s, t): faces are evaluated in their own (u, v)\n", faces,
                 r.star_points, vs.c_str());
+  if (darts > 0 || cones > 0)
+    std::printf("  %d darts (a crease ending inside the mesh: the smooth rule there, the crease a slit up to it) and %d cone "
+                "points (a creased vertex inside the mesh on no crease: interpolated, no tangent plane)\n", darts, cones);
   if (s.global_steps() > 0)
     std::printf("  refined first by %d global non-uniform Catmull-Clark steps (star points fewer than %d edges apart with "
                 "unequal knot intervals; the limit surface is unchanged): each of the %zu faces as given is %d x %d faces, "
@@ -239,7 +248,7 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
                 "Catmull-Clark step (each quarter a bicubic or Stam patch of the subdivided points)\n", sub);
   if (cr > 0)
     std::printf("  %d faces within %d rings of irregular vertices of a crease boundary (a crease turning, a star point on "
-                "it, a corner with a side of several faces) by repeated local Catmull-Clark subdivision with the crease "
+                "it, a corner with a side of several faces, a dart, a cone point) by repeated local Catmull-Clark subdivision with the crease "
                 "rules (exact; the limit position at the vertex itself)\n", cr, s.mesh().degree + 1);
   if (bs > 0)
     std::printf("  %d faces at star points on the boundary by Catmull-Clark of the control mesh extended by a ghost layer "

@@ -35,20 +35,6 @@ using Crease = std::function<bool(int, int)>;
 
 double wavy(double x, double y) { return 0.3 * std::sin(0.9 * x + 0.4 * y) + 0.05 * x * y; }
 
-// A Fusion cage (SUBD_CREASES) with the edges `crease` picks and the vertices `creased` in Fusion's crease lists
-// (`100edges`, `100verts`).
-std::string creased_cage(const test::QuadMesh& cage, const Crease& crease, const std::vector<int>& creased = {}) {
-  const TMesh plain = io::parse_tsm(test::fusion_text(cage), "plain.tsm").mesh;
-  std::set<int> edges;
-  for (const TMeshLink& k : plain.links)
-    if (k.vertex >= 0 && crease(k.vertex, plain.links[static_cast<std::size_t>(k.opp)].vertex)) edges.insert(k.edge);
-  std::string lists = "100edges";
-  for (int e : edges) lists += " " + std::to_string(e);
-  lists += "\n100verts";
-  for (int v : creased) lists += " " + std::to_string(v);
-  return test::fusion_text(cage, "SUBD_CREASES", 1.0, lists + "\n");
-}
-
 struct OsdDeviation {
   double off_vertices = 0;  // value, d/du, d/dv away from the face corners
   double at_vertices = 0;   // limit positions at the face corners
@@ -164,7 +150,7 @@ TEST(CreaseFace, CreaseTurningAtAVertexOfFourFaces) {
   const Crease turn = [&](int a, int b) {
     return (g.i(a) == 3 && g.i(b) == 3 && std::max(g.j(a), g.j(b)) <= 3) || (g.j(a) == 3 && g.j(b) == 3 && std::min(g.i(a), g.i(b)) >= 3);
   };
-  const io::TsmModel model = io::parse_tsm(creased_cage(cage, turn), "turn.tsm");
+  const io::TsmModel model = io::parse_tsm(test::fusion_creased_text(cage, turn), "turn.tsm");
   EXPECT_EQ(model.report.crease_edges, 6);
   const TMeshSurface s(model.mesh, 1);
   const OsdDeviation d = against_osd(s, cage, turn);
@@ -189,7 +175,7 @@ TEST(CreaseFace, CornerWithASideOfTwoFaces) {
   const Crease tee = [&](int a, int b) {
     return (g.i(a) == 3 && g.i(b) == 3) || (g.j(a) == 3 && g.j(b) == 3 && std::min(g.i(a), g.i(b)) >= 3);
   };
-  const TMeshSurface s(io::parse_tsm(creased_cage(cage, tee), "tee.tsm").mesh, 1);
+  const TMeshSurface s(io::parse_tsm(test::fusion_creased_text(cage, tee), "tee.tsm").mesh, 1);
   const OsdDeviation d = against_osd(s, cage, tee);
   EXPECT_LT(d.off_vertices, 1e-12);
   EXPECT_LT(d.at_vertices, 1e-13);
@@ -207,7 +193,7 @@ TEST(CreaseFace, CreasedVertexOnACreaseIsACorner) {
   const test::QuadMesh cage = test::grid_cage(6, 6);
   const Crease across = [&](int a, int b) { return g.i(a) == 3 && g.i(b) == 3; };
   const std::vector<int> creased{3 * 7 + 3, 3 * 7 + 6};
-  const TMeshSurface s(io::parse_tsm(creased_cage(cage, across, creased), "creased_vertex.tsm").mesh, 1);
+  const TMeshSurface s(io::parse_tsm(test::fusion_creased_text(cage, across, creased), "creased_vertex.tsm").mesh, 1);
   EXPECT_GT(s.count(FaceMethod::crease), 0);
   const OsdDeviation d = against_osd(s, cage, across, creased);
   EXPECT_LT(d.off_vertices, 1e-12);
@@ -241,7 +227,7 @@ TEST(CreaseFace, BoxWithItsTopRimCreased) {
   // face) and whose other side two. Closed: the triangulation has Euler characteristic 2.
   const TopBox box;
   const Crease rim = [&](int a, int b) { return box.rim_edge(a, b); };
-  const io::TsmModel model = io::parse_tsm(creased_cage(box.cage, rim), "box.tsm");
+  const io::TsmModel model = io::parse_tsm(test::fusion_creased_text(box.cage, rim), "box.tsm");
   EXPECT_EQ(model.report.crease_edges, 12);
   const TMeshSurface s(model.mesh, 1);
   EXPECT_EQ(irregular_crease_vertices(s.mesh()).size(), 0u);  // the converted mesh has Bezier end conditions
@@ -261,7 +247,7 @@ TEST(CreaseFace, CommandLineCounts) {
   const test::TempDir dir;
   const TopBox box;
   const std::string path = dir.file("box.tsm");
-  std::ofstream(path) << creased_cage(box.cage, [&](int a, int b) { return box.rim_edge(a, b); });
+  std::ofstream(path) << test::fusion_creased_text(box.cage, [&](int a, int b) { return box.rim_edge(a, b); });
   const TMeshSurface s(io::read_tsm(path).mesh, 1);
   const std::string info = test::run_cli(dir, "info " + path);
   EXPECT_NE(info.find(std::to_string(s.count(FaceMethod::crease)) + " faces within 4 rings of irregular vertices of a crease boundary"),

@@ -9,12 +9,14 @@
 #include <fstream>
 #include <map>
 #include <numbers>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "star_mesh_tsm.hpp"
 #include "support/temp_dir.hpp"
+#include "trivar/io/tsm_format.hpp"
 #include "trivar/tspline/t_spline_tessellation.hpp"
 
 namespace trivar::test {
@@ -75,6 +77,21 @@ inline std::string fusion_text(const QuadMesh& m, const std::string& end_conditi
   os << extra << "\ntol 1.00000000000000008e-05\ngeom-tol 1.00000000000000008e-05\nver 992\nbehavior-version 14.2.0\n"
      << "compat-version 13.3.0\n";
   return os.str();
+}
+
+// The cage as Fusion writes it (SUBD_CREASES) with the edges `crease` picks in its crease list `100edges` and the
+// vertices `creased` in `100verts` (parsed once without them for the edge numbers).
+template <class Crease>
+std::string fusion_creased_text(const QuadMesh& cage, const Crease& crease, const std::vector<int>& creased = {}) {
+  const TMesh plain = io::parse_tsm(fusion_text(cage), "plain.tsm").mesh;
+  std::set<int> edges;
+  for (const TMeshLink& k : plain.links)
+    if (k.vertex >= 0 && crease(k.vertex, plain.links[static_cast<std::size_t>(k.opp)].vertex)) edges.insert(k.edge);
+  std::string lists = "100edges";
+  for (int e : edges) lists += " " + std::to_string(e);
+  lists += "\n100verts";
+  for (int v : creased) lists += " " + std::to_string(v);
+  return fusion_text(cage, "SUBD_CREASES", 1.0, lists + "\n");
 }
 
 // The torus cage of nu x nv vertices, vertex (i, j) = i * nv + j, face (i, j) from vertex (i, j) along i, then j.

@@ -28,6 +28,7 @@
 #include "trivar/io/tsm_format.hpp"
 #include "trivar/spline/basis.hpp"
 #include "trivar/spline/tensor_spline.hpp"
+#include "trivar/tspline/sharp_creases.hpp"
 #include "trivar/tspline/t_mesh_surface.hpp"
 #include "trivar/tspline/t_mesh_tessellation.hpp"
 #include "trivar/tspline/t_spline_surface.hpp"
@@ -273,20 +274,21 @@ TEST(FusionTsm, MalformedFilesGiveOneLineErrors) {
   test::expect_tsm_error(with(box, "l 3 1 ", "l 3 99 "), "names a link that does not exist");
   test::expect_tsm_error(with(box, "f 4 0", "f 400 0"), "names link 400, which does not exist");
   test::expect_tsm_error(with(box, "\nv 0 NORTH", "\nv 0 UP"), "needs an outgoing link and a direction");
-  // A crease between two faces: with MULTIPLE_KNOTS an error; one crease edge alone (the cube has no boundary)
-  // ends inside the mesh at both ends (sharp_crease_test.cpp has the accepted creases). On the boundary of a
-  // grid, ec records are read.
+  // A crease between two faces: with MULTIPLE_KNOTS an error; with SUBD_CREASES one crease edge alone (the cube has
+  // no boundary) ends inside the mesh at both ends, two darts (dart_test.cpp). On the boundary of a grid, ec
+  // records are read.
   test::expect_tsm_error(with(with(box, "\ntol ", "ec 3 0\n\ntol "), "SUBD_CREASES", "MULTIPLE_KNOTS"),
                          "edge 3 between two faces is a crease (ec); creases inside the mesh are read with end-conditions SUBD_CREASES, not MULTIPLE_KNOTS");
-  test::expect_tsm_error(with(box, "\ntol ", "ec 3 0\n\ntol "), "(a dart");
+  const auto ends = [](const std::string& text) { return crease_singularities(TMeshSurface(io::parse_tsm(text, "c.tsm").mesh, 1).mesh()); };
+  EXPECT_EQ(ends(with(box, "\ntol ", "ec 3 0\n\ntol ")).darts.size(), 2u);
   // The same from Fusion's crease list.
   test::expect_tsm_error(with(with(box, "\ntol ", "100edges 3\n100verts\n\ntol "), "SUBD_CREASES", "MULTIPLE_KNOTS"),
                          "crease edge 3 lies between two faces; creases inside the mesh are read with end-conditions SUBD_CREASES, not MULTIPLE_KNOTS");
-  test::expect_tsm_error(with(box, "\ntol ", "100edges 3\n100verts\n\ntol "), "(a dart");
-  // Creased vertices: with MULTIPLE_KNOTS an error; inside the mesh on no crease a cone point, refused.
+  EXPECT_EQ(ends(with(box, "\ntol ", "100edges 3\n100verts\n\ntol ")).darts.size(), 2u);
+  // Creased vertices: with MULTIPLE_KNOTS an error; inside the mesh on no crease a cone point.
   test::expect_tsm_error(with(with(box, "\ntol ", "100edges\n100verts 5\n\ntol "), "SUBD_CREASES", "MULTIPLE_KNOTS"),
                          "creased vertex 5: creased vertices are read with end-conditions SUBD_CREASES, not MULTIPLE_KNOTS");
-  test::expect_tsm_error(with(box, "\ntol ", "100edges\n100verts 5\n\ntol "), "creased vertex 5 lies inside the mesh on no crease edge (a cone point");
+  EXPECT_EQ(ends(with(box, "\ntol ", "100edges\n100verts 5\n\ntol ")).cone_points, std::vector<int>{5});
   EXPECT_EQ(io::parse_tsm(with(fusion_text(grid_cage(1, 1)), "\ntol ", "ec 0 0\n\ntol "), "g.tsm").mesh.conditions.size(), 1u);
   // Edge knots other than the intervals.
   std::string ek;

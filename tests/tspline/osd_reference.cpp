@@ -112,24 +112,31 @@ LimitSample OsdLimitSurface::eval_ngon_corner(int face, int corner, double s, do
   return out;
 }
 
-std::vector<LimitSample> OsdLimitSurface::vertex_limits() const {
-  // Far's limit masks assume quadrilaterals around the vertex: one uniform refinement step first (on a copy of
-  // the base level, as Bfr's factory needs the refiner unrefined), then the masks at level 1.
+std::vector<LimitSample> OsdLimitSurface::vertex_limits(int levels) const {
+  // Far's limit masks assume quadrilaterals around the vertex: uniform refinement first (on a copy of the base
+  // level, as Bfr's factory needs the refiner unrefined), then the masks at the last level.
   using Factory = osd::Far::TopologyRefinerFactory<osd::Far::TopologyDescriptor>;
   const std::unique_ptr<osd::Far::TopologyRefiner> refiner(Factory::Create(*impl_->refiner));
-  osd::Far::TopologyRefiner::UniformOptions uniform(1);
+  osd::Far::TopologyRefiner::UniformOptions uniform(levels);
   uniform.fullTopologyInLastLevel = true;
   refiner->RefineUniform(uniform);
   const std::size_t n = impl_->coords.size() / 3;
-  std::vector<OsdPoint> src(n), fine(static_cast<std::size_t>(refiner->GetLevel(1).GetNumVertices()));
+  std::vector<OsdPoint> src(n);
   for (std::size_t i = 0; i < n; ++i) src[i].x = {impl_->coords[3 * i], impl_->coords[3 * i + 1], impl_->coords[3 * i + 2]};
   const osd::Far::PrimvarRefinerReal<double> primvar(*refiner);
-  primvar.Interpolate(1, src, fine);
-  std::vector<OsdPoint> pos(fine.size()), t1(fine.size()), t2(fine.size());
-  primvar.Limit(fine, pos, t1, t2);
+  std::vector<int> child(n);
+  for (std::size_t i = 0; i < n; ++i) child[i] = static_cast<int>(i);
+  for (int l = 1; l <= levels; ++l) {
+    std::vector<OsdPoint> fine(static_cast<std::size_t>(refiner->GetLevel(l).GetNumVertices()));
+    primvar.Interpolate(l, src, fine);
+    src = std::move(fine);
+    for (int& c : child) c = refiner->GetLevel(l - 1).GetVertexChildVertex(c);
+  }
+  std::vector<OsdPoint> pos(src.size()), t1(src.size()), t2(src.size());
+  primvar.Limit(src, pos, t1, t2);
   std::vector<LimitSample> r(n);
   for (std::size_t i = 0; i < n; ++i) {
-    const auto c = static_cast<std::size_t>(refiner->GetLevel(0).GetVertexChildVertex(static_cast<int>(i)));
+    const auto c = static_cast<std::size_t>(child[i]);
     r[i] = {pos[c].x, t1[c].x, t2[c].x};
   }
   return r;

@@ -56,8 +56,10 @@ public:
   LimitSample eval_ngon_corner(int face, int corner, double s, double t) const;
   // The limit positions of the mesh's vertices and two tangent directions spanning the limit tangent plane (exact
   // limit masks of Far::PrimvarRefiner::Limit after one uniform step; the tangents' lengths belong to no face's
-  // parametrisation).
-  std::vector<LimitSample> vertex_limits() const;
+  // parametrisation). After `levels` uniform steps: at a dart (one sharp edge inside the mesh) Far's mask is the
+  // smooth vertex's, which is not the limit there (the midpoint rule on the sharp edge moves it), so its error
+  // shrinks with the levels only (geometrically: Aitken's extrapolation of three levels gives the limit).
+  std::vector<LimitSample> vertex_limits(int levels = 1) const;
 
 private:
   struct Impl;

@@ -24,8 +24,6 @@
 #include "osd_reference.hpp"
 #include "star_mesh_tsm.hpp"
 #include "support/temp_dir.hpp"
-#include "tsm_error.hpp"
-#include "trivar/core/error.hpp"
 #include "trivar/iga/t_mesh_space.hpp"
 #include "trivar/io/tsm_format.hpp"
 #include "trivar/spline/basis.hpp"
@@ -475,18 +473,6 @@ TEST(SharpCrease, AnalysisSpaceIsConformingAcrossTheCreases) {
   EXPECT_EQ(rep.corner_patches, 0);
   EXPECT_TRUE(space.space.boundary.empty());
   EXPECT_EQ(space.space.num_basis, 9 * 54 + 3 * 108 + 56);
-}
-
-// What the cut does not define, refused with one line naming the vertex (grid 4 x 4: vertex (i, j) = 5 j + i).
-TEST(SharpCrease, RefusesWhatItDoesNotDefine) {
-  const test::QuadMesh grid = test::grid_cage(4, 4);
-  const auto i_of = [](int v) { return v % 5; };
-  const auto j_of = [](int v) { return v / 5; };
-  // A dart: the crease from the boundary ends at the interior vertex (2, 2).
-  test::expect_tsm_error(creased_text(grid, [&](int a, int b) { return i_of(a) == 2 && i_of(b) == 2 && std::max(j_of(a), j_of(b)) <= 2; }),
-                         "crease vertex 12 ends its crease inside the mesh (a dart");
-  // A crease turning at a vertex, a corner with a side of two faces and a crease through star points are cut
-  // open and evaluated by local subdivision (crease_face_test).
 }
 
 // A Rhino file keeps its edge conditions between faces as they were (no crease rule: the global T-spline).

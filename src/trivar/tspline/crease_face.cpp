@@ -41,8 +41,10 @@ std::vector<char> net_ring(const CreaseNet& n, const NetIncidence& inc, const st
   return out;
 }
 
-// The quad across side k of quad q (the one holding the side the other way), -1: none in the net.
+// The quad across side k of quad q (the one holding the side the other way), -1: none in the net or a crease side
+// (the two sides of a slit ending at two darts join the same two vertices).
 int net_across(const CreaseNet& n, const NetIncidence& inc, int q, int k) {
+  if (n.sharp[static_cast<std::size_t>(q)][static_cast<std::size_t>(k)]) return -1;
   const auto& a = n.quads[static_cast<std::size_t>(q)];
   const int from = a[static_cast<std::size_t>(k)], to = a[static_cast<std::size_t>((k + 1) % 4)];
   for (const auto& [r, i] : inc[static_cast<std::size_t>(to)])
@@ -77,11 +79,19 @@ bool regular_vertex(const CreaseNet& n, const NetIncidence& inc, int v) {
     case VertexRule::smooth: return faces == 4;
     case VertexRule::crease: return faces == 2;
     case VertexRule::corner: return faces == 1;
+    case VertexRule::dart: return false;
   }
   return false;
 }
 
-// The limit position of vertex v (its limit mask).
+// At a vertex, from the eigenstructure of its one ring's subdivision matrix (limit_frame).
+struct LimitFrame {
+  std::optional<NetPoint> point;                 // a dart's limit position
+  std::optional<std::array<NetPoint, 2>> plane;  // tangent vectors
+};
+LimitFrame limit_frame(const CreaseNet& n, const NetIncidence& inc, int v);
+
+// The limit position of vertex v (its limit mask; a dart's from its eigenvector, limit_frame).
 NetPoint net_limit_point(const CreaseNet& n, const NetIncidence& inc, int v) {
   const NetPoint& p = n.points[static_cast<std::size_t>(v)];
   NetPoint r{};
@@ -93,6 +103,7 @@ NetPoint net_limit_point(const CreaseNet& n, const NetIncidence& inc, int v) {
       for (int w : nb) add_scaled(r, n.points[static_cast<std::size_t>(w)], 1.0 / 6);
       return r;
     }
+    case VertexRule::dart: return *limit_frame(n, inc, v).point;
     case VertexRule::smooth: {
       const double k = static_cast<double>(inc[static_cast<std::size_t>(v)].size());
       add_scaled(r, p, k / (k + 5));
@@ -192,15 +203,20 @@ void eval_net_bicubic(const std::array<NetPoint, 16>& g, double u, double v, dou
 // vertex the last face's previous vertex): the left eigenvectors of the two largest eigenvalues below 1 give
 // tangent vectors l . P (homogeneous). Empty when the plane is not so defined: complex eigenvalues, or the second
 // eigenvalue repeated apart from the first (a crease vertex of one face, whose cross direction shares its
-// eigenvalue 1/4 with the crease curve's curvature; of four faces, 0.61 then 1/2 twice).
-std::optional<std::array<NetPoint, 2>> tangent_plane(const CreaseNet& n, const NetIncidence& inc, int v) {
+// eigenvalue 1/4 with the crease curve's curvature; of four faces, 0.61 then 1/2 twice), or a corner inside the
+// mesh (a cone point). A dart's ring closes over its slit (the slit's two sides one edge, whose edge point is the
+// midpoint); its limit position is l . P with l the left eigenvector of eigenvalue 1 (summing to 1): the
+// midpoint rule on the slit moves it off the smooth mask's.
+LimitFrame limit_frame(const CreaseNet& n, const NetIncidence& inc, int v) {
   const auto& around = inc[static_cast<std::size_t>(v)];
   const VertexRule rule = n.rules[static_cast<std::size_t>(v)];
   // The faces in order (each next across the side arriving at v), from the one after a crease side if any.
   int q = around[0][0], c = around[0][1];
-  if (rule != VertexRule::smooth)
-    for (const auto& [r, k] : around)
-      if (n.sharp[static_cast<std::size_t>(r)][static_cast<std::size_t>(k)]) q = r, c = k;
+  bool on_crease = false;
+  for (const auto& [r, k] : around)
+    if (n.sharp[static_cast<std::size_t>(r)][static_cast<std::size_t>(k)]) q = r, c = k, on_crease = true;
+  if (rule == VertexRule::corner && !on_crease) return {};
+  const bool closed = rule == VertexRule::smooth || rule == VertexRule::dart;
   std::vector<int> ring{v};
   const std::size_t k = around.size();
   for (std::size_t j = 0; j < k; ++j) {
@@ -208,11 +224,11 @@ std::optional<std::array<NetPoint, 2>> tangent_plane(const CreaseNet& n, const N
     ring.push_back(a[static_cast<std::size_t>((c + 1) % 4)]);
     ring.push_back(a[static_cast<std::size_t>((c + 2) % 4)]);
     if (j + 1 == k) {
-      if (rule != VertexRule::smooth) ring.push_back(a[static_cast<std::size_t>((c + 3) % 4)]);
+      if (!closed) ring.push_back(a[static_cast<std::size_t>((c + 3) % 4)]);
       break;
     }
     const int r = net_across(n, inc, q, (c + 3) % 4);
-    if (r < 0) return std::nullopt;
+    if (r < 0) return {};
     c = 0;
     while (n.quads[static_cast<std::size_t>(r)][static_cast<std::size_t>(c)] != v) ++c;
     q = r;
@@ -220,7 +236,7 @@ std::optional<std::array<NetPoint, 2>> tangent_plane(const CreaseNet& n, const N
   const auto sz = static_cast<Eigen::Index>(ring.size());
   const auto e = [&](std::size_t j) { return static_cast<Eigen::Index>(1 + 2 * (j % k)); };  // edge neighbour j
   const auto d = [&](std::size_t j) { return static_cast<Eigen::Index>(2 + 2 * j); };       // diagonal j
-  const Eigen::Index last = rule == VertexRule::smooth ? -1 : sz - 1;                          // boundary: e_k
+  const Eigen::Index last = closed ? -1 : sz - 1;                                              // boundary: e_k
   const auto edge = [&](std::size_t j) { return j == k && last >= 0 ? last : e(j); };  // e_k: e_0 round a smooth vertex
   Eigen::MatrixXd S = Eigen::MatrixXd::Zero(sz, sz);
   const auto face = [&](Eigen::Index row, std::size_t j, double w) {  // w times the face point of face j
@@ -241,9 +257,9 @@ std::optional<std::array<NetPoint, 2>> tangent_plane(const CreaseNet& n, const N
     }
   }
   for (std::size_t j = 0; j <= k; ++j) {
-    if (j == k && rule == VertexRule::smooth) break;
+    if (j == k && closed) break;
     const Eigen::Index row = edge(j);
-    if (rule != VertexRule::smooth && (j == 0 || j == k)) {  // along the crease: the midpoint
+    if (rule != VertexRule::smooth && (j == 0 || j == k)) {  // along the crease (a dart's slit): the midpoint
       S(row, 0) += 0.5;
       S(row, row) += 0.5;
       continue;
@@ -258,19 +274,26 @@ std::optional<std::array<NetPoint, 2>> tangent_plane(const CreaseNet& n, const N
   std::vector<Eigen::Index> order(static_cast<std::size_t>(sz));
   for (Eigen::Index i = 0; i < sz; ++i) order[static_cast<std::size_t>(i)] = i;
   const auto lambda = [&](Eigen::Index i) { return es.eigenvalues()(i); };
+  const Eigen::MatrixXcd vectors = es.eigenvectors();  // computed on the call: kept for the columns below
+  const auto apply = [&](Eigen::Index col, double scale) {
+    NetPoint x{};
+    for (Eigen::Index i = 0; i < sz; ++i)
+      add_scaled(x, n.points[static_cast<std::size_t>(ring[static_cast<std::size_t>(i)])], scale * vectors(i, col).real());
+    return x;
+  };
+  LimitFrame out;
+  std::sort(order.begin(), order.end(), [&](Eigen::Index a, Eigen::Index b) {
+    return std::abs(lambda(a) - 1.0) < std::abs(lambda(b) - 1.0) || (std::abs(lambda(a) - 1.0) == std::abs(lambda(b) - 1.0) && a < b);
+  });
+  if (rule == VertexRule::dart) out.point = apply(order[0], 1 / vectors.col(order[0]).real().sum());
   for (Eigen::Index i = 0; i < sz; ++i)
-    if (std::abs(lambda(i).imag()) > 1e-12) return std::nullopt;
+    if (std::abs(lambda(i).imag()) > 1e-12) return out;
   std::sort(order.begin(), order.end(), [&](Eigen::Index a, Eigen::Index b) { return lambda(a).real() > lambda(b).real(); });
   const double l1 = lambda(order[1]).real(), l2 = lambda(order[2]).real(), l3 = sz > 3 ? lambda(order[3]).real() : 0;
   if (std::abs(lambda(order[0]).real() - 1) > 1e-12 || l1 >= 1 - 1e-12 || (std::abs(l2 - l3) < 1e-9 && std::abs(l1 - l2) > 1e-9))
-    return std::nullopt;
-  const Eigen::MatrixXcd vectors = es.eigenvectors();  // computed on the call: kept for the columns below
-  std::array<NetPoint, 2> t{};
-  for (std::size_t m = 0; m < 2; ++m) {
-    const auto vec = vectors.col(order[m + 1]);
-    for (Eigen::Index i = 0; i < sz; ++i) add_scaled(t[m], n.points[static_cast<std::size_t>(ring[static_cast<std::size_t>(i)])], vec(i).real());
-  }
-  return t;
+    return out;
+  out.plane = {apply(order[1], 1), apply(order[2], 1)};
+  return out;
 }
 
 constexpr int crease_cached_levels = 12;
@@ -286,7 +309,9 @@ CreaseNet refine(const CreaseNet& n, int child) {
   first = net_ring(n, inc, first);
   CreaseNet x;
   std::vector<int> vertex_point(n.points.size(), -1), face_pt(nq, -1);
-  std::vector<std::vector<std::array<int, 2>>> edge_point(n.points.size());  // at the smaller end: (other end, point)
+  // At the smaller end: (other end, point); a crease side's other end as -1 - end when it runs from the larger end
+  // (a slit between two darts has both its sides between the same two vertices).
+  std::vector<std::vector<std::array<int, 2>>> edge_point(n.points.size());
   const auto new_point = [&](const NetPoint& p, VertexRule r) {
     x.points.push_back(p);
     x.rules.push_back(r);
@@ -304,10 +329,16 @@ CreaseNet refine(const CreaseNet& n, int child) {
       add_scaled(r, p, 0.75);
       for (int w : crease_neighbours(n, inc, v)) add_scaled(r, n.points[static_cast<std::size_t>(w)], 0.125);
     } else {
+      // Smooth, or a dart: the smooth rule over its fan from one side of the slit to the other, each quad's side
+      // leaving v counting its edge once (the slit's two sides, one edge, carry equal points at every level).
       const auto& around = inc[static_cast<std::size_t>(v)];
       const double k = static_cast<double>(around.size());
-      for (const auto& [q, c] : around)
-        require(net_across(n, inc, q, c) >= 0, [&] { return "crease net: smooth vertex " + std::to_string(v) + " has an open ring of faces"; });
+      int open = 0;
+      for (const auto& [q, c] : around) open += net_across(n, inc, q, c) < 0;
+      require(open == (rule == VertexRule::dart ? 1 : 0), [&] {
+        return "crease net: " + std::string(rule == VertexRule::dart ? "dart " : "smooth vertex ") + std::to_string(v) + " has " +
+               std::to_string(open) + " open sides in its ring of faces, not " + (rule == VertexRule::dart ? "1" : "0");
+      });
       add_scaled(r, p, (k - 2) / k);
       for (const auto& [q, c] : around) {
         add_scaled(r, n.points[static_cast<std::size_t>(n.quads[static_cast<std::size_t>(q)][static_cast<std::size_t>((c + 1) % 4)])], 1 / (k * k));
@@ -324,8 +355,9 @@ CreaseNet refine(const CreaseNet& n, int child) {
     const auto& a = n.quads[static_cast<std::size_t>(q)];
     const int from = a[static_cast<std::size_t>(k)], to = a[static_cast<std::size_t>((k + 1) % 4)];
     auto& list = edge_point[static_cast<std::size_t>(std::min(from, to))];
+    const int key = n.sharp[static_cast<std::size_t>(q)][static_cast<std::size_t>(k)] && from > to ? -1 - from : std::max(from, to);
     for (const auto& [o, id] : list)
-      if (o == std::max(from, to)) return id;
+      if (o == key) return id;
     NetPoint r{};
     add_scaled(r, n.points[static_cast<std::size_t>(from)], 0.5);
     add_scaled(r, n.points[static_cast<std::size_t>(to)], 0.5);
@@ -337,7 +369,7 @@ CreaseNet refine(const CreaseNet& n, int child) {
       rule = VertexRule::smooth;
     }
     const int id = new_point(r, rule);
-    list.push_back({std::max(from, to), id});
+    list.push_back({key, id});
     return id;
   };
   // The children of the first ring (their points need only the net's two rings); quads[0]'s at `child` first.
@@ -444,8 +476,9 @@ CreaseFace::CreaseFace(CreaseNet net) : net_(std::move(net)) {
     eval_off_corners(cu[0] == 0 ? d : 1 - d, cu[1] == 0 ? d : 1 - d, out.data());
     const int vc = net_.quads[0][static_cast<std::size_t>(c)];
     const NetPoint p = net_limit_point(net_, inc, vc);
+    const LimitFrame frame = limit_frame(net_, inc, vc);
     std::copy(p.begin(), p.end(), out.begin());
-    const auto plane = tangent_plane(net_, inc, vc);
+    const auto& plane = frame.plane;
     if (!plane) continue;
     // Cartesian: the tangents (t - x t_w) / w and the face's derivatives (X' - x W') / W; each derivative loses
     // its component along the plane's normal (X' moves by W times the Cartesian change).

@@ -2,7 +2,9 @@
 // The Catmull-Clark limit surface with infinitely sharp crease boundaries (Hoppe et al. 1994: crease edge point
 // the midpoint, crease vertex (P_prev + 6 P + P_next) / 8 with its two boundary neighbours, corner fixed; smooth
 // rules elsewhere) on one face near an irregular vertex of a crease boundary: a crease vertex with other than two
-// faces (a crease turning at it, a boundary star point) or a corner with other than one face. Such a vertex has
+// faces (a crease turning at it, a boundary star point), a corner with other than one face (a cone point: a
+// corner inside the mesh), or a dart (the end of a crease inside the mesh, cut open up to it: the smooth rule over
+// its fan of faces, the slit's two sides one edge whose edge points are midpoints). Such a vertex has
 // no closed-form patch, so the face is evaluated by repeated local subdivision, as Stam's evaluation at star
 // points but by applying the rules rather than an eigen-decomposition: at (u, v) the face's two face rings are
 // subdivided, kept around the quarter that holds the point, until the point lies in a sub-face whose four
@@ -10,9 +12,10 @@
 // the uniform bicubic B-spline of its 4 x 4 points, with the points missing beyond a crease boundary the natural
 // ghosts 2 P0 - P1 (the regular crease patch; at a corner the tensor product of both ends). At an irregular
 // corner itself the limit position is the limit mask (crease (P_prev + 4 P + P_next) / 6, corner P, smooth
-// (n^2 P + 4 sum E + sum D) / (n (n + 5))), the tangent plane the eigenstructure's where it has one (Eigen's
-// EigenSolver). The subdivision levels towards each irregular corner are cached as the 4 x 4 points of their
-// regular sub-faces.
+// (n^2 P + 4 sum E + sum D) / (n (n + 5)); a dart's from the left eigenvector of eigenvalue 1 of its one-ring
+// subdivision matrix, as the slit's midpoint rule moves it off the smooth mask), the tangent plane the
+// eigenstructure's where it has one (Eigen's EigenSolver; none at a cone point). The subdivision levels towards
+// each irregular corner are cached as the 4 x 4 points of their regular sub-faces.
 // The rules are linear: they act on homogeneous points (w x, w) (rational Catmull-Clark). Hand-written: no
 // packaged library evaluates subdivision surfaces with crease boundaries.
 #include <array>
@@ -22,8 +25,9 @@
 namespace trivar {
 
 // How subdivision moves a vertex: smooth (interior), crease (on a crease boundary: the curve rule with its two
-// boundary neighbours), corner (interpolated).
-enum class VertexRule : unsigned char { smooth, crease, corner };
+// boundary neighbours), corner (interpolated), dart (the end of a slit, one crease boundary through it: the smooth
+// rule over its fan of faces, the slit's two sides counted as one edge).
+enum class VertexRule : unsigned char { smooth, crease, corner, dart };
 
 // A net of quadrilaterals round one face: quads[0] is the face (corner 0 at (u, v) = (0, 0), corner 1 at (1, 0),
 // counter-clockwise), and the net holds its two face rings (the quads sharing a vertex with a quad that shares a

@@ -83,14 +83,13 @@ TMesh split_creases(const TMesh& m) {
       if (!in_face(m, l)) ++outside;
     }
     if (creases_here == 0) {
-      if (!creased[vi]) continue;
-      if (outside == 0)
-        throw Error("T-mesh: creased vertex " + std::to_string(v) + " lies inside the mesh on no crease edge (a cone point of the surface); creased vertices are evaluated on creases and on the boundary");
-      x.vertices[vi].crease_rule = CreaseRule::corner;
+      // A creased vertex on no crease: a corner (inside the mesh a cone point, its faces all round it).
+      if (creased[vi]) x.vertices[vi].crease_rule = CreaseRule::corner;
       continue;
     }
-    if (outside == 0 && creases_here == 1)
-      fail(v, "ends its crease inside the mesh (a dart: subdivision smooths there, so the crease cannot be cut open); a crease runs from boundary to boundary, closes, or meets other creases");
+    // A crease ending inside the mesh (a dart) is cut up to its end vertex, which stays one vertex: its fan of
+    // faces runs from one side of the slit to the other.
+    const bool dart = outside == 0 && creases_here == 1 && !creased[vi];
     if (outside > 1) fail(v, "lies on " + std::to_string(outside) + " boundary arcs; a crease is cut open at a vertex on one");
     // The links round the vertex counter-clockwise (the next after l: the opposite of l's previous link), with
     // the new outside link before every crease link: the side of the crease before it.
@@ -133,7 +132,7 @@ TMesh split_creases(const TMesh& m) {
         }
         x.vertices.push_back(copy);
       }
-      x.vertices[static_cast<std::size_t>(id)].crease_rule = corner ? CreaseRule::corner : CreaseRule::crease;
+      x.vertices[static_cast<std::size_t>(id)].crease_rule = corner ? CreaseRule::corner : dart ? CreaseRule::dart : CreaseRule::crease;
       for (std::size_t k = i; k <= j; ++k) x.links[static_cast<std::size_t>(round[k])].vertex = id;
       // The outside link: the outside's angle / 90 - 1 as flag, its previous link the one arriving along the
       // wedge's first link.
@@ -163,8 +162,9 @@ std::vector<CreaseRule> boundary_rules(const TMesh& m) {
   }
   std::vector<CreaseRule> r(nv, CreaseRule::none);
   for (std::size_t v = 0; v < nv; ++v) {
-    if (!boundary[v] || !m.vertices[v].live) continue;
-    r[v] = m.vertices[v].crease_rule;
+    if (!m.vertices[v].live) continue;
+    r[v] = m.vertices[v].crease_rule;  // inside the mesh: a cone point's corner
+    if (!boundary[v]) continue;
     // The mesh's own boundary: a corner at a vertex of one quadrilateral corner.
     if (r[v] == CreaseRule::none) r[v] = faces[v] == 1 && flags[v] == 0 ? CreaseRule::corner : CreaseRule::crease;
   }
@@ -179,7 +179,22 @@ std::vector<int> irregular_crease_vertices(const TMesh& m) {
   for (const TMeshLink& k : m.links)
     if (k.vertex >= 0 && k.face >= 0 && m.live_face(k.face)) ++faces[static_cast<std::size_t>(k.vertex)];
   for (std::size_t v = 0; v < rules.size(); ++v)
-    if ((rules[v] == CreaseRule::crease && faces[v] != 2) || (rules[v] == CreaseRule::corner && faces[v] != 1)) out.push_back(static_cast<int>(v));
+    if ((rules[v] == CreaseRule::crease && faces[v] != 2) || (rules[v] == CreaseRule::corner && faces[v] != 1) || rules[v] == CreaseRule::dart)
+      out.push_back(static_cast<int>(v));
+  return out;
+}
+
+CreaseSingularities crease_singularities(const TMesh& m) {
+  CreaseSingularities out;
+  std::vector<char> boundary(m.vertices.size(), 0);
+  for (const TMeshLink& k : m.links)
+    if (k.vertex >= 0 && (k.face < 0 || !m.live_face(k.face))) boundary[static_cast<std::size_t>(k.vertex)] = 1;
+  for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+    if (!m.vertices[v].live) continue;
+    const CreaseRule r = m.vertices[v].crease_rule;
+    if (r == CreaseRule::dart) out.darts.push_back(static_cast<int>(v));
+    if (r == CreaseRule::corner && !boundary[v]) out.cone_points.push_back(static_cast<int>(v));
+  }
   return out;
 }
 

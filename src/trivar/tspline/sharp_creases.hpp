@@ -10,13 +10,16 @@
 // Which crease vertices are cut, and their rule (TMeshVertex::crease_rule, on every side, from the original vertex
 // whatever the side's faces). A vertex is a corner when three or more sharp edges meet there (crease edges, and
 // the two boundary edges of a boundary vertex), or when the mesh's crease list names it (TMesh::crease_vertices,
-// Fusion's `100verts`; on a crease or the boundary): subdivision interpolates it. A vertex with two crease edges and no
-// boundary takes the crease rule (the crease curve runs through it), also where the crease turns (one side then
+// Fusion's `100verts`; on a crease, on the boundary or inside): subdivision interpolates it. A vertex with two
+// crease edges and no boundary takes the crease rule (the crease curve runs through it), also where the crease turns (one side then
 // has one face) or runs through a star point. Sides that are not a regular crease patch (a crease vertex of other
 // than two faces, a corner of other than one: irregular_crease_vertices) are evaluated by local subdivision
-// (crease_face). Refused (trivar::Error, one line naming the vertex): a crease ending at an interior vertex (a
-// dart: subdivision smooths there and the cut is undefined), a creased vertex inside the mesh on no crease (a
-// cone point), a vertex on two boundary arcs, a vertex whose links are not one fan.
+// (crease_face). A crease ending at a vertex inside the mesh (a dart; not creased) is cut up to that vertex, which
+// stays one vertex (rule dart): a slit whose end has one fan of faces from one side to the other, moved by the
+// smooth rule over that fan (the slit's two sides one edge). A creased vertex inside the mesh on no crease (a
+// cone point) keeps its links and takes the corner rule. Both are irregular (evaluated by local subdivision).
+// Refused (trivar::Error, one line naming the vertex): a vertex on two boundary arcs, a vertex whose links are
+// not one fan.
 #include <vector>
 
 #include "trivar/tspline/t_mesh.hpp"
@@ -37,11 +40,20 @@ TMesh split_creases(const TMesh& m);
 
 // Per vertex of a subdivision-crease mesh (after split_creases), the rule of its crease boundary: its
 // crease_rule where the split set one, else corner at a vertex of one quadrilateral corner and crease at the
-// other boundary vertices (the mesh's own boundary, as Fusion's SUBD_CREASES); none inside.
+// other boundary vertices (the mesh's own boundary, as Fusion's SUBD_CREASES); none inside but at cone points
+// (corner).
 std::vector<CreaseRule> boundary_rules(const TMesh& m);
 
-// The boundary vertices of a subdivision-crease mesh (after split_creases) that are no regular crease patch
-// corner: a crease vertex of other than two faces, a corner of other than one. None for Bezier end conditions.
+// The vertices of a subdivision-crease mesh (after split_creases) that are no regular crease patch corner: a crease
+// vertex of other than two faces, a corner of other than one (cone points among them), a dart. None for Bezier end
+// conditions.
 std::vector<int> irregular_crease_vertices(const TMesh& m);
+
+// A mesh's darts (creases ending inside it) and cone points (creased vertices inside it on no crease), after
+// split_creases (vertex ids of that mesh, which keeps the given vertices' ids).
+struct CreaseSingularities {
+  std::vector<int> darts, cone_points;
+};
+CreaseSingularities crease_singularities(const TMesh& m);
 
 }  // namespace trivar

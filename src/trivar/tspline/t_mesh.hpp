@@ -22,8 +22,10 @@ struct TMeshLink {
 };
 
 // The subdivision rule of a vertex on a sharp crease of a subdivision-crease mesh: crease (two sharp edges: the
-// crease curve runs through), corner (three or more, counting the boundary's: interpolated).
-enum class CreaseRule : unsigned char { none, crease, corner };
+// crease curve runs through), corner (three or more, counting the boundary's, or a creased vertex: interpolated;
+// inside the mesh on no crease a cone point), dart (one sharp edge inside the mesh: the crease ends there and the
+// vertex moves by the smooth rule over all its faces).
+enum class CreaseRule : unsigned char { none, crease, corner, dart };
 
 struct TMeshVertex {
   bool live = true;

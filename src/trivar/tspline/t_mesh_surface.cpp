@@ -272,8 +272,9 @@ CreaseNet crease_net(const TMesh& m, const TMesh& given, const std::vector<Creas
         const RationalPoint& p = given.points[static_cast<std::size_t>(gv.primary)];
         id[static_cast<std::size_t>(v)] = static_cast<int>(net.points.size());
         net.points.push_back({p.w * p.xyz[0], p.w * p.xyz[1], p.w * p.xyz[2], p.w});
-        const CreaseRule r = rules[static_cast<std::size_t>(v)];
-        net.rules.push_back(r == CreaseRule::none ? VertexRule::smooth : r == CreaseRule::crease ? VertexRule::crease : VertexRule::corner);
+        // In CreaseRule's order: none (inside the mesh), crease, corner, dart.
+        static constexpr std::array<VertexRule, 4> rule_of{VertexRule::smooth, VertexRule::crease, VertexRule::corner, VertexRule::dart};
+        net.rules.push_back(rule_of[static_cast<std::size_t>(rules[static_cast<std::size_t>(v)])]);
       }
       quad[k] = id[static_cast<std::size_t>(v)];
     }

@@ -26,7 +26,9 @@
 //                  intervals only (non-uniform Catmull-Clark would need its sectors around both star points).
 //   crease         in a subdivision-crease mesh, the faces within p + 1 rings of an irregular vertex of a crease
 //                  boundary (irregular_crease_vertices: a crease vertex of other than two faces, a corner of other
-//                  than one; boundary star points among them), and faces near star points too close to a crease
+//                  than one; boundary star points among them; darts, where a crease ends inside the mesh and is
+//                  cut open up to that vertex, smooth over its whole fan; cone points, creased vertices inside
+//                  the mesh on no crease, interior corners), and faces near star points too close to a crease
 //                  boundary for the patches above: repeated local Catmull-Clark subdivision with the crease rules
 //                  of the mesh cut open along its creases (crease_face), exactly the limit surface. Equal knot
 //                  intervals and quadrilaterals in their two face rings.
