@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <memory>
 #include <optional>
@@ -164,23 +165,28 @@ void print_crease_lists(const TMesh& m) {
 void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
   const TMeshSurface& s = *l.mesh;
   const io::TsmReport& r = *l.tsm;
+  const CreaseSingularities ends = crease_singularities(s.mesh());
+  const int darts = static_cast<int>(ends.darts.size()), cones = static_cast<int>(ends.cone_points.size());
+  // The star points of the mesh as evaluated: the cut-open mesh's irregular vertices but the darts (slit ends).
+  std::vector<int> stars;
+  std::copy_if(s.stars().begin(), s.stars().end(), std::back_inserter(stars),
+               [&](int v) { return std::find(ends.darts.begin(), ends.darts.end(), v) == ends.darts.end(); });
   std::map<int, int> valences;
-  for (int v : s.stars()) ++valences[s.valence(v)];
+  for (int v : stars) ++valences[s.valence(v)];
   const int nu = s.count(FaceMethod::non_uniform);
   const int bs = s.boundary_star_faces();
   const int sub = s.count(FaceMethod::subdivided);
   const int cr = s.count(FaceMethod::crease);
   const int faces = s.count(FaceMethod::exact) + s.count(FaceMethod::bicubic) + s.count(FaceMethod::star) + nu + sub + cr;
-  const CreaseSingularities ends = crease_singularities(s.mesh());
-  const int darts = static_cast<int>(ends.darts.size()), cones = static_cast<int>(ends.cone_points.size());
   const bool creases = r.crease_edges > 0 || cones > 0;
-  std::string continuity = s.stars().empty() ? "C2 across every edge"
-                                             : "C2 across every edge away from star points; C1 across the edges at a star point; G1 at star points";
-  if (creases) continuity = (s.stars().empty() ? "C2 across every edge" : continuity) + " but the sharp creases, C0 across those";
+  std::string continuity = stars.empty() ? "C2 across every edge"
+                                         : "C2 across every edge away from star points; C1 across the edges at a star point; G1 at star points";
+  if (creases) continuity += " but the sharp creases, C0 across those";
+  if (darts > 0) continuity += "; C1 across the edges at a dart, G1 at the dart";
   if (cones > 0) continuity += "; no tangent plane at the cone points";
   const char* kind = r.crease_edges > 0 ? "T-spline surface with sharp creases"
                    : creases ? "T-spline surface with cone points"
-                   : s.stars().empty() ? "T-spline surface with a closed strip of faces"
+                   : stars.empty() ? "T-spline surface with a closed strip of faces"
                                        : "T-spline surface with star points";
   nlohmann::json j{{"file", path}, {"kind", kind}, {"format", l.format},
                    {"degrees", {s.mesh().degree, s.mesh().degree}}, {"units", r.units}, {"faces", faces},
@@ -207,26 +213,27 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
   if (creases)
     std::printf("  %d faces, %d sharp crease edges (listed in 100edges or ec between two faces: infinitely sharp subdivision creases), %d star "
                 "points (%zu%s%s after the mesh is cut open along the creases, each side a crease boundary); faces are "
-                "evaluated in their own (u, v)\n", faces, r.crease_edges, r.star_points, s.stars().size(),
+                "evaluated in their own (u, v)\n", faces, r.crease_edges, r.star_points, stars.size(),
                 vs.empty() ? "" : ": ", vs.c_str());
-  else if (s.stars().empty())
+  else if (stars.empty())
     std::printf("  %d faces, no star point; a closed strip of faces (a torus, a tube) leaves no global (s, t): faces are "
                 "evaluated in their own (u, v)\n", faces);
   else
     std::printf("  %d faces, %d star points (%s); no global (s, t): faces are evaluated in their own (u, v)\n", faces,
                 r.star_points, vs.c_str());
   if (darts > 0 || cones > 0)
-    std::printf("  %d darts (a crease ending inside the mesh: the smooth rule there, the crease a slit up to it) and %d cone "
-                "points (a creased vertex inside the mesh on no crease: interpolated, no tangent plane)\n", darts, cones);
+    std::printf("  %d dart%s (a crease ending inside the mesh: the smooth rule there, the crease a slit up to it) and %d cone "
+                "point%s (a creased vertex inside the mesh on no crease: interpolated, no tangent plane)\n", darts,
+                darts == 1 ? "" : "s", cones, cones == 1 ? "" : "s");
   if (s.global_steps() > 0)
     std::printf("  refined first by %d global non-uniform Catmull-Clark steps (star points fewer than %d edges apart with "
                 "unequal knot intervals; the limit surface is unchanged): each of the %zu faces as given is %d x %d faces, "
                 "and the faces counted are the refined mesh's (eval takes the faces as given; written back as given)\n", s.global_steps(),
                 TMeshSurface::kStarsApart, s.source_mesh().faces.size(), 1 << s.global_steps(), 1 << s.global_steps());
-  if (s.stars().empty() && creases)
+  if (stars.empty() && creases)
     std::printf("  %d faces exact (the T-spline of their side in a chart of their neighbourhood), %d the bicubic B-spline "
                 "cell of their 16 points (round closed strips of a side)\n", s.count(FaceMethod::exact), s.count(FaceMethod::bicubic));
-  else if (s.stars().empty())
+  else if (stars.empty())
     std::printf("  %d faces exact (the T-spline in a chart of their neighbourhood, not wrapping round the strip), %d "
                 "the bicubic B-spline cell of their 16 points (round strips too short for such charts)\n",
                 s.count(FaceMethod::exact), s.count(FaceMethod::bicubic));
@@ -413,10 +420,13 @@ void convert_tspline(const std::string& in, const std::string& out, const TSplin
         io::step::write_step(out, patches, {});
       else
         io::write_spline_file(out, patches);
-      std::printf("%s: %zu Bezier patches (%d exact, %d corner patches at star points after %d subdivision levels, "
-                  "%s from the limit surface, tolerance %s); C0, G1 at star points\n",
-                  out.c_str(), p.patches.size(), p.exact_patches, p.corner_patches, p.levels, fmt(p.deviation).c_str(),
-                  fmt(p.tolerance).c_str());
+      const bool crease_corners = l.mesh->count(FaceMethod::crease) > 0;
+      const bool cones = !crease_singularities(l.mesh->mesh()).cone_points.empty();
+      std::printf("%s: %zu Bezier patches (%d exact, %d corner patches at star points%s after %d subdivision levels, "
+                  "%s from the limit surface, tolerance %s); C0, G1 at star points%s\n",
+                  out.c_str(), p.patches.size(), p.exact_patches, p.corner_patches,
+                  crease_corners ? " and irregular crease vertices" : "", p.levels, fmt(p.deviation).c_str(),
+                  fmt(p.tolerance).c_str(), cones ? " (not at the cone points: no tangent plane)" : "");
       return;
     }
     require(ext == ".stl" || ext == ".obj" || ext == ".vtu",

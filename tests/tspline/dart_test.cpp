@@ -397,8 +397,9 @@ TEST(Dart, CommandLine) {
   std::ofstream(path) << test::fusion_creased_text(cage, edge, {grid_vertex(n, 5, 2)});
   const std::string info = test::run_cli(dir, "info " + path);
   EXPECT_NE(info.find("2 darts"), std::string::npos) << info;
-  EXPECT_NE(info.find("1 cone points"), std::string::npos) << info;
-  EXPECT_EQ(info.find("closed strip"), std::string::npos) << info;  // one description of the mesh
+  EXPECT_NE(info.find("1 cone point ("), std::string::npos) << info;
+  EXPECT_EQ(info.find("with a closed strip of faces"), std::string::npos) << info;  // one description of the mesh
+  EXPECT_NE(info.find("0 star points (0 after the mesh is cut open"), std::string::npos) << info;  // darts are no star points
   std::printf("%s", info.c_str());
   const std::string json = test::run_cli(dir, "info " + path + " --json");
   EXPECT_NE(json.find("\"darts\": 2"), std::string::npos) << json;
