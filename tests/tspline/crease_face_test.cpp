@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -275,20 +276,131 @@ TEST(CreaseFace, CommandLineCounts) {
   std::printf("%s", step.c_str());
 }
 
-TEST(CreaseFace, RefusesUnequalIntervalsNearAnIrregularVertex) {
-  // A half fan of 4 sectors with every knot interval 1 but one of 0.5: refused in one line naming the edge.
-  const test::QuadMesh cage = test::half_fan_mesh(4, 5, wavy);
-  TMesh m = io::parse_tsm(test::fusion_text(cage), "fan.tsm").mesh;
-  m.intervals[3] = 0.5;
-  try {
-    const TMeshSurface s(m, 1);
-    ADD_FAILURE() << "no error";
-  } catch (const Error& e) {
-    const std::string msg = e.what();
-    EXPECT_NE(msg.find("edge 3 nearby has knot interval 0.5"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("local subdivision takes equal intervals"), std::string::npos) << msg;
-    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+// Unequal knot intervals. A strip of a quad mesh without T-junctions (the faces crossed from one side to the
+// opposite) has one interval: every edge of the strip's rungs through `link` gets d.
+void set_strip(TMesh& m, int link, double d) {
+  const auto L = [&](int l) -> const TMeshLink& { return m.links[static_cast<std::size_t>(l)]; };
+  for (int start : {link, L(link).opp})
+    for (int l = start; l >= 0 && L(l).face >= 0;) {
+      m.intervals[static_cast<std::size_t>(L(l).edge)] = d;
+      const int across = L(L(L(l).next).next).opp;  // the opposite side, from the face beyond
+      if (across == start || across == L(start).opp) break;
+      m.intervals[static_cast<std::size_t>(L(across).edge)] = d;
+      l = across;
+    }
+}
+
+// Cartesian value, d/du, d/dv (9) from a homogeneous one (12).
+std::array<double, 9> cartesian(const double* h) {
+  std::array<double, 9> o{};
+  for (int c = 0; c < 3; ++c) {
+    o[static_cast<std::size_t>(c)] = h[c] / h[3];
+    for (int k = 1; k <= 2; ++k) o[static_cast<std::size_t>(3 * k + c)] = (h[4 * k + c] - o[static_cast<std::size_t>(c)] * h[4 * k + 3]) / h[3];
   }
+  return o;
+}
+
+// The crease net of face f of a quad mesh without T-junctions and without sharp creases (its faces within two
+// rings of f, f first from its first corner), written here from the mesh's links and boundary_rules.
+CreaseNet net_of(const TMesh& m, int f) {
+  const auto L = [&](int l) -> const TMeshLink& { return m.links[static_cast<std::size_t>(l)]; };
+  const std::vector<CreaseRule> rules = boundary_rules(m);
+  std::vector<std::vector<int>> at(m.vertices.size());
+  for (const TMeshLink& k : m.links)
+    if (k.vertex >= 0 && k.face >= 0) at[static_cast<std::size_t>(k.vertex)].push_back(k.face);
+  std::vector<int> hood{f};
+  std::set<int> in{f};
+  for (int ring = 0; ring < 2; ++ring)
+    for (int g : std::vector<int>(hood))
+      for (int l : m.faces[static_cast<std::size_t>(g)])
+        for (int h : at[static_cast<std::size_t>(L(l).vertex)])
+          if (in.insert(h).second) hood.push_back(h);
+  CreaseNet net;
+  std::map<int, int> id;
+  for (int g : hood) {
+    auto loop = m.faces[static_cast<std::size_t>(g)];
+    if (g == f) std::rotate(loop.begin(), std::find(loop.begin(), loop.end(), m.first_corner(f)), loop.end());
+    std::array<int, 4> quad{};
+    std::array<bool, 4> sharp{};
+    std::array<double, 4> d{};
+    for (std::size_t k = 0; k < 4; ++k) {
+      const int v = L(loop[k]).vertex;
+      sharp[k] = L(L(loop[k]).opp).face < 0;
+      d[k] = m.intervals[static_cast<std::size_t>(L(loop[k]).edge)];
+      if (!id.count(v)) {
+        id[v] = static_cast<int>(net.points.size());
+        const RationalPoint& p = m.points[static_cast<std::size_t>(m.vertices[static_cast<std::size_t>(v)].primary)];
+        net.points.push_back({p.w * p.xyz[0], p.w * p.xyz[1], p.w * p.xyz[2], p.w});
+        const CreaseRule r = rules[static_cast<std::size_t>(v)];
+        net.rules.push_back(r == CreaseRule::none ? VertexRule::smooth : r == CreaseRule::crease ? VertexRule::crease : VertexRule::corner);
+      }
+      quad[k] = id[v];
+    }
+    net.quads.push_back(quad);
+    net.sharp.push_back(sharp);
+    net.intervals.push_back(d);
+  }
+  return net;
+}
+
+TEST(CreaseFace, UnequalIntervalsAreKnotInsertionOfTheExactSurface) {
+  // A grid of 7 x 6 faces with a crease boundary, regular corners, strips of intervals 1, r, 1 / r and some
+  // weights other than 1: the exact surface is the T-spline of crease_ends' natural-end Bezier form (charts).
+  // Local subdivision of every face's net along several paths of quarters (refine) ends in sub-faces whose 4 x 4
+  // points are regular: B-spline cells of the refined points on their knots, with the clamped natural end at the
+  // boundary. They must be the same surface: the rules are midpoint knot insertion of the exact surface.
+  const test::QuadMesh cage = test::grid_cage(7, 6);
+  for (double r : {1.02, 1.5, 3.0})
+    for (bool rational : {false, true}) {
+      TMesh m = io::parse_tsm(test::fusion_text(cage), "grid.tsm").mesh;
+      const auto L = [&](int l) -> const TMeshLink& { return m.links[static_cast<std::size_t>(l)]; };
+      const std::array<double, 3> ratio{1, r, 1 / r};
+      // Strips by the rungs on the boundary rows j = 0 (columns) and i = 0 (rows).
+      for (int l = 0; l < static_cast<int>(m.links.size()); ++l) {
+        if (L(l).vertex < 0 || L(l).face < 0) continue;
+        const auto& a = cage.points[static_cast<std::size_t>(L(l).vertex)];
+        const auto& b = cage.points[static_cast<std::size_t>(L(L(l).next).vertex)];
+        if (std::abs(a[1]) < 1e-9 && std::abs(b[1]) < 1e-9) set_strip(m, l, ratio[static_cast<std::size_t>(std::lround(std::min(a[0], b[0]))) % 3]);
+        if (std::abs(a[0]) < 1e-9 && std::abs(b[0]) < 1e-9) set_strip(m, l, ratio[static_cast<std::size_t>(std::lround(std::min(a[1], b[1]) / 1.3) + 1) % 3]);
+      }
+      EXPECT_EQ(std::set<double>(m.intervals.begin(), m.intervals.end()).size(), 3u);
+      if (rational)
+        for (std::size_t i = 0; i < m.points.size(); ++i) m.points[i].w = 1 + 0.3 * std::sin(1.7 * static_cast<double>(i));
+      const TMeshSurface s(m, 1);
+      ASSERT_EQ(s.count(FaceMethod::exact), s.num_faces());
+      double value = 0, derivative = 0;
+      int cells = 0;
+      for (int f = 0; f < s.num_faces(); ++f) {
+        const CreaseNet net = net_of(m, f);
+        for (const std::vector<int>& path : std::vector<std::vector<int>>{{}, {0}, {2}, {1, 3}, {3, 0, 2}, {0, 0, 0, 1}}) {
+          CreaseNet sub = net;
+          double ox = 0, oy = 0, size = 1;
+          for (int k : path) {
+            sub = refine(sub, k);
+            size /= 2;
+            ox += k == 1 || k == 2 ? size : 0;
+            oy += k >= 2 ? size : 0;
+          }
+          const CreaseFace cf(sub);
+          ++cells;
+          for (double u : {0.0, 0.3, 0.71, 1.0})
+            for (double v : {0.0, 0.45, 1.0}) {
+              double h[12], e[9];
+              cf.eval(u, v, h);
+              s.eval(f, ox + size * u, oy + size * v, e);
+              const auto c = cartesian(h);
+              double scale = 0;
+              for (int i = 3; i < 9; ++i) scale = std::max(scale, std::abs(e[i]) * size);
+              for (int i = 0; i < 3; ++i) value = std::max(value, std::abs(c[static_cast<std::size_t>(i)] - e[i]));
+              for (int i = 3; i < 9; ++i) derivative = std::max(derivative, std::abs(c[static_cast<std::size_t>(i)] - e[i] * size) / scale);
+            }
+        }
+      }
+      EXPECT_LT(value, 1e-13) << r << " " << rational;
+      EXPECT_LT(derivative, 1e-12) << r << " " << rational;
+      std::printf("grid 7 x 6, crease boundary, intervals 1, %.2f, %.2f%s: %d sub-faces by local subdivision against the exact "
+                  "surface: values %.2e, derivatives %.2e (relative)\n", r, 1 / r, rational ? ", rational" : "", cells, value, derivative);
+    }
 }
 
 }  // namespace

@@ -33,6 +33,9 @@ struct CreaseNet {
   std::vector<VertexRule> rules;
   std::vector<std::array<int, 4>> quads;       // counter-clockwise
   std::vector<std::array<bool, 4>> sharp;      // side k (corner k -> k + 1) on a crease boundary
+  // The knot interval of side k (opposite sides equal: one interval per strip); empty: all equal. Kept unhalved
+  // by refine (only ratios enter the rules).
+  std::vector<std::array<double, 4>> intervals;
 };
 
 class CreaseFace {
@@ -42,7 +45,7 @@ public:
   explicit CreaseFace(CreaseNet net);
   bool rational() const { return rational_; }
   // Whether the face's corner c (0..3) is an irregular vertex.
-  bool irregular(int c) const { return !chains_[static_cast<std::size_t>(c)].empty(); }
+  bool irregular(int c) const { return irregular_[static_cast<std::size_t>(c)]; }
   // Homogeneous value, d/du, d/dv (12 values) at (u, v) in [0, 1]^2. At an irregular corner the value is the
   // limit position (its mask) and the derivatives those 2^-30 from it along the diagonal (the face's
   // parametrisation is singular there), moved into the limit tangent plane where the eigenstructure of the
@@ -52,8 +55,23 @@ public:
   // those along the diagonal.
   void eval(double u, double v, double* out) const;
 
+  // A sub-face that is a B-spline cell: its 4 x 4 homogeneous points and its 6 knots per direction (the cell
+  // [0, 1], repeated knots where a crease boundary clamps it).
+  struct Cell {
+    std::array<std::array<double, 4>, 16> points;
+    std::array<std::array<double, 6>, 2> knots;
+  };
+
 private:
   using Grid = std::array<std::array<double, 4>, 16>;  // a regular sub-face's 4 x 4 homogeneous points
+  // Unequal knot intervals: the quadtree of sub-faces down to cells (children by quarter), nets kept where it
+  // stops short of an irregular corner (refined on at evaluation).
+  struct Node {
+    std::optional<Cell> cell;
+    std::optional<CreaseNet> net;
+    std::array<int, 4> children{-1, -1, -1, -1};
+  };
+  int build_node(const CreaseNet& net, int level);
   void eval_off_corners(double u, double v, double* out) const;
   CreaseNet net_;
   std::optional<Grid> grid_;   // the face itself when its corners are regular
@@ -64,6 +82,8 @@ private:
   std::array<std::vector<std::array<Grid, 4>>, 4> sides_;
   std::array<std::array<double, 12>, 4> corner_values_{};  // eval at the irregular corners
   bool rational_ = false;
+  std::array<bool, 4> irregular_{};
+  std::vector<Node> tree_;  // unequal intervals: tree_[0] the face
 };
 
 // One subdivision step of the net kept round the sub-face of quads[0] at its corner `child` (the new quads[0],
