@@ -12,10 +12,12 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <numbers>
 #include <set>
 #include <string>
 #include <vector>
 
+#include "face_continuity.hpp"
 #include "fusion_cages.hpp"
 #include "osd_reference.hpp"
 #include "star_mesh_tsm.hpp"
@@ -401,6 +403,142 @@ TEST(CreaseFace, UnequalIntervalsAreKnotInsertionOfTheExactSurface) {
       std::printf("grid 7 x 6, crease boundary, intervals 1, %.2f, %.2f%s: %d sub-faces by local subdivision against the exact "
                   "surface: values %.2e, derivatives %.2e (relative)\n", r, 1 / r, rational ? ", rational" : "", cells, value, derivative);
     }
+}
+
+// A surface's eval with the derivatives per unit of knot interval (d/du over the interval of the face's side 0,
+// d/dv over side 3's), in which B-spline pieces on different intervals meet C1.
+auto knot_units(const TMeshSurface& s) {
+  return [&s](int f, double u, double v, double* o) {
+    const TMesh& m = s.face_mesh();
+    const auto& loop = m.faces[static_cast<std::size_t>(f)];
+    const std::size_t first = static_cast<std::size_t>(std::find(loop.begin(), loop.end(), m.first_corner(f)) - loop.begin());
+    const auto interval = [&](std::size_t k) { return m.intervals[static_cast<std::size_t>(m.links[static_cast<std::size_t>(loop[(first + k) % 4])].edge)]; };
+    s.eval(f, u, v, o);
+    for (int c = 0; c < 3; ++c) {
+      o[3 + c] /= interval(0);
+      o[6 + c] /= interval(3);
+    }
+  };
+}
+
+// The clamped cubic B-spline on knots 0, 0, 0, 0, t_1, ..., t_(n-1), T, T, T, T at t (de Boor's algorithm).
+std::array<double, 3> de_boor(const std::vector<double>& knots, const std::vector<std::array<double, 3>>& q, double t) {
+  std::size_t k = 3;
+  while (k + 1 < q.size() && t >= knots[k + 1]) ++k;
+  std::array<std::array<double, 3>, 4> d{};
+  for (std::size_t j = 0; j < 4; ++j) d[j] = q[k - 3 + j];
+  for (std::size_t r = 1; r <= 3; ++r)
+    for (std::size_t j = 3; j >= r; --j) {
+      const std::size_t i = k - 3 + j;
+      const double a = (t - knots[i]) / (knots[i + 4 - r] - knots[i]);
+      for (std::size_t c = 0; c < 3; ++c) d[j][c] = (1 - a) * d[j - 1][c] + a * d[j][c];
+    }
+  return d[3];
+}
+
+TEST(CreaseFace, UnequalIntervalsAtABoundaryStarPoint) {
+  // Half fans of 3 and 4 sectors of 6 x 6 faces round a crease vertex of 3 (4) faces, every strip its own interval
+  // (0.6 to 2.2): the faces within 4 rings are crease faces with unequal intervals, the others exact (the
+  // T-spline of crease_ends). Measured: position gaps, normals and C1 across every edge; the boundary curve
+  // against the natural-end cubic B-spline of the boundary vertices on their intervals (de Boor here); with 3
+  // faces the tangent plane at the vertex (the normals 2^-k from it along the boundary and the diagonal).
+  for (int sectors : {3, 4}) {
+    const int n = 6;
+    const test::QuadMesh cage = test::half_fan_mesh(sectors, n, wavy);
+    TMesh m = io::parse_tsm(test::fusion_text(cage), "fan.tsm").mesh;
+    const auto L = [&](int l) -> const TMeshLink& { return m.links[static_cast<std::size_t>(l)]; };
+    const auto P = [&](int l) { return cage.points[static_cast<std::size_t>(L(l).vertex)]; };
+    // Spoke k's edge i (from i - 1 to i) by the cage's positions: interval 1.4 + 0.8 sin(1 + 2.3 k + 1.1 i).
+    std::map<int, double> boundary_knot;  // boundary vertex on the x axis -> its knot (x = -n at 0)
+    const auto interval = [](int k, int i) { return 1.4 + 0.8 * std::sin(1.0 + 2.3 * k + 1.1 * i); };
+    for (int l = 0; l < static_cast<int>(m.links.size()); ++l) {
+      if (L(l).vertex < 0 || L(l).face < 0) continue;
+      const auto a = P(l), b = P(L(l).next);
+      for (int k = 0; k <= sectors; ++k) {
+        const double c = std::cos(std::numbers::pi * k / sectors), sn = std::sin(std::numbers::pi * k / sectors);
+        const double ra = a[0] * c + a[1] * sn, rb = b[0] * c + b[1] * sn;
+        if (std::abs(a[1] * c - a[0] * sn) < 1e-9 && std::abs(b[1] * c - b[0] * sn) < 1e-9 && std::min(ra, rb) > -1e-9)
+          set_strip(m, l, interval(k, static_cast<int>(std::lround(std::max(ra, rb)))));
+      }
+    }
+    const TMeshSurface s(m, 1);
+    EXPECT_GT(s.count(FaceMethod::crease), sectors * 16);
+    const test::Continuity c = test::continuity(s.face_mesh(), knot_units(s));
+    EXPECT_LT(c.gap, 1e-12) << sectors;
+    EXPECT_LT(c.normal_angle, 1e-12) << sectors;
+    EXPECT_LT(c.c1, 1e-12) << sectors;
+    // The boundary curve: knots along the x axis from -n (spoke `sectors`, reversed) to n (spoke 0).
+    std::vector<double> t{0};
+    for (int i = n; i >= 1; --i) t.push_back(t.back() + interval(sectors, i));
+    for (int i = 1; i <= n; ++i) t.push_back(t.back() + interval(0, i));
+    std::vector<std::array<double, 3>> pts(2 * n + 1);
+    std::vector<int> vertex_at(2 * n + 1, -1);
+    for (std::size_t v = 0; v < cage.points.size(); ++v) {
+      const auto& p = cage.points[v];
+      if (std::abs(p[1]) > 1e-9) continue;
+      const int i = static_cast<int>(std::lround(p[0])) + n;
+      pts[static_cast<std::size_t>(i)] = p;
+      vertex_at[static_cast<std::size_t>(i)] = static_cast<int>(v);
+    }
+    // Clamped natural ends: Q1 = ((d1 + d2) P0 + d1 P1) / (2 d1 + d2) (crease_ends' derivation) at both ends.
+    std::vector<std::array<double, 3>> q{pts[0]};
+    const auto end_point = [](const std::array<double, 3>& p0, const std::array<double, 3>& p1, double d1, double d2) {
+      std::array<double, 3> r{};
+      for (std::size_t c = 0; c < 3; ++c) r[c] = ((d1 + d2) * p0[c] + d1 * p1[c]) / (2 * d1 + d2);
+      return r;
+    };
+    const std::size_t last = pts.size() - 1;
+    q.push_back(end_point(pts[0], pts[1], t[1] - t[0], t[2] - t[1]));
+    for (std::size_t i = 1; i < last; ++i) q.push_back(pts[i]);
+    q.push_back(end_point(pts[last], pts[last - 1], t[last] - t[last - 1], t[last - 1] - t[last - 2]));
+    q.push_back(pts[last]);
+    std::vector<double> knots{0, 0, 0};
+    for (double x : t) knots.push_back(x);
+    for (int r = 0; r < 3; ++r) knots.push_back(t.back());
+    double curve = 0;
+    for (int l = 0; l < static_cast<int>(m.links.size()); ++l) {
+      if (L(l).vertex < 0 || L(l).face < 0 || L(L(l).opp).face >= 0) continue;
+      const auto a = P(l), b = P(L(l).next);
+      if (std::abs(a[1]) > 1e-9 || std::abs(b[1]) > 1e-9) continue;
+      const std::size_t ia = static_cast<std::size_t>(std::lround(a[0]) + n), ib = static_cast<std::size_t>(std::lround(b[0]) + n);
+      const int side = test::side_of(s.face_mesh(), L(l).face, l);
+      for (double sigma : {0.0, 0.25, 0.5, 0.9}) {
+        const auto uv = test::side_uv(side, sigma);
+        double o[9];
+        s.eval(L(l).face, uv[0], uv[1], o);
+        const auto e = de_boor(knots, q, t[ia] + sigma * (t[ib] - t[ia]));
+        curve = std::max({curve, std::abs(o[0] - e[0]), std::abs(o[1] - e[1]), std::abs(o[2] - e[2])});
+      }
+    }
+    EXPECT_LT(curve, 1e-13) << sectors;
+    // Normals 2^-k from the vertex (face 0's first corner: the cage's vertex 0) in every face round it, along its
+    // diagonal and sides: their largest angle to one another.
+    ASSERT_EQ(L(m.first_corner(0)).vertex, 0);
+    std::printf("crease half fan of %d sectors, intervals 0.6 to 2.2: %d crease faces, %d exact; across %d edges gap %.2e, normals "
+                "%.2e, C1 %.2e; boundary curve against de Boor %.2e\n", sectors, s.count(FaceMethod::crease), s.count(FaceMethod::exact),
+                c.edges, c.gap, c.normal_angle, c.c1, curve);
+    for (int k : {10, 20, 30}) {
+      const double h = std::ldexp(1.0, -k);
+      std::vector<std::array<double, 3>> normals;
+      for (int f = 0; f < s.num_faces(); ++f) {
+        const auto corner = s.corners(f);
+        const int at = static_cast<int>(std::find(corner.begin(), corner.end(), 0) - corner.begin());
+        if (at == 4) continue;
+        static constexpr std::array<std::array<double, 2>, 4> uv{{{0, 0}, {1, 0}, {1, 1}, {0, 1}}};
+        const auto& cu = uv[static_cast<std::size_t>(at)];
+        for (const auto& [du, dv] : std::vector<std::array<double, 2>>{{h, h}, {h, 0}, {0, h}}) {
+          double o[9];
+          s.eval(f, cu[0] == 0 ? du : 1 - du, cu[1] == 0 ? dv : 1 - dv, o);
+          normals.push_back(test::unit_normal(o));
+        }
+      }
+      double spread = 0;
+      for (const auto& a : normals)
+        for (const auto& b : normals) spread = std::max(spread, std::hypot(a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]));
+      if (sectors == 3 && k == 30) EXPECT_LT(spread, 1e-4);
+      std::printf("  normals 2^-%d from the vertex: spread %.2e rad\n", k, spread);
+    }
+  }
 }
 
 }  // namespace
