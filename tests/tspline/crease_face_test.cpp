@@ -14,6 +14,7 @@
 #include <map>
 #include <numbers>
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -292,6 +293,26 @@ void set_strip(TMesh& m, int link, double d) {
     }
 }
 
+// Spoke k's edge i (from i - 1 to i) of a fan cage: interval 1.4 + 0.8 sin(1 + 2.3 k + 1.1 i) (0.6 to 2.2).
+double spoke_interval(int k, int i) { return 1.4 + 0.8 * std::sin(1.0 + 2.3 * k + 1.1 * i); }
+
+// The strips of a fan cage's spokes (spoke k at angle k turn from the origin, found by the cage's positions)
+// at spoke_interval.
+void set_spoke_strips(TMesh& m, const test::QuadMesh& cage, int spokes, double turn) {
+  const auto L = [&](int l) -> const TMeshLink& { return m.links[static_cast<std::size_t>(l)]; };
+  for (int l = 0; l < static_cast<int>(m.links.size()); ++l) {
+    if (L(l).vertex < 0 || L(l).face < 0) continue;
+    const auto& a = cage.points[static_cast<std::size_t>(L(l).vertex)];
+    const auto& b = cage.points[static_cast<std::size_t>(L(L(l).next).vertex)];
+    for (int k = 0; k < spokes; ++k) {
+      const double c = std::cos(turn * k), sn = std::sin(turn * k);
+      const double ra = a[0] * c + a[1] * sn, rb = b[0] * c + b[1] * sn;
+      if (std::abs(a[1] * c - a[0] * sn) < 1e-9 && std::abs(b[1] * c - b[0] * sn) < 1e-9 && std::min(ra, rb) > -1e-9)
+        set_strip(m, l, spoke_interval(k, static_cast<int>(std::lround(std::max(ra, rb)))));
+    }
+  }
+}
+
 // Cartesian value, d/du, d/dv (9) from a homogeneous one (12).
 std::array<double, 9> cartesian(const double* h) {
   std::array<double, 9> o{};
@@ -448,19 +469,8 @@ TEST(CreaseFace, UnequalIntervalsAtABoundaryStarPoint) {
     TMesh m = io::parse_tsm(test::fusion_text(cage), "fan.tsm").mesh;
     const auto L = [&](int l) -> const TMeshLink& { return m.links[static_cast<std::size_t>(l)]; };
     const auto P = [&](int l) { return cage.points[static_cast<std::size_t>(L(l).vertex)]; };
-    // Spoke k's edge i (from i - 1 to i) by the cage's positions: interval 1.4 + 0.8 sin(1 + 2.3 k + 1.1 i).
-    std::map<int, double> boundary_knot;  // boundary vertex on the x axis -> its knot (x = -n at 0)
-    const auto interval = [](int k, int i) { return 1.4 + 0.8 * std::sin(1.0 + 2.3 * k + 1.1 * i); };
-    for (int l = 0; l < static_cast<int>(m.links.size()); ++l) {
-      if (L(l).vertex < 0 || L(l).face < 0) continue;
-      const auto a = P(l), b = P(L(l).next);
-      for (int k = 0; k <= sectors; ++k) {
-        const double c = std::cos(std::numbers::pi * k / sectors), sn = std::sin(std::numbers::pi * k / sectors);
-        const double ra = a[0] * c + a[1] * sn, rb = b[0] * c + b[1] * sn;
-        if (std::abs(a[1] * c - a[0] * sn) < 1e-9 && std::abs(b[1] * c - b[0] * sn) < 1e-9 && std::min(ra, rb) > -1e-9)
-          set_strip(m, l, interval(k, static_cast<int>(std::lround(std::max(ra, rb)))));
-      }
-    }
+    const auto interval = spoke_interval;
+    set_spoke_strips(m, cage, sectors + 1, std::numbers::pi / sectors);
     const TMeshSurface s(m, 1);
     EXPECT_GT(s.count(FaceMethod::crease), sectors * 16);
     const test::Continuity c = test::continuity(s.face_mesh(), knot_units(s));
@@ -539,6 +549,138 @@ TEST(CreaseFace, UnequalIntervalsAtABoundaryStarPoint) {
       std::printf("  normals 2^-%d from the vertex: spread %.2e rad\n", k, spread);
     }
   }
+}
+
+TEST(CreaseFace, UnequalIntervalsAtAnInteriorStarPointAreNonUniformCatmullClark) {
+  // Fans of valence 3 and 5 (6 rings, crease boundary far out), every spoke strip its own interval: the surface
+  // evaluates the star point's faces by NonUniformStar (exact B-spline cells of the NURCC levels). Local
+  // subdivision of the same faces (the crease net's NURCC rules, cells of 16 regular points, the limit and tangent
+  // plane from the one ring's map) must be the same surface.
+  for (int valence : {3, 5}) {
+    const test::QuadMesh cage = test::fan_mesh(valence, 6, wavy);
+    TMesh m = io::parse_tsm(test::fusion_text(cage), "fan.tsm").mesh;
+    set_spoke_strips(m, cage, valence, 2 * std::numbers::pi / valence);
+    const TMeshSurface s(m, 1);
+    ASSERT_EQ(s.count(FaceMethod::non_uniform), 4 * valence);  // the faces of cells (0..1, 0..1) of each sector
+    double value = 0, derivative = 0, star = 0;
+    for (int f = 0; f < s.num_faces(); ++f) {
+      if (s.method(f) != FaceMethod::non_uniform) continue;
+      const CreaseFace cf(net_of(m, f));
+      for (double u : {0.0, 1e-3, 0.3, 1.0})
+        for (double v : {0.0, 1e-3, 0.45, 1.0}) {
+          double h[12], e[9];
+          cf.eval(u, v, h);
+          s.eval(f, u, v, e);
+          const auto c = cartesian(h);
+          const bool at_star = (u == 0 || u == 1) && (v == 0 || v == 1) && s.corners(f)[u == 0 ? (v == 0 ? 0 : 3) : (v == 0 ? 1 : 2)] == 0;
+          double scale = 0;
+          for (int i = 3; i < 9; ++i) scale = std::max(scale, std::abs(e[i]));
+          for (int i = 0; i < 3; ++i) (at_star ? star : value) = std::max(at_star ? star : value, std::abs(c[static_cast<std::size_t>(i)] - e[i]));
+          if (!at_star)
+            for (int i = 3; i < 9; ++i) derivative = std::max(derivative, std::abs(c[static_cast<std::size_t>(i)] - e[i]) / scale);
+        }
+    }
+    EXPECT_LT(value, 1e-12) << valence;
+    EXPECT_LT(star, 1e-12) << valence;
+    EXPECT_LT(derivative, 1e-11) << valence;
+    std::printf("fan of valence %d, intervals 0.6 to 2.2: %d faces by NonUniformStar against local subdivision: values %.2e, "
+                "derivatives %.2e (relative), limit point %.2e\n", valence, s.count(FaceMethod::non_uniform), value, derivative, star);
+  }
+}
+
+TEST(CreaseFace, BoxWithAStripOfUnequalIntervals) {
+  // The box with its top rim creased (the crease turning at four valence-3 corners) and the strip of faces at
+  // x in [1/3, 1] (over the top, down two sides, along the bottom) at interval 1.5: it passes by two top corners
+  // (crease vertices of 3 faces) and two bottom ones (interior star points near the crease), as exact edge
+  // insertion leaves Fusion's boxes. Loads; closed triangulation; continuity across every edge; the rim curve
+  // against the periodic cubic B-spline of the rim vertices on their intervals (de Boor here); the command line.
+  const TopBox box;
+  const Crease rim = [&](int a, int b) { return box.rim_edge(a, b); };
+  io::TsmModel model = io::parse_tsm(creased_cage(box.cage, rim), "box.tsm");
+  TMesh& m = model.mesh;
+  const auto L = [&](int l) -> const TMeshLink& { return m.links[static_cast<std::size_t>(l)]; };
+  const test::QuadMesh cube = test::cube_mesh(3);  // the box before its warp: the same vertex ids
+  const auto near = [&](int v, std::array<double, 3> p) {
+    const auto& q = cube.points[static_cast<std::size_t>(v)];
+    return std::hypot(q[0] - p[0], q[1] - p[1], q[2] - p[2]) < 1e-9;
+  };
+  int rung = -1;
+  for (int l = 0; l < static_cast<int>(m.links.size()) && rung < 0; ++l)
+    if (L(l).vertex >= 0 && L(l).face >= 0 && near(L(l).vertex, {1, 1, 1}) && near(L(L(l).next).vertex, {1.0 / 3, 1, 1})) rung = l;
+  ASSERT_GE(rung, 0);
+  set_strip(m, rung, 1.5);
+  const auto strip = std::count(m.intervals.begin(), m.intervals.end(), 1.5);
+  EXPECT_EQ(strip, 13);  // the strip's rungs round the box: 12 faces, a closed loop of 12 rungs... and the rim's
+  const TMeshSurface s(m, 1);
+  EXPECT_GT(s.count(FaceMethod::crease), 0);
+  const TSplineTriangulation t = tessellate(s, 1e-3);
+  EXPECT_EQ(test::closed_euler_characteristic(t), 2);
+  const test::Continuity c = test::continuity(s.face_mesh(), knot_units(s));
+  EXPECT_LT(c.gap, 1e-12);
+  // The rim: 12 vertices in order round the top, each rim edge's interval.
+  std::vector<int> loop;
+  std::vector<double> gaps;
+  for (int l = 0; l < static_cast<int>(m.links.size()) && loop.empty(); ++l)
+    if (L(l).vertex >= 0 && L(l).face >= 0 && box.rim_edge(L(l).vertex, L(L(l).next).vertex)) loop.push_back(L(l).vertex);
+  while (loop.size() < 13) {
+    for (int l = 0; l < static_cast<int>(m.links.size()); ++l)
+      if (L(l).vertex == loop.back() && L(l).face >= 0 && box.rim_edge(L(l).vertex, L(L(l).next).vertex) &&
+          (loop.size() < 2 || L(L(l).next).vertex != loop[loop.size() - 2])) {
+        loop.push_back(L(L(l).next).vertex);
+        gaps.push_back(m.intervals[static_cast<std::size_t>(L(l).edge)]);
+        break;
+      }
+  }
+  ASSERT_EQ(loop.front(), loop.back());
+  double curve = 0;
+  const std::size_t n = 12;
+  for (std::size_t i = 0; i < n; ++i) {
+    // Span i (loop[i] -> loop[i + 1]): knots t_(i-2) .. t_(i+3), points loop[i - 1 .. i + 2].
+    std::vector<double> knots{0};
+    double at = 0;
+    for (int r = -2; r <= 3; ++r) {
+      knots.push_back(at);
+      at += gaps[(i + n + static_cast<std::size_t>(r + 12)) % n];
+    }
+    // knots[1 + r + 2] = t_(i + r) relative: make t_i = 0.
+    const double ti = knots[3];
+    for (double& k : knots) k -= ti;
+    knots[0] = knots[1];
+    std::vector<std::array<double, 3>> q;
+    for (int r = -1; r <= 2; ++r) q.push_back(box.cage.points[static_cast<std::size_t>(loop[(i + n + static_cast<std::size_t>(r + 12)) % n])]);
+    int link = -1;
+    for (int l = 0; l < static_cast<int>(m.links.size()); ++l)
+      if (L(l).vertex == loop[i] && L(l).face >= 0 && L(L(l).next).vertex == loop[i + 1]) link = l;
+    ASSERT_GE(link, 0);
+    const int side = test::side_of(s.face_mesh(), L(link).face, link);
+    for (double sigma : {0.0, 0.3, 0.6, 0.95}) {
+      const auto uv = test::side_uv(side, sigma);
+      double o[9];
+      s.eval(L(link).face, uv[0], uv[1], o);
+      const auto e = de_boor(knots, q, sigma * knots[4]);
+      curve = std::max({curve, std::abs(o[0] - e[0]), std::abs(o[1] - e[1]), std::abs(o[2] - e[2])});
+    }
+  }
+  EXPECT_LT(curve, 1e-13);
+  // The command line on the file written back: info counts the crease faces, eval gives the surface's point.
+  const test::TempDir dir;
+  const std::string path = dir.file("box_strip.tsm");
+  io::write_tsm(path, m, model.report);
+  const std::string info = test::run_cli(dir, "info " + path);
+  EXPECT_NE(info.find(std::to_string(s.count(FaceMethod::crease)) + " faces within 4 rings of irregular vertices of a crease boundary"),
+            std::string::npos) << info;
+  const int face = L(rung).face;
+  double x[9];
+  s.eval_source(face, 0.25, 0.75, x);
+  const std::string out = test::run_cli(dir, "eval " + path + " " + std::to_string(face) + " 0.25 0.75");
+  std::istringstream printed(out.substr(std::min(out.size(), out.find("S   = ") + 6)));
+  double cli[3] = {NAN, NAN, NAN};
+  printed >> cli[0] >> cli[1] >> cli[2];
+  EXPECT_LT(std::hypot(cli[0] - x[0], cli[1] - x[1], cli[2] - x[2]), 1e-14 * std::hypot(x[0], x[1], x[2])) << out;
+  std::printf("box 3 x 3 per side, top rim creased, a strip at interval 1.5 (%td rungs) by two crease corners: %d faces by local "
+              "subdivision, %d exact, %d star, %d non-uniform; %zu triangles closed; across %d edges gap %.2e, normals %.2e, C1 %.2e "
+              "(knot units); rim against de Boor %.2e\n", strip, s.count(FaceMethod::crease), s.count(FaceMethod::exact),
+              s.count(FaceMethod::star), s.count(FaceMethod::non_uniform), t.triangles.size(), c.edges, c.gap, c.normal_angle, c.c1, curve);
 }
 
 }  // namespace
