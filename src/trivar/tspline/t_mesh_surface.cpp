@@ -593,6 +593,13 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads, int global_steps)
       local_subdivision(f, "near a star point and a crease boundary: " + why);
       continue;
     }
+    if (!unequal.empty() && split && star_dist[static_cast<std::size_t>(f)] <= 1) {
+      // Unequal intervals round a star point of a crease mesh whose three rings are no regular grid for
+      // NonUniformStar (its faces are taken above): the face's 4 x 4 points hold the star point, and local
+      // subdivision's rules there are NonUniformStar's on two face rings.
+      local_subdivision(f, "near a star point with unequal knot intervals: " + unequal);
+      continue;
+    }
     if (!why.empty()) {
       // A face beyond the reach of its blending functions' supports from the star points' faces may still be
       // the T-spline of a chart that holds no star point (a boundary, a T-junction or unequal intervals nearby):
