@@ -348,17 +348,39 @@ BENCHMARK(crease_build)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 // The star point of 5 faces on a straight boundary of boundary_star_eval as a subdivision-crease boundary (no
 // blocks): a crease vertex of 5 faces, its faces within 4 rings by local subdivision (crease_face). range(0) = 0:
-// the build; 1: 16 x 16 points on the faces by local subdivision; 2: on all faces; 3: on the 5 faces at the vertex.
+// the build; 1: 16 x 16 points on the faces by local subdivision; 2: on all faces; 3: on the 5 faces at the vertex;
+// 4 and 5: the build and the faces by local subdivision with unequal knot intervals (the strips of every spoke's
+// first two edges at 1.5 and 0.75).
 void crease_star(benchmark::State& state) {
-  trivar::TMesh m = trivar::io::parse_tsm(trivar::test::tsm_text(trivar::test::half_fan_mesh(
-                                              5, 10, [](double x, double y) { return 0.05 * x * x - 0.03 * x * y; })),
-                                          "crease_star.tsm").mesh;
+  const auto fan = trivar::test::half_fan_mesh(5, 10, [](double x, double y) { return 0.05 * x * x - 0.03 * x * y; });
+  trivar::TMesh m = trivar::io::parse_tsm(trivar::test::tsm_text(fan), "crease_star.tsm").mesh;
   m.end_conditions = trivar::EndConditions::subd_creases;
   for (trivar::TMeshVertex& v : m.vertices) {
     v.block.clear();
     v.block_dims = {};
   }
-  if (state.range(0) == 0) {
+  if (state.range(0) >= 4) {
+    // A spoke edge (from the vertex at the origin, radius i - 1 to i <= 2) and the rungs of its strip.
+    const auto L = [&](int l) -> const trivar::TMeshLink& { return m.links[static_cast<std::size_t>(l)]; };
+    const auto radius = [&](int v) { return std::hypot(fan.points[static_cast<std::size_t>(v)][0], fan.points[static_cast<std::size_t>(v)][1]); };
+    for (int l = 0; l < static_cast<int>(m.links.size()); ++l) {
+      if (L(l).vertex < 0 || L(l).face < 0) continue;
+      const int a = L(l).vertex, b = L(L(l).next).vertex;
+      const auto& pa = fan.points[static_cast<std::size_t>(a)];
+      const auto& pb = fan.points[static_cast<std::size_t>(b)];
+      const double ra = radius(a), rb = radius(b);
+      if (std::abs(pa[0] * pb[1] - pa[1] * pb[0]) > 1e-9 || std::abs(std::abs(ra - rb) - 1) > 1e-9 || std::max(ra, rb) > 2.5) continue;
+      const double d = std::max(ra, rb) < 1.5 ? 1.5 : 0.75;
+      for (int start : {l, L(l).opp})
+        for (int k = start; k >= 0 && L(k).face >= 0;) {
+          m.intervals[static_cast<std::size_t>(L(k).edge)] = d;
+          const int across = L(L(L(k).next).next).opp;
+          m.intervals[static_cast<std::size_t>(L(across).edge)] = d;
+          k = across;
+        }
+    }
+  }
+  if (state.range(0) == 0 || state.range(0) == 4) {
     for (auto _ : state) {
       const trivar::TMeshSurface s(m, 1);
       benchmark::DoNotOptimize(s.num_faces());
@@ -366,8 +388,8 @@ void crease_star(benchmark::State& state) {
     return;
   }
   const trivar::TMeshSurface s(m, 1);
-  if (state.range(0) < 3) {
-    eval_faces(state, s, state.range(0) == 1, trivar::FaceMethod::crease);
+  if (state.range(0) != 3) {
+    eval_faces(state, s, state.range(0) != 2, trivar::FaceMethod::crease);
     return;
   }
   std::vector<int> faces;  // the faces at the vertex (an irregular corner)
@@ -380,7 +402,7 @@ void crease_star(benchmark::State& state) {
         }
   eval_face_list(state, s, faces);
 }
-BENCHMARK(crease_star)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond);
+BENCHMARK(crease_star)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Arg(4)->Arg(5)->Unit(benchmark::kMillisecond);
 
 // The per-face surface of a grid of 20 x 20 faces (the valence-4 fan) with a crease boundary: range(0) = 0 as it
 // is, 1 with a sharp crease along its middle line x = 0 (20 edges; sharp_creases cuts the mesh open before
