@@ -443,16 +443,17 @@ auto knot_units(const TMeshSurface& s) {
 }
 
 // The clamped cubic B-spline on knots 0, 0, 0, 0, t_1, ..., t_(n-1), T, T, T, T at t (de Boor's algorithm).
-std::array<double, 3> de_boor(const std::vector<double>& knots, const std::vector<std::array<double, 3>>& q, double t) {
+template <std::size_t N>
+std::array<double, N> de_boor(const std::vector<double>& knots, const std::vector<std::array<double, N>>& q, double t) {
   std::size_t k = 3;
   while (k + 1 < q.size() && t >= knots[k + 1]) ++k;
-  std::array<std::array<double, 3>, 4> d{};
+  std::array<std::array<double, N>, 4> d{};
   for (std::size_t j = 0; j < 4; ++j) d[j] = q[k - 3 + j];
   for (std::size_t r = 1; r <= 3; ++r)
     for (std::size_t j = 3; j >= r; --j) {
       const std::size_t i = k - 3 + j;
       const double a = (t - knots[i]) / (knots[i + 4 - r] - knots[i]);
-      for (std::size_t c = 0; c < 3; ++c) d[j][c] = (1 - a) * d[j - 1][c] + a * d[j][c];
+      for (std::size_t c = 0; c < N; ++c) d[j][c] = (1 - a) * d[j - 1][c] + a * d[j][c];
     }
   return d[3];
 }
@@ -462,8 +463,9 @@ TEST(CreaseFace, UnequalIntervalsAtABoundaryStarPoint) {
   // (0.6 to 2.2): the faces within 4 rings are crease faces with unequal intervals, the others exact (the
   // T-spline of crease_ends). Measured: position gaps, normals and C1 across every edge; the boundary curve
   // against the natural-end cubic B-spline of the boundary vertices on their intervals (de Boor here); with 3
-  // faces the tangent plane at the vertex (the normals 2^-k from it along the boundary and the diagonal).
-  for (int sectors : {3, 4}) {
+  // faces the tangent plane at the vertex (the normals 2^-k from it along the boundary and the diagonal). Also
+  // rational (weights 0.75 to 1.25; the curve then the rational B-spline, de Boor on (w x, w)).
+  for (const auto& [sectors, rational] : std::vector<std::pair<int, bool>>{{3, false}, {3, true}, {4, false}, {4, true}}) {
     const int n = 6;
     const test::QuadMesh cage = test::half_fan_mesh(sectors, n, wavy);
     TMesh m = io::parse_tsm(test::fusion_text(cage), "fan.tsm").mesh;
@@ -471,6 +473,8 @@ TEST(CreaseFace, UnequalIntervalsAtABoundaryStarPoint) {
     const auto P = [&](int l) { return cage.points[static_cast<std::size_t>(L(l).vertex)]; };
     const auto interval = spoke_interval;
     set_spoke_strips(m, cage, sectors + 1, std::numbers::pi / sectors);
+    const auto weight = [&](std::size_t v) { return rational ? 1 + 0.25 * std::sin(1.3 * static_cast<double>(v)) : 1.0; };
+    for (std::size_t v = 0; v < m.vertices.size(); ++v) m.points[static_cast<std::size_t>(m.vertices[v].primary)].w = weight(v);
     const TMeshSurface s(m, 1);
     EXPECT_GT(s.count(FaceMethod::crease), sectors * 16);
     const test::Continuity c = test::continuity(s.face_mesh(), knot_units(s));
@@ -481,20 +485,20 @@ TEST(CreaseFace, UnequalIntervalsAtABoundaryStarPoint) {
     std::vector<double> t{0};
     for (int i = n; i >= 1; --i) t.push_back(t.back() + interval(sectors, i));
     for (int i = 1; i <= n; ++i) t.push_back(t.back() + interval(0, i));
-    std::vector<std::array<double, 3>> pts(2 * n + 1);
+    std::vector<std::array<double, 4>> pts(2 * n + 1);  // homogeneous
     std::vector<int> vertex_at(2 * n + 1, -1);
     for (std::size_t v = 0; v < cage.points.size(); ++v) {
       const auto& p = cage.points[v];
       if (std::abs(p[1]) > 1e-9) continue;
       const int i = static_cast<int>(std::lround(p[0])) + n;
-      pts[static_cast<std::size_t>(i)] = p;
+      pts[static_cast<std::size_t>(i)] = {weight(v) * p[0], weight(v) * p[1], weight(v) * p[2], weight(v)};
       vertex_at[static_cast<std::size_t>(i)] = static_cast<int>(v);
     }
     // Clamped natural ends: Q1 = ((d1 + d2) P0 + d1 P1) / (2 d1 + d2) (crease_ends' derivation) at both ends.
-    std::vector<std::array<double, 3>> q{pts[0]};
-    const auto end_point = [](const std::array<double, 3>& p0, const std::array<double, 3>& p1, double d1, double d2) {
-      std::array<double, 3> r{};
-      for (std::size_t c = 0; c < 3; ++c) r[c] = ((d1 + d2) * p0[c] + d1 * p1[c]) / (2 * d1 + d2);
+    std::vector<std::array<double, 4>> q{pts[0]};
+    const auto end_point = [](const std::array<double, 4>& p0, const std::array<double, 4>& p1, double d1, double d2) {
+      std::array<double, 4> r{};
+      for (std::size_t c = 0; c < 4; ++c) r[c] = ((d1 + d2) * p0[c] + d1 * p1[c]) / (2 * d1 + d2);
       return r;
     };
     const std::size_t last = pts.size() - 1;
@@ -517,15 +521,15 @@ TEST(CreaseFace, UnequalIntervalsAtABoundaryStarPoint) {
         double o[9];
         s.eval(L(l).face, uv[0], uv[1], o);
         const auto e = de_boor(knots, q, t[ia] + sigma * (t[ib] - t[ia]));
-        curve = std::max({curve, std::abs(o[0] - e[0]), std::abs(o[1] - e[1]), std::abs(o[2] - e[2])});
+        curve = std::max({curve, std::abs(o[0] - e[0] / e[3]), std::abs(o[1] - e[1] / e[3]), std::abs(o[2] - e[2] / e[3])});
       }
     }
     EXPECT_LT(curve, 1e-13) << sectors;
     // Normals 2^-k from the vertex (face 0's first corner: the cage's vertex 0) in every face round it, along its
     // diagonal and sides: their largest angle to one another.
     ASSERT_EQ(L(m.first_corner(0)).vertex, 0);
-    std::printf("crease half fan of %d sectors, intervals 0.6 to 2.2: %d crease faces, %d exact; across %d edges gap %.2e, normals "
-                "%.2e, C1 %.2e; boundary curve against de Boor %.2e\n", sectors, s.count(FaceMethod::crease), s.count(FaceMethod::exact),
+    std::printf("crease half fan of %d sectors, intervals 0.6 to 2.2%s: %d crease faces, %d exact; across %d edges gap %.2e, normals "
+                "%.2e, C1 %.2e; boundary curve against de Boor %.2e\n", sectors, rational ? ", rational" : "", s.count(FaceMethod::crease), s.count(FaceMethod::exact),
                 c.edges, c.gap, c.normal_angle, c.c1, curve);
     for (int k : {10, 20, 30}) {
       const double h = std::ldexp(1.0, -k);
