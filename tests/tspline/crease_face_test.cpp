@@ -592,6 +592,30 @@ TEST(CreaseFace, UnequalIntervalsAtAnInteriorStarPointAreNonUniformCatmullClark)
   }
 }
 
+TEST(CreaseFace, RefusesRepeatedKnotsNearAnIrregularVertex) {
+  // A half fan of 4 sectors whose strip of spoke 1's first edge has interval 0 (a repeated knot line through the
+  // crease faces): refused in one line naming the edge.
+  const test::QuadMesh cage = test::half_fan_mesh(4, 5, wavy);
+  TMesh m = io::parse_tsm(test::fusion_text(cage), "fan.tsm").mesh;
+  const auto L = [&](int l) -> const TMeshLink& { return m.links[static_cast<std::size_t>(l)]; };
+  int spoke = -1;
+  for (int l = 0; l < static_cast<int>(m.links.size()) && spoke < 0; ++l) {
+    if (L(l).vertex != 0 || L(l).face < 0) continue;
+    const auto& b = cage.points[static_cast<std::size_t>(L(L(l).next).vertex)];
+    if (std::abs(b[0] - std::cos(std::numbers::pi / 4)) < 1e-9 && std::abs(b[1] - std::sin(std::numbers::pi / 4)) < 1e-9) spoke = l;
+  }
+  ASSERT_GE(spoke, 0);
+  set_strip(m, spoke, 0);
+  try {
+    const TMeshSurface s(m, 1);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("nearby has knot interval 0.000000; local subdivision takes positive intervals"), std::string::npos) << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+  }
+}
+
 TEST(CreaseFace, BoxWithAStripOfUnequalIntervals) {
   // The box with its top rim creased (the crease turning at four valence-3 corners) and the strip of faces at
   // x in [1/3, 1] (over the top, down two sides, along the bottom) at interval 1.5: it passes by two top corners
