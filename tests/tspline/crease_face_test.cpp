@@ -592,6 +592,64 @@ TEST(CreaseFace, UnequalIntervalsAtAnInteriorStarPointAreNonUniformCatmullClark)
   }
 }
 
+TEST(CreaseFace, UnequalIntervalsAtCreasesInsideTheMesh) {
+  // The grids of 6 x 6 above (a crease turning at a vertex of four faces, a corner of three creases with a side of
+  // two faces, a creased vertex on a crease and one on the boundary), every column and row strip its own interval
+  // (1, 1.5, 0.6, 2.2, ...): normals and C1 across every edge but the creases (the mesh cut open along them), C0
+  // across every edge (the two sides of a crease share its curve), corners interpolated.
+  const GridIndex g{6};
+  const test::QuadMesh cage = test::grid_cage(6, 6);
+  const std::array<double, 6> strip{1, 1.5, 0.6, 2.2, 0.9, 1.3};
+  struct Case {
+    const char* name;
+    Crease crease;
+    std::vector<int> creased, corners;
+  };
+  const std::vector<Case> cases{
+      {"a crease turning at a vertex of four faces",
+       [&](int a, int b) {
+         return (g.i(a) == 3 && g.i(b) == 3 && std::max(g.j(a), g.j(b)) <= 3) || (g.j(a) == 3 && g.j(b) == 3 && std::min(g.i(a), g.i(b)) >= 3);
+       },
+       {},
+       {}},
+      {"a corner of three creases with a side of two faces",
+       [&](int a, int b) { return (g.i(a) == 3 && g.i(b) == 3) || (g.j(a) == 3 && g.j(b) == 3 && std::min(g.i(a), g.i(b)) >= 3); },
+       {},
+       {3 * 7 + 3}},
+      {"a creased vertex on a crease and on the boundary", [&](int a, int b) { return g.i(a) == 3 && g.i(b) == 3; }, {3 * 7 + 3, 3 * 7 + 6},
+       {3 * 7 + 3, 3 * 7 + 6}}};
+  for (const Case& c : cases) {
+    io::TsmModel model = io::parse_tsm(creased_cage(cage, c.crease, c.creased), "creases.tsm");
+    TMesh& m = model.mesh;
+    const auto L = [&](int l) -> const TMeshLink& { return m.links[static_cast<std::size_t>(l)]; };
+    for (int l = 0; l < static_cast<int>(m.links.size()); ++l) {
+      if (L(l).vertex < 0 || L(l).face < 0) continue;
+      const int a = L(l).vertex, b = L(L(l).next).vertex;
+      if (g.j(a) == 0 && g.j(b) == 0) set_strip(m, l, strip[static_cast<std::size_t>(std::min(g.i(a), g.i(b)))]);
+      if (g.i(a) == 0 && g.i(b) == 0) set_strip(m, l, strip[static_cast<std::size_t>(5 - std::min(g.j(a), g.j(b)))]);
+    }
+    const TMeshSurface s(m, 1);
+    EXPECT_GT(s.count(FaceMethod::crease), 0) << c.name;
+    const test::Continuity inside = test::continuity(split_creases(m), knot_units(s));
+    const test::Continuity all = test::continuity(s.face_mesh(), knot_units(s));
+    EXPECT_LT(inside.gap, 1e-12) << c.name;
+    EXPECT_LT(inside.normal_angle, 1e-12) << c.name;
+    EXPECT_LT(inside.c1, 1e-12) << c.name;
+    EXPECT_LT(all.gap, 1e-12) << c.name;
+    double corner = 0;
+    for (int v : c.corners)
+      for (int f = 0; f < s.num_faces(); ++f) {
+        const auto k = s.corners(f);
+        const int at = static_cast<int>(std::find(k.begin(), k.end(), v) - k.begin());
+        if (at < 4) corner = std::max(corner, gap_to(s, f, at == 1 || at == 2 ? 1 : 0, at >= 2 ? 1 : 0, cage.points[static_cast<std::size_t>(v)]));
+      }
+    EXPECT_LT(corner, 1e-14) << c.name;
+    std::printf("grid with %s, strips at 0.6 to 2.2: %d crease faces; across %d edges off the creases gap %.2e, normals %.2e, C1 "
+                "%.2e (knot units); across the creases gap %.2e; corners %.2e\n", c.name, s.count(FaceMethod::crease), inside.edges,
+                inside.gap, inside.normal_angle, inside.c1, all.gap, corner);
+  }
+}
+
 TEST(CreaseFace, RefusesRepeatedKnotsNearAnIrregularVertex) {
   // A half fan of 4 sectors whose strip of spoke 1's first edge has interval 0 (a repeated knot line through the
   // crease faces): refused in one line naming the edge.
