@@ -134,35 +134,40 @@ std::vector<std::array<int, 2>> closed_fan(const CreaseNet& n, const NetIncidenc
   }
 }
 
-// The knot interval beyond vertex v on the line from `from` through v: the opposite edge of four faces, the other
-// crease edge along a crease, at a star point NURCC's interval across (nurcc_across of its spokes). None where
-// the line ends (the natural end) or leaves the net (points the evaluation never reads).
-std::optional<double> line_beyond(const CreaseNet& n, const NetIncidence& inc, int from, int v) {
-  switch (n.rules[static_cast<std::size_t>(v)]) {
-    case VertexRule::corner: return std::nullopt;
-    case VertexRule::crease: {
+// The knot intervals beyond each vertex v on the lines through it, per neighbour w: on the line from w through v,
+// the opposite edge of four faces, the other crease edge along a crease, at a star point NURCC's interval across
+// (nurcc_across of its spokes). None where the line ends (the natural end) or leaves the net (points the
+// evaluation never reads). Built once per net: the rules read them many times.
+using NetLines = std::vector<std::vector<std::pair<int, double>>>;
+
+NetLines net_lines(const CreaseNet& n, const NetIncidence& inc) {
+  NetLines lines(n.points.size());
+  for (int v = 0; v < static_cast<int>(n.points.size()); ++v) {
+    auto& at = lines[static_cast<std::size_t>(v)];
+    if (inc[static_cast<std::size_t>(v)].empty()) continue;
+    if (n.rules[static_cast<std::size_t>(v)] == VertexRule::crease) {
       const std::vector<int> nb = crease_edges(n, inc, v);
-      if (nb.size() != 2 || (from != nb[0] && from != nb[1])) return std::nullopt;
-      return edge_interval(n, inc, v, from == nb[0] ? nb[1] : nb[0]);
-    }
-    case VertexRule::smooth: {
+      if (nb.size() == 2) at = {{nb[0], edge_interval(n, inc, v, nb[1])}, {nb[1], edge_interval(n, inc, v, nb[0])}};
+    } else if (n.rules[static_cast<std::size_t>(v)] == VertexRule::smooth) {
       const auto fan = closed_fan(n, inc, v);
       std::vector<double> spokes;
-      int k = -1;
-      for (const auto& [q, c] : fan) {
-        if (n.quads[static_cast<std::size_t>(q)][static_cast<std::size_t>((c + 1) % 4)] == from) k = static_cast<int>(spokes.size());
-        spokes.push_back(side_interval(n, q, c));
-      }
-      if (k < 0) return std::nullopt;
-      return nurcc_across(spokes, k);
+      for (const auto& [q, c] : fan) spokes.push_back(side_interval(n, q, c));
+      for (std::size_t k = 0; k < fan.size(); ++k)
+        at.emplace_back(n.quads[static_cast<std::size_t>(fan[k][0])][static_cast<std::size_t>((fan[k][1] + 1) % 4)], nurcc_across(spokes, static_cast<int>(k)));
     }
   }
+  return lines;
+}
+
+std::optional<double> line_beyond(const NetLines& lines, int from, int v) {
+  for (const auto& [w, d] : lines[static_cast<std::size_t>(v)])
+    if (w == from) return d;
   return std::nullopt;
 }
 
 // The edge curve point of edge from-to of interval d.
-NetPoint curve_point(const CreaseNet& n, const NetIncidence& inc, int from, int to, double d) {
-  const auto w = nurcc_curve_weights(line_beyond(n, inc, to, from).value_or(d), d, line_beyond(n, inc, from, to).value_or(d));
+NetPoint curve_point(const CreaseNet& n, const NetLines& lines, int from, int to, double d) {
+  const auto w = nurcc_curve_weights(line_beyond(lines, to, from).value_or(d), d, line_beyond(lines, from, to).value_or(d));
   NetPoint r{};
   add_scaled(r, n.points[static_cast<std::size_t>(from)], w[0]);
   add_scaled(r, n.points[static_cast<std::size_t>(to)], w[1]);
@@ -171,13 +176,13 @@ NetPoint curve_point(const CreaseNet& n, const NetIncidence& inc, int from, int 
 
 // The face point: the tensor product of the curve rules of its two directions, each with the means of its two
 // rows' intervals beyond (equal on a grid; they differ only next to a star point, as in NonUniformStar).
-NetPoint nurcc_face_point(const CreaseNet& n, const NetIncidence& inc, int q) {
+NetPoint nurcc_face_point(const CreaseNet& n, const NetLines& lines, int q) {
   const auto& a = n.quads[static_cast<std::size_t>(q)];
   const auto P = [&](int k) { return a[static_cast<std::size_t>(k)]; };
   // Rows s0 -> e0 and s1 -> e1 of intervals d0, d1.
   const auto weights = [&](int s0, int e0, double d0, int s1, int e1, double d1) {
-    const double before = 0.5 * (line_beyond(n, inc, e0, s0).value_or(d0) + line_beyond(n, inc, e1, s1).value_or(d1));
-    const double after = 0.5 * (line_beyond(n, inc, s0, e0).value_or(d0) + line_beyond(n, inc, s1, e1).value_or(d1));
+    const double before = 0.5 * (line_beyond(lines, e0, s0).value_or(d0) + line_beyond(lines, e1, s1).value_or(d1));
+    const double after = 0.5 * (line_beyond(lines, s0, e0).value_or(d0) + line_beyond(lines, s1, e1).value_or(d1));
     return nurcc_curve_weights(before, 0.5 * (d0 + d1), after);
   };
   const auto wu = weights(P(0), P(1), side_interval(n, q, 0), P(3), P(2), side_interval(n, q, 2));
@@ -312,6 +317,7 @@ std::optional<CreaseFace::Cell> net_cell(const CreaseNet& n, const NetIncidence&
   const std::array<int, 16> slot = net_slots(n, inc);
   for (int s : slot)
     if (s >= 0 && !regular_vertex(n, inc, s)) return std::nullopt;
+  const NetLines lines = net_lines(n, inc);
   CreaseFace::Cell cell{};
   std::array<bool, 16> have{};
   for (std::size_t s = 0; s < 16; ++s)
@@ -329,13 +335,13 @@ std::optional<CreaseFace::Cell> net_cell(const CreaseNet& n, const NetIncidence&
     bool low_ends = false, high_ends = false;
     if (!low_missing) {
       h[1] = edge_interval(n, inc, at(-1), at(0));
-      const auto b = line_beyond(n, inc, at(0), at(-1));
+      const auto b = line_beyond(lines, at(0), at(-1));
       low_ends = !b;
       h[0] = b.value_or(0);
     }
     if (!high_missing) {
       h[3] = edge_interval(n, inc, at(1), at(2));
-      const auto b = line_beyond(n, inc, at(1), at(2));
+      const auto b = line_beyond(lines, at(1), at(2));
       high_ends = !b;
       h[4] = b.value_or(0);
     }
@@ -511,6 +517,7 @@ CreaseNet refine(const CreaseNet& n, int child) {
   first[0] = 1;
   first = net_ring(n, inc, first);
   const bool uniform = equal_intervals(n);
+  const NetLines lines = uniform ? NetLines{} : net_lines(n, inc);
   CreaseNet x;
   std::vector<int> vertex_point(n.points.size(), -1), face_pt(nq, -1);
   std::vector<std::vector<std::array<int, 2>>> edge_point(n.points.size());  // at the smaller end: (other end, point)
@@ -535,8 +542,8 @@ CreaseNet refine(const CreaseNet& n, int child) {
       const auto nb = crease_neighbours(n, inc, v);
       const double a = edge_interval(n, inc, v, nb[0]), b = edge_interval(n, inc, v, nb[1]);
       const auto w = nurcc_curve_vertex_weights(a, b);
-      add_scaled(r, curve_point(n, inc, v, nb[0], a), w[0]);
-      add_scaled(r, curve_point(n, inc, v, nb[1], b), w[1]);
+      add_scaled(r, curve_point(n, lines, v, nb[0], a), w[0]);
+      add_scaled(r, curve_point(n, lines, v, nb[1], b), w[1]);
       add_scaled(r, p, w[2]);
     } else {
       const auto& around = inc[static_cast<std::size_t>(v)];
@@ -557,8 +564,8 @@ CreaseNet refine(const CreaseNet& n, int child) {
         const VertexWeights vw = nurcc_vertex_weights(spokes);
         for (std::size_t j = 0; j < fan.size(); ++j) {
           const auto [q, c] = fan[j];
-          add_scaled(r, nurcc_face_point(n, inc, q), vw.faces[j]);
-          add_scaled(r, curve_point(n, inc, v, n.quads[static_cast<std::size_t>(q)][static_cast<std::size_t>((c + 1) % 4)], spokes[j]), vw.curves[j]);
+          add_scaled(r, nurcc_face_point(n, lines, q), vw.faces[j]);
+          add_scaled(r, curve_point(n, lines, v, n.quads[static_cast<std::size_t>(q)][static_cast<std::size_t>((c + 1) % 4)], spokes[j]), vw.curves[j]);
         }
         add_scaled(r, p, vw.self);
       }
@@ -567,7 +574,7 @@ CreaseNet refine(const CreaseNet& n, int child) {
   };
   const auto face = [&](int q) {
     int& id = face_pt[static_cast<std::size_t>(q)];
-    return id >= 0 ? id : id = new_point(uniform ? net_face_point(n, q) : nurcc_face_point(n, inc, q), VertexRule::smooth);
+    return id >= 0 ? id : id = new_point(uniform ? net_face_point(n, q) : nurcc_face_point(n, lines, q), VertexRule::smooth);
   };
   const auto edge = [&](int q, int k) {
     const auto& a = n.quads[static_cast<std::size_t>(q)];
@@ -581,7 +588,7 @@ CreaseNet refine(const CreaseNet& n, int child) {
       add_scaled(r, n.points[static_cast<std::size_t>(from)], 0.5);
       add_scaled(r, n.points[static_cast<std::size_t>(to)], 0.5);
     } else {
-      r = curve_point(n, inc, from, to, d);
+      r = curve_point(n, lines, from, to, d);
     }
     VertexRule rule = VertexRule::crease;
     if (!n.sharp[static_cast<std::size_t>(q)][static_cast<std::size_t>(k)]) {
