@@ -471,7 +471,6 @@ TEST(CreaseFace, UnequalIntervalsAtABoundaryStarPoint) {
     TMesh m = io::parse_tsm(test::fusion_text(cage), "fan.tsm").mesh;
     const auto L = [&](int l) -> const TMeshLink& { return m.links[static_cast<std::size_t>(l)]; };
     const auto P = [&](int l) { return cage.points[static_cast<std::size_t>(L(l).vertex)]; };
-    const auto interval = spoke_interval;
     set_spoke_strips(m, cage, sectors + 1, std::numbers::pi / sectors);
     const auto weight = [&](std::size_t v) { return rational ? 1 + 0.25 * std::sin(1.3 * static_cast<double>(v)) : 1.0; };
     for (std::size_t v = 0; v < m.vertices.size(); ++v) m.points[static_cast<std::size_t>(m.vertices[v].primary)].w = weight(v);
@@ -483,16 +482,14 @@ TEST(CreaseFace, UnequalIntervalsAtABoundaryStarPoint) {
     EXPECT_LT(c.c1, 1e-12) << sectors;
     // The boundary curve: knots along the x axis from -n (spoke `sectors`, reversed) to n (spoke 0).
     std::vector<double> t{0};
-    for (int i = n; i >= 1; --i) t.push_back(t.back() + interval(sectors, i));
-    for (int i = 1; i <= n; ++i) t.push_back(t.back() + interval(0, i));
+    for (int i = n; i >= 1; --i) t.push_back(t.back() + spoke_interval(sectors, i));
+    for (int i = 1; i <= n; ++i) t.push_back(t.back() + spoke_interval(0, i));
     std::vector<std::array<double, 4>> pts(2 * n + 1);  // homogeneous
-    std::vector<int> vertex_at(2 * n + 1, -1);
     for (std::size_t v = 0; v < cage.points.size(); ++v) {
       const auto& p = cage.points[v];
       if (std::abs(p[1]) > 1e-9) continue;
       const int i = static_cast<int>(std::lround(p[0])) + n;
       pts[static_cast<std::size_t>(i)] = {weight(v) * p[0], weight(v) * p[1], weight(v) * p[2], weight(v)};
-      vertex_at[static_cast<std::size_t>(i)] = static_cast<int>(v);
     }
     // Clamped natural ends: Q1 = ((d1 + d2) P0 + d1 P1) / (2 d1 + d2) (crease_ends' derivation) at both ends.
     std::vector<std::array<double, 4>> q{pts[0]};

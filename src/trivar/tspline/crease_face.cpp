@@ -559,6 +559,9 @@ CreaseNet refine(const CreaseNet& n, int child) {
       } else {
         // NURCC's vertex rule over its spokes in order (the tensor product rule at a vertex of four faces).
         const auto fan = closed_fan(n, inc, v);
+        require(fan.size() == around.size(), [&] {
+          return "crease net: vertex " + std::to_string(v) + " has no closed fan of faces; the rules for unequal knot intervals take smooth, crease and corner vertices";
+        });
         std::vector<double> spokes;
         for (const auto& [q, c] : fan) spokes.push_back(side_interval(n, q, c));
         const VertexWeights vw = nurcc_vertex_weights(spokes);
