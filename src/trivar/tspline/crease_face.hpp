@@ -38,8 +38,9 @@
 // intervals 1 : 1.02, 1.5, 3, polynomial and rational) to 7e-15 in value and 9e-14 in relative derivatives; an
 // interior star point equals NonUniformStar to 2e-15 (derivatives 6e-13); round crease vertices of 3 and 4 faces
 // and on the creased box C0 to 4e-15, normals and C1 (per knot unit) across every edge to 4e-14, the crease the
-// de Boor B-spline to 1.3e-15; the normals' spread 2^-30 from a crease vertex of 3 faces 3e-6 rad (slow as at
-// NonUniformStar: the subdominant eigenvalues differ), with 4 faces no tangent plane (as with equal intervals).
+// de Boor B-spline to 1.3e-15; the normals 2^-30 from a crease vertex of 3 faces within 3e-6 rad of one another
+// and of the eigenvectors' plane at the vertex (1e-3 at 2^-10: slow as at NonUniformStar, the subdominant
+// eigenvalues differ), with 4 faces no tangent plane (as with equal intervals).
 // The rules are linear: they act on homogeneous points (w x, w) (rational Catmull-Clark). Hand-written: no
 // packaged library evaluates subdivision surfaces with crease boundaries.
 #include <array>
