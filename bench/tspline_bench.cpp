@@ -370,10 +370,10 @@ std::vector<int> irregular_corner_faces(const trivar::TMeshSurface& s) {
   return faces;
 }
 
-// A subdivision-crease mesh's surface: range(0) = 0: the build; 1: 16 x 16 points on the faces by local
-// subdivision; 2: on all faces; 3: on the faces at its irregular vertices.
-void crease_surface_bench(benchmark::State& state, const trivar::TMesh& m) {
-  if (state.range(0) == 0) {
+// A subdivision-crease mesh's surface: what = 0: the build; 1: 16 x 16 points on the faces by local subdivision;
+// 2: on all faces; 3: on the faces at its irregular vertices.
+void crease_surface_bench(benchmark::State& state, const trivar::TMesh& m, std::int64_t what) {
+  if (what == 0) {
     for (auto _ : state) {
       const trivar::TMeshSurface s(m, 1);
       benchmark::DoNotOptimize(s.num_faces());
@@ -381,20 +381,44 @@ void crease_surface_bench(benchmark::State& state, const trivar::TMesh& m) {
     return;
   }
   const trivar::TMeshSurface s(m, 1);
-  if (state.range(0) < 3)
-    eval_faces(state, s, state.range(0) == 1, trivar::FaceMethod::crease);
+  if (what < 3)
+    eval_faces(state, s, what == 1, trivar::FaceMethod::crease);
   else
     eval_face_list(state, s, irregular_corner_faces(s));
 }
 
 // The star point of 5 faces on a straight boundary of boundary_star_eval as a subdivision-crease boundary (no
 // blocks): a crease vertex of 5 faces, its faces within 4 rings by local subdivision (crease_face). range(0) = 0:
-// the build; 1: 16 x 16 points on the faces by local subdivision; 2: on all faces; 3: on the 5 faces at the vertex.
+// the build; 1: 16 x 16 points on the faces by local subdivision; 2: on all faces; 3: on the 5 faces at the vertex;
+// 4 and 5: the build and the faces by local subdivision with unequal knot intervals (the strips of every spoke's
+// first two edges at 1.5 and 0.75).
 void crease_star(benchmark::State& state) {
-  crease_surface_bench(state, crease_mesh(trivar::test::tsm_text(
-                                  trivar::test::half_fan_mesh(5, 10, [](double x, double y) { return 0.05 * x * x - 0.03 * x * y; }))));
+  const auto fan = trivar::test::half_fan_mesh(5, 10, [](double x, double y) { return 0.05 * x * x - 0.03 * x * y; });
+  trivar::TMesh m = crease_mesh(trivar::test::tsm_text(fan));
+  if (state.range(0) >= 4) {
+    // A spoke edge (from the vertex at the origin, radius i - 1 to i <= 2) and the rungs of its strip.
+    const auto L = [&](int l) -> const trivar::TMeshLink& { return m.links[static_cast<std::size_t>(l)]; };
+    const auto radius = [&](int v) { return std::hypot(fan.points[static_cast<std::size_t>(v)][0], fan.points[static_cast<std::size_t>(v)][1]); };
+    for (int l = 0; l < static_cast<int>(m.links.size()); ++l) {
+      if (L(l).vertex < 0 || L(l).face < 0) continue;
+      const int a = L(l).vertex, b = L(L(l).next).vertex;
+      const auto& pa = fan.points[static_cast<std::size_t>(a)];
+      const auto& pb = fan.points[static_cast<std::size_t>(b)];
+      const double ra = radius(a), rb = radius(b);
+      if (std::abs(pa[0] * pb[1] - pa[1] * pb[0]) > 1e-9 || std::abs(std::abs(ra - rb) - 1) > 1e-9 || std::max(ra, rb) > 2.5) continue;
+      const double d = std::max(ra, rb) < 1.5 ? 1.5 : 0.75;
+      for (int start : {l, L(l).opp})
+        for (int k = start; k >= 0 && L(k).face >= 0;) {
+          m.intervals[static_cast<std::size_t>(L(k).edge)] = d;
+          const int across = L(L(L(k).next).next).opp;
+          m.intervals[static_cast<std::size_t>(L(across).edge)] = d;
+          k = across;
+        }
+    }
+  }
+  crease_surface_bench(state, m, state.range(0) % 4);
 }
-BENCHMARK(crease_star)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond);
+BENCHMARK(crease_star)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Arg(4)->Arg(5)->Unit(benchmark::kMillisecond);
 
 // The per-face surface of a grid of 20 x 20 faces (the valence-4 fan) with a crease boundary: range(0) = 0 as it
 // is, 1 with a sharp crease along its middle line x = 0 (20 edges; sharp_creases cuts the mesh open before
@@ -432,7 +456,7 @@ void dart_crease(benchmark::State& state) {
     if (k.vertex >= 0 && static_cast<int>(l) < k.opp && on_crease(k.vertex) && on_crease(m.links[static_cast<std::size_t>(k.opp)].vertex))
       m.crease_edges.push_back(k.edge);
   }
-  crease_surface_bench(state, m);
+  crease_surface_bench(state, m, state.range(0));
 }
 BENCHMARK(dart_crease)->Arg(0)->Arg(1)->Arg(3)->Unit(benchmark::kMillisecond);
 

@@ -329,7 +329,7 @@ TsmModel TsmReader::build() {
     }
   // Fusion's crease lists: edge and vertex numbers, kept on the mesh. Crease edges between two faces are sharp
   // creases (sharp_creases), which only a subdivision-crease mesh defines.
-  const auto crease_list = [&](std::string_view kind, int count, const std::vector<Record>& slots, std::vector<int>& out) {
+  const auto crease_list = [&](std::string_view kind, int count, const std::vector<Record>& slots, std::vector<int>& list) {
     if (!fusion) return;
     for (const Record& r : all(kind))
       for (std::size_t i = 0; i < r.words.size(); ++i) {
@@ -344,7 +344,7 @@ TsmModel TsmReader::build() {
             fail(r.line, "crease edge " + std::to_string(x) + " lies between two faces; creases inside the mesh are read with end-conditions SUBD_CREASES, not " +
                              rep.end_conditions);
         }
-        out.push_back(x);
+        list.push_back(x);
       }
   };
   crease_list("100edges", ne, E, mesh.crease_edges);

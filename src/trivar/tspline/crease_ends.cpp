@@ -7,6 +7,7 @@
 
 #include "trivar/core/error.hpp"
 #include "trivar/tspline/homogeneous_point.hpp"
+#include "trivar/tspline/non_uniform_catmull_clark.hpp"
 #include "trivar/tspline/sharp_creases.hpp"
 
 namespace trivar {
@@ -23,7 +24,10 @@ HomogeneousPoint mix(const HomogeneousPoint& a, double sa, const HomogeneousPoin
 struct EndWeights {
   double a, b;
 };
-EndWeights end_weights(double d1, double d2) { return {(d1 + d2) / (2 * d1 + d2), d1 / (2 * d1 + d2)}; }
+EndWeights end_weights(double d1, double d2) {
+  const auto [a, b] = natural_end_weights(d1, d2);
+  return {a, b};
+}
 
 }  // namespace
 

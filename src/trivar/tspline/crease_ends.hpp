@@ -32,8 +32,10 @@
 // blending functions of the first three rows are tensor products of their rows. Boundary vertices that are no
 // regular crease patch corner (irregular_crease_vertices: boundary star points, a crease turning at a vertex, a
 // concave corner, a corner with a side of several faces) have no Bezier form: they keep their points and no
-// block, and their faces are evaluated by local subdivision (crease_face, in TMeshSurface). Intervals next to a
-// star point are taken equal (d2 = d1), as the Catmull-Clark faces there require. A block point the input carries
+// block, and their faces are evaluated by local subdivision (crease_face, in TMeshSurface), whose rules at a
+// regular crease boundary are midpoint knot insertion of this clamped form (crease_face.hpp), also with unequal
+// intervals. Intervals next to a star point are taken equal (d2 = d1): the faces whose blending functions reach
+// such a block are star, Catmull-Clark or crease faces, which do not read it. A block point the input carries
 // at a boundary vertex is replaced.
 // Sharp creases inside the mesh (sharp_creases) are cut open first, so that their sides are crease boundaries
 // too. Refused (trivar::Error, one line naming the vertex): degree other than 3, a boundary vertex on two boundary

@@ -9,7 +9,9 @@
 #include <Eigen/Eigenvalues>
 
 #include "trivar/core/error.hpp"
+#include "trivar/spline/basis.hpp"
 #include "trivar/tspline/catmull_clark_patch.hpp"
+#include "trivar/tspline/non_uniform_catmull_clark.hpp"
 
 namespace trivar {
 
@@ -52,8 +54,8 @@ int net_across(const CreaseNet& n, const NetIncidence& inc, int q, int k) {
   return -1;
 }
 
-// The two neighbours of a crease vertex along its crease edges.
-std::array<int, 2> crease_neighbours(const CreaseNet& n, const NetIncidence& inc, int v) {
+// The neighbours of a crease vertex along its crease edges in the net.
+std::vector<int> crease_edges(const CreaseNet& n, const NetIncidence& inc, int v) {
   std::vector<int> nb;
   for (const auto& [q, k] : inc[static_cast<std::size_t>(v)]) {
     const auto& a = n.quads[static_cast<std::size_t>(q)];
@@ -63,6 +65,12 @@ std::array<int, 2> crease_neighbours(const CreaseNet& n, const NetIncidence& inc
   }
   std::sort(nb.begin(), nb.end());
   nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
+  return nb;
+}
+
+// The two neighbours of a crease vertex along its crease edges.
+std::array<int, 2> crease_neighbours(const CreaseNet& n, const NetIncidence& inc, int v) {
+  const std::vector<int> nb = crease_edges(n, inc, v);
   require(nb.size() == 2, [&] { return "crease net: crease vertex " + std::to_string(v) + " has " + std::to_string(nb.size()) + " crease edges, not 2"; });
   return {nb[0], nb[1]};
 }
@@ -84,44 +92,115 @@ bool regular_vertex(const CreaseNet& n, const NetIncidence& inc, int v) {
   return false;
 }
 
-// At a vertex, from the eigenstructure of its one ring's subdivision matrix (limit_frame).
-struct LimitFrame {
-  std::optional<NetPoint> point;                 // a dart's limit position
-  std::optional<std::array<NetPoint, 2>> plane;  // tangent vectors
-};
-LimitFrame limit_frame(const CreaseNet& n, const NetIncidence& inc, int v);
+// Unequal knot intervals (NURCC, non_uniform_catmull_clark): the weights of the rules from the intervals of the
+// net's sides. Every interval beyond an edge's end is read along its line (line_beyond); where the line ends at
+// a crease boundary (an edge across it at its crease vertex, any edge at a corner) the natural end takes the
+// edge's own interval, which makes the rules there midpoint knot insertion of the clamped natural-end cubic of
+// crease_ends. The same holds at irregular crease vertices and corners (whatever their number of faces): an
+// interior edge ends there, and the crease curve continues along its two crease edges.
+double side_interval(const CreaseNet& n, int q, int k) {
+  return n.intervals.empty() ? 1.0 : n.intervals[static_cast<std::size_t>(q)][static_cast<std::size_t>(k)];
+}
 
-// The limit position of vertex v (its limit mask; a dart's from its eigenvector, limit_frame).
-NetPoint net_limit_point(const CreaseNet& n, const NetIncidence& inc, int v) {
-  const NetPoint& p = n.points[static_cast<std::size_t>(v)];
-  NetPoint r{};
-  switch (n.rules[static_cast<std::size_t>(v)]) {
-    case VertexRule::corner: return p;
-    case VertexRule::crease: {
-      const auto nb = crease_neighbours(n, inc, v);
-      add_scaled(r, p, 4.0 / 6);
-      for (int w : nb) add_scaled(r, n.points[static_cast<std::size_t>(w)], 1.0 / 6);
-      return r;
-    }
-    case VertexRule::dart: return *limit_frame(n, inc, v).point;
-    case VertexRule::smooth: {
-      const double k = static_cast<double>(inc[static_cast<std::size_t>(v)].size());
-      add_scaled(r, p, k / (k + 5));
-      for (const auto& [q, c] : inc[static_cast<std::size_t>(v)]) {
-        const auto& a = n.quads[static_cast<std::size_t>(q)];
-        add_scaled(r, n.points[static_cast<std::size_t>(a[static_cast<std::size_t>((c + 1) % 4)])], 4 / (k * (k + 5)));
-        add_scaled(r, n.points[static_cast<std::size_t>(a[static_cast<std::size_t>((c + 2) % 4)])], 1 / (k * (k + 5)));
-      }
-      return r;
+bool equal_intervals(const CreaseNet& n) {
+  if (n.intervals.empty()) return true;
+  const double d0 = n.intervals[0][0];
+  for (const auto& q : n.intervals)
+    for (double d : q)
+      if (std::abs(d - d0) > 1e-12 * d0) return false;
+  return true;
+}
+
+// The knot interval of edge v-w.
+double edge_interval(const CreaseNet& n, const NetIncidence& inc, int v, int w) {
+  for (const auto& [q, c] : inc[static_cast<std::size_t>(v)]) {
+    const auto& a = n.quads[static_cast<std::size_t>(q)];
+    if (a[static_cast<std::size_t>((c + 1) % 4)] == w) return side_interval(n, q, c);
+    if (a[static_cast<std::size_t>((c + 3) % 4)] == w) return side_interval(n, q, (c + 3) % 4);
+  }
+  throw Error("crease net: no edge " + std::to_string(v) + "-" + std::to_string(w));
+}
+
+// The quads round vertex v counter-clockwise (quad, corner of v), each the next across the side arriving at v:
+// face k lies between spoke k (its side leaving v) and spoke k + 1. Empty when the ring is open in the net.
+std::vector<std::array<int, 2>> closed_fan(const CreaseNet& n, const NetIncidence& inc, int v) {
+  const auto& around = inc[static_cast<std::size_t>(v)];
+  std::vector<std::array<int, 2>> fan{around[0]};
+  for (;;) {
+    const auto [q, c] = fan.back();
+    const int r = net_across(n, inc, q, (c + 3) % 4);
+    if (r < 0 || fan.size() > around.size()) return {};
+    if (r == fan[0][0]) return fan;
+    int k = 0;
+    while (n.quads[static_cast<std::size_t>(r)][static_cast<std::size_t>(k)] != v) ++k;
+    fan.push_back({r, k});
+  }
+}
+
+// The knot intervals beyond each vertex v on the lines through it, per neighbour w: on the line from w through v,
+// the opposite edge of four faces, the other crease edge along a crease, at a star point NURCC's interval across
+// (nurcc_across of its spokes). None where the line ends (the natural end) or leaves the net (points the
+// evaluation never reads). Built once per net: the rules read them many times.
+using NetLines = std::vector<std::vector<std::pair<int, double>>>;
+
+NetLines net_lines(const CreaseNet& n, const NetIncidence& inc) {
+  NetLines lines(n.points.size());
+  for (int v = 0; v < static_cast<int>(n.points.size()); ++v) {
+    auto& at = lines[static_cast<std::size_t>(v)];
+    if (inc[static_cast<std::size_t>(v)].empty()) continue;
+    if (n.rules[static_cast<std::size_t>(v)] == VertexRule::crease) {
+      const std::vector<int> nb = crease_edges(n, inc, v);
+      if (nb.size() == 2) at = {{nb[0], edge_interval(n, inc, v, nb[1])}, {nb[1], edge_interval(n, inc, v, nb[0])}};
+    } else if (n.rules[static_cast<std::size_t>(v)] == VertexRule::smooth) {
+      const auto fan = closed_fan(n, inc, v);
+      std::vector<double> spokes;
+      for (const auto& [q, c] : fan) spokes.push_back(side_interval(n, q, c));
+      for (std::size_t k = 0; k < fan.size(); ++k)
+        at.emplace_back(n.quads[static_cast<std::size_t>(fan[k][0])][static_cast<std::size_t>((fan[k][1] + 1) % 4)], nurcc_across(spokes, static_cast<int>(k)));
     }
   }
+  return lines;
+}
+
+std::optional<double> line_beyond(const NetLines& lines, int from, int v) {
+  for (const auto& [w, d] : lines[static_cast<std::size_t>(v)])
+    if (w == from) return d;
+  return std::nullopt;
+}
+
+// The edge curve point of edge from-to of interval d.
+NetPoint curve_point(const CreaseNet& n, const NetLines& lines, int from, int to, double d) {
+  const auto w = nurcc_curve_weights(line_beyond(lines, to, from).value_or(d), d, line_beyond(lines, from, to).value_or(d));
+  NetPoint r{};
+  add_scaled(r, n.points[static_cast<std::size_t>(from)], w[0]);
+  add_scaled(r, n.points[static_cast<std::size_t>(to)], w[1]);
   return r;
 }
 
-// The 4 x 4 points of quads[0] when its corners are regular (eval_uniform_bicubic's layout), homogeneous: the
-// quads round it unfolded onto the grid from their shared sides, the points missing beyond a crease boundary the
-// natural ghosts 2 P0 - P1 (first across one direction, then the other: the tensor product at a corner).
-std::array<NetPoint, 16> net_grid(const CreaseNet& n, const NetIncidence& inc) {
+// The face point: the tensor product of the curve rules of its two directions, each with the means of its two
+// rows' intervals beyond (equal on a grid; they differ only next to a star point, as in NonUniformStar).
+NetPoint nurcc_face_point(const CreaseNet& n, const NetLines& lines, int q) {
+  const auto& a = n.quads[static_cast<std::size_t>(q)];
+  const auto P = [&](int k) { return a[static_cast<std::size_t>(k)]; };
+  // Rows s0 -> e0 and s1 -> e1 of intervals d0, d1.
+  const auto weights = [&](int s0, int e0, double d0, int s1, int e1, double d1) {
+    const double before = 0.5 * (line_beyond(lines, e0, s0).value_or(d0) + line_beyond(lines, e1, s1).value_or(d1));
+    const double after = 0.5 * (line_beyond(lines, s0, e0).value_or(d0) + line_beyond(lines, s1, e1).value_or(d1));
+    return nurcc_curve_weights(before, 0.5 * (d0 + d1), after);
+  };
+  const auto wu = weights(P(0), P(1), side_interval(n, q, 0), P(3), P(2), side_interval(n, q, 2));
+  const auto wv = weights(P(0), P(3), side_interval(n, q, 3), P(1), P(2), side_interval(n, q, 1));
+  NetPoint f{};
+  add_scaled(f, n.points[static_cast<std::size_t>(P(0))], wu[0] * wv[0]);
+  add_scaled(f, n.points[static_cast<std::size_t>(P(1))], wu[1] * wv[0]);
+  add_scaled(f, n.points[static_cast<std::size_t>(P(2))], wu[1] * wv[1]);
+  add_scaled(f, n.points[static_cast<std::size_t>(P(3))], wu[0] * wv[1]);
+  return f;
+}
+
+// The vertices of the 4 x 4 grid round quads[0] (eval_uniform_bicubic's layout, -1 where missing beyond a crease
+// boundary): the quads round it unfolded onto the grid from their shared sides.
+std::array<int, 16> net_slots(const CreaseNet& n, const NetIncidence& inc) {
   std::vector<std::array<int, 2>> at(n.points.size(), {INT_MIN, 0});
   std::vector<char> done(n.quads.size(), 0);
   static constexpr std::array<std::array<int, 2>, 4> unit{{{0, 0}, {1, 0}, {1, 1}, {0, 1}}};
@@ -159,6 +238,14 @@ std::array<NetPoint, 16> net_grid(const CreaseNet& n, const NetIncidence& inc) {
       todo.push_back(r);
     }
   }
+  return slot;
+}
+
+// The 4 x 4 points of quads[0] when its corners are regular and the intervals equal, homogeneous: the points
+// missing beyond a crease boundary the natural ghosts 2 P0 - P1 (first across one direction, then the other: the
+// tensor product at a corner).
+std::array<NetPoint, 16> net_grid(const CreaseNet& n, const NetIncidence& inc) {
+  const std::array<int, 16> slot = net_slots(n, inc);
   std::array<NetPoint, 16> g{};
   std::array<bool, 16> have{};
   for (std::size_t s = 0; s < 16; ++s)
@@ -198,16 +285,105 @@ void eval_net_bicubic(const std::array<NetPoint, 16>& g, double u, double v, dou
   }
 }
 
-// The limit tangent plane at vertex v from the eigenstructure of its one ring's subdivision matrix S (the ring
-// maps to itself: v, then round its faces in order each face's next vertex and diagonal vertex, and for a boundary
-// vertex the last face's previous vertex): the left eigenvectors of the two largest eigenvalues below 1 give
-// tangent vectors l . P (homogeneous). Empty when the plane is not so defined: complex eigenvalues, or the second
-// eigenvalue repeated apart from the first (a crease vertex of one face, whose cross direction shares its
-// eigenvalue 1/4 with the crease curve's curvature; of four faces, 0.61 then 1/2 twice), or a corner inside the
-// mesh (a cone point). A dart's ring closes over its slit (the slit's two sides one edge, whose edge point is the
-// midpoint); its limit position is l . P with l the left eigenvector of eigenvalue 1 (summing to 1): the
-// midpoint rule on the slit moves it off the smooth mask's.
-LimitFrame limit_frame(const CreaseNet& n, const NetIncidence& inc, int v) {
+// Unequal intervals: quads[0] as a B-spline cell when the 16 vertices of its grid are regular (then the rules
+// that make its sub-faces never reach an irregular vertex: they are knot insertion of this cell), else none. Its
+// knots are the intervals of the grid's lines and those beyond its ends; where a line ends at a crease boundary
+// (a grid point missing beyond it, or the line ending at its last point) the cell is the clamped natural end of
+// crease_ends: the end point P0, then Q1 = a P0 + b P1 (natural_end_weights), repeated knots at the boundary.
+std::optional<CreaseFace::Cell> net_cell(const CreaseNet& n, const NetIncidence& inc) {
+  const std::array<int, 16> slot = net_slots(n, inc);
+  for (int s : slot)
+    if (s >= 0 && !regular_vertex(n, inc, s)) return std::nullopt;
+  const NetLines lines = net_lines(n, inc);
+  CreaseFace::Cell cell{};
+  std::array<bool, 16> have{};
+  for (std::size_t s = 0; s < 16; ++s)
+    if (slot[s] >= 0) {
+      cell.points[s] = n.points[static_cast<std::size_t>(slot[s])];
+      have[s] = true;
+    }
+  // Direction d: i along it, j across (grid positions -1..2).
+  for (int d = 0; d < 2; ++d) {
+    const auto idx = [d](int i, int j) { return static_cast<std::size_t>(d == 0 ? (i + 1) + 4 * (j + 1) : (j + 1) + 4 * (i + 1)); };
+    const auto at = [&](int i) { return slot[idx(i, 0)]; };
+    const bool low_missing = at(-1) < 0, high_missing = at(2) < 0;
+    std::array<double, 5> h{};  // intervals -2..2 round the cell [0, 1]
+    h[2] = edge_interval(n, inc, at(0), at(1));
+    bool low_ends = false, high_ends = false;
+    if (!low_missing) {
+      h[1] = edge_interval(n, inc, at(-1), at(0));
+      const auto b = line_beyond(lines, at(0), at(-1));
+      low_ends = !b;
+      h[0] = b.value_or(0);
+    }
+    if (!high_missing) {
+      h[3] = edge_interval(n, inc, at(1), at(2));
+      const auto b = line_beyond(lines, at(1), at(2));
+      high_ends = !b;
+      h[4] = b.value_or(0);
+    }
+    const auto mix = [](const NetPoint& a, const NetPoint& b, std::array<double, 2> w) {
+      NetPoint r{};
+      add_scaled(r, a, w[0]);
+      add_scaled(r, b, w[1]);
+      return r;
+    };
+    for (int j = -1; j <= 2; ++j) {
+      if (!have[idx(0, j)]) continue;  // a row beyond a boundary across: made by the other direction
+      std::array<NetPoint, 4> p{}, q{};
+      for (int i = 0; i < 4; ++i) p[static_cast<std::size_t>(i)] = q[static_cast<std::size_t>(i)] = cell.points[idx(i - 1, j)];
+      if (low_missing) {
+        q[0] = p[1];
+        q[1] = mix(p[1], p[2], natural_end_weights(h[2], high_missing ? h[2] : h[3]));
+      } else if (low_ends) {
+        q[0] = mix(p[0], p[1], natural_end_weights(h[1], h[2]));
+      }
+      if (high_missing) {
+        q[3] = p[2];
+        q[2] = mix(p[2], p[1], natural_end_weights(h[2], low_missing ? h[2] : h[1]));
+      } else if (high_ends) {
+        q[3] = mix(p[3], p[2], natural_end_weights(h[3], h[2]));
+      }
+      for (int i = 0; i < 4; ++i) {
+        cell.points[idx(i - 1, j)] = q[static_cast<std::size_t>(i)];
+        have[idx(i - 1, j)] = true;
+      }
+    }
+    if (low_missing) h[0] = h[1] = 0;
+    if (high_missing) h[3] = h[4] = 0;
+    auto& t = cell.knots[static_cast<std::size_t>(d)];
+    t[2] = 0;
+    t[3] = 1;
+    t[4] = 1 + h[3] / h[2];
+    t[5] = t[4] + h[4] / h[2];
+    t[1] = -h[1] / h[2];
+    t[0] = t[1] - h[0] / h[2];
+  }
+  require(std::all_of(have.begin(), have.end(), [](bool h) { return h; }), [] { return std::string("crease net: the points round a regular sub-face are not a 4 x 4 grid"); });
+  return cell;
+}
+
+void eval_cell(const CreaseFace::Cell& c, double u, double v, double scale, double* out) {
+  double bu[8], bv[8];
+  basis_derivatives(c.knots[0].data(), 3, 2, u, 1, bu);
+  basis_derivatives(c.knots[1].data(), 3, 2, v, 1, bv);
+  std::fill(out, out + 12, 0.0);
+  for (std::size_t t = 0; t < 4; ++t)
+    for (std::size_t s = 0; s < 4; ++s) {
+      const NetPoint& p = c.points[s + 4 * t];
+      const double w0 = bu[s] * bv[t], w1 = bu[4 + s] * bv[t] * scale, w2 = bu[s] * bv[4 + t] * scale;
+      for (std::size_t i = 0; i < 4; ++i) {
+        out[i] += w0 * p[i];
+        out[4 + i] += w1 * p[i];
+        out[8 + i] += w2 * p[i];
+      }
+    }
+}
+
+// The one ring of vertex v, which its subdivision maps to itself: v, then round its faces in order each face's
+// next vertex and diagonal vertex, and for a boundary vertex the last face's previous vertex (empty when open in
+// the net).
+std::vector<int> one_ring(const CreaseNet& n, const NetIncidence& inc, int v) {
   const auto& around = inc[static_cast<std::size_t>(v)];
   const VertexRule rule = n.rules[static_cast<std::size_t>(v)];
   // The faces in order (each next across the side arriving at v), from the one after a crease side if any.
@@ -233,6 +409,54 @@ LimitFrame limit_frame(const CreaseNet& n, const NetIncidence& inc, int v) {
     while (n.quads[static_cast<std::size_t>(r)][static_cast<std::size_t>(c)] != v) ++c;
     q = r;
   }
+  return ring;
+}
+
+// The limit tangent plane at a vertex from the eigenstructure of its one ring's subdivision matrix S: the left
+// eigenvectors of the two largest eigenvalues below 1 give tangent vectors l . P (homogeneous). Empty when the
+// plane is not so defined: complex eigenvalues, or the second eigenvalue repeated apart from the first (a crease
+// vertex of one face, whose cross direction shares its eigenvalue 1/4 with the crease curve's curvature; of four
+// faces, 0.61 then 1/2 twice).
+std::optional<std::array<NetPoint, 2>> ring_tangents(const Eigen::MatrixXd& S, const CreaseNet& n, const std::vector<int>& ring) {
+  const auto sz = S.rows();
+  const Eigen::EigenSolver<Eigen::MatrixXd> es(S.transpose());
+  std::vector<Eigen::Index> order(static_cast<std::size_t>(sz));
+  for (Eigen::Index i = 0; i < sz; ++i) order[static_cast<std::size_t>(i)] = i;
+  const auto lambda = [&](Eigen::Index i) { return es.eigenvalues()(i); };
+  for (Eigen::Index i = 0; i < sz; ++i)
+    if (std::abs(lambda(i).imag()) > 1e-12) return std::nullopt;
+  std::sort(order.begin(), order.end(), [&](Eigen::Index a, Eigen::Index b) { return lambda(a).real() > lambda(b).real(); });
+  const double l1 = lambda(order[1]).real(), l2 = lambda(order[2]).real(), l3 = sz > 3 ? lambda(order[3]).real() : 0;
+  if (std::abs(lambda(order[0]).real() - 1) > 1e-12 || l1 >= 1 - 1e-12 || (std::abs(l2 - l3) < 1e-9 && std::abs(l1 - l2) > 1e-9))
+    return std::nullopt;
+  const Eigen::MatrixXcd vectors = es.eigenvectors();  // computed on the call: kept for the columns below
+  std::array<NetPoint, 2> t{};
+  for (std::size_t m = 0; m < 2; ++m) {
+    const auto vec = vectors.col(order[m + 1]);
+    for (Eigen::Index i = 0; i < sz; ++i) add_scaled(t[m], n.points[static_cast<std::size_t>(ring[static_cast<std::size_t>(i)])], vec(i).real());
+  }
+  return t;
+}
+
+// The limit position at a vertex: l . P with l the left eigenvector of its one ring's subdivision matrix S of
+// eigenvalue 1 (the rows of S sum to 1), scaled to sum 1.
+NetPoint ring_point(const Eigen::MatrixXd& S, const CreaseNet& n, const std::vector<int>& ring) {
+  const Eigen::EigenSolver<Eigen::MatrixXd> es(S.transpose());
+  Eigen::Index one = 0;
+  for (Eigen::Index i = 1; i < S.rows(); ++i)
+    if (std::abs(es.eigenvalues()(i) - 1.0) < std::abs(es.eigenvalues()(one) - 1.0)) one = i;
+  const Eigen::VectorXd l = es.eigenvectors().col(one).real();
+  NetPoint r{};
+  for (Eigen::Index i = 0; i < S.rows(); ++i) add_scaled(r, n.points[static_cast<std::size_t>(ring[static_cast<std::size_t>(i)])], l(i) / l.sum());
+  return r;
+}
+
+// The subdivision matrix of vertex v's one ring (one_ring, not empty) under the rules with equal intervals. A
+// dart's ring closes over its slit: the slit's two sides are one edge, whose edge point is the midpoint.
+Eigen::MatrixXd uniform_ring_matrix(const CreaseNet& n, const NetIncidence& inc, int v, const std::vector<int>& ring) {
+  const VertexRule rule = n.rules[static_cast<std::size_t>(v)];
+  const bool closed = rule == VertexRule::smooth || rule == VertexRule::dart;  // a dart's ring closes over its slit
+  const std::size_t k = inc[static_cast<std::size_t>(v)].size();
   const auto sz = static_cast<Eigen::Index>(ring.size());
   const auto e = [&](std::size_t j) { return static_cast<Eigen::Index>(1 + 2 * (j % k)); };  // edge neighbour j
   const auto d = [&](std::size_t j) { return static_cast<Eigen::Index>(2 + 2 * j); };       // diagonal j
@@ -270,30 +494,46 @@ LimitFrame limit_frame(const CreaseNet& n, const NetIncidence& inc, int v) {
     face(row, j % k, 0.25);
   }
   for (std::size_t j = 0; j < k; ++j) face(d(j), j, 1);
-  const Eigen::EigenSolver<Eigen::MatrixXd> es(S.transpose());
-  std::vector<Eigen::Index> order(static_cast<std::size_t>(sz));
-  for (Eigen::Index i = 0; i < sz; ++i) order[static_cast<std::size_t>(i)] = i;
-  const auto lambda = [&](Eigen::Index i) { return es.eigenvalues()(i); };
-  const Eigen::MatrixXcd vectors = es.eigenvectors();  // computed on the call: kept for the columns below
-  const auto apply = [&](Eigen::Index col, double scale) {
-    NetPoint x{};
-    for (Eigen::Index i = 0; i < sz; ++i)
-      add_scaled(x, n.points[static_cast<std::size_t>(ring[static_cast<std::size_t>(i)])], scale * vectors(i, col).real());
-    return x;
-  };
-  LimitFrame out;
-  std::sort(order.begin(), order.end(), [&](Eigen::Index a, Eigen::Index b) {
-    return std::abs(lambda(a) - 1.0) < std::abs(lambda(b) - 1.0) || (std::abs(lambda(a) - 1.0) == std::abs(lambda(b) - 1.0) && a < b);
-  });
-  if (rule == VertexRule::dart) out.point = apply(order[0], 1 / vectors.col(order[0]).real().sum());
-  for (Eigen::Index i = 0; i < sz; ++i)
-    if (std::abs(lambda(i).imag()) > 1e-12) return out;
-  std::sort(order.begin(), order.end(), [&](Eigen::Index a, Eigen::Index b) { return lambda(a).real() > lambda(b).real(); });
-  const double l1 = lambda(order[1]).real(), l2 = lambda(order[2]).real(), l3 = sz > 3 ? lambda(order[3]).real() : 0;
-  if (std::abs(lambda(order[0]).real() - 1) > 1e-12 || l1 >= 1 - 1e-12 || (std::abs(l2 - l3) < 1e-9 && std::abs(l1 - l2) > 1e-9))
-    return out;
-  out.plane = {apply(order[1], 1), apply(order[2], 1)};
-  return out;
+  return S;
+}
+
+// The limit position of vertex v: its limit mask, a dart's from its one ring's eigenvector (the slit's midpoint
+// rule moves it off the smooth mask).
+NetPoint net_limit_point(const CreaseNet& n, const NetIncidence& inc, int v) {
+  const NetPoint& p = n.points[static_cast<std::size_t>(v)];
+  NetPoint r{};
+  switch (n.rules[static_cast<std::size_t>(v)]) {
+    case VertexRule::corner: return p;
+    case VertexRule::crease: {
+      const auto nb = crease_neighbours(n, inc, v);
+      add_scaled(r, p, 4.0 / 6);
+      for (int w : nb) add_scaled(r, n.points[static_cast<std::size_t>(w)], 1.0 / 6);
+      return r;
+    }
+    case VertexRule::dart: {
+      const std::vector<int> ring = one_ring(n, inc, v);
+      return ring_point(uniform_ring_matrix(n, inc, v, ring), n, ring);
+    }
+    case VertexRule::smooth: {
+      const double k = static_cast<double>(inc[static_cast<std::size_t>(v)].size());
+      add_scaled(r, p, k / (k + 5));
+      for (const auto& [q, c] : inc[static_cast<std::size_t>(v)]) {
+        const auto& a = n.quads[static_cast<std::size_t>(q)];
+        add_scaled(r, n.points[static_cast<std::size_t>(a[static_cast<std::size_t>((c + 1) % 4)])], 4 / (k * (k + 5)));
+        add_scaled(r, n.points[static_cast<std::size_t>(a[static_cast<std::size_t>((c + 2) % 4)])], 1 / (k * (k + 5)));
+      }
+      return r;
+    }
+  }
+  return r;
+}
+
+
+// The limit tangent plane at vertex v with equal intervals (none at a cone point: a corner inside the mesh).
+std::optional<std::array<NetPoint, 2>> tangent_plane(const CreaseNet& n, const NetIncidence& inc, int v) {
+  const std::vector<int> ring = one_ring(n, inc, v);
+  if (ring.empty()) return std::nullopt;
+  return ring_tangents(uniform_ring_matrix(n, inc, v, ring), n, ring);
 }
 
 constexpr int crease_cached_levels = 12;
@@ -307,6 +547,8 @@ CreaseNet refine(const CreaseNet& n, int child) {
   std::vector<char> first(nq, 0);
   first[0] = 1;
   first = net_ring(n, inc, first);
+  const bool uniform = equal_intervals(n);
+  const NetLines lines = uniform ? NetLines{} : net_lines(n, inc);
   CreaseNet x;
   std::vector<int> vertex_point(n.points.size(), -1), face_pt(nq, -1);
   // At the smaller end: (other end, point); a crease side's other end as -1 - end when it runs from the larger end
@@ -325,9 +567,17 @@ CreaseNet refine(const CreaseNet& n, int child) {
     NetPoint r{};
     if (rule == VertexRule::corner) {
       r = p;
-    } else if (rule == VertexRule::crease) {
+    } else if (rule == VertexRule::crease && uniform) {
       add_scaled(r, p, 0.75);
       for (int w : crease_neighbours(n, inc, v)) add_scaled(r, n.points[static_cast<std::size_t>(w)], 0.125);
+    } else if (rule == VertexRule::crease) {
+      // The crease curve's vertex rule with its edge curve points.
+      const auto nb = crease_neighbours(n, inc, v);
+      const double a = edge_interval(n, inc, v, nb[0]), b = edge_interval(n, inc, v, nb[1]);
+      const auto w = nurcc_curve_vertex_weights(a, b);
+      add_scaled(r, curve_point(n, lines, v, nb[0], a), w[0]);
+      add_scaled(r, curve_point(n, lines, v, nb[1], b), w[1]);
+      add_scaled(r, p, w[2]);
     } else {
       // Smooth, or a dart: the smooth rule over its fan from one side of the slit to the other, each quad's side
       // leaving v counting its edge once (the slit's two sides, one edge, carry equal points at every level).
@@ -339,17 +589,34 @@ CreaseNet refine(const CreaseNet& n, int child) {
         return "crease net: " + std::string(rule == VertexRule::dart ? "dart " : "smooth vertex ") + std::to_string(v) + " has " +
                std::to_string(open) + " open sides in its ring of faces, not " + (rule == VertexRule::dart ? "1" : "0");
       });
-      add_scaled(r, p, (k - 2) / k);
-      for (const auto& [q, c] : around) {
-        add_scaled(r, n.points[static_cast<std::size_t>(n.quads[static_cast<std::size_t>(q)][static_cast<std::size_t>((c + 1) % 4)])], 1 / (k * k));
-        add_scaled(r, net_face_point(n, q), 1 / (k * k));
+      if (uniform) {
+        add_scaled(r, p, (k - 2) / k);
+        for (const auto& [q, c] : around) {
+          add_scaled(r, n.points[static_cast<std::size_t>(n.quads[static_cast<std::size_t>(q)][static_cast<std::size_t>((c + 1) % 4)])], 1 / (k * k));
+          add_scaled(r, net_face_point(n, q), 1 / (k * k));
+        }
+      } else {
+        // NURCC's vertex rule over its spokes in order (the tensor product rule at a vertex of four faces).
+        const auto fan = closed_fan(n, inc, v);
+        require(fan.size() == around.size(), [&] {
+          return "crease net: vertex " + std::to_string(v) + " has no closed fan of faces; the rules for unequal knot intervals take smooth, crease and corner vertices";
+        });
+        std::vector<double> spokes;
+        for (const auto& [q, c] : fan) spokes.push_back(side_interval(n, q, c));
+        const VertexWeights vw = nurcc_vertex_weights(spokes);
+        for (std::size_t j = 0; j < fan.size(); ++j) {
+          const auto [q, c] = fan[j];
+          add_scaled(r, nurcc_face_point(n, lines, q), vw.faces[j]);
+          add_scaled(r, curve_point(n, lines, v, n.quads[static_cast<std::size_t>(q)][static_cast<std::size_t>((c + 1) % 4)], spokes[j]), vw.curves[j]);
+        }
+        add_scaled(r, p, vw.self);
       }
     }
     return id = new_point(r, rule);
   };
   const auto face = [&](int q) {
     int& id = face_pt[static_cast<std::size_t>(q)];
-    return id >= 0 ? id : id = new_point(net_face_point(n, q), VertexRule::smooth);
+    return id >= 0 ? id : id = new_point(uniform ? net_face_point(n, q) : nurcc_face_point(n, lines, q), VertexRule::smooth);
   };
   const auto edge = [&](int q, int k) {
     const auto& a = n.quads[static_cast<std::size_t>(q)];
@@ -359,13 +626,27 @@ CreaseNet refine(const CreaseNet& n, int child) {
     for (const auto& [o, id] : list)
       if (o == key) return id;
     NetPoint r{};
-    add_scaled(r, n.points[static_cast<std::size_t>(from)], 0.5);
-    add_scaled(r, n.points[static_cast<std::size_t>(to)], 0.5);
+    const double d = side_interval(n, q, k);
+    if (uniform) {
+      add_scaled(r, n.points[static_cast<std::size_t>(from)], 0.5);
+      add_scaled(r, n.points[static_cast<std::size_t>(to)], 0.5);
+    } else {
+      r = curve_point(n, lines, from, to, d);
+    }
     VertexRule rule = VertexRule::crease;
     if (!n.sharp[static_cast<std::size_t>(q)][static_cast<std::size_t>(k)]) {
       const int o = net_across(n, inc, q, k);
       require(o >= 0, [&] { return "crease net: edge " + std::to_string(from) + "-" + std::to_string(to) + " has one face and is no crease"; });
-      for (std::size_t c = 0; c < 4; ++c) r[c] = 0.5 * r[c] + 0.25 * (net_face_point(n, q)[c] + net_face_point(n, o)[c]);
+      if (uniform) {
+        for (std::size_t c = 0; c < 4; ++c) r[c] = 0.5 * r[c] + 0.25 * (net_face_point(n, q)[c] + net_face_point(n, o)[c]);
+      } else {
+        // (e_o F_q + e_q F_o) / (2 (e_q + e_o)) + M / 2, e the faces' intervals across the edge.
+        int j = 0;
+        while (n.quads[static_cast<std::size_t>(o)][static_cast<std::size_t>(j)] != to) ++j;
+        const double eq = side_interval(n, q, (k + 1) % 4), eo = side_interval(n, o, (j + 1) % 4);
+        const NetPoint fq = x.points[static_cast<std::size_t>(face(q))], fo = x.points[static_cast<std::size_t>(face(o))];
+        for (std::size_t c = 0; c < 4; ++c) r[c] = 0.5 * r[c] + (eo * fq[c] + eq * fo[c]) / (2 * (eq + eo));
+      }
       rule = VertexRule::smooth;
     }
     const int id = new_point(r, rule);
@@ -396,6 +677,12 @@ CreaseNet refine(const CreaseNet& n, int child) {
       }
       x.quads.push_back(quad);
       x.sharp.push_back(sh);
+      if (!n.intervals.empty()) {
+        // The child's sides lie along the parent's sides at its corner c (halved: only ratios enter).
+        const auto& d = n.intervals[static_cast<std::size_t>(q)];
+        const double du = d[c < 2 ? 0 : 2], dv = d[c == 1 || c == 2 ? 1 : 3];
+        x.intervals.push_back({du, dv, du, dv});
+      }
     }
   }
   // Keep the new quads[0]'s two rings.
@@ -419,6 +706,7 @@ CreaseNet refine(const CreaseNet& n, int child) {
     }
     y.quads.push_back(quad);
     y.sharp.push_back(x.sharp[q]);
+    if (!x.intervals.empty()) y.intervals.push_back(x.intervals[q]);
   }
   return y;
 }
@@ -433,21 +721,77 @@ int quarter_of(double& u, double& v) {
   return q;
 }
 
+struct CornerLimit {
+  NetPoint point;
+  std::optional<std::array<NetPoint, 2>> plane;
+};
+
+// Unequal intervals: the limit point and tangent plane at the irregular corner c of quads[0] from the eigenvectors
+// of its one ring's subdivision matrix, read off refine itself (the rules are linear in the points: S's column j
+// is the refined ring of the ring's point j alone). From level 3 on the intervals the rules read round the vertex
+// are its spokes' first intervals (halved alike), so the map is the same at every level (stationary).
+CornerLimit ring_limit(const CreaseNet& net, int c) {
+  CreaseNet a = net;
+  for (int l = 0; l < 3; ++l) a = refine(a, c);
+  const int v = a.quads[0][static_cast<std::size_t>(c)];
+  const std::vector<int> ring = one_ring(a, net_incidence(a), v);
+  // A cone point (a corner inside the mesh): interpolated, no tangent plane.
+  if (ring.empty() && a.rules[static_cast<std::size_t>(v)] == VertexRule::corner) return {a.points[static_cast<std::size_t>(v)], std::nullopt};
+  require(!ring.empty(), "crease net: the one ring of an irregular vertex is open");
+  const auto m = static_cast<Eigen::Index>(ring.size());
+  Eigen::MatrixXd S(m, m);
+  std::vector<int> next;
+  for (Eigen::Index j0 = 0; j0 < m; j0 += 4) {
+    CreaseNet unit = a;
+    for (NetPoint& p : unit.points) p = {};
+    for (Eigen::Index t = 0; t < 4 && j0 + t < m; ++t) unit.points[static_cast<std::size_t>(ring[static_cast<std::size_t>(j0 + t)])][static_cast<std::size_t>(t)] = 1;
+    const CreaseNet b = refine(unit, c);
+    if (next.empty()) next = one_ring(b, net_incidence(b), b.quads[0][static_cast<std::size_t>(c)]);
+    require(static_cast<Eigen::Index>(next.size()) == m, "crease net: the one ring of an irregular vertex changes under subdivision");
+    for (Eigen::Index i = 0; i < m; ++i)
+      for (Eigen::Index t = 0; t < 4 && j0 + t < m; ++t) S(i, j0 + t) = b.points[static_cast<std::size_t>(next[static_cast<std::size_t>(i)])][static_cast<std::size_t>(t)];
+  }
+  return {ring_point(S, a, ring), ring_tangents(S, a, ring)};
+}
+
 }  // namespace
+
+int CreaseFace::build_node(const CreaseNet& net, int level) {
+  const int id = static_cast<int>(tree_.size());
+  tree_.emplace_back();
+  if (auto cell = net_cell(net, net_incidence(net))) {
+    tree_[static_cast<std::size_t>(id)].cell = std::move(cell);
+  } else if (level == crease_cached_levels) {
+    tree_[static_cast<std::size_t>(id)].net = net;
+  } else {
+    for (int k = 0; k < 4; ++k) {
+      const int child = build_node(refine(net, k), level + 1);
+      tree_[static_cast<std::size_t>(id)].children[static_cast<std::size_t>(k)] = child;
+    }
+  }
+  return id;
+}
 
 CreaseFace::CreaseFace(CreaseNet net) : net_(std::move(net)) {
   for (const NetPoint& p : net_.points) rational_ = rational_ || p[3] != 1.0;
   const NetIncidence inc = net_incidence(net_);
+  const bool uniform = equal_intervals(net_);
   bool all_regular = true;
-  for (int c = 0; c < 4; ++c) all_regular = all_regular && regular_vertex(net_, inc, net_.quads[0][static_cast<std::size_t>(c)]);
-  if (all_regular) {
+  for (int c = 0; c < 4; ++c) {
+    irregular_[static_cast<std::size_t>(c)] = !regular_vertex(net_, inc, net_.quads[0][static_cast<std::size_t>(c)]);
+    all_regular = all_regular && !irregular_[static_cast<std::size_t>(c)];
+  }
+  if (uniform && all_regular) {
     grid_ = net_grid(net_, inc);
     return;
   }
+  // Unequal intervals: sub-faces down to those whose 4 x 4 points are regular vertices (B-spline cells; the faces
+  // next to an irregular vertex are not, as next to NonUniformStar's star point), also away from the corners.
+  if (!uniform) build_node(net_, 0);
   // Sub-faces are regular but at the face's irregular corners (edge and face points are regular vertices): the
   // quarters at regular corners, and along the chain of sub-faces at each irregular corner the three others of
   // every level.
-  for (int c = 0; c < 4; ++c) {
+  for (int c = 0; c < 4 && uniform; ++c) {
     const auto sub = [](const CreaseNet& n, int k) {
       const CreaseNet r = refine(n, k);
       return net_grid(r, net_incidence(r));
@@ -475,10 +819,8 @@ CreaseFace::CreaseFace(CreaseNet net) : net_(std::move(net)) {
     auto& out = corner_values_[static_cast<std::size_t>(c)];
     eval_off_corners(cu[0] == 0 ? d : 1 - d, cu[1] == 0 ? d : 1 - d, out.data());
     const int vc = net_.quads[0][static_cast<std::size_t>(c)];
-    const NetPoint p = net_limit_point(net_, inc, vc);
-    const LimitFrame frame = limit_frame(net_, inc, vc);
+    const auto [p, plane] = uniform ? CornerLimit{net_limit_point(net_, inc, vc), tangent_plane(net_, inc, vc)} : ring_limit(net_, c);
     std::copy(p.begin(), p.end(), out.begin());
-    const auto& plane = frame.plane;
     if (!plane) continue;
     // Cartesian: the tangents (t - x t_w) / w and the face's derivatives (X' - x W') / W; each derivative loses
     // its component along the plane's normal (X' moves by W times the Cartesian change).
@@ -509,6 +851,31 @@ void CreaseFace::eval(double u, double v, double* out) const {
 }
 
 void CreaseFace::eval_off_corners(double u, double v, double* out) const {
+  if (!tree_.empty()) {
+    double scale = 1;
+    for (const Node* node = &tree_[0];;) {
+      if (node->cell) {
+        eval_cell(*node->cell, u, v, scale, out);
+        return;
+      }
+      if (node->net) {
+        // Beyond the cached levels (within 2^-crease_cached_levels of an irregular corner): refine on.
+        CreaseNet net = *node->net;
+        for (;;) {
+          const int k = quarter_of(u, v);
+          scale *= 2;
+          net = refine(net, k);
+          if (const auto cell = net_cell(net, net_incidence(net))) {
+            eval_cell(*cell, u, v, scale, out);
+            return;
+          }
+        }
+      }
+      const int k = quarter_of(u, v);
+      scale *= 2;
+      node = &tree_[static_cast<std::size_t>(node->children[static_cast<std::size_t>(k)])];
+    }
+  }
   if (grid_) {
     eval_net_bicubic(*grid_, u, v, 1, out);
     return;

@@ -169,6 +169,13 @@ VertexWeights nurcc_vertex_weights(std::span<const double> spokes) {
   return vw;
 }
 
+std::array<double, 3> nurcc_curve_vertex_weights(double before, double after) {
+  const double s = 2 * (before + after);
+  return {after / s, before / s, 0.5};
+}
+
+std::array<double, 2> natural_end_weights(double d1, double d2) { return {(d1 + d2) / (2 * d1 + d2), d1 / (2 * d1 + d2)}; }
+
 NonUniformStar::NonUniformStar(int valence, std::vector<std::array<double, 4>> intervals)
     : n_(valence), u_(std::move(intervals)) {
   require(valence >= 3 && valence <= 64, "non-uniform Catmull-Clark: valence " + std::to_string(valence) + " outside 3..64");

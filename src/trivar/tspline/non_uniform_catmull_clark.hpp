@@ -61,6 +61,15 @@ struct VertexWeights {
   double self = 1;
 };
 VertexWeights nurcc_vertex_weights(std::span<const double> spokes);
+// The vertex rule of a curve (a crease or the boundary, midpoint knot insertion of its cubic B-spline): the
+// weights of the edge curve points before and after the vertex (intervals before, after) and of the vertex,
+// V = (after M- + before M+) / (2 (before + after)) + P / 2.
+std::array<double, 3> nurcc_curve_vertex_weights(double before, double after);
+// The natural end of a cubic at a crease boundary (zero second derivative across it), clamped: the first inner
+// control point Q1 = a P0 + b P1 of the clamped cubic on 0, 0, 0, 0, d1, d1 + d2, ... whose end is P0 and whose
+// next unclamped point is P1 (crease_ends). Midpoint knot insertion of that curve is the curve rules above with
+// the interval beyond P0 taken as d1 (the edge curve point of the first edge is then the clamped curve's).
+std::array<double, 2> natural_end_weights(double d1, double d2);
 
 class NonUniformStar {
 public:

@@ -236,7 +236,7 @@ std::optional<std::array<std::array<double, 6>, 2>> cell_knots(const TMesh& m, i
 
 // The crease net of face f of the mesh cut open along its creases (`m`, with the points of `given`): its two face
 // rings `hood` (f first), `rules` its boundary_rules; `where` begins the errors. Refused in one line: T-junctions,
-// unequal knot intervals, vertices without one control point.
+// knot intervals that differ on opposite sides of a face, vertices without one control point.
 CreaseNet crease_net(const TMesh& m, const TMesh& given, const std::vector<CreaseRule>& rules, int f, const std::vector<int>& hood,
                      const std::string& where) {
   const auto L = [&](int l) -> const TMeshLink& { return m.links[static_cast<std::size_t>(l)]; };
@@ -246,7 +246,6 @@ CreaseNet crease_net(const TMesh& m, const TMesh& given, const std::vector<Creas
   };
   CreaseNet net;
   std::vector<int> id(m.vertices.size(), -1);
-  const double d0 = m.intervals[static_cast<std::size_t>(L(m.faces[static_cast<std::size_t>(f)].front()).edge)];
   for (int g : hood) {
     const auto& loop = m.faces[static_cast<std::size_t>(g)];
     require(loop.size() == 4, [&] { return where + "face " + std::to_string(g) + " nearby has a T-junction; local subdivision takes quadrilaterals"; });
@@ -255,12 +254,13 @@ CreaseNet crease_net(const TMesh& m, const TMesh& given, const std::vector<Creas
       while (loop[static_cast<std::size_t>(start)] != m.first_corner(f)) ++start;
     std::array<int, 4> quad{};
     std::array<bool, 4> sharp{};
+    std::array<double, 4> intervals{};
     for (std::size_t k = 0; k < 4; ++k) {
       const int l = loop[(static_cast<std::size_t>(start) + k) % 4], v = L(l).vertex;
-      const double d = m.intervals[static_cast<std::size_t>(L(l).edge)];
-      require(std::abs(d - d0) <= 1e-12 * d0, [&] {
-        return where + "edge " + std::to_string(L(l).edge) + " nearby has knot interval " + std::to_string(d) + ", not " + std::to_string(d0) +
-               "; local subdivision takes equal intervals";
+      intervals[k] = m.intervals[static_cast<std::size_t>(L(l).edge)];
+      require(intervals[k] > 0, [&] {
+        return where + "edge " + std::to_string(L(l).edge) + " nearby has knot interval " + std::to_string(intervals[k]) +
+               "; local subdivision takes positive intervals";
       });
       const int o = L(l).opp;
       sharp[k] = L(o).face < 0 || !m.live_face(L(o).face);
@@ -278,8 +278,14 @@ CreaseNet crease_net(const TMesh& m, const TMesh& given, const std::vector<Creas
       }
       quad[k] = id[static_cast<std::size_t>(v)];
     }
+    for (std::size_t k = 0; k < 2; ++k)
+      require(std::abs(intervals[k] - intervals[k + 2]) <= 1e-12 * intervals[k], [&] {
+        return where + "face " + std::to_string(g) + " nearby has knot intervals " + std::to_string(intervals[k]) + " and " +
+               std::to_string(intervals[k + 2]) + " on opposite sides; local subdivision takes one interval per strip";
+      });
     net.quads.push_back(quad);
     net.sharp.push_back(sharp);
+    net.intervals.push_back(intervals);
   }
   return net;
 }
@@ -586,6 +592,13 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads, int global_steps)
     if (!why.empty() && split && star_dist[static_cast<std::size_t>(f)] <= reach) {
       // A star point near a crease boundary: local subdivision handles both.
       local_subdivision(f, "near a star point and a crease boundary: " + why);
+      continue;
+    }
+    if (!unequal.empty() && split && star_dist[static_cast<std::size_t>(f)] <= 1) {
+      // Unequal intervals round a star point of a crease mesh whose three rings are no regular grid for
+      // NonUniformStar (its faces are taken above): the face's 4 x 4 points hold the star point, and local
+      // subdivision's rules there are NonUniformStar's on two face rings.
+      local_subdivision(f, "near a star point with unequal knot intervals: " + unequal);
       continue;
     }
     if (!why.empty()) {

@@ -30,8 +30,11 @@
 //                  cut open up to that vertex, smooth over its whole fan; cone points, creased vertices inside
 //                  the mesh on no crease, interior corners), and faces near star points too close to a crease
 //                  boundary for the patches above: repeated local Catmull-Clark subdivision with the crease rules
-//                  of the mesh cut open along its creases (crease_face), exactly the limit surface. Equal knot
-//                  intervals and quadrilaterals in their two face rings.
+//                  of the mesh cut open along its creases (crease_face), exactly the limit surface. Quadrilaterals
+//                  without T-junctions in their two face rings; unequal knot intervals take the non-uniform rules
+//                  (NURCC with crease_ends' natural end at the crease: knot insertion of the exact surface where
+//                  the neighbourhood is regular), as do, in such a mesh, the faces whose 4 x 4 points hold a star
+//                  point with unequal intervals nearby but without NonUniformStar's three regular rings.
 // The faces within p + 2 rings of a star point (bicubic and star) need, and are checked to have, degree 3,
 // no T-junction and no boundary within (p + 1) / 2 rings of them, control points
 // without repeated-knot nodes, and at most one star corner per face or else equal intervals (subdivided).
