@@ -25,6 +25,7 @@
 #include "star_mesh_tsm.hpp"
 #include "support/temp_dir.hpp"
 #include "triangulation_loops.hpp"
+#include "trivar/core/error.hpp"
 #include "trivar/io/tsm_format.hpp"
 #include "trivar/tspline/sharp_creases.hpp"
 #include "trivar/tspline/t_mesh_surface.hpp"
@@ -383,6 +384,59 @@ TEST(Cone, CreasedEndOfACreaseIsACorner) {
   EXPECT_LT(to_point, 1e-15);
   std::printf("grid 6 x 6, a sharp edge from a creased vertex to a dart: against OpenSubdiv %.2e, limit points %.2e; the "
               "corner to its control point %.2e\n", d.off_vertices, d.at_vertices, to_point);
+}
+
+// The knot intervals of the strip of faces between grid columns 2 and 3 of grid_cage(n, n) set to `d` (the
+// edges along x there; both sides of every face of the strip, so opposite sides agree).
+void widen_column(TMesh& m, const test::QuadMesh& cage, double d) {
+  for (const TMeshLink& k : m.links) {
+    if (k.vertex < 0 || k.face < 0) continue;
+    const auto& a = cage.points[static_cast<std::size_t>(k.vertex)];
+    const auto& b = cage.points[static_cast<std::size_t>(m.links[static_cast<std::size_t>(k.next)].vertex)];
+    if (std::abs(a[1] - b[1]) < 1e-9 && std::min(a[0], b[0]) == 2 && std::max(a[0], b[0]) == 3) m.intervals[static_cast<std::size_t>(k.edge)] = d;
+  }
+}
+
+// A cone point with unequal knot intervals in its rings (the strip of faces beside it at 1.5): the interval-weighted
+// rules of crease_face, the point interpolated (theory), the surface continuous and tangent-plane continuous across
+// every edge but at the cone itself. A dart there is refused in one line (those rules need closed fans).
+TEST(Cone, ConePointWithUnequalIntervalsNearby) {
+  const int n = 6;
+  const test::QuadMesh cage = test::grid_cage(n, n);
+  const int cone = grid_vertex(n, 3, 3);
+  const Sharp none = [](int, int) { return false; };
+  TMesh m = io::parse_tsm(test::fusion_creased_text(cage, none, {cone}), "cone.tsm").mesh;
+  widen_column(m, cage, 1.5);
+  const TMeshSurface s(m, 1);
+  EXPECT_GT(s.count(FaceMethod::crease), 0);
+  double to_point = 0;
+  for (const auto& [f, c] : faces_at(s, cone)) {
+    const auto& uv = kCornerUv[static_cast<std::size_t>(c)];
+    double o[9];
+    s.eval(f, uv[0], uv[1], o);
+    for (std::size_t k = 0; k < 3; ++k) to_point = std::max(to_point, std::abs(o[k] - cage.points[static_cast<std::size_t>(cone)][k]));
+  }
+  EXPECT_LT(to_point, 1e-15);
+  const test::Continuity c =
+      test::continuity(s.source_mesh(), [&](int f, double u, double v, double* o) { s.eval(f, u, v, o); }, {0.1, 0.25, 0.5, 0.75, 0.9});
+  EXPECT_LT(c.gap, 1e-12);
+  EXPECT_LT(c.normal_angle, 1e-10);
+  EXPECT_LT(edge_gap(s), 1e-12);  // the vertices too
+  const int a = grid_vertex(n, 3, 2), b = grid_vertex(n, 3, 3);
+  const Sharp edge = [&](int x, int y) { return std::min(x, y) == a && std::max(x, y) == b; };
+  TMesh darts = io::parse_tsm(test::fusion_creased_text(cage, edge), "darts.tsm").mesh;
+  widen_column(darts, cage, 1.5);
+  try {
+    const TMeshSurface refused(darts, 1);
+    ADD_FAILURE() << "a dart with unequal intervals nearby loads";
+  } catch (const Error& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("no closed fan of faces"), std::string::npos) << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+  }
+  std::printf("cone point with the strip beside it at 1.5: %d faces by local subdivision; limit point to the control point "
+              "%.2e; across edges (off the vertices) gap %.2e, normals %.2e\n", s.count(FaceMethod::crease), to_point, c.gap,
+              c.normal_angle);
 }
 
 // The command line on a TSM with darts and a cone point: info counts them (text and JSON), eval evaluates a face at
