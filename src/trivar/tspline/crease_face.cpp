@@ -819,7 +819,10 @@ CreaseFace::CreaseFace(CreaseNet net) : net_(std::move(net)) {
     auto& out = corner_values_[static_cast<std::size_t>(c)];
     eval_off_corners(cu[0] == 0 ? d : 1 - d, cu[1] == 0 ? d : 1 - d, out.data());
     const int vc = net_.quads[0][static_cast<std::size_t>(c)];
-    const auto [p, plane] = uniform ? CornerLimit{net_limit_point(net_, inc, vc), tangent_plane(net_, inc, vc)} : ring_limit(net_, c);
+    // Named members, not a structured binding: clang 14 does not capture bindings in the lambda below.
+    const CornerLimit limit = uniform ? CornerLimit{net_limit_point(net_, inc, vc), tangent_plane(net_, inc, vc)} : ring_limit(net_, c);
+    const NetPoint& p = limit.point;
+    const auto& plane = limit.plane;
     std::copy(p.begin(), p.end(), out.begin());
     if (!plane) continue;
     // Cartesian: the tangents (t - x t_w) / w and the face's derivatives (X' - x W') / W; each derivative loses
