@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "trivar/core/clamped_count.hpp"
 #include "trivar/core/error.hpp"
 
 namespace trivar {
@@ -91,7 +92,7 @@ TSplineTriangulation tessellate(const TMeshSurface& s, double tolerance, int max
           d = std::max(d, std::abs(at(j, i - 1)[c] - 2 * at(j, i)[c] + at(j, i + 1)[c]));
         }
     d *= g * g;  // per unit face size
-    const int n = std::clamp(static_cast<int>(std::ceil(std::sqrt(d / (8 * tolerance)))), 1, max_per_face);
+    const int n = clamped_count(std::sqrt(d / (8 * tolerance)), 1, max_per_face);
     for (const auto& side : sides[static_cast<std::size_t>(f)])
       for (const SideLink& x1 : side) {
         const int k = std::max(1, static_cast<int>(std::ceil(n * (x1.hi - x1.lo) - 1e-9)));

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "trivar/core/clamped_count.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/core/memory_budget.hpp"
 #include "trivar/core/parallel.hpp"
@@ -51,7 +52,7 @@ TSplineTriangulation tessellate(const TSplineSurface& surface, double tolerance,
       }
     // A third of the budget per term: D / (8 n^2) <= tol / 3, and the mixed term with n_u = n_v = max.
     const auto need = [&](double D) {
-      return std::clamp(static_cast<int>(std::ceil(std::sqrt(3.0 * D / (8.0 * tolerance)))), 1, max_per_element);
+      return clamped_count(std::sqrt(3.0 * D / (8.0 * tolerance)), 1, max_per_element);
     };
     int nu = need(duu), nv = need(dvv);
     const int nm = need(2.0 * duv);
