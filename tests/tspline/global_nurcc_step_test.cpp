@@ -10,13 +10,16 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <string>
 #include <tuple>
 #include <vector>
 
 #include "crease_nets.hpp"
 #include "face_continuity.hpp"
+#include "fusion_cages.hpp"
 #include "osd_reference.hpp"
+#include "support/temp_dir.hpp"
 #include "star_mesh_tsm.hpp"
 #include "triangulation_loops.hpp"
 #include "trivar/core/error.hpp"
@@ -30,7 +33,7 @@ namespace {
 
 // A box cage (box_mesh) with its points moved off the box (no symmetry hides a wrong frame) and knot interval
 // `wide` on the strip of faces round it between x grid lines `strip` and strip + 1.
-TMesh stepped_box(const std::array<int, 3>& n, bool open_bottom, int strip, double wide) {
+std::string stepped_box_text(const std::array<int, 3>& n, bool open_bottom, int strip, double wide) {
   test::QuadMesh q = test::box_mesh(n, open_bottom);
   const test::QuadMesh grid = q;  // the grid positions, before the points move
   for (auto& p : q.points) {
@@ -44,7 +47,10 @@ TMesh stepped_box(const std::array<int, 3>& n, bool open_bottom, int strip, doub
       const int a = f[static_cast<std::size_t>(k)], b = f[static_cast<std::size_t>((k + 1) % 4)];
       if (std::min(gx(a), gx(b)) == strip && std::max(gx(a), gx(b)) == strip + 1) q.intervals[{a, b}] = wide;
     }
-  return io::parse_tsm(test::tsm_text(q), "stepped_box.tsm").mesh;
+  return test::tsm_text(q);
+}
+TMesh stepped_box(const std::array<int, 3>& n, bool open_bottom, int strip, double wide) {
+  return io::parse_tsm(stepped_box_text(n, open_bottom, strip, wide), "stepped_box.tsm").mesh;
 }
 
 // The cube cage of n x n faces per side.
@@ -258,6 +264,13 @@ TEST(GlobalNurccStep, OpenBoxesWithCloseStarPointsAndUnequalIntervals) {
                 s.count(FaceMethod::crease), s.count(FaceMethod::exact), s.count(FaceMethod::star), s.count(FaceMethod::bicubic),
                 c.edges, c.gap, c.normal_angle, c.c1, st.position, st.normal);
   }
+  // The command line counts them as local subdivision near star points.
+  const test::TempDir dir;
+  const std::string path = dir.file("open_box.tsm");
+  std::ofstream(path) << stepped_box_text({3, 3, 7}, true, 2, 1.5);
+  const TMeshSurface s(io::read_tsm(path).mesh, 1);
+  const std::string info = test::run_cli(dir, "info " + path);
+  EXPECT_NE(info.find(std::to_string(s.count(FaceMethod::crease)) + " faces near star points with unequal knot intervals"), std::string::npos) << info;
 }
 
 // Equal intervals: the open box of a 5 x 1 top is evaluated through one uniform step next to its star points

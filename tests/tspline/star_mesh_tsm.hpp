@@ -1,9 +1,9 @@
 #pragma once
 // Quad control meshes written as Rhino TSM text (#TS0200 records: f, e, v, l with the corner flags, ec, the
 // grip map and the control points), for the star-point tests: a closed cube of n x n faces per side (eight
-// valence-3 star points) or a box, open at the bottom, a planar fan of N sectors of m x m faces around one star point of valence N, a
-// half fan of K sectors around a star point on a straight boundary, a grid with a slit (two star points on the
-// boundary), and a cube with an edge turned (star points of valence 3 and 5 joined by edges).
+// valence-3 star points) or a box open at the bottom, a planar fan of N sectors of m x m faces around one star
+// point of valence N, a half fan of K sectors around a star point on a straight boundary, a grid with a slit (two
+// star points on the boundary), and a cube with an edge turned (star points of valence 3 and 5 joined by edges).
 #include <algorithm>
 #include <array>
 #include <cmath>

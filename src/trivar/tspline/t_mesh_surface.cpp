@@ -535,8 +535,8 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads, int global_steps)
                 " rings of a star point (the T-spline's blending functions there reach the star point, the Catmull-Clark rules take quadrilaterals without T-junctions)");
   }
   // Local subdivision of the face's two face rings (crease_face): with the crease rules of the mesh cut open along
-  // its creases, or in a mesh without creases with the smooth rule at every vertex (its nets lie inside the mesh,
-  // inside_two_rings).
+  // its creases, or in a mesh without creases with the smooth rule at every vertex (its nets are kept inside the
+  // mesh, boundary_within_two_rings).
   const auto local_subdivision = [&](int f, const std::string& why) {
     if (rules.empty()) rules = split ? boundary_rules(*split) : std::vector<CreaseRule>(static_cast<std::size_t>(nv), CreaseRule::none);
     std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX);

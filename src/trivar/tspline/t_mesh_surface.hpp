@@ -165,7 +165,8 @@ public:
   int non_uniform_stars() const { return static_cast<int>(nurcc_.size()); }
   // A subdivided face: its four quarters after one local Catmull-Clark step.
   const SubdividedFace& subdivided(int face) const;
-  // A face near an irregular vertex of a crease boundary, evaluated by local subdivision.
+  // A face evaluated by local subdivision: near an irregular vertex of a crease boundary, or near star points with
+  // unequal knot intervals that NonUniformStar and Stam's patches do not take.
   const CreaseFace& crease_face(int face) const;
 
 private:
