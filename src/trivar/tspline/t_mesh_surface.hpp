@@ -39,8 +39,8 @@
 //                  vertex, takes the faces that the methods above refuse for unequal knot intervals: faces with
 //                  several star corners or next to star points joined by an edge, and faces whose 4 x 4 points
 //                  hold a star point without NonUniformStar's three regular rings (another star point within
-//                  them) or in the cells of two star points; where the global steps below do not apply (open
-//                  meshes, T-junctions away from the star points). Their two face rings must be quadrilaterals
+//                  them) or in the cells of two star points; where the global steps (see the constructor) do
+//                  not apply (open meshes, T-junctions away from the star points). Their two face rings must be quadrilaterals
 //                  without T-junctions inside the mesh, with one interval per strip and one point per vertex.
 // The faces within p + 2 rings of a star point (bicubic and star) need, and are checked to have, degree 3,
 // no T-junction and no boundary within (p + 1) / 2 rings of them, control points
@@ -57,10 +57,10 @@
 // corners with a side of one edge near a star point on the boundary, unequal intervals near star points whose
 // faces have a boundary (a Bezier end condition, which has no subdivision rule) within their two face rings,
 // degrees other than 3). Close star points with unequal intervals in closed quadrilateral meshes without creases
-// are first moved apart by global non-uniform Catmull-Clark steps (see the constructor), which keeps every
-// face as given a patch of NonUniformStar, Stam or the T-spline; elsewhere their faces are crease faces. A star point on a Bezier end-condition
-// boundary is an interior one of the mesh with a ghost layer along the boundary (boundary_ghosts: the Bezier
-// end condition as a uniform bicubic net, round corners as the tensor product of the two clamped ends), so its
+// are first moved apart by global non-uniform Catmull-Clark steps (see the constructor), after which their
+// faces are NonUniformStar's, Stam's or bicubic cells; elsewhere they are crease faces. A star point on a Bezier
+// end-condition boundary is an interior one of the mesh with a ghost layer along the boundary (boundary_ghosts:
+// the Bezier end condition as a uniform bicubic net, round corners as the tensor product of the two clamped ends), so its
 // faces are star faces of valence K + 2 and the faces near it bicubic faces of that mesh, the T-spline wherever
 // their points avoid it. The surface there
 // is then the Catmull-Clark limit surface of the control mesh, which on faces without a star corner is the
