@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -271,6 +272,57 @@ TEST(GlobalNurccStep, OpenBoxesWithCloseStarPointsAndUnequalIntervals) {
   const TMeshSurface s(io::read_tsm(path).mesh, 1);
   const std::string info = test::run_cli(dir, "info " + path);
   EXPECT_NE(info.find(std::to_string(s.count(FaceMethod::crease)) + " faces near star points with unequal knot intervals"), std::string::npos) << info;
+}
+
+// A valence-5 fan (11 x 11 faces per sector) whose sector 0 loses its quadrant beyond (3, 3), the quadrant's two
+// sides glued: a valence-3 star point there, on the third ring of the valence-5 one and it on its, both with
+// their own three regular rings (NonUniformStar's sectors) and unequal intervals (the strips within 3 of the fan's
+// centre). Face [1, 2]^2 of sector 0 lies in the cells of both: refused before, now by local subdivision, the
+// other faces of their cells NonUniformStar's. Continuity across every edge, one limit point at each star point.
+TEST(GlobalNurccStep, FaceInTheCellsOfTwoStarPoints) {
+  constexpr int m = 11;
+  const auto height = [](double x, double y) { return 0.2 * std::sin(0.5 * x + 0.3 * y) + 0.02 * x * y; };
+  test::QuadMesh fan = test::fan_mesh_with_intervals(5, m, height, [](int k, int i) { return i < 3 ? 1 + 0.25 * ((k + i) % 3) : 1.0; });
+  const auto quad = [&](int i, int j) { return fan.quads[static_cast<std::size_t>(j * m + i)]; };  // sector 0
+  const auto id = [&](int i, int j) {
+    return i < m && j < m ? quad(i, j)[0] : i == m && j < m ? quad(m - 1, j)[1] : i < m ? quad(i, m - 1)[3] : quad(m - 1, m - 1)[2];
+  };
+  std::map<int, int> glued;  // (3, 3 + t) -> (3 + t, 3)
+  for (int t = 1; t <= m - 3; ++t) glued[id(3, 3 + t)] = id(3 + t, 3);
+  test::QuadMesh q;
+  std::map<int, int> renumber;
+  const auto keep = [&](int v) {
+    if (glued.count(v)) v = glued.at(v);
+    auto [it, fresh] = renumber.emplace(v, static_cast<int>(q.points.size()));
+    if (fresh) q.points.push_back(fan.points[static_cast<std::size_t>(v)]);
+    return it->second;
+  };
+  for (std::size_t f = 0; f < fan.quads.size(); ++f) {
+    if (f < static_cast<std::size_t>(m * m) && static_cast<int>(f) % m >= 3 && static_cast<int>(f) / m >= 3) continue;
+    std::array<int, 4> g{};
+    for (std::size_t k = 0; k < 4; ++k) g[k] = keep(fan.quads[f][k]);
+    q.quads.push_back(g);
+  }
+  const auto kept = [&](int v) { return renumber.at(glued.count(v) ? glued.at(v) : v); };
+  for (const auto& [ends, d] : fan.intervals)  // the glued sides' two entries agree (interval 1 beyond 3)
+    if (renumber.count(glued.count(ends[0]) ? glued.at(ends[0]) : ends[0]) && renumber.count(glued.count(ends[1]) ? glued.at(ends[1]) : ends[1]))
+      q.intervals[{kept(ends[0]), kept(ends[1])}] = d;
+  const TMesh mesh = io::parse_tsm(test::tsm_text(q), "two_stars.tsm").mesh;
+  const TMeshSurface s(mesh, 1);
+  ASSERT_EQ(s.stars().size(), 2u);
+  EXPECT_EQ(s.non_uniform_stars(), 2);
+  EXPECT_EQ(s.count(FaceMethod::crease), 1);
+  EXPECT_EQ(s.count(FaceMethod::non_uniform), 4 * 5 + 4 * 3 - 2);
+  const test::Continuity c = test::continuity(s.mesh(), test::knot_units(s));
+  EXPECT_LT(c.gap, 1e-12);
+  EXPECT_LT(c.normal_angle, 1e-9);
+  EXPECT_LT(c.c1, 1e-9);
+  const StarSpread st = star_spread(s);
+  EXPECT_LT(st.position, 1e-13);
+  std::printf("valence-5 and valence-3 star points on each other's third ring, unequal intervals: %d crease face, %d non-uniform, "
+              "%d star, %d bicubic, %d exact; across %d edges gap %.1e, normals %.1e, C1 %.1e (knot units); at the star points "
+              "positions %.1e, normals %.1e\n", s.count(FaceMethod::crease), s.count(FaceMethod::non_uniform), s.count(FaceMethod::star),
+              s.count(FaceMethod::bicubic), s.count(FaceMethod::exact), c.edges, c.gap, c.normal_angle, c.c1, st.position, st.normal);
 }
 
 // Equal intervals: the open box of a 5 x 1 top is evaluated through one uniform step next to its star points
