@@ -254,6 +254,7 @@ BENCHMARK(non_uniform_star_eval)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 // The cube of 3 x 3 faces per side (8 valence-3 star points three edges apart) with knot interval 1.5 on its
 // middle strip of faces round x (range(0) = 1; 0: every interval 1): with unequal intervals two global
 // non-uniform Catmull-Clark steps first (864 faces), with equal ones Stam's patches on the 54 faces as given.
+// range(0) = 2: the unequal intervals without steps, the 54 faces by local non-uniform subdivision (crease faces).
 std::string stepped_box_text(bool unequal) {
   trivar::test::QuadMesh q = trivar::test::cube_mesh(3);
   for (const auto& f : q.quads)
@@ -267,18 +268,18 @@ std::string stepped_box_text(bool unequal) {
 }
 
 void stepped_box_build(benchmark::State& state) {
-  const std::string text = stepped_box_text(state.range(0) == 1);
+  const std::string text = stepped_box_text(state.range(0) >= 1);
   const trivar::TMesh mesh = trivar::io::parse_tsm(text, "box.tsm").mesh;
   for (auto _ : state) {
-    const trivar::TMeshSurface s(mesh, 1);
+    const trivar::TMeshSurface s(mesh, 1, state.range(0) == 2 ? 0 : -1);
     benchmark::DoNotOptimize(s.num_faces());
   }
 }
-BENCHMARK(stepped_box_build)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(stepped_box_build)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
 // 16 x 16 points per face of the box as given (on the 16 refined faces of a stepped face, 4 x 4 each).
 void stepped_box_eval(benchmark::State& state) {
-  const trivar::TMeshSurface s(trivar::io::parse_tsm(stepped_box_text(state.range(0) == 1), "box.tsm").mesh, 1);
+  const trivar::TMeshSurface s(trivar::io::parse_tsm(stepped_box_text(state.range(0) >= 1), "box.tsm").mesh, 1, state.range(0) == 2 ? 0 : -1);
   const int n = 16 >> s.global_steps();
   double out[9];
   for (auto _ : state)
@@ -290,7 +291,7 @@ void stepped_box_eval(benchmark::State& state) {
         }
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * s.num_faces() * n * n);
 }
-BENCHMARK(stepped_box_eval)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(stepped_box_eval)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
 // The cube of 1 x 1 faces per side (8 valence-3 star points, every face with four star corners): each face through
 // one local Catmull-Clark step (subdivided_face). Build (range(0) = 0) or 16 x 16 points per face (1).

@@ -177,6 +177,8 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
   const int bs = s.boundary_star_faces();
   const int sub = s.count(FaceMethod::subdivided);
   const int cr = s.count(FaceMethod::crease);
+  // Local subdivision serves the irregular vertices of a crease boundary, or in a mesh without one close star points.
+  const bool subd_creases = s.source_mesh().end_conditions == EndConditions::subd_creases;
   const int faces = s.count(FaceMethod::exact) + s.count(FaceMethod::bicubic) + s.count(FaceMethod::star) + nu + sub + cr;
   const bool creases = r.crease_edges > 0 || cones > 0;
   std::string continuity = stars.empty() ? "C2 across every edge"
@@ -253,10 +255,14 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
   if (sub > 0)
     std::printf("  %d of them with several star corners or at star points joined by an edge, through one local "
                 "Catmull-Clark step (each quarter a bicubic or Stam patch of the subdivided points)\n", sub);
-  if (cr > 0)
+  if (cr > 0 && subd_creases)
     std::printf("  %d faces within %d rings of irregular vertices of a crease boundary (a crease turning, a star point on "
                 "it, a corner with a side of several faces, a dart, a cone point) by repeated local Catmull-Clark subdivision with the crease "
                 "rules (exact; the limit position at the vertex itself)\n", cr, s.mesh().degree + 1);
+  else if (cr > 0)
+    std::printf("  %d faces near star points with unequal knot intervals (several star corners, star points within three "
+                "rings of each other) by repeated local non-uniform Catmull-Clark subdivision (exact; the limit position "
+                "and tangent plane at the star point itself)\n", cr);
   if (bs > 0)
     std::printf("  %d faces at star points on the boundary by Catmull-Clark of the control mesh extended by a ghost layer "
                 "(the T-spline's Bezier end condition where regular; boundary curve the cubic B-spline of the block points "
@@ -420,7 +426,7 @@ void convert_tspline(const std::string& in, const std::string& out, const TSplin
         io::step::write_step(out, patches, {});
       else
         io::write_spline_file(out, patches);
-      const bool crease_corners = l.mesh->count(FaceMethod::crease) > 0;
+      const bool crease_corners = l.mesh->count(FaceMethod::crease) > 0 && l.mesh->source_mesh().end_conditions == EndConditions::subd_creases;
       const bool cones = !crease_singularities(l.mesh->mesh()).cone_points.empty();
       std::printf("%s: %zu Bezier patches (%d exact, %d corner patches at star points%s after %d subdivision levels, "
                   "%s from the limit surface, tolerance %s); C0, G1 at star points%s\n",

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "crease_nets.hpp"
 #include "face_continuity.hpp"
 #include "fusion_cages.hpp"
 #include "osd_reference.hpp"
@@ -34,6 +35,10 @@
 
 namespace trivar::crease_face_test {
 namespace {
+
+using test::cartesian;
+using test::knot_units;
+using test::net_of;
 
 using Crease = std::function<bool(int, int)>;
 
@@ -299,59 +304,6 @@ void set_spoke_strips(TMesh& m, const test::QuadMesh& cage, int spokes, double t
   }
 }
 
-// Cartesian value, d/du, d/dv (9) from a homogeneous one (12).
-std::array<double, 9> cartesian(const double* h) {
-  std::array<double, 9> o{};
-  for (int c = 0; c < 3; ++c) {
-    o[static_cast<std::size_t>(c)] = h[c] / h[3];
-    for (int k = 1; k <= 2; ++k) o[static_cast<std::size_t>(3 * k + c)] = (h[4 * k + c] - o[static_cast<std::size_t>(c)] * h[4 * k + 3]) / h[3];
-  }
-  return o;
-}
-
-// The crease net of face f of a quad mesh without T-junctions and without sharp creases (its faces within two
-// rings of f, f first from its first corner), written here from the mesh's links and boundary_rules.
-CreaseNet net_of(const TMesh& m, int f) {
-  const auto L = [&](int l) -> const TMeshLink& { return m.links[static_cast<std::size_t>(l)]; };
-  const std::vector<CreaseRule> rules = boundary_rules(m);
-  std::vector<std::vector<int>> at(m.vertices.size());
-  for (const TMeshLink& k : m.links)
-    if (k.vertex >= 0 && k.face >= 0) at[static_cast<std::size_t>(k.vertex)].push_back(k.face);
-  std::vector<int> hood{f};
-  std::set<int> in{f};
-  for (int ring = 0; ring < 2; ++ring)
-    for (int g : std::vector<int>(hood))
-      for (int l : m.faces[static_cast<std::size_t>(g)])
-        for (int h : at[static_cast<std::size_t>(L(l).vertex)])
-          if (in.insert(h).second) hood.push_back(h);
-  CreaseNet net;
-  std::map<int, int> id;
-  for (int g : hood) {
-    auto loop = m.faces[static_cast<std::size_t>(g)];
-    if (g == f) std::rotate(loop.begin(), std::find(loop.begin(), loop.end(), m.first_corner(f)), loop.end());
-    std::array<int, 4> quad{};
-    std::array<bool, 4> sharp{};
-    std::array<double, 4> d{};
-    for (std::size_t k = 0; k < 4; ++k) {
-      const int v = L(loop[k]).vertex;
-      sharp[k] = L(L(loop[k]).opp).face < 0;
-      d[k] = m.intervals[static_cast<std::size_t>(L(loop[k]).edge)];
-      if (!id.count(v)) {
-        id[v] = static_cast<int>(net.points.size());
-        const RationalPoint& p = m.points[static_cast<std::size_t>(m.vertices[static_cast<std::size_t>(v)].primary)];
-        net.points.push_back({p.w * p.xyz[0], p.w * p.xyz[1], p.w * p.xyz[2], p.w});
-        const CreaseRule r = rules[static_cast<std::size_t>(v)];
-        net.rules.push_back(r == CreaseRule::none ? VertexRule::smooth : r == CreaseRule::crease ? VertexRule::crease : VertexRule::corner);
-      }
-      quad[k] = id[v];
-    }
-    net.quads.push_back(quad);
-    net.sharp.push_back(sharp);
-    net.intervals.push_back(d);
-  }
-  return net;
-}
-
 TEST(CreaseFace, UnequalIntervalsAreKnotInsertionOfTheExactSurface) {
   // A grid of 7 x 6 faces with a crease boundary, regular corners, strips of intervals 1, r, 1 / r and some
   // weights other than 1: the exact surface is the T-spline of crease_ends' natural-end Bezier form (charts).
@@ -410,22 +362,6 @@ TEST(CreaseFace, UnequalIntervalsAreKnotInsertionOfTheExactSurface) {
       std::printf("grid 7 x 6, crease boundary, intervals 1, %.2f, %.2f%s: %d sub-faces by local subdivision against the exact "
                   "surface: values %.2e, derivatives %.2e (relative)\n", r, 1 / r, rational ? ", rational" : "", cells, value, derivative);
     }
-}
-
-// A surface's eval with the derivatives per unit of knot interval (d/du over the interval of the face's side 0,
-// d/dv over side 3's), in which B-spline pieces on different intervals meet C1.
-auto knot_units(const TMeshSurface& s) {
-  return [&s](int f, double u, double v, double* o) {
-    const TMesh& m = s.face_mesh();
-    const auto& loop = m.faces[static_cast<std::size_t>(f)];
-    const std::size_t first = static_cast<std::size_t>(std::find(loop.begin(), loop.end(), m.first_corner(f)) - loop.begin());
-    const auto interval = [&](std::size_t k) { return m.intervals[static_cast<std::size_t>(m.links[static_cast<std::size_t>(loop[(first + k) % 4])].edge)]; };
-    s.eval(f, u, v, o);
-    for (int c = 0; c < 3; ++c) {
-      o[3 + c] /= interval(0);
-      o[6 + c] /= interval(3);
-    }
-  };
 }
 
 // The clamped cubic B-spline on knots 0, 0, 0, 0, t_1, ..., t_(n-1), T, T, T, T at t (de Boor's algorithm).

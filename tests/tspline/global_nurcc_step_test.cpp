@@ -1,20 +1,27 @@
 // Global non-uniform Catmull-Clark steps (non_uniform_subdivision): the surface after forced steps against the
 // surface without them (uniform Catmull-Clark by Stam's method, the T-spline in charts, NonUniformStar on the
 // star points' own sectors), against OpenSubdiv's uniform Catmull-Clark limit surface, and a cage whose star
-// points are too close for NonUniformStar without the steps.
+// points are too close for NonUniformStar without the steps. Local non-uniform subdivision (crease faces of a
+// mesh without creases), which takes such star points where the steps do not apply: against the steps' surface,
+// against OpenSubdiv with equal intervals, and on open boxes (Bezier rims) for continuity and the star points' limits.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <map>
 #include <string>
 #include <tuple>
 #include <vector>
 
+#include "crease_nets.hpp"
 #include "face_continuity.hpp"
+#include "fusion_cages.hpp"
 #include "osd_reference.hpp"
 #include "star_mesh_tsm.hpp"
+#include "support/temp_dir.hpp"
 #include "triangulation_loops.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/io/tsm_format.hpp"
@@ -25,24 +32,30 @@
 namespace trivar {
 namespace {
 
-// A cube cage of n x n faces per side with its points moved off the cube (no symmetry hides a wrong frame) and
-// knot interval `wide` on the strip of faces round the box between x grid lines `strip` and strip + 1.
-TMesh stepped_box(int n, int strip, double wide) {
-  test::QuadMesh q = test::cube_mesh(n);
+// A box cage (box_mesh) with its points moved off the box (no symmetry hides a wrong frame) and knot interval
+// `wide` on the strip of faces round it between x grid lines `strip` and strip + 1.
+std::string stepped_box_text(const std::array<int, 3>& n, bool open_bottom, int strip, double wide) {
+  test::QuadMesh q = test::box_mesh(n, open_bottom);
+  const test::QuadMesh grid = q;  // the grid positions, before the points move
   for (auto& p : q.points) {
     const auto r = p;
     p = {r[0] + 0.05 * std::sin(2.1 * r[1] + 0.4 * r[2]), r[1] + 0.04 * std::cos(1.7 * r[2] - 0.3 * r[0]),
          r[2] + 0.06 * std::sin(1.3 * r[0] + 0.9 * r[1])};
   }
-  const test::QuadMesh grid = test::cube_mesh(n);  // the grid positions, before the points moved
-  const auto gx = [&](int v) { return static_cast<int>(std::lround((grid.points[static_cast<std::size_t>(v)][0] + 1) * n / 2)); };
+  const auto gx = [&](int v) { return static_cast<int>(std::lround((grid.points[static_cast<std::size_t>(v)][0] + 1) * n[0] / 2)); };
   for (const auto& f : q.quads)
     for (int k = 0; k < 4; ++k) {
       const int a = f[static_cast<std::size_t>(k)], b = f[static_cast<std::size_t>((k + 1) % 4)];
       if (std::min(gx(a), gx(b)) == strip && std::max(gx(a), gx(b)) == strip + 1) q.intervals[{a, b}] = wide;
     }
-  return io::parse_tsm(test::tsm_text(q), "stepped_box.tsm").mesh;
+  return test::tsm_text(q);
 }
+TMesh stepped_box(const std::array<int, 3>& n, bool open_bottom, int strip, double wide) {
+  return io::parse_tsm(stepped_box_text(n, open_bottom, strip, wide), "stepped_box.tsm").mesh;
+}
+
+// The cube cage of n x n faces per side.
+TMesh stepped_box(int n, int strip, double wide) { return stepped_box({n, n, n}, false, strip, wide); }
 
 // Sample points of a face: a 4 x 4 grid with its corners, and points 2^-7 .. 1e-3 from each corner.
 std::vector<std::array<double, 2>> stepped_samples() {
@@ -180,6 +193,192 @@ TEST(GlobalNurccStep, CloseStarPointsWithUnequalIntervalsAreStepped) {
   std::printf("box 3 x 3, strip at 1.5: 2 steps, %d faces (non-uniform %d, bicubic %d, exact %d); continuity gap %.1e, "
               "normals %.1e, C1 %.1e; 3 steps against 2: %.1e\n", s.num_faces(), s.count(FaceMethod::non_uniform),
               s.count(FaceMethod::bicubic), s.count(FaceMethod::exact), c.gap, c.normal_angle, c.c1, gap);
+}
+
+// Without steps (forced to none) the faces near the close star points are crease faces: local subdivision of each
+// face's two rings with the same NURCC rules. The surface must be the one after the steps on every face.
+TEST(GlobalNurccStep, LocalSubdivisionIsTheSurfaceAfterTheSteps) {
+  const TMesh mesh = stepped_box(3, 1, 1.5);
+  const TMeshSurface local(mesh, 1, 0), stepped(mesh, 1);
+  ASSERT_EQ(stepped.global_steps(), 2);
+  ASSERT_EQ(local.num_faces(), 54);
+  EXPECT_GT(local.count(FaceMethod::crease), 24);
+  const StepDeviation d = step_deviation(local, stepped, all_faces(local));
+  EXPECT_LT(d.position, 1e-13);
+  EXPECT_LT(d.derivative, 1e-11);  // 2^-10 from the star corners (sub-faces of level 10: rounding times 2^10)
+  std::printf("box 3 x 3, strip at 1.5, no steps: %d crease faces (local subdivision), %d star, %d subdivided; against 2 global "
+              "steps %.1e / %.1e (position / relative derivatives)\n", local.count(FaceMethod::crease), local.count(FaceMethod::star),
+              local.count(FaceMethod::subdivided), d.position, d.derivative);
+}
+
+// The largest spread, over the star points, of the limit positions and normals that the faces round each star
+// point give at it.
+struct StarSpread {
+  double position = 0, normal = 0;
+};
+StarSpread star_spread(const TMeshSurface& s) {
+  StarSpread r;
+  for (int star : s.stars()) {
+    std::vector<std::array<double, 9>> at;
+    for (int f = 0; f < s.num_faces(); ++f) {
+      const auto c = s.corners(f);
+      const auto k = std::find(c.begin(), c.end(), star) - c.begin();
+      if (k == 4) continue;
+      std::array<double, 9> o{};
+      s.eval(f, k == 1 || k == 2 ? 1 : 0, k >= 2 ? 1 : 0, o.data());
+      at.push_back(o);
+    }
+    for (const auto& a : at)
+      for (const auto& b : at) {
+        const auto na = test::unit_normal(a.data()), nb = test::unit_normal(b.data());
+        r.position = std::max(r.position, std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]));
+        r.normal = std::max(r.normal, std::hypot(na[0] - nb[0], na[1] - nb[1], na[2] - nb[2]));
+      }
+  }
+  return r;
+}
+
+// Open boxes whose rim (the bottom) is a Bezier boundary, which the global steps do not take, with a strip at 1.5
+// over the top and down two sides: the top's star points 3 edges apart (a 3 x 3 top), or joined by edges (a 3 x 1
+// 5 x 1
+// top, whose end faces have two star corners; a narrower box has closed rows of faces too short for charts). Refused before; their faces near the star points are crease faces
+// now, the others exact (the T-spline) as before. Continuity across every edge (derivatives per knot unit), one
+// limit point and tangent plane at each star point.
+TEST(GlobalNurccStep, OpenBoxesWithCloseStarPointsAndUnequalIntervals) {
+  for (const auto& [w, n] : {std::array<int, 2>{3, 3}, {5, 1}}) {
+    const TMesh mesh = stepped_box({w, n, 7}, true, 2, 1.5);
+    EXPECT_EQ(nurcc_steps_needed(mesh, TMeshSurface::kStarsApart), 0);
+    const TMeshSurface s(mesh, 1);
+    ASSERT_EQ(s.stars().size(), 4u);
+    EXPECT_GT(s.count(FaceMethod::crease), 0);
+    EXPECT_GT(s.count(FaceMethod::exact), 0);
+    const test::Continuity c = test::continuity(s.mesh(), test::knot_units(s));
+    EXPECT_EQ(c.edges, 2 * (w * n + 2 * (w + n) * 7) - (w + n));  // every edge but the rim's
+    EXPECT_LT(c.gap, 1e-12);
+    EXPECT_LT(c.normal_angle, 1e-10);
+    EXPECT_LT(c.c1, 1e-10);
+    const StarSpread st = star_spread(s);
+    EXPECT_LT(st.position, 1e-13);
+    EXPECT_LT(st.normal, 1e-10);
+      std::printf("open box %d x %d x 7, strip at 1.5: %d crease faces, %d exact, %d star, %d bicubic; across %d edges gap %.1e, "
+                "normals %.1e, C1 %.1e (knot units); at the star points positions %.1e, normals %.1e\n", w, n,
+                s.count(FaceMethod::crease), s.count(FaceMethod::exact), s.count(FaceMethod::star), s.count(FaceMethod::bicubic),
+                c.edges, c.gap, c.normal_angle, c.c1, st.position, st.normal);
+  }
+  // The command line counts them as local subdivision near star points.
+  const test::TempDir dir;
+  const std::string path = dir.file("open_box.tsm");
+  std::ofstream(path) << stepped_box_text({3, 3, 7}, true, 2, 1.5);
+  const TMeshSurface s(io::read_tsm(path).mesh, 1);
+  const std::string info = test::run_cli(dir, "info " + path);
+  EXPECT_NE(info.find(std::to_string(s.count(FaceMethod::crease)) + " faces near star points with unequal knot intervals"), std::string::npos) << info;
+}
+
+// A valence-5 fan (11 x 11 faces per sector) whose sector 0 loses its quadrant beyond (3, 3), the quadrant's two
+// sides glued: a valence-3 star point there, on the third ring of the valence-5 one and it on its, both with
+// their own three regular rings (NonUniformStar's sectors) and unequal intervals (the strips within 3 of the fan's
+// centre). Face [1, 2]^2 of sector 0 lies in the cells of both: refused before, now by local subdivision, the
+// other faces of their cells NonUniformStar's. Continuity across every edge, one limit point at each star point.
+TEST(GlobalNurccStep, FaceInTheCellsOfTwoStarPoints) {
+  constexpr int m = 11;
+  const auto height = [](double x, double y) { return 0.2 * std::sin(0.5 * x + 0.3 * y) + 0.02 * x * y; };
+  test::QuadMesh fan = test::fan_mesh_with_intervals(5, m, height, [](int k, int i) { return i < 3 ? 1 + 0.25 * ((k + i) % 3) : 1.0; });
+  const auto quad = [&](int i, int j) { return fan.quads[static_cast<std::size_t>(j * m + i)]; };  // sector 0
+  const auto id = [&](int i, int j) {
+    return i < m && j < m ? quad(i, j)[0] : i == m && j < m ? quad(m - 1, j)[1] : i < m ? quad(i, m - 1)[3] : quad(m - 1, m - 1)[2];
+  };
+  std::map<int, int> glued;  // (3, 3 + t) -> (3 + t, 3)
+  for (int t = 1; t <= m - 3; ++t) glued[id(3, 3 + t)] = id(3 + t, 3);
+  test::QuadMesh q;
+  std::map<int, int> renumber;
+  const auto keep = [&](int v) {
+    if (glued.count(v)) v = glued.at(v);
+    auto [it, fresh] = renumber.emplace(v, static_cast<int>(q.points.size()));
+    if (fresh) q.points.push_back(fan.points[static_cast<std::size_t>(v)]);
+    return it->second;
+  };
+  for (std::size_t f = 0; f < fan.quads.size(); ++f) {
+    if (f < static_cast<std::size_t>(m * m) && static_cast<int>(f) % m >= 3 && static_cast<int>(f) / m >= 3) continue;
+    std::array<int, 4> g{};
+    for (std::size_t k = 0; k < 4; ++k) g[k] = keep(fan.quads[f][k]);
+    q.quads.push_back(g);
+  }
+  const auto kept = [&](int v) { return renumber.at(glued.count(v) ? glued.at(v) : v); };
+  for (const auto& [ends, d] : fan.intervals)  // the glued sides' two entries agree (interval 1 beyond 3)
+    if (renumber.count(glued.count(ends[0]) ? glued.at(ends[0]) : ends[0]) && renumber.count(glued.count(ends[1]) ? glued.at(ends[1]) : ends[1]))
+      q.intervals[{kept(ends[0]), kept(ends[1])}] = d;
+  const TMesh mesh = io::parse_tsm(test::tsm_text(q), "two_stars.tsm").mesh;
+  const TMeshSurface s(mesh, 1);
+  ASSERT_EQ(s.stars().size(), 2u);
+  EXPECT_EQ(s.non_uniform_stars(), 2);
+  EXPECT_EQ(s.count(FaceMethod::crease), 1);
+  EXPECT_EQ(s.count(FaceMethod::non_uniform), 4 * 5 + 4 * 3 - 2);
+  const test::Continuity c = test::continuity(s.mesh(), test::knot_units(s));
+  EXPECT_LT(c.gap, 1e-12);
+  EXPECT_LT(c.normal_angle, 1e-9);
+  EXPECT_LT(c.c1, 1e-9);
+  const StarSpread st = star_spread(s);
+  EXPECT_LT(st.position, 1e-13);
+  std::printf("valence-5 and valence-3 star points on each other's third ring, unequal intervals: %d crease face, %d non-uniform, "
+              "%d star, %d bicubic, %d exact; across %d edges gap %.1e, normals %.1e, C1 %.1e (knot units); at the star points "
+              "positions %.1e, normals %.1e\n", s.count(FaceMethod::crease), s.count(FaceMethod::non_uniform), s.count(FaceMethod::star),
+              s.count(FaceMethod::bicubic), s.count(FaceMethod::exact), c.edges, c.gap, c.normal_angle, c.c1, st.position, st.normal);
+}
+
+// Equal intervals: the open box of a 5 x 1 top is evaluated through one uniform step next to its star points
+// joined by edges (subdivided faces); local subdivision of the same faces' nets (written by the test) must be
+// OpenSubdiv's limit surface as well.
+TEST(GlobalNurccStep, LocalSubdivisionOfSeveralStarCornersIsOpenSubdivs) {
+  test::QuadMesh q = test::box_mesh({5, 1, 7}, true);
+  for (auto& p : q.points) p[2] += 0.1 * std::sin(1.3 * p[0] + 0.7 * p[1]);
+  const TMesh mesh = io::parse_tsm(test::tsm_text(q), "open_box.tsm").mesh;
+  const TMeshSurface s(mesh, 1);
+  test::PolyMesh p;
+  p.points = q.points;
+  for (const auto& f : q.quads) p.faces.push_back({f.begin(), f.end()});
+  const test::OsdLimitSurface osd(p);
+  double to_osd = 0, to_surface = 0;
+  int faces = 0;
+  for (int f = 0; f < s.num_faces(); ++f) {
+    if (s.method(f) != FaceMethod::subdivided) continue;
+    ++faces;
+    const CreaseFace local(test::net_of(mesh, f));
+    for (double u : {0.0, 2e-3, 0.3, 0.5, 0.77, 0.998, 1.0})
+      for (double v : {0.0, 2e-3, 0.45, 0.998, 1.0}) {
+        double h[12], e[9];
+        local.eval(u, v, h);
+        s.eval(f, u, v, e);
+        const auto x = test::cartesian(h);
+        const test::LimitSample o = osd.eval(f, u, v);
+        const bool corner = (u == 0 || u == 1) && (v == 0 || v == 1);  // derivatives there: directions
+        for (std::size_t k = 0; k < 3; ++k) {
+          to_osd = std::max(to_osd, std::abs(x[k] - o.p[k]));
+          to_surface = std::max(to_surface, std::abs(x[k] - e[k]));
+          if (corner) continue;
+          to_osd = std::max({to_osd, std::abs(x[3 + k] - o.du[k]), std::abs(x[6 + k] - o.dv[k])});
+          to_surface = std::max({to_surface, std::abs(x[3 + k] - e[3 + k]), std::abs(x[6 + k] - e[6 + k])});
+        }
+      }
+  }
+  EXPECT_GE(faces, 4);  // the top's ends and the end sides' top faces at least
+  EXPECT_LT(to_osd, 1e-12);
+  EXPECT_LT(to_surface, 1e-12);
+  std::printf("open box 5 x 1 x 7, equal intervals: local subdivision of the %d faces with several star corners against "
+              "OpenSubdiv %.1e, against the subdivided faces %.1e\n", faces, to_osd, to_surface);
+}
+
+// What local subdivision does not take stays refused in one line: a Bezier rim within two rings of the star points'
+// faces (the smooth rule has no rule for it).
+TEST(GlobalNurccStep, CloseStarPointsNearABezierBoundaryAreRefused) {
+  const TMesh mesh = stepped_box({3, 3, 2}, true, 1, 1.5);
+  try {
+    const TMeshSurface s(mesh, 1);
+    ADD_FAILURE() << "accepted";
+  } catch (const Error& e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+    EXPECT_NE(msg.find("boundary vertex"), std::string::npos) << msg;
+  }
 }
 
 TEST(GlobalNurccStep, OpenMeshesAreRefused) {

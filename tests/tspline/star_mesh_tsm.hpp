@@ -1,9 +1,9 @@
 #pragma once
 // Quad control meshes written as Rhino TSM text (#TS0200 records: f, e, v, l with the corner flags, ec, the
 // grip map and the control points), for the star-point tests: a closed cube of n x n faces per side (eight
-// valence-3 star points), a planar fan of N sectors of m x m faces around one star point of valence N, a
-// half fan of K sectors around a star point on a straight boundary, a grid with a slit (two star points on the
-// boundary), and a cube with an edge turned (star points of valence 3 and 5 joined by edges).
+// valence-3 star points) or a box open at the bottom, a planar fan of N sectors of m x m faces around one star
+// point of valence N, a half fan of K sectors around a star point on a straight boundary, a grid with a slit (two
+// star points on the boundary), and a cube with an edge turned (star points of valence 3 and 5 joined by edges).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -133,20 +133,22 @@ inline std::string tsm_text(const QuadMesh& m, double interval = 1.0, bool clamp
   return os.str();
 }
 
-// The surface of the cube [-1, 1]^3 in n x n faces per side.
-inline QuadMesh cube_mesh(int n) {
+// The surface of the box of n[0] x n[1] x n[2] unit grid cells, scaled by 2 / n[0] with its lowest corner at
+// (-1, -1, -1), without its bottom side (z lowest) when `open_bottom` (an open box whose rim is the boundary).
+inline QuadMesh box_mesh(const std::array<int, 3>& n, bool open_bottom = false) {
   QuadMesh m;
   std::map<std::array<int, 3>, int> id;
   const auto vertex = [&](std::array<int, 3> g) {
     auto [it, fresh] = id.emplace(g, static_cast<int>(m.points.size()));
-    if (fresh) m.points.push_back({-1 + 2.0 * g[0] / n, -1 + 2.0 * g[1] / n, -1 + 2.0 * g[2] / n});
+    if (fresh) m.points.push_back({-1 + 2.0 * g[0] / n[0], -1 + 2.0 * g[1] / n[0], -1 + 2.0 * g[2] / n[0]});
     return it->second;
   };
   for (int a = 0; a < 3; ++a)
-    for (int side : {0, n}) {
+    for (int side : {0, n[static_cast<std::size_t>(a)]}) {
+      if (open_bottom && a == 2 && side == 0) continue;
       const int b = (a + 1) % 3, c = (a + 2) % 3;
-      for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < n[static_cast<std::size_t>(c)]; ++j)
+        for (int i = 0; i < n[static_cast<std::size_t>(b)]; ++i) {
           std::array<std::array<int, 3>, 4> q;
           const std::array<std::array<int, 2>, 4> ij{{{i, j}, {i + 1, j}, {i + 1, j + 1}, {i, j + 1}}};
           for (int k = 0; k < 4; ++k) {
@@ -161,6 +163,9 @@ inline QuadMesh cube_mesh(int n) {
     }
   return m;
 }
+
+// The surface of the cube [-1, 1]^3 in n x n faces per side.
+inline QuadMesh cube_mesh(int n) { return box_mesh({n, n, n}); }
 
 // cube_mesh(4) with the edge between two adjacent quads inside one side turned: its ends drop to valence 3, the
 // ends of the new diagonal rise to 5, each valence-3 point joined by an edge to a valence-5 one. The valence-3

@@ -399,6 +399,7 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads, int global_steps)
   struct NurccFace {
     int star = -1, sector = 0, cell = 0, link = -1;
   };
+  static constexpr int kSharedCell = -2;  // NurccFace::star of a face in the cells of two star points
   std::vector<NurccFace> nurcc_of(static_cast<std::size_t>(nf));
   std::vector<std::string> nurcc_why(static_cast<std::size_t>(nv));  // a star point whose sectors could not be gathered
   for (int v : stars_) {
@@ -432,11 +433,10 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads, int global_steps)
     for (std::size_t k = 0; k < sec.cells.size(); ++k)
       for (int c = 0; c < 4; ++c) {
         const auto [face, link] = sec.cells[k][static_cast<std::size_t>(c)];
+        // A face in the cells of two star points (each on the other's third ring) is neither's alone: local
+        // subdivision takes it below (its two face rings lie within the two stars' regular rings).
         NurccFace& nf_ = nurcc_of[static_cast<std::size_t>(face)];
-        require(nf_.star < 0, [face = face] {
-          return "T-mesh: face " + std::to_string(face) + " is next to two star points with unequal knot intervals; subdivide the control mesh";
-        });
-        nf_ = {static_cast<int>(nurcc_.size()), static_cast<int>(k), c, link};
+        nf_ = nf_.star == -1 ? NurccFace{static_cast<int>(nurcc_.size()), static_cast<int>(k), c, link} : NurccFace{kSharedCell};
       }
     nurcc_.push_back(std::move(z));
   }
@@ -534,17 +534,29 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads, int global_steps)
                 "'s faces; no evaluation rule covers T-junctions within " + std::to_string(reach) +
                 " rings of a star point (the T-spline's blending functions there reach the star point, the Catmull-Clark rules take quadrilaterals without T-junctions)");
   }
-  // Local subdivision of the face's two face rings with the crease rules (crease_face).
+  // Local subdivision of the face's two face rings (crease_face): with the crease rules of the mesh cut open along
+  // its creases, or in a mesh without creases with the smooth rule at every vertex (its nets are kept inside the
+  // mesh, boundary_within_two_rings).
   const auto local_subdivision = [&](int f, const std::string& why) {
-    if (rules.empty()) rules = boundary_rules(*split);
+    if (rules.empty()) rules = split ? boundary_rules(*split) : std::vector<CreaseRule>(static_cast<std::size_t>(nv), CreaseRule::none);
     std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX);
     dist[static_cast<std::size_t>(f)] = 0;
     const std::string where = "T-mesh: face " + std::to_string(f) + " (" + why + ", evaluated by local subdivision): ";
-    crease_faces_.emplace_back(crease_net(m, *split, rules, f, rings({f}, 2, dist), where));
+    crease_faces_.emplace_back(crease_net(m, split ? *split : m, rules, f, rings({f}, 2, dist), where));
     Face& face = faces_[static_cast<std::size_t>(f)];
     face.method = FaceMethod::crease;
     face.crease = static_cast<int>(crease_faces_.size()) - 1;
     face.rational = crease_faces_.back().rational();
+  };
+  // The first boundary vertex of face f's two face rings (-1: none). Without a crease boundary the smooth rule has
+  // no rule for it (a Bezier boundary is no subdivision rule), nor for the ghost layers of boundary star points.
+  const auto boundary_within_two_rings = [&](int f) {
+    std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX);
+    dist[static_cast<std::size_t>(f)] = 0;
+    for (int g : rings({f}, 2, dist))
+      for (int l : m.faces[static_cast<std::size_t>(g)])
+        if (boundary[static_cast<std::size_t>(L(l).vertex)]) return L(l).vertex;
+    return -1;
   };
   for (int f = 0; f < nf; ++f) {
     if (!m.live_face(f)) continue;
@@ -594,10 +606,11 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads, int global_steps)
       local_subdivision(f, "near a star point and a crease boundary: " + why);
       continue;
     }
-    if (!unequal.empty() && split && star_dist[static_cast<std::size_t>(f)] <= 1) {
-      // Unequal intervals round a star point of a crease mesh whose three rings are no regular grid for
-      // NonUniformStar (its faces are taken above): the face's 4 x 4 points hold the star point, and local
-      // subdivision's rules there are NonUniformStar's on two face rings.
+    if (!unequal.empty() && why.empty() && star_dist[static_cast<std::size_t>(f)] <= 1 && (split || boundary_within_two_rings(f) < 0)) {
+      // Unequal intervals round a star point whose three rings are no regular grid for NonUniformStar (another star
+      // point or a crease boundary there; its own faces are taken above), or at a face with several star corners
+      // or next to star points joined by an edge (no Stam patch): the face's 4 x 4 points hold the star point, and
+      // local subdivision's rules there are NonUniformStar's on two face rings (the global steps' too).
       local_subdivision(f, "near a star point with unequal knot intervals: " + unequal);
       continue;
     }
@@ -615,7 +628,8 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads, int global_steps)
       // Several star corners, or star points joined by an edge: one local Catmull-Clark step (subdivided_face).
       const std::string what = star_corners > 1 ? "it has " + std::to_string(star_corners) + " star corners" : gth.error;
       require(unequal.empty(), [&] {
-        return where() + what + " and " + unequal + "; the local subdivision of such faces takes equal intervals: subdivide the control mesh once so that every face has at most one star corner";
+        return where() + what + " and " + unequal + "; with unequal intervals such faces take local non-uniform subdivision, which needs their two face rings inside the mesh (boundary vertex " +
+               std::to_string(boundary_within_two_rings(f)) + " is within them)";
       });
       try {
         subdivided_.emplace_back(cm, f);

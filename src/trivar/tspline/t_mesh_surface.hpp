@@ -23,7 +23,7 @@
 //                  Catmull-Clark step of the face's two rings (subdivided_face), each quarter of the face a
 //                  bicubic or star patch of the subdivided points (u, v in [0, 1/2]^2 etc. mapped to the
 //                  sub-face's [0, 1]^2, derivatives times 2); exactly the limit surface still. Equal knot
-//                  intervals only (non-uniform Catmull-Clark would need its sectors around both star points).
+//                  intervals only (unequal ones: crease, below).
 //   crease         in a subdivision-crease mesh, the faces within p + 1 rings of an irregular vertex of a crease
 //                  boundary (irregular_crease_vertices: a crease vertex of other than two faces, a corner of other
 //                  than one; boundary star points among them; darts, where a crease ends inside the mesh and is
@@ -35,6 +35,13 @@
 //                  (NURCC with crease_ends' natural end at the crease: knot insertion of the exact surface where
 //                  the neighbourhood is regular), as do, in such a mesh, the faces whose 4 x 4 points hold a star
 //                  point with unequal intervals nearby but without NonUniformStar's three regular rings.
+//                  In meshes without creases the same local subdivision, the smooth (NURCC) rule at every
+//                  vertex, takes the faces that the methods above refuse for unequal knot intervals: faces with
+//                  several star corners or next to star points joined by an edge, and faces whose 4 x 4 points
+//                  hold a star point without NonUniformStar's three regular rings (another star point within
+//                  them) or in the cells of two star points; where the global steps (see the constructor) do
+//                  not apply (open meshes, T-junctions away from the star points). Their two face rings must be quadrilaterals
+//                  without T-junctions inside the mesh, with one interval per strip and one point per vertex.
 // The faces within p + 2 rings of a star point (bicubic and star) need, and are checked to have, degree 3,
 // no T-junction and no boundary within (p + 1) / 2 rings of them, control points
 // without repeated-knot nodes, and at most one star corner per face or else equal intervals (subdivided).
@@ -47,12 +54,13 @@
 // instead when a chart of p up to (its distance - 1) rings around it holds its knot vectors (so a star point
 // needs 7 faces to the boundary, not 8); otherwise the face's reason is the error (what is still refused:
 // T-junctions and repeated knots within two rings of a star point's faces, unequal intervals, T-junctions or
-// corners with a side of one edge near a star point on the boundary, two star points with unequal intervals
-// within three rings of each other unless the mesh is closed, quadrilateral and without creases (then global
-// non-uniform Catmull-Clark steps move them apart first, see the constructor), unequal intervals within two
-// rings of a face with several star corners, degrees other than 3). A star point on a Bezier end-condition
-// boundary is an interior one of the mesh with a ghost layer along the boundary (boundary_ghosts: the Bezier
-// end condition as a uniform bicubic net, round corners as the tensor product of the two clamped ends), so its
+// corners with a side of one edge near a star point on the boundary, unequal intervals near star points whose
+// faces have a boundary (a Bezier end condition, which has no subdivision rule) within their two face rings,
+// degrees other than 3). Close star points with unequal intervals in closed quadrilateral meshes without creases
+// are first moved apart by global non-uniform Catmull-Clark steps (see the constructor), after which their
+// faces are NonUniformStar's, Stam's or bicubic cells; elsewhere they are crease faces. A star point on a Bezier
+// end-condition boundary is an interior one of the mesh with a ghost layer along the boundary (boundary_ghosts:
+// the Bezier end condition as a uniform bicubic net, round corners as the tensor product of the two clamped ends), so its
 // faces are star faces of valence K + 2 and the faces near it bicubic faces of that mesh, the T-spline wherever
 // their points avoid it. The surface there
 // is then the Catmull-Clark limit surface of the control mesh, which on faces without a star corner is the
@@ -157,7 +165,8 @@ public:
   int non_uniform_stars() const { return static_cast<int>(nurcc_.size()); }
   // A subdivided face: its four quarters after one local Catmull-Clark step.
   const SubdividedFace& subdivided(int face) const;
-  // A face near an irregular vertex of a crease boundary, evaluated by local subdivision.
+  // A face evaluated by local subdivision: near an irregular vertex of a crease boundary, or near star points with
+  // unequal knot intervals that NonUniformStar and Stam's patches do not take.
   const CreaseFace& crease_face(int face) const;
 
 private:
