@@ -6,7 +6,8 @@
 //                  (local knot vectors by rays, end-condition blocks) apply unchanged. A chart is accepted only
 //                  when no blending function nonzero on its faces has a knot vector cut by the chart's border
 //                  inside the mesh (else it grows by a ring), so this is the global T-spline's surface wherever
-//                  one exists (tested face by face to 1e-12, also starting from one-ring charts).
+//                  one exists (tested face by face to 1e-12, also starting from one-ring charts). Charts are
+//                  shared: as large as their layout in the plane allows (exact_chart), else by clusters of faces.
 //   bicubic        the other faces without a star corner: the bicubic B-spline patch of their 4 x 4 control
 //                  points on the knots of the mesh's lines through the face (uniform when the intervals are
 //                  equal), which is the T-spline there (no T-junction nearby).
