@@ -308,11 +308,14 @@ struct TMeshSurface::Nurcc {
 TMeshSurface::~TMeshSurface() = default;
 TMeshSurface::TMeshSurface(TMeshSurface&&) noexcept = default;
 
+TMeshSurface::TMeshSurface(const TMesh& mesh, int threads, int global_steps)
+    : TMeshSurface(mesh, has_creases(mesh) ? std::make_unique<TMesh>(split_creases(mesh)) : nullptr, threads, global_steps) {}
+
 // A crease boundary, or Bezier end conditions without block points, is evaluated as the Bezier end conditions
 // of the same surface with its block points (crease_ends); the mesh as given is kept for writing it back.
-TMeshSurface::TMeshSurface(const TMesh& mesh, int threads, int global_steps)
+TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int threads, int global_steps)
     : steps_(global_steps >= 0 ? global_steps : nurcc_steps_needed(mesh, kStarsApart)),
-      mesh_(steps_ > 0 ? refined(mesh, steps_) : bezier_equivalent(mesh)),
+      mesh_(steps_ > 0 ? refined(mesh, steps_) : bezier_equivalent_of_cut(cut ? *cut : mesh)),
       source_(steps_ == 0 && mesh.end_conditions == EndConditions::bezier && mesh_.points.size() == mesh.points.size()
                   ? nullptr
                   : std::make_unique<TMesh>(mesh)),
@@ -329,7 +332,7 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads, int global_steps)
   std::vector<int> irregular;
   std::vector<CreaseRule> rules;  // of the split mesh's boundary vertices, once needed
   if (mesh.end_conditions == EndConditions::subd_creases) {
-    split = std::make_unique<TMesh>(has_creases(mesh) ? split_creases(mesh) : mesh);
+    split = cut ? std::move(cut) : std::make_unique<TMesh>(mesh);
     irregular = irregular_crease_vertices(*split);
   }
   std::vector<char> is_irregular(static_cast<std::size_t>(nv), 0);

@@ -179,6 +179,9 @@ private:
     int subdivided = -1;           // subdivided: index into subdivided_
     int crease = -1;               // crease: index into crease_faces_
   };
+  // `cut`: the mesh cut open along its sharp creases (split_creases) when it has any, for both its Bezier
+  // end-condition form and its crease faces.
+  TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int threads, int global_steps);
   struct Nurcc;  // a star point evaluated by non-uniform Catmull-Clark: its subdivision and homogeneous points
   int steps_ = 0;
   TMesh mesh_;
