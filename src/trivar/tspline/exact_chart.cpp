@@ -116,8 +116,8 @@ std::vector<int> embedded_faces(const TMesh& m, int seed, std::span<const char> 
         if (const auto it = cells.find(key(i, j)); it != cells.end())
           for (int t : it->second) {
             // The boxes' common part: an overlap, or a side or corner the faces must share in the mesh as well (else
-            // the chart's rays would pass from one to the other: a layout round a vertex whose faces' angles sum to
-            // 360 degrees on the boundary closes on itself).
+            // the chart's rays would pass from one to the other: the two sides of a sharp crease, a layout round a
+            // boundary vertex whose faces' angles sum to 360 degrees).
             const Box<2>& b = taken[static_cast<std::size_t>(t)];
             const double wx = std::min(box.hi[0], b.hi[0]) - std::max(box.lo[0], b.lo[0]),
                          wy = std::min(box.hi[1], b.hi[1]) - std::max(box.lo[1], b.lo[1]);
