@@ -226,6 +226,41 @@ TEST(Dart, OneSharpEdgeBetweenTwoDarts) {
               s.count(FaceMethod::crease), d.d.off_vertices, d.d.at_vertices, d.gap, t.triangles.size());
 }
 
+// A grid of 16 x 16 faces with a sharp chain of 3 edges in the middle, (8, 6) - (8, 9): the exact faces round the
+// crease faces of its two darts form a ring, laid out in one chart (the faces on both sides of the chain, which
+// would touch there without sharing an edge, are left out of it). Against OpenSubdiv on every exact face.
+TEST(Dart, ExactFacesRoundTwoDartsShareOneChart) {
+  const int n = 16;
+  const test::QuadMesh cage = test::grid_cage(n, n);
+  const Sharp chain = [&](int x, int y) {
+    return x % (n + 1) == 8 && y % (n + 1) == 8 && std::min(x, y) / (n + 1) >= 6 && std::max(x, y) / (n + 1) <= 9;
+  };
+  const io::TsmModel model = io::parse_tsm(test::fusion_creased_text(cage, chain), "chain.tsm");
+  EXPECT_EQ(model.report.crease_edges, 3);
+  const TMeshSurface s(model.mesh, 1);
+  EXPECT_EQ(crease_singularities(s.mesh()).darts, (std::vector<int>{grid_vertex(n, 8, 6), grid_vertex(n, 8, 9)}));
+  std::set<const TSplineSurface*> charts;
+  for (int f = 0; f < s.num_faces(); ++f)
+    if (s.method(f) == FaceMethod::exact) charts.insert(s.chart_frame(f).chart);
+  EXPECT_GT(s.count(FaceMethod::exact), 100);
+  EXPECT_EQ(charts.size(), 1u);
+  const test::OsdLimitSurface ref(osd_cage(cage, chain, {}));
+  double worst = 0;  // the exact faces (the crease faces: the tests above)
+  for (int f = 0; f < s.num_faces(); ++f)
+    for (double u : kSamples)
+      for (double v : kSamples) {
+        if (s.method(f) != FaceMethod::exact) continue;
+        double a[9];
+        s.eval(f, u, v, a);
+        const test::LimitSample b = ref.eval(f, u, v);
+        for (std::size_t k = 0; k < 3; ++k)
+          worst = std::max({worst, std::abs(a[k] - b.p[k]), std::abs(a[3 + k] - b.du[k]), std::abs(a[6 + k] - b.dv[k])});
+      }
+  EXPECT_LT(worst, 1e-12);
+  std::printf("grid 16 x 16 with a chain of 3 sharp edges between two darts: %d exact faces in %zu chart; against OpenSubdiv "
+              "(value, d/du, d/dv) %.2e\n", s.count(FaceMethod::exact), charts.size(), worst);
+}
+
 // A crease from the boundary, (3, 0) up to (3, 3), ending in a dart; with weights other than 1 too (rational
 // Catmull-Clark: OpenSubdiv subdivides the homogeneous parts (w x, w y, w z) and w as two meshes).
 TEST(Dart, CreaseFromTheBoundaryEndsInADart) {

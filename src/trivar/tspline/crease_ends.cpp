@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <optional>
 #include <string>
 
 #include "trivar/core/error.hpp"
@@ -33,9 +32,10 @@ EndWeights end_weights(double d1, double d2) {
 
 TMesh bezier_equivalent(const TMesh& given) {
   // Sharp creases inside the mesh: cut open, their sides crease boundaries like the outer one.
-  std::optional<TMesh> split;
-  if (has_creases(given)) split = split_creases(given);
-  const TMesh& m = split ? *split : given;
+  return has_creases(given) ? bezier_equivalent_of_cut(split_creases(given)) : bezier_equivalent_of_cut(given);
+}
+
+TMesh bezier_equivalent_of_cut(const TMesh& m) {
   // Bezier end conditions: as they are, unless no vertex carries a block (a file without grip map), where the
   // repeated-knot nodes of every boundary vertex sit on the vertex itself.
   const bool crease = m.end_conditions == EndConditions::subd_creases;

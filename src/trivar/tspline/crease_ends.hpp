@@ -51,5 +51,7 @@ namespace trivar {
 // boundary points), boundary star points keep none (their ghost layer takes the vertex), a concave corner or a
 // degree other than 3 is refused. Other Bezier meshes are returned as they are.
 TMesh bezier_equivalent(const TMesh& m);
+// The same for a mesh whose sharp creases are cut open already (split_creases), or that has none.
+TMesh bezier_equivalent_of_cut(const TMesh& m);
 
 }  // namespace trivar

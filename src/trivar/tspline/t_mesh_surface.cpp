@@ -10,6 +10,7 @@
 #include "trivar/tspline/boundary_ghosts.hpp"
 #include "trivar/tspline/catmull_clark_patch.hpp"
 #include "trivar/tspline/crease_ends.hpp"
+#include "trivar/tspline/exact_chart.hpp"
 #include "trivar/tspline/non_uniform_catmull_clark.hpp"
 #include "trivar/tspline/non_uniform_subdivision.hpp"
 #include "trivar/tspline/sharp_creases.hpp"
@@ -307,11 +308,14 @@ struct TMeshSurface::Nurcc {
 TMeshSurface::~TMeshSurface() = default;
 TMeshSurface::TMeshSurface(TMeshSurface&&) noexcept = default;
 
+TMeshSurface::TMeshSurface(const TMesh& mesh, int threads, int global_steps)
+    : TMeshSurface(mesh, has_creases(mesh) ? std::make_unique<TMesh>(split_creases(mesh)) : nullptr, threads, global_steps) {}
+
 // A crease boundary, or Bezier end conditions without block points, is evaluated as the Bezier end conditions
 // of the same surface with its block points (crease_ends); the mesh as given is kept for writing it back.
-TMeshSurface::TMeshSurface(const TMesh& mesh, int threads, int global_steps)
+TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int threads, int global_steps)
     : steps_(global_steps >= 0 ? global_steps : nurcc_steps_needed(mesh, kStarsApart)),
-      mesh_(steps_ > 0 ? refined(mesh, steps_) : bezier_equivalent(mesh)),
+      mesh_(steps_ > 0 ? refined(mesh, steps_) : bezier_equivalent_of_cut(cut ? *cut : mesh)),
       source_(steps_ == 0 && mesh.end_conditions == EndConditions::bezier && mesh_.points.size() == mesh.points.size()
                   ? nullptr
                   : std::make_unique<TMesh>(mesh)),
@@ -328,7 +332,7 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads, int global_steps)
   std::vector<int> irregular;
   std::vector<CreaseRule> rules;  // of the split mesh's boundary vertices, once needed
   if (mesh.end_conditions == EndConditions::subd_creases) {
-    split = std::make_unique<TMesh>(has_creases(mesh) ? split_creases(mesh) : mesh);
+    split = cut ? std::move(cut) : std::make_unique<TMesh>(mesh);
     irregular = irregular_crease_vertices(*split);
   }
   std::vector<char> is_irregular(static_cast<std::size_t>(nv), 0);
@@ -643,14 +647,74 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads, int global_steps)
     }
     set_patch(f, corner, star_corners, unequal, where(), std::move(gth));
   }
-  // Exact faces: the T-spline in a chart of their neighbourhood. A chart of depth + k rings around a face serves
-  // every face within k rings of it (their neighbourhoods lie inside), so faces are grouped greedily: a cluster
-  // around the first face not yet served, k as large as the star points allow (up to 4; without star points all it
-  // reaches). A mesh without star points but with a closed strip (a torus, a tube) has no chart of all its faces,
-  // and a chart must not wrap round the strip: clusters of one ring in charts of reach + 1 rings, split into single
-  // faces in charts of reach rings where those wrap (degree 3: strips of 8 faces and more), and on shorter strips
-  // the bicubic B-spline cells of regular neighbourhoods.
+  // Exact faces: the T-spline in a chart of their neighbourhood. Near star points or irregular crease vertices,
+  // first in charts as large as the faces allow (embedded_faces: grown from an exact face over every face not at
+  // one of those vertices, as long as the layout neither closes round one of them nor overlaps or touches itself),
+  // each serving the exact faces whose depth face rings it holds (their neighbourhoods lie inside, as in the
+  // charts below); the faces left over (a blending function on them cut by the chart's border, a face that is
+  // not one element of the chart, or a chart that does not lay out) are grouped as follows. A chart of depth + k rings around a face serves every face within k rings of
+  // it, so faces are grouped greedily: a cluster around the first face not yet served, k as large as the star
+  // points allow (up to 4; without star points all it reaches). A mesh without star points but with a closed
+  // strip (a torus, a tube) has no chart of all its faces, and a chart must not wrap round the strip: clusters of
+  // one ring in charts of reach + 1 rings, split into single faces in charts of reach rings where those wrap
+  // (degree 3: strips of 8 faces and more), and on shorter strips the bicubic B-spline cells of regular
+  // neighbourhoods.
   const bool periodic = singular.empty() && has_closed_strip(m);
+  std::vector<char> served(static_cast<std::size_t>(nf), 0);
+  const auto take = [&](int f, const ExactChart::Frame& fr, int chart) {
+    Face& face = faces_[static_cast<std::size_t>(f)];
+    face.origin = fr.origin;
+    face.axis_u = fr.axis_u;
+    face.axis_v = fr.axis_v;
+    face.chart = chart;
+  };
+  if (!singular.empty()) {
+    std::vector<char> allowed(static_cast<std::size_t>(nf), 0), pending(static_cast<std::size_t>(nf), 0);
+    for (int f = 0; f < nf; ++f) allowed[static_cast<std::size_t>(f)] = m.live_face(f) && star_dist[static_cast<std::size_t>(f)] > 0;
+    for (int f : exact) pending[static_cast<std::size_t>(f)] = 1;
+    struct Region {
+      int seed;
+      std::vector<int> faces, members;
+    };
+    std::vector<Region> regions;
+    for (int f : exact) {
+      if (!pending[static_cast<std::size_t>(f)]) continue;
+      Region g{f, embedded_faces(m, f, allowed), {}};
+      // Members: the faces without a face outside the chart within depth rings.
+      std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX), outside;
+      for (int h : g.faces) dist[static_cast<std::size_t>(h)] = INT_MAX - 1;
+      for (int h = 0; h < nf; ++h)
+        if (m.live_face(h) && dist[static_cast<std::size_t>(h)] == INT_MAX) {
+          dist[static_cast<std::size_t>(h)] = 0;
+          outside.push_back(h);
+        }
+      rings(outside, depth, dist);
+      for (int h : g.faces)
+        if (pending[static_cast<std::size_t>(h)] && dist[static_cast<std::size_t>(h)] > depth) {
+          pending[static_cast<std::size_t>(h)] = 0;
+          g.members.push_back(h);
+        }
+      pending[static_cast<std::size_t>(f)] = 0;  // a seed its chart does not serve goes to the clusters below
+      if (!g.members.empty()) regions.push_back(std::move(g));
+    }
+    for (const Region& g : regions) {
+      ExactChart c;
+      try {
+        c = exact_chart(m, g.faces, g.seed, g.members, threads);
+      } catch (const Error&) {
+        continue;  // the clusters below take its members (and name the reason if theirs fail too)
+      }
+      bool used = false;
+      for (std::size_t j = 0; j < g.members.size(); ++j) {
+        if (c.cut[j] || !c.whole[j]) continue;
+        take(g.members[j], c.frames[j], static_cast<int>(charts_.size()));
+        served[static_cast<std::size_t>(g.members[j])] = 1;
+        used = true;
+      }
+      if (used) charts_.push_back(std::move(c.surface));
+    }
+  }
+  const std::size_t region_charts = charts_.size();
   struct Cluster {
     int centre, rings;
     std::vector<int> members;
@@ -659,31 +723,28 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads, int global_steps)
   std::vector<Cluster> clusters;
   // Faces near star points alone, from `reach` rings up to the ring before the star points' faces.
   for (NearExact& n : near_exact) clusters.push_back({n.face, reach, {n.face}, std::move(n.why)});
-  {
-    std::vector<char> served(static_cast<std::size_t>(nf), 0);
-    for (int f : exact) {
-      if (served[static_cast<std::size_t>(f)]) continue;
-      // Without star points the chart of all the faces it reaches (the global T-spline: small charts of a
-      // model whose end-condition blocks or slits end inside them can have blending functions the chart's border
-      // collapses).
-      const int k = periodic ? 1 : singular.empty() ? nf : std::min(4, star_dist[static_cast<std::size_t>(f)] == INT_MAX ? 4 : star_dist[static_cast<std::size_t>(f)] - depth - 1);
-      std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX);
-      dist[static_cast<std::size_t>(f)] = 0;
-      Cluster c{f, (periodic ? reach : depth) + k, {}, {}};
-      for (int g : rings({f}, k, dist))
-        if (faces_[static_cast<std::size_t>(g)].method == FaceMethod::exact && !served[static_cast<std::size_t>(g)]) {
-          served[static_cast<std::size_t>(g)] = 1;
-          c.members.push_back(g);
-        }
-      clusters.push_back(std::move(c));
-    }
+  for (int f : exact) {
+    if (served[static_cast<std::size_t>(f)]) continue;
+    // Without star points the chart of all the faces it reaches (the global T-spline: small charts of a
+    // model whose end-condition blocks or slits end inside them can have blending functions the chart's border
+    // collapses).
+    const int k = periodic ? 1 : singular.empty() ? nf : std::min(4, star_dist[static_cast<std::size_t>(f)] == INT_MAX ? 4 : star_dist[static_cast<std::size_t>(f)] - depth - 1);
+    std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX);
+    dist[static_cast<std::size_t>(f)] = 0;
+    Cluster c{f, (periodic ? reach : depth) + k, {}, {}};
+    for (int g : rings({f}, k, dist))
+      if (faces_[static_cast<std::size_t>(g)].method == FaceMethod::exact && !served[static_cast<std::size_t>(g)]) {
+        served[static_cast<std::size_t>(g)] = 1;
+        c.members.push_back(g);
+      }
+    clusters.push_back(std::move(c));
   }
   std::vector<std::string> errors;
   // A chart is exact for its members when no blending function that is nonzero on a member has a knot vector
-  // cut by the chart's border inside the mesh (a ray stopped there: its support box reaches a border edge whose
-  // other side is a face outside the chart). Otherwise the chart grows by a ring, as long as it holds no star point.
+  // cut by the chart's border inside the mesh. Otherwise the chart grows by a ring, as long as it holds no star
+  // point.
   const auto serve = [&](std::size_t first) {
-    charts_.resize(clusters.size());
+    charts_.resize(region_charts + clusters.size());
     errors.resize(clusters.size());
     parallel_for(static_cast<std::ptrdiff_t>(clusters.size() - first), threads, [&](std::ptrdiff_t n) {
       const std::ptrdiff_t i = static_cast<std::ptrdiff_t>(first) + n;
@@ -697,60 +758,10 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads, int global_steps)
           });
           std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX);
           dist[static_cast<std::size_t>(cl.centre)] = 0;
-          const std::vector<int> hood = rings({cl.centre}, r, dist);
-          TChart c = t_spline_chart(m, hood, cl.centre, false);
-          const auto at = [&](int v) {
-            const TVertex& x = c.spline.image.vertices[static_cast<std::size_t>(c.vertex[static_cast<std::size_t>(v)])];
-            return std::array<double, 2>{x.s, x.t};
-          };
-          std::vector<Box<2>> border;  // edges of the chart with a face outside it on the other side
-          for (int l = 0; l < static_cast<int>(m.links.size()); ++l) {
-            const TMeshLink& k = L(l);
-            if (k.face < 0 || c.face[static_cast<std::size_t>(k.face)] < 0) continue;
-            const int g = L(k.opp).face;
-            if (g < 0 || c.face[static_cast<std::size_t>(g)] >= 0) continue;
-            const auto p = at(k.vertex), q = at(L(k.opp).vertex);
-            border.push_back({{std::min(p[0], q[0]), std::min(p[1], q[1])}, {std::max(p[0], q[0]), std::max(p[1], q[1])}});
-          }
-          std::vector<Face> frames;
-          std::vector<Box<2>> boxes;
-          for (int g : cl.members) {
-            // The face's frame in the chart: its first corner, the next corner and the last one.
-            const auto& loop = m.faces[static_cast<std::size_t>(g)];
-            std::vector<int> corners;
-            for (int l : loop)
-              if (L(l).flag == 0) corners.push_back(L(l).vertex);
-            Face fr = faces_[static_cast<std::size_t>(g)];
-            const auto o = at(corners[0]), a = at(corners[1]), b = at(corners[3]);
-            fr.origin = o;
-            fr.axis_u = {a[0] - o[0], a[1] - o[1]};
-            fr.axis_v = {b[0] - o[0], b[1] - o[1]};
-            frames.push_back(fr);
-            const auto x = at(corners[2]);
-            boxes.push_back({{std::min(o[0], x[0]), std::min(o[1], x[1])}, {std::max(o[0], x[0]), std::max(o[1], x[1])}});
-          }
-          auto surface = std::make_unique<TSplineSurface>(c.spline, 1);
-          bool cut = false;
-          for (const auto& f : surface->basis()) {
-            const Box<2> sb{{f.knots[0].front(), f.knots[1].front()}, {f.knots[0].back(), f.knots[1].back()}};
-            const auto on_member = std::any_of(boxes.begin(), boxes.end(), [&](const Box<2>& b) {
-              return sb.lo[0] < b.hi[0] && b.lo[0] < sb.hi[0] && sb.lo[1] < b.hi[1] && b.lo[1] < sb.hi[1];
-            });
-            if (!on_member) continue;
-            // A border edge through the support's interior cuts it; one along its side does not (the rays that
-            // end there meet that edge in the chart as in the mesh).
-            cut = std::any_of(border.begin(), border.end(), [&](const Box<2>& e) {
-              return e.lo[0] < sb.hi[0] && sb.lo[0] < e.hi[0] && e.lo[1] < sb.hi[1] && sb.lo[1] < e.hi[1];
-            });
-            if (cut) break;
-          }
-          if (cut) continue;
-          for (std::size_t j = 0; j < cl.members.size(); ++j) {
-            Face& face = faces_[static_cast<std::size_t>(cl.members[j])];
-            face = frames[j];
-            face.chart = static_cast<int>(i);
-          }
-          charts_[static_cast<std::size_t>(i)] = std::move(surface);
+          ExactChart c = exact_chart(m, rings({cl.centre}, r, dist), cl.centre, cl.members, 1);
+          if (std::find(c.cut.begin(), c.cut.end(), 1) != c.cut.end()) continue;
+          for (std::size_t j = 0; j < cl.members.size(); ++j) take(cl.members[j], c.frames[j], static_cast<int>(region_charts) + static_cast<int>(i));
+          charts_[region_charts + static_cast<std::size_t>(i)] = std::move(c.surface);
           break;
         }
       } catch (const Error& e) {

@@ -6,7 +6,8 @@
 //                  (local knot vectors by rays, end-condition blocks) apply unchanged. A chart is accepted only
 //                  when no blending function nonzero on its faces has a knot vector cut by the chart's border
 //                  inside the mesh (else it grows by a ring), so this is the global T-spline's surface wherever
-//                  one exists (tested face by face to 1e-12, also starting from one-ring charts).
+//                  one exists (tested face by face to 1e-12, also starting from one-ring charts). Charts are
+//                  shared: as large as their layout in the plane allows (exact_chart), else by clusters of faces.
 //   bicubic        the other faces without a star corner: the bicubic B-spline patch of their 4 x 4 control
 //                  points on the knots of the mesh's lines through the face (uniform when the intervals are
 //                  equal), which is the T-spline there (no T-junction nearby).
@@ -187,6 +188,9 @@ private:
     int subdivided = -1;           // subdivided: index into subdivided_
     int crease = -1;               // crease: index into crease_faces_
   };
+  // `cut`: the mesh cut open along its sharp creases (split_creases) when it has any, for both its Bezier
+  // end-condition form and its crease faces.
+  TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int threads, int global_steps);
   struct Nurcc;  // a star point evaluated by non-uniform Catmull-Clark: its subdivision and homogeneous points
   int steps_ = 0;
   TMesh mesh_;

@@ -1,0 +1,153 @@
+#include "trivar/tspline/exact_chart.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <unordered_map>
+
+namespace trivar {
+
+ExactChart exact_chart(const TMesh& m, std::span<const int> faces, int seed, std::span<const int> members, int threads) {
+  const auto L = [&](int l) -> const TMeshLink& { return m.links[static_cast<std::size_t>(l)]; };
+  TChart c = t_spline_chart(m, faces, seed, false);
+  const auto at = [&](int v) {
+    const TVertex& x = c.spline.image.vertices[static_cast<std::size_t>(c.vertex[static_cast<std::size_t>(v)])];
+    return std::array<double, 2>{x.s, x.t};
+  };
+  std::vector<Box<2>> border;  // edges of the chart with a face outside it on the other side
+  for (const TMeshLink& k : m.links) {
+    if (k.face < 0 || c.face[static_cast<std::size_t>(k.face)] < 0) continue;
+    const int g = L(k.opp).face;
+    if (g < 0 || c.face[static_cast<std::size_t>(g)] >= 0) continue;
+    const auto p = at(k.vertex), q = at(L(k.opp).vertex);
+    border.push_back({{std::min(p[0], q[0]), std::min(p[1], q[1])}, {std::max(p[0], q[0]), std::max(p[1], q[1])}});
+  }
+  ExactChart out;
+  std::vector<Box<2>> boxes;
+  for (int g : members) {
+    std::vector<int> corners;
+    for (int l : m.faces[static_cast<std::size_t>(g)])
+      if (L(l).flag == 0) corners.push_back(L(l).vertex);
+    const auto o = at(corners[0]), a = at(corners[1]), b = at(corners[3]), x = at(corners[2]);
+    out.frames.push_back({o, {a[0] - o[0], a[1] - o[1]}, {b[0] - o[0], b[1] - o[1]}});
+    boxes.push_back({{std::min(o[0], x[0]), std::min(o[1], x[1])}, {std::max(o[0], x[0]), std::max(o[1], x[1])}});
+  }
+  out.surface = std::make_unique<TSplineSurface>(c.spline, threads);
+  out.cut.assign(members.size(), 0);
+  out.whole.assign(members.size(), 0);
+  for (std::size_t j = 0; j < boxes.size(); ++j) {
+    const Box<2>& b = boxes[j];
+    const int e = out.surface->locate({0.5 * (b.lo[0] + b.hi[0]), 0.5 * (b.lo[1] + b.hi[1])});
+    out.whole[j] = e >= 0 && out.surface->elements()[static_cast<std::size_t>(e)].lo == b.lo && out.surface->elements()[static_cast<std::size_t>(e)].hi == b.hi;
+  }
+  const auto overlap = [](const Box<2>& a, const Box<2>& b) {
+    return a.lo[0] < b.hi[0] && b.lo[0] < a.hi[0] && a.lo[1] < b.hi[1] && b.lo[1] < a.hi[1];
+  };
+  for (const auto& f : out.surface->basis()) {
+    const Box<2> sb{{f.knots[0].front(), f.knots[1].front()}, {f.knots[0].back(), f.knots[1].back()}};
+    // A border edge through the support's interior cuts it; one along its side does not (the rays that end there
+    // meet that edge in the chart as in the mesh).
+    if (std::none_of(border.begin(), border.end(), [&](const Box<2>& e) { return overlap(e, sb); })) continue;
+    for (std::size_t j = 0; j < boxes.size(); ++j)
+      if (overlap(sb, boxes[j])) out.cut[j] = 1;
+  }
+  return out;
+}
+
+std::vector<int> embedded_faces(const TMesh& m, int seed, std::span<const char> allowed) {
+  const auto L = [&](int l) -> const TMeshLink& { return m.links[static_cast<std::size_t>(l)]; };
+  const auto interval = [&](int l) { return m.intervals[static_cast<std::size_t>(L(l).edge)]; };
+  double extent = 0;
+  for (double d : m.intervals) extent += d;
+  const double tol = 1e-9 * std::max(extent, 1e-300);
+  std::vector<int> dir(m.links.size(), -1);  // compass direction in the chart (TDir), as t_spline_chart's
+  std::vector<std::array<double, 2>> pos(m.vertices.size());
+  std::vector<char> placed(m.vertices.size(), 0), decided(m.faces.size(), 0);
+  // The faces taken, as boxes in a hash grid of cells of the seed's longer side, for the overlap test.
+  std::vector<Box<2>> taken;
+  std::unordered_map<std::int64_t, std::vector<int>> cells;
+  double cell = 0;
+  const auto cell_range = [&](const Box<2>& b, int k) {  // with the boxes that touch it
+    return std::array<std::int64_t, 2>{static_cast<std::int64_t>(std::floor((b.lo[static_cast<std::size_t>(k)] - tol) / cell)),
+                                       static_cast<std::int64_t>(std::floor((b.hi[static_cast<std::size_t>(k)] + tol) / cell))};
+  };
+  const auto key = [](std::int64_t i, std::int64_t j) { return i * (std::int64_t{1} << 32) + j; };
+  std::vector<int> out, loop_dir;
+  std::vector<std::array<double, 2>> loop_pos;
+  // (face, its link whose direction and first vertex are known, that direction, that vertex's position)
+  struct Entry {
+    int face, link, dir;
+    std::array<double, 2> at;
+  };
+  std::vector<Entry> queue{{seed, m.first_corner(seed), static_cast<int>(TDir::east), {0, 0}}};
+  for (std::size_t head = 0; head < queue.size(); ++head) {
+    const Entry e = queue[head];
+    if (decided[static_cast<std::size_t>(e.face)]) continue;
+    decided[static_cast<std::size_t>(e.face)] = 1;
+    const auto& loop = m.faces[static_cast<std::size_t>(e.face)];
+    const std::size_t n = loop.size(), start = static_cast<std::size_t>(std::find(loop.begin(), loop.end(), e.link) - loop.begin());
+    // The face's layout from the entering link, turning left at every corner (as t_spline_chart's).
+    loop_dir.assign(n, -1);
+    loop_pos.assign(n, {});
+    int d = e.dir;
+    std::array<double, 2> p = e.at;
+    Box<2> box{p, p};
+    bool fits = true;
+    for (std::size_t i = 0; i < n && fits; ++i) {
+      const int l = loop[(start + i) % n], v = L(l).vertex;
+      if (i > 0 && L(l).flag == 0) d = (d + 1) % 4;
+      loop_dir[i] = d;
+      loop_pos[i] = p;
+      const int back = dir[static_cast<std::size_t>(L(l).opp)];
+      fits = (!placed[static_cast<std::size_t>(v)] || (std::abs(pos[static_cast<std::size_t>(v)][0] - p[0]) <= tol &&
+                                                       std::abs(pos[static_cast<std::size_t>(v)][1] - p[1]) <= tol)) &&
+             (back < 0 || back == tdir_opposite(d));
+      p[static_cast<std::size_t>(tdir_axis(d))] += tdir_sign(d) * interval(l);
+      for (std::size_t k = 0; k < 2; ++k) {
+        box.lo[k] = std::min(box.lo[k], p[k]);
+        box.hi[k] = std::max(box.hi[k], p[k]);
+      }
+    }
+    fits = fits && std::abs(p[0] - e.at[0]) <= tol && std::abs(p[1] - e.at[1]) <= tol;
+    if (cell == 0) cell = std::max({box.hi[0] - box.lo[0], box.hi[1] - box.lo[1], tol});
+    const auto ci = cell_range(box, 0), cj = cell_range(box, 1);
+    for (std::int64_t i = ci[0]; i <= ci[1] && fits; ++i)
+      for (std::int64_t j = cj[0]; j <= cj[1] && fits; ++j)
+        if (const auto it = cells.find(key(i, j)); it != cells.end())
+          for (int t : it->second) {
+            // The boxes' common part: an overlap, or a side or corner the faces must share in the mesh as well (else
+            // the chart's rays would pass from one to the other: the two sides of a sharp crease, a layout round a
+            // boundary vertex whose faces' angles sum to 360 degrees).
+            const Box<2>& b = taken[static_cast<std::size_t>(t)];
+            const double wx = std::min(box.hi[0], b.hi[0]) - std::max(box.lo[0], b.lo[0]),
+                         wy = std::min(box.hi[1], b.hi[1]) - std::max(box.lo[1], b.lo[1]);
+            if (wx < -tol || wy < -tol) continue;
+            const int g = out[static_cast<std::size_t>(t)];
+            const bool side = wx > tol || wy > tol;
+            fits = fits && !(wx > tol && wy > tol) &&
+                   std::any_of(loop.begin(), loop.end(), [&](int l) {
+                     return side ? L(L(l).opp).face == g : std::any_of(m.faces[static_cast<std::size_t>(g)].begin(), m.faces[static_cast<std::size_t>(g)].end(),
+                                                                       [&](int k) { return L(k).vertex == L(l).vertex; });
+                   });
+          }
+    if (!fits) continue;
+    for (std::int64_t i = ci[0]; i <= ci[1]; ++i)
+      for (std::int64_t j = cj[0]; j <= cj[1]; ++j) cells[key(i, j)].push_back(static_cast<int>(taken.size()));
+    taken.push_back(box);
+    out.push_back(e.face);
+    for (std::size_t i = 0; i < n; ++i) {
+      const int l = loop[(start + i) % n], v = L(l).vertex, o = L(l).opp;
+      placed[static_cast<std::size_t>(v)] = 1;
+      pos[static_cast<std::size_t>(v)] = loop_pos[i];
+      dir[static_cast<std::size_t>(l)] = loop_dir[i];
+      dir[static_cast<std::size_t>(o)] = tdir_opposite(loop_dir[i]);
+      const int g = L(o).face;
+      // The opposite link leaves the far end of l, laid out at the next position of the loop.
+      if (g >= 0 && allowed[static_cast<std::size_t>(g)] && !decided[static_cast<std::size_t>(g)])
+        queue.push_back({g, o, tdir_opposite(loop_dir[i]), loop_pos[(i + 1) % n]});
+    }
+  }
+  return out;
+}
+
+}  // namespace trivar
