@@ -776,6 +776,7 @@ TEST(CreaseFace, PatchesWithUnequalIntervals) {
   EXPECT_NE(step.find(std::to_string(p.patches.size()) + " Bezier patches (" + std::to_string(p.exact_patches) + " exact, " +
                       std::to_string(p.corner_patches) + " corner patches"),
             std::string::npos) << step;
+  std::printf("%s", step.c_str());
   std::printf("box 3 x 3, rim creased, strip at 1.5: %zu patches (%d corner), %d levels; exact patches off the surface by %.1e, "
               "corner patches by %.2e (tolerance %.2e); areas off 1 by %.1e; gaps: exact pieces %.1e, at corner patches %.1e, "
               "across edges %.1e\n",
