@@ -844,7 +844,8 @@ CreaseFace::CreaseFace(CreaseNet net) : net_(std::move(net)) {
 }
 
 void CreaseFace::for_each_cell(int corner_level, const std::function<void(const Cell&, const std::array<double, 2>&, double)>& f) const {
-  require(corner_level >= 1 && corner_level <= crease_max_levels, "crease face: corner squares of 2^-1 .. 2^-40 of the face only");
+  // The squares' corners stay exact in doubles down to 2^-61 (t_mesh_patches takes up to 60 levels of a quarter).
+  require(corner_level >= 1 && corner_level <= 61, "crease face: corner squares of 2^-1 .. 2^-61 of the face only");
   static constexpr std::array<std::array<double, 2>, 4> corner_uv{{{0, 0}, {1, 0}, {1, 1}, {0, 1}}};
   // Dyadic squares: the comparisons are exact.
   const auto in_corner = [&](const std::array<double, 2>& lo, double side, int level) {
