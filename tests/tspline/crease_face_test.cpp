@@ -22,6 +22,7 @@
 #include "face_continuity.hpp"
 #include "fusion_cages.hpp"
 #include "osd_reference.hpp"
+#include "patch_check.hpp"
 #include "star_mesh_tsm.hpp"
 #include "support/temp_dir.hpp"
 #include "triangulation_loops.hpp"
@@ -605,16 +606,16 @@ TEST(CreaseFace, RefusesRepeatedKnotsNearAnIrregularVertex) {
   }
 }
 
-TEST(CreaseFace, BoxWithAStripOfUnequalIntervals) {
-  // The box with its top rim creased (the crease turning at four valence-3 corners) and the strip of faces at
-  // x in [1/3, 1] (over the top, down two sides, along the bottom) at interval 1.5: it passes by two top corners
-  // (crease vertices of 3 faces) and two bottom ones (interior star points near the crease), as exact edge
-  // insertion leaves Fusion's boxes. Loads; closed triangulation; continuity across every edge; the rim curve
-  // against the periodic cubic B-spline of the rim vertices on their intervals (de Boor here); the command line.
-  const TopBox box;
+// The box with its top rim creased and the strip of faces at x in [1/3, 1] at interval `wide`, and the strip's
+// rung from (1, 1, 1) to (1/3, 1, 1).
+struct StripBox {
+  io::TsmModel model;
+  int rung = -1;
+};
+StripBox strip_box(const TopBox& box, double wide) {
   const Crease rim = [&](int a, int b) { return box.rim_edge(a, b); };
-  io::TsmModel model = io::parse_tsm(test::fusion_creased_text(box.cage, rim), "box.tsm");
-  TMesh& m = model.mesh;
+  StripBox r{io::parse_tsm(test::fusion_creased_text(box.cage, rim), "box.tsm")};
+  TMesh& m = r.model.mesh;
   const auto L = [&](int l) -> const TMeshLink& { return m.links[static_cast<std::size_t>(l)]; };
   const test::QuadMesh cube = test::cube_mesh(3);  // the box before its warp: the same vertex ids
   const auto near = [&](int v, std::array<double, 3> p) {
@@ -624,8 +625,24 @@ TEST(CreaseFace, BoxWithAStripOfUnequalIntervals) {
   int rung = -1;
   for (int l = 0; l < static_cast<int>(m.links.size()) && rung < 0; ++l)
     if (L(l).vertex >= 0 && L(l).face >= 0 && near(L(l).vertex, {1, 1, 1}) && near(L(L(l).next).vertex, {1.0 / 3, 1, 1})) rung = l;
-  ASSERT_GE(rung, 0);
-  set_strip(m, rung, 1.5);
+  require(rung >= 0, "strip box: no rung from (1, 1, 1) to (1/3, 1, 1)");
+  set_strip(m, rung, wide);
+  r.rung = rung;
+  return r;
+}
+
+TEST(CreaseFace, BoxWithAStripOfUnequalIntervals) {
+  // The box with its top rim creased (the crease turning at four valence-3 corners) and the strip of faces at
+  // x in [1/3, 1] (over the top, down two sides, along the bottom) at interval 1.5: it passes by two top corners
+  // (crease vertices of 3 faces) and two bottom ones (interior star points near the crease), as exact edge
+  // insertion leaves Fusion's boxes. Loads; closed triangulation; continuity across every edge; the rim curve
+  // against the periodic cubic B-spline of the rim vertices on their intervals (de Boor here); the command line.
+  const TopBox box;
+  const StripBox strip_box_15 = strip_box(box, 1.5);
+  const io::TsmModel& model = strip_box_15.model;
+  const TMesh& m = model.mesh;
+  const int rung = strip_box_15.rung;
+  const auto L = [&](int l) -> const TMeshLink& { return m.links[static_cast<std::size_t>(l)]; };
   const auto strip = std::count(m.intervals.begin(), m.intervals.end(), 1.5);
   EXPECT_EQ(strip, 12);  // the strip's 12 faces round the box, a closed loop of 12 rungs
   const TMeshSurface s(m, 1);
@@ -701,6 +718,70 @@ TEST(CreaseFace, BoxWithAStripOfUnequalIntervals) {
               "subdivision, %d exact, %d star, %d non-uniform; %zu triangles closed; across %d edges gap %.2e, normals %.2e, C1 %.2e "
               "(knot units); rim against de Boor %.2e\n", strip, s.count(FaceMethod::crease), s.count(FaceMethod::exact),
               s.count(FaceMethod::star), s.count(FaceMethod::non_uniform), t.triangles.size(), c.edges, c.gap, c.normal_angle, c.c1, curve);
+}
+
+// Within 2^-13 of an irregular corner a face with equal intervals is refined on past its cached sub-faces: the
+// surface stays continuous across the boundaries of the sub-faces of every level there (2^-l from the corner
+// of the creased box's faces).
+TEST(CreaseFace, ContinuousPastTheCachedLevels) {
+  const TopBox box;
+  const TMeshSurface s(io::parse_tsm(test::fusion_creased_text(box.cage, [&](int a, int b) { return box.rim_edge(a, b); }), "box.tsm").mesh, 1);
+  double worst = 0;
+  int corners = 0;
+  for (int f = 0; f < s.num_faces(); ++f) {
+    if (s.method(f) != FaceMethod::crease || !s.crease_face(f).irregular(0)) continue;
+    const CreaseFace& z = s.crease_face(f);
+    ++corners;
+    for (int l = 10; l <= 16; ++l) {
+      const double a = std::ldexp(1.0, -l), e = 1e-12 * a;
+      for (const auto& [p, q] : {std::pair{std::array{a - e, 0.3 * a}, std::array{a + e, 0.3 * a}},
+                                 std::pair{std::array{0.3 * a, a - e}, std::array{0.3 * a, a + e}}}) {
+        double x[12], y[12];
+        z.eval(p[0], p[1], x);
+        z.eval(q[0], q[1], y);
+        worst = std::max(worst, std::hypot(x[0] / x[3] - y[0] / y[3], x[1] / x[3] - y[1] / y[3], x[2] / x[3] - y[2] / y[3]));
+      }
+    }
+  }
+  EXPECT_GT(corners, 0);
+  EXPECT_LT(worst, 1e-13);  // points 1e-12 of a sub-face's side apart
+  std::printf("creased box, %d faces with an irregular first corner: jump across the sub-faces 2^-10 .. 2^-16 from it %.1e\n",
+              corners, worst);
+}
+
+// The Bezier patches of the box with its strip at 1.5: near the irregular vertices a quarter of a crease face is
+// several B-spline cells, each one exact patch (the surface to rounding, sampled at 5 x 5 points against the
+// face's own evaluation), and only the corner patches at the irregular corners are constructed, within the
+// tolerance. The pieces tile each face and meet C0; the command line states the counts.
+TEST(CreaseFace, PatchesWithUnequalIntervals) {
+  const TopBox box;
+  const StripBox b = strip_box(box, 1.5);
+  const TMeshSurface s(b.model.mesh, 1);
+  const TMeshPatches p = t_mesh_patches(s);
+  int corners = s.count(FaceMethod::star);
+  for (int f = 0; f < s.num_faces(); ++f)
+    for (int c = 0; c < 4 && s.method(f) == FaceMethod::crease; ++c) corners += s.crease_face(f).irregular(c);
+  EXPECT_EQ(p.corner_patches, corners);
+  const test::PatchCheck c = test::check_patches(s, p);
+  EXPECT_LT(c.exact, 1e-12);
+  EXPECT_LE(c.constructed, 2 * p.tolerance);
+  EXPECT_LT(c.area, 1e-12);
+  EXPECT_LT(c.inner_gap, 1e-12);
+  EXPECT_LT(c.edge_gap, 1e-12);
+  EXPECT_LE(c.corner_gap, 2 * p.tolerance);
+  const test::TempDir dir;
+  const std::string path = dir.file("box_strip.tsm");
+  io::write_tsm(path, b.model.mesh, b.model.report);
+  const std::string step = test::run_cli(dir, "convert " + path + " " + dir.file("box_strip.stp"));
+  EXPECT_NE(step.find(std::to_string(p.patches.size()) + " Bezier patches (" + std::to_string(p.exact_patches) + " exact, " +
+                      std::to_string(p.corner_patches) + " corner patches"),
+            std::string::npos) << step;
+  std::printf("%s", step.c_str());
+  std::printf("box 3 x 3, rim creased, strip at 1.5: %zu patches (%d corner), %d levels; exact patches off the surface by %.1e, "
+              "corner patches by %.2e (tolerance %.2e); areas off 1 by %.1e; gaps: exact pieces %.1e, at corner patches %.1e, "
+              "across edges %.1e\n",
+              p.patches.size(), p.corner_patches, p.levels, c.exact, c.constructed, p.tolerance, c.area, c.inner_gap, c.corner_gap,
+              c.edge_gap);
 }
 
 }  // namespace

@@ -20,6 +20,7 @@
 #include "face_continuity.hpp"
 #include "fusion_cages.hpp"
 #include "osd_reference.hpp"
+#include "patch_check.hpp"
 #include "star_mesh_tsm.hpp"
 #include "support/temp_dir.hpp"
 #include "triangulation_loops.hpp"
@@ -209,6 +210,31 @@ TEST(GlobalNurccStep, LocalSubdivisionIsTheSurfaceAfterTheSteps) {
   std::printf("box 3 x 3, strip at 1.5, no steps: %d crease faces (local subdivision), %d star, %d subdivided; against 2 global "
               "steps %.1e / %.1e (position / relative derivatives)\n", local.count(FaceMethod::crease), local.count(FaceMethod::star),
               local.count(FaceMethod::subdivided), d.position, d.derivative);
+}
+
+// The Bezier patches of meshes with a strip at 1.5 whose faces near the star points are crease faces: the 3 x 3
+// box forced to local subdivision and the open 3 x 3 x 7 box with its Bezier rim. The crease faces' B-spline
+// cells are exact patches (the surface to rounding at 5 x 5 points each), the corner patches within the
+// tolerance; the pieces tile each face and meet C0.
+TEST(GlobalNurccStep, PatchesOfLocalSubdivision) {
+  for (const bool open : {false, true}) {
+    const TMesh mesh = open ? stepped_box({3, 3, 7}, true, 2, 1.5) : stepped_box(3, 1, 1.5);
+    const TMeshSurface s(mesh, 1, open ? -1 : 0);  // the closed box without its global steps
+    ASSERT_GT(s.count(FaceMethod::crease), 0);
+    const TMeshPatches p = t_mesh_patches(s);
+    const test::PatchCheck c = test::check_patches(s, p);
+    EXPECT_LT(c.exact, 1e-12) << open;
+    EXPECT_LE(c.constructed, 2 * p.tolerance) << open;
+    EXPECT_LT(c.area, 1e-12) << open;
+    EXPECT_LT(c.inner_gap, 1e-12) << open;
+    EXPECT_LT(c.edge_gap, 1e-12) << open;
+    EXPECT_LE(c.corner_gap, 2 * p.tolerance) << open;
+    std::printf("%s, strip at 1.5: %zu patches (%d corner), %d levels; exact patches off the surface by %.1e, corner patches "
+                "by %.2e (tolerance %.2e); areas off 1 by %.1e; gaps: exact pieces %.1e, at corner patches %.1e, across edges "
+                "%.1e\n",
+                open ? "open box 3 x 3 x 7" : "box 3 x 3, no steps", p.patches.size(), p.corner_patches, p.levels, c.exact,
+                c.constructed, p.tolerance, c.area, c.inner_gap, c.corner_gap, c.edge_gap);
+  }
 }
 
 // The largest spread, over the star points, of the limit positions and normals that the faces round each star

@@ -363,6 +363,8 @@ std::optional<CreaseFace::Cell> net_cell(const CreaseNet& n, const NetIncidence&
   return cell;
 }
 
+}  // namespace
+
 void eval_cell(const CreaseFace::Cell& c, double u, double v, double scale, double* out) {
   double bu[8], bv[8];
   basis_derivatives(c.knots[0].data(), 3, 2, u, 1, bu);
@@ -379,6 +381,8 @@ void eval_cell(const CreaseFace::Cell& c, double u, double v, double scale, doub
       }
     }
 }
+
+namespace {
 
 // The one ring of vertex v, which its subdivision maps to itself: v, then round its faces in order each face's
 // next vertex and diagonal vertex, and for a boundary vertex the last face's previous vertex (empty when open in
@@ -839,6 +843,41 @@ CreaseFace::CreaseFace(CreaseNet net) : net_(std::move(net)) {
   }
 }
 
+void CreaseFace::for_each_cell(int corner_level, const std::function<void(const Cell&, const std::array<double, 2>&, double)>& f) const {
+  // The squares' corners stay exact in doubles down to 2^-61 (t_mesh_patches takes up to 60 levels of a quarter).
+  require(corner_level >= 1 && corner_level <= 61, "crease face: corner squares of 2^-1 .. 2^-61 of the face only");
+  static constexpr std::array<std::array<double, 2>, 4> corner_uv{{{0, 0}, {1, 0}, {1, 1}, {0, 1}}};
+  // Dyadic squares: the comparisons are exact.
+  const auto in_corner = [&](const std::array<double, 2>& lo, double side, int level) {
+    if (level < corner_level) return false;
+    for (int c = 0; c < 4; ++c) {
+      const auto& cu = corner_uv[static_cast<std::size_t>(c)];
+      if (irregular(c) && (cu[0] == 0 ? lo[0] == 0 : lo[0] + side == 1) && (cu[1] == 0 ? lo[1] == 0 : lo[1] + side == 1)) return true;
+    }
+    return false;
+  };
+  const auto child_lo = [](const std::array<double, 2>& lo, double side, int k) {
+    return std::array<double, 2>{lo[0] + (k == 1 || k == 2 ? side / 2 : 0), lo[1] + (k >= 2 ? side / 2 : 0)};
+  };
+  // Past the cached levels the kept nets are refined on; every sub-face away from the corner squares is a cell
+  // within a level (its 4 x 4 points then miss the irregular corner).
+  const std::function<void(const CreaseNet&, const std::array<double, 2>&, double, int)> net_cells =
+      [&](const CreaseNet& net, const std::array<double, 2>& lo, double side, int level) {
+        if (in_corner(lo, side, level)) return;
+        if (const auto cell = net_cell(net, net_incidence(net))) return f(*cell, lo, side);
+        for (int k = 0; k < 4; ++k) net_cells(refine(net, k), child_lo(lo, side, k), side / 2, level + 1);
+      };
+  const std::function<void(int, const std::array<double, 2>&, double, int)> node_cells =
+      [&](int id, const std::array<double, 2>& lo, double side, int level) {
+        const Node& node = tree_[static_cast<std::size_t>(id)];
+        if (in_corner(lo, side, level)) return;
+        if (node.cell) return f(*node.cell, lo, side);
+        if (node.net) return net_cells(*node.net, lo, side, level);
+        for (int k = 0; k < 4; ++k) node_cells(node.children[static_cast<std::size_t>(k)], child_lo(lo, side, k), side / 2, level + 1);
+      };
+  if (has_cells()) node_cells(0, {0, 0}, 1, 0);
+}
+
 void CreaseFace::eval(double u, double v, double* out) const {
   // Irregular corners stay irregular at every level (edge and face points are regular), so only points at (or
   // within 2^-crease_max_levels of) the face's own irregular corners never reach a regular sub-face.
@@ -899,8 +938,9 @@ void CreaseFace::eval_off_corners(double u, double v, double* out) const {
       return;
     }
   }
-  // Beyond the cached levels (within 2^-crease_cached_levels of the corner): refine on.
-  CreaseNet net = chain.back();
+  // Beyond the cached levels (within 2^-(crease_cached_levels + 1) of the corner): refine on from the sub-face at c
+  // that the last cached level's (u, v) lies in, one level below the last cached net.
+  CreaseNet net = refine(chain.back(), c);
   for (;;) {
     const int k = quarter_of(u, v);
     scale *= 2;

@@ -48,6 +48,7 @@
 // The rules are linear: they act on homogeneous points (w x, w) (rational Catmull-Clark). Hand-written: no
 // packaged library evaluates subdivision surfaces with crease boundaries.
 #include <array>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -94,6 +95,13 @@ public:
     std::array<std::array<double, 4>, 16> points;
     std::array<std::array<double, 6>, 2> knots;
   };
+  // Whether the face has unequal knot intervals nearby: then it is a quadtree of B-spline cells (for_each_cell).
+  bool has_cells() const { return !tree_.empty(); }
+  // Unequal intervals: the B-spline cells tiling the face but for the squares [0, 2^-corner_level]^2 at its
+  // irregular corners (their sub-faces near the corner are never cells), refined on past the cached levels:
+  // f(cell, lo, side) with the cell's square [lo, lo + side]^2 of the face. Each cell is one bicubic polynomial on
+  // its square, so a patch exporter converts it exactly.
+  void for_each_cell(int corner_level, const std::function<void(const Cell&, const std::array<double, 2>&, double)>& f) const;
 
 private:
   using Grid = std::array<std::array<double, 4>, 16>;  // a regular sub-face's 4 x 4 homogeneous points
@@ -123,5 +131,9 @@ private:
 // corner 0 at the parent's (u, v) = (child == 1 || child == 2 ? 1/2 : 0, child >= 2 ? 1/2 : 0), oriented as the
 // parent).
 CreaseNet refine(const CreaseNet& net, int child);
+
+// Homogeneous value, d/du, d/dv (12 values) of a cell at (u, v) in its [0, 1]^2, the derivatives times `scale`
+// (1 / the side of the cell's square in the coordinates they are wanted in).
+void eval_cell(const CreaseFace::Cell& c, double u, double v, double scale, double* out);
 
 }  // namespace trivar

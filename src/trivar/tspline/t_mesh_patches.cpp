@@ -272,9 +272,13 @@ TMeshPatches t_mesh_patches(const TMeshSurface& s, const TMeshPatchOptions& opti
     });
   }
   std::size_t next_star = 0;
+  const auto next_corner_patch = [&](int f, const CornerFrame& fr) {
+    const double h = std::ldexp(1.0, -r.levels);
+    r.patches.push_back(net_to_face(f, stars[next_star++].corner, {{0, 0}, {h, h}}, fr, false));
+  };
   // The next star's rings of exact patches (split x split B-spline cells per square) and its corner patch.
   const auto star_patches = [&](int f, const CornerFrame& fr, int split) {
-    const Star& st = stars[next_star++];
+    const Star& st = stars[next_star];
     for (int j = 1; j <= r.levels; ++j) {
       const double h = std::ldexp(1.0, -j), c = h / split;
       for (const auto& lo : {std::array<double, 2>{h, 0}, std::array<double, 2>{h, h}, std::array<double, 2>{0, h}})
@@ -284,8 +288,12 @@ TMeshPatches t_mesh_patches(const TMeshSurface& s, const TMeshPatchOptions& opti
             r.patches.push_back(net_to_face(f, interpolate_patch(st.eval, x, y, c), {{x, y}, {x + c, y + c}}, fr, true));
           }
     }
-    const double h = std::ldexp(1.0, -r.levels);
-    r.patches.push_back(net_to_face(f, st.corner, {{0, 0}, {h, h}}, fr, false));
+    next_corner_patch(f, fr);
+  };
+  // The frame of quarter q of a face: corner q's, at half scale.
+  const auto quarter_frame = [](int q) {
+    const CornerFrame c = corner_frame(q);
+    return CornerFrame{c.origin, {c.a[0] / 2, c.a[1] / 2}, {c.b[0] / 2, c.b[1] / 2}};
   };
   for (int f = 0; f < s.num_faces(); ++f) {
     switch (s.method(f)) {
@@ -311,11 +319,23 @@ TMeshPatches t_mesh_patches(const TMeshSurface& s, const TMeshPatchOptions& opti
         break;
       case FaceMethod::subdivided:
       case FaceMethod::crease:
+        if (s.method(f) == FaceMethod::crease && s.crease_face(f).has_cells()) {
+          // Unequal intervals: a quarter is several B-spline cells (knot lines where the rules inserted them), each
+          // one bicubic piece, so each cell is one exact patch; at an irregular corner the star's corner patch
+          // covers the square of side 2^-levels of the quarter, which no cell reaches.
+          const CreaseFace& z = s.crease_face(f);
+          z.for_each_cell(r.levels + 1, [&](const CreaseFace::Cell& cell, const std::array<double, 2>& lo, double side) {
+            const HomogeneousEval e = [&cell](double x, double y, double* o) { eval_cell(cell, x, y, 1, o); };
+            r.patches.push_back(net_to_face(f, interpolate_patch(e, 0, 0, 1), {{0, 0}, {1, 1}}, {lo, {side, 0}, {0, side}}, true));
+          });
+          for (int q = 0; q < 4; ++q)
+            if (z.irregular(q)) next_corner_patch(f, quarter_frame(q));
+          break;
+        }
         for (int q = 0; q < 4; ++q) {
-          // The quarter's frame in the face: corner q's, at half scale. A crease face's quarters away from its
-          // irregular corners are bicubic B-splines (their corners are regular after one step).
-          const CornerFrame c = corner_frame(q);
-          const CornerFrame fr{c.origin, {c.a[0] / 2, c.a[1] / 2}, {c.b[0] / 2, c.b[1] / 2}};
+          // A crease face's quarters away from its irregular corners are bicubic B-splines (their corners are
+          // regular after one step).
+          const CornerFrame fr = quarter_frame(q);
           const bool subdivided = s.method(f) == FaceMethod::subdivided;
           if (subdivided ? s.subdivided(f).valence(q) != 4 : s.crease_face(f).irregular(q))
             star_patches(f, fr, 1);

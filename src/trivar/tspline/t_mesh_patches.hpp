@@ -10,7 +10,14 @@
 //                  three bicubic patches of the limit surface, exact; only the corner [0, h]^2, h = 2^-levels,
 //                  at the star point is constructed (below) and deviates from the limit surface.
 //   subdivided     per quarter (the sub-face of one local Catmull-Clark step, [0, 1/2]^2 etc. of the face): one
-//                  bicubic patch, or a star face's rings and corner patch at half scale.
+//                  bicubic patch, or a star face's rings and corner patch at half scale. Crease faces with equal
+//                  intervals alike.
+//   crease faces   with unequal knot intervals: the sub-faces are B-spline cells of different sizes (the NURCC
+//                  rules insert knots unevenly and subdivide next to an irregular vertex one level further), each
+//                  one bicubic piece on its square, so one exact patch per cell; at an irregular corner the corner
+//                  patch of a star face at half scale, [0, 2^-(levels + 1)]^2 of the face at that corner, which the
+//                  cells round it tile up to. Its sides away from the corner cross cell boundaries (knots of the
+//                  limit surface), so there it meets the cells C0 only within the tolerance.
 // The corner patch (bicubic Bezier b_ij, i along u' from the star point):
 //   b_3j, b_i3  its sides away from the star point: the limit surface's exact cubics there (C0 exactly with
 //               the exact patches beside it);
