@@ -3,8 +3,9 @@
 // (EndConditions::subd_creases) that its crease list (TMesh::crease_edges, Fusion's `100edges`) or an edge
 // condition (an `ec` record) marks, taken as infinitely sharp subdivision creases. The surface is C0 across
 // them, the crease curve the cubic B-spline of the crease vertices (with their knot intervals), and each side the
-// surface that side has when the crease is its open crease boundary. So the mesh is cut open along them (`split_creases`): every crease vertex gets one copy per
-// side wedge, each with its own copy of the control point, and the links across a crease become boundary links.
+// surface that side has when the crease is its open crease boundary. So the mesh is cut open along them
+// (`split_creases`): every crease vertex gets one copy per side wedge, each with its own copy of the control point,
+// and the links across a crease become boundary links.
 // The crease boundary conversion (crease_ends) and everything after it then apply unchanged.
 //
 // Which crease vertices are cut, and their rule (TMeshVertex::crease_rule, on every side, from the original vertex

@@ -652,8 +652,8 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int th
   // one of those vertices, as long as the layout neither closes round one of them nor overlaps or touches itself),
   // each serving the exact faces whose depth face rings it holds (their neighbourhoods lie inside, as in the
   // charts below); the faces left over (a blending function on them cut by the chart's border, a face that is
-  // not one element of the chart, or a chart that does not lay out) are grouped as follows. A chart of depth + k rings around a face serves every face within k rings of
-  // it, so faces are grouped greedily: a cluster around the first face not yet served, k as large as the star
+  // not one element of the chart, or a chart that does not lay out) are grouped as follows. A chart of depth + k
+  // rings around a face serves every face within k rings of it, so faces are grouped greedily: a cluster around the first face not yet served, k as large as the star
   // points allow (up to 4; without star points all it reaches). A mesh without star points but with a closed
   // strip (a torus, a tube) has no chart of all its faces, and a chart must not wrap round the strip: clusters of
   // one ring in charts of reach + 1 rings, split into single faces in charts of reach rings where those wrap
