@@ -38,8 +38,9 @@
 // level further than with equal intervals. A net with unequal intervals and a dart is refused (the rules
 // above need a closed fan of faces at a smooth vertex; a dart's is open). The limit point and tangent plane at an
 // irregular corner come from the eigenvectors of its one ring's subdivision matrix, read off the rules themselves
-// at level 3 (stationary from there). Measured (tests/tspline/crease_face_test.cpp): knot insertion of the exact surface (grids with
-// intervals 1 : 1.02, 1.5, 3, polynomial and rational) to 7e-15 in value and 9e-14 in relative derivatives; an
+// at level 3 (stationary from there). Measured (tests/tspline/crease_face_test.cpp): knot insertion of the exact
+// surface (grids with intervals 1 : 1.02, 1.5, 3, polynomial and rational) to 7e-15 in value and 9e-14 in
+// relative derivatives; an
 // interior star point equals NonUniformStar to 2e-15 (derivatives 6e-13); round crease vertices of 3 and 4 faces
 // and on the creased box C0 to 4e-15, normals and C1 (per knot unit) across every edge to 4e-14, the crease the
 // de Boor B-spline to 1.3e-15; the normals 2^-30 from a crease vertex of 3 faces within 3e-6 rad of one another

@@ -12,8 +12,8 @@
 // whatever the side's faces). A vertex is a corner when three or more sharp edges meet there (crease edges, and
 // the two boundary edges of a boundary vertex), or when the mesh's crease list names it (TMesh::crease_vertices,
 // Fusion's `100verts`; on a crease, on the boundary or inside): subdivision interpolates it. A vertex with two
-// crease edges and no boundary takes the crease rule (the crease curve runs through it), also where the crease turns (one side then
-// has one face) or runs through a star point. Sides that are not a regular crease patch (a crease vertex of other
+// crease edges and no boundary takes the crease rule (the crease curve runs through it), also where the crease
+// turns (one side then has one face) or runs through a star point. Sides that are not a regular crease patch (a crease vertex of other
 // than two faces, a corner of other than one: irregular_crease_vertices) are evaluated by local subdivision
 // (crease_face). A crease ending at a vertex inside the mesh (a dart; not creased) is cut up to that vertex, which
 // stays one vertex (rule dart): a slit whose end has one fan of faces from one side to the other, moved by the

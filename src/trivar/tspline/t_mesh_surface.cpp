@@ -647,18 +647,17 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int th
     }
     set_patch(f, corner, star_corners, unequal, where(), std::move(gth));
   }
-  // Exact faces: the T-spline in a chart of their neighbourhood. Near star points or irregular crease vertices,
-  // first in charts as large as the faces allow (embedded_faces: grown from an exact face over every face not at
-  // one of those vertices, as long as the layout neither closes round one of them nor overlaps or touches itself),
-  // each serving the exact faces whose depth face rings it holds (their neighbourhoods lie inside, as in the
-  // charts below); the faces left over (a blending function on them cut by the chart's border, a face that is
-  // not one element of the chart, or a chart that does not lay out) are grouped as follows. A chart of depth + k
-  // rings around a face serves every face within k rings of it, so faces are grouped greedily: a cluster around the first face not yet served, k as large as the star
-  // points allow (up to 4; without star points all it reaches). A mesh without star points but with a closed
-  // strip (a torus, a tube) has no chart of all its faces, and a chart must not wrap round the strip: clusters of
-  // one ring in charts of reach + 1 rings, split into single faces in charts of reach rings where those wrap
-  // (degree 3: strips of 8 faces and more), and on shorter strips the bicubic B-spline cells of regular
-  // neighbourhoods.
+  // Exact faces: the T-spline in a chart of their neighbourhood. Near star points or irregular crease vertices, first
+  // in charts as large as the faces allow (embedded_faces: grown from an exact face over every face not at one of those
+  // vertices, as long as the layout neither closes round one of them nor overlaps or touches itself), each serving the
+  // exact faces whose depth face rings it holds (their neighbourhoods lie inside, as in the charts below); the faces
+  // left over (a blending function on them cut by the chart's border, a face that is not one element of the chart, or a
+  // chart that does not lay out) are grouped as follows. A chart of depth + k rings around a face serves every face
+  // within k rings of it, so faces are grouped greedily: a cluster around the first face not yet served, k as large as
+  // the star points allow (up to 4; without star points all it reaches). A mesh without star points but with a closed
+  // strip (a torus, a tube) has no chart of all its faces, and a chart must not wrap round the strip: clusters of one
+  // ring in charts of reach + 1 rings, split into single faces in charts of reach rings where those wrap (degree 3:
+  // strips of 8 faces and more), and on shorter strips the bicubic B-spline cells of regular neighbourhoods.
   const bool periodic = singular.empty() && has_closed_strip(m);
   std::vector<char> served(static_cast<std::size_t>(nf), 0);
   const auto take = [&](int f, const ExactChart::Frame& fr, int chart) {
@@ -831,7 +830,8 @@ TMeshSurface::FacePoint TMeshSurface::refined_point(int source_face, double u, d
           [&] { return "T-mesh: no face " + std::to_string(source_face); });
   require(u >= 0 && u <= 1 && v >= 0 && v <= 1, [&] { return "T-mesh: (u, v) = (" + std::to_string(u) + ", " + std::to_string(v) + ") outside [0, 1]^2"; });
   FacePoint p{source_face, u, v, 1};
-  // nurcc_step's numbering: quarter 0, 1, 2, 3 at (u, v) in [0, 1/2]^2, [1/2, 1] x [0, 1/2], [1/2, 1]^2, [0, 1/2] x [1/2, 1].
+  // nurcc_step's numbering: quarter 0, 1, 2, 3 at (u, v) in [0, 1/2]^2, [1/2, 1] x [0, 1/2], [1/2, 1]^2, [0, 1/2] x
+  // [1/2, 1].
   for (int k = 0; k < steps_; ++k) {
     const int i = p.u >= 0.5 ? 1 : 0, j = p.v >= 0.5 ? 1 : 0;
     p.face = 4 * p.face + (j == 0 ? i : 3 - i);

@@ -41,8 +41,9 @@
 //                  several star corners or next to star points joined by an edge, and faces whose 4 x 4 points
 //                  hold a star point without NonUniformStar's three regular rings (another star point within
 //                  them) or in the cells of two star points; where the global steps (see the constructor) do
-//                  not apply (open meshes, T-junctions away from the star points). Their two face rings must be quadrilaterals
-//                  without T-junctions inside the mesh, with one interval per strip and one point per vertex.
+//                  not apply (open meshes, T-junctions away from the star points). Their two face rings must be
+//                  quadrilaterals without T-junctions inside the mesh, with one interval per strip and one point per
+//                  vertex.
 // The faces within p + 2 rings of a star point (bicubic and star) need, and are checked to have, degree 3,
 // no T-junction and no boundary within (p + 1) / 2 rings of them, control points
 // without repeated-knot nodes, and at most one star corner per face or else equal intervals (subdivided).
