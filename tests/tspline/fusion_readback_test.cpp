@@ -20,6 +20,7 @@
 #include "fusion_cages.hpp"
 #include "osd_reference.hpp"
 #include "triangulation_loops.hpp"
+#include "tsm_error.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/io/tsm_format.hpp"
 #include "trivar/tspline/t_mesh_patches.hpp"
@@ -297,18 +298,6 @@ TEST(FusionReadback, GridLoadsAsGlobalTSpline) {
   EXPECT_EQ(m.mesh.conditions.size(), 12u);
 }
 
-// The refusal of a mesh's surface: one line holding `fragment`.
-void expect_surface_refusal(const TMesh& m, const std::string& fragment) {
-  try {
-    const TMeshSurface s(m);
-    ADD_FAILURE() << "loaded; expected " << fragment;
-  } catch (const Error& e) {
-    const std::string msg = e.what();
-    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
-    EXPECT_NE(msg.find(fragment), std::string::npos) << msg;
-  }
-}
-
 // Unequal knot intervals among star points closer than non-uniform Catmull-Clark's three rings (the 3 x 3 box's
 // corners are three edges apart): two global non-uniform Catmull-Clark steps (3 -> 12 edges apart), then each
 // star point's own sectors. The `inconsistent knot` box is consistent as Fusion wrote it back: one strip of faces
@@ -432,7 +421,7 @@ TEST(FusionReadback, SteppedBoxIsEvaluatedOnTheFilesFaces) {
 TEST(FusionReadback, TJunctionsInAStarPointsRingAreRefused) {
   const io::TsmModel m = read_fusion_file("a3_box3_tjunc_ring2_readback.tsm");
   EXPECT_EQ(m.report.t_junctions, 4);
-  expect_surface_refusal(m.mesh, "face 10 has a T-junction at vertex 59 within 1 face ring of star point 16's faces");
+  test::expect_surface_refusal(m.mesh, "face 10 has a T-junction at vertex 59 within 1 face ring of star point 16's faces");
 }
 
 }  // namespace

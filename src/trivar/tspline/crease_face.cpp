@@ -416,43 +416,43 @@ std::vector<int> one_ring(const CreaseNet& n, const NetIncidence& inc, int v) {
   return ring;
 }
 
-// The limit tangent plane at a vertex from the eigenstructure of its one ring's subdivision matrix S: the left
-// eigenvectors of the two largest eigenvalues below 1 give tangent vectors l . P (homogeneous). Empty when the
-// plane is not so defined: complex eigenvalues, or the second eigenvalue repeated apart from the first (a crease
-// vertex of one face, whose cross direction shares its eigenvalue 1/4 with the crease curve's curvature; of four
-// faces, 0.61 then 1/2 twice).
-std::optional<std::array<NetPoint, 2>> ring_tangents(const Eigen::MatrixXd& S, const CreaseNet& n, const std::vector<int>& ring) {
+// The limit at a vertex.
+struct CornerLimit {
+  NetPoint point;
+  std::optional<std::array<NetPoint, 2>> plane;  // tangent vectors
+};
+
+// The limit at a vertex from the eigenstructure of its one ring's subdivision matrix S (one solve for both): the
+// position l . P with l the left eigenvector of eigenvalue 1 (the rows of S sum to 1), scaled to sum 1; the left
+// eigenvectors of the two largest eigenvalues below 1 give tangent vectors l . P (homogeneous). No plane when it is
+// not so defined: complex eigenvalues, or the second eigenvalue repeated apart from the first (a crease vertex of
+// one face, whose cross direction shares its eigenvalue 1/4 with the crease curve's curvature; of four faces, 0.61
+// then 1/2 twice).
+CornerLimit eigen_limit(const Eigen::MatrixXd& S, const CreaseNet& n, const std::vector<int>& ring) {
   const auto sz = S.rows();
   const Eigen::EigenSolver<Eigen::MatrixXd> es(S.transpose());
+  const auto lambda = [&](Eigen::Index i) { return es.eigenvalues()(i); };
+  const Eigen::MatrixXcd vectors = es.eigenvectors();  // computed on the call: kept for the columns below
+  const auto apply = [&](Eigen::Index col, double scale) {
+    NetPoint x{};
+    for (Eigen::Index i = 0; i < sz; ++i)
+      add_scaled(x, n.points[static_cast<std::size_t>(ring[static_cast<std::size_t>(i)])], scale * vectors(i, col).real());
+    return x;
+  };
+  Eigen::Index one = 0;
+  for (Eigen::Index i = 1; i < sz; ++i)
+    if (std::abs(lambda(i) - 1.0) < std::abs(lambda(one) - 1.0)) one = i;
+  CornerLimit out{apply(one, 1 / vectors.col(one).real().sum()), std::nullopt};
+  for (Eigen::Index i = 0; i < sz; ++i)
+    if (std::abs(lambda(i).imag()) > 1e-12) return out;
   std::vector<Eigen::Index> order(static_cast<std::size_t>(sz));
   for (Eigen::Index i = 0; i < sz; ++i) order[static_cast<std::size_t>(i)] = i;
-  const auto lambda = [&](Eigen::Index i) { return es.eigenvalues()(i); };
-  for (Eigen::Index i = 0; i < sz; ++i)
-    if (std::abs(lambda(i).imag()) > 1e-12) return std::nullopt;
   std::sort(order.begin(), order.end(), [&](Eigen::Index a, Eigen::Index b) { return lambda(a).real() > lambda(b).real(); });
   const double l1 = lambda(order[1]).real(), l2 = lambda(order[2]).real(), l3 = sz > 3 ? lambda(order[3]).real() : 0;
   if (std::abs(lambda(order[0]).real() - 1) > 1e-12 || l1 >= 1 - 1e-12 || (std::abs(l2 - l3) < 1e-9 && std::abs(l1 - l2) > 1e-9))
-    return std::nullopt;
-  const Eigen::MatrixXcd vectors = es.eigenvectors();  // computed on the call: kept for the columns below
-  std::array<NetPoint, 2> t{};
-  for (std::size_t m = 0; m < 2; ++m) {
-    const auto vec = vectors.col(order[m + 1]);
-    for (Eigen::Index i = 0; i < sz; ++i) add_scaled(t[m], n.points[static_cast<std::size_t>(ring[static_cast<std::size_t>(i)])], vec(i).real());
-  }
-  return t;
-}
-
-// The limit position at a vertex: l . P with l the left eigenvector of its one ring's subdivision matrix S of
-// eigenvalue 1 (the rows of S sum to 1), scaled to sum 1.
-NetPoint ring_point(const Eigen::MatrixXd& S, const CreaseNet& n, const std::vector<int>& ring) {
-  const Eigen::EigenSolver<Eigen::MatrixXd> es(S.transpose());
-  Eigen::Index one = 0;
-  for (Eigen::Index i = 1; i < S.rows(); ++i)
-    if (std::abs(es.eigenvalues()(i) - 1.0) < std::abs(es.eigenvalues()(one) - 1.0)) one = i;
-  const Eigen::VectorXd l = es.eigenvectors().col(one).real();
-  NetPoint r{};
-  for (Eigen::Index i = 0; i < S.rows(); ++i) add_scaled(r, n.points[static_cast<std::size_t>(ring[static_cast<std::size_t>(i)])], l(i) / l.sum());
-  return r;
+    return out;
+  out.plane = {apply(order[1], 1), apply(order[2], 1)};
+  return out;
 }
 
 // The subdivision matrix of vertex v's one ring (one_ring, not empty) under the rules with equal intervals. A
@@ -501,8 +501,7 @@ Eigen::MatrixXd uniform_ring_matrix(const CreaseNet& n, const NetIncidence& inc,
   return S;
 }
 
-// The limit position of vertex v: its limit mask, a dart's from its one ring's eigenvector (the slit's midpoint
-// rule moves it off the smooth mask).
+// The limit position of vertex v by its limit mask (not a dart's: uniform_limit).
 NetPoint net_limit_point(const CreaseNet& n, const NetIncidence& inc, int v) {
   const NetPoint& p = n.points[static_cast<std::size_t>(v)];
   NetPoint r{};
@@ -514,10 +513,7 @@ NetPoint net_limit_point(const CreaseNet& n, const NetIncidence& inc, int v) {
       for (int w : nb) add_scaled(r, n.points[static_cast<std::size_t>(w)], 1.0 / 6);
       return r;
     }
-    case VertexRule::dart: {
-      const std::vector<int> ring = one_ring(n, inc, v);
-      return ring_point(uniform_ring_matrix(n, inc, v, ring), n, ring);
-    }
+    case VertexRule::dart:  // never asked: uniform_limit takes its eigenvector
     case VertexRule::smooth: {
       const double k = static_cast<double>(inc[static_cast<std::size_t>(v)].size());
       add_scaled(r, p, k / (k + 5));
@@ -533,11 +529,18 @@ NetPoint net_limit_point(const CreaseNet& n, const NetIncidence& inc, int v) {
 }
 
 
-// The limit tangent plane at vertex v with equal intervals (none at a cone point: a corner inside the mesh).
-std::optional<std::array<NetPoint, 2>> tangent_plane(const CreaseNet& n, const NetIncidence& inc, int v) {
+// The limit at vertex v with equal intervals: the position by its limit mask, a dart's from its one ring's
+// eigenvector (the slit's midpoint rule moves it off the smooth mask); the tangent plane from the eigenstructure
+// (none at a cone point: a corner inside the mesh, whose ring is empty).
+CornerLimit uniform_limit(const CreaseNet& n, const NetIncidence& inc, int v) {
   const std::vector<int> ring = one_ring(n, inc, v);
-  if (ring.empty()) return std::nullopt;
-  return ring_tangents(uniform_ring_matrix(n, inc, v, ring), n, ring);
+  const bool dart = n.rules[static_cast<std::size_t>(v)] == VertexRule::dart;
+  if (ring.empty()) {
+    require(!dart, [&] { return "crease net: the one ring of dart " + std::to_string(v) + " is open"; });
+    return {net_limit_point(n, inc, v), std::nullopt};
+  }
+  const CornerLimit frame = eigen_limit(uniform_ring_matrix(n, inc, v, ring), n, ring);
+  return {dart ? frame.point : net_limit_point(n, inc, v), frame.plane};
 }
 
 constexpr int crease_cached_levels = 12;
@@ -725,11 +728,6 @@ int quarter_of(double& u, double& v) {
   return q;
 }
 
-struct CornerLimit {
-  NetPoint point;
-  std::optional<std::array<NetPoint, 2>> plane;
-};
-
 // Unequal intervals: the limit point and tangent plane at the irregular corner c of quads[0] from the eigenvectors
 // of its one ring's subdivision matrix, read off refine itself (the rules are linear in the points: S's column j
 // is the refined ring of the ring's point j alone). From level 3 on the intervals the rules read round the vertex
@@ -755,7 +753,7 @@ CornerLimit ring_limit(const CreaseNet& net, int c) {
     for (Eigen::Index i = 0; i < m; ++i)
       for (Eigen::Index t = 0; t < 4 && j0 + t < m; ++t) S(i, j0 + t) = b.points[static_cast<std::size_t>(next[static_cast<std::size_t>(i)])][static_cast<std::size_t>(t)];
   }
-  return {ring_point(S, a, ring), ring_tangents(S, a, ring)};
+  return eigen_limit(S, a, ring);
 }
 
 }  // namespace
@@ -824,7 +822,7 @@ CreaseFace::CreaseFace(CreaseNet net) : net_(std::move(net)) {
     eval_off_corners(cu[0] == 0 ? d : 1 - d, cu[1] == 0 ? d : 1 - d, out.data());
     const int vc = net_.quads[0][static_cast<std::size_t>(c)];
     // Named members, not a structured binding: clang 14 does not capture bindings in the lambda below.
-    const CornerLimit limit = uniform ? CornerLimit{net_limit_point(net_, inc, vc), tangent_plane(net_, inc, vc)} : ring_limit(net_, c);
+    const CornerLimit limit = uniform ? uniform_limit(net_, inc, vc) : ring_limit(net_, c);
     const NetPoint& p = limit.point;
     const auto& plane = limit.plane;
     std::copy(p.begin(), p.end(), out.begin());
