@@ -16,6 +16,7 @@
 #include "fusion_cages.hpp"
 #include "star_mesh_tsm.hpp"
 #include "triangulation_loops.hpp"
+#include "tsm_error.hpp"
 #include "trivar/io/tsm_format.hpp"
 #include "trivar/tspline/t_junction_lines.hpp"
 #include "trivar/tspline/t_mesh_surface.hpp"
@@ -41,6 +42,74 @@ std::map<std::array<int, 4>, int> faces_by_corners(const TMeshSurface& s) {
   return out;
 }
 
+// Quad f of q split 2 x 2: new points at its sides' midpoints (counter-clockwise from the side from its first
+// vertex) and its centre, each lifted by `lift` along z; the quads across its sides become T-faces.
+test::QuadMesh split_face(const test::QuadMesh& q, std::size_t f, const std::array<double, 5>& lift) {
+  test::QuadMesh r = q;
+  const std::array<int, 4> c = q.quads[f];
+  const auto interval = [&](int a, int b) {
+    const auto it = q.intervals.find({a, b});
+    return it != q.intervals.end() ? it->second : 1.0;
+  };
+  const auto point = [&](std::array<double, 3> p, double dz) {
+    p[2] += dz;
+    r.points.push_back(p);
+    return static_cast<int>(r.points.size()) - 1;
+  };
+  std::array<int, 4> mid{};
+  std::array<double, 3> centre{};
+  for (std::size_t k = 0; k < 4; ++k) {
+    const auto& a = q.points[static_cast<std::size_t>(c[k])];
+    const auto& b = q.points[static_cast<std::size_t>(c[(k + 1) % 4])];
+    mid[k] = point({(a[0] + b[0]) / 2, (a[1] + b[1]) / 2, (a[2] + b[2]) / 2}, lift[k]);
+    for (std::size_t i = 0; i < 3; ++i) centre[i] += a[i] / 4;
+  }
+  const int o = point(centre, lift[4]);
+  std::vector<std::array<int, 4>> quads;
+  std::vector<int> across(4, -1);  // the quad across side k
+  for (std::size_t g = 0; g < q.quads.size(); ++g)
+    for (std::size_t k = 0; k < 4; ++k)
+      for (std::size_t i = 0; i < 4; ++i)
+        if (q.quads[g][i] == c[(k + 1) % 4] && q.quads[g][(i + 1) % 4] == c[k]) across[k] = static_cast<int>(g);
+  for (std::size_t g = 0; g < q.quads.size(); ++g)
+    if (g != f && std::find(across.begin(), across.end(), static_cast<int>(g)) == across.end()) quads.push_back(q.quads[g]);
+  for (std::size_t k = 0; k < 4; ++k) {
+    const int a = c[k], b = c[(k + 1) % 4], before = mid[(k + 3) % 4];
+    quads.push_back({a, mid[k], o, before});
+    const double half = interval(a, b) / 2, inner = interval(c[(k + 1) % 4], c[(k + 2) % 4]) / 2;
+    r.intervals[{a, mid[k]}] = r.intervals[{mid[k], a}] = r.intervals[{mid[k], b}] = r.intervals[{b, mid[k]}] = half;
+    r.intervals[{mid[k], o}] = r.intervals[{o, mid[k]}] = inner;
+    // The T-face across side k: its loop with the midpoint between b and a.
+    const auto& n = q.quads[static_cast<std::size_t>(across[k])];
+    test::QuadMesh::TFace t;
+    for (std::size_t i = 0; i < 4; ++i) {
+      t.loop.push_back(n[i]);
+      t.straight.push_back(0);
+      if (n[i] == b) {
+        t.loop.push_back(mid[k]);
+        t.straight.push_back(1);
+      }
+    }
+    r.t_faces.push_back(std::move(t));
+  }
+  r.quads = std::move(quads);
+  return r;
+}
+
+// The index of face (i, j) of the top side (z = 1) of box_mesh({n, n, n}) (`unbent`: its points as made).
+std::size_t top_face(const std::vector<std::array<double, 3>>& unbent, const test::QuadMesh& box, int n, int i, int j) {
+  for (std::size_t f = 0; f < box.quads.size(); ++f) {
+    double x = 0, y = 0, z = 0;
+    for (int v : box.quads[f]) {
+      x += unbent[static_cast<std::size_t>(v)][0] / 4;
+      y += unbent[static_cast<std::size_t>(v)][1] / 4;
+      z += unbent[static_cast<std::size_t>(v)][2] / 4;
+    }
+    if (std::abs(z - 1) < 1e-12 && std::abs((x + 1) * n / 2 - (i + 0.5)) < 1e-9 && std::abs((y + 1) * n / 2 - (j + 0.5)) < 1e-9) return f;
+  }
+  throw std::runtime_error("no top face");
+}
+
 // A box of 11 x 11 faces per side, bent so that no coordinate is linear in the knots, and the same box with top face
 // (4, 1) split 2 x 2 (its five new points off the surface, anywhere): T-junctions on the faces (3, 1), (5, 1),
 // (4, 0) and (4, 2), the first within 3 face rings of the star point at the box's corner. Far from the split face
@@ -62,48 +131,8 @@ void expect_insertion_exact(double strip) {
     const auto [x, y, z] = p;
     p = {x + 0.05 * std::sin(2 * y + z), y + 0.04 * std::cos(3 * x - z), z + 0.06 * std::sin(x * y + 1)};
   }
-  test::QuadMesh split = box;
   // The top side (z = 1): face (i, j) has corners (i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1) in the grid.
-  std::map<std::array<int, 2>, int> grid;
-  for (int v = 0; v < static_cast<int>(box.points.size()); ++v) {
-    const auto& p = unbent[static_cast<std::size_t>(v)];
-    if (std::abs(p[2] - 1) < 1e-12) grid[{static_cast<int>(std::lround((p[0] + 1) * 5.5)), static_cast<int>(std::lround((p[1] + 1) * 5.5))}] = v;
-  }
-  const auto g = [&](int i, int j) { return grid.at({i, j}); };
-  const auto face_at = [&](int i, int j) {
-    for (std::size_t f = 0; f < split.quads.size(); ++f) {
-      auto q = split.quads[f];
-      std::array<int, 4> want{g(i, j), g(i + 1, j), g(i + 1, j + 1), g(i, j + 1)};
-      std::sort(q.begin(), q.end());
-      std::sort(want.begin(), want.end());
-      if (q == want) return f;
-    }
-    throw std::runtime_error("no top face");
-  };
-  const auto add = [&](std::array<double, 3> p) {
-    split.points.push_back(p);
-    return static_cast<int>(split.points.size()) - 1;
-  };
-  // New points: (4.5, 1), (5, 1.5), (4.5, 2), (4, 1.5) and the centre, lifted off the top.
-  const auto top = [&](double i, double j, double lift) { return std::array<double, 3>{-1 + i / 5.5, -1 + j / 5.5, 1 + lift}; };
-  const int s = add(top(4.5, 1, 0.02)), e = add(top(5, 1.5, -0.03)), n = add(top(4.5, 2, 0.01)), w = add(top(4, 1.5, 0.04)),
-            c = add(top(4.5, 1.5, 0.07));
-  std::vector<std::size_t> gone{face_at(4, 1), face_at(3, 1), face_at(5, 1), face_at(4, 0), face_at(4, 2)};
-  std::sort(gone.rbegin(), gone.rend());
-  for (std::size_t f : gone) split.quads.erase(split.quads.begin() + static_cast<std::ptrdiff_t>(f));
-  // Counter-clockwise seen from outside (+z): the grid's (i, j) order.
-  split.quads.push_back({g(4, 1), s, c, w});
-  split.quads.push_back({s, g(5, 1), e, c});
-  split.quads.push_back({c, e, g(5, 2), n});
-  split.quads.push_back({w, c, n, g(4, 2)});
-  for (const auto& [a, b] : std::vector<std::array<int, 2>>{{g(4, 1), s}, {s, g(5, 1)}, {g(5, 1), e}, {e, g(5, 2)}, {g(5, 2), n},
-                                                              {n, g(4, 2)}, {g(4, 2), w}, {w, g(4, 1)}, {s, c}, {c, n}, {w, c}, {c, e}})
-    split.intervals[{a, b}] = split.intervals[{b, a}] = 0.5;
-  split.t_faces.push_back({{g(3, 1), g(4, 1), w, g(4, 2), g(3, 2)}, {0, 0, 1, 0, 0}});
-  split.t_faces.push_back({{g(5, 1), g(6, 1), g(6, 2), g(5, 2), e}, {0, 0, 0, 0, 1}});
-  split.t_faces.push_back({{g(4, 0), g(5, 0), g(5, 1), s, g(4, 1)}, {0, 0, 0, 1, 0}});
-  split.t_faces.push_back({{g(4, 2), n, g(5, 2), g(5, 3), g(4, 3)}, {0, 1, 0, 0, 0}});
-
+  const test::QuadMesh split = split_face(box, top_face(unbent, box, 11, 4, 1), {0.02, -0.03, 0.01, 0.04, 0.07});
   const TMeshSurface plain(mesh_of(box, "box.tsm"), 1);
   const TMesh t_mesh = mesh_of(split, "split.tsm");
   EXPECT_EQ(std::count(t_mesh.intervals.begin(), t_mesh.intervals.end(), strip), strip == 1.0 ? static_cast<long>(t_mesh.intervals.size()) - 12 : 44);  // 4 sides x 12 edges, 4 on the box's edges shared
@@ -239,6 +268,14 @@ TEST(TJunctionLines, FusionBoxWithASplitFaceNearItsStarPoints) {
               "watertight; across %d edges gap %.1e, normals %.1e; corners %zu, T-junction points %.1e; finite differences %.1e\n",
               s.completed_lines()->lines, s.completed_lines()->vertices, s.global_steps(), s.num_faces(), cont.edges, cont.gap,
               cont.normal_angle, points.size(), same_vertex, fd);
+}
+
+// Lines that would cross an edge at a star point have no row there: a cube of 3 x 3 faces per side with its top
+// corner face split 2 x 2 is refused in one line naming the T-junction and the star point.
+TEST(TJunctionLines, ALineThroughAStarPointsEdgeIsRefused) {
+  const test::QuadMesh box = test::box_mesh({3, 3, 3});
+  const test::QuadMesh split = split_face(box, top_face(box.points, box, 3, 0, 0), {0, 0, 0, 0, 0.1});
+  test::expect_surface_refusal(mesh_of(split, "corner.tsm"), "the T-junction at vertex 56 near a star point (completed into a knot line): its line passes star point 0 (no row through it)");
 }
 
 }  // namespace

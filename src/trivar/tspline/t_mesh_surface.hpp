@@ -55,7 +55,8 @@
 // the star points' faces that fails these (a boundary, a T-junction or unequal intervals nearby) is exact
 // instead when a chart of p up to (its distance - 1) rings around it holds its knot vectors (so a star point
 // needs 7 faces to the boundary, not 8); otherwise the face's reason is the error (what is still refused:
-// T-junctions and repeated knots within two rings of a star point's faces, unequal intervals, T-junctions or
+// T-junctions (in open or creased meshes: closed ones complete their lines first, t_junction_lines) and
+// repeated knots within two rings of a star point's faces, unequal intervals, T-junctions or
 // corners with a side of one edge near a star point on the boundary, unequal intervals near star points whose
 // faces have a boundary (a Bezier end condition, which has no subdivision rule) within their two face rings,
 // degrees other than 3). Close star points with unequal intervals in closed quadrilateral meshes without creases
