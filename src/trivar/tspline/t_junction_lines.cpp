@@ -55,9 +55,12 @@ public:
         const TMeshLink& l = L(loop[(start + i) % loop.size()]);
         if (l.flag == 0) ++k;
         require(k < 4 && (l.flag == 0 || l.flag == 1), [&] { return "T-mesh: face " + std::to_string(f) + " is not a rectangle of knot intervals"; });
+        const double d = m.intervals[static_cast<std::size_t>(l.edge)];
+        require(d > 0 && std::isfinite(d), [&] { return "T-mesh: edge " + std::to_string(l.edge) + " has knot interval " + std::to_string(d) + " (positive needed)"; });
         face.side[static_cast<std::size_t>(k)].v.push_back(l.vertex);
-        face.side[static_cast<std::size_t>(k)].d.push_back(m.intervals[static_cast<std::size_t>(l.edge)]);
+        face.side[static_cast<std::size_t>(k)].d.push_back(d);
       }
+      require(k == 3, [&] { return "T-mesh: face " + std::to_string(f) + " has " + std::to_string(k + 1) + " corners, not 4"; });
       faces.push_back(std::move(face));
     }
     for (const TMeshVertex& v : m.vertices) {
@@ -129,7 +132,7 @@ public:
     for (int f = 0; f < nf; ++f)
       for (const Side& s : faces[static_cast<std::size_t>(f)].side)
         for (int v : s.v)
-          if (star_[static_cast<std::size_t>(v)] && dist[static_cast<std::size_t>(f)] != 0) {
+          if (static_cast<std::size_t>(v) < star_.size() && star_[static_cast<std::size_t>(v)] && dist[static_cast<std::size_t>(f)] != 0) {
             dist[static_cast<std::size_t>(f)] = 0;
             front.push_back(f);
           }
@@ -255,6 +258,9 @@ private:
     p[static_cast<std::size_t>(a)] = mix(pc, pa, a1);
     p[static_cast<std::size_t>(b)] = mix(pb, pe, a3);
     const int x = static_cast<int>(p.size());
+    require(inserted < 16 * static_cast<int>(m_.faces.size()) + 1024, [&] {
+      return where + "the lines insert more than " + std::to_string(inserted) + " vertices (16 per face of the mesh)";
+    });
     p.push_back(mix(pa, pb, a2));
     ++inserted;
     const auto put = [&](const Loc& l, double first) {
