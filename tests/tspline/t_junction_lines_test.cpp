@@ -42,74 +42,6 @@ std::map<std::array<int, 4>, int> faces_by_corners(const TMeshSurface& s) {
   return out;
 }
 
-// Quad f of q split 2 x 2: new points at its sides' midpoints (counter-clockwise from the side from its first
-// vertex) and its centre, each lifted by `lift` along z; the quads across its sides become T-faces.
-test::QuadMesh split_face(const test::QuadMesh& q, std::size_t f, const std::array<double, 5>& lift) {
-  test::QuadMesh r = q;
-  const std::array<int, 4> c = q.quads[f];
-  const auto interval = [&](int a, int b) {
-    const auto it = q.intervals.find({a, b});
-    return it != q.intervals.end() ? it->second : 1.0;
-  };
-  const auto point = [&](std::array<double, 3> p, double dz) {
-    p[2] += dz;
-    r.points.push_back(p);
-    return static_cast<int>(r.points.size()) - 1;
-  };
-  std::array<int, 4> mid{};
-  std::array<double, 3> centre{};
-  for (std::size_t k = 0; k < 4; ++k) {
-    const auto& a = q.points[static_cast<std::size_t>(c[k])];
-    const auto& b = q.points[static_cast<std::size_t>(c[(k + 1) % 4])];
-    mid[k] = point({(a[0] + b[0]) / 2, (a[1] + b[1]) / 2, (a[2] + b[2]) / 2}, lift[k]);
-    for (std::size_t i = 0; i < 3; ++i) centre[i] += a[i] / 4;
-  }
-  const int o = point(centre, lift[4]);
-  std::vector<std::array<int, 4>> quads;
-  std::vector<int> across(4, -1);  // the quad across side k
-  for (std::size_t g = 0; g < q.quads.size(); ++g)
-    for (std::size_t k = 0; k < 4; ++k)
-      for (std::size_t i = 0; i < 4; ++i)
-        if (q.quads[g][i] == c[(k + 1) % 4] && q.quads[g][(i + 1) % 4] == c[k]) across[k] = static_cast<int>(g);
-  for (std::size_t g = 0; g < q.quads.size(); ++g)
-    if (g != f && std::find(across.begin(), across.end(), static_cast<int>(g)) == across.end()) quads.push_back(q.quads[g]);
-  for (std::size_t k = 0; k < 4; ++k) {
-    const int a = c[k], b = c[(k + 1) % 4], before = mid[(k + 3) % 4];
-    quads.push_back({a, mid[k], o, before});
-    const double half = interval(a, b) / 2, inner = interval(c[(k + 1) % 4], c[(k + 2) % 4]) / 2;
-    r.intervals[{a, mid[k]}] = r.intervals[{mid[k], a}] = r.intervals[{mid[k], b}] = r.intervals[{b, mid[k]}] = half;
-    r.intervals[{mid[k], o}] = r.intervals[{o, mid[k]}] = inner;
-    // The T-face across side k: its loop with the midpoint between b and a.
-    const auto& n = q.quads[static_cast<std::size_t>(across[k])];
-    test::QuadMesh::TFace t;
-    for (std::size_t i = 0; i < 4; ++i) {
-      t.loop.push_back(n[i]);
-      t.straight.push_back(0);
-      if (n[i] == b) {
-        t.loop.push_back(mid[k]);
-        t.straight.push_back(1);
-      }
-    }
-    r.t_faces.push_back(std::move(t));
-  }
-  r.quads = std::move(quads);
-  return r;
-}
-
-// The index of face (i, j) of the top side (z = 1) of box_mesh({n, n, n}) (`unbent`: its points as made).
-std::size_t top_face(const std::vector<std::array<double, 3>>& unbent, const test::QuadMesh& box, int n, int i, int j) {
-  for (std::size_t f = 0; f < box.quads.size(); ++f) {
-    double x = 0, y = 0, z = 0;
-    for (int v : box.quads[f]) {
-      x += unbent[static_cast<std::size_t>(v)][0] / 4;
-      y += unbent[static_cast<std::size_t>(v)][1] / 4;
-      z += unbent[static_cast<std::size_t>(v)][2] / 4;
-    }
-    if (std::abs(z - 1) < 1e-12 && std::abs((x + 1) * n / 2 - (i + 0.5)) < 1e-9 && std::abs((y + 1) * n / 2 - (j + 0.5)) < 1e-9) return f;
-  }
-  throw std::runtime_error("no top face");
-}
-
 // A box of 11 x 11 faces per side, bent so that no coordinate is linear in the knots, and the same box with top face
 // (4, 1) split 2 x 2 (its five new points off the surface, anywhere): T-junctions on the faces (3, 1), (5, 1),
 // (4, 0) and (4, 2), the first within 3 face rings of the star point at the box's corner. Far from the split face
@@ -132,7 +64,7 @@ void expect_insertion_exact(double strip) {
     p = {x + 0.05 * std::sin(2 * y + z), y + 0.04 * std::cos(3 * x - z), z + 0.06 * std::sin(x * y + 1)};
   }
   // The top side (z = 1): face (i, j) has corners (i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1) in the grid.
-  const test::QuadMesh split = split_face(box, top_face(unbent, box, 11, 4, 1), {0.02, -0.03, 0.01, 0.04, 0.07});
+  const test::QuadMesh split = test::split_face(box, test::top_face(unbent, box, 11, 4, 1), {0.02, -0.03, 0.01, 0.04, 0.07});
   const TMeshSurface plain(mesh_of(box, "box.tsm"), 1);
   const TMesh t_mesh = mesh_of(split, "split.tsm");
   EXPECT_EQ(std::count(t_mesh.intervals.begin(), t_mesh.intervals.end(), strip), strip == 1.0 ? static_cast<long>(t_mesh.intervals.size()) - 12 : 44);  // 4 sides x 12 edges, 4 on the box's edges shared
@@ -274,7 +206,7 @@ TEST(TJunctionLines, FusionBoxWithASplitFaceNearItsStarPoints) {
 // corner face split 2 x 2 is refused in one line naming the T-junction and the star point.
 TEST(TJunctionLines, ALineThroughAStarPointsEdgeIsRefused) {
   const test::QuadMesh box = test::box_mesh({3, 3, 3});
-  const test::QuadMesh split = split_face(box, top_face(box.points, box, 3, 0, 0), {0, 0, 0, 0, 0.1});
+  const test::QuadMesh split = test::split_face(box, test::top_face(box.points, box, 3, 0, 0), {0, 0, 0, 0, 0.1});
   test::expect_surface_refusal(mesh_of(split, "corner.tsm"), "the T-junction at vertex 56 near a star point (completed into a knot line): its line passes star point 0 (no row through it)");
 }
 

@@ -243,6 +243,7 @@ private:
   int split_edge(int a, int b, double t, const std::string& where) {
     const auto [c, dca] = beyond(a, b, where);
     const auto [e, dbe] = beyond(b, a, where);
+    require(c != b && e != a && c != e, [&] { return where + "the row through vertices " + std::to_string(a) + " and " + std::to_string(b) + " closes within 3 edges"; });
     for (int v : {c, a, b, e})
       if (v < static_cast<int>(m_.vertices.size())) require_point(v, where);
     const Loc ab = at_(key(a, b)), ba = at_(key(b, a));

@@ -1,11 +1,12 @@
 #pragma once
-// T-junctions near star points, completed into knot lines. Within p rings of a star point's faces a T-junction
-// has no evaluation rule of its own: the T-spline's blending functions there reach the star point, and the
-// Catmull-Clark rules (uniform, non-uniform, local subdivision) take quadrilaterals only. trivar continues each such
-// T-junction's missing edge through the face it points into, and on through the faces beyond, until the line meets
-// a vertex: where it crosses an edge it inserts a vertex, and the control points of the row of that edge (the line
-// of edges through it, straight through vertices of four faces) follow Boehm's knot insertion of the cubic on the
-// row's knot intervals (the interval past a star point is nurcc_across's, as in the subdivision rules). Wherever
+// T-junctions near star points, completed into knot lines. Within p rings of a star point's faces a T-junction has
+// no evaluation rule of its own: the T-spline's blending functions there reach the star point, and the Catmull-Clark
+// rules (uniform, non-uniform, local subdivision) take quadrilaterals only; two rings further out it still lies
+// among the points of faces that take those rules (TMeshSurface completes the lines of both). trivar continues each
+// such T-junction's missing edge through the face it points into, and on through the faces beyond, until the line
+// meets a vertex: where it crosses an edge it inserts a vertex, and the control points of the row of that edge (the
+// line of edges through it, straight through vertices of four faces) follow Boehm's knot insertion of the cubic on
+// the row's knot intervals (the interval past a star point is nurcc_across's, as in the subdivision rules). Wherever
 // the T-spline's blending functions are tensor B-splines along those rows this is knot insertion, which leaves the
 // surface unchanged (tests/tspline/t_junction_lines_test.cpp); next to a star point, where no T-spline exists, it
 // defines the surface as that of the completed mesh, whose faces the Catmull-Clark rules then take. The completed

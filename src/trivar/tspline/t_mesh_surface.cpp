@@ -310,7 +310,7 @@ TMeshSurface::TMeshSurface(TMeshSurface&&) noexcept = default;
 
 TMeshSurface::TMeshSurface(const TMesh& mesh, int threads, int global_steps)
     : TMeshSurface(mesh, has_creases(mesh) ? std::make_unique<TMesh>(split_creases(mesh)) : nullptr,
-                   complete_t_junction_lines(mesh, mesh.degree), threads, global_steps) {}
+                   complete_t_junction_lines(mesh, mesh.degree + 2), threads, global_steps) {}
 
 // A crease boundary, or Bezier end conditions without block points, is evaluated as the Bezier end conditions
 // of the same surface with its block points (crease_ends); the mesh as given is kept for writing it back.

@@ -109,7 +109,7 @@ public:
   // the faces are then the refined mesh's (face F lies in face F >> 2 global_steps() of the mesh as given;
   // eval_source evaluates the faces as given).
   // global_steps >= 0 forces that many steps.
-  // T-junctions within p rings of a star point's faces (closed meshes without creases): their lines are completed
+  // T-junctions within p + 2 rings of a star point's faces (closed meshes without creases): their lines are completed
   // first (t_junction_lines), and the completed mesh is the one refined and evaluated; its faces are pieces of the
   // faces as given (eval_source and refined_point map between them).
   static constexpr int kStarsApart = 7;
