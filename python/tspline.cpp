@@ -292,8 +292,10 @@ py::dict info(const PyTSpline& t) {
     d["faces_subdivided"] = t.mesh->count(FaceMethod::subdivided);
     d["faces_non_uniform"] = t.mesh->count(FaceMethod::non_uniform);
     d["faces_crease"] = t.mesh->count(FaceMethod::crease);
-    // The counts above are of the refined faces: 4^global_steps per face as given.
+    // The counts above are of the faces evaluated: pieces of the faces as given once T-junction lines near star
+    // points are completed, each 4^global_steps faces after the global steps.
     d["global_steps"] = t.mesh->global_steps();
+    d["t_junction_lines"] = t.mesh->completed_lines() ? t.mesh->completed_lines()->lines : 0;
   }
   return d;
 }

@@ -198,6 +198,7 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
                    {"faces_at_star_points", s.count(FaceMethod::star)}, {"faces_at_boundary_star_points", bs},
                    {"faces_non_uniform_catmull_clark", nu}, {"faces_subdivided", sub}, {"faces_crease_subdivision", cr},
                    {"non_uniform_star_points", s.non_uniform_stars()}, {"global_steps", s.global_steps()},
+                   {"t_junction_lines", s.completed_lines() ? s.completed_lines()->lines : 0},
                    {"faces_as_given", static_cast<int>(s.source_mesh().faces.size())}, {"continuity", continuity},
                    {"deleted_slots", r.deleted}, {"deleted_faces", r.holes}, {"skipped_records", r.skipped_records}};
   for (const auto& [n, c] : valences) j["star_valences"][std::to_string(n)] = c;
@@ -227,11 +228,17 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
     std::printf("  %d dart%s (a crease ending inside the mesh: the smooth rule there, the crease a slit up to it) and %d cone "
                 "point%s (a creased vertex inside the mesh on no crease: interpolated, no tangent plane)\n", darts,
                 darts == 1 ? "" : "s", cones, cones == 1 ? "" : "s");
+  if (const CompletedLines* c = s.completed_lines())
+    std::printf("  %d T-junction line%s near star points completed first (%d vertices inserted by knot insertion along the rows "
+                "crossed; the T-spline unchanged where it is one): the %zu faces as given are %zu faces%s\n", c->lines,
+                c->lines == 1 ? "" : "s", c->vertices, s.source_mesh().faces.size(), c->pieces.size(),
+                s.global_steps() > 0 ? "" : " (eval takes the faces as given; written back as given)");
   if (s.global_steps() > 0)
     std::printf("  refined first by %d global non-uniform Catmull-Clark steps (star points fewer than %d edges apart with "
-                "unequal knot intervals; the limit surface is unchanged): each of the %zu faces as given is %d x %d faces, "
+                "unequal knot intervals; the limit surface is unchanged): each of the %zu faces %s is %d x %d faces, "
                 "and the faces counted are the refined mesh's (eval takes the faces as given; written back as given)\n", s.global_steps(),
-                TMeshSurface::kStarsApart, s.source_mesh().faces.size(), 1 << s.global_steps(), 1 << s.global_steps());
+                TMeshSurface::kStarsApart, s.face_mesh().faces.size() >> (2 * s.global_steps()),
+                s.completed_lines() ? "after the lines" : "as given", 1 << s.global_steps(), 1 << s.global_steps());
   if (stars.empty() && creases)
     std::printf("  %d faces exact (the T-spline of their side in a chart of their neighbourhood), %d the bicubic B-spline "
                 "cell of their 16 points (round closed strips of a side)\n", s.count(FaceMethod::exact), s.count(FaceMethod::bicubic));

@@ -234,3 +234,17 @@ def test_stepped_box_faces_as_given():
         assert np.allclose(d[:, 1], du, atol=1e-6) and np.allclose(d[:, 2], dv, atol=1e-6)
     with pytest.raises(Exception, match="no face 54"):
         s.evaluate_face(54, uv)
+
+
+def test_t_junction_lines_near_star_points():
+    """Fusion's box with its top centre face split 2 x 2 has T-junctions next to the star points' faces: their two
+    lines are completed round the box first (knot insertion along the rows they cross), then two global steps;
+    evaluate_face takes the file's 57 faces, whose corners are its 61 vertices (3 faces at each star point, 2 at each
+    T-junction, which lies on the side of its third face)."""
+    [s] = trivar.read(os.path.join(DATA, "tsm", "fusion", "a3_box3_tjunc_ring2_readback.tsm"))
+    info = s.info()
+    assert s.num_faces == 57 and info["t_junction_lines"] == 2 and info["global_steps"] == 2
+    corners = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
+    points = np.concatenate([s.evaluate_face(f, corners)[:, 0] for f in range(57)])
+    distinct, counts = np.unique(np.round(points, 9), axis=0, return_counts=True)
+    assert len(distinct) == 61 and sorted(counts.tolist()) == [2] * 4 + [3] * 8 + [4] * 49

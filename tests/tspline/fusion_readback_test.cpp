@@ -413,16 +413,5 @@ TEST(FusionReadback, SteppedBoxIsEvaluatedOnTheFilesFaces) {
   std::printf("box with the 1.02 strip, faces as given: 56 corner points (8 of 3 faces), finite differences %.1e\n", fd);
 }
 
-// The box whose top side's centre face is split 2 x 2: T-junctions on the four faces round it, each next to
-// two corner faces of star points, and a strip of faces of interval 2 round the box at x < -10/3. The T-junctions
-// are in the faces whose Catmull-Clark patches hold the star points (the corner face's 2N + 8 points take the
-// faces beyond its two inner sides, here T-faces): no rule covers them, the refusal names the T-face, its
-// T-junction and the star point.
-TEST(FusionReadback, TJunctionsInAStarPointsRingAreRefused) {
-  const io::TsmModel m = read_fusion_file("a3_box3_tjunc_ring2_readback.tsm");
-  EXPECT_EQ(m.report.t_junctions, 4);
-  test::expect_surface_refusal(m.mesh, "face 10 has a T-junction at vertex 59 within 1 face ring of star point 16's faces");
-}
-
 }  // namespace
 }  // namespace trivar

@@ -3,7 +3,8 @@
 // grip map and the control points), for the star-point tests: a closed cube of n x n faces per side (eight
 // valence-3 star points) or a box open at the bottom, a planar fan of N sectors of m x m faces around one star
 // point of valence N, a half fan of K sectors around a star point on a straight boundary, a grid with a slit (two
-// star points on the boundary), and a cube with an edge turned (star points of valence 3 and 5 joined by edges).
+// star points on the boundary), a cube with an edge turned (star points of valence 3 and 5 joined by edges), and
+// a face split 2 x 2 (T-junctions on the faces round it).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -162,6 +163,74 @@ inline QuadMesh box_mesh(const std::array<int, 3>& n, bool open_bottom = false) 
         }
     }
   return m;
+}
+
+// Quad f of q split 2 x 2: new points at its sides' midpoints (counter-clockwise from the side from its first
+// vertex) and its centre, each lifted by `lift` along z; the quads across its sides become T-faces.
+inline QuadMesh split_face(const QuadMesh& q, std::size_t f, const std::array<double, 5>& lift) {
+  QuadMesh r = q;
+  const std::array<int, 4> c = q.quads[f];
+  const auto interval = [&](int a, int b) {
+    const auto it = q.intervals.find({a, b});
+    return it != q.intervals.end() ? it->second : 1.0;
+  };
+  const auto point = [&](std::array<double, 3> p, double dz) {
+    p[2] += dz;
+    r.points.push_back(p);
+    return static_cast<int>(r.points.size()) - 1;
+  };
+  std::array<int, 4> mid{};
+  std::array<double, 3> centre{};
+  for (std::size_t k = 0; k < 4; ++k) {
+    const auto& a = q.points[static_cast<std::size_t>(c[k])];
+    const auto& b = q.points[static_cast<std::size_t>(c[(k + 1) % 4])];
+    mid[k] = point({(a[0] + b[0]) / 2, (a[1] + b[1]) / 2, (a[2] + b[2]) / 2}, lift[k]);
+    for (std::size_t i = 0; i < 3; ++i) centre[i] += a[i] / 4;
+  }
+  const int o = point(centre, lift[4]);
+  std::vector<std::array<int, 4>> quads;
+  std::vector<int> across(4, -1);  // the quad across side k
+  for (std::size_t g = 0; g < q.quads.size(); ++g)
+    for (std::size_t k = 0; k < 4; ++k)
+      for (std::size_t i = 0; i < 4; ++i)
+        if (q.quads[g][i] == c[(k + 1) % 4] && q.quads[g][(i + 1) % 4] == c[k]) across[k] = static_cast<int>(g);
+  for (std::size_t g = 0; g < q.quads.size(); ++g)
+    if (g != f && std::find(across.begin(), across.end(), static_cast<int>(g)) == across.end()) quads.push_back(q.quads[g]);
+  for (std::size_t k = 0; k < 4; ++k) {
+    const int a = c[k], b = c[(k + 1) % 4], before = mid[(k + 3) % 4];
+    quads.push_back({a, mid[k], o, before});
+    const double half = interval(a, b) / 2, inner = interval(c[(k + 1) % 4], c[(k + 2) % 4]) / 2;
+    r.intervals[{a, mid[k]}] = r.intervals[{mid[k], a}] = r.intervals[{mid[k], b}] = r.intervals[{b, mid[k]}] = half;
+    r.intervals[{mid[k], o}] = r.intervals[{o, mid[k]}] = inner;
+    // The T-face across side k: its loop with the midpoint between b and a.
+    const auto& n = q.quads[static_cast<std::size_t>(across[k])];
+    QuadMesh::TFace t;
+    for (std::size_t i = 0; i < 4; ++i) {
+      t.loop.push_back(n[i]);
+      t.straight.push_back(0);
+      if (n[i] == b) {
+        t.loop.push_back(mid[k]);
+        t.straight.push_back(1);
+      }
+    }
+    r.t_faces.push_back(std::move(t));
+  }
+  r.quads = std::move(quads);
+  return r;
+}
+
+// The index of face (i, j) of the top side (z = 1) of box_mesh({n, n, n}) (`unbent`: its points as made).
+inline std::size_t top_face(const std::vector<std::array<double, 3>>& unbent, const QuadMesh& box, int n, int i, int j) {
+  for (std::size_t f = 0; f < box.quads.size(); ++f) {
+    double x = 0, y = 0, z = 0;
+    for (int v : box.quads[f]) {
+      x += unbent[static_cast<std::size_t>(v)][0] / 4;
+      y += unbent[static_cast<std::size_t>(v)][1] / 4;
+      z += unbent[static_cast<std::size_t>(v)][2] / 4;
+    }
+    if (std::abs(z - 1) < 1e-12 && std::abs((x + 1) * n / 2 - (i + 0.5)) < 1e-9 && std::abs((y + 1) * n / 2 - (j + 0.5)) < 1e-9) return f;
+  }
+  throw std::runtime_error("no top face");
 }
 
 // The surface of the cube [-1, 1]^3 in n x n faces per side.

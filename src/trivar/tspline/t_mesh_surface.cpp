@@ -309,17 +309,26 @@ TMeshSurface::~TMeshSurface() = default;
 TMeshSurface::TMeshSurface(TMeshSurface&&) noexcept = default;
 
 TMeshSurface::TMeshSurface(const TMesh& mesh, int threads, int global_steps)
-    : TMeshSurface(mesh, has_creases(mesh) ? std::make_unique<TMesh>(split_creases(mesh)) : nullptr, threads, global_steps) {}
+    : TMeshSurface(mesh, has_creases(mesh) ? std::make_unique<TMesh>(split_creases(mesh)) : nullptr,
+                   complete_t_junction_lines(mesh, mesh.degree + 2), threads, global_steps) {}
 
 // A crease boundary, or Bezier end conditions without block points, is evaluated as the Bezier end conditions
 // of the same surface with its block points (crease_ends); the mesh as given is kept for writing it back.
-TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int threads, int global_steps)
-    : steps_(global_steps >= 0 ? global_steps : nurcc_steps_needed(mesh, kStarsApart)),
-      mesh_(steps_ > 0 ? refined(mesh, steps_) : bezier_equivalent_of_cut(cut ? *cut : mesh)),
-      source_(steps_ == 0 && mesh.end_conditions == EndConditions::bezier && mesh_.points.size() == mesh.points.size()
+TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, std::optional<CompletedLines> lines, int threads,
+                           int global_steps)
+    : lines_(std::move(lines)),
+      steps_(global_steps >= 0 ? global_steps : nurcc_steps_needed(lines_ ? lines_->mesh : mesh, kStarsApart)),
+      mesh_(steps_ > 0 ? refined(lines_ ? lines_->mesh : mesh, steps_) : bezier_equivalent_of_cut(cut ? *cut : lines_ ? lines_->mesh : mesh)),
+      source_(steps_ == 0 && !lines_ && mesh.end_conditions == EndConditions::bezier && mesh_.points.size() == mesh.points.size()
                   ? nullptr
                   : std::make_unique<TMesh>(mesh)),
       stars_(star_points(mesh_)) {
+  if (lines_) {
+    lines_->mesh = TMesh{};
+    pieces_of_.resize(mesh.faces.size());
+    for (std::size_t f = 0; f < lines_->pieces.size(); ++f)
+      pieces_of_[static_cast<std::size_t>(lines_->pieces[f].source)].push_back(static_cast<int>(f));
+  }
   const TMesh& m = mesh_;
   const int nf = static_cast<int>(m.faces.size()), nv = static_cast<int>(m.vertices.size());
   const auto L = [&](int l) -> const TMeshLink& { return m.links[static_cast<std::size_t>(l)]; };
@@ -536,7 +545,8 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int th
     throw Error("T-mesh: face " + std::to_string(f) + " has a T-junction" + t_junction_at(f) + " within " + std::to_string(d) +
                 (d == 1 ? " face ring" : " face rings") + " of star point " + std::to_string(star) +
                 "'s faces; no evaluation rule covers T-junctions within " + std::to_string(reach) +
-                " rings of a star point (the T-spline's blending functions there reach the star point, the Catmull-Clark rules take quadrilaterals without T-junctions)");
+                " rings of a star point (the T-spline's blending functions there reach the star point, the Catmull-Clark rules take "
+                "quadrilaterals without T-junctions), and their lines are completed into knot lines only in closed meshes without sharp creases");
   }
   // Local subdivision of the face's two face rings (crease_face): with the crease rules of the mesh cut open along
   // its creases, or in a mesh without creases with the smooth rule at every vertex (its nets are kept inside the
@@ -829,7 +839,27 @@ TMeshSurface::FacePoint TMeshSurface::refined_point(int source_face, double u, d
   require(source_face >= 0 && static_cast<std::size_t>(source_face) < source_mesh().faces.size(),
           [&] { return "T-mesh: no face " + std::to_string(source_face); });
   require(u >= 0 && u <= 1 && v >= 0 && v <= 1, [&] { return "T-mesh: (u, v) = (" + std::to_string(u) + ", " + std::to_string(v) + ") outside [0, 1]^2"; });
-  FacePoint p{source_face, u, v, 1};
+  FacePoint p{source_face, u, v, {1, 1}};
+  if (lines_) {
+    // The piece holding (u, v); on a side between two, the one above it.
+    const auto& pieces = pieces_of_[static_cast<std::size_t>(source_face)];
+    const auto holds = [&](const FacePiece& q, bool strict) {
+      for (std::size_t a = 0; a < 2; ++a) {
+        const double x = a == 0 ? u : v, hi = q.lo[a] + q.size[a];
+        if (x < q.lo[a] - 1e-14 || x > hi + 1e-14 || (strict && x >= hi - 1e-14 && hi < 1 - 1e-14)) return false;
+      }
+      return true;
+    };
+    int at = pieces.front();
+    for (bool strict : {false, true})
+      for (int q : pieces)
+        if (holds(lines_->pieces[static_cast<std::size_t>(q)], strict)) at = q;
+    const FacePiece& q = lines_->pieces[static_cast<std::size_t>(at)];
+    p.face = at;
+    p.u = std::clamp((u - q.lo[0]) / q.size[0], 0.0, 1.0);
+    p.v = std::clamp((v - q.lo[1]) / q.size[1], 0.0, 1.0);
+    p.scale = {1 / q.size[0], 1 / q.size[1]};
+  }
   // nurcc_step's numbering: quarter 0, 1, 2, 3 at (u, v) in [0, 1/2]^2, [1/2, 1] x [0, 1/2], [1/2, 1]^2, [0, 1/2] x
   // [1/2, 1].
   for (int k = 0; k < steps_; ++k) {
@@ -837,7 +867,8 @@ TMeshSurface::FacePoint TMeshSurface::refined_point(int source_face, double u, d
     p.face = 4 * p.face + (j == 0 ? i : 3 - i);
     p.u = 2 * p.u - i;
     p.v = 2 * p.v - j;
-    p.scale *= 2;
+    p.scale[0] *= 2;
+    p.scale[1] *= 2;
   }
   return p;
 }
@@ -845,7 +876,7 @@ TMeshSurface::FacePoint TMeshSurface::refined_point(int source_face, double u, d
 void TMeshSurface::eval_source(int source_face, double u, double v, double* out) const {
   const FacePoint p = refined_point(source_face, u, v);
   eval(p.face, p.u, p.v, out);
-  for (int k = 3; k < 9; ++k) out[k] *= p.scale;
+  for (int k = 3; k < 9; ++k) out[k] *= p.scale[k < 6 ? 0 : 1];
 }
 
 void TMeshSurface::eval(int face, double u, double v, double* out) const {

@@ -55,7 +55,8 @@
 // the star points' faces that fails these (a boundary, a T-junction or unequal intervals nearby) is exact
 // instead when a chart of p up to (its distance - 1) rings around it holds its knot vectors (so a star point
 // needs 7 faces to the boundary, not 8); otherwise the face's reason is the error (what is still refused:
-// T-junctions and repeated knots within two rings of a star point's faces, unequal intervals, T-junctions or
+// T-junctions (in open or creased meshes: closed ones complete their lines first, t_junction_lines) and
+// repeated knots within two rings of a star point's faces, unequal intervals, T-junctions or
 // corners with a side of one edge near a star point on the boundary, unequal intervals near star points whose
 // faces have a boundary (a Bezier end condition, which has no subdivision rule) within their two face rings,
 // degrees other than 3). Close star points with unequal intervals in closed quadrilateral meshes without creases
@@ -80,6 +81,7 @@
 
 #include "trivar/tspline/crease_face.hpp"
 #include "trivar/tspline/subdivided_face.hpp"
+#include "trivar/tspline/t_junction_lines.hpp"
 #include "trivar/tspline/t_mesh.hpp"
 #include "trivar/tspline/t_spline_surface.hpp"
 
@@ -107,6 +109,9 @@ public:
   // the faces are then the refined mesh's (face F lies in face F >> 2 global_steps() of the mesh as given;
   // eval_source evaluates the faces as given).
   // global_steps >= 0 forces that many steps.
+  // T-junctions within p + 2 rings of a star point's faces (closed meshes without creases): their lines are completed
+  // first (t_junction_lines), and the completed mesh is the one refined and evaluated; its faces are pieces of the
+  // faces as given (eval_source and refined_point map between them).
   static constexpr int kStarsApart = 7;
   explicit TMeshSurface(const TMesh& mesh, int threads = 0, int global_steps = -1);
   ~TMeshSurface();
@@ -118,16 +123,23 @@ public:
   const TMesh& source_mesh() const { return source_ ? *source_ : mesh_; }
   // The mesh whose faces are the surface's faces, with the edges and vertices they share (for welding a
   // tessellation): source_mesh() (whose faces mesh() keeps), or mesh() after global steps.
-  const TMesh& face_mesh() const { return steps_ > 0 ? mesh_ : source_mesh(); }
+  const TMesh& face_mesh() const { return steps_ > 0 || lines_ ? mesh_ : source_mesh(); }
   // Global non-uniform Catmull-Clark steps applied to the mesh as given (each face became 4^steps faces).
   int global_steps() const { return steps_; }
-  int source_face(int face) const { return face >> (2 * steps_); }
+  int source_face(int face) const {
+    const int g = face >> (2 * steps_);
+    return lines_ ? lines_->pieces[static_cast<std::size_t>(g)].source : g;
+  }
+  // The T-junction lines completed before the evaluation (none: nullptr); its mesh is not kept.
+  const CompletedLines* completed_lines() const { return lines_ ? &*lines_ : nullptr; }
   // A point (u, v) in [0, 1]^2 of face `face` of the mesh as given (source_mesh()'s ids and frames): the face of
-  // the surface that holds it, the point in that face's frame, and that frame's d(u)/d(u as given) (2^steps; a
-  // point on a side between two refined faces is taken by the one above it).
+  // the surface that holds it, the point in that face's frame, and that frame's d(u)/d(u as given) and
+  // d(v)/d(v as given) (2^steps, times the inverse size of a piece of a completed T-junction line; a point on a
+  // side between two faces is taken by the one above it).
   struct FacePoint {
     int face;
-    double u, v, scale;
+    double u, v;
+    std::array<double, 2> scale;
   };
   FacePoint refined_point(int source_face, double u, double v) const;
   // eval on a face of the mesh as given (its (u, v) and derivatives): what users of the file name a face by.
@@ -191,8 +203,10 @@ private:
   };
   // `cut`: the mesh cut open along its sharp creases (split_creases) when it has any, for both its Bezier
   // end-condition form and its crease faces.
-  TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int threads, int global_steps);
+  TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, std::optional<CompletedLines> lines, int threads, int global_steps);
   struct Nurcc;  // a star point evaluated by non-uniform Catmull-Clark: its subdivision and homogeneous points
+  std::optional<CompletedLines> lines_;  // its mesh emptied once mesh_ is built from it
+  std::vector<std::vector<int>> pieces_of_;  // per face as given: its pieces after the lines were completed
   int steps_ = 0;
   TMesh mesh_;
   std::unique_ptr<TMesh> source_;  // the mesh as given, when mesh_ is its Bezier end-condition form

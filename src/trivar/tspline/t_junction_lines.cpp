@@ -1,0 +1,401 @@
+#include "trivar/tspline/t_junction_lines.hpp"
+
+#include <climits>
+#include <cmath>
+#include <string>
+#include <unordered_map>
+
+#include "trivar/core/error.hpp"
+#include "trivar/tspline/non_uniform_catmull_clark.hpp"
+#include "trivar/tspline/sharp_creases.hpp"
+
+namespace trivar {
+
+namespace {
+
+using H = std::array<double, 4>;  // homogeneous (w x, w y, w z, w)
+
+// A side of a face: its vertices from the side's corner on (the next side's corner excluded) and the interval
+// from each to the next.
+struct Side {
+  std::vector<int> v;
+  std::vector<double> d;
+  double length() const {
+    double s = 0;
+    for (double x : d) s += x;
+    return s;
+  }
+};
+
+struct Face {
+  std::array<Side, 4> side;  // counter-clockwise from the first corner: side 0 along u, side 1 along v
+  FacePiece piece;
+};
+
+// Where a directed edge a -> b lies: the face that has it counter-clockwise, its side and position there.
+struct Loc {
+  int face = -1, side = 0, index = 0;
+};
+
+long long key(int a, int b) { return static_cast<long long>(a) * (1LL << 32) + b; }
+
+// The completed mesh while it is built: faces as four sides, the points of the vertices.
+class Lines {
+public:
+  Lines(const TMesh& m, const std::vector<int>& stars) : m_(m), star_(m.vertices.size(), 0) {
+    for (int s : stars) star_[static_cast<std::size_t>(s)] = 1;
+    const auto L = [&](int l) -> const TMeshLink& { return m.links[static_cast<std::size_t>(l)]; };
+    for (int f = 0; f < static_cast<int>(m.faces.size()); ++f) {
+      Face face;
+      face.piece.source = f;
+      const auto& loop = m.faces[static_cast<std::size_t>(f)];
+      const std::size_t start = static_cast<std::size_t>(std::find(loop.begin(), loop.end(), m.first_corner(f)) - loop.begin());
+      int k = -1;
+      for (std::size_t i = 0; i < loop.size(); ++i) {
+        const TMeshLink& l = L(loop[(start + i) % loop.size()]);
+        if (l.flag == 0) ++k;
+        require(k < 4 && (l.flag == 0 || l.flag == 1), [&] { return "T-mesh: face " + std::to_string(f) + " is not a rectangle of knot intervals"; });
+        const double d = m.intervals[static_cast<std::size_t>(l.edge)];
+        require(d > 0 && std::isfinite(d), [&] { return "T-mesh: edge " + std::to_string(l.edge) + " has knot interval " + std::to_string(d) + " (positive needed)"; });
+        face.side[static_cast<std::size_t>(k)].v.push_back(l.vertex);
+        face.side[static_cast<std::size_t>(k)].d.push_back(d);
+      }
+      require(k == 3, [&] { return "T-mesh: face " + std::to_string(f) + " has " + std::to_string(k + 1) + " corners, not 4"; });
+      faces.push_back(std::move(face));
+    }
+    for (const TMeshVertex& v : m.vertices) {
+      H h{0, 0, 0, 1};
+      if (v.live && v.primary >= 0) {
+        const RationalPoint& x = m.points[static_cast<std::size_t>(v.primary)];
+        h = {x.w * x.xyz[0], x.w * x.xyz[1], x.w * x.xyz[2], x.w};
+      }
+      p.push_back(h);
+    }
+    index();
+  }
+
+  std::vector<Face> faces;
+  std::vector<H> p;
+  int inserted = 0;
+
+  // Completes the line of the T-junction at position `index` (inside the side) of side `k` of face `f`.
+  void complete(int f, int k, int index, const std::string& where) {
+    for (std::size_t guard = 0; guard <= 4 * faces.size() + 4; ++guard) {
+      const int e = (k + 2) % 4;
+      int j = 0;
+      double at = 0, target = 0;
+      bool meets = false;
+      {
+        const Face& w = faces[static_cast<std::size_t>(f)];
+        const Side& in = w.side[static_cast<std::size_t>(k)];
+        const Side& out = w.side[static_cast<std::size_t>(e)];
+        double o = 0;
+        for (int i = 0; i < index; ++i) o += in.d[static_cast<std::size_t>(i)];
+        const double len = in.length();
+        target = out.length() - o;
+        require(std::abs(len - out.length()) <= 1e-9 * len, [&] {
+          return where + "a face of face " + std::to_string(w.piece.source) + " has sides of knot intervals " + std::to_string(len) +
+                 " and " + std::to_string(out.length()) + " opposite each other";
+        });
+        // The last vertex of the opposite side at or before the line.
+        while (j + 1 < static_cast<int>(out.v.size()) && at + out.d[static_cast<std::size_t>(j)] <= target + 1e-12 * len)
+          at += out.d[static_cast<std::size_t>(j++)];
+        meets = j > 0 && std::abs(at - target) <= 1e-12 * len;
+      }
+      if (meets) {
+        split_face(f, k, index, j);
+        return;
+      }
+      // The line crosses edge a -> b of the opposite side: a new vertex there, on the row of that edge, which is a
+      // T-junction of the face beyond; the line goes on through that face.
+      const int a = faces[static_cast<std::size_t>(f)].side[static_cast<std::size_t>(e)].v[static_cast<std::size_t>(j)];
+      const int b = vertex_after(f, e, j);
+      const int x = split_edge(a, b, target - at, where);
+      split_face(f, k, index, j + 1);
+      const Loc c = at_(key(x, a));
+      f = c.face;
+      k = c.side;
+      index = c.index;
+    }
+    throw Error(where + "its line does not end within " + std::to_string(faces.size()) + " faces");
+  }
+
+  // The first T-junction (a vertex inside a side) of a face within `rings` face rings of a star point's faces:
+  // (face, side, index), or face -1.
+  std::array<int, 3> t_junction_near_stars(int rings) const {
+    const int nf = static_cast<int>(faces.size());
+    std::vector<std::vector<int>> vertex_faces(p.size());
+    for (int f = 0; f < nf; ++f)
+      for (const Side& s : faces[static_cast<std::size_t>(f)].side)
+        for (int v : s.v) vertex_faces[static_cast<std::size_t>(v)].push_back(f);
+    std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX), front;
+    for (int f = 0; f < nf; ++f)
+      for (const Side& s : faces[static_cast<std::size_t>(f)].side)
+        for (int v : s.v)
+          if (static_cast<std::size_t>(v) < star_.size() && star_[static_cast<std::size_t>(v)] && dist[static_cast<std::size_t>(f)] != 0) {
+            dist[static_cast<std::size_t>(f)] = 0;
+            front.push_back(f);
+          }
+    for (std::size_t i = 0; i < front.size(); ++i) {
+      const int f = front[i];
+      const Face& w = faces[static_cast<std::size_t>(f)];
+      for (std::size_t k = 0; k < 4; ++k)
+        if (w.side[k].v.size() > 1) return {f, static_cast<int>(k), 1};
+      if (dist[static_cast<std::size_t>(f)] == rings) continue;
+      for (const Side& s : w.side)
+        for (int v : s.v)
+          for (int g : vertex_faces[static_cast<std::size_t>(v)])
+            if (dist[static_cast<std::size_t>(g)] == INT_MAX) {
+              dist[static_cast<std::size_t>(g)] = dist[static_cast<std::size_t>(f)] + 1;
+              front.push_back(g);
+            }
+    }
+    return {-1, 0, 0};
+  }
+
+  TMesh mesh() const;
+
+private:
+  const TMesh& m_;
+  std::vector<char> star_;
+  std::unordered_map<long long, Loc> at_map_;
+
+  Loc at_(long long k) const {
+    const auto it = at_map_.find(k);
+    return it == at_map_.end() ? Loc{} : it->second;
+  }
+  void index() {
+    at_map_.clear();
+    for (int f = 0; f < static_cast<int>(faces.size()); ++f)
+      for (int k = 0; k < 4; ++k) {
+        const Side& s = faces[static_cast<std::size_t>(f)].side[static_cast<std::size_t>(k)];
+        for (int i = 0; i < static_cast<int>(s.v.size()); ++i) at_map_[key(s.v[static_cast<std::size_t>(i)], vertex_after(f, k, i))] = {f, k, i};
+      }
+  }
+  int vertex_after(int f, int k, int i) const {
+    const Face& w = faces[static_cast<std::size_t>(f)];
+    const Side& s = w.side[static_cast<std::size_t>(k)];
+    return i + 1 < static_cast<int>(s.v.size()) ? s.v[static_cast<std::size_t>(i + 1)] : w.side[static_cast<std::size_t>((k + 1) % 4)].v[0];
+  }
+  int vertex_before(int f, int k, int i) const {
+    const Face& w = faces[static_cast<std::size_t>(f)];
+    return i > 0 ? w.side[static_cast<std::size_t>(k)].v[static_cast<std::size_t>(i - 1)] : w.side[static_cast<std::size_t>((k + 3) % 4)].v.back();
+  }
+  struct Spoke {
+    int to;
+    double d;
+    int face, side, index;
+    int angle;  // of the face between this spoke and the next counter-clockwise, in quarter turns
+  };
+  // The spokes of vertex a counter-clockwise from a -> b.
+  std::vector<Spoke> ring(int a, int b, const std::string& where) const {
+    std::vector<Spoke> r;
+    int to = b;
+    for (std::size_t guard = 0; guard < 64; ++guard) {
+      const Loc c = at_(key(a, to));
+      require(c.face >= 0, [&] { return where + "the row through vertex " + std::to_string(a) + " reaches the boundary (closed meshes only)"; });
+      const Side& s = faces[static_cast<std::size_t>(c.face)].side[static_cast<std::size_t>(c.side)];
+      r.push_back({to, s.d[static_cast<std::size_t>(c.index)], c.face, c.side, c.index, c.index == 0 ? 1 : 2});
+      to = vertex_before(c.face, c.side, c.index);
+      if (to == b) return r;
+    }
+    throw Error(where + "vertex " + std::to_string(a) + " has no closed fan of faces");
+  }
+  // The vertex beyond a on the row from b, and the interval to it.
+  std::pair<int, double> beyond(int a, int b, const std::string& where) const {
+    const std::vector<Spoke> r = ring(a, b, where);
+    int turn = 0;
+    for (const Spoke& s : r) turn += s.angle;
+    require(turn == 4, [&] { return where + "its line passes star point " + std::to_string(a) + " (no row through it)"; });
+    turn = 0;
+    for (const Spoke& s : r) {
+      if (turn == 2) return {s.to, s.d};
+      turn += s.angle;
+      require(turn <= 2, [&] { return where + "the row through vertex " + std::to_string(b) + " ends at vertex " + std::to_string(a) + " (the stem of a T-junction)"; });
+    }
+    throw Error(where + "vertex " + std::to_string(a) + " has no straight spoke");
+  }
+  // The knot interval beyond vertex c on the row from a: its straight spoke's, the extent of the face its row enters
+  // (a T-junction's stem), or at a star point nurcc_across.
+  double interval_beyond(int c, int a, const std::string& where) const {
+    const std::vector<Spoke> r = ring(c, a, where);
+    int turn = 0;
+    for (const Spoke& s : r) turn += s.angle;
+    if (turn != 4) {
+      std::vector<double> iv;
+      for (const Spoke& s : r) iv.push_back(s.d);
+      return nurcc_across(iv, 0);
+    }
+    turn = 0;
+    for (const Spoke& s : r) {
+      if (turn == 2) return s.d;
+      if (turn + s.angle > 2) return faces[static_cast<std::size_t>(s.face)].side[static_cast<std::size_t>((s.side + 1) % 4)].length();
+      turn += s.angle;
+    }
+    throw Error(where + "vertex " + std::to_string(c) + " has no straight spoke");
+  }
+  void require_point(int v, const std::string& where) const {
+    const TMeshVertex& x = m_.vertices[static_cast<std::size_t>(v)];
+    require(x.primary >= 0 && x.block.empty(), [&] { return where + "vertex " + std::to_string(v) + " on a row it crosses has no control point or repeated-knot nodes"; });
+  }
+
+  // Inserts a vertex on edge a -> b at knot distance t from a; Boehm's rule on the row moves a and b. Returns it.
+  int split_edge(int a, int b, double t, const std::string& where) {
+    const auto [c, dca] = beyond(a, b, where);
+    const auto [e, dbe] = beyond(b, a, where);
+    require(c != b && e != a && c != e, [&] { return where + "the row through vertices " + std::to_string(a) + " and " + std::to_string(b) + " closes within 3 edges"; });
+    for (int v : {c, a, b, e})
+      if (v < static_cast<int>(m_.vertices.size())) require_point(v, where);
+    const Loc ab = at_(key(a, b)), ba = at_(key(b, a));
+    const double d = faces[static_cast<std::size_t>(ab.face)].side[static_cast<std::size_t>(ab.side)].d[static_cast<std::size_t>(ab.index)];
+    const double um1 = -dca, um2 = um1 - interval_beyond(c, a, where), u1 = d, u2 = d + dbe, u3 = u2 + interval_beyond(e, b, where);
+    const double a1 = (t - um2) / (u1 - um2), a2 = (t - um1) / (u2 - um1), a3 = t / u3;
+    const auto mix = [](const H& x, const H& y, double s) {  // (1 - s) x + s y
+      H r;
+      for (std::size_t i = 0; i < 4; ++i) r[i] = (1 - s) * x[i] + s * y[i];
+      return r;
+    };
+    const H pc = p[static_cast<std::size_t>(c)], pa = p[static_cast<std::size_t>(a)], pb = p[static_cast<std::size_t>(b)], pe = p[static_cast<std::size_t>(e)];
+    p[static_cast<std::size_t>(a)] = mix(pc, pa, a1);
+    p[static_cast<std::size_t>(b)] = mix(pb, pe, a3);
+    const int x = static_cast<int>(p.size());
+    require(inserted < 16 * static_cast<int>(m_.faces.size()) + 1024, [&] {
+      return where + "the lines insert more than " + std::to_string(inserted) + " vertices (16 per face of the mesh)";
+    });
+    p.push_back(mix(pa, pb, a2));
+    ++inserted;
+    const auto put = [&](const Loc& l, double first) {
+      Side& s = faces[static_cast<std::size_t>(l.face)].side[static_cast<std::size_t>(l.side)];
+      const double whole = s.d[static_cast<std::size_t>(l.index)];
+      s.v.insert(s.v.begin() + l.index + 1, x);
+      s.d[static_cast<std::size_t>(l.index)] = first;
+      s.d.insert(s.d.begin() + l.index + 1, whole - first);
+    };
+    put(ab, t);
+    put(ba, d - t);
+    index();
+    return x;
+  }
+
+  // Splits face f by an edge from vertex `i` of side k to vertex `j` of side k + 2 (both inside their sides).
+  void split_face(int f, int k, int i, int j) {
+    if (k >= 2) {
+      std::swap(i, j);
+      k -= 2;
+    }
+    Face w = std::move(faces[static_cast<std::size_t>(f)]);
+    const auto head = [](const Side& s, int n) { return Side{{s.v.begin(), s.v.begin() + n}, {s.d.begin(), s.d.begin() + n}}; };
+    const auto tail = [](const Side& s, int n) { return Side{{s.v.begin() + n, s.v.end()}, {s.d.begin() + n, s.d.end()}}; };
+    Side& lo = w.side[static_cast<std::size_t>(k)];      // side 0 (a line along v) or side 1 (along u)
+    Side& hi = w.side[static_cast<std::size_t>(k + 2)];
+    const double span = w.side[static_cast<std::size_t>(k + 1)].length();
+    double o = 0;
+    for (int n = 0; n < i; ++n) o += lo.d[static_cast<std::size_t>(n)];
+    const double frac = o / lo.length();
+    const int x = lo.v[static_cast<std::size_t>(i)], y = hi.v[static_cast<std::size_t>(j)];
+    Face a = w, b = w;  // a: before the line (smaller u or v), b: beyond it
+    FacePiece& pa = a.piece;
+    FacePiece& pb = b.piece;
+    const std::size_t axis = static_cast<std::size_t>(k == 0 ? 0 : 1);
+    pa.size[axis] = w.piece.size[axis] * frac;
+    pb.lo[axis] = w.piece.lo[axis] + pa.size[axis];
+    pb.size[axis] = w.piece.size[axis] - pa.size[axis];
+    if (k == 0) {  // x on the bottom side, y on the top side
+      a.side = {head(lo, i), Side{{x}, {span}}, tail(hi, j), w.side[3]};
+      b.side = {tail(lo, i), w.side[1], head(hi, j), Side{{y}, {span}}};
+    } else {  // x on the right side, y on the left side
+      a.side = {w.side[0], head(lo, i), Side{{x}, {span}}, tail(hi, j)};
+      b.side = {Side{{y}, {span}}, tail(lo, i), w.side[2], head(hi, j)};
+    }
+    faces[static_cast<std::size_t>(f)] = std::move(a);
+    faces.push_back(std::move(b));
+    index();
+  }
+};
+
+TMesh Lines::mesh() const {
+  TMesh r;
+  r.degree = m_.degree;
+  r.force_bezier = m_.force_bezier;
+  r.end_conditions = m_.end_conditions;
+  r.vertices = m_.vertices;
+  r.points = m_.points;
+  for (std::size_t v = 0; v < p.size(); ++v) {
+    const H& h = p[v];
+    const RationalPoint x{{h[0] / h[3], h[1] / h[3], h[2] / h[3]}, h[3]};
+    if (v < m_.vertices.size()) {
+      if (r.vertices[v].live && r.vertices[v].primary >= 0) r.points[static_cast<std::size_t>(r.vertices[v].primary)] = x;
+      continue;
+    }
+    r.points.push_back(x);
+    r.vertices.push_back({});
+    r.vertices.back().primary = static_cast<int>(r.points.size()) - 1;
+  }
+  std::unordered_map<long long, int> by_ends;
+  for (const Face& w : faces) {
+    const int f = static_cast<int>(r.faces.size()), base = static_cast<int>(r.links.size());
+    std::vector<int> loop;
+    std::vector<double> iv;
+    std::vector<int> flag;
+    for (const Side& s : w.side)
+      for (std::size_t i = 0; i < s.v.size(); ++i) {
+        loop.push_back(s.v[i]);
+        iv.push_back(s.d[i]);
+        flag.push_back(i == 0 ? 0 : 1);
+      }
+    const int n = static_cast<int>(loop.size());
+    r.faces.emplace_back();
+    for (int i = 0; i < n; ++i) {
+      TMeshLink k;
+      k.prev = base + (i + n - 1) % n;
+      k.next = base + (i + 1) % n;
+      k.vertex = loop[static_cast<std::size_t>(i)];
+      k.face = f;
+      k.flag = flag[static_cast<std::size_t>(i)];
+      const int a = k.vertex, b = loop[static_cast<std::size_t>((i + 1) % n)];
+      if (const auto it = by_ends.find(key(b, a)); it != by_ends.end()) {
+        k.opp = it->second;
+        k.edge = r.links[static_cast<std::size_t>(it->second)].edge;
+        r.links[static_cast<std::size_t>(it->second)].opp = base + i;
+      } else {
+        k.edge = static_cast<int>(r.intervals.size());
+        r.intervals.push_back(iv[static_cast<std::size_t>(i)]);
+      }
+      by_ends[key(a, b)] = base + i;
+      r.links.push_back(k);
+      r.faces.back().push_back(base + i);
+    }
+  }
+  return r;
+}
+
+}  // namespace
+
+std::optional<CompletedLines> complete_t_junction_lines(const TMesh& m, int rings) {
+  if (has_creases(m) || !m.conditions.empty() || m.end_conditions != EndConditions::bezier) return std::nullopt;
+  const std::vector<int> stars = star_points(m);
+  if (stars.empty()) return std::nullopt;
+  for (const TMeshLink& k : m.links)
+    if (k.vertex >= 0 && k.face < 0) return std::nullopt;  // a boundary: its rows would end in end conditions
+  for (const auto& loop : m.faces)
+    if (loop.empty()) return std::nullopt;
+  Lines lines(m, stars);
+  std::array<int, 3> t = lines.t_junction_near_stars(rings);
+  if (t[0] < 0) return std::nullopt;
+  CompletedLines out;
+  for (std::size_t guard = 0; t[0] >= 0; ++guard) {
+    const int v = lines.faces[static_cast<std::size_t>(t[0])].side[static_cast<std::size_t>(t[1])].v[static_cast<std::size_t>(t[2])];
+    const std::string where = "T-mesh: the T-junction at vertex " + std::to_string(v) + " near a star point (completed into a knot line): ";
+    require(m.degree == 3, [&] { return where + "degree " + std::to_string(m.degree) + ", not 3"; });
+    require(guard < 4 * m.faces.size() + 4, [&] { return where + "the lines do not end"; });
+    lines.complete(t[0], t[1], t[2], where);
+    ++out.lines;
+    t = lines.t_junction_near_stars(rings);
+  }
+  out.vertices = lines.inserted;
+  out.mesh = lines.mesh();
+  for (const Face& w : lines.faces) out.pieces.push_back(w.piece);
+  return out;
+}
+
+}  // namespace trivar

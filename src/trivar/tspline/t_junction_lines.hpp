@@ -1,0 +1,45 @@
+#pragma once
+// T-junctions near star points, completed into knot lines. Within p rings of a star point's faces a T-junction has
+// no evaluation rule of its own: the T-spline's blending functions there reach the star point, and the Catmull-Clark
+// rules (uniform, non-uniform, local subdivision) take quadrilaterals only; two rings further out it still lies
+// among the points of faces that take those rules (TMeshSurface completes the lines of both). trivar continues each
+// such T-junction's missing edge through the face it points into, and on through the faces beyond, until the line
+// meets a vertex: where it crosses an edge it inserts a vertex, and the control points of the row of that edge (the
+// line of edges through it, straight through vertices of four faces) follow Boehm's knot insertion of the cubic on
+// the row's knot intervals (the interval past a star point is nurcc_across's, as in the subdivision rules). Wherever
+// the T-spline's blending functions are tensor B-splines along those rows this is knot insertion, which leaves the
+// surface unchanged (tests/tspline/t_junction_lines_test.cpp); next to a star point, where no T-spline exists, it
+// defines the surface as that of the completed mesh, whose faces the Catmull-Clark rules then take. The completed
+// mesh is no longer the T-mesh as given: its faces are pieces of the given ones (FacePiece).
+//
+// Scope: closed meshes (no boundary, whose rows would end in end conditions) without sharp creases, degree 3; the
+// rows the lines cross must pass no star point next to a crossed edge, carry one control point per vertex and not
+// end at a T-junction's stem within two vertices of a crossing; anything else is refused in one line naming the
+// T-junction and the cause.
+#include <array>
+#include <optional>
+#include <vector>
+
+#include "trivar/tspline/t_mesh.hpp"
+
+namespace trivar {
+
+// A face of the completed mesh within a face of the mesh as given: that face, and the rectangle lo + [0, size]
+// in its (u, v) (frames of the same orientation: the piece's first corner link runs along the given face's u).
+struct FacePiece {
+  int source = -1;
+  std::array<double, 2> lo{0, 0}, size{1, 1};
+};
+
+struct CompletedLines {
+  TMesh mesh;
+  std::vector<FacePiece> pieces;  // per face of `mesh`
+  int lines = 0;                  // T-junction lines completed
+  int vertices = 0;               // vertices inserted
+};
+
+// The mesh with the lines of its T-junctions within `rings` face rings of a star point's faces completed; empty when
+// it has none, or is open or has sharp creases (no rule is attempted: the evaluation gives its own reason).
+std::optional<CompletedLines> complete_t_junction_lines(const TMesh& m, int rings);
+
+}  // namespace trivar

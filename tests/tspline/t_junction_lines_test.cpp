@@ -1,0 +1,214 @@
+// T-junctions near star points completed into knot lines (tspline/t_junction_lines): knot insertion along the rows
+// the lines cross leaves the T-spline unchanged wherever it is one (against the same cage without the T-junctions,
+// evaluated by its own charts), and Fusion 360's box with a split face near its star points loads as a closed
+// surface, tangent-plane continuous, evaluated on the file's faces.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "face_continuity.hpp"
+#include "fusion_cages.hpp"
+#include "star_mesh_tsm.hpp"
+#include "triangulation_loops.hpp"
+#include "tsm_error.hpp"
+#include "trivar/io/tsm_format.hpp"
+#include "trivar/tspline/t_junction_lines.hpp"
+#include "trivar/tspline/t_mesh_surface.hpp"
+#include "trivar/tspline/t_mesh_tessellation.hpp"
+
+namespace trivar {
+namespace {
+
+TMesh mesh_of(const test::QuadMesh& q, const std::string& name) { return io::parse_tsm(test::tsm_text(q), name).mesh; }
+
+// The corners of each face as a sorted key (faces of two meshes that share their vertex ids).
+std::map<std::array<int, 4>, int> faces_by_corners(const TMeshSurface& s) {
+  std::map<std::array<int, 4>, int> out;
+  const TMesh& m = s.source_mesh();
+  for (int f = 0; f < static_cast<int>(m.faces.size()); ++f) {
+    std::array<int, 4> c{};
+    int i = 0;
+    for (int l : m.faces[static_cast<std::size_t>(f)])
+      if (m.links[static_cast<std::size_t>(l)].flag == 0) c[static_cast<std::size_t>(i++)] = m.links[static_cast<std::size_t>(l)].vertex;
+    std::sort(c.begin(), c.end());
+    out[c] = f;
+  }
+  return out;
+}
+
+// A box of 11 x 11 faces per side, bent so that no coordinate is linear in the knots, and the same box with top face
+// (4, 1) split 2 x 2 (its five new points off the surface, anywhere): T-junctions on the faces (3, 1), (5, 1),
+// (4, 0) and (4, 2), the first within 3 face rings of the star point at the box's corner. Far from the split face
+// the second cage's T-spline is the first's (the same points and knot vectors), so after its lines are completed
+// (round the box at x = -1 + 9/11 and at y = -1 + 3/11, crossing rows of the other sides) the faces whose
+// neighbourhood holds no star point must still be the first cage's surface: the rows' knot insertion is exact.
+// With `strip` != 1 the edges along x between grid lines 3 and 4 (a strip of faces round the box) have that knot
+// interval, which the insertion at x = 4.5 takes in its weights.
+void expect_insertion_exact(double strip) {
+  test::QuadMesh box = test::box_mesh({11, 11, 11});
+  const std::vector<std::array<double, 3>> unbent = box.points;
+  const auto grid_x = [&](int v) { return std::lround((unbent[static_cast<std::size_t>(v)][0] + 1) * 5.5); };
+  for (const auto& q : box.quads)
+    for (int k = 0; k < 4; ++k) {
+      const int a = q[static_cast<std::size_t>(k)], b = q[static_cast<std::size_t>((k + 1) % 4)];
+      if (std::min(grid_x(a), grid_x(b)) == 3 && std::max(grid_x(a), grid_x(b)) == 4) box.intervals[{a, b}] = strip;
+    }
+  for (auto& p : box.points) {
+    const auto [x, y, z] = p;
+    p = {x + 0.05 * std::sin(2 * y + z), y + 0.04 * std::cos(3 * x - z), z + 0.06 * std::sin(x * y + 1)};
+  }
+  // The top side (z = 1): face (i, j) has corners (i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1) in the grid.
+  const test::QuadMesh split = test::split_face(box, test::top_face(unbent, box, 11, 4, 1), {0.02, -0.03, 0.01, 0.04, 0.07});
+  const TMeshSurface plain(mesh_of(box, "box.tsm"), 1);
+  const TMesh t_mesh = mesh_of(split, "split.tsm");
+  EXPECT_EQ(std::count(t_mesh.intervals.begin(), t_mesh.intervals.end(), strip), strip == 1.0 ? static_cast<long>(t_mesh.intervals.size()) - 12 : 44);  // 4 sides x 12 edges, 4 on the box's edges shared
+  const TMeshSurface lines(t_mesh, 1);
+  ASSERT_NE(lines.completed_lines(), nullptr);
+  EXPECT_EQ(lines.completed_lines()->lines, 2);  // one line per direction, each closing on the opposite T-junction
+  EXPECT_EQ(lines.global_steps(), 0);
+  // Points the insertion moved.
+  const TMesh& done = lines.mesh();
+  std::vector<char> moved(box.points.size(), 0);
+  for (std::size_t v = 0; v < box.points.size(); ++v) {
+    const auto& p = done.points[static_cast<std::size_t>(done.vertices[v].primary)].xyz;
+    moved[v] = std::hypot(p[0] - box.points[v][0], p[1] - box.points[v][1], p[2] - box.points[v][2]) > 1e-9;
+  }
+  const auto plain_faces = faces_by_corners(plain);
+  int compared = 0, touched = 0;
+  double worst = 0, worst_d = 0;
+  for (const auto& [corners, f] : faces_by_corners(lines)) {
+    const auto it = plain_faces.find(corners);
+    if (it == plain_faces.end() || plain.method(it->second) != FaceMethod::exact) continue;
+    // Faces of the top side near the split face have other blending functions in the split cage: only the faces
+    // below z = 1/2, which the lines cross on the sides and the bottom.
+    double centre[9];
+    plain.eval(it->second, 0.5, 0.5, centre);
+    if (centre[2] > 0.5) continue;
+    bool near = false;
+    for (int c : corners) near = near || moved[static_cast<std::size_t>(c)];
+    touched += near;
+    for (double u : {0.0, 0.21, 0.5, 0.83, 1.0})
+      for (double v : {0.0, 0.37, 0.5, 1.0}) {
+        double a[9], b[9];
+        plain.eval(it->second, u, v, a);
+        lines.eval_source(f, u, v, b);
+        for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs(a[k] - b[k]));
+        for (int k = 3; k < 9; ++k) worst_d = std::max(worst_d, std::abs(a[k] - b[k]) / (1 + std::abs(a[k])));
+      }
+    ++compared;
+  }
+  // Faces with a corner the insertion moved: the comparison is not trivial there.
+  EXPECT_GT(compared, 60);
+  EXPECT_GT(touched, 10);
+  EXPECT_LT(worst, 1e-13);
+  EXPECT_LT(worst_d, 1e-12);
+  std::printf("box 11 x 11 (strip %g) with a split face near a star point: %d lines, %d vertices inserted; %d exact faces of the cage "
+              "without T-junctions (%d with moved corners): values %.1e, derivatives %.1e\n", strip, lines.completed_lines()->lines,
+              lines.completed_lines()->vertices, compared, touched, worst, worst_d);
+}
+
+TEST(TJunctionLines, KnotInsertionAlongTheRowsLeavesTheTSplineUnchanged) {
+  expect_insertion_exact(1.0);
+  expect_insertion_exact(1.7);
+}
+
+io::TsmModel read_fusion_file(const std::string& name) { return io::read_tsm(std::string(TRIVAR_TEST_DATA) + "/tsm/fusion/" + name); }
+
+// Fusion's box of 3 x 3 faces per side with the top side's centre face split 2 x 2 (T-junctions on the four faces
+// round it, each next to two corner faces of star points) and a strip of interval 2 at x < -10/3: the two lines
+// complete round the box, then two global non-uniform Catmull-Clark steps part the star points. The surface is
+// closed, one tangent plane across every edge; on the file's faces the 61 vertices are the corners (the four
+// T-junctions of two faces, on the side of the third), a T-junction's point on its T-face's side is the corner of
+// the faces it is a corner of, and the derivatives are those of the file's (u, v) (central differences).
+TEST(TJunctionLines, FusionBoxWithASplitFaceNearItsStarPoints) {
+  const io::TsmModel file = read_fusion_file("a3_box3_tjunc_ring2_readback.tsm");
+  const TMesh& given = file.mesh;
+  const TMeshSurface s(given, 1);
+  ASSERT_NE(s.completed_lines(), nullptr);
+  EXPECT_EQ(s.completed_lines()->lines, 2);
+  EXPECT_EQ(s.source_mesh().faces.size(), given.faces.size());
+  const int nf = static_cast<int>(given.faces.size());
+  const TSplineTriangulation t = tessellate(s, 0.05);
+  EXPECT_EQ(test::closed_euler_characteristic(t), 2);
+  const test::Continuity cont = test::continuity(s.mesh(), [&](int f, double u, double v, double* o) { s.eval(f, u, v, o); });
+  EXPECT_LT(cont.gap, 1e-12);
+  EXPECT_LT(cont.normal_angle, 1e-9);
+  // Corners of the faces as given.
+  std::vector<std::array<double, 3>> points;
+  std::vector<int> faces_at;
+  std::map<int, std::array<double, 3>> vertex_point;
+  double same_vertex = 0;
+  for (int f = 0; f < nf; ++f) {
+    const auto& loop = given.faces[static_cast<std::size_t>(f)];
+    const std::size_t start = static_cast<std::size_t>(std::find(loop.begin(), loop.end(), given.first_corner(f)) - loop.begin());
+    // Walk the loop from the first corner: per link its (u, v) on the face from the side lengths.
+    std::array<double, 4> side_len{};
+    int k = -1;
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const TMeshLink& link = given.links[static_cast<std::size_t>(loop[(start + i) % loop.size()])];
+      if (link.flag == 0) ++k;
+      side_len[static_cast<std::size_t>(k)] += given.intervals[static_cast<std::size_t>(link.edge)];
+    }
+    k = -1;
+    double along = 0;
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const TMeshLink& link = given.links[static_cast<std::size_t>(loop[(start + i) % loop.size()])];
+      if (link.flag == 0) ++k, along = 0;
+      const double r = along / side_len[static_cast<std::size_t>(k)];
+      const std::array<double, 2> uv = k == 0 ? std::array<double, 2>{r, 0} : k == 1 ? std::array<double, 2>{1, r}
+                                      : k == 2 ? std::array<double, 2>{1 - r, 1} : std::array<double, 2>{0, 1 - r};
+      along += given.intervals[static_cast<std::size_t>(link.edge)];
+      double x[9];
+      s.eval_source(f, uv[0], uv[1], x);
+      const std::array<double, 3> p{x[0], x[1], x[2]};
+      if (const auto it = vertex_point.find(link.vertex); it != vertex_point.end())
+        same_vertex = std::max(same_vertex, std::hypot(p[0] - it->second[0], p[1] - it->second[1], p[2] - it->second[2]));
+      else
+        vertex_point[link.vertex] = p;
+      if (link.flag != 0) continue;  // a T-junction on this face's side: not a corner
+      std::size_t i2 = 0;
+      while (i2 < points.size() && std::hypot(points[i2][0] - p[0], points[i2][1] - p[1], points[i2][2] - p[2]) > 1e-11) ++i2;
+      if (i2 == points.size()) points.push_back(p), faces_at.push_back(0);
+      ++faces_at[i2];
+    }
+  }
+  EXPECT_EQ(points.size(), 61u);
+  EXPECT_EQ(std::count(faces_at.begin(), faces_at.end(), 3), 8);  // star points
+  EXPECT_EQ(std::count(faces_at.begin(), faces_at.end(), 2), 4);  // T-junctions
+  EXPECT_LT(same_vertex, 1e-12);  // a T-junction on its T-face's side is its point as the corner of the others
+  const double h = 1e-6;
+  double fd = 0;
+  for (int f = 0; f < nf; ++f)
+    for (const auto& [u, v] : {std::pair{0.3, 0.7}, {0.61, 0.2}, {0.74, 0.55}}) {
+      double x[9], a[9], b[9], c[9], d[9];
+      s.eval_source(f, u, v, x);
+      s.eval_source(f, u + h, v, a);
+      s.eval_source(f, u - h, v, b);
+      s.eval_source(f, u, v + h, c);
+      s.eval_source(f, u, v - h, d);
+      for (int k = 0; k < 3; ++k)
+        fd = std::max({fd, std::abs((a[k] - b[k]) / (2 * h) - x[3 + k]), std::abs((c[k] - d[k]) / (2 * h) - x[6 + k])});
+    }
+  EXPECT_LT(fd, 1e-5);
+  std::printf("Fusion box with a split face near its star points: %d lines (%d vertices inserted), %d global steps, %d faces; "
+              "watertight; across %d edges gap %.1e, normals %.1e; corners %zu, T-junction points %.1e; finite differences %.1e\n",
+              s.completed_lines()->lines, s.completed_lines()->vertices, s.global_steps(), s.num_faces(), cont.edges, cont.gap,
+              cont.normal_angle, points.size(), same_vertex, fd);
+}
+
+// Lines that would cross an edge at a star point have no row there: a cube of 3 x 3 faces per side with its top
+// corner face split 2 x 2 is refused in one line naming the T-junction and the star point.
+TEST(TJunctionLines, ALineThroughAStarPointsEdgeIsRefused) {
+  const test::QuadMesh box = test::box_mesh({3, 3, 3});
+  const test::QuadMesh split = test::split_face(box, test::top_face(box.points, box, 3, 0, 0), {0, 0, 0, 0, 0.1});
+  test::expect_surface_refusal(mesh_of(split, "corner.tsm"), "the T-junction at vertex 56 near a star point (completed into a knot line): its line passes star point 0 (no row through it)");
+}
+
+}  // namespace
+}  // namespace trivar
