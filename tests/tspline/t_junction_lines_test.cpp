@@ -50,7 +50,8 @@ std::map<std::array<int, 4>, int> faces_by_corners(const TMeshSurface& s) {
 // neighbourhood holds no star point must still be the first cage's surface: the rows' knot insertion is exact.
 // With `strip` != 1 the edges along x between grid lines 3 and 4 (a strip of faces round the box) have that knot
 // interval, which the insertion at x = 4.5 takes in its weights.
-void expect_insertion_exact(double strip) {
+// With `rational`, weights 0.6 to 1.4 on the points (the same on both cages' common vertices).
+void expect_insertion_exact(double strip, bool rational) {
   test::QuadMesh box = test::box_mesh({11, 11, 11});
   const std::vector<std::array<double, 3>> unbent = box.points;
   const auto grid_x = [&](int v) { return std::lround((unbent[static_cast<std::size_t>(v)][0] + 1) * 5.5); };
@@ -65,8 +66,13 @@ void expect_insertion_exact(double strip) {
   }
   // The top side (z = 1): face (i, j) has corners (i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1) in the grid.
   const test::QuadMesh split = test::split_face(box, test::top_face(unbent, box, 11, 4, 1), {0.02, -0.03, 0.01, 0.04, 0.07});
-  const TMeshSurface plain(mesh_of(box, "box.tsm"), 1);
-  const TMesh t_mesh = mesh_of(split, "split.tsm");
+  const auto weighted = [&](TMesh m) {
+    for (std::size_t v = 0; rational && v < m.vertices.size(); ++v)
+      m.points[static_cast<std::size_t>(m.vertices[v].primary)].w = 1 + 0.4 * std::sin(1.7 * static_cast<double>(v));
+    return m;
+  };
+  const TMeshSurface plain(weighted(mesh_of(box, "box.tsm")), 1);
+  const TMesh t_mesh = weighted(mesh_of(split, "split.tsm"));
   EXPECT_EQ(std::count(t_mesh.intervals.begin(), t_mesh.intervals.end(), strip), strip == 1.0 ? static_cast<long>(t_mesh.intervals.size()) - 12 : 44);  // 4 sides x 12 edges, 4 on the box's edges shared
   const TMeshSurface lines(t_mesh, 1);
   ASSERT_NE(lines.completed_lines(), nullptr);
@@ -108,14 +114,15 @@ void expect_insertion_exact(double strip) {
   EXPECT_GT(touched, 10);
   EXPECT_LT(worst, 1e-13);
   EXPECT_LT(worst_d, 1e-12);
-  std::printf("box 11 x 11 (strip %g) with a split face near a star point: %d lines, %d vertices inserted; %d exact faces of the cage "
-              "without T-junctions (%d with moved corners): values %.1e, derivatives %.1e\n", strip, lines.completed_lines()->lines,
+  std::printf("box 11 x 11 (strip %g%s) with a split face near a star point: %d lines, %d vertices inserted; %d exact faces of the cage "
+              "without T-junctions (%d with moved corners): values %.1e, derivatives %.1e\n", strip, rational ? ", rational" : "", lines.completed_lines()->lines,
               lines.completed_lines()->vertices, compared, touched, worst, worst_d);
 }
 
 TEST(TJunctionLines, KnotInsertionAlongTheRowsLeavesTheTSplineUnchanged) {
-  expect_insertion_exact(1.0);
-  expect_insertion_exact(1.7);
+  expect_insertion_exact(1.0, false);
+  expect_insertion_exact(1.7, false);
+  expect_insertion_exact(1.7, true);
 }
 
 io::TsmModel read_fusion_file(const std::string& name) { return io::read_tsm(std::string(TRIVAR_TEST_DATA) + "/tsm/fusion/" + name); }
