@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,7 @@
 #include "star_mesh_tsm.hpp"
 #include "triangulation_loops.hpp"
 #include "tsm_error.hpp"
+#include "support/temp_dir.hpp"
 #include "trivar/io/tsm_format.hpp"
 #include "trivar/tspline/t_junction_lines.hpp"
 #include "trivar/tspline/t_mesh_surface.hpp"
@@ -24,6 +26,8 @@
 
 namespace trivar {
 namespace {
+
+io::TsmModel read_fusion_file(const std::string& name) { return io::read_tsm(std::string(TRIVAR_TEST_DATA) + "/tsm/fusion/" + name); }
 
 TMesh mesh_of(const test::QuadMesh& q, const std::string& name) { return io::parse_tsm(test::tsm_text(q), name).mesh; }
 
@@ -125,8 +129,6 @@ TEST(TJunctionLines, KnotInsertionAlongTheRowsLeavesTheTSplineUnchanged) {
   expect_insertion_exact(1.7, true);
 }
 
-io::TsmModel read_fusion_file(const std::string& name) { return io::read_tsm(std::string(TRIVAR_TEST_DATA) + "/tsm/fusion/" + name); }
-
 // Fusion's box of 3 x 3 faces per side with the top side's centre face split 2 x 2 (T-junctions on the four faces
 // round it, each next to two corner faces of star points) and a strip of interval 2 at x < -10/3: the two lines
 // complete round the box, then two global non-uniform Catmull-Clark steps part the star points. The surface is
@@ -207,6 +209,29 @@ TEST(TJunctionLines, FusionBoxWithASplitFaceNearItsStarPoints) {
               "watertight; across %d edges gap %.1e, normals %.1e; corners %zu, T-junction points %.1e; finite differences %.1e\n",
               s.completed_lines()->lines, s.completed_lines()->vertices, s.global_steps(), s.num_faces(), cont.edges, cont.gap,
               cont.normal_angle, points.size(), same_vertex, fd);
+}
+
+// The command line on that file: info says what was done (also in --json), eval takes a face as given (a T-face
+// that a line splits), and the OBJ tessellation is closed.
+TEST(TJunctionLines, CommandLine) {
+  const std::string file = std::string(TRIVAR_TEST_DATA) + "/tsm/fusion/a3_box3_tjunc_ring2_readback.tsm";
+  const test::TempDir dir;
+  const std::string info = test::run_cli(dir, "info " + file);
+  EXPECT_NE(info.find("2 T-junction lines near star points completed first (21 vertices inserted"), std::string::npos) << info;
+  EXPECT_NE(info.find("the 57 faces as given are 80 faces"), std::string::npos) << info;
+  EXPECT_NE(test::run_cli(dir, "info " + file + " --json").find("\"t_junction_lines\": 2"), std::string::npos);
+  const TMeshSurface s(read_fusion_file("a3_box3_tjunc_ring2_readback.tsm").mesh, 1);
+  const int t_face = 10;  // the face named in the refusal before: a T-face next to the split face
+  ASSERT_GT(s.source_mesh().faces[t_face].size(), 4u);
+  double x[9];
+  s.eval_source(t_face, 0.8, 0.3, x);
+  const std::string out = test::run_cli(dir, "eval " + file + " " + std::to_string(t_face) + " 0.8 0.3");
+  std::istringstream printed(out.substr(std::min(out.size(), out.find("S   = ") + 6)));
+  double cli[3] = {NAN, NAN, NAN};
+  printed >> cli[0] >> cli[1] >> cli[2];
+  EXPECT_LT(std::hypot(cli[0] - x[0], cli[1] - x[1], cli[2] - x[2]), 1e-14 * std::hypot(x[0], x[1], x[2])) << out;
+  test::run_cli(dir, "convert " + file + " " + dir.file("box.obj") + " --tolerance 0.05");
+  EXPECT_EQ(test::closed_euler_characteristic(test::obj_triangles(dir.file("box.obj"))), 2);
 }
 
 // Lines that would cross an edge at a star point have no row there: a cube of 3 x 3 faces per side with its top
