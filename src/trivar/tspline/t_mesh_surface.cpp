@@ -318,7 +318,8 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, std::o
                            int global_steps)
     : lines_(std::move(lines)),
       steps_(global_steps >= 0 ? global_steps : nurcc_steps_needed(lines_ ? lines_->mesh : mesh, kStarsApart)),
-      mesh_(steps_ > 0 ? refined(lines_ ? lines_->mesh : mesh, steps_) : bezier_equivalent_of_cut(cut ? *cut : lines_ ? lines_->mesh : mesh)),
+      mesh_(steps_ > 0 ? refined(lines_ ? lines_->mesh : mesh, steps_)
+                       : bezier_equivalent_of_cut(cut ? *cut : lines_ ? lines_->mesh : mesh)),
       source_(steps_ == 0 && !lines_ && mesh.end_conditions == EndConditions::bezier && mesh_.points.size() == mesh.points.size()
                   ? nullptr
                   : std::make_unique<TMesh>(mesh)),

@@ -122,9 +122,10 @@ public:
   // it back and for the topology its tessellation welds); mesh() when no conversion was needed.
   const TMesh& source_mesh() const { return source_ ? *source_ : mesh_; }
   // The mesh whose faces are the surface's faces, with the edges and vertices they share (for welding a
-  // tessellation): source_mesh() (whose faces mesh() keeps), or mesh() after global steps.
+  // tessellation): source_mesh() (whose faces mesh() keeps), or mesh() after global steps or T-junction lines.
   const TMesh& face_mesh() const { return steps_ > 0 || lines_ ? mesh_ : source_mesh(); }
-  // Global non-uniform Catmull-Clark steps applied to the mesh as given (each face became 4^steps faces).
+  // Global non-uniform Catmull-Clark steps applied to the mesh as given, or to its completed T-junction lines (each
+  // face became 4^steps faces).
   int global_steps() const { return steps_; }
   int source_face(int face) const {
     const int g = face >> (2 * steps_);
