@@ -4,9 +4,9 @@
 #include <climits>
 #include <cmath>
 #include <string>
-#include <unordered_map>
 
 #include "trivar/core/error.hpp"
+#include "trivar/tspline/link_builder.hpp"
 #include "trivar/tspline/non_uniform_catmull_clark.hpp"
 #include "trivar/tspline/sharp_creases.hpp"
 
@@ -174,32 +174,9 @@ TMesh nurcc_step(const TMesh& m) {
   for (const H& h : ep) point(h.back() != 0 ? h : H{0, 0, 0, 1});  // deleted edges keep their slot
   for (const H& h : fp) point(h);
   for (int e = 0; e < ne; ++e) r.vertices[static_cast<std::size_t>(nv + e)].live = done[static_cast<std::size_t>(e)] != 0;
-  // Links, edges (keyed by their end vertices) and intervals.
-  std::unordered_map<long long, int> by_ends;
-  const auto quad = [&](std::array<int, 4> v, std::array<double, 4> iv) {
-    const int f = static_cast<int>(r.faces.size()), base = static_cast<int>(r.links.size());
-    r.faces.emplace_back();
-    for (int i = 0; i < 4; ++i) {
-      TMeshLink k;
-      k.prev = base + (i + 3) % 4;
-      k.next = base + (i + 1) % 4;
-      k.vertex = v[static_cast<std::size_t>(i)];
-      k.face = f;
-      k.flag = 0;
-      const int a = k.vertex, b = v[static_cast<std::size_t>((i + 1) % 4)];
-      if (const auto it = by_ends.find(static_cast<long long>(b) * (1LL << 32) + a); it != by_ends.end()) {
-        k.opp = it->second;
-        k.edge = r.links[static_cast<std::size_t>(it->second)].edge;
-        r.links[static_cast<std::size_t>(it->second)].opp = base + i;
-      } else {
-        k.edge = static_cast<int>(r.intervals.size());
-        r.intervals.push_back(iv[static_cast<std::size_t>(i)]);
-      }
-      by_ends[static_cast<long long>(a) * (1LL << 32) + b] = base + i;
-      r.links.push_back(k);
-      r.faces.back().push_back(base + i);
-    }
-  };
+  // Links, edges and intervals.
+  LinkBuilder links(r);
+  const auto quad = [&](std::array<int, 4> v, std::array<double, 4> iv) { links.add_face(v, std::array<char, 4>{}, iv); };
   for (int f = 0; f < nf; ++f) {
     const int l0 = m.first_corner(f), l1 = L(l0).next, l2 = L(l1).next, l3 = L(l2).next;
     const int c0 = L(l0).vertex, c1 = L(l1).vertex, c2 = L(l2).vertex, c3 = L(l3).vertex;

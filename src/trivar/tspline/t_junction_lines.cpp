@@ -6,6 +6,7 @@
 #include <unordered_map>
 
 #include "trivar/core/error.hpp"
+#include "trivar/tspline/link_builder.hpp"
 #include "trivar/tspline/non_uniform_catmull_clark.hpp"
 #include "trivar/tspline/sharp_creases.hpp"
 
@@ -331,40 +332,18 @@ TMesh Lines::mesh() const {
     r.vertices.push_back({});
     r.vertices.back().primary = static_cast<int>(r.points.size()) - 1;
   }
-  std::unordered_map<long long, int> by_ends;
+  LinkBuilder links(r);
   for (const Face& w : faces) {
-    const int f = static_cast<int>(r.faces.size()), base = static_cast<int>(r.links.size());
     std::vector<int> loop;
     std::vector<double> iv;
-    std::vector<int> flag;
+    std::vector<char> straight;
     for (const Side& s : w.side)
       for (std::size_t i = 0; i < s.v.size(); ++i) {
         loop.push_back(s.v[i]);
         iv.push_back(s.d[i]);
-        flag.push_back(i == 0 ? 0 : 1);
+        straight.push_back(i == 0 ? 0 : 1);
       }
-    const int n = static_cast<int>(loop.size());
-    r.faces.emplace_back();
-    for (int i = 0; i < n; ++i) {
-      TMeshLink k;
-      k.prev = base + (i + n - 1) % n;
-      k.next = base + (i + 1) % n;
-      k.vertex = loop[static_cast<std::size_t>(i)];
-      k.face = f;
-      k.flag = flag[static_cast<std::size_t>(i)];
-      const int a = k.vertex, b = loop[static_cast<std::size_t>((i + 1) % n)];
-      if (const auto it = by_ends.find(key(b, a)); it != by_ends.end()) {
-        k.opp = it->second;
-        k.edge = r.links[static_cast<std::size_t>(it->second)].edge;
-        r.links[static_cast<std::size_t>(it->second)].opp = base + i;
-      } else {
-        k.edge = static_cast<int>(r.intervals.size());
-        r.intervals.push_back(iv[static_cast<std::size_t>(i)]);
-      }
-      by_ends[key(a, b)] = base + i;
-      r.links.push_back(k);
-      r.faces.back().push_back(base + i);
-    }
+    links.add_face(loop, straight, iv);
   }
   return r;
 }

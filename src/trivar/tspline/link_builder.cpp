@@ -1,0 +1,32 @@
+#include "trivar/tspline/link_builder.hpp"
+
+namespace trivar {
+
+int LinkBuilder::add_face(std::span<const int> loop, std::span<const char> straight, std::span<const double> interval) {
+  const auto key = [](int a, int b) { return static_cast<long long>(a) * (1LL << 32) + b; };
+  const int f = static_cast<int>(m_.faces.size()), base = static_cast<int>(m_.links.size()), n = static_cast<int>(loop.size());
+  m_.faces.emplace_back();
+  for (int i = 0; i < n; ++i) {
+    TMeshLink k;
+    k.prev = base + (i + n - 1) % n;
+    k.next = base + (i + 1) % n;
+    k.vertex = loop[static_cast<std::size_t>(i)];
+    k.face = f;
+    k.flag = straight[static_cast<std::size_t>(i)] ? 1 : 0;
+    const int a = k.vertex, b = loop[static_cast<std::size_t>((i + 1) % n)];
+    if (const auto it = by_ends_.find(key(b, a)); it != by_ends_.end()) {
+      k.opp = it->second;
+      k.edge = m_.links[static_cast<std::size_t>(it->second)].edge;
+      m_.links[static_cast<std::size_t>(it->second)].opp = base + i;
+    } else {
+      k.edge = static_cast<int>(m_.intervals.size());
+      m_.intervals.push_back(interval[static_cast<std::size_t>(i)]);
+    }
+    by_ends_[key(a, b)] = base + i;
+    m_.links.push_back(k);
+    m_.faces.back().push_back(base + i);
+  }
+  return f;
+}
+
+}  // namespace trivar

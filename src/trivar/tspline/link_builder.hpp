@@ -1,0 +1,25 @@
+#pragma once
+// A T-mesh's half-edge links built face by face from vertex loops, for meshes made by refinement (global
+// subdivision steps, completed T-junction lines): each face's links counter-clockwise, and each edge shared with
+// the link added before it back along the same two vertices. No outside links: the meshes are closed.
+#include <span>
+#include <unordered_map>
+
+#include "trivar/tspline/t_mesh.hpp"
+
+namespace trivar {
+
+class LinkBuilder {
+public:
+  explicit LinkBuilder(TMesh& m) : m_(m) {}
+  // Appends the face with vertices `loop` counter-clockwise from a corner (its first corner link), `straight[i]`
+  // when the face's angle at loop[i] is 180 degrees (a T-junction of a neighbour on its side), and the knot
+  // interval from loop[i] to the next (taken when that edge is new). Returns the face's id.
+  int add_face(std::span<const int> loop, std::span<const char> straight, std::span<const double> interval);
+
+private:
+  TMesh& m_;
+  std::unordered_map<long long, int> by_ends_;  // (from, to) -> link
+};
+
+}  // namespace trivar
