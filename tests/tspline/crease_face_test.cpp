@@ -702,11 +702,8 @@ TEST(CreaseFace, BoxWithAStripOfUnequalIntervals) {
   const int face = L(rung).face;
   double x[9];
   s.eval_source(face, 0.25, 0.75, x);
-  const std::string out = test::run_cli(dir, "eval " + path + " " + std::to_string(face) + " 0.25 0.75");
-  std::istringstream printed(out.substr(std::min(out.size(), out.find("S   = ") + 6)));
-  double cli[3] = {NAN, NAN, NAN};
-  printed >> cli[0] >> cli[1] >> cli[2];
-  EXPECT_LT(std::hypot(cli[0] - x[0], cli[1] - x[1], cli[2] - x[2]), 1e-14 * std::hypot(x[0], x[1], x[2])) << out;
+  const std::array<double, 3> cli = test::cli_face_point(dir, path, face, 0.25, 0.75);
+  EXPECT_LT(std::hypot(cli[0] - x[0], cli[1] - x[1], cli[2] - x[2]), 1e-14 * std::hypot(x[0], x[1], x[2]));
   std::printf("box 3 x 3 per side, top rim creased, a strip at interval 1.5 (%td rungs) by two crease corners: %d faces by local "
               "subdivision, %d exact, %d star, %d non-uniform; %zu triangles closed; across %d edges gap %.2e, normals %.2e, C1 %.2e "
               "(knot units); rim against de Boor %.2e\n", strip, s.count(FaceMethod::crease), s.count(FaceMethod::exact),

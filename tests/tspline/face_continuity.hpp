@@ -1,10 +1,12 @@
 #pragma once
 // Continuity across the interior edges of a quad T-mesh surface evaluated face by face (value, d/du, d/dv in
 // each face's (u, v) in [0, 1]^2): positions, normals and cross-edge first derivatives from the two faces of
-// every edge between quadrilaterals, at given positions strictly inside the edge.
+// every edge between quadrilaterals, at given positions strictly inside the edge; and a face evaluator's
+// derivatives against central differences of its values.
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "trivar/tspline/t_mesh.hpp"
@@ -81,6 +83,26 @@ Continuity continuity(const TMesh& m, const Eval& eval, const std::vector<double
     }
   }
   return c;
+}
+
+// The largest difference between eval's d/du, d/dv and central differences (step h) of its values, on `faces`
+// at each (u, v) of `uv` (eval(face, u, v, out[9])).
+template <class Eval>
+double finite_difference_error(const Eval& eval, const std::vector<int>& faces, const std::vector<std::pair<double, double>>& uv,
+                               double h = 1e-6) {
+  double fd = 0;
+  for (int f : faces)
+    for (const auto& [u, v] : uv) {
+      double x[9], a[9], b[9], c[9], d[9];
+      eval(f, u, v, x);
+      eval(f, u + h, v, a);
+      eval(f, u - h, v, b);
+      eval(f, u, v + h, c);
+      eval(f, u, v - h, d);
+      for (int k = 0; k < 3; ++k)
+        fd = std::max({fd, std::abs((a[k] - b[k]) / (2 * h) - x[3 + k]), std::abs((c[k] - d[k]) / (2 * h) - x[6 + k])});
+    }
+  return fd;
 }
 
 }  // namespace trivar::test

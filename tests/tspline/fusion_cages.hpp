@@ -155,4 +155,15 @@ inline std::string run_cli(const TempDir& dir, const std::string& args) {
   return ss.str();
 }
 
+// The point `trivar eval FILE FACE U V` prints for a face as given ("S   = x y z"; NaN when it prints none).
+inline std::array<double, 3> cli_face_point(const TempDir& dir, const std::string& file, int face, double u, double v) {
+  std::ostringstream args;
+  args << "eval " << file << ' ' << face << ' ' << u << ' ' << v;
+  const std::string out = run_cli(dir, args.str());
+  std::istringstream printed(out.substr(std::min(out.size(), out.find("S   = ") + 6)));
+  std::array<double, 3> p{NAN, NAN, NAN};
+  printed >> p[0] >> p[1] >> p[2];
+  return p;
+}
+
 }  // namespace trivar::test

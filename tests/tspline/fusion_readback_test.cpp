@@ -382,29 +382,15 @@ TEST(FusionReadback, SteppedBoxIsEvaluatedOnTheFilesFaces) {
   EXPECT_EQ(points.size(), 56u);
   EXPECT_EQ(std::count(faces_at.begin(), faces_at.end(), 3), 8);
   EXPECT_EQ(std::count(faces_at.begin(), faces_at.end(), 4), 48);
-  const double h = 1e-6;
-  double fd = 0;
-  for (int f = 0; f < 54; f += 7)
-    for (const auto& [u, v] : {std::pair{0.3, 0.7}, {0.61, 0.2}}) {
-      double x[9], a[9], b[9], c[9], d[9];
-      s.eval_source(f, u, v, x);
-      s.eval_source(f, u + h, v, a);
-      s.eval_source(f, u - h, v, b);
-      s.eval_source(f, u, v + h, c);
-      s.eval_source(f, u, v - h, d);
-      for (int k = 0; k < 3; ++k)
-        fd = std::max({fd, std::abs((a[k] - b[k]) / (2 * h) - x[3 + k]), std::abs((c[k] - d[k]) / (2 * h) - x[6 + k])});
-    }
+  const double fd = test::finite_difference_error([&](int f, double u, double v, double* o) { s.eval_source(f, u, v, o); },
+                                                  {0, 7, 14, 21, 28, 35, 42, 49}, {{0.3, 0.7}, {0.61, 0.2}});
   EXPECT_LT(fd, 1e-6);
   const test::TempDir dir;
   const std::string file = std::string(TRIVAR_TEST_DATA) + "/tsm/fusion/a3_box3_inconsistent_knot3_readback.tsm";
   double x[9];
   s.eval_source(53, 0.25, 0.75, x);
-  const std::string out = test::run_cli(dir, "eval " + file + " 53 0.25 0.75");
-  std::istringstream printed(out.substr(std::min(out.size(), out.find("S   = ") + 6)));
-  double cli[3] = {NAN, NAN, NAN};
-  printed >> cli[0] >> cli[1] >> cli[2];
-  EXPECT_LT(std::hypot(cli[0] - x[0], cli[1] - x[1], cli[2] - x[2]), 1e-14 * std::hypot(x[0], x[1], x[2])) << out;
+  const std::array<double, 3> cli = test::cli_face_point(dir, file, 53, 0.25, 0.75);
+  EXPECT_LT(std::hypot(cli[0] - x[0], cli[1] - x[1], cli[2] - x[2]), 1e-14 * std::hypot(x[0], x[1], x[2]));
   const std::string refused = dir.file("refused.txt");
   EXPECT_NE(std::system((std::string(TRIVAR_CLI_PATH) + " eval " + file + " 54 0.5 0.5 > " + refused + " 2>&1").c_str()), 0);
   std::ifstream in(refused);

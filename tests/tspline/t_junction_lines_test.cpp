@@ -191,19 +191,10 @@ TEST(TJunctionLines, FusionBoxWithASplitFaceNearItsStarPoints) {
   EXPECT_EQ(std::count(faces_at.begin(), faces_at.end(), 3), 8);  // star points
   EXPECT_EQ(std::count(faces_at.begin(), faces_at.end(), 2), 4);  // T-junctions
   EXPECT_LT(same_vertex, 1e-12);  // a T-junction on its T-face's side is its point as the corner of the others
-  const double h = 1e-6;
-  double fd = 0;
-  for (int f = 0; f < nf; ++f)
-    for (const auto& [u, v] : {std::pair{0.3, 0.7}, {0.61, 0.2}, {0.74, 0.55}}) {
-      double x[9], a[9], b[9], c[9], d[9];
-      s.eval_source(f, u, v, x);
-      s.eval_source(f, u + h, v, a);
-      s.eval_source(f, u - h, v, b);
-      s.eval_source(f, u, v + h, c);
-      s.eval_source(f, u, v - h, d);
-      for (int k = 0; k < 3; ++k)
-        fd = std::max({fd, std::abs((a[k] - b[k]) / (2 * h) - x[3 + k]), std::abs((c[k] - d[k]) / (2 * h) - x[6 + k])});
-    }
+  std::vector<int> all(static_cast<std::size_t>(nf));
+  for (int f = 0; f < nf; ++f) all[static_cast<std::size_t>(f)] = f;
+  const double fd = test::finite_difference_error([&](int f, double u, double v, double* o) { s.eval_source(f, u, v, o); }, all,
+                                                  {{0.3, 0.7}, {0.61, 0.2}, {0.74, 0.55}});
   EXPECT_LT(fd, 1e-5);
   std::printf("Fusion box with a split face near its star points: %d lines (%d vertices inserted), %d global steps, %d faces; "
               "watertight; across %d edges gap %.1e, normals %.1e; corners %zu, T-junction points %.1e; finite differences %.1e\n",
@@ -225,11 +216,8 @@ TEST(TJunctionLines, CommandLine) {
   ASSERT_GT(s.source_mesh().faces[t_face].size(), 4u);
   double x[9];
   s.eval_source(t_face, 0.8, 0.3, x);
-  const std::string out = test::run_cli(dir, "eval " + file + " " + std::to_string(t_face) + " 0.8 0.3");
-  std::istringstream printed(out.substr(std::min(out.size(), out.find("S   = ") + 6)));
-  double cli[3] = {NAN, NAN, NAN};
-  printed >> cli[0] >> cli[1] >> cli[2];
-  EXPECT_LT(std::hypot(cli[0] - x[0], cli[1] - x[1], cli[2] - x[2]), 1e-14 * std::hypot(x[0], x[1], x[2])) << out;
+  const std::array<double, 3> cli = test::cli_face_point(dir, file, t_face, 0.8, 0.3);
+  EXPECT_LT(std::hypot(cli[0] - x[0], cli[1] - x[1], cli[2] - x[2]), 1e-14 * std::hypot(x[0], x[1], x[2]));
   test::run_cli(dir, "convert " + file + " " + dir.file("box.obj") + " --tolerance 0.05");
   EXPECT_EQ(test::closed_euler_characteristic(test::obj_triangles(dir.file("box.obj"))), 2);
 }
