@@ -157,30 +157,42 @@ std::vector<std::array<int, 2>> closed_fan(const CreaseNet& n, const NetIncidenc
 // evaluation never reads). Built once per net: the rules read them many times.
 using NetLines = std::vector<std::vector<std::pair<int, double>>>;
 
+// At four spokes the interval across is the opposite spoke's (nurcc_across weighs it alone, by 1): read directly,
+// as the nets' vertices are mostly such.
+double spoke_across(std::span<const double> spokes, int k) {
+  return spokes.size() == 4 ? spokes[static_cast<std::size_t>((k + 2) % 4)] : nurcc_across(spokes, k);
+}
+
+// The lines through vertex v (net_lines' entry).
+std::vector<std::pair<int, double>> vertex_lines(const CreaseNet& n, const NetIncidence& inc, int v) {
+  std::vector<std::pair<int, double>> at;
+  if (inc[static_cast<std::size_t>(v)].empty()) return at;
+  if (n.rules[static_cast<std::size_t>(v)] == VertexRule::crease) {
+    const std::vector<int> nb = crease_edges(n, inc, v);
+    if (nb.size() == 2) at = {{nb[0], edge_interval(n, inc, v, nb[1])}, {nb[1], edge_interval(n, inc, v, nb[0])}};
+  } else if (n.rules[static_cast<std::size_t>(v)] == VertexRule::smooth) {
+    const auto fan = closed_fan(n, inc, v);
+    std::vector<double> spokes;
+    for (const auto& [q, c] : fan) spokes.push_back(side_interval(n, q, c));
+    for (std::size_t k = 0; k < fan.size(); ++k)
+      at.emplace_back(n.quads[static_cast<std::size_t>(fan[k][0])][static_cast<std::size_t>((fan[k][1] + 1) % 4)], spoke_across(spokes, static_cast<int>(k)));
+  }
+  return at;
+}
+
 NetLines net_lines(const CreaseNet& n, const NetIncidence& inc) {
   NetLines lines(n.points.size());
-  for (int v = 0; v < static_cast<int>(n.points.size()); ++v) {
-    auto& at = lines[static_cast<std::size_t>(v)];
-    if (inc[static_cast<std::size_t>(v)].empty()) continue;
-    if (n.rules[static_cast<std::size_t>(v)] == VertexRule::crease) {
-      const std::vector<int> nb = crease_edges(n, inc, v);
-      if (nb.size() == 2) at = {{nb[0], edge_interval(n, inc, v, nb[1])}, {nb[1], edge_interval(n, inc, v, nb[0])}};
-    } else if (n.rules[static_cast<std::size_t>(v)] == VertexRule::smooth) {
-      const auto fan = closed_fan(n, inc, v);
-      std::vector<double> spokes;
-      for (const auto& [q, c] : fan) spokes.push_back(side_interval(n, q, c));
-      for (std::size_t k = 0; k < fan.size(); ++k)
-        at.emplace_back(n.quads[static_cast<std::size_t>(fan[k][0])][static_cast<std::size_t>((fan[k][1] + 1) % 4)], nurcc_across(spokes, static_cast<int>(k)));
-    }
-  }
+  for (int v = 0; v < static_cast<int>(n.points.size()); ++v) lines[static_cast<std::size_t>(v)] = vertex_lines(n, inc, v);
   return lines;
 }
 
-std::optional<double> line_beyond(const NetLines& lines, int from, int v) {
-  for (const auto& [w, d] : lines[static_cast<std::size_t>(v)])
+std::optional<double> beyond_in(const std::vector<std::pair<int, double>>& at, int from) {
+  for (const auto& [w, d] : at)
     if (w == from) return d;
   return std::nullopt;
 }
+
+std::optional<double> line_beyond(const NetLines& lines, int from, int v) { return beyond_in(lines[static_cast<std::size_t>(v)], from); }
 
 // The edge curve point of edge from-to of interval d.
 NetPoint curve_point(const CreaseNet& n, const NetLines& lines, int from, int to, double d) {
@@ -308,7 +320,8 @@ std::optional<CreaseFace::Cell> net_cell(const CreaseNet& n, const NetIncidence&
   const std::array<int, 16> slot = net_slots(n, inc);
   for (int s : slot)
     if (s >= 0 && !regular_vertex(n, inc, s)) return std::nullopt;
-  const NetLines lines = net_lines(n, inc);
+  // The lines through the grid's ends alone are read.
+  const auto beyond = [&](int from, int v) { return beyond_in(vertex_lines(n, inc, v), from); };
   CreaseFace::Cell cell{};
   std::array<bool, 16> have{};
   for (std::size_t s = 0; s < 16; ++s)
@@ -326,13 +339,13 @@ std::optional<CreaseFace::Cell> net_cell(const CreaseNet& n, const NetIncidence&
     bool low_ends = false, high_ends = false;
     if (!low_missing) {
       h[1] = edge_interval(n, inc, at(-1), at(0));
-      const auto b = line_beyond(lines, at(0), at(-1));
+      const auto b = beyond(at(0), at(-1));
       low_ends = !b;
       h[0] = b.value_or(0);
     }
     if (!high_missing) {
       h[3] = edge_interval(n, inc, at(1), at(2));
-      const auto b = line_beyond(lines, at(1), at(2));
+      const auto b = beyond(at(1), at(2));
       high_ends = !b;
       h[4] = b.value_or(0);
     }
