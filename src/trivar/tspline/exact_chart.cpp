@@ -32,7 +32,9 @@ ExactChart exact_chart(const TMesh& m, std::span<const int> faces, int seed, std
     out.frames.push_back({o, {a[0] - o[0], a[1] - o[1]}, {b[0] - o[0], b[1] - o[1]}});
     boxes.push_back({{std::min(o[0], x[0]), std::min(o[1], x[1])}, {std::max(o[0], x[0]), std::max(o[1], x[1])}});
   }
-  out.surface = std::make_unique<TSplineSurface>(c.spline, threads);
+  // The members' elements alone: the chart's other faces are served otherwise (its crease and star faces) or by
+  // other charts, and their elements were most of its build.
+  out.surface = std::make_unique<TSplineSurface>(c.spline, boxes, threads);
   out.cut.assign(members.size(), 0);
   out.whole.assign(members.size(), 0);
   for (std::size_t j = 0; j < boxes.size(); ++j) {
