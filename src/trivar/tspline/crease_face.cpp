@@ -595,6 +595,13 @@ CreaseNet subdivide(const CreaseNet& n) {
   };
   std::vector<EdgePoint> edge_point;
   edge_point.reserve(4 * nq);
+  // At most 9 new points per quad of the first ring (fewer: they share them).
+  const auto ring_quads = static_cast<std::size_t>(std::count(first.begin(), first.end(), 1));
+  x.points.reserve(9 * ring_quads);
+  x.rules.reserve(9 * ring_quads);
+  x.quads.reserve(4 * ring_quads);
+  x.sharp.reserve(4 * ring_quads);
+  if (!n.intervals.empty()) x.intervals.reserve(4 * ring_quads);
   const auto new_point = [&](const NetPoint& p, VertexRule r) {
     x.points.push_back(p);
     x.rules.push_back(r);
@@ -735,6 +742,11 @@ CreaseNet kept_net(const CreaseNet& x, const NetIncidence& xinc, int child) {
   std::array<std::size_t, 4> head{0, 1, 2, 3};
   std::swap(head[0], head[static_cast<std::size_t>(child)]);
   CreaseNet y;
+  y.points.reserve(x.points.size());
+  y.rules.reserve(x.points.size());
+  y.quads.reserve(x.quads.size());
+  y.sharp.reserve(x.quads.size());
+  if (!x.intervals.empty()) y.intervals.reserve(x.quads.size());
   std::vector<int> id(x.points.size(), -1);
   for (std::size_t i = 0; i < x.quads.size(); ++i) {
     const std::size_t q = i < 4 ? head[i] : i;
