@@ -602,6 +602,17 @@ CreaseNet subdivide(const CreaseNet& n) {
   x.quads.reserve(4 * ring_quads);
   x.sharp.reserve(4 * ring_quads);
   if (!n.intervals.empty()) x.intervals.reserve(4 * ring_quads);
+  // Equal intervals: the quads' centroids (their face points), each summed once; the vertex and edge rules read
+  // them again.
+  std::vector<NetPoint> centroid(uniform ? nq : 0);
+  std::vector<char> summed(uniform ? nq : 0, 0);
+  const auto centre = [&](int q) -> const NetPoint& {
+    if (!summed[static_cast<std::size_t>(q)]) {
+      centroid[static_cast<std::size_t>(q)] = net_face_point(n, q);
+      summed[static_cast<std::size_t>(q)] = 1;
+    }
+    return centroid[static_cast<std::size_t>(q)];
+  };
   const auto new_point = [&](const NetPoint& p, VertexRule r) {
     x.points.push_back(p);
     x.rules.push_back(r);
@@ -641,7 +652,7 @@ CreaseNet subdivide(const CreaseNet& n) {
         add_scaled(r, p, (k - 2) / k);
         for (const auto& [q, c] : around) {
           add_scaled(r, n.points[static_cast<std::size_t>(n.quads[static_cast<std::size_t>(q)][static_cast<std::size_t>((c + 1) % 4)])], 1 / (k * k));
-          add_scaled(r, net_face_point(n, q), 1 / (k * k));
+          add_scaled(r, centre(q), 1 / (k * k));
         }
       } else {
         // NURCC's vertex rule over its spokes in order (the tensor product rule at a vertex of four faces).
@@ -664,7 +675,7 @@ CreaseNet subdivide(const CreaseNet& n) {
   };
   const auto face = [&](int q) {
     int& id = face_pt[static_cast<std::size_t>(q)];
-    return id >= 0 ? id : id = new_point(uniform ? net_face_point(n, q) : nurcc_face_point(n, lines, q), VertexRule::smooth);
+    return id >= 0 ? id : id = new_point(uniform ? centre(q) : nurcc_face_point(n, lines, q), VertexRule::smooth);
   };
   const auto edge = [&](int q, int k) {
     const auto& a = n.quads[static_cast<std::size_t>(q)];
@@ -686,7 +697,8 @@ CreaseNet subdivide(const CreaseNet& n) {
       const int o = net_across(n, inc, q, k);
       require(o >= 0, [&] { return "crease net: edge " + std::to_string(from) + "-" + std::to_string(to) + " has one face and is no crease"; });
       if (uniform) {
-        for (std::size_t c = 0; c < 4; ++c) r[c] = 0.5 * r[c] + 0.25 * (net_face_point(n, q)[c] + net_face_point(n, o)[c]);
+        const NetPoint &fq = centre(q), &fo = centre(o);
+        for (std::size_t c = 0; c < 4; ++c) r[c] = 0.5 * r[c] + 0.25 * (fq[c] + fo[c]);
       } else {
         // (e_o F_q + e_q F_o) / (2 (e_q + e_o)) + M / 2, e the faces' intervals across the edge.
         int j = 0;
