@@ -224,15 +224,15 @@ NetPoint nurcc_face_point(const CreaseNet& n, const NetLines& lines, int q) {
   return f;
 }
 
-// The vertices of the 4 x 4 grid round quads[center] (eval_uniform_bicubic's layout, -1 where missing beyond a
+// The vertices of the 4 x 4 grid round quads[centre] (eval_uniform_bicubic's layout, -1 where missing beyond a
 // crease boundary): the quads round it unfolded onto the grid from their shared sides.
-std::array<int, 16> net_slots(const CreaseNet& n, const NetIncidence& inc, int center = 0) {
+std::array<int, 16> net_slots(const CreaseNet& n, const NetIncidence& inc, int centre = 0) {
   std::vector<std::array<int, 2>> at(n.points.size(), {INT_MIN, 0});
   std::vector<char> done(n.quads.size(), 0);
   static constexpr std::array<std::array<int, 2>, 4> unit{{{0, 0}, {1, 0}, {1, 1}, {0, 1}}};
-  for (int k = 0; k < 4; ++k) at[static_cast<std::size_t>(n.quads[static_cast<std::size_t>(center)][static_cast<std::size_t>(k)])] = unit[static_cast<std::size_t>(k)];
-  std::vector<int> todo{center};
-  done[static_cast<std::size_t>(center)] = 1;
+  for (int k = 0; k < 4; ++k) at[static_cast<std::size_t>(n.quads[static_cast<std::size_t>(centre)][static_cast<std::size_t>(k)])] = unit[static_cast<std::size_t>(k)];
+  std::vector<int> todo{centre};
+  done[static_cast<std::size_t>(centre)] = 1;
   std::array<int, 16> slot;
   slot.fill(-1);
   while (!todo.empty()) {
@@ -267,11 +267,11 @@ std::array<int, 16> net_slots(const CreaseNet& n, const NetIncidence& inc, int c
   return slot;
 }
 
-// The 4 x 4 points of quads[center] when its corners are regular and the intervals equal, homogeneous: the
+// The 4 x 4 points of quads[centre] when its corners are regular and the intervals equal, homogeneous: the
 // points missing beyond a crease boundary the natural ghosts 2 P0 - P1 (first across one direction, then the
 // other: the tensor product at a corner).
-std::array<NetPoint, 16> net_grid(const CreaseNet& n, const NetIncidence& inc, int center = 0) {
-  const std::array<int, 16> slot = net_slots(n, inc, center);
+std::array<NetPoint, 16> net_grid(const CreaseNet& n, const NetIncidence& inc, int centre = 0) {
+  const std::array<int, 16> slot = net_slots(n, inc, centre);
   std::array<NetPoint, 16> g{};
   std::array<bool, 16> have{};
   for (std::size_t s = 0; s < 16; ++s)
@@ -574,8 +574,8 @@ constexpr int crease_cached_levels = 12;
 constexpr int crease_max_levels = 40;
 
 // One subdivision step of the net's first ring: the children of the quads sharing a vertex with quads[0] (their
-// points need only the net's two rings), quads[0]'s four first (child k of quads[0] is quad k), then four per
-// quad of the ring in the net's order. The four sub-faces of quads[0] (kept_net, sub_grid) share it.
+// points need only the net's two rings), quads[0]'s four first (its child k is quad k), then four per quad of the
+// ring in the net's order. The four sub-faces of quads[0] share it (kept_net; net_grid centred on one).
 CreaseNet subdivide(const CreaseNet& n) {
   const NetIncidence inc = net_incidence(n);
   const std::size_t nq = n.quads.size();
@@ -744,8 +744,10 @@ CreaseNet subdivide(const CreaseNet& n) {
   return x;
 }
 
-// The net kept round child `child` of the subdivided net's quads[0] (its two rings, renumbered): that child's
-// quads[0] first, in the order of refine (which makes the rules sum in the same order on every path).
+// The net kept round child `child` of the parent's quads[0] in its subdivision x: its two rings, renumbered, with
+// that child as quads[0] and the others in the order of a subdivision made for that child alone (quads[0]'s
+// children with `child` swapped to the front, then the ring's), so that the rules sum in the same order whether
+// the four sub-faces share x or not.
 CreaseNet kept_net(const CreaseNet& x, const NetIncidence& xinc, int child) {
   std::vector<char> keep(x.quads.size(), 0);
   keep[static_cast<std::size_t>(child)] = 1;
