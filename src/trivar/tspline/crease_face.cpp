@@ -865,8 +865,8 @@ CreaseFace::CreaseFace(CreaseNet net) : net_(std::move(net)) {
   if (!uniform) build_node(net_, 0);
   // Sub-faces are regular but at the face's irregular corners (edge and face points are regular vertices): the
   // quarters at regular corners, and along the chain of sub-faces at each irregular corner the three others of
-  // every level.
-  // One subdivision of a net gives all four sub-faces of its quads[0].
+  // every level. One subdivision of a net gives all four sub-faces of its quads[0]: the next net of the chain
+  // and the three others.
   const CreaseNet x0 = uniform ? subdivide(net_) : CreaseNet{};
   const NetIncidence inc0 = net_incidence(x0);
   for (int c = 0; c < 4 && uniform; ++c) {
