@@ -739,6 +739,51 @@ TEST(CreaseFace, ContinuousPastTheCachedLevels) {
               corners, worst);
 }
 
+// The limit surface of a refined net is the net's own on the sub-face (subdivision does not change the surface).
+// A face's sub-faces towards an irregular corner come from one subdivision of each level's net shared by the four
+// sub-faces, cached to 2^-12 and subdivided on past it: the face evaluated on its sub-face at corner c of level
+// l (1 .. 15) against the face of the net refined l times towards c on its own (refine), at dyadic points (exact
+// in both parametrisations), the derivatives per unit of the sub-face. Half fans of 3 and 5 sectors: crease
+// vertices of 3 and 5 faces; the creased box: crease vertices of one face where the rim turns.
+TEST(CreaseFace, SubFacesOfASharedSubdivisionAreTheFaceRestricted) {
+  const TopBox box;
+  const std::vector<TMesh> meshes{io::parse_tsm(test::fusion_text(test::half_fan_mesh(3, 5, wavy)), "fan3.tsm").mesh,
+                                  io::parse_tsm(test::fusion_text(test::half_fan_mesh(5, 5, wavy)), "fan5.tsm").mesh,
+                                  io::parse_tsm(test::fusion_creased_text(box.cage, [&](int a, int b) { return box.rim_edge(a, b); }), "box.tsm").mesh};
+  double value = 0, derivative = 0;
+  int corners = 0;
+  for (const TMesh& m : meshes)
+    for (int f = 0; f < static_cast<int>(m.faces.size()); ++f) {
+      const CreaseNet net = net_of(m, f);
+      const CreaseFace face(net);
+      for (int c = 0; c < 4; ++c) {
+        if (!face.irregular(c)) continue;
+        ++corners;
+        CreaseNet sub = net;
+        for (int l = 1; l <= 15; ++l) {
+          sub = refine(sub, c);
+          const CreaseFace part(sub);
+          const double size = std::ldexp(1.0, -l);
+          const double ox = c == 1 || c == 2 ? 1 - size : 0, oy = c >= 2 ? 1 - size : 0;
+          for (const auto& [u, v] : {std::pair{0.375, 0.75}, std::pair{0.625, 0.125}, std::pair{0.875, 0.875}}) {
+            double whole[12], own[12];
+            face.eval(ox + size * u, oy + size * v, whole);
+            part.eval(u, v, own);
+            double scale = 0;
+            for (int i = 4; i < 12; ++i) scale = std::max(scale, std::abs(own[i]));
+            for (int i = 0; i < 4; ++i) value = std::max(value, std::abs(whole[i] - own[i]) / std::max(1.0, std::abs(own[i])));
+            for (int i = 4; i < 12; ++i) derivative = std::max(derivative, std::abs(whole[i] * size - own[i]) / scale);
+          }
+        }
+      }
+    }
+  EXPECT_GE(corners, 3 + 5 + 4 * 3);
+  EXPECT_LT(value, 1e-13);
+  EXPECT_LT(derivative, 1e-13);
+  std::printf("%d irregular face corners, sub-faces 2^-1 .. 2^-15 against their refined nets: values %.1e, derivatives %.1e "
+              "(relative)\n", corners, value, derivative);
+}
+
 // The Bezier patches of the box with its strip at 1.5: near the irregular vertices a quarter of a crease face is
 // several B-spline cells, each one exact patch (the surface to rounding, sampled at 5 x 5 points against the
 // face's own evaluation), and only the corner patches at the irregular corners are constructed, within the

@@ -4,6 +4,7 @@
 #include <climits>
 #include <cmath>
 #include <optional>
+#include <span>
 #include <string>
 
 #include <Eigen/Eigenvalues>
@@ -23,15 +24,28 @@ void add_scaled(NetPoint& a, const NetPoint& b, double s) {
   for (std::size_t i = 0; i < 4; ++i) a[i] += s * b[i];
 }
 
-// The quads at each vertex: (quad, corner).
-using NetIncidence = std::vector<std::vector<std::array<int, 2>>>;
+// The quads at each vertex: (quad, corner) in the order of the quads. One array for all vertices: the nets are
+// rebuilt at every level, and a vector per vertex made allocation most of their cost.
+class NetIncidence {
+public:
+  explicit NetIncidence(const CreaseNet& n) : start_(n.points.size() + 1, 0), at_(4 * n.quads.size()) {
+    for (const auto& a : n.quads)
+      for (int v : a) ++start_[static_cast<std::size_t>(v) + 1];
+    for (std::size_t v = 1; v < start_.size(); ++v) start_[v] += start_[v - 1];
+    std::vector<int> fill(start_.begin(), start_.end() - 1);
+    for (int q = 0; q < static_cast<int>(n.quads.size()); ++q)
+      for (int k = 0; k < 4; ++k) at_[static_cast<std::size_t>(fill[static_cast<std::size_t>(n.quads[static_cast<std::size_t>(q)][static_cast<std::size_t>(k)])]++)] = {q, k};
+  }
+  std::span<const std::array<int, 2>> operator[](std::size_t v) const {
+    return {at_.data() + start_[v], at_.data() + start_[v + 1]};
+  }
 
-NetIncidence net_incidence(const CreaseNet& n) {
-  NetIncidence inc(n.points.size());
-  for (int q = 0; q < static_cast<int>(n.quads.size()); ++q)
-    for (int k = 0; k < 4; ++k) inc[static_cast<std::size_t>(n.quads[static_cast<std::size_t>(q)][static_cast<std::size_t>(k)])].push_back({q, k});
-  return inc;
-}
+private:
+  std::vector<int> start_;  // vertex v's quads: at_[start_[v] .. start_[v + 1])
+  std::vector<std::array<int, 2>> at_;
+};
+
+NetIncidence net_incidence(const CreaseNet& n) { return NetIncidence(n); }
 
 // The quads sharing a vertex with `from` (and those).
 std::vector<char> net_ring(const CreaseNet& n, const NetIncidence& inc, const std::vector<char>& from) {
@@ -124,7 +138,7 @@ double edge_interval(const CreaseNet& n, const NetIncidence& inc, int v, int w) 
 // The quads round vertex v counter-clockwise (quad, corner of v), each the next across the side arriving at v:
 // face k lies between spoke k (its side leaving v) and spoke k + 1. Empty when the ring is open in the net.
 std::vector<std::array<int, 2>> closed_fan(const CreaseNet& n, const NetIncidence& inc, int v) {
-  const auto& around = inc[static_cast<std::size_t>(v)];
+  const auto around = inc[static_cast<std::size_t>(v)];
   std::vector<std::array<int, 2>> fan{around[0]};
   for (;;) {
     const auto [q, c] = fan.back();
@@ -143,30 +157,42 @@ std::vector<std::array<int, 2>> closed_fan(const CreaseNet& n, const NetIncidenc
 // evaluation never reads). Built once per net: the rules read them many times.
 using NetLines = std::vector<std::vector<std::pair<int, double>>>;
 
+// At four spokes the interval across is the opposite spoke's (nurcc_across weighs it alone, by 1): read directly,
+// as the nets' vertices are mostly such.
+double spoke_across(std::span<const double> spokes, int k) {
+  return spokes.size() == 4 ? spokes[static_cast<std::size_t>((k + 2) % 4)] : nurcc_across(spokes, k);
+}
+
+// The lines through vertex v (net_lines' entry).
+std::vector<std::pair<int, double>> vertex_lines(const CreaseNet& n, const NetIncidence& inc, int v) {
+  std::vector<std::pair<int, double>> at;
+  if (inc[static_cast<std::size_t>(v)].empty()) return at;
+  if (n.rules[static_cast<std::size_t>(v)] == VertexRule::crease) {
+    const std::vector<int> nb = crease_edges(n, inc, v);
+    if (nb.size() == 2) at = {{nb[0], edge_interval(n, inc, v, nb[1])}, {nb[1], edge_interval(n, inc, v, nb[0])}};
+  } else if (n.rules[static_cast<std::size_t>(v)] == VertexRule::smooth) {
+    const auto fan = closed_fan(n, inc, v);
+    std::vector<double> spokes;
+    for (const auto& [q, c] : fan) spokes.push_back(side_interval(n, q, c));
+    for (std::size_t k = 0; k < fan.size(); ++k)
+      at.emplace_back(n.quads[static_cast<std::size_t>(fan[k][0])][static_cast<std::size_t>((fan[k][1] + 1) % 4)], spoke_across(spokes, static_cast<int>(k)));
+  }
+  return at;
+}
+
 NetLines net_lines(const CreaseNet& n, const NetIncidence& inc) {
   NetLines lines(n.points.size());
-  for (int v = 0; v < static_cast<int>(n.points.size()); ++v) {
-    auto& at = lines[static_cast<std::size_t>(v)];
-    if (inc[static_cast<std::size_t>(v)].empty()) continue;
-    if (n.rules[static_cast<std::size_t>(v)] == VertexRule::crease) {
-      const std::vector<int> nb = crease_edges(n, inc, v);
-      if (nb.size() == 2) at = {{nb[0], edge_interval(n, inc, v, nb[1])}, {nb[1], edge_interval(n, inc, v, nb[0])}};
-    } else if (n.rules[static_cast<std::size_t>(v)] == VertexRule::smooth) {
-      const auto fan = closed_fan(n, inc, v);
-      std::vector<double> spokes;
-      for (const auto& [q, c] : fan) spokes.push_back(side_interval(n, q, c));
-      for (std::size_t k = 0; k < fan.size(); ++k)
-        at.emplace_back(n.quads[static_cast<std::size_t>(fan[k][0])][static_cast<std::size_t>((fan[k][1] + 1) % 4)], nurcc_across(spokes, static_cast<int>(k)));
-    }
-  }
+  for (int v = 0; v < static_cast<int>(n.points.size()); ++v) lines[static_cast<std::size_t>(v)] = vertex_lines(n, inc, v);
   return lines;
 }
 
-std::optional<double> line_beyond(const NetLines& lines, int from, int v) {
-  for (const auto& [w, d] : lines[static_cast<std::size_t>(v)])
+std::optional<double> beyond_in(const std::vector<std::pair<int, double>>& at, int from) {
+  for (const auto& [w, d] : at)
     if (w == from) return d;
   return std::nullopt;
 }
+
+std::optional<double> line_beyond(const NetLines& lines, int from, int v) { return beyond_in(lines[static_cast<std::size_t>(v)], from); }
 
 // The edge curve point of edge from-to of interval d.
 NetPoint curve_point(const CreaseNet& n, const NetLines& lines, int from, int to, double d) {
@@ -198,15 +224,15 @@ NetPoint nurcc_face_point(const CreaseNet& n, const NetLines& lines, int q) {
   return f;
 }
 
-// The vertices of the 4 x 4 grid round quads[0] (eval_uniform_bicubic's layout, -1 where missing beyond a crease
-// boundary): the quads round it unfolded onto the grid from their shared sides.
-std::array<int, 16> net_slots(const CreaseNet& n, const NetIncidence& inc) {
+// The vertices of the 4 x 4 grid round quads[centre] (eval_uniform_bicubic's layout, -1 where missing beyond a
+// crease boundary): the quads round it unfolded onto the grid from their shared sides.
+std::array<int, 16> net_slots(const CreaseNet& n, const NetIncidence& inc, int centre = 0) {
   std::vector<std::array<int, 2>> at(n.points.size(), {INT_MIN, 0});
   std::vector<char> done(n.quads.size(), 0);
   static constexpr std::array<std::array<int, 2>, 4> unit{{{0, 0}, {1, 0}, {1, 1}, {0, 1}}};
-  for (int k = 0; k < 4; ++k) at[static_cast<std::size_t>(n.quads[0][static_cast<std::size_t>(k)])] = unit[static_cast<std::size_t>(k)];
-  std::vector<int> todo{0};
-  done[0] = 1;
+  for (int k = 0; k < 4; ++k) at[static_cast<std::size_t>(n.quads[static_cast<std::size_t>(centre)][static_cast<std::size_t>(k)])] = unit[static_cast<std::size_t>(k)];
+  std::vector<int> todo{centre};
+  done[static_cast<std::size_t>(centre)] = 1;
   std::array<int, 16> slot;
   slot.fill(-1);
   while (!todo.empty()) {
@@ -241,11 +267,11 @@ std::array<int, 16> net_slots(const CreaseNet& n, const NetIncidence& inc) {
   return slot;
 }
 
-// The 4 x 4 points of quads[0] when its corners are regular and the intervals equal, homogeneous: the points
-// missing beyond a crease boundary the natural ghosts 2 P0 - P1 (first across one direction, then the other: the
-// tensor product at a corner).
-std::array<NetPoint, 16> net_grid(const CreaseNet& n, const NetIncidence& inc) {
-  const std::array<int, 16> slot = net_slots(n, inc);
+// The 4 x 4 points of quads[centre] when its corners are regular and the intervals equal, homogeneous: the
+// points missing beyond a crease boundary the natural ghosts 2 P0 - P1 (first across one direction, then the
+// other: the tensor product at a corner).
+std::array<NetPoint, 16> net_grid(const CreaseNet& n, const NetIncidence& inc, int centre = 0) {
+  const std::array<int, 16> slot = net_slots(n, inc, centre);
   std::array<NetPoint, 16> g{};
   std::array<bool, 16> have{};
   for (std::size_t s = 0; s < 16; ++s)
@@ -294,7 +320,8 @@ std::optional<CreaseFace::Cell> net_cell(const CreaseNet& n, const NetIncidence&
   const std::array<int, 16> slot = net_slots(n, inc);
   for (int s : slot)
     if (s >= 0 && !regular_vertex(n, inc, s)) return std::nullopt;
-  const NetLines lines = net_lines(n, inc);
+  // The lines through the grid's ends alone are read.
+  const auto beyond = [&](int from, int v) { return beyond_in(vertex_lines(n, inc, v), from); };
   CreaseFace::Cell cell{};
   std::array<bool, 16> have{};
   for (std::size_t s = 0; s < 16; ++s)
@@ -312,13 +339,13 @@ std::optional<CreaseFace::Cell> net_cell(const CreaseNet& n, const NetIncidence&
     bool low_ends = false, high_ends = false;
     if (!low_missing) {
       h[1] = edge_interval(n, inc, at(-1), at(0));
-      const auto b = line_beyond(lines, at(0), at(-1));
+      const auto b = beyond(at(0), at(-1));
       low_ends = !b;
       h[0] = b.value_or(0);
     }
     if (!high_missing) {
       h[3] = edge_interval(n, inc, at(1), at(2));
-      const auto b = line_beyond(lines, at(1), at(2));
+      const auto b = beyond(at(1), at(2));
       high_ends = !b;
       h[4] = b.value_or(0);
     }
@@ -388,7 +415,7 @@ namespace {
 // next vertex and diagonal vertex, and for a boundary vertex the last face's previous vertex (empty when open in
 // the net).
 std::vector<int> one_ring(const CreaseNet& n, const NetIncidence& inc, int v) {
-  const auto& around = inc[static_cast<std::size_t>(v)];
+  const auto around = inc[static_cast<std::size_t>(v)];
   const VertexRule rule = n.rules[static_cast<std::size_t>(v)];
   // The faces in order (each next across the side arriving at v), from the one after a crease side if any.
   int q = around[0][0], c = around[0][1];
@@ -546,9 +573,10 @@ CornerLimit uniform_limit(const CreaseNet& n, const NetIncidence& inc, int v) {
 constexpr int crease_cached_levels = 12;
 constexpr int crease_max_levels = 40;
 
-}  // namespace
-
-CreaseNet refine(const CreaseNet& n, int child) {
+// One subdivision step of the net's first ring: the children of the quads sharing a vertex with quads[0] (their
+// points need only the net's two rings), quads[0]'s four first (its child k is quad k), then four per quad of the
+// ring in the net's order. The four sub-faces of quads[0] share it (kept_net; net_grid centred on one).
+CreaseNet subdivide(const CreaseNet& n) {
   const NetIncidence inc = net_incidence(n);
   const std::size_t nq = n.quads.size();
   std::vector<char> first(nq, 0);
@@ -558,9 +586,33 @@ CreaseNet refine(const CreaseNet& n, int child) {
   const NetLines lines = uniform ? NetLines{} : net_lines(n, inc);
   CreaseNet x;
   std::vector<int> vertex_point(n.points.size(), -1), face_pt(nq, -1);
-  // At the smaller end: (other end, point); a crease side's other end as -1 - end when it runs from the larger end
-  // (a slit between two darts has both its sides between the same two vertices).
-  std::vector<std::vector<std::array<int, 2>>> edge_point(n.points.size());
+  // Per edge at its smaller end a list (edge_head, then edge_next) of (other end, point); a crease side's other
+  // end as -1 - end when it runs from the larger end (a slit between two darts has both its sides between the same
+  // two vertices).
+  std::vector<int> edge_head(n.points.size(), -1);
+  struct EdgePoint {
+    int key, id, next;
+  };
+  std::vector<EdgePoint> edge_point;
+  edge_point.reserve(4 * nq);
+  // At most 9 new points per quad of the first ring (fewer: they share them).
+  const auto ring_quads = static_cast<std::size_t>(std::count(first.begin(), first.end(), 1));
+  x.points.reserve(9 * ring_quads);
+  x.rules.reserve(9 * ring_quads);
+  x.quads.reserve(4 * ring_quads);
+  x.sharp.reserve(4 * ring_quads);
+  if (!n.intervals.empty()) x.intervals.reserve(4 * ring_quads);
+  // Equal intervals: the quads' centroids (their face points), each summed once; the vertex and edge rules read
+  // them again.
+  std::vector<NetPoint> centroid(uniform ? nq : 0);
+  std::vector<char> summed(uniform ? nq : 0, 0);
+  const auto centre = [&](int q) -> const NetPoint& {
+    if (!summed[static_cast<std::size_t>(q)]) {
+      centroid[static_cast<std::size_t>(q)] = net_face_point(n, q);
+      summed[static_cast<std::size_t>(q)] = 1;
+    }
+    return centroid[static_cast<std::size_t>(q)];
+  };
   const auto new_point = [&](const NetPoint& p, VertexRule r) {
     x.points.push_back(p);
     x.rules.push_back(r);
@@ -588,7 +640,7 @@ CreaseNet refine(const CreaseNet& n, int child) {
     } else {
       // Smooth, or a dart: the smooth rule over its fan from one side of the slit to the other, each quad's side
       // leaving v counting its edge once (the slit's two sides, one edge, carry equal points at every level).
-      const auto& around = inc[static_cast<std::size_t>(v)];
+      const auto around = inc[static_cast<std::size_t>(v)];
       const double k = static_cast<double>(around.size());
       int open = 0;
       for (const auto& [q, c] : around) open += net_across(n, inc, q, c) < 0;
@@ -600,7 +652,7 @@ CreaseNet refine(const CreaseNet& n, int child) {
         add_scaled(r, p, (k - 2) / k);
         for (const auto& [q, c] : around) {
           add_scaled(r, n.points[static_cast<std::size_t>(n.quads[static_cast<std::size_t>(q)][static_cast<std::size_t>((c + 1) % 4)])], 1 / (k * k));
-          add_scaled(r, net_face_point(n, q), 1 / (k * k));
+          add_scaled(r, centre(q), 1 / (k * k));
         }
       } else {
         // NURCC's vertex rule over its spokes in order (the tensor product rule at a vertex of four faces).
@@ -623,15 +675,15 @@ CreaseNet refine(const CreaseNet& n, int child) {
   };
   const auto face = [&](int q) {
     int& id = face_pt[static_cast<std::size_t>(q)];
-    return id >= 0 ? id : id = new_point(uniform ? net_face_point(n, q) : nurcc_face_point(n, lines, q), VertexRule::smooth);
+    return id >= 0 ? id : id = new_point(uniform ? centre(q) : nurcc_face_point(n, lines, q), VertexRule::smooth);
   };
   const auto edge = [&](int q, int k) {
     const auto& a = n.quads[static_cast<std::size_t>(q)];
     const int from = a[static_cast<std::size_t>(k)], to = a[static_cast<std::size_t>((k + 1) % 4)];
-    auto& list = edge_point[static_cast<std::size_t>(std::min(from, to))];
+    int& head = edge_head[static_cast<std::size_t>(std::min(from, to))];
     const int key = n.sharp[static_cast<std::size_t>(q)][static_cast<std::size_t>(k)] && from > to ? -1 - from : std::max(from, to);
-    for (const auto& [o, id] : list)
-      if (o == key) return id;
+    for (int e = head; e >= 0; e = edge_point[static_cast<std::size_t>(e)].next)
+      if (edge_point[static_cast<std::size_t>(e)].key == key) return edge_point[static_cast<std::size_t>(e)].id;
     NetPoint r{};
     const double d = side_interval(n, q, k);
     if (uniform) {
@@ -645,7 +697,8 @@ CreaseNet refine(const CreaseNet& n, int child) {
       const int o = net_across(n, inc, q, k);
       require(o >= 0, [&] { return "crease net: edge " + std::to_string(from) + "-" + std::to_string(to) + " has one face and is no crease"; });
       if (uniform) {
-        for (std::size_t c = 0; c < 4; ++c) r[c] = 0.5 * r[c] + 0.25 * (net_face_point(n, q)[c] + net_face_point(n, o)[c]);
+        const NetPoint &fq = centre(q), &fo = centre(o);
+        for (std::size_t c = 0; c < 4; ++c) r[c] = 0.5 * r[c] + 0.25 * (fq[c] + fo[c]);
       } else {
         // (e_o F_q + e_q F_o) / (2 (e_q + e_o)) + M / 2, e the faces' intervals across the edge.
         int j = 0;
@@ -657,17 +710,13 @@ CreaseNet refine(const CreaseNet& n, int child) {
       rule = VertexRule::smooth;
     }
     const int id = new_point(r, rule);
-    list.push_back({key, id});
+    edge_point.push_back({key, id, head});
+    head = static_cast<int>(edge_point.size()) - 1;
     return id;
   };
-  // The children of the first ring (their points need only the net's two rings); quads[0]'s at `child` first.
-  std::vector<int> order;
-  for (int q = 0; q < static_cast<int>(nq); ++q)
-    if (first[static_cast<std::size_t>(q)]) order.push_back(q);
-  for (int q : order) {
-    std::array<int, 4> children{0, 1, 2, 3};
-    if (q == 0) std::swap(children[0], children[static_cast<std::size_t>(child)]);  // quads[0]'s child `child` first
-    for (int c : children) {
+  for (int q = 0; q < static_cast<int>(nq); ++q) {
+    if (!first[static_cast<std::size_t>(q)]) continue;
+    for (int c = 0; c < 4; ++c) {
       const auto& a = n.quads[static_cast<std::size_t>(q)];
       const auto& s = n.sharp[static_cast<std::size_t>(q)];
       const int V = vertex(a[static_cast<std::size_t>(c)]), F = face(q);
@@ -692,30 +741,52 @@ CreaseNet refine(const CreaseNet& n, int child) {
       }
     }
   }
-  // Keep the new quads[0]'s two rings.
-  const NetIncidence xinc = net_incidence(x);
+  return x;
+}
+
+// The net kept round child `child` of the parent's quads[0] in its subdivision x: its two rings, renumbered, with
+// that child as quads[0] and the others in the order of a subdivision made for that child alone (quads[0]'s
+// children with `child` swapped to the front, then the ring's), so that the rules sum in the same order whether
+// the four sub-faces share x or not.
+CreaseNet kept_net(const CreaseNet& x, const NetIncidence& xinc, int child) {
   std::vector<char> keep(x.quads.size(), 0);
-  keep[0] = 1;
+  keep[static_cast<std::size_t>(child)] = 1;
   keep = net_ring(x, xinc, net_ring(x, xinc, keep));
+  // quads[0]'s children with `child` swapped to the front, then the rest.
+  std::array<std::size_t, 4> head{0, 1, 2, 3};
+  std::swap(head[0], head[static_cast<std::size_t>(child)]);
   CreaseNet y;
+  y.points.reserve(x.points.size());
+  y.rules.reserve(x.points.size());
+  y.quads.reserve(x.quads.size());
+  y.sharp.reserve(x.quads.size());
+  if (!x.intervals.empty()) y.intervals.reserve(x.quads.size());
   std::vector<int> id(x.points.size(), -1);
-  for (std::size_t q = 0; q < x.quads.size(); ++q) {
+  for (std::size_t i = 0; i < x.quads.size(); ++i) {
+    const std::size_t q = i < 4 ? head[i] : i;
     if (!keep[q]) continue;
     std::array<int, 4> quad{};
     for (std::size_t k = 0; k < 4; ++k) {
-      int& i = id[static_cast<std::size_t>(x.quads[q][k])];
-      if (i < 0) {
-        i = static_cast<int>(y.points.size());
+      int& p = id[static_cast<std::size_t>(x.quads[q][k])];
+      if (p < 0) {
+        p = static_cast<int>(y.points.size());
         y.points.push_back(x.points[static_cast<std::size_t>(x.quads[q][k])]);
         y.rules.push_back(x.rules[static_cast<std::size_t>(x.quads[q][k])]);
       }
-      quad[k] = i;
+      quad[k] = p;
     }
     y.quads.push_back(quad);
     y.sharp.push_back(x.sharp[q]);
     if (!x.intervals.empty()) y.intervals.push_back(x.intervals[q]);
   }
   return y;
+}
+
+}  // namespace
+
+CreaseNet refine(const CreaseNet& n, int child) {
+  const CreaseNet x = subdivide(n);
+  return kept_net(x, net_incidence(x), child);
 }
 
 namespace {
@@ -766,8 +837,10 @@ int CreaseFace::build_node(const CreaseNet& net, int level) {
   } else if (level == crease_cached_levels) {
     tree_[static_cast<std::size_t>(id)].net = net;
   } else {
+    const CreaseNet x = subdivide(net);
+    const NetIncidence xinc = net_incidence(x);
     for (int k = 0; k < 4; ++k) {
-      const int child = build_node(refine(net, k), level + 1);
+      const int child = build_node(kept_net(x, xinc, k), level + 1);
       tree_[static_cast<std::size_t>(id)].children[static_cast<std::size_t>(k)] = child;
     }
   }
@@ -792,23 +865,25 @@ CreaseFace::CreaseFace(CreaseNet net) : net_(std::move(net)) {
   if (!uniform) build_node(net_, 0);
   // Sub-faces are regular but at the face's irregular corners (edge and face points are regular vertices): the
   // quarters at regular corners, and along the chain of sub-faces at each irregular corner the three others of
-  // every level.
+  // every level. One subdivision of a net gives all four sub-faces of its quads[0]: the next net of the chain
+  // and the three others.
+  const CreaseNet x0 = uniform ? subdivide(net_) : CreaseNet{};
+  const NetIncidence inc0 = net_incidence(x0);
   for (int c = 0; c < 4 && uniform; ++c) {
-    const auto sub = [](const CreaseNet& n, int k) {
-      const CreaseNet r = refine(n, k);
-      return net_grid(r, net_incidence(r));
-    };
-    if (regular_vertex(net_, inc, net_.quads[0][static_cast<std::size_t>(c)])) {
-      quarters_[static_cast<std::size_t>(c)] = sub(net_, c);
+    if (!irregular(c)) {
+      quarters_[static_cast<std::size_t>(c)] = net_grid(x0, inc0, c);
       continue;
     }
     auto& chain = chains_[static_cast<std::size_t>(c)];
     auto& side = sides_[static_cast<std::size_t>(c)];
+    chain.push_back(kept_net(x0, inc0, c));
     for (int l = 1; l <= crease_cached_levels; ++l) {
-      chain.push_back(refine(l == 1 ? net_ : chain.back(), c));
+      const CreaseNet x = subdivide(chain.back());
+      const NetIncidence xinc = net_incidence(x);
       side.emplace_back();
       for (int k = 0; k < 4; ++k)
-        if (k != c) side.back()[static_cast<std::size_t>(k)] = sub(chain.back(), k);
+        if (k != c) side.back()[static_cast<std::size_t>(k)] = net_grid(x, xinc, k);
+      chain.push_back(kept_net(x, xinc, c));
     }
   }
   // At an irregular corner: its limit position, and the derivatives 2^-30 into the face along its diagonal (the
@@ -863,7 +938,9 @@ void CreaseFace::for_each_cell(int corner_level, const std::function<void(const 
       [&](const CreaseNet& net, const std::array<double, 2>& lo, double side, int level) {
         if (in_corner(lo, side, level)) return;
         if (const auto cell = net_cell(net, net_incidence(net))) return f(*cell, lo, side);
-        for (int k = 0; k < 4; ++k) net_cells(refine(net, k), child_lo(lo, side, k), side / 2, level + 1);
+        const CreaseNet x = subdivide(net);
+        const NetIncidence xinc = net_incidence(x);
+        for (int k = 0; k < 4; ++k) net_cells(kept_net(x, xinc, k), child_lo(lo, side, k), side / 2, level + 1);
       };
   const std::function<void(int, const std::array<double, 2>&, double, int)> node_cells =
       [&](int id, const std::array<double, 2>& lo, double side, int level) {
@@ -928,25 +1005,28 @@ void CreaseFace::eval_off_corners(double u, double v, double* out) const {
     return;
   }
   // Down the cached chain towards the irregular corner c: chain[l] is the sub-face of level l + 1.
-  for (std::size_t l = 0; l < chain.size(); ++l) {
+  const auto& side = sides_[static_cast<std::size_t>(c)];
+  for (std::size_t l = 0; l < side.size(); ++l) {
     const int k = quarter_of(u, v);
     scale *= 2;
     if (k != c) {
-      eval_net_bicubic(sides_[static_cast<std::size_t>(c)][l][static_cast<std::size_t>(k)], u, v, scale, out);
+      eval_net_bicubic(side[l][static_cast<std::size_t>(k)], u, v, scale, out);
       return;
     }
   }
-  // Beyond the cached levels (within 2^-(crease_cached_levels + 1) of the corner): refine on from the sub-face at c
-  // that the last cached level's (u, v) lies in, one level below the last cached net.
-  CreaseNet net = refine(chain.back(), c);
+  // Beyond the cached levels (within 2^-(crease_cached_levels + 1) of the corner): subdivide on from the last net
+  // of the chain, the sub-face at c that the last cached level's (u, v) lies in.
+  CreaseNet net = chain.back();
   for (;;) {
     const int k = quarter_of(u, v);
     scale *= 2;
-    net = refine(net, k);
+    const CreaseNet x = subdivide(net);
+    const NetIncidence xinc = net_incidence(x);
     if (k != c) {
-      eval_net_bicubic(net_grid(net, net_incidence(net)), u, v, scale, out);
+      eval_net_bicubic(net_grid(x, xinc, k), u, v, scale, out);
       return;
     }
+    net = kept_net(x, xinc, k);
   }
 }
 

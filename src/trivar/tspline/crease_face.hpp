@@ -118,8 +118,8 @@ private:
   CreaseNet net_;
   std::optional<Grid> grid_;   // the face itself when its corners are regular
   std::array<Grid, 4> quarters_;  // the level-1 sub-faces at regular corners
-  // Per irregular corner c: chains_[c][l - 1] the net of level l round the sub-face at c, and sides_[c][l - 1][k]
-  // its (regular) sub-faces k != c.
+  // Per irregular corner c: chains_[c][l - 1] the net of level l round the sub-face at c (l = 1 .. the cached
+  // levels + 1, the last where evaluation subdivides on), and sides_[c][l - 1][k] its (regular) sub-faces k != c.
   std::array<std::vector<CreaseNet>, 4> chains_;
   std::array<std::vector<std::array<Grid, 4>>, 4> sides_;
   std::array<std::array<double, 12>, 4> corner_values_{};  // eval at the irregular corners

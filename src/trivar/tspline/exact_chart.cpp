@@ -32,7 +32,9 @@ ExactChart exact_chart(const TMesh& m, std::span<const int> faces, int seed, std
     out.frames.push_back({o, {a[0] - o[0], a[1] - o[1]}, {b[0] - o[0], b[1] - o[1]}});
     boxes.push_back({{std::min(o[0], x[0]), std::min(o[1], x[1])}, {std::max(o[0], x[0]), std::max(o[1], x[1])}});
   }
-  out.surface = std::make_unique<TSplineSurface>(c.spline, threads);
+  // The members' elements alone: the chart's other faces are served otherwise (its crease and star faces) or by
+  // other charts, and their elements were most of its build.
+  out.surface = std::make_unique<TSplineSurface>(c.spline, boxes, threads);
   out.cut.assign(members.size(), 0);
   out.whole.assign(members.size(), 0);
   for (std::size_t j = 0; j < boxes.size(); ++j) {
@@ -65,11 +67,15 @@ std::vector<int> embedded_faces(const TMesh& m, int seed, std::span<const char> 
   std::vector<char> placed(m.vertices.size(), 0), decided(m.faces.size(), 0);
   // The faces taken, as boxes in a hash grid of cells of the seed's longer side, for the overlap test.
   std::vector<Box<2>> taken;
+  std::vector<int> seen;  // per box taken, the last face whose test met it
+  int stamp = 0;
   std::unordered_map<std::int64_t, std::vector<int>> cells;
   double cell = 0;
-  const auto cell_range = [&](const Box<2>& b, int k) {  // with the boxes that touch it
-    return std::array<std::int64_t, 2>{static_cast<std::int64_t>(std::floor((b.lo[static_cast<std::size_t>(k)] - tol) / cell)),
-                                       static_cast<std::int64_t>(std::floor((b.hi[static_cast<std::size_t>(k)] + tol) / cell))};
+  // With the boxes that touch it; the cells offset by half their side, so that a box of the seed's size on the
+  // knot lines meets 2 x 2 cells, not 3 x 3.
+  const auto cell_range = [&](const Box<2>& b, int k) {
+    return std::array<std::int64_t, 2>{static_cast<std::int64_t>(std::floor((b.lo[static_cast<std::size_t>(k)] - tol) / cell + 0.5)),
+                                       static_cast<std::int64_t>(std::floor((b.hi[static_cast<std::size_t>(k)] + tol) / cell + 0.5))};
   };
   const auto key = [](std::int64_t i, std::int64_t j) { return i * (std::int64_t{1} << 32) + j; };
   std::vector<int> out, loop_dir;
@@ -111,10 +117,13 @@ std::vector<int> embedded_faces(const TMesh& m, int seed, std::span<const char> 
     fits = fits && std::abs(p[0] - e.at[0]) <= tol && std::abs(p[1] - e.at[1]) <= tol;
     if (cell == 0) cell = std::max({box.hi[0] - box.lo[0], box.hi[1] - box.lo[1], tol});
     const auto ci = cell_range(box, 0), cj = cell_range(box, 1);
+    ++stamp;
     for (std::int64_t i = ci[0]; i <= ci[1] && fits; ++i)
       for (std::int64_t j = cj[0]; j <= cj[1] && fits; ++j)
         if (const auto it = cells.find(key(i, j)); it != cells.end())
           for (int t : it->second) {
+            if (seen[static_cast<std::size_t>(t)] == stamp) continue;  // met in another cell
+            seen[static_cast<std::size_t>(t)] = stamp;
             // The boxes' common part: an overlap, or a side or corner the faces must share in the mesh as well (else
             // the chart's rays would pass from one to the other: the two sides of a sharp crease, a layout round a
             // boundary vertex whose faces' angles sum to 360 degrees).
@@ -134,6 +143,7 @@ std::vector<int> embedded_faces(const TMesh& m, int seed, std::span<const char> 
     for (std::int64_t i = ci[0]; i <= ci[1]; ++i)
       for (std::int64_t j = cj[0]; j <= cj[1]; ++j) cells[key(i, j)].push_back(static_cast<int>(taken.size()));
     taken.push_back(box);
+    seen.push_back(0);
     out.push_back(e.face);
     for (std::size_t i = 0; i < n; ++i) {
       const int l = loop[(start + i) % n], v = L(l).vertex, o = L(l).opp;

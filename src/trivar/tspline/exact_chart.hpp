@@ -1,10 +1,10 @@
 #pragma once
 // Charts in which faces of a T-mesh with star points or irregular crease vertices are evaluated as the T-spline
 // itself (TMeshSurface's exact faces): a set of faces laid out in the plane by their knot intervals
-// (t_spline_chart), the T-spline built on it, and the members, the faces it is accepted for. A member's value
-// is the T-spline's wherever the chart holds the knot vectors of every blending function nonzero on it; a
-// chart's border inside the mesh can cut them (its rays stop there as at the mesh's boundary), which
-// exact_chart reports per member.
+// (t_spline_chart), the T-spline built on it (its Bezier elements on the members alone), and the members, the
+// faces it is accepted for. A member's value is the T-spline's wherever the chart holds the knot vectors of every
+// blending function nonzero on it; a chart's border inside the mesh can cut them (its rays stop there as at the
+// mesh's boundary), which exact_chart reports per member.
 #include <array>
 #include <memory>
 #include <span>

@@ -41,6 +41,11 @@ TSplineSurface::TSplineSurface(const TSpline& ts, int threads) : degrees_(ts.deg
   build(faces, threads);
 }
 
+TSplineSurface::TSplineSurface(const TSpline& ts, const std::vector<Box<2>>& regions, int threads)
+    : degrees_(ts.degrees), basis_(blending_functions(ts)) {
+  build(regions, threads);
+}
+
 TSplineSurface::TSplineSurface(const Ints<2>& degrees, std::vector<LRBSpline<2>> basis, int threads)
     : degrees_(degrees), basis_(std::move(basis)) {
   require(!basis_.empty(), "T-spline: no blending function");

@@ -30,6 +30,9 @@ struct PartitionOfUnity {
 class TSplineSurface {
 public:
   explicit TSplineSurface(const TSpline& ts, int threads = 0);
+  // The elements inside `regions` alone (boxes of the domain: the faces wanted of a larger T-spline; each element
+  // as the whole surface's); elsewhere as in a hole.
+  TSplineSurface(const TSpline& ts, const std::vector<Box<2>>& regions, int threads = 0);
   // From the blending functions alone (as a Part 42 locally refined surface stores a T-spline): each with
   // p_k + 2 local knots, gamma 1 and the homogeneous value (w x, w y, w z, w); the domain is the union of the
   // supports. Throws trivar::Error for a malformed function.
