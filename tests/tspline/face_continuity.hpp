@@ -50,13 +50,13 @@ inline int side_of(const TMesh& m, int f, int l) {
 
 inline std::vector<double> tenths() { return {0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9}; }
 
-// eval(face, u, v, out[9]).
+// eval(face, u, v, out[9]); the edges `skip` (sharp creases) are left out.
 template <class Eval>
-Continuity continuity(const TMesh& m, const Eval& eval, const std::vector<double>& along = tenths()) {
+Continuity continuity(const TMesh& m, const Eval& eval, const std::vector<double>& along = tenths(), const std::vector<int>& skip = {}) {
   Continuity c;
   for (int l = 0; l < static_cast<int>(m.links.size()); ++l) {
     const TMeshLink& a = m.links[static_cast<std::size_t>(l)];
-    if (a.vertex < 0 || a.opp < 0) continue;
+    if (a.vertex < 0 || a.opp < 0 || std::find(skip.begin(), skip.end(), a.edge) != skip.end()) continue;
     const TMeshLink& b = m.links[static_cast<std::size_t>(a.opp)];
     if (a.face < 0 || b.face < 0 || l > a.opp) continue;
     if (m.faces[static_cast<std::size_t>(a.face)].size() != 4 || m.faces[static_cast<std::size_t>(b.face)].size() != 4) continue;

@@ -151,6 +151,31 @@ std::vector<std::array<int, 2>> closed_fan(const CreaseNet& n, const NetIncidenc
   }
 }
 
+// A dart's quads counter-clockwise from the side of its slit whose side leaving v is open to the quad whose side
+// arriving at v is the slit's other side: the closed fan of the mesh before it was cut, face k between spoke k and
+// spoke k + 1, the slit spoke 0 (and again, from its other side, spoke N). Empty when the ring is not such a fan.
+std::vector<std::array<int, 2>> dart_fan(const CreaseNet& n, const NetIncidence& inc, int v) {
+  const auto around = inc[static_cast<std::size_t>(v)];
+  std::vector<std::array<int, 2>> fan;
+  for (const auto& [q, c] : around)
+    if (net_across(n, inc, q, c) < 0) fan.push_back({q, c});
+  if (fan.size() != 1) return {};
+  for (;;) {
+    const auto [q, c] = fan.back();
+    const int r = net_across(n, inc, q, (c + 3) % 4);
+    if (r < 0) return fan.size() == around.size() ? fan : std::vector<std::array<int, 2>>{};
+    if (fan.size() >= around.size()) return {};
+    int k = 0;
+    while (n.quads[static_cast<std::size_t>(r)][static_cast<std::size_t>(k)] != v) ++k;
+    fan.push_back({r, k});
+  }
+}
+
+// The fan of a smooth vertex (closed_fan) or a dart (dart_fan), over which NURCC's smooth rule runs.
+std::vector<std::array<int, 2>> smooth_fan(const CreaseNet& n, const NetIncidence& inc, int v) {
+  return n.rules[static_cast<std::size_t>(v)] == VertexRule::dart ? dart_fan(n, inc, v) : closed_fan(n, inc, v);
+}
+
 // The knot intervals beyond each vertex v on the lines through it, per neighbour w: on the line from w through v,
 // the opposite edge of four faces, the other crease edge along a crease, at a star point NURCC's interval across
 // (nurcc_across of its spokes). None where the line ends (the natural end) or leaves the net (points the
@@ -170,12 +195,15 @@ std::vector<std::pair<int, double>> vertex_lines(const CreaseNet& n, const NetIn
   if (n.rules[static_cast<std::size_t>(v)] == VertexRule::crease) {
     const std::vector<int> nb = crease_edges(n, inc, v);
     if (nb.size() == 2) at = {{nb[0], edge_interval(n, inc, v, nb[1])}, {nb[1], edge_interval(n, inc, v, nb[0])}};
-  } else if (n.rules[static_cast<std::size_t>(v)] == VertexRule::smooth) {
-    const auto fan = closed_fan(n, inc, v);
+  } else if (n.rules[static_cast<std::size_t>(v)] == VertexRule::smooth || n.rules[static_cast<std::size_t>(v)] == VertexRule::dart) {
+    const auto fan = smooth_fan(n, inc, v);
     std::vector<double> spokes;
     for (const auto& [q, c] : fan) spokes.push_back(side_interval(n, q, c));
     for (std::size_t k = 0; k < fan.size(); ++k)
       at.emplace_back(n.quads[static_cast<std::size_t>(fan[k][0])][static_cast<std::size_t>((fan[k][1] + 1) % 4)], spoke_across(spokes, static_cast<int>(k)));
+    // A dart's slit seen from its other side is spoke 0 again.
+    if (n.rules[static_cast<std::size_t>(v)] == VertexRule::dart && !fan.empty())
+      at.emplace_back(n.quads[static_cast<std::size_t>(fan.back()[0])][static_cast<std::size_t>((fan.back()[1] + 3) % 4)], spoke_across(spokes, 0));
   }
   return at;
 }
@@ -655,11 +683,10 @@ CreaseNet subdivide(const CreaseNet& n) {
           add_scaled(r, centre(q), 1 / (k * k));
         }
       } else {
-        // NURCC's vertex rule over its spokes in order (the tensor product rule at a vertex of four faces).
-        const auto fan = closed_fan(n, inc, v);
-        require(fan.size() == around.size(), [&] {
-          return "crease net: vertex " + std::to_string(v) + " has no closed fan of faces; the rules for unequal knot intervals take smooth, crease and corner vertices";
-        });
+        // NURCC's vertex rule over its spokes in order (the tensor product rule at a vertex of four faces), a dart's
+        // from one side of its slit to the other.
+        const auto fan = smooth_fan(n, inc, v);
+        require(fan.size() == around.size(), [&] { return "crease net: vertex " + std::to_string(v) + " has no fan of faces round it"; });
         std::vector<double> spokes;
         for (const auto& [q, c] : fan) spokes.push_back(side_interval(n, q, c));
         const VertexWeights vw = nurcc_vertex_weights(spokes);
@@ -812,12 +839,21 @@ CornerLimit ring_limit(const CreaseNet& net, int c) {
   if (ring.empty() && a.rules[static_cast<std::size_t>(v)] == VertexRule::corner) return {a.points[static_cast<std::size_t>(v)], std::nullopt};
   require(!ring.empty(), "crease net: the one ring of an irregular vertex is open");
   const auto m = static_cast<Eigen::Index>(ring.size());
+  // A dart's ring closes over its slit: the slit's other side (the last quad's side arriving at the dart), a vertex
+  // of its own in the net, carries the point of its first side (ring[1]) at every level.
+  int twin = -1;
+  if (a.rules[static_cast<std::size_t>(v)] == VertexRule::dart) {
+    const auto fan = dart_fan(a, net_incidence(a), v);
+    require(!fan.empty(), "crease net: the fan of a dart is open elsewhere than at its slit");
+    twin = a.quads[static_cast<std::size_t>(fan.back()[0])][static_cast<std::size_t>((fan.back()[1] + 3) % 4)];
+  }
   Eigen::MatrixXd S(m, m);
   std::vector<int> next;
   for (Eigen::Index j0 = 0; j0 < m; j0 += 4) {
     CreaseNet unit = a;
     for (NetPoint& p : unit.points) p = {};
     for (Eigen::Index t = 0; t < 4 && j0 + t < m; ++t) unit.points[static_cast<std::size_t>(ring[static_cast<std::size_t>(j0 + t)])][static_cast<std::size_t>(t)] = 1;
+    if (twin >= 0) unit.points[static_cast<std::size_t>(twin)] = unit.points[static_cast<std::size_t>(ring[1])];
     const CreaseNet b = refine(unit, c);
     if (next.empty()) next = one_ring(b, net_incidence(b), b.quads[0][static_cast<std::size_t>(c)]);
     require(static_cast<Eigen::Index>(next.size()) == m, "crease net: the one ring of an irregular vertex changes under subdivision");

@@ -35,8 +35,8 @@
 // insertion above. A sub-face is then a B-spline cell of its 4 x 4 points on their knots (clamped, Q1 as above,
 // where a crease boundary ends its lines) when all 16 points are regular vertices: next to an irregular vertex
 // the rules are no knot insertion (as next to NonUniformStar's star point), so faces there are subdivided one
-// level further than with equal intervals. A net with unequal intervals and a dart is refused (the rules
-// above need a closed fan of faces at a smooth vertex; a dart's is open). The limit point and tangent plane at an
+// level further than with equal intervals. At a dart NURCC's smooth rule runs over its fan from one side of the
+// slit to the other (the closed fan before the cut). The limit point and tangent plane at an
 // irregular corner come from the eigenvectors of its one ring's subdivision matrix, read off the rules themselves
 // at level 3 (stationary from there). Measured (tests/tspline/crease_face_test.cpp): knot insertion of the exact
 // surface (grids with intervals 1 : 1.02, 1.5, 3, polynomial and rational) to 7e-15 in value and 9e-14 in
