@@ -277,25 +277,28 @@ void stepped_box_build(benchmark::State& state) {
 }
 BENCHMARK(stepped_box_build)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
-// Fusion's box with its top centre face split 2 x 2 (tests/data/tsm/fusion/a3_box3_tjunc_ring2_readback.tsm, here
-// the cube of 3 x 3 faces per side with a strip of interval 2 at x < -1/3): T-junctions next to the star points'
-// faces, whose two lines are completed round the box (tspline/t_junction_lines) before two global steps.
+// range(0) = 0: Fusion's box with its top centre face split 2 x 2 (tests/data/tsm/fusion/a3_box3_tjunc_ring2_readback.tsm,
+// here the cube of 3 x 3 faces per side with a strip of interval 2 at x < -1/3): T-junctions next to the star points'
+// faces, whose two lines are completed round the box (tspline/t_junction_lines) before two global steps. 1: the cube
+// of 11 x 11 faces per side with top face (4, 1) split (tests/tspline/t_junction_lines_test.cpp): two lines round the
+// box across 726 faces (85 vertices inserted), no steps.
 void t_junction_lines_build(benchmark::State& state) {
-  trivar::test::QuadMesh q = trivar::test::cube_mesh(3);
+  const int n = state.range(0) == 0 ? 3 : 11;
+  trivar::test::QuadMesh q = trivar::test::cube_mesh(n);
   for (const auto& f : q.quads)
     for (int k = 0; k < 4; ++k) {
       const auto& a = q.points[static_cast<std::size_t>(f[static_cast<std::size_t>(k)])];
       const auto& b = q.points[static_cast<std::size_t>(f[static_cast<std::size_t>((k + 1) % 4)])];
-      if (std::max(a[0], b[0]) < -0.3 && a[0] != b[0]) q.intervals[{f[static_cast<std::size_t>(k)], f[static_cast<std::size_t>((k + 1) % 4)]}] = 2;
+      if (n == 3 && std::max(a[0], b[0]) < -0.3 && a[0] != b[0]) q.intervals[{f[static_cast<std::size_t>(k)], f[static_cast<std::size_t>((k + 1) % 4)]}] = 2;
     }
-  q = trivar::test::split_face(q, trivar::test::top_face(q.points, q, 3, 1, 1), {0, 0, 0, 0, 0});
+  q = trivar::test::split_face(q, trivar::test::top_face(q.points, q, n, n == 3 ? 1 : 4, 1), {0, 0, 0, 0, 0});
   const trivar::TMesh mesh = trivar::io::parse_tsm(trivar::test::tsm_text(q), "box.tsm").mesh;
   for (auto _ : state) {
     const trivar::TMeshSurface s(mesh, 1);
     benchmark::DoNotOptimize(s.num_faces());
   }
 }
-BENCHMARK(t_junction_lines_build)->Unit(benchmark::kMillisecond);
+BENCHMARK(t_junction_lines_build)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 // 16 x 16 points per face of the box as given (on the 16 refined faces of a stepped face, 4 x 4 each).
 void stepped_box_eval(benchmark::State& state) {

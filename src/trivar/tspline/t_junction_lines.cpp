@@ -72,7 +72,7 @@ public:
       }
       p.push_back(h);
     }
-    index();
+    for (int f = 0; f < static_cast<int>(faces.size()); ++f) index(f);
   }
 
   std::vector<Face> faces;
@@ -165,13 +165,12 @@ private:
     const auto it = at_map_.find(k);
     return it == at_map_.end() ? Loc{} : it->second;
   }
-  void index() {
-    at_map_.clear();
-    for (int f = 0; f < static_cast<int>(faces.size()); ++f)
-      for (int k = 0; k < 4; ++k) {
-        const Side& s = faces[static_cast<std::size_t>(f)].side[static_cast<std::size_t>(k)];
-        for (int i = 0; i < static_cast<int>(s.v.size()); ++i) at_map_[key(s.v[static_cast<std::size_t>(i)], vertex_after(f, k, i))] = {f, k, i};
-      }
+  // The directed edges of face f (after a change to it: only the faces changed are indexed again).
+  void index(int f) {
+    for (int k = 0; k < 4; ++k) {
+      const Side& s = faces[static_cast<std::size_t>(f)].side[static_cast<std::size_t>(k)];
+      for (int i = 0; i < static_cast<int>(s.v.size()); ++i) at_map_[key(s.v[static_cast<std::size_t>(i)], vertex_after(f, k, i))] = {f, k, i};
+    }
   }
   int vertex_after(int f, int k, int i) const {
     const Face& w = faces[static_cast<std::size_t>(f)];
@@ -274,7 +273,10 @@ private:
     };
     put(ab, t);
     put(ba, d - t);
-    index();
+    at_map_.erase(key(a, b));
+    at_map_.erase(key(b, a));
+    index(ab.face);
+    index(ba.face);
     return x;
   }
 
@@ -310,7 +312,8 @@ private:
     }
     faces[static_cast<std::size_t>(f)] = std::move(a);
     faces.push_back(std::move(b));
-    index();
+    index(f);
+    index(static_cast<int>(faces.size()) - 1);
   }
 };
 
