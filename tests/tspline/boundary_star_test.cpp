@@ -315,7 +315,8 @@ TEST(BoundaryStar, RefusesShortCornerSidesTJunctionsAndUnequalIntervalsNearby) {
     split.t_faces.push_back({{f[0], mid, f[1], f[2], f[3]}, {0, 1, 0, 0, 0}});
     split.intervals[{f[0], mid}] = split.intervals[{mid, f[1]}] = 0.5;
   }
-  refused(tsm_text(split), "T-junction");
+  // Its line is completed (t_junction_lines) into the star point's rings, whose knot intervals it halves.
+  refused(tsm_text(split), "nearby has knot interval 0.5");
   // A knot interval of 2 on the strip of the first faces along spoke 1.
   test::QuadMesh uneven = test::half_fan_mesh(4, 7, bump);
   for (int i = 0; i < 7; ++i) {

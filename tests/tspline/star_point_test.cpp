@@ -363,12 +363,11 @@ TEST(StarPoints, WhatTheCatmullClarkRegionDoesNotHoldIsRefused) {
   expect_error(uneven, "knot interval");
 }
 
-// What the uniform Catmull-Clark rules cannot represent is refused with one line naming it; a star point on the
-// boundary (four sectors of the valence-5 fan: the origin a boundary vertex with four faces, 360 degrees) loads
-// through its ghost layer (tests/tspline/boundary_star_test.cpp). T-junctions (split edges
-// of interval 1/2) in the ring of faces 3 from the star point: their neighbours within 3 rings need uniform
-// quads within 2 rings, and no chart without the star point holds their knot vectors.
-TEST(StarPoints, TJunctionsNearAStarPointAreRefused) {
+// A star point on the boundary (four sectors of the valence-5 fan: the origin a boundary vertex with four faces, 360
+// degrees) loads through its ghost layer (tests/tspline/boundary_star_test.cpp). T-junctions (split edges of
+// interval 1/2) in the ring of faces 3 from the star point: their neighbours within 3 rings need uniform quads
+// within 2 rings, and no chart without the star point holds their knot vectors, so their lines are completed.
+TEST(StarPoints, TJunctionsNearAStarPoint) {
   test::QuadMesh open = test::fan_mesh(5, 8, height);
   open.quads.resize(4 * 64);
   std::vector<int> used(open.points.size(), -1);
@@ -384,7 +383,14 @@ TEST(StarPoints, TJunctionsNearAStarPointAreRefused) {
   open.points = std::move(points);
   const io::TsmModel boundary_star = io::parse_tsm(tsm_text(open), "open.tsm");
   EXPECT_EQ(TMeshSurface(boundary_star.mesh, 1).boundary_star_faces(), 4);
-  expect_error(tsm_text(test::fan_mesh_with_t_junctions(5, 8, 3, 1, 3, height)), "has a T-junction at vertex 361 within 3 face rings of star point 0's faces");
+  // Within 3 face rings of the star point the T-junctions' lines are completed first (t_junction_lines), here to the
+  // fan's boundary: one surface, continuous with one tangent plane across every edge.
+  const TMeshSurface near(io::parse_tsm(tsm_text(test::fan_mesh_with_t_junctions(5, 8, 3, 1, 3, height)), "near.tsm").mesh, 1);
+  ASSERT_NE(near.completed_lines(), nullptr);
+  EXPECT_EQ(near.completed_lines()->lines, 2);
+  const test::Continuity c = test::continuity(near.mesh(), [&](int f, double u, double v, double* o) { near.eval(f, u, v, o); });
+  EXPECT_LT(c.gap, 1e-12);
+  EXPECT_LT(c.normal_angle, 1e-9);
   // Two rings further out the T-junctions are faces of charts without the star point: the mesh loads.
   const io::TsmModel far = io::parse_tsm(tsm_text(test::fan_mesh_with_t_junctions(5, 8, 6, 2, 5, height)), "far.tsm");
   const TMeshSurface s(far.mesh, 1);

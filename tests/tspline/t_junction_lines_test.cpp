@@ -54,9 +54,12 @@ std::map<std::array<int, 4>, int> faces_by_corners(const TMeshSurface& s) {
 // neighbourhood holds no star point must still be the first cage's surface: the rows' knot insertion is exact.
 // With `strip` != 1 the edges along x between grid lines 3 and 4 (a strip of faces round the box) have that knot
 // interval, which the insertion at x = 4.5 takes in its weights.
-// With `rational`, weights 0.6 to 1.4 on the points (the same on both cages' common vertices).
-void expect_insertion_exact(double strip, bool rational) {
-  test::QuadMesh box = test::box_mesh({11, 11, 11});
+// With `rational`, weights 0.6 to 1.4 on the points (the same on both cages' common vertices). With `open` the box
+// has no bottom: the lines run down the sides to its rim, a Bezier boundary whose rows the insertion ends in their
+// end-condition nodes (on the vertices: tsm_text's grip map, or without `grip` none, as Fusion writes
+// MULTIPLE_KNOTS, placed by bezier_equivalent).
+void expect_insertion_exact(double strip, bool rational, bool open = false, bool grip = true) {
+  test::QuadMesh box = test::box_mesh({11, 11, 11}, open);
   const std::vector<std::array<double, 3>> unbent = box.points;
   const auto grid_x = [&](int v) { return std::lround((unbent[static_cast<std::size_t>(v)][0] + 1) * 5.5); };
   for (const auto& q : box.quads)
@@ -71,16 +74,26 @@ void expect_insertion_exact(double strip, bool rational) {
   // The top side (z = 1): face (i, j) has corners (i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1) in the grid.
   const test::QuadMesh split = test::split_face(box, test::top_face(unbent, box, 11, 4, 1), {0.02, -0.03, 0.01, 0.04, 0.07});
   const auto weighted = [&](TMesh m) {
-    for (std::size_t v = 0; rational && v < m.vertices.size(); ++v)
-      m.points[static_cast<std::size_t>(m.vertices[v].primary)].w = 1 + 0.4 * std::sin(1.7 * static_cast<double>(v));
+    for (std::size_t v = 0; rational && v < m.vertices.size(); ++v) {
+      const double w = 1 + 0.4 * std::sin(1.7 * static_cast<double>(v));
+      m.points[static_cast<std::size_t>(m.vertices[v].primary)].w = w;
+      for (int g : m.vertices[v].block) m.points[static_cast<std::size_t>(g)].w = w;
+    }
+    for (TMeshVertex& x : m.vertices)
+      if (!grip) x.block.clear(), x.block_dims = {};
     return m;
   };
   const TMeshSurface plain(weighted(mesh_of(box, "box.tsm")), 1);
   const TMesh t_mesh = weighted(mesh_of(split, "split.tsm"));
-  EXPECT_EQ(std::count(t_mesh.intervals.begin(), t_mesh.intervals.end(), strip), strip == 1.0 ? static_cast<long>(t_mesh.intervals.size()) - 12 : 44);  // 4 sides x 12 edges, 4 on the box's edges shared
+  if (!open)  // 4 sides x 12 edges, 4 on the box's edges shared
+    EXPECT_EQ(std::count(t_mesh.intervals.begin(), t_mesh.intervals.end(), strip), strip == 1.0 ? static_cast<long>(t_mesh.intervals.size()) - 12 : 44);
   const TMeshSurface lines(t_mesh, 1);
   ASSERT_NE(lines.completed_lines(), nullptr);
-  EXPECT_EQ(lines.completed_lines()->lines, 2);  // one line per direction, each closing on the opposite T-junction
+  // One line per direction, each closing on the opposite T-junction; open, each T-junction's line to the rim.
+  EXPECT_EQ(lines.completed_lines()->lines, open ? 4 : 2);
+  // The four boundary edges the lines end on carry their edge condition (tsm_text's on every boundary edge) on both
+  // pieces.
+  EXPECT_EQ(lines.mesh().conditions.size(), t_mesh.conditions.size() + (open ? 4 : 0));
   EXPECT_EQ(lines.global_steps(), 0);
   // Points the insertion moved.
   const TMesh& done = lines.mesh();
@@ -118,8 +131,9 @@ void expect_insertion_exact(double strip, bool rational) {
   EXPECT_GT(touched, 10);
   EXPECT_LT(worst, 1e-13);
   EXPECT_LT(worst_d, 1e-12);
-  std::printf("box 11 x 11 (strip %g%s) with a split face near a star point: %d lines, %d vertices inserted; %d exact faces of the cage "
-              "without T-junctions (%d with moved corners): values %.1e, derivatives %.1e\n", strip, rational ? ", rational" : "", lines.completed_lines()->lines,
+  std::printf("box 11 x 11 (strip %g%s%s) with a split face near a star point: %d lines, %d vertices inserted; %d exact faces of the cage "
+              "without T-junctions (%d with moved corners): values %.1e, derivatives %.1e\n", strip, rational ? ", rational" : "",
+              open ? (grip ? ", open" : ", open, no grip map") : "", lines.completed_lines()->lines,
               lines.completed_lines()->vertices, compared, touched, worst, worst_d);
 }
 
@@ -127,6 +141,8 @@ TEST(TJunctionLines, KnotInsertionAlongTheRowsLeavesTheTSplineUnchanged) {
   expect_insertion_exact(1.0, false);
   expect_insertion_exact(1.7, false);
   expect_insertion_exact(1.7, true);
+  expect_insertion_exact(1.7, true, true);
+  expect_insertion_exact(1.7, false, true, false);
 }
 
 // Fusion's box of 3 x 3 faces per side with the top side's centre face split 2 x 2 (T-junctions on the four faces

@@ -1,5 +1,10 @@
 #include "trivar/tspline/link_builder.hpp"
 
+#include <string>
+#include <vector>
+
+#include "trivar/core/error.hpp"
+
 namespace trivar {
 
 int LinkBuilder::add_face(std::span<const int> loop, std::span<const char> straight, std::span<const double> interval) {
@@ -27,6 +32,30 @@ int LinkBuilder::add_face(std::span<const int> loop, std::span<const char> strai
     m_.faces.back().push_back(base + i);
   }
   return f;
+}
+
+void LinkBuilder::close_boundary() {
+  const int inner = static_cast<int>(m_.links.size());
+  std::vector<int> turns(m_.vertices.size(), 0), outside_from(m_.vertices.size(), -1);
+  for (int l = 0; l < inner; ++l) turns[static_cast<std::size_t>(m_.links[static_cast<std::size_t>(l)].vertex)] += m_.links[static_cast<std::size_t>(l)].flag + 1;
+  for (int l = 0; l < inner; ++l) {
+    if (m_.links[static_cast<std::size_t>(l)].opp >= 0) continue;
+    TMeshLink o;
+    o.vertex = m_.links[static_cast<std::size_t>(m_.links[static_cast<std::size_t>(l)].next)].vertex;
+    o.opp = l;
+    o.edge = m_.links[static_cast<std::size_t>(l)].edge;
+    o.flag = 3 - turns[static_cast<std::size_t>(o.vertex)];
+    const int id = static_cast<int>(m_.links.size());
+    m_.links[static_cast<std::size_t>(l)].opp = id;
+    require(outside_from[static_cast<std::size_t>(o.vertex)] < 0, [&] { return "T-mesh: vertex " + std::to_string(o.vertex) + " lies on two boundary arcs"; });
+    outside_from[static_cast<std::size_t>(o.vertex)] = id;
+    m_.links.push_back(o);
+  }
+  for (int o = inner; o < static_cast<int>(m_.links.size()); ++o) {
+    const int next = outside_from[static_cast<std::size_t>(m_.links[static_cast<std::size_t>(m_.links[static_cast<std::size_t>(o)].opp)].vertex)];
+    m_.links[static_cast<std::size_t>(o)].next = next;
+    m_.links[static_cast<std::size_t>(next)].prev = o;
+  }
 }
 
 }  // namespace trivar

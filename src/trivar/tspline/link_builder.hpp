@@ -1,7 +1,7 @@
 #pragma once
 // A T-mesh's half-edge links built face by face from vertex loops, for meshes made by refinement (global
 // subdivision steps, completed T-junction lines): each face's links counter-clockwise, and each edge shared with
-// the link added before it back along the same two vertices. No outside links: the meshes are closed.
+// the link added before it back along the same two vertices; then the outside links of the boundary, if any.
 #include <span>
 #include <unordered_map>
 
@@ -16,6 +16,9 @@ public:
   // when the face's angle at loop[i] is 180 degrees (a T-junction of a neighbour on its side), and the knot
   // interval from loop[i] to the next (taken when that edge is new). Returns the face's id.
   int add_face(std::span<const int> loop, std::span<const char> straight, std::span<const double> interval);
+  // The outside link (face -1) of every edge with one face, linked round the boundary, its flag the outside angle
+  // at its vertex (angle / 90 - 1). Throws trivar::Error at a vertex on two boundary arcs.
+  void close_boundary();
 
 private:
   TMesh& m_;

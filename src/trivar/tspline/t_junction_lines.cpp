@@ -1,7 +1,9 @@
 #include "trivar/tspline/t_junction_lines.hpp"
 
+#include <algorithm>
 #include <climits>
 #include <cmath>
+#include <functional>
 #include <string>
 #include <unordered_map>
 
@@ -78,6 +80,8 @@ public:
   std::vector<Face> faces;
   std::vector<H> p;
   int inserted = 0;
+  std::unordered_map<long long, int> split_at;     // edge (smaller, larger end) -> the vertex inserted on it
+  std::unordered_map<long long, long long> along;  // directed edge a -> x from a split -> the edge a -> b it lies along
 
   // Completes the line of the T-junction at position `index` (inside the side) of side `k` of face `f`.
   void complete(int f, int k, int index, const std::string& where) {
@@ -114,6 +118,7 @@ public:
       const int x = split_edge(a, b, target - at, where);
       split_face(f, k, index, j + 1);
       const Loc c = at_(key(x, a));
+      if (c.face < 0) return;  // the line ends at the boundary
       f = c.face;
       k = c.side;
       index = c.index;
@@ -177,6 +182,10 @@ private:
     const Side& s = w.side[static_cast<std::size_t>(k)];
     return i + 1 < static_cast<int>(s.v.size()) ? s.v[static_cast<std::size_t>(i + 1)] : w.side[static_cast<std::size_t>((k + 1) % 4)].v[0];
   }
+  // The place after place (k, i) of face f's loop.
+  std::pair<int, int> after(int f, int k, int i) const {
+    return i + 1 < static_cast<int>(faces[static_cast<std::size_t>(f)].side[static_cast<std::size_t>(k)].v.size()) ? std::pair{k, i + 1} : std::pair{(k + 1) % 4, 0};
+  }
   int vertex_before(int f, int k, int i) const {
     const Face& w = faces[static_cast<std::size_t>(f)];
     return i > 0 ? w.side[static_cast<std::size_t>(k)].v[static_cast<std::size_t>(i - 1)] : w.side[static_cast<std::size_t>((k + 3) % 4)].v.back();
@@ -184,71 +193,121 @@ private:
   struct Spoke {
     int to;
     double d;
-    int face, side, index;
-    int angle;  // of the face between this spoke and the next counter-clockwise, in quarter turns
+    int face, side, index;  // the face left of it (-1: none, the boundary's outside) and the spoke's place there
+    int angle;              // that face's angle at the vertex in quarter turns (0: no face)
   };
-  // The spokes of vertex a counter-clockwise from a -> b.
-  std::vector<Spoke> ring(int a, int b, const std::string& where) const {
-    std::vector<Spoke> r;
-    int to = b;
+  // The spokes of vertex a counter-clockwise: round a closed fan from a -> b; round an open one (a boundary vertex)
+  // from the boundary edge with the outside clockwise of it to the other, which has no face left of it.
+  struct Fan {
+    std::vector<Spoke> spokes;
+    bool open = false;
+    int turn = 0;  // quarter turns of its faces
+  };
+  Fan fan(int a, int b, const std::string& where) const {
+    Fan f;
+    // Clockwise to the boundary, if any: the face right of spoke a -> x holds x -> a, and a -> y follows it there.
+    int first = b;
+    for (std::size_t guard = 0; !f.open && guard < 64; ++guard) {
+      const Loc r = at_(key(first, a));
+      if (r.face < 0) {
+        f.open = true;
+        break;
+      }
+      const auto [k, i] = after(r.face, r.side, r.index);
+      first = vertex_after(r.face, k, i);
+      if (first == b) break;
+    }
+    int to = f.open ? first : b;
     for (std::size_t guard = 0; guard < 64; ++guard) {
       const Loc c = at_(key(a, to));
-      require(c.face >= 0, [&] { return where + "the row through vertex " + std::to_string(a) + " reaches the boundary (closed meshes only)"; });
+      if (c.face < 0) {  // the open fan's last spoke: its interval from the face right of it
+        const Loc r = at_(key(to, a));
+        f.spokes.push_back({to, faces[static_cast<std::size_t>(r.face)].side[static_cast<std::size_t>(r.side)].d[static_cast<std::size_t>(r.index)], -1, 0, 0, 0});
+        return f;
+      }
       const Side& s = faces[static_cast<std::size_t>(c.face)].side[static_cast<std::size_t>(c.side)];
-      r.push_back({to, s.d[static_cast<std::size_t>(c.index)], c.face, c.side, c.index, c.index == 0 ? 1 : 2});
+      const int angle = c.index == 0 ? 1 : 2;
+      f.spokes.push_back({to, s.d[static_cast<std::size_t>(c.index)], c.face, c.side, c.index, angle});
+      f.turn += angle;
       to = vertex_before(c.face, c.side, c.index);
-      if (to == b) return r;
+      if (!f.open && to == b) return f;
     }
-    throw Error(where + "vertex " + std::to_string(a) + " has no closed fan of faces");
+    throw Error(where + "vertex " + std::to_string(a) + " has no fan of faces");
   }
-  // The vertex beyond a on the row from b, and the interval to it.
-  std::pair<int, double> beyond(int a, int b, const std::string& where) const {
-    const std::vector<Spoke> r = ring(a, b, where);
-    int turn = 0;
-    for (const Spoke& s : r) turn += s.angle;
-    require(turn == 4, [&] { return where + "its line passes star point " + std::to_string(a) + " (no row through it)"; });
-    turn = 0;
-    for (const Spoke& s : r) {
-      if (turn == 2) return {s.to, s.d};
-      turn += s.angle;
-      require(turn <= 2, [&] { return where + "the row through vertex " + std::to_string(b) + " ends at vertex " + std::to_string(a) + " (the stem of a T-junction)"; });
+  // Where the row arriving at the fan's vertex along spoke `from` goes on: the spoke two quarter turns round (-1:
+  // none), and the face whose angle holds that direction when no spoke does (-1: none either).
+  struct Straight {
+    int spoke = -1, face = -1, side = 0;
+  };
+  static Straight straight(const Fan& f, int from) {
+    std::vector<int> theta{0};
+    for (const Spoke& s : f.spokes) theta.push_back(theta.back() + s.angle);
+    int at = 0;
+    while (f.spokes[static_cast<std::size_t>(at)].to != from) ++at;
+    Straight out;
+    for (int target : {theta[static_cast<std::size_t>(at)] + 2, theta[static_cast<std::size_t>(at)] - 2}) {
+      if (!f.open) target = ((target % 4) + 4) % 4;
+      for (std::size_t k = 0; k < f.spokes.size(); ++k) {
+        if (theta[k] == target) out.spoke = static_cast<int>(k);
+        if (f.spokes[k].face >= 0 && theta[k] < target && target < theta[k] + f.spokes[k].angle) out.face = f.spokes[k].face, out.side = f.spokes[k].side;
+      }
+      if (out.spoke >= 0 || out.face >= 0 || !f.open) return out;
     }
-    throw Error(where + "vertex " + std::to_string(a) + " has no straight spoke");
+    return out;
   }
-  // The knot interval beyond vertex c on the row from a: its straight spoke's, the extent of the face its row enters
-  // (a T-junction's stem), or at a star point nurcc_across.
-  double interval_beyond(int c, int a, const std::string& where) const {
-    const std::vector<Spoke> r = ring(c, a, where);
-    int turn = 0;
-    for (const Spoke& s : r) turn += s.angle;
-    if (turn != 4) {
+  // The node beyond a on the row from b: the vertex on, its interval, and whether the row ends at a (a boundary
+  // vertex: its end-condition node lies on it, at a's knot).
+  struct Beyond {
+    int vertex;
+    double d;
+    bool end;
+  };
+  Beyond beyond(int a, int b, const std::string& where) const {
+    require(static_cast<std::size_t>(a) >= star_.size() || !star_[static_cast<std::size_t>(a)],
+            [&] { return where + "its line passes star point " + std::to_string(a) + " (no row through it)"; });
+    const Fan f = fan(a, b, where);
+    require(!f.open || f.turn <= 2, [&] { return where + "a row it crosses passes the concave corner " + std::to_string(a); });
+    const Straight s = straight(f, b);
+    if (s.spoke >= 0) return {f.spokes[static_cast<std::size_t>(s.spoke)].to, f.spokes[static_cast<std::size_t>(s.spoke)].d, false};
+    if (f.open) return {a, 0, true};
+    throw Error(where + "the row through vertex " + std::to_string(b) + " ends at vertex " + std::to_string(a) + " (the stem of a T-junction)");
+  }
+  // The knot interval beyond node c on the row from a: its straight spoke's, the extent of the face its row enters
+  // (a T-junction's stem), at a star point nurcc_across, 0 where the row ends at the boundary (the end-condition
+  // node, at the same knot) or beyond such a node (`end`).
+  double interval_beyond(int c, int a, bool end, const std::string& where) const {
+    if (end) return 0;
+    const Fan f = fan(c, a, where);
+    if (static_cast<std::size_t>(c) < star_.size() && star_[static_cast<std::size_t>(c)]) {
+      require(!f.open, [&] { return where + "a row it crosses ends at the boundary star point " + std::to_string(c); });
       std::vector<double> iv;
-      for (const Spoke& s : r) iv.push_back(s.d);
+      for (const Spoke& s : f.spokes) iv.push_back(s.d);
       return nurcc_across(iv, 0);
     }
-    turn = 0;
-    for (const Spoke& s : r) {
-      if (turn == 2) return s.d;
-      if (turn + s.angle > 2) return faces[static_cast<std::size_t>(s.face)].side[static_cast<std::size_t>((s.side + 1) % 4)].length();
-      turn += s.angle;
-    }
-    throw Error(where + "vertex " + std::to_string(c) + " has no straight spoke");
+    require(!f.open || f.turn <= 2, [&] { return where + "a row it crosses passes the concave corner " + std::to_string(c); });
+    const Straight s = straight(f, a);
+    if (s.spoke >= 0) return f.spokes[static_cast<std::size_t>(s.spoke)].d;
+    if (f.open) return 0;
+    require(s.face >= 0, [&] { return where + "vertex " + std::to_string(c) + " has no straight spoke"; });
+    return faces[static_cast<std::size_t>(s.face)].side[static_cast<std::size_t>((s.side + 1) % 4)].length();
   }
   void require_point(int v, const std::string& where) const {
-    const TMeshVertex& x = m_.vertices[static_cast<std::size_t>(v)];
-    require(x.primary >= 0 && x.block.empty(), [&] { return where + "vertex " + std::to_string(v) + " on a row it crosses has no control point or repeated-knot nodes"; });
+    require(m_.vertices[static_cast<std::size_t>(v)].primary >= 0, [&] { return where + "vertex " + std::to_string(v) + " on a row it crosses has no control point"; });
   }
 
   // Inserts a vertex on edge a -> b at knot distance t from a; Boehm's rule on the row moves a and b. Returns it.
   int split_edge(int a, int b, double t, const std::string& where) {
-    const auto [c, dca] = beyond(a, b, where);
-    const auto [e, dbe] = beyond(b, a, where);
-    require(c != b && e != a && c != e, [&] { return where + "the row through vertices " + std::to_string(a) + " and " + std::to_string(b) + " closes within 3 edges"; });
+    const auto [c, dca, c_end] = beyond(a, b, where);
+    const auto [e, dbe, e_end] = beyond(b, a, where);
+    require(c != b && e != a && (c != e || c_end || e_end), [&] {
+      return where + "the row through vertices " + std::to_string(a) + " and " + std::to_string(b) + " closes within 3 edges";
+    });
     for (int v : {c, a, b, e})
       if (v < static_cast<int>(m_.vertices.size())) require_point(v, where);
     const Loc ab = at_(key(a, b)), ba = at_(key(b, a));
     const double d = faces[static_cast<std::size_t>(ab.face)].side[static_cast<std::size_t>(ab.side)].d[static_cast<std::size_t>(ab.index)];
-    const double um1 = -dca, um2 = um1 - interval_beyond(c, a, where), u1 = d, u2 = d + dbe, u3 = u2 + interval_beyond(e, b, where);
+    const double um1 = -dca, um2 = um1 - interval_beyond(c, a, c_end, where), u1 = d, u2 = d + dbe,
+                 u3 = u2 + interval_beyond(e, b, e_end, where);
     const double a1 = (t - um2) / (u1 - um2), a2 = (t - um1) / (u2 - um1), a3 = t / u3;
     const auto mix = [](const H& x, const H& y, double s) {  // (1 - s) x + s y
       H r;
@@ -272,11 +331,14 @@ private:
       s.d.insert(s.d.begin() + l.index + 1, whole - first);
     };
     put(ab, t);
-    put(ba, d - t);
+    if (ba.face >= 0) put(ba, d - t);  // else a boundary edge
     at_map_.erase(key(a, b));
     at_map_.erase(key(b, a));
     index(ab.face);
-    index(ba.face);
+    if (ba.face >= 0) index(ba.face);
+    split_at[key(std::min(a, b), std::max(a, b))] = x;
+    along[key(a, x)] = key(a, b);
+    along[key(b, x)] = key(b, a);
     return x;
   }
 
@@ -324,11 +386,15 @@ TMesh Lines::mesh() const {
   r.end_conditions = m_.end_conditions;
   r.vertices = m_.vertices;
   r.points = m_.points;
+  const bool blocks = std::any_of(m_.vertices.begin(), m_.vertices.end(), [](const TMeshVertex& v) { return !v.block.empty(); });
   for (std::size_t v = 0; v < p.size(); ++v) {
     const H& h = p[v];
     const RationalPoint x{{h[0] / h[3], h[1] / h[3], h[2] / h[3]}, h[3]};
     if (v < m_.vertices.size()) {
+      // A moved boundary vertex takes its end-condition nodes along (they lie on it: complete_t_junction_lines).
       if (r.vertices[v].live && r.vertices[v].primary >= 0) r.points[static_cast<std::size_t>(r.vertices[v].primary)] = x;
+      for (int g : r.vertices[v].block)
+        if (g >= 0) r.points[static_cast<std::size_t>(g)] = x;
       continue;
     }
     r.points.push_back(x);
@@ -348,19 +414,90 @@ TMesh Lines::mesh() const {
       }
     links.add_face(loop, straight, iv);
   }
+  links.close_boundary();
+  const auto L = [&](int l) -> TMeshLink& { return r.links[static_cast<std::size_t>(l)]; };
+  const auto to = [&](int l) { return L(L(l).opp).vertex; };
+  // Frame directions: a link along a link of the mesh as given (or a piece of one) keeps its frame; the others
+  // follow round their vertex, a quarter turn per right angle counter-clockwise (north after east).
+  std::unordered_map<long long, int> given;
+  for (const TMeshLink& k : m_.links)
+    if (k.vertex >= 0 && k.frame >= 0) given[key(k.vertex, m_.links[static_cast<std::size_t>(k.opp)].vertex)] = k.frame;
+  const auto known = [&](long long e) {
+    for (auto it = along.find(e); it != along.end(); it = along.find(e)) e = it->second;
+    const auto g = given.find(e);
+    return g == given.end() ? -1 : g->second;
+  };
+  std::vector<int> spoke(r.vertices.size(), -1);
+  for (int l = 0; l < static_cast<int>(r.links.size()); ++l)
+    if (spoke[static_cast<std::size_t>(L(l).vertex)] < 0) spoke[static_cast<std::size_t>(L(l).vertex)] = l;
+  for (int first : spoke) {
+    if (first < 0) continue;
+    std::vector<int> round{first};
+    std::vector<int> theta{0};
+    for (int l = L(L(first).prev).opp; l != first && round.size() <= 64; l = L(L(l).prev).opp) {
+      theta.push_back(theta.back() + L(round.back()).flag + 1);
+      round.push_back(l);
+    }
+    int base = 3, at = 0;
+    for (std::size_t k = 0; k < round.size(); ++k)
+      if (const int f = known(key(L(round[k]).vertex, to(round[k]))); f >= 0) {
+        base = f;
+        at = theta[k];
+        break;
+      }
+    for (std::size_t k = 0; k < round.size(); ++k) L(round[k]).frame = (((base + theta[k] - at) % 4) + 4) % 4;
+  }
+  // A vertex inserted on the boundary gets the end-condition node of a straight boundary vertex, on it, when the
+  // mesh as given carries such nodes (else bezier_equivalent places them).
+  for (int l = 0; blocks && l < static_cast<int>(r.links.size()); ++l) {
+    TMeshVertex& x = r.vertices[static_cast<std::size_t>(L(l).vertex)];
+    if (L(l).face >= 0 || static_cast<std::size_t>(L(l).vertex) < m_.vertices.size() || !x.block.empty()) continue;
+    x.block_dims[static_cast<std::size_t>((L(l).frame + 1) % 4)] = 1;
+    r.points.push_back(r.points[static_cast<std::size_t>(x.primary)]);
+    x.block = {static_cast<int>(r.points.size()) - 1};
+  }
+  // Edge conditions and crease lists on the pieces of their edges.
+  std::unordered_map<long long, int> edge_of;
+  for (const TMeshLink& k : r.links) edge_of[key(std::min(k.vertex, L(k.opp).vertex), std::max(k.vertex, L(k.opp).vertex))] = k.edge;
+  const std::function<void(int, int, std::vector<int>&)> pieces = [&](int a, int b, std::vector<int>& out) {
+    const long long e = key(std::min(a, b), std::max(a, b));
+    if (const auto it = split_at.find(e); it != split_at.end()) {
+      pieces(a, it->second, out);
+      pieces(it->second, b, out);
+    } else {
+      out.push_back(edge_of.at(e));
+    }
+  };
+  std::vector<std::array<int, 2>> ends(m_.intervals.size(), {-1, -1});
+  for (const TMeshLink& k : m_.links)
+    if (k.vertex >= 0) ends[static_cast<std::size_t>(k.edge)] = {k.vertex, m_.links[static_cast<std::size_t>(k.opp)].vertex};
+  const auto remap = [&](int e, const std::function<void(int)>& take) {
+    std::vector<int> out;
+    pieces(ends[static_cast<std::size_t>(e)][0], ends[static_cast<std::size_t>(e)][1], out);
+    for (int x : out) take(x);
+  };
+  for (const auto& [e, flag] : m_.conditions) remap(e, [&, f = flag](int x) { r.conditions.push_back({x, f}); });
+  for (int e : m_.crease_edges) remap(e, [&](int x) { r.crease_edges.push_back(x); });
+  r.crease_vertices = m_.crease_vertices;
   return r;
 }
 
 }  // namespace
 
 std::optional<CompletedLines> complete_t_junction_lines(const TMesh& m, int rings) {
-  if (has_creases(m) || !m.conditions.empty() || m.end_conditions != EndConditions::bezier) return std::nullopt;
+  if (has_creases(m) || m.end_conditions != EndConditions::bezier) return std::nullopt;
   const std::vector<int> stars = star_points(m);
   if (stars.empty()) return std::nullopt;
-  for (const TMeshLink& k : m.links)
-    if (k.vertex >= 0 && k.face < 0) return std::nullopt;  // a boundary: its rows would end in end conditions
   for (const auto& loop : m.faces)
     if (loop.empty()) return std::nullopt;
+  // A boundary ends its rows in Bezier end conditions, clamped where their nodes lie on the vertex (or are still to
+  // be placed there: no grip map); other end-condition nodes are not taken.
+  for (const TMeshVertex& v : m.vertices)
+    for (int g : v.block) {
+      if (!v.live || g < 0) continue;
+      const RationalPoint &x = m.points[static_cast<std::size_t>(g)], &y = m.points[static_cast<std::size_t>(v.primary)];
+      if (v.primary < 0 || x.xyz != y.xyz || x.w != y.w) return std::nullopt;
+    }
   Lines lines(m, stars);
   std::array<int, 3> t = lines.t_junction_near_stars(rings);
   if (t[0] < 0) return std::nullopt;

@@ -12,10 +12,14 @@
 // defines the surface as that of the completed mesh, whose faces the Catmull-Clark rules then take. The completed
 // mesh is no longer the T-mesh as given: its faces are pieces of the given ones (FacePiece).
 //
-// Scope: closed meshes (no boundary, whose rows would end in end conditions) without sharp creases, degree 3; the
-// rows the lines cross must pass no star point next to a crossed edge, carry one control point per vertex and not
-// end at a T-junction's stem within two vertices of a crossing; anything else is refused in one line naming the
-// T-junction and the cause.
+// At a Bezier boundary a row ends in its end-condition node, which lies on the boundary vertex (clamped): the
+// insertion takes it at the vertex's knot, and a line that reaches the boundary ends there (its new boundary vertex
+// gets such a node); tests/tspline/t_junction_lines_test.cpp checks this on an open box too.
+//
+// Scope: no sharp creases, degree 3, end-condition nodes on their vertices (or none yet: no grip map); the rows the
+// lines cross must pass no star point next to a crossed edge, no concave corner, carry one control point per vertex
+// and not end at a T-junction's stem within two vertices of a crossing; anything else is refused in one line naming
+// the T-junction and the cause.
 #include <array>
 #include <optional>
 #include <vector>
@@ -39,7 +43,8 @@ struct CompletedLines {
 };
 
 // The mesh with the lines of its T-junctions within `rings` face rings of a star point's faces completed; empty when
-// it has none, or is open or has sharp creases (no rule is attempted: the evaluation gives its own reason).
+// it has none, or has sharp creases or end-condition nodes off their vertices (no rule is attempted: the
+// evaluation gives its own reason).
 std::optional<CompletedLines> complete_t_junction_lines(const TMesh& m, int rings);
 
 }  // namespace trivar

@@ -55,7 +55,8 @@
 // the star points' faces that fails these (a boundary, a T-junction or unequal intervals nearby) is exact
 // instead when a chart of p up to (its distance - 1) rings around it holds its knot vectors (so a star point
 // needs 7 faces to the boundary, not 8); otherwise the face's reason is the error (what is still refused:
-// T-junctions (in open or creased meshes: closed ones complete their lines first, t_junction_lines) and
+// T-junctions (in creased meshes or with end-condition nodes off their vertices: others complete their lines
+// first, t_junction_lines) and
 // repeated knots within two rings of a star point's faces, unequal intervals, T-junctions or
 // corners with a side of one edge near a star point on the boundary, unequal intervals near star points whose
 // faces have a boundary (a Bezier end condition, which has no subdivision rule) within their two face rings,
@@ -109,7 +110,7 @@ public:
   // the faces are then the refined mesh's (face F lies in face F >> 2 global_steps() of the mesh as given;
   // eval_source evaluates the faces as given).
   // global_steps >= 0 forces that many steps.
-  // T-junctions within p + 2 rings of a star point's faces (closed meshes without creases): their lines are completed
+  // T-junctions within p + 2 rings of a star point's faces (meshes without creases): their lines are completed
   // first (t_junction_lines), and the completed mesh is the one refined and evaluated; its faces are pieces of the
   // faces as given (eval_source and refined_point map between them).
   static constexpr int kStarsApart = 7;
