@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <unordered_map>
 
 namespace trivar {
@@ -14,13 +15,20 @@ ExactChart exact_chart(const TMesh& m, std::span<const int> faces, int seed, std
     const TVertex& x = c.spline.image.vertices[static_cast<std::size_t>(c.vertex[static_cast<std::size_t>(v)])];
     return std::array<double, 2>{x.s, x.t};
   };
-  std::vector<Box<2>> border;  // edges of the chart with a face outside it on the other side
+  // The chart's edges with a face outside it on the other side, and that side (along `axis`, `sign`).
+  struct Border {
+    Box<2> box;
+    int axis, sign;
+  };
+  std::vector<Border> border;
   for (const TMeshLink& k : m.links) {
     if (k.face < 0 || c.face[static_cast<std::size_t>(k.face)] < 0) continue;
     const int g = L(k.opp).face;
     if (g < 0 || c.face[static_cast<std::size_t>(g)] >= 0) continue;
     const auto p = at(k.vertex), q = at(L(k.opp).vertex);
-    border.push_back({{std::min(p[0], q[0]), std::min(p[1], q[1])}, {std::max(p[0], q[0]), std::max(p[1], q[1])}});
+    // The chart's faces lie left of their links: a link going north has the outside east of it, one going east south.
+    const int axis = p[0] == q[0] ? 0 : 1, sign = axis == 0 ? (q[1] > p[1] ? 1 : -1) : (q[0] > p[0] ? -1 : 1);
+    border.push_back({{{std::min(p[0], q[0]), std::min(p[1], q[1])}, {std::max(p[0], q[0]), std::max(p[1], q[1])}}, axis, sign});
   }
   ExactChart out;
   std::vector<Box<2>> boxes;
@@ -43,13 +51,58 @@ ExactChart exact_chart(const TMesh& m, std::span<const int> faces, int seed, std
   const auto overlap = [](const Box<2>& a, const Box<2>& b) {
     return a.lo[0] < b.hi[0] && b.lo[0] < a.hi[0] && a.lo[1] < b.hi[1] && b.lo[1] < a.hi[1];
   };
+  const Ints<2>& degrees = out.surface->degrees();
+  // A border edge through a support's interior cuts the function there. A ray that reaches the border stops as at
+  // the mesh's boundary: the knot repeats where the mesh's ray goes on to the next knot line, and the mesh's
+  // function reaches beyond the border. Such an end (a knot repeated at the end of a knot vector, on a border edge
+  // with the outside beyond it) changes the function from the knot spans whose polynomial piece depends on the
+  // missing knots on: with the first of the repeats t_i among the knots t_0 .. t_(p+1), above t_(i+1-p) (at the
+  // lower end, with the last repeat t_i, below t_(i+p-1)), over its whole extent across.
+  struct Stop {
+    int axis, sign;
+    double at, line, from;
+  };
+  std::vector<Stop> stops;
+  const double inf = std::numeric_limits<double>::infinity();
   for (const auto& f : out.surface->basis()) {
-    const Box<2> sb{{f.knots[0].front(), f.knots[1].front()}, {f.knots[0].back(), f.knots[1].back()}};
-    // A border edge through the support's interior cuts it; one along its side does not (the rays that end there
-    // meet that edge in the chart as in the mesh).
-    if (std::none_of(border.begin(), border.end(), [&](const Box<2>& e) { return overlap(e, sb); })) continue;
-    for (std::size_t j = 0; j < boxes.size(); ++j)
-      if (overlap(sb, boxes[j])) out.cut[j] = 1;
+    const Box<2> sb = f.support();
+    const auto cut_where = [&](const Box<2>& changed) {
+      for (std::size_t j = 0; j < boxes.size(); ++j)
+        if (overlap(changed, boxes[j])) out.cut[j] = 1;
+    };
+    if (std::any_of(border.begin(), border.end(), [&](const Border& e) { return overlap(e.box, sb); })) cut_where(sb);
+    stops.clear();
+    for (int k = 0; k < 2; ++k) {
+      const std::vector<double>& t = f.knots[static_cast<std::size_t>(k)];
+      const std::vector<double>& o = f.knots[static_cast<std::size_t>(1 - k)];
+      const int p = degrees[static_cast<std::size_t>(k)], q = degrees[static_cast<std::size_t>(1 - k)], n = p + 2;
+      const double line = 0.5 * (o[static_cast<std::size_t>((q + 1) / 2)] + o[static_cast<std::size_t>((q + 2) / 2)]);
+      const auto knot = [&](int i) { return t[static_cast<std::size_t>(std::clamp(i, 0, n - 1))]; };
+      if (t[0] == t[1]) {
+        int i = 1;
+        while (i + 1 < n && knot(i + 1) == t[0]) ++i;
+        stops.push_back({k, -1, t[0], line, knot(i + p - 1)});
+      }
+      if (knot(n - 1) == knot(n - 2)) {
+        int i = n - 2;
+        while (i > 0 && knot(i - 1) == knot(n - 1)) --i;
+        stops.push_back({k, 1, knot(n - 1), line, knot(i + 1 - p)});
+      }
+    }
+    std::erase_if(stops, [&](const Stop& s) {
+      const auto k = static_cast<std::size_t>(s.axis);
+      return std::none_of(border.begin(), border.end(), [&](const Border& e) {
+        return e.axis == s.axis && e.sign == s.sign && e.box.lo[k] == s.at && e.box.lo[1 - k] <= s.line && s.line <= e.box.hi[1 - k];
+      });
+    });
+    // The mesh's function reaches past every stop.
+    Box<2> reach = sb;
+    for (const Stop& s : stops) (s.sign > 0 ? reach.hi : reach.lo)[static_cast<std::size_t>(s.axis)] = s.sign * inf;
+    for (const Stop& s : stops) {
+      Box<2> changed = reach;
+      (s.sign > 0 ? changed.lo : changed.hi)[static_cast<std::size_t>(s.axis)] = s.from;
+      cut_where(changed);
+    }
   }
   return out;
 }
