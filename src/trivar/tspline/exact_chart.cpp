@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <limits>
+#include <tuple>
 #include <unordered_map>
 
 namespace trivar {
@@ -51,57 +51,58 @@ ExactChart exact_chart(const TMesh& m, std::span<const int> faces, int seed, std
   const auto overlap = [](const Box<2>& a, const Box<2>& b) {
     return a.lo[0] < b.hi[0] && b.lo[0] < a.hi[0] && a.lo[1] < b.hi[1] && b.lo[1] < a.hi[1];
   };
-  const Ints<2>& degrees = out.surface->degrees();
-  // A border edge through a support's interior cuts the function there. A ray that reaches the border stops as at
-  // the mesh's boundary: the knot repeats where the mesh's ray goes on to the next knot line, and the mesh's
-  // function reaches beyond the border. Such an end (a knot repeated at the end of a knot vector, on a border edge
-  // with the outside beyond it) changes the function from the knot spans whose polynomial piece depends on the
-  // missing knots on: with the first of the repeats t_i among the knots t_0 .. t_(p+1), above t_(i+1-p) (at the
-  // lower end, with the last repeat t_i, below t_(i+p-1)), over its whole extent across.
-  struct Stop {
-    int axis, sign;
-    double at, line, from;
+  // A border edge through a support's interior cuts the function. A ray that reaches the border stops there as at the
+  // mesh's boundary, where the mesh's ray goes on: its knot repeats (at the end of the knot vector, on a border edge
+  // with the outside beyond it) in place of the knot lines beyond. Of the knots t_0 .. t_(p+1), the piece on the span
+  // from t_j depends on t_(j-p+1) .. t_(j+p) only, so with the first repeat t_i at the upper end the function changes
+  // above t_(i+1-p), with the last repeat t_i at the lower end below t_(i+p-1); the rays that end at the border
+  // without a repeat meet its edge in the chart as in the mesh.
+  const auto before = [](const Border& a, const Border& b) {
+    return std::tuple(a.axis, a.sign, a.box.lo[static_cast<std::size_t>(a.axis)]) < std::tuple(b.axis, b.sign, b.box.lo[static_cast<std::size_t>(b.axis)]);
   };
-  std::vector<Stop> stops;
-  const double inf = std::numeric_limits<double>::infinity();
+  std::sort(border.begin(), border.end(), before);
+  const auto stops = [&](int axis, int sign, double x, double line) {
+    Border probe{{}, axis, sign};
+    probe.box.lo[static_cast<std::size_t>(axis)] = x;
+    const auto [first, last] = std::equal_range(border.begin(), border.end(), probe, before);
+    return std::any_of(first, last, [&](const Border& e) {
+      return e.box.lo[static_cast<std::size_t>(1 - axis)] <= line && line <= e.box.hi[static_cast<std::size_t>(1 - axis)];
+    });
+  };
+  Box<2> hull = boxes.empty() ? Box<2>{} : boxes.front();  // of the members: a function off it cuts none
+  for (const Box<2>& b : boxes)
+    for (std::size_t k = 0; k < 2; ++k) {
+      hull.lo[k] = std::min(hull.lo[k], b.lo[k]);
+      hull.hi[k] = std::max(hull.hi[k], b.hi[k]);
+    }
+  const Ints<2>& degrees = out.surface->degrees();
   for (const auto& f : out.surface->basis()) {
     const Box<2> sb = f.support();
+    if (!overlap(sb, hull)) continue;
     const auto cut_where = [&](const Box<2>& changed) {
       for (std::size_t j = 0; j < boxes.size(); ++j)
         if (overlap(changed, boxes[j])) out.cut[j] = 1;
     };
-    if (std::any_of(border.begin(), border.end(), [&](const Border& e) { return overlap(e.box, sb); })) cut_where(sb);
-    stops.clear();
+    if (std::any_of(border.begin(), border.end(), [&](const Border& e) { return overlap(e.box, sb); })) {
+      cut_where(sb);
+      continue;
+    }
     for (int k = 0; k < 2; ++k) {
       const std::vector<double>& t = f.knots[static_cast<std::size_t>(k)];
-      const std::vector<double>& o = f.knots[static_cast<std::size_t>(1 - k)];
-      const int p = degrees[static_cast<std::size_t>(k)], q = degrees[static_cast<std::size_t>(1 - k)], n = p + 2;
-      const double line = 0.5 * (o[static_cast<std::size_t>((q + 1) / 2)] + o[static_cast<std::size_t>((q + 2) / 2)]);
-      const auto knot = [&](int i) { return t[static_cast<std::size_t>(std::clamp(i, 0, n - 1))]; };
-      if (t[0] == t[1]) {
-        int i = 1;
-        while (i + 1 < n && knot(i + 1) == t[0]) ++i;
-        stops.push_back({k, -1, t[0], line, knot(i + p - 1)});
+      const int p = degrees[static_cast<std::size_t>(k)], n = p + 2;
+      for (int sign : {-1, 1}) {
+        const int end = sign < 0 ? 0 : n - 1;
+        const double x = t[static_cast<std::size_t>(end)];
+        if (t[static_cast<std::size_t>(end - sign)] != x) continue;
+        int r = end - sign;  // the repeat of the end knot farthest from the end
+        while (r - sign >= 0 && r - sign < n && t[static_cast<std::size_t>(r - sign)] == x) r -= sign;
+        const std::vector<double>& o = f.knots[static_cast<std::size_t>(1 - k)];
+        const int q = degrees[static_cast<std::size_t>(1 - k)];
+        if (!stops(k, sign, x, 0.5 * (o[static_cast<std::size_t>((q + 1) / 2)] + o[static_cast<std::size_t>((q + 2) / 2)]))) continue;
+        Box<2> changed = sb;
+        (sign < 0 ? changed.hi : changed.lo)[static_cast<std::size_t>(k)] = t[static_cast<std::size_t>(std::clamp(r - sign * (p - 1), 0, n - 1))];
+        cut_where(changed);
       }
-      if (knot(n - 1) == knot(n - 2)) {
-        int i = n - 2;
-        while (i > 0 && knot(i - 1) == knot(n - 1)) --i;
-        stops.push_back({k, 1, knot(n - 1), line, knot(i + 1 - p)});
-      }
-    }
-    std::erase_if(stops, [&](const Stop& s) {
-      const auto k = static_cast<std::size_t>(s.axis);
-      return std::none_of(border.begin(), border.end(), [&](const Border& e) {
-        return e.axis == s.axis && e.sign == s.sign && e.box.lo[k] == s.at && e.box.lo[1 - k] <= s.line && s.line <= e.box.hi[1 - k];
-      });
-    });
-    // The mesh's function reaches past every stop.
-    Box<2> reach = sb;
-    for (const Stop& s : stops) (s.sign > 0 ? reach.hi : reach.lo)[static_cast<std::size_t>(s.axis)] = s.sign * inf;
-    for (const Stop& s : stops) {
-      Box<2> changed = reach;
-      (s.sign > 0 ? changed.lo : changed.hi)[static_cast<std::size_t>(s.axis)] = s.from;
-      cut_where(changed);
     }
   }
   return out;
