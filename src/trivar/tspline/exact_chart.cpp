@@ -55,8 +55,9 @@ ExactChart exact_chart(const TMesh& m, std::span<const int> faces, int seed, std
   // mesh's boundary, where the mesh's ray goes on: its knot repeats (at the end of the knot vector, on a border edge
   // with the outside beyond it) in place of the knot lines beyond. Of the knots t_0 .. t_(p+1), the piece on the span
   // from t_j depends on t_(j-p+1) .. t_(j+p) only, so with the first repeat t_i at the upper end the function changes
-  // above t_(i+1-p), with the last repeat t_i at the lower end below t_(i+p-1); the rays that end at the border
-  // without a repeat meet its edge in the chart as in the mesh.
+  // above t_(i+1-p), with the last repeat t_i at the lower end below t_(i+p-1), across its whole support; the rays
+  // that end at the border without a repeat meet its edge in the chart as in the mesh. Beyond the border, where the
+  // mesh's function reaches on, the chart's plane need not be the mesh's (faces across a notch round a star point).
   const auto before = [](const Border& a, const Border& b) {
     return std::tuple(a.axis, a.sign, a.box.lo[static_cast<std::size_t>(a.axis)]) < std::tuple(b.axis, b.sign, b.box.lo[static_cast<std::size_t>(b.axis)]);
   };
