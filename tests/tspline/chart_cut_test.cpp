@@ -86,18 +86,17 @@ void insert_segment(test::Grid& g, const KnotInsertion& k) {
   q.quads = std::move(quads);
 }
 
-// The grid of 12 x 11 faces on unequal intervals with a segment in column 4 over rows 3..6 and one in row 7 over
-// columns 6..9.
+// The grid of 12 x 11 faces on unequal intervals with knot segments; by default one in column 4 over rows 3..6 and
+// one in row 7 over columns 6..9.
 struct SegmentMesh {
   test::Grid grid;
   TMesh mesh;
 };
-SegmentMesh segment_mesh() {
+SegmentMesh segment_mesh(const std::vector<KnotInsertion>& segments = {{0, 4, 0.35, 3, 6}, {1, 7, 0.4, 6, 9}}) {
   SegmentMesh r{test::grid({0, 1, 2.5, 3.5, 4.5, 5.5, 6.25, 7.25, 8.25, 9.5, 10.5, 11.5, 12.5},
                            {0, 1, 2, 3.5, 4.5, 5.5, 6.5, 7.5, 8.75, 9.75, 10.75, 11.75}),
                  {}};
-  insert_segment(r.grid, {0, 4, 0.35, 3, 6});
-  insert_segment(r.grid, {1, 7, 0.4, 6, 9});
+  for (const KnotInsertion& k : segments) insert_segment(r.grid, k);
   r.mesh = io::parse_tsm(test::tsm_text(r.grid.quads), "segments.tsm").mesh;
   return r;
 }
@@ -158,33 +157,37 @@ TEST(ChartCut, BorderThatStopsARayCutsTheFace) {
 }
 
 // Every face in the charts of its 1, 2 and 3 face rings (and the faces of its ring 1 as members): where exact_chart
-// calls a member uncut, its value is the T-spline's.
+// calls a member uncut, its value is the T-spline's. Besides the default segments, segments in neighbouring columns
+// with overlapping rows, one in the boundary row and one in the row above a column's segment.
 TEST(ChartCut, UncutMembersAreTheTSpline) {
-  const SegmentMesh sm = segment_mesh();
-  const TMesh& m = sm.mesh;
-  const std::vector<int> faces = every_face(m);
-  const ExactChart whole = exact_chart(m, faces, 0, faces, 1);
-  std::array<int, 4> uncut{}, cut{};
-  double worst = 0;
-  for (int f : faces)
-    for (int r = 1; r <= 3; ++r) {
-      const std::vector<int> members = test::face_rings(m, f, 1);
-      const ExactChart c = exact_chart(m, test::face_rings(m, f, r), f, members, 1);
-      for (std::size_t j = 0; j < members.size(); ++j) {
-        if (c.cut[j]) {
-          ++cut[static_cast<std::size_t>(r)];
-          continue;
+  for (const std::vector<KnotInsertion>& segments :
+       {std::vector<KnotInsertion>{{0, 4, 0.35, 3, 6}, {1, 7, 0.4, 6, 9}},
+        std::vector<KnotInsertion>{{0, 2, 0.5, 2, 8}, {0, 3, 0.3, 4, 6}, {1, 9, 0.6, 1, 5}, {1, 0, 0.5, 7, 10}}}) {
+    const TMesh m = segment_mesh(segments).mesh;
+    const std::vector<int> faces = every_face(m);
+    const ExactChart whole = exact_chart(m, faces, 0, faces, 1);
+    std::array<int, 4> uncut{}, cut{};
+    double worst = 0;
+    for (int f : faces)
+      for (int r = 1; r <= 3; ++r) {
+        const std::vector<int> members = test::face_rings(m, f, 1);
+        const ExactChart c = exact_chart(m, test::face_rings(m, f, r), f, members, 1);
+        for (std::size_t j = 0; j < members.size(); ++j) {
+          if (c.cut[j]) {
+            ++cut[static_cast<std::size_t>(r)];
+            continue;
+          }
+          ++uncut[static_cast<std::size_t>(r)];
+          const double gap = chart_gap(c, j, whole, static_cast<std::size_t>(members[j]));
+          worst = std::max(worst, gap);
+          EXPECT_LT(gap, 1e-12) << "face " << members[j] << " in the chart of " << r << " rings round face " << f;
         }
-        ++uncut[static_cast<std::size_t>(r)];
-        const double gap = chart_gap(c, j, whole, static_cast<std::size_t>(members[j]));
-        worst = std::max(worst, gap);
-        EXPECT_LT(gap, 1e-12) << "face " << members[j] << " in the chart of " << r << " rings round face " << f;
       }
-    }
-  // Three rings hold the knot vectors of most faces, one ring of none away from the boundary.
-  EXPECT_GT(uncut[3], cut[3]);
-  std::printf("members uncut / cut in charts of 1, 2, 3 rings: %d / %d, %d / %d, %d / %d; largest gap of an uncut member %.1e\n", uncut[1],
-              cut[1], uncut[2], cut[2], uncut[3], cut[3], worst);
+    // Three rings hold the knot vectors of most faces.
+    EXPECT_GT(uncut[3], cut[3]);
+    std::printf("%zu segments: members uncut / cut in charts of 1, 2, 3 rings: %d / %d, %d / %d, %d / %d; largest gap of an uncut member %.1e\n",
+                segments.size(), uncut[1], cut[1], uncut[2], cut[2], uncut[3], cut[3], worst);
+  }
 }
 
 }  // namespace
