@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <numeric>
 #include <tuple>
 #include <unordered_map>
 
@@ -70,20 +71,28 @@ ExactChart exact_chart(const TMesh& m, std::span<const int> faces, int seed, std
       return e.box.lo[static_cast<std::size_t>(1 - axis)] <= line && line <= e.box.hi[static_cast<std::size_t>(1 - axis)];
     });
   };
-  Box<2> hull = boxes.empty() ? Box<2>{} : boxes.front();  // of the members: a function off it cuts none
-  for (const Box<2>& b : boxes)
+  // The members by their least s, to visit those a box can overlap; a function off their hull cuts none.
+  std::vector<std::size_t> by_s(boxes.size());
+  std::iota(by_s.begin(), by_s.end(), std::size_t{0});
+  std::sort(by_s.begin(), by_s.end(), [&](std::size_t a, std::size_t b) { return boxes[a].lo[0] < boxes[b].lo[0]; });
+  Box<2> hull = boxes.empty() ? Box<2>{} : boxes.front();
+  double widest = 0;
+  for (const Box<2>& b : boxes) {
     for (std::size_t k = 0; k < 2; ++k) {
       hull.lo[k] = std::min(hull.lo[k], b.lo[k]);
       hull.hi[k] = std::max(hull.hi[k], b.hi[k]);
     }
+    widest = std::max(widest, b.hi[0] - b.lo[0]);
+  }
+  const auto cut_where = [&](const Box<2>& changed) {
+    auto j = std::lower_bound(by_s.begin(), by_s.end(), changed.lo[0] - widest, [&](std::size_t i, double x) { return boxes[i].lo[0] < x; });
+    for (; j != by_s.end() && boxes[*j].lo[0] < changed.hi[0]; ++j)
+      if (overlap(changed, boxes[*j])) out.cut[*j] = 1;
+  };
   const Ints<2>& degrees = out.surface->degrees();
   for (const auto& f : out.surface->basis()) {
     const Box<2> sb = f.support();
     if (!overlap(sb, hull)) continue;
-    const auto cut_where = [&](const Box<2>& changed) {
-      for (std::size_t j = 0; j < boxes.size(); ++j)
-        if (overlap(changed, boxes[j])) out.cut[j] = 1;
-    };
     if (std::any_of(border.begin(), border.end(), [&](const Border& e) { return overlap(e.box, sb); })) {
       cut_where(sb);
       continue;
