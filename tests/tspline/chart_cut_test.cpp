@@ -1,9 +1,9 @@
 // exact_chart's cut flags against the T-spline of the whole mesh. A planar T-mesh without star points is its own
 // chart, so its T-spline (every ray cast to the mesh's boundary) is the reference for the charts of face rings: a
-// chart may call a member cut where it is exact, never exact where its value differs. The mesh is a grid with two
-// knot segments (a knot inserted into some rows of a column, another into some columns of a row), whose
-// T-junctions leave rows with and without the knot side by side: a blending function of a row without it reaches
-// one knot line further than its neighbours, past the chart's border where the chart's rays stop.
+// chart may call a member cut where it is exact, never exact where its value differs. The meshes are grids with knot
+// segments (a knot inserted into some rows of a column or some columns of a row), whose T-junctions leave rows with
+// and without the knot side by side: a blending function of a row without it reaches one knot line further than its
+// neighbours, past the chart's border where the chart's rays stop.
 #include <gtest/gtest.h>
 
 #include <algorithm>
