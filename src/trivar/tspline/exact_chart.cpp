@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <numeric>
+#include <tuple>
 #include <unordered_map>
 
 namespace trivar {
@@ -14,13 +16,20 @@ ExactChart exact_chart(const TMesh& m, std::span<const int> faces, int seed, std
     const TVertex& x = c.spline.image.vertices[static_cast<std::size_t>(c.vertex[static_cast<std::size_t>(v)])];
     return std::array<double, 2>{x.s, x.t};
   };
-  std::vector<Box<2>> border;  // edges of the chart with a face outside it on the other side
+  // The chart's edges with a face outside it on the other side, and that side (along `axis`, `sign`).
+  struct Border {
+    Box<2> box;
+    int axis, sign;
+  };
+  std::vector<Border> border;
   for (const TMeshLink& k : m.links) {
     if (k.face < 0 || c.face[static_cast<std::size_t>(k.face)] < 0) continue;
     const int g = L(k.opp).face;
     if (g < 0 || c.face[static_cast<std::size_t>(g)] >= 0) continue;
     const auto p = at(k.vertex), q = at(L(k.opp).vertex);
-    border.push_back({{std::min(p[0], q[0]), std::min(p[1], q[1])}, {std::max(p[0], q[0]), std::max(p[1], q[1])}});
+    // The chart's faces lie left of their links: a link going north has the outside east of it, one going east south.
+    const int axis = p[0] == q[0] ? 0 : 1, sign = axis == 0 ? (q[1] > p[1] ? 1 : -1) : (q[0] > p[0] ? -1 : 1);
+    border.push_back({{{std::min(p[0], q[0]), std::min(p[1], q[1])}, {std::max(p[0], q[0]), std::max(p[1], q[1])}}, axis, sign});
   }
   ExactChart out;
   std::vector<Box<2>> boxes;
@@ -45,13 +54,68 @@ ExactChart exact_chart(const TMesh& m, std::span<const int> faces, int seed, std
   const auto overlap = [](const Box<2>& a, const Box<2>& b) {
     return a.lo[0] < b.hi[0] && b.lo[0] < a.hi[0] && a.lo[1] < b.hi[1] && b.lo[1] < a.hi[1];
   };
+  // A border edge through a support's interior cuts the function. A ray that reaches the border stops there as at the
+  // mesh's boundary, where the mesh's ray goes on: its knot repeats (at the end of the knot vector, on a border edge
+  // with the outside beyond it) in place of the knot lines beyond. Of the knots t_0 .. t_(p+1), the piece on the span
+  // from t_j depends on t_(j-p+1) .. t_(j+p) only, so with the first repeat t_i at the upper end the function changes
+  // above t_(i+1-p), with the last repeat t_i at the lower end below t_(i+p-1), across its whole support; the rays
+  // that end at the border without a repeat meet its edge in the chart as in the mesh. Beyond the border, where the
+  // mesh's function reaches on, the chart's plane need not be the mesh's (faces across a notch round a star point).
+  const auto before = [](const Border& a, const Border& b) {
+    return std::tuple(a.axis, a.sign, a.box.lo[static_cast<std::size_t>(a.axis)]) < std::tuple(b.axis, b.sign, b.box.lo[static_cast<std::size_t>(b.axis)]);
+  };
+  std::sort(border.begin(), border.end(), before);
+  const auto stops = [&](int axis, int sign, double x, double line) {
+    Border probe{{}, axis, sign};
+    probe.box.lo[static_cast<std::size_t>(axis)] = x;
+    const auto [first, last] = std::equal_range(border.begin(), border.end(), probe, before);
+    return std::any_of(first, last, [&](const Border& e) {
+      return e.box.lo[static_cast<std::size_t>(1 - axis)] <= line && line <= e.box.hi[static_cast<std::size_t>(1 - axis)];
+    });
+  };
+  // The members by their least s, to visit those a box can overlap; a function off their hull cuts none.
+  std::vector<std::size_t> by_s(boxes.size());
+  std::iota(by_s.begin(), by_s.end(), std::size_t{0});
+  std::sort(by_s.begin(), by_s.end(), [&](std::size_t a, std::size_t b) { return boxes[a].lo[0] < boxes[b].lo[0]; });
+  Box<2> hull = boxes.empty() ? Box<2>{} : boxes.front();
+  double widest = 0;
+  for (const Box<2>& b : boxes) {
+    for (std::size_t k = 0; k < 2; ++k) {
+      hull.lo[k] = std::min(hull.lo[k], b.lo[k]);
+      hull.hi[k] = std::max(hull.hi[k], b.hi[k]);
+    }
+    widest = std::max(widest, b.hi[0] - b.lo[0]);
+  }
+  const auto cut_where = [&](const Box<2>& changed) {
+    auto j = std::lower_bound(by_s.begin(), by_s.end(), changed.lo[0] - widest, [&](std::size_t i, double x) { return boxes[i].lo[0] < x; });
+    for (; j != by_s.end() && boxes[*j].lo[0] < changed.hi[0]; ++j)
+      if (overlap(changed, boxes[*j])) out.cut[*j] = 1;
+  };
+  const Ints<2>& degrees = out.surface->degrees();
   for (const auto& f : out.surface->basis()) {
-    const Box<2> sb{{f.knots[0].front(), f.knots[1].front()}, {f.knots[0].back(), f.knots[1].back()}};
-    // A border edge through the support's interior cuts it; one along its side does not (the rays that end there
-    // meet that edge in the chart as in the mesh).
-    if (std::none_of(border.begin(), border.end(), [&](const Box<2>& e) { return overlap(e, sb); })) continue;
-    for (std::size_t j = 0; j < boxes.size(); ++j)
-      if (overlap(sb, boxes[j])) out.cut[j] = 1;
+    const Box<2> sb = f.support();
+    if (!overlap(sb, hull)) continue;
+    if (std::any_of(border.begin(), border.end(), [&](const Border& e) { return overlap(e.box, sb); })) {
+      cut_where(sb);
+      continue;
+    }
+    for (int k = 0; k < 2; ++k) {
+      const std::vector<double>& t = f.knots[static_cast<std::size_t>(k)];
+      const int p = degrees[static_cast<std::size_t>(k)], n = p + 2;
+      for (int sign : {-1, 1}) {
+        const int end = sign < 0 ? 0 : n - 1;
+        const double x = t[static_cast<std::size_t>(end)];
+        if (t[static_cast<std::size_t>(end - sign)] != x) continue;
+        int r = end - sign;  // the repeat of the end knot farthest from the end
+        while (r - sign >= 0 && r - sign < n && t[static_cast<std::size_t>(r - sign)] == x) r -= sign;
+        const std::vector<double>& o = f.knots[static_cast<std::size_t>(1 - k)];
+        const int q = degrees[static_cast<std::size_t>(1 - k)];
+        if (!stops(k, sign, x, 0.5 * (o[static_cast<std::size_t>((q + 1) / 2)] + o[static_cast<std::size_t>((q + 2) / 2)]))) continue;
+        Box<2> changed = sb;
+        (sign < 0 ? changed.hi : changed.lo)[static_cast<std::size_t>(k)] = t[static_cast<std::size_t>(std::clamp(r - sign * (p - 1), 0, n - 1))];
+        cut_where(changed);
+      }
+    }
   }
   return out;
 }

@@ -23,8 +23,10 @@ struct ExactChart {
     std::array<double, 2> origin, axis_u, axis_v;
   };
   std::vector<Frame> frames;
-  // Per member: a blending function nonzero on it has a knot vector cut by the chart's border inside the mesh
-  // (its support box holds in its interior an edge of the chart with a face outside the chart on its other side).
+  // Per member: a blending function nonzero on it has a knot vector cut by the chart's border inside the mesh: an
+  // edge of the chart with a face outside the chart on its other side lies in its support box's interior, or one of
+  // its rays stops at such an edge (the knot repeats there where the mesh's ray goes on) and the member lies on the
+  // knot spans whose pieces depend on the knots lost.
   std::vector<char> cut;
   // Per member: one Bezier element of the chart (no knot line of the chart crosses it; in a large chart, lines of
   // faces far away with other knot intervals can, which splits its patches without changing its surface).
