@@ -238,6 +238,27 @@ TEST(TJunctionLines, CommandLine) {
   EXPECT_EQ(test::closed_euler_characteristic(test::obj_triangles(dir.file("box.obj"))), 2);
 }
 
+// A closed mesh has no boundary for its end conditions to shape: the same box read as SUBD_CREASES (Fusion's
+// subdivision-crease setting) completes the same lines and evaluates the same surface.
+TEST(TJunctionLines, ClosedSubdivisionCreaseMesh) {
+  const TMesh given = read_fusion_file("a3_box3_tjunc_ring2_readback.tsm").mesh;
+  TMesh creased = given;
+  creased.end_conditions = EndConditions::subd_creases;
+  const TMeshSurface a(given, 1), b(creased, 1);
+  ASSERT_NE(b.completed_lines(), nullptr);
+  EXPECT_EQ(b.completed_lines()->lines, 2);
+  double worst = 0;
+  for (int f = 0; f < static_cast<int>(given.faces.size()); ++f)
+    for (double u : {0.0, 0.3, 1.0})
+      for (double v : {0.0, 0.6, 1.0}) {
+        double x[9], y[9];
+        a.eval_source(f, u, v, x);
+        b.eval_source(f, u, v, y);
+        for (int k = 0; k < 9; ++k) worst = std::max(worst, std::abs(x[k] - y[k]));
+      }
+  EXPECT_EQ(worst, 0.0);
+}
+
 // Lines that would cross an edge at a star point have no row there: a cube of 3 x 3 faces per side with its top
 // corner face split 2 x 2 is refused in one line naming the T-junction and the star point.
 TEST(TJunctionLines, ALineThroughAStarPointsEdgeIsRefused) {

@@ -485,11 +485,14 @@ TMesh Lines::mesh() const {
 }  // namespace
 
 std::optional<CompletedLines> complete_t_junction_lines(const TMesh& m, int rings) {
-  if (has_creases(m) || m.end_conditions != EndConditions::bezier) return std::nullopt;
+  if (has_creases(m)) return std::nullopt;
   const std::vector<int> stars = star_points(m);
   if (stars.empty()) return std::nullopt;
   for (const auto& loop : m.faces)
     if (loop.empty()) return std::nullopt;
+  // A crease boundary (subd_creases) would end the rows in its natural end: closed such meshes only.
+  for (const TMeshLink& k : m.links)
+    if (m.end_conditions != EndConditions::bezier && k.vertex >= 0 && k.face < 0) return std::nullopt;
   // A boundary ends its rows in Bezier end conditions, clamped where their nodes lie on the vertex (or are still to
   // be placed there: no grip map); other end-condition nodes are not taken.
   for (const TMeshVertex& v : m.vertices)

@@ -16,7 +16,8 @@
 // insertion takes it at the vertex's knot, and a line that reaches the boundary ends there (its new boundary vertex
 // gets such a node); tests/tspline/t_junction_lines_test.cpp checks this on an open box too.
 //
-// Scope: no sharp creases, degree 3, end-condition nodes on their vertices (or none yet: no grip map); the rows the
+// Scope: no sharp creases, degree 3, end-condition nodes on their vertices (or none yet: no grip map), a boundary
+// only with Bezier end conditions (a subdivision-crease boundary's natural end is not taken); the rows the
 // lines cross must pass no star point next to a crossed edge, no concave corner, carry one control point per vertex
 // and not end at a T-junction's stem within two vertices of a crossing; anything else is refused in one line naming
 // the T-junction and the cause.

@@ -342,7 +342,7 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, std::o
   std::vector<int> irregular;
   std::vector<CreaseRule> rules;  // of the split mesh's boundary vertices, once needed
   if (mesh.end_conditions == EndConditions::subd_creases) {
-    split = cut ? std::move(cut) : std::make_unique<TMesh>(mesh);
+    split = cut ? std::move(cut) : std::make_unique<TMesh>(lines_ ? mesh_ : mesh);  // completed lines: that mesh
     irregular = irregular_crease_vertices(*split);
   }
   std::vector<char> is_irregular(static_cast<std::size_t>(nv), 0);
