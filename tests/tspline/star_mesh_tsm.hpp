@@ -166,7 +166,8 @@ inline QuadMesh box_mesh(const std::array<int, 3>& n, bool open_bottom = false) 
 }
 
 // Quad f of q split 2 x 2: new points at its sides' midpoints (counter-clockwise from the side from its first
-// vertex) and its centre, each lifted by `lift` along z; the quads across its sides become T-faces.
+// vertex) and its centre, each lifted by `lift` along z; the quads across its sides become T-faces (a side on the
+// boundary keeps its midpoint as a boundary vertex).
 inline QuadMesh split_face(const QuadMesh& q, std::size_t f, const std::array<double, 5>& lift) {
   QuadMesh r = q;
   const std::array<int, 4> c = q.quads[f];
@@ -202,7 +203,8 @@ inline QuadMesh split_face(const QuadMesh& q, std::size_t f, const std::array<do
     const double half = interval(a, b) / 2, inner = interval(c[(k + 1) % 4], c[(k + 2) % 4]) / 2;
     r.intervals[{a, mid[k]}] = r.intervals[{mid[k], a}] = r.intervals[{mid[k], b}] = r.intervals[{b, mid[k]}] = half;
     r.intervals[{mid[k], o}] = r.intervals[{o, mid[k]}] = inner;
-    // The T-face across side k: its loop with the midpoint between b and a.
+    // The T-face across side k (none at the boundary): its loop with the midpoint between b and a.
+    if (across[k] < 0) continue;
     const auto& n = q.quads[static_cast<std::size_t>(across[k])];
     QuadMesh::TFace t;
     for (std::size_t i = 0; i < 4; ++i) {

@@ -85,8 +85,9 @@ void expect_insertion_exact(double strip, bool rational, bool open = false, bool
   };
   const TMeshSurface plain(weighted(mesh_of(box, "box.tsm")), 1);
   const TMesh t_mesh = weighted(mesh_of(split, "split.tsm"));
-  if (!open)  // 4 sides x 12 edges, 4 on the box's edges shared
+  if (!open) {  // 4 sides x 12 edges, 4 on the box's edges shared
     EXPECT_EQ(std::count(t_mesh.intervals.begin(), t_mesh.intervals.end(), strip), strip == 1.0 ? static_cast<long>(t_mesh.intervals.size()) - 12 : 44);
+  }
   const TMeshSurface lines(t_mesh, 1);
   ASSERT_NE(lines.completed_lines(), nullptr);
   // One line per direction, each closing on the opposite T-junction; open, each T-junction's line to the rim.
@@ -143,6 +144,117 @@ TEST(TJunctionLines, KnotInsertionAlongTheRowsLeavesTheTSplineUnchanged) {
   expect_insertion_exact(1.7, true);
   expect_insertion_exact(1.7, true, true);
   expect_insertion_exact(1.7, false, true, false);
+}
+
+// A box of 11 x 11 x 3 faces as a subdivision-crease mesh (Fusion's SUBD_CREASES): open at the bottom, or closed
+// with its bottom rim a sharp crease (`crease`). Face (2, 0) of the side y = -1, next to the rim and two face
+// rings from the star point at the box's top corner, is split 2 x 2: one line runs round the box half a face above
+// the rim, crossing every row up the sides next to its end at the rim, the other over the top and down the far side
+// to the rim (closed: on across the crease and the bottom to the split face's midpoint on the rim, a T-junction of
+// the bottom face). Each row up the sides ends in the natural end of the crease boundary (zero second derivative
+// across it): Boehm's rule on its clamped form (crease_ends) keeps the rim's vertex and must leave the surface
+// unchanged. The crease's two sides keep one set of vertices: the tessellation is closed.
+// The reference is the cage without the split, which has the same crease boundary, on the faces of the far half
+// (y > 0) that it evaluates exactly (away from the star points).
+void expect_natural_end_insertion_exact(bool rational, bool crease) {
+  test::QuadMesh box = test::box_mesh({11, 11, 3}, !crease);
+  std::vector<std::array<double, 3>> unbent = box.points;
+  // Whether vertex v lies on grid line g of axis k.
+  const auto on = [&](int v, int k, int g) { return std::abs((unbent[static_cast<std::size_t>(v)][static_cast<std::size_t>(k)] + 1) * 5.5 - g) < 1e-9; };
+  std::size_t side_face = box.quads.size();
+  for (std::size_t f = 0; f < box.quads.size(); ++f) {
+    const auto& q = box.quads[f];
+    if (std::all_of(q.begin(), q.end(), [&](int v) { return on(v, 1, 0) && (on(v, 2, 0) || on(v, 2, 1)) && (on(v, 0, 2) || on(v, 0, 3)); }))
+      side_face = f;
+  }
+  ASSERT_LT(side_face, box.quads.size());
+  unbent = test::split_face(box, side_face, {0, 0, 0, 0, 0}).points;  // the split's new vertices too
+  for (auto& p : box.points) {
+    const auto [x, y, z] = p;
+    p = {x + 0.05 * std::sin(2 * y + z), y + 0.04 * std::cos(3 * x - z), z + 0.06 * std::sin(x * y + 1)};
+  }
+  const test::QuadMesh split = test::split_face(box, side_face, {0.02, -0.03, 0.01, 0.04, 0.07});
+  const auto creased = [&](TMesh m) {
+    m.end_conditions = EndConditions::subd_creases;
+    for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+      m.vertices[v].block.clear();
+      m.vertices[v].block_dims = {};
+      if (rational) m.points[static_cast<std::size_t>(m.vertices[v].primary)].w = 1 + 0.4 * std::sin(1.7 * static_cast<double>(v));
+    }
+    // The rim: the edges of the bottom (z = -1) on a side plane.
+    for (const TMeshLink& k : m.links) {
+      const int a = k.vertex, b = m.links[static_cast<std::size_t>(k.opp)].vertex;
+      if (!crease || a < 0 || a > b || !on(a, 2, 0) || !on(b, 2, 0)) continue;
+      for (int axis = 0; axis < 2; ++axis)
+        for (int g : {0, 11})
+          if (on(a, axis, g) && on(b, axis, g)) m.crease_edges.push_back(k.edge);
+    }
+    return m;
+  };
+  const TMeshSurface plain(creased(mesh_of(box, "box.tsm")), 1);
+  const TMesh t_mesh = creased(mesh_of(split, "split.tsm"));
+  if (crease) {
+    EXPECT_EQ(t_mesh.crease_edges.size(), 45u);
+  }
+  const TMeshSurface lines(t_mesh, 1);
+  ASSERT_NE(lines.completed_lines(), nullptr);
+  EXPECT_EQ(lines.completed_lines()->lines, 2);
+  // Points the insertion moved (in the Bezier end-condition form of both cages: at the rim Q1, which the rows'
+  // second points shape).
+  const TMesh &done = lines.mesh(), &before = plain.mesh();
+  std::vector<char> moved(box.points.size(), 0);
+  int rim_moved = 0;
+  for (std::size_t v = 0; v < box.points.size(); ++v) {
+    const auto& p = done.points[static_cast<std::size_t>(done.vertices[v].primary)].xyz;
+    const auto& q = before.points[static_cast<std::size_t>(before.vertices[v].primary)].xyz;
+    moved[v] = std::hypot(p[0] - q[0], p[1] - q[1], p[2] - q[2]) > 1e-9;
+    rim_moved += moved[v] && on(static_cast<int>(v), 2, 0);
+  }
+  const auto plain_faces = faces_by_corners(plain);
+  int compared = 0, touched = 0;
+  double worst = 0, worst_d = 0;
+  for (const auto& [corners, f] : faces_by_corners(lines)) {
+    const auto it = plain_faces.find(corners);
+    if (it == plain_faces.end() || plain.method(it->second) != FaceMethod::exact) continue;
+    double centre[9];
+    plain.eval(it->second, 0.5, 0.5, centre);
+    if (centre[1] < 0) continue;
+    bool near = false;
+    for (int c : corners) near = near || moved[static_cast<std::size_t>(c)];
+    touched += near;
+    for (double u : {0.0, 0.21, 0.5, 0.83, 1.0})
+      for (double v : {0.0, 0.37, 0.5, 1.0}) {
+        double a[9], b[9];
+        plain.eval(it->second, u, v, a);
+        lines.eval_source(f, u, v, b);
+        for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs(a[k] - b[k]));
+        for (int k = 3; k < 9; ++k) worst_d = std::max(worst_d, std::abs(a[k] - b[k]) / (1 + std::abs(a[k])));
+      }
+    ++compared;
+  }
+  EXPECT_GT(compared, 20);
+  EXPECT_GT(touched, 10);
+  EXPECT_LT(worst, 1e-13);
+  EXPECT_LT(worst_d, 1e-12);
+  // Every face, also those near the star points and the crease (Catmull-Clark, local subdivision): one tangent
+  // plane across every edge off the crease, and closed across it.
+  const test::Continuity cont = test::continuity(lines.mesh(), [&](int f, double u, double v, double* o) { lines.eval(f, u, v, o); });
+  EXPECT_LT(cont.gap, 1e-12);
+  EXPECT_LT(cont.normal_angle, 1e-9);
+  if (crease) {
+    EXPECT_EQ(test::closed_euler_characteristic(tessellate(lines, 0.05)), 2);
+  }
+  std::printf("box 11 x 11 x 3 (%s%s) with a split face next to its subdivision crease: %d lines, %d vertices inserted (Q1 moved at %d rim vertices); "
+              "%d exact faces of the cage without T-junctions (%d with moved corners): values %.1e, derivatives %.1e; across %d edges gap %.1e, "
+              "normals %.1e\n", crease ? "rim creased" : "open", rational ? ", rational" : "", lines.completed_lines()->lines,
+              lines.completed_lines()->vertices, rim_moved, compared, touched, worst, worst_d, cont.edges, cont.gap, cont.normal_angle);
+}
+
+TEST(TJunctionLines, NaturalEndInsertionAtASubdivisionCreaseLeavesTheSurfaceUnchanged) {
+  expect_natural_end_insertion_exact(false, false);
+  expect_natural_end_insertion_exact(true, false);
+  expect_natural_end_insertion_exact(false, true);
+  expect_natural_end_insertion_exact(true, true);
 }
 
 // Fusion's box of 3 x 3 faces per side with the top side's centre face split 2 x 2 (T-junctions on the four faces

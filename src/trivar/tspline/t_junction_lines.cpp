@@ -45,8 +45,10 @@ long long key(int a, int b) { return static_cast<long long>(a) * (1LL << 32) + b
 // The completed mesh while it is built: faces as four sides, the points of the vertices.
 class Lines {
 public:
-  Lines(const TMesh& m, const std::vector<int>& stars) : m_(m), star_(m.vertices.size(), 0) {
+  Lines(const TMesh& m, const std::vector<int>& stars, const std::vector<int>& irregular)
+      : m_(m), star_(m.vertices.size(), 0), natural_(m.end_conditions == EndConditions::subd_creases) {
     for (int s : stars) star_[static_cast<std::size_t>(s)] = 1;
+    for (int s : irregular) star_[static_cast<std::size_t>(s)] = 2;
     const auto L = [&](int l) -> const TMeshLink& { return m.links[static_cast<std::size_t>(l)]; };
     for (int f = 0; f < static_cast<int>(m.faces.size()); ++f) {
       Face face;
@@ -59,12 +61,15 @@ public:
         if (l.flag == 0) ++k;
         require(k < 4 && (l.flag == 0 || l.flag == 1), [&] { return "T-mesh: face " + std::to_string(f) + " is not a rectangle of knot intervals"; });
         const double d = m.intervals[static_cast<std::size_t>(l.edge)];
-        require(d > 0 && std::isfinite(d), [&] { return "T-mesh: edge " + std::to_string(l.edge) + " has knot interval " + std::to_string(d) + " (positive needed)"; });
         face.side[static_cast<std::size_t>(k)].v.push_back(l.vertex);
         face.side[static_cast<std::size_t>(k)].d.push_back(d);
       }
       require(k == 3, [&] { return "T-mesh: face " + std::to_string(f) + " has " + std::to_string(k + 1) + " corners, not 4"; });
       faces.push_back(std::move(face));
+    }
+    for (int v = 0; v < static_cast<int>(m.vertices.size()); ++v) {
+      const int from = m.vertices[static_cast<std::size_t>(v)].split_from;
+      origin_.push_back(from >= 0 ? from : v);
     }
     for (const TMeshVertex& v : m.vertices) {
       H h{0, 0, 0, 1};
@@ -94,6 +99,11 @@ public:
         const Face& w = faces[static_cast<std::size_t>(f)];
         const Side& in = w.side[static_cast<std::size_t>(k)];
         const Side& out = w.side[static_cast<std::size_t>(e)];
+        for (const Side& s : w.side)
+          for (double d : s.d)
+            require(d > 0 && std::isfinite(d), [&] {
+              return where + "a face of face " + std::to_string(w.piece.source) + " it crosses has knot interval " + std::to_string(d) + " (positive needed)";
+            });
         double o = 0;
         for (int i = 0; i < index; ++i) o += in.d[static_cast<std::size_t>(i)];
         const double len = in.length();
@@ -115,10 +125,22 @@ public:
       // T-junction of the face beyond; the line goes on through that face.
       const int a = faces[static_cast<std::size_t>(f)].side[static_cast<std::size_t>(e)].v[static_cast<std::size_t>(j)];
       const int b = vertex_after(f, e, j);
+      const double d = faces[static_cast<std::size_t>(f)].side[static_cast<std::size_t>(e)].d[static_cast<std::size_t>(j)];
       const int x = split_edge(a, b, target - at, where);
       split_face(f, k, index, j + 1);
-      const Loc c = at_(key(x, a));
-      if (c.face < 0) return;  // the line ends at the boundary
+      Loc c = at_(key(x, a));
+      if (c.face < 0) {
+        // The boundary: the line ends there, unless it is a side of a sharp crease. Then it goes on from the same
+        // place of the other side's edge, whose row (the crease's copies, the same points and intervals) gets the
+        // same insertion: both sides keep one crease curve and one set of vertices on it.
+        const auto it = by_origin_.find(key(origin_[static_cast<std::size_t>(b)], origin_[static_cast<std::size_t>(a)]));
+        if (it == by_origin_.end()) return;
+        const int b2 = faces[static_cast<std::size_t>(it->second.face)].side[static_cast<std::size_t>(it->second.side)].v[static_cast<std::size_t>(it->second.index)];
+        const int a2 = vertex_after(it->second.face, it->second.side, it->second.index);
+        require(b2 != b && at_(key(a2, b2)).face < 0, [&] { return where + "the two sides of the crease at vertex " + std::to_string(origin_[static_cast<std::size_t>(a)]) + " do not match"; });
+        const int x2 = split_edge(b2, a2, d - (target - at), where, x);
+        c = at_(key(x2, a2));
+      }
       f = c.face;
       k = c.side;
       index = c.index;
@@ -160,12 +182,52 @@ public:
   }
 
   TMesh mesh() const;
+  // Whether the mesh was cut along sharp creases.
+  bool cut() const {
+    for (std::size_t v = 0; v < m_.vertices.size(); ++v)
+      if (origin_[v] != static_cast<int>(v)) return true;
+    return false;
+  }
+  // The completed mesh (mesh()) with the two sides of its sharp creases joined again, their vertices one (by
+  // origin_): the same faces, for a tessellation that welds across the creases.
+  TMesh welded(const TMesh& completed) const {
+    TMesh r;
+    r.degree = completed.degree;
+    r.end_conditions = completed.end_conditions;
+    r.vertices = completed.vertices;
+    r.points = completed.points;
+    for (std::size_t v = 0; v < r.vertices.size(); ++v) r.vertices[v].live = origin_[v] == static_cast<int>(v) && r.vertices[v].live;
+    link_faces(r, true);
+    return r;
+  }
 
 private:
   const TMesh& m_;
-  std::vector<char> star_;
+  std::vector<char> star_;  // 1: a star point, 2: an irregular vertex of a crease boundary
+  bool natural_;            // rows end in the natural end of a subdivision crease, not in Bezier end conditions
   std::unordered_map<long long, Loc> at_map_;
+  // Per vertex, the vertex of the mesh before the cut along sharp creases (split_from; an inserted vertex's copy on
+  // the other side: the first of the two); the directed edges by those ends.
+  std::vector<int> origin_;
+  std::unordered_map<long long, Loc> by_origin_;
 
+  // The links of the faces (with `weld`, of their vertices' origins), and of the boundary.
+  void link_faces(TMesh& r, bool weld) const {
+    LinkBuilder links(r);
+    for (const Face& w : faces) {
+      std::vector<int> loop;
+      std::vector<double> iv;
+      std::vector<char> straight;
+      for (const Side& s : w.side)
+        for (std::size_t i = 0; i < s.v.size(); ++i) {
+          loop.push_back(weld ? origin_[static_cast<std::size_t>(s.v[i])] : s.v[i]);
+          iv.push_back(s.d[i]);
+          straight.push_back(i == 0 ? 0 : 1);
+        }
+      links.add_face(loop, straight, iv);
+    }
+    links.close_boundary();
+  }
   Loc at_(long long k) const {
     const auto it = at_map_.find(k);
     return it == at_map_.end() ? Loc{} : it->second;
@@ -174,7 +236,11 @@ private:
   void index(int f) {
     for (int k = 0; k < 4; ++k) {
       const Side& s = faces[static_cast<std::size_t>(f)].side[static_cast<std::size_t>(k)];
-      for (int i = 0; i < static_cast<int>(s.v.size()); ++i) at_map_[key(s.v[static_cast<std::size_t>(i)], vertex_after(f, k, i))] = {f, k, i};
+      for (int i = 0; i < static_cast<int>(s.v.size()); ++i) {
+        const int a = s.v[static_cast<std::size_t>(i)], b = vertex_after(f, k, i);
+        at_map_[key(a, b)] = {f, k, i};
+        by_origin_[key(origin_[static_cast<std::size_t>(a)], origin_[static_cast<std::size_t>(b)])] = {f, k, i};
+      }
     }
   }
   int vertex_after(int f, int k, int i) const {
@@ -263,6 +329,7 @@ private:
     bool end;
   };
   Beyond beyond(int a, int b, const std::string& where) const {
+    require_regular(a, where);
     require(static_cast<std::size_t>(a) >= star_.size() || !star_[static_cast<std::size_t>(a)],
             [&] { return where + "its line passes star point " + std::to_string(a) + " (no row through it)"; });
     const Fan f = fan(a, b, where);
@@ -272,33 +339,61 @@ private:
     if (f.open) return {a, 0, true};
     throw Error(where + "the row through vertex " + std::to_string(b) + " ends at vertex " + std::to_string(a) + " (the stem of a T-junction)");
   }
+  // Irregular vertices of a crease boundary take local subdivision's rules, which no row insertion follows.
+  void require_regular(int v, const std::string& where) const {
+    require(static_cast<std::size_t>(v) >= star_.size() || star_[static_cast<std::size_t>(v)] != 2, [&] {
+      const int from = m_.vertices[static_cast<std::size_t>(v)].split_from;
+      return where + "a row it crosses reaches the irregular crease vertex " + std::to_string(from >= 0 ? from : v);
+    });
+  }
   // The knot interval beyond node c on the row from a: its straight spoke's, the extent of the face its row enters
-  // (a T-junction's stem), at a star point nurcc_across, 0 where the row ends at the boundary (the end-condition
-  // node, at the same knot) or beyond such a node (`end`).
-  double interval_beyond(int c, int a, bool end, const std::string& where) const {
-    if (end) return 0;
+  // (a T-junction's stem), at a star point nurcc_across, 0 where the row ends at c on the boundary (`ends`: the
+  // end-condition node, at the same knot) or beyond such a node (`end`).
+  struct Next {
+    double d;
+    bool ends;
+  };
+  Next interval_beyond(int c, int a, bool end, const std::string& where) const {
+    if (end) return {0, false};
+    require_regular(c, where);
     const Fan f = fan(c, a, where);
     if (static_cast<std::size_t>(c) < star_.size() && star_[static_cast<std::size_t>(c)]) {
       require(!f.open, [&] { return where + "a row it crosses ends at the boundary star point " + std::to_string(c); });
       std::vector<double> iv;
       for (const Spoke& s : f.spokes) iv.push_back(s.d);
-      return nurcc_across(iv, 0);
+      return {nurcc_across(iv, 0), false};
     }
     require(!f.open || f.turn <= 2, [&] { return where + "a row it crosses passes the concave corner " + std::to_string(c); });
     const Straight s = straight(f, a);
-    if (s.spoke >= 0) return f.spokes[static_cast<std::size_t>(s.spoke)].d;
-    if (f.open) return 0;
+    if (s.spoke >= 0) return {f.spokes[static_cast<std::size_t>(s.spoke)].d, false};
+    if (f.open) return {0, true};
     require(s.face >= 0, [&] { return where + "vertex " + std::to_string(c) + " has no straight spoke"; });
-    return faces[static_cast<std::size_t>(s.face)].side[static_cast<std::size_t>((s.side + 1) % 4)].length();
+    return {faces[static_cast<std::size_t>(s.face)].side[static_cast<std::size_t>((s.side + 1) % 4)].length(), false};
+  }
+  // The point a row ending at boundary vertex v takes for v's node in Boehm's rule. Bezier end conditions: v's own
+  // (its end-condition node lies on it). A subdivision crease: the row is the clamped cubic of crease_ends, whose
+  // node at v is Q1 = a P0 + b P1 (natural_end_weights, P1 the next vertex inward at d1, d2 the interval after it),
+  // while v keeps P0, its end-condition node Q0; the clamped insertion keeps the zero second derivative across the
+  // boundary, so the refined row is again that of its natural end.
+  H end_node(int v, int inward, double d1, double d2) const {
+    if (!natural_) return p[static_cast<std::size_t>(v)];
+    const auto [wa, wb] = natural_end_weights(d1, d2);
+    H r;
+    for (std::size_t i = 0; i < 4; ++i) r[i] = wa * p[static_cast<std::size_t>(v)][i] + wb * p[static_cast<std::size_t>(inward)][i];
+    return r;
   }
   void require_point(int v, const std::string& where) const {
     require(m_.vertices[static_cast<std::size_t>(v)].primary >= 0, [&] { return where + "vertex " + std::to_string(v) + " on a row it crosses has no control point"; });
   }
 
   // Inserts a vertex on edge a -> b at knot distance t from a; Boehm's rule on the row moves a and b. Returns it.
-  int split_edge(int a, int b, double t, const std::string& where) {
+  // `twin`: the vertex it is a copy of on the other side of a sharp crease (-1: none).
+  int split_edge(int a, int b, double t, const std::string& where, int twin = -1) {
     const auto [c, dca, c_end] = beyond(a, b, where);
     const auto [e, dbe, e_end] = beyond(b, a, where);
+    require((c_end || dca > 0) && (e_end || dbe > 0), [&] {
+      return where + "the row through vertices " + std::to_string(a) + " and " + std::to_string(b) + " has a zero knot interval";
+    });
     require(c != b && e != a && (c != e || c_end || e_end), [&] {
       return where + "the row through vertices " + std::to_string(a) + " and " + std::to_string(b) + " closes within 3 edges";
     });
@@ -306,22 +401,28 @@ private:
       if (v < static_cast<int>(m_.vertices.size())) require_point(v, where);
     const Loc ab = at_(key(a, b)), ba = at_(key(b, a));
     const double d = faces[static_cast<std::size_t>(ab.face)].side[static_cast<std::size_t>(ab.side)].d[static_cast<std::size_t>(ab.index)];
-    const double um1 = -dca, um2 = um1 - interval_beyond(c, a, c_end, where), u1 = d, u2 = d + dbe,
-                 u3 = u2 + interval_beyond(e, b, e_end, where);
+    const Next past_c = interval_beyond(c, a, c_end, where), past_e = interval_beyond(e, b, e_end, where);
+    const double um1 = -dca, um2 = um1 - past_c.d, u1 = d, u2 = d + dbe, u3 = u2 + past_e.d;
     const double a1 = (t - um2) / (u1 - um2), a2 = (t - um1) / (u2 - um1), a3 = t / u3;
     const auto mix = [](const H& x, const H& y, double s) {  // (1 - s) x + s y
       H r;
       for (std::size_t i = 0; i < 4; ++i) r[i] = (1 - s) * x[i] + s * y[i];
       return r;
     };
-    const H pc = p[static_cast<std::size_t>(c)], pa = p[static_cast<std::size_t>(a)], pb = p[static_cast<std::size_t>(b)], pe = p[static_cast<std::size_t>(e)];
-    p[static_cast<std::size_t>(a)] = mix(pc, pa, a1);
-    p[static_cast<std::size_t>(b)] = mix(pb, pe, a3);
+    // The row's points in Boehm's rule; a row that ends at a or b (c_end, e_end: one interval between two
+    // boundaries has d2 = d1, as in crease_ends) or at c or e takes the end node there, and the end vertex stays.
+    const H pc = past_c.ends ? end_node(c, a, dca, d) : p[static_cast<std::size_t>(c)];
+    const H pa = c_end ? end_node(a, b, d, e_end ? d : dbe) : p[static_cast<std::size_t>(a)];
+    const H pb = e_end ? end_node(b, a, d, c_end ? d : dca) : p[static_cast<std::size_t>(b)];
+    const H pe = past_e.ends ? end_node(e, b, dbe, d) : p[static_cast<std::size_t>(e)];
+    if (!c_end) p[static_cast<std::size_t>(a)] = mix(pc, pa, a1);
+    if (!e_end) p[static_cast<std::size_t>(b)] = mix(pb, pe, a3);
     const int x = static_cast<int>(p.size());
     require(inserted < 16 * static_cast<int>(m_.faces.size()) + 1024, [&] {
       return where + "the lines insert more than " + std::to_string(inserted) + " vertices (16 per face of the mesh)";
     });
     p.push_back(mix(pa, pb, a2));
+    origin_.push_back(twin >= 0 ? twin : x);
     ++inserted;
     const auto put = [&](const Loc& l, double first) {
       Side& s = faces[static_cast<std::size_t>(l.face)].side[static_cast<std::size_t>(l.side)];
@@ -334,6 +435,8 @@ private:
     if (ba.face >= 0) put(ba, d - t);  // else a boundary edge
     at_map_.erase(key(a, b));
     at_map_.erase(key(b, a));
+    by_origin_.erase(key(origin_[static_cast<std::size_t>(a)], origin_[static_cast<std::size_t>(b)]));
+    if (ba.face >= 0) by_origin_.erase(key(origin_[static_cast<std::size_t>(b)], origin_[static_cast<std::size_t>(a)]));
     index(ab.face);
     if (ba.face >= 0) index(ba.face);
     split_at[key(std::min(a, b), std::max(a, b))] = x;
@@ -386,7 +489,7 @@ TMesh Lines::mesh() const {
   r.end_conditions = m_.end_conditions;
   r.vertices = m_.vertices;
   r.points = m_.points;
-  const bool blocks = std::any_of(m_.vertices.begin(), m_.vertices.end(), [](const TMeshVertex& v) { return !v.block.empty(); });
+  const bool blocks = !natural_ && std::any_of(m_.vertices.begin(), m_.vertices.end(), [](const TMeshVertex& v) { return !v.block.empty(); });
   for (std::size_t v = 0; v < p.size(); ++v) {
     const H& h = p[v];
     const RationalPoint x{{h[0] / h[3], h[1] / h[3], h[2] / h[3]}, h[3]};
@@ -401,20 +504,7 @@ TMesh Lines::mesh() const {
     r.vertices.push_back({});
     r.vertices.back().primary = static_cast<int>(r.points.size()) - 1;
   }
-  LinkBuilder links(r);
-  for (const Face& w : faces) {
-    std::vector<int> loop;
-    std::vector<double> iv;
-    std::vector<char> straight;
-    for (const Side& s : w.side)
-      for (std::size_t i = 0; i < s.v.size(); ++i) {
-        loop.push_back(s.v[i]);
-        iv.push_back(s.d[i]);
-        straight.push_back(i == 0 ? 0 : 1);
-      }
-    links.add_face(loop, straight, iv);
-  }
-  links.close_boundary();
+  link_faces(r, false);
   const auto L = [&](int l) -> TMeshLink& { return r.links[static_cast<std::size_t>(l)]; };
   const auto to = [&](int l) { return L(L(l).opp).vertex; };
   // Frame directions: a link along a link of the mesh as given (or a piece of one) keeps its frame; the others
@@ -485,23 +575,19 @@ TMesh Lines::mesh() const {
 }  // namespace
 
 std::optional<CompletedLines> complete_t_junction_lines(const TMesh& m, int rings) {
-  if (has_creases(m)) return std::nullopt;
-  const std::vector<int> stars = star_points(m);
-  if (stars.empty()) return std::nullopt;
+  const std::vector<int> stars = star_points(m), irregular = irregular_crease_vertices(m);
+  if (stars.empty() && irregular.empty()) return std::nullopt;
   for (const auto& loop : m.faces)
     if (loop.empty()) return std::nullopt;
-  // A crease boundary (subd_creases) would end the rows in its natural end: closed such meshes only.
-  for (const TMeshLink& k : m.links)
-    if (m.end_conditions != EndConditions::bezier && k.vertex >= 0 && k.face < 0) return std::nullopt;
-  // A boundary ends its rows in Bezier end conditions, clamped where their nodes lie on the vertex (or are still to
-  // be placed there: no grip map); other end-condition nodes are not taken.
+  // A Bezier boundary ends its rows clamped where their end-condition nodes lie on the vertex (or are still to be
+  // placed there: no grip map); other end-condition nodes are not taken. A subdivision crease carries none that count.
   for (const TMeshVertex& v : m.vertices)
     for (int g : v.block) {
-      if (!v.live || g < 0) continue;
+      if (!v.live || g < 0 || m.end_conditions == EndConditions::subd_creases) continue;
       const RationalPoint &x = m.points[static_cast<std::size_t>(g)], &y = m.points[static_cast<std::size_t>(v.primary)];
       if (v.primary < 0 || x.xyz != y.xyz || x.w != y.w) return std::nullopt;
     }
-  Lines lines(m, stars);
+  Lines lines(m, stars, irregular);
   std::array<int, 3> t = lines.t_junction_near_stars(rings);
   if (t[0] < 0) return std::nullopt;
   CompletedLines out;
@@ -516,6 +602,7 @@ std::optional<CompletedLines> complete_t_junction_lines(const TMesh& m, int ring
   }
   out.vertices = lines.inserted;
   out.mesh = lines.mesh();
+  if (lines.cut()) out.welded = lines.welded(out.mesh);
   for (const Face& w : lines.faces) out.pieces.push_back(w.piece);
   return out;
 }

@@ -2,7 +2,9 @@
 // T-junctions near star points, completed into knot lines. Within p rings of a star point's faces a T-junction has
 // no evaluation rule of its own: the T-spline's blending functions there reach the star point, and the Catmull-Clark
 // rules (uniform, non-uniform, local subdivision) take quadrilaterals only; two rings further out it still lies
-// among the points of faces that take those rules (TMeshSurface completes the lines of both). trivar continues each
+// among the points of faces that take those rules (TMeshSurface completes the lines of both). The same holds near the
+// irregular vertices of a crease boundary (darts, crease corners of other than one face), whose faces local
+// subdivision takes. trivar continues each
 // such T-junction's missing edge through the face it points into, and on through the faces beyond, until the line
 // meets a vertex: where it crosses an edge it inserts a vertex, and the control points of the row of that edge (the
 // line of edges through it, straight through vertices of four faces) follow Boehm's knot insertion of the cubic on
@@ -14,13 +16,20 @@
 //
 // At a Bezier boundary a row ends in its end-condition node, which lies on the boundary vertex (clamped): the
 // insertion takes it at the vertex's knot, and a line that reaches the boundary ends there (its new boundary vertex
-// gets such a node); tests/tspline/t_junction_lines_test.cpp checks this on an open box too.
+// gets such a node). At a subdivision crease (Fusion's SUBD_CREASES boundary, and the sides of sharp creases, on
+// the mesh cut open along them) a row ends in the crease's natural end, zero second derivative across it: the
+// insertion acts on its clamped form (crease_ends: the node at the boundary vertex is Q1 = a P0 + b P1), which it
+// keeps, so the boundary vertex keeps its point and the refined row is again a natural end. A line that reaches a
+// side of a sharp crease goes on from the same place of the other side, whose copy of the crease row gets the same
+// insertion (as the T-spline's line would cross the crease's knot line): both sides keep one crease curve and one
+// set of vertices on it. tests/tspline/t_junction_lines_test.cpp checks all of these against the cage without the
+// T-junctions.
 //
-// Scope: no sharp creases, degree 3, end-condition nodes on their vertices (or none yet: no grip map), a boundary
-// only with Bezier end conditions (a subdivision-crease boundary's natural end is not taken); the rows the
-// lines cross must pass no star point next to a crossed edge, no concave corner, carry one control point per vertex
-// and not end at a T-junction's stem within two vertices of a crossing; anything else is refused in one line naming
-// the T-junction and the cause.
+// Scope: degree 3, Bezier end-condition nodes on their vertices (or none yet: no grip map); the rows the lines
+// cross must pass no star point next to a crossed edge, no irregular vertex of a crease boundary (a dart, a corner
+// of other than one face, a crease turning), no concave corner, carry one control point per vertex and not end at a
+// T-junction's stem within two vertices of a crossing; anything else is refused in one line naming the T-junction
+// and the cause.
 #include <array>
 #include <optional>
 #include <vector>
@@ -38,14 +47,15 @@ struct FacePiece {
 
 struct CompletedLines {
   TMesh mesh;
+  TMesh welded;                   // a mesh cut along sharp creases: `mesh` with the creases' sides joined again
   std::vector<FacePiece> pieces;  // per face of `mesh`
   int lines = 0;                  // T-junction lines completed
   int vertices = 0;               // vertices inserted
 };
 
-// The mesh with the lines of its T-junctions within `rings` face rings of a star point's faces completed; empty when
-// it has none, or has sharp creases or end-condition nodes off their vertices (no rule is attempted: the
-// evaluation gives its own reason).
+// The mesh with the lines of its T-junctions within `rings` face rings of the faces of a star point or of an irregular
+// crease-boundary vertex completed; `m` is cut open along its sharp creases (split_creases) if it has any. Empty when
+// it has none, or end-condition nodes off their vertices (no rule is attempted: the evaluation gives its own reason).
 std::optional<CompletedLines> complete_t_junction_lines(const TMesh& m, int rings);
 
 }  // namespace trivar

@@ -309,21 +309,24 @@ TMeshSurface::~TMeshSurface() = default;
 TMeshSurface::TMeshSurface(TMeshSurface&&) noexcept = default;
 
 TMeshSurface::TMeshSurface(const TMesh& mesh, int threads, int global_steps)
-    : TMeshSurface(mesh, has_creases(mesh) ? std::make_unique<TMesh>(split_creases(mesh)) : nullptr,
-                   complete_t_junction_lines(mesh, mesh.degree + 2), threads, global_steps) {}
+    : TMeshSurface(mesh, has_creases(mesh) ? std::make_unique<TMesh>(split_creases(mesh)) : nullptr, threads, global_steps) {}
 
 // A crease boundary, or Bezier end conditions without block points, is evaluated as the Bezier end conditions
 // of the same surface with its block points (crease_ends); the mesh as given is kept for writing it back.
-TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, std::optional<CompletedLines> lines, int threads,
-                           int global_steps)
-    : lines_(std::move(lines)),
+TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int threads, int global_steps)
+    : lines_(complete_t_junction_lines(cut ? *cut : mesh, mesh.degree + 2)),
       steps_(global_steps >= 0 ? global_steps : nurcc_steps_needed(lines_ ? lines_->mesh : mesh, kStarsApart)),
       mesh_(steps_ > 0 ? refined(lines_ ? lines_->mesh : mesh, steps_)
-                       : bezier_equivalent_of_cut(cut ? *cut : lines_ ? lines_->mesh : mesh)),
+                       : bezier_equivalent_of_cut(lines_ ? lines_->mesh : cut ? *cut : mesh)),
       source_(steps_ == 0 && !lines_ && mesh.end_conditions == EndConditions::bezier && mesh_.points.size() == mesh.points.size()
                   ? nullptr
                   : std::make_unique<TMesh>(mesh)),
       stars_(star_points(mesh_)) {
+  // The mesh the crease rules read (cut open, with the points as given, or after the lines or global steps).
+  std::unique_ptr<TMesh> given = steps_ > 0 ? std::make_unique<TMesh>(mesh_)
+                                 : lines_   ? std::make_unique<TMesh>(std::move(lines_->mesh))
+                                 : cut      ? std::move(cut)
+                                            : nullptr;
   if (lines_) {
     lines_->mesh = TMesh{};
     pieces_of_.resize(mesh.faces.size());
@@ -342,7 +345,7 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, std::o
   std::vector<int> irregular;
   std::vector<CreaseRule> rules;  // of the split mesh's boundary vertices, once needed
   if (mesh.end_conditions == EndConditions::subd_creases) {
-    split = cut ? std::move(cut) : std::make_unique<TMesh>(lines_ ? mesh_ : mesh);  // completed lines: that mesh
+    split = given ? std::move(given) : std::make_unique<TMesh>(mesh);
     irregular = irregular_crease_vertices(*split);
   }
   std::vector<char> is_irregular(static_cast<std::size_t>(nv), 0);
@@ -547,7 +550,7 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, std::o
                 (d == 1 ? " face ring" : " face rings") + " of star point " + std::to_string(star) +
                 "'s faces; no evaluation rule covers T-junctions within " + std::to_string(reach) +
                 " rings of a star point (the T-spline's blending functions there reach the star point, the Catmull-Clark rules take "
-                "quadrilaterals without T-junctions), and their lines are completed into knot lines only in meshes without sharp creases whose end-condition nodes lie on their vertices");
+                "quadrilaterals without T-junctions), and their lines are completed into knot lines only where the end-condition nodes of a Bezier boundary lie on their vertices");
   }
   // Local subdivision of the face's two face rings (crease_face): with the crease rules of the mesh cut open along
   // its creases, or in a mesh without creases with the smooth rule at every vertex (its nets are kept inside the

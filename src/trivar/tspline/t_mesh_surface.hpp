@@ -123,8 +123,12 @@ public:
   // it back and for the topology its tessellation welds); mesh() when no conversion was needed.
   const TMesh& source_mesh() const { return source_ ? *source_ : mesh_; }
   // The mesh whose faces are the surface's faces, with the edges and vertices they share (for welding a
-  // tessellation): source_mesh() (whose faces mesh() keeps), or mesh() after global steps or T-junction lines.
-  const TMesh& face_mesh() const { return steps_ > 0 || lines_ ? mesh_ : source_mesh(); }
+  // tessellation): source_mesh() (whose faces mesh() keeps), or mesh() after global steps or T-junction lines (in a
+  // mesh cut along sharp creases, with the creases' sides joined again).
+  const TMesh& face_mesh() const {
+    if (lines_ && !lines_->welded.faces.empty()) return lines_->welded;
+    return steps_ > 0 || lines_ ? mesh_ : source_mesh();
+  }
   // Global non-uniform Catmull-Clark steps applied to the mesh as given, or to its completed T-junction lines (each
   // face became 4^steps faces).
   int global_steps() const { return steps_; }
@@ -132,7 +136,7 @@ public:
     const int g = face >> (2 * steps_);
     return lines_ ? lines_->pieces[static_cast<std::size_t>(g)].source : g;
   }
-  // The T-junction lines completed before the evaluation (none: nullptr); its mesh is not kept.
+  // The T-junction lines completed before the evaluation (none: nullptr); its mesh is not kept (its welded mesh is).
   const CompletedLines* completed_lines() const { return lines_ ? &*lines_ : nullptr; }
   // A point (u, v) in [0, 1]^2 of face `face` of the mesh as given (source_mesh()'s ids and frames): the face of
   // the surface that holds it, the point in that face's frame, and that frame's d(u)/d(u as given) and
@@ -203,9 +207,9 @@ private:
     int subdivided = -1;           // subdivided: index into subdivided_
     int crease = -1;               // crease: index into crease_faces_
   };
-  // `cut`: the mesh cut open along its sharp creases (split_creases) when it has any, for both its Bezier
-  // end-condition form and its crease faces.
-  TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, std::optional<CompletedLines> lines, int threads, int global_steps);
+  // `cut`: the mesh cut open along its sharp creases (split_creases) when it has any, for its T-junction lines,
+  // its Bezier end-condition form and its crease faces.
+  TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int threads, int global_steps);
   struct Nurcc;  // a star point evaluated by non-uniform Catmull-Clark: its subdivision and homogeneous points
   std::optional<CompletedLines> lines_;  // its mesh emptied once mesh_ is built from it
   std::vector<std::vector<int>> pieces_of_;  // per face as given: its pieces after the lines were completed
