@@ -257,6 +257,87 @@ TEST(TJunctionLines, NaturalEndInsertionAtASubdivisionCreaseLeavesTheSurfaceUnch
   expect_natural_end_insertion_exact(true, true);
 }
 
+// A box of n x n x n faces as a subdivision-crease mesh whose top rim is a sharp crease (turning at the four top
+// corners, which are star points of three faces), its top centre face split 2 x 2, as a Fusion user would crease and
+// split a box. The lines cross the rim into the walls: rows along the crease go round its corners as the crease
+// curve does, and each row on the top ends in the crease's natural end. The rim is the cubic B-spline of its points,
+// which the split does not touch: the crease curve of both sides (evaluated by local subdivision of the completed
+// mesh, unequal intervals along the crease) must be that of the box without the split, which keeps its equal
+// intervals. Every other edge is smooth, and the tessellation is closed.
+void expect_creased_rim_unchanged(int n) {
+  const test::QuadMesh box = test::box_mesh({n, n, n});
+  const std::size_t centre = test::top_face(box.points, box, n, n / 2, n / 2);
+  const std::vector<std::array<double, 3>> unbent = test::split_face(box, centre, {0, 0, 0, 0, 0}).points;
+  const auto rim = [&](int v) {
+    const auto& p = unbent[static_cast<std::size_t>(v)];
+    return std::abs(p[2] - 1) < 1e-9 && (std::abs(std::abs(p[0]) - 1) < 1e-9 || std::abs(std::abs(p[1]) - 1) < 1e-9);
+  };
+  const auto creased = [&](TMesh m) {
+    m.end_conditions = EndConditions::subd_creases;
+    for (const TMeshLink& k : m.links) {
+      const int a = k.vertex, b = m.links[static_cast<std::size_t>(k.opp)].vertex;
+      if (a < 0 || a > b || !rim(a) || !rim(b)) continue;
+      const auto &pa = unbent[static_cast<std::size_t>(a)], &pb = unbent[static_cast<std::size_t>(b)];
+      for (int axis = 0; axis < 2; ++axis)
+        if (std::abs(pa[axis] - pb[axis]) < 1e-9 && std::abs(std::abs(pa[axis]) - 1) < 1e-9) m.crease_edges.push_back(k.edge);
+    }
+    return m;
+  };
+  const TMeshSurface plain(creased(mesh_of(box, "box.tsm")), 1);
+  const TMeshSurface lines(creased(mesh_of(test::split_face(box, centre, {0.02, -0.03, 0.01, 0.04, 0.07}), "split.tsm")), 1);
+  ASSERT_NE(lines.completed_lines(), nullptr);
+  EXPECT_EQ(lines.completed_lines()->lines, 2);
+  // The rim side of every face on it, in both cages, at the same fractions from the same corner.
+  const auto rim_points = [&](const TMeshSurface& s, int f) {
+    const TMesh& m = s.source_mesh();
+    std::vector<int> c;
+    const auto& loop = m.faces[static_cast<std::size_t>(f)];
+    const std::size_t start = static_cast<std::size_t>(std::find(loop.begin(), loop.end(), m.first_corner(f)) - loop.begin());
+    for (std::size_t i = 0; i < loop.size(); ++i)
+      if (const TMeshLink& l = m.links[static_cast<std::size_t>(loop[(start + i) % loop.size()])]; l.flag == 0) c.push_back(l.vertex);
+    std::vector<std::array<double, 3>> out;
+    for (int k = 0; k < 4; ++k) {
+      const int a = c[static_cast<std::size_t>(k)], b = c[static_cast<std::size_t>((k + 1) % 4)];
+      if (!rim(a) || !rim(b)) continue;
+      for (double t : {0.0, 0.13, 0.5, 0.71, 1.0}) {
+        const int lo = std::min(a, b);  // from the smaller vertex id: the same points whatever the face's orientation
+        const double r = lo == a ? t : 1 - t;
+        const std::array<double, 2> uv = k == 0 ? std::array<double, 2>{r, 0} : k == 1 ? std::array<double, 2>{1, r}
+                                        : k == 2 ? std::array<double, 2>{1 - r, 1} : std::array<double, 2>{0, 1 - r};
+        double x[9];
+        s.eval_source(f, uv[0], uv[1], x);
+        out.push_back({x[0], x[1], x[2]});
+      }
+    }
+    return out;
+  };
+  const auto plain_faces = faces_by_corners(plain);
+  int sides = 0;
+  double worst = 0;
+  for (const auto& [corners, f] : faces_by_corners(lines)) {
+    const auto it = plain_faces.find(corners);
+    if (it == plain_faces.end()) continue;  // a piece of the split face, off the rim
+    const auto a = rim_points(plain, it->second), b = rim_points(lines, f);
+    ASSERT_EQ(a.size(), b.size());
+    sides += static_cast<int>(a.size()) / 5;
+    for (std::size_t i = 0; i < a.size(); ++i) worst = std::max(worst, std::hypot(a[i][0] - b[i][0], a[i][1] - b[i][1], a[i][2] - b[i][2]));
+  }
+  EXPECT_EQ(sides, 8 * n);  // 4 n rim edges, each a side of a top face and of a wall face
+  EXPECT_LT(worst, 1e-12);
+  const test::Continuity cont = test::continuity(lines.mesh(), [&](int f, double u, double v, double* o) { lines.eval(f, u, v, o); });
+  EXPECT_LT(cont.gap, 1e-12);
+  EXPECT_LT(cont.normal_angle, 1e-9);
+  EXPECT_EQ(test::closed_euler_characteristic(tessellate(lines, 0.05)), 2);
+  std::printf("box %d x %d x %d with a creased top rim and a split top face: %d lines, %d vertices inserted; the rim on %d face sides against "
+              "the box without the split: %.1e; across %d edges gap %.1e, normals %.1e; closed\n", n, n, n, lines.completed_lines()->lines,
+              lines.completed_lines()->vertices, sides, worst, cont.edges, cont.gap, cont.normal_angle);
+}
+
+TEST(TJunctionLines, LinesCrossASharpCreaseAndGoRoundItsCorners) {
+  expect_creased_rim_unchanged(3);
+  expect_creased_rim_unchanged(5);
+}
+
 // Fusion's box of 3 x 3 faces per side with the top side's centre face split 2 x 2 (T-junctions on the four faces
 // round it, each next to two corner faces of star points) and a strip of interval 2 at x < -10/3: the two lines
 // complete round the box, then two global non-uniform Catmull-Clark steps part the star points. The surface is

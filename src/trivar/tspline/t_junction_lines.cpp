@@ -329,6 +329,7 @@ private:
     bool end;
   };
   Beyond beyond(int a, int b, const std::string& where) const {
+    if (const auto t = crease_turn(a, b, where)) return {t->to, t->d, false};
     require_regular(a, where);
     require(static_cast<std::size_t>(a) >= star_.size() || !star_[static_cast<std::size_t>(a)],
             [&] { return where + "its line passes star point " + std::to_string(a) + " (no row through it)"; });
@@ -338,6 +339,20 @@ private:
     if (s.spoke >= 0) return {f.spokes[static_cast<std::size_t>(s.spoke)].to, f.spokes[static_cast<std::size_t>(s.spoke)].d, false};
     if (f.open) return {a, 0, true};
     throw Error(where + "the row through vertex " + std::to_string(b) + " ends at vertex " + std::to_string(a) + " (the stem of a T-junction)");
+  }
+  // A row along a crease boundary through an irregular vertex whose rule is the crease rule (a crease turning there,
+  // or running through a star point): the crease curve goes on along the vertex's other boundary edge, as on the
+  // crease's other side. The spoke it goes on along, if so.
+  std::optional<Spoke> crease_turn(int v, int from, const std::string& where) const {
+    if (static_cast<std::size_t>(v) >= star_.size() || star_[static_cast<std::size_t>(v)] != 2 ||
+        m_.vertices[static_cast<std::size_t>(v)].crease_rule != CreaseRule::crease)
+      return std::nullopt;
+    const Fan f = fan(v, from, where);
+    if (!f.open) return std::nullopt;
+    const Spoke &first = f.spokes.front(), &last = f.spokes.back();
+    if (first.to == from) return last;
+    if (last.to == from) return first;
+    return std::nullopt;
   }
   // Irregular vertices of a crease boundary take local subdivision's rules, which no row insertion follows.
   void require_regular(int v, const std::string& where) const {
@@ -355,6 +370,7 @@ private:
   };
   Next interval_beyond(int c, int a, bool end, const std::string& where) const {
     if (end) return {0, false};
+    if (const auto t = crease_turn(c, a, where)) return {t->d, false};
     require_regular(c, where);
     const Fan f = fan(c, a, where);
     if (static_cast<std::size_t>(c) < star_.size() && star_[static_cast<std::size_t>(c)]) {
