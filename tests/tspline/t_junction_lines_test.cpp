@@ -9,6 +9,8 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <numbers>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -46,6 +48,17 @@ std::map<std::array<int, 4>, int> faces_by_corners(const TMeshSurface& s) {
   return out;
 }
 
+// Every end-condition block point moved off its vertex, as Rhino's grip maps place them (by vertex id and entry,
+// so that two cages sharing vertex ids get the same blocks).
+void move_blocks_off(TMesh& m) {
+  for (std::size_t v = 0; v < m.vertices.size(); ++v)
+    for (std::size_t k = 0; k < m.vertices[v].block.size(); ++k) {
+      const double a = static_cast<double>(v), b = static_cast<double>(k);
+      auto& x = m.points[static_cast<std::size_t>(m.vertices[v].block[k])].xyz;
+      x = {x[0] + 0.05 * std::sin(3 * a + b), x[1] + 0.04 * std::cos(2 * a - b), x[2] + 0.06 * std::sin(a + 2 * b)};
+    }
+}
+
 // A box of 11 x 11 faces per side, bent so that no coordinate is linear in the knots, and the same box with top face
 // (4, 1) split 2 x 2 (its five new points off the surface, anywhere): T-junctions on the faces (3, 1), (5, 1),
 // (4, 0) and (4, 2), the first within 3 face rings of the star point at the box's corner. Far from the split face
@@ -57,8 +70,9 @@ std::map<std::array<int, 4>, int> faces_by_corners(const TMeshSurface& s) {
 // With `rational`, weights 0.6 to 1.4 on the points (the same on both cages' common vertices). With `open` the box
 // has no bottom: the lines run down the sides to its rim, a Bezier boundary whose rows the insertion ends in their
 // end-condition nodes (on the vertices: tsm_text's grip map, or without `grip` none, as Fusion writes
-// MULTIPLE_KNOTS, placed by bezier_equivalent).
-void expect_insertion_exact(double strip, bool rational, bool open = false, bool grip = true) {
+// MULTIPLE_KNOTS, placed by bezier_equivalent; with `off` moved off the vertices, whose row along the rim, the
+// boundary curve's control points, takes the insertion too).
+void expect_insertion_exact(double strip, bool rational, bool open = false, bool grip = true, bool off = false) {
   test::QuadMesh box = test::box_mesh({11, 11, 11}, open);
   const std::vector<std::array<double, 3>> unbent = box.points;
   const auto grid_x = [&](int v) { return std::lround((unbent[static_cast<std::size_t>(v)][0] + 1) * 5.5); };
@@ -81,6 +95,7 @@ void expect_insertion_exact(double strip, bool rational, bool open = false, bool
     }
     for (TMeshVertex& x : m.vertices)
       if (!grip) x.block.clear(), x.block_dims = {};
+    if (off) move_blocks_off(m);
     return m;
   };
   const TMeshSurface plain(weighted(mesh_of(box, "box.tsm")), 1);
@@ -132,9 +147,9 @@ void expect_insertion_exact(double strip, bool rational, bool open = false, bool
   EXPECT_GT(touched, 10);
   EXPECT_LT(worst, 1e-13);
   EXPECT_LT(worst_d, 1e-12);
-  std::printf("box 11 x 11 (strip %g%s%s) with a split face near a star point: %d lines, %d vertices inserted; %d exact faces of the cage "
+  std::printf("box 11 x 11 (strip %g%s%s%s) with a split face near a star point: %d lines, %d vertices inserted; %d exact faces of the cage "
               "without T-junctions (%d with moved corners): values %.1e, derivatives %.1e\n", strip, rational ? ", rational" : "",
-              open ? (grip ? ", open" : ", open, no grip map") : "", lines.completed_lines()->lines,
+              open ? (grip ? ", open" : ", open, no grip map") : "", off ? ", blocks off the vertices" : "", lines.completed_lines()->lines,
               lines.completed_lines()->vertices, compared, touched, worst, worst_d);
 }
 
@@ -144,6 +159,7 @@ TEST(TJunctionLines, KnotInsertionAlongTheRowsLeavesTheTSplineUnchanged) {
   expect_insertion_exact(1.7, true);
   expect_insertion_exact(1.7, true, true);
   expect_insertion_exact(1.7, false, true, false);
+  expect_insertion_exact(1.7, true, true, true, true);
 }
 
 // A box of 11 x 11 x 3 faces as a subdivision-crease mesh (Fusion's SUBD_CREASES): open at the bottom, or closed
@@ -336,6 +352,92 @@ void expect_creased_rim_unchanged(int n) {
 TEST(TJunctionLines, LinesCrossASharpCreaseAndGoRoundItsCorners) {
   expect_creased_rim_unchanged(3);
   expect_creased_rim_unchanged(5);
+}
+
+// A line that reaches a Bezier boundary next to a convex corner: the row along the boundary ends at the corner, in
+// the corner's end-condition node across it, and the row of block points outside it (the boundary curve's control
+// points) in the corner's diagonal node. A fan of 5 sectors of 6 x 6 faces with face (5, 1) of sector 0 split 2 x 2:
+// the T-junction above it runs its line up to the boundary, whose last edge ends at the sector's corner (6, 6). The
+// check needs no star point rule (and Catmull-Clark would not take a Bezier boundary this close): on a chart of
+// sector 0 (its faces off the star point) the T-spline of the completed mesh must equal that of the fan without
+// the split on the row of faces (2..5, 5), whose blending functions lie in the chart and do not reach the split;
+// with the end-condition nodes on their vertices and off them (Rhino's grip maps).
+void expect_line_to_a_corner_exact(bool off) {
+  const int n = 6;
+  const auto height = [](double x, double y) { return 0.3 * std::sin(x + 0.7 * y) + 0.05 * x * y; };
+  const test::QuadMesh fan = test::fan_mesh(5, n, height);
+  const auto quad = [&](int i, int j) { return static_cast<int>(j * n + i); };  // of sector 0
+  TMesh plain = mesh_of(fan, "fan.tsm"), given = mesh_of(test::split_face(fan, static_cast<std::size_t>(quad(5, 1)), {0.02, -0.03, 0.01, 0.04, 0.07}), "split.tsm");
+  if (off) {
+    move_blocks_off(plain);
+    move_blocks_off(given);
+  }
+  const std::optional<CompletedLines> done = complete_t_junction_lines(given, 5);
+  ASSERT_TRUE(done.has_value());
+  // Sector 0's faces off the star point (their vertices in the sector, the split's too); in the completed mesh the
+  // pieces of those faces.
+  const auto vertex = [&](int i, int j) {
+    const double c = std::cos(2 * std::numbers::pi / 5), sn = std::sin(2 * std::numbers::pi / 5);
+    for (std::size_t v = 0; v < fan.points.size(); ++v)
+      if (std::hypot(fan.points[v][0] - (i + j * c), fan.points[v][1] - j * sn) < 1e-9) return static_cast<int>(v);
+    return -1;
+  };
+  std::vector<char> in_sector(given.vertices.size(), 1);
+  in_sector[static_cast<std::size_t>(vertex(0, 0))] = 0;
+  for (std::size_t v = 0; v < fan.points.size(); ++v) {
+    const double angle = std::atan2(fan.points[v][1], fan.points[v][0]);
+    if (angle < -1e-9 || angle > 2 * std::numbers::pi / 5 + 1e-9) in_sector[v] = 0;
+  }
+  const auto region = [&](const TMesh& m) {
+    std::vector<int> out;
+    for (int f = 0; f < static_cast<int>(m.faces.size()); ++f)
+      if (std::all_of(m.faces[static_cast<std::size_t>(f)].begin(), m.faces[static_cast<std::size_t>(f)].end(),
+                      [&](int l) { return in_sector[static_cast<std::size_t>(m.links[static_cast<std::size_t>(l)].vertex)] != 0; }))
+        out.push_back(f);
+    return out;
+  };
+  const std::vector<int> sector = region(plain), split_sector = region(given);
+  std::vector<int> pieces;
+  for (int f = 0; f < static_cast<int>(done->pieces.size()); ++f)
+    if (std::find(split_sector.begin(), split_sector.end(), done->pieces[static_cast<std::size_t>(f)].source) != split_sector.end()) pieces.push_back(f);
+  // Seeds: the face (1, 3), which the lines do not split, in each mesh (the same layout in both charts).
+  const auto face_at = [&](const TMesh& m, int i, int j) {
+    const std::array<int, 4> want{vertex(i, j), vertex(i + 1, j), vertex(i + 1, j + 1), vertex(i, j + 1)};
+    for (int f = 0; f < static_cast<int>(m.faces.size()); ++f) {
+      int hits = 0;
+      for (int l : m.faces[static_cast<std::size_t>(f)]) hits += std::count(want.begin(), want.end(), m.links[static_cast<std::size_t>(l)].vertex) > 0;
+      if (hits == 4 && m.faces[static_cast<std::size_t>(f)].size() == 4) return f;
+    }
+    return -1;
+  };
+  const TChart before = t_spline_chart(plain, sector, face_at(plain, 1, 3), true),
+               after = t_spline_chart(done->mesh, pieces, face_at(done->mesh, 1, 3), true);
+  const TSplineSurface a(before.spline), b(after.spline);
+  const auto st = [&](const TChart& c, int i, int j) {
+    const TVertex& x = c.spline.image.vertices[static_cast<std::size_t>(c.vertex[static_cast<std::size_t>(vertex(i, j))])];
+    return std::array<double, 2>{x.s, x.t};
+  };
+  const auto lo = st(before, 2, 5), hi = st(before, 6, 6);
+  ASSERT_EQ(lo, st(after, 2, 5));
+  ASSERT_EQ(hi, st(after, 6, 6));
+  double worst = 0;
+  for (int y = 0; y <= 10; ++y)
+    for (int x = 0; x <= 40; ++x) {
+      const Param<2> u{lo[0] + (hi[0] - lo[0]) * x / 40, lo[1] + (hi[1] - lo[1]) * y / 10};
+      double pa[3], pb[3];
+      a.eval(u, pa);
+      b.eval(u, pb);
+      for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs(pa[k] - pb[k]));
+    }
+  EXPECT_LT(worst, 1e-13);
+  std::printf("fan with a line to a convex corner (end-condition nodes %s): %d lines, %d vertices inserted; the completed T-spline "
+              "against the fan without the split on a chart of sector 0, 451 points of its faces (2..5, 5): %.1e\n",
+              off ? "off the vertices" : "on the vertices", done->lines, done->vertices, worst);
+}
+
+TEST(TJunctionLines, ALineToAConvexCornerOfABezierBoundaryIsKnotInsertion) {
+  expect_line_to_a_corner_exact(false);
+  expect_line_to_a_corner_exact(true);
 }
 
 // Fusion's box of 3 x 3 faces per side with the top side's centre face split 2 x 2 (T-junctions on the four faces

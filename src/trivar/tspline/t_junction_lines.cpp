@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include "trivar/core/error.hpp"
+#include "trivar/tspline/homogeneous_point.hpp"
 #include "trivar/tspline/link_builder.hpp"
 #include "trivar/tspline/non_uniform_catmull_clark.hpp"
 #include "trivar/tspline/sharp_creases.hpp"
@@ -16,7 +17,7 @@ namespace trivar {
 
 namespace {
 
-using H = std::array<double, 4>;  // homogeneous (w x, w y, w z, w)
+using H = HomogeneousPoint;
 
 // A side of a face: its vertices from the side's corner on (the next side's corner excluded) and the interval
 // from each to the next.
@@ -74,11 +75,17 @@ public:
     for (const TMeshVertex& v : m.vertices) {
       H h{0, 0, 0, 1};
       if (v.live && v.primary >= 0) {
-        const RationalPoint& x = m.points[static_cast<std::size_t>(v.primary)];
-        h = {x.w * x.xyz[0], x.w * x.xyz[1], x.w * x.xyz[2], x.w};
+        h = homogeneous(m.points[static_cast<std::size_t>(v.primary)]);
       }
       p.push_back(h);
+      // Its end-condition block points (NaN: an entry without one).
+      std::vector<H> b;
+      for (int g : v.block) b.push_back(g >= 0 ? homogeneous(m.points[static_cast<std::size_t>(g)]) : H{NAN, NAN, NAN, NAN});
+      blocks_ = blocks_ || (!natural_ && !b.empty());
+      blk_.push_back(std::move(b));
     }
+    for (const TMeshLink& k : m.links)
+      if (k.vertex >= 0 && k.frame >= 0) frame_[key(k.vertex, m.links[static_cast<std::size_t>(k.opp)].vertex)] = k.frame;
     for (int f = 0; f < static_cast<int>(faces.size()); ++f) index(f);
   }
 
@@ -205,6 +212,11 @@ private:
   const TMesh& m_;
   std::vector<char> star_;  // 1: a star point, 2: an irregular vertex of a crease boundary
   bool natural_;            // rows end in the natural end of a subdivision crease, not in Bezier end conditions
+  bool blocks_ = false;     // Bezier end conditions with their block points given (else they lie on the vertices)
+  // Per vertex, its end-condition block points as TMeshVertex::block (a vertex inserted on the boundary: its one,
+  // outwards), moved by the insertions along the boundary rows; the frames of the links as given.
+  std::vector<std::vector<H>> blk_;
+  std::unordered_map<long long, int> frame_;
   std::unordered_map<long long, Loc> at_map_;
   // Per vertex, the vertex of the mesh before the cut along sharp creases (split_from; an inserted vertex's copy on
   // the other side: the first of the two); the directed edges by those ends.
@@ -391,6 +403,32 @@ private:
   // node at v is Q1 = a P0 + b P1 (natural_end_weights, P1 the next vertex inward at d1, d2 the interval after it),
   // while v keeps P0, its end-condition node Q0; the clamped insertion keeps the zero second derivative across the
   // boundary, so the refined row is again that of its natural end.
+  // The direction of edge v -> w in v's frame (v a vertex as given; w may be inserted on an edge as given).
+  int frame(int v, int w) const {
+    long long k = key(v, w);
+    for (auto it = along.find(k); it != along.end(); it = along.find(k)) k = it->second;
+    const auto f = frame_.find(k);
+    return f == frame_.end() ? -1 : f->second;
+  }
+  // Block point (index into blk_[v]) of vertex v one layer towards frame direction `dir` and `side` layers towards
+  // the next direction counter-clockwise (TMeshVertex::block's wedges); a vertex inserted on the boundary has one.
+  H& block(int v, int dir, int side, const std::string& where) {
+    if (static_cast<std::size_t>(v) >= m_.vertices.size() && !blk_[static_cast<std::size_t>(v)].empty()) return blk_[static_cast<std::size_t>(v)][0];
+    const std::array<int, 4> dims = static_cast<std::size_t>(v) < m_.vertices.size() ? m_.vertices[static_cast<std::size_t>(v)].block_dims : std::array<int, 4>{};
+    std::size_t at = 0;
+    for (int j = 0; j < dir && dir >= 0; ++j) at += static_cast<std::size_t>(dims[static_cast<std::size_t>(j)] * (dims[static_cast<std::size_t>((j + 1) % 4)] + 1));
+    const bool has = dir >= 0 && dims[static_cast<std::size_t>(dir)] >= 1 && dims[static_cast<std::size_t>((dir + 1) % 4)] >= side;
+    require(has && at + static_cast<std::size_t>(side) < blk_[static_cast<std::size_t>(v)].size() &&
+                !std::isnan(blk_[static_cast<std::size_t>(v)][at + static_cast<std::size_t>(side)][3]),
+            [&] { return where + "boundary vertex " + std::to_string(v) + " has no end-condition node for a row it crosses"; });
+    return blk_[static_cast<std::size_t>(v)][at + static_cast<std::size_t>(side)];
+  }
+  // Bezier end conditions: the end node Q0 of the row that ends at v coming from w (its block point beyond v; without
+  // a grip map the vertex's own point, where bezier_equivalent places it).
+  H end_block(int v, int w, const std::string& where) {
+    if (!blocks_) return p[static_cast<std::size_t>(v)];
+    return block(v, (frame(v, w) + 2) % 4, 0, where);
+  }
   H end_node(int v, int inward, double d1, double d2) const {
     if (!natural_) return p[static_cast<std::size_t>(v)];
     const auto [wa, wb] = natural_end_weights(d1, d2);
@@ -427,17 +465,41 @@ private:
     };
     // The row's points in Boehm's rule; a row that ends at a or b (c_end, e_end: one interval between two
     // boundaries has d2 = d1, as in crease_ends) or at c or e takes the end node there, and the end vertex stays.
-    const H pc = past_c.ends ? end_node(c, a, dca, d) : p[static_cast<std::size_t>(c)];
-    const H pa = c_end ? end_node(a, b, d, e_end ? d : dbe) : p[static_cast<std::size_t>(a)];
-    const H pb = e_end ? end_node(b, a, d, c_end ? d : dca) : p[static_cast<std::size_t>(b)];
-    const H pe = past_e.ends ? end_node(e, b, dbe, d) : p[static_cast<std::size_t>(e)];
-    if (!c_end) p[static_cast<std::size_t>(a)] = mix(pc, pa, a1);
-    if (!e_end) p[static_cast<std::size_t>(b)] = mix(pb, pe, a3);
+    // Bezier end conditions: a row ending at a or b has its block point there as its end node Q0, the vertex's
+    // point (Q1) moves.
+    const H pc = c_end ? (natural_ ? p[static_cast<std::size_t>(a)] : end_block(a, b, where))
+                       : past_c.ends ? end_node(c, a, dca, d) : p[static_cast<std::size_t>(c)];
+    const H pa = c_end && natural_ ? end_node(a, b, d, e_end ? d : dbe) : p[static_cast<std::size_t>(a)];
+    const H pb = e_end && natural_ ? end_node(b, a, d, c_end ? d : dca) : p[static_cast<std::size_t>(b)];
+    const H pe = e_end ? (natural_ ? p[static_cast<std::size_t>(b)] : end_block(b, a, where))
+                       : past_e.ends ? end_node(e, b, dbe, d) : p[static_cast<std::size_t>(e)];
+    if (!c_end || !natural_) p[static_cast<std::size_t>(a)] = mix(pc, pa, a1);
+    if (!e_end || !natural_) p[static_cast<std::size_t>(b)] = mix(pb, pe, a3);
     const int x = static_cast<int>(p.size());
     require(inserted < 16 * static_cast<int>(m_.faces.size()) + 1024, [&] {
       return where + "the lines insert more than " + std::to_string(inserted) + " vertices (16 per face of the mesh)";
     });
+    // A row along a Bezier boundary: the row of its block points outside (the boundary curve's control points)
+    // takes the same insertion; at a corner where the row ends, its end node is the corner's diagonal block point.
+    std::vector<H> x_block;
+    if (blocks_ && ba.face < 0) {
+      const int fa = frame(a, b), fb = frame(b, a);
+      // The outside lies right of a -> b: clockwise of each vertex's direction along the row.
+      const auto outside = [&](int v, int w, bool forward) { return v < static_cast<int>(m_.vertices.size()) ? (frame(v, w) + (forward ? 3 : 1)) % 4 : -1; };
+      const auto corner = [&](int v, int beyond_dir, int out_dir) -> H& {
+        // The diagonal node: in the wedge of whichever of the two directions the other follows counter-clockwise.
+        return (out_dir == (beyond_dir + 1) % 4) ? block(v, beyond_dir, 1, where) : block(v, out_dir, 1, where);
+      };
+      const H qc = c_end ? corner(a, (fa + 2) % 4, (fa + 3) % 4) : block(c, outside(c, a, true), 0, where);
+      H& qa = block(a, (fa + 3) % 4, 0, where);
+      H& qb = block(b, (fb + 1) % 4, 0, where);
+      const H qe = e_end ? corner(b, (fb + 2) % 4, (fb + 1) % 4) : block(e, outside(e, b, false), 0, where);
+      x_block = {mix(qa, qb, a2)};
+      qa = mix(qc, qa, a1);
+      qb = mix(qb, qe, a3);
+    }
     p.push_back(mix(pa, pb, a2));
+    blk_.push_back(std::move(x_block));
     origin_.push_back(twin >= 0 ? twin : x);
     ++inserted;
     const auto put = [&](const Loc& l, double first) {
@@ -505,15 +567,12 @@ TMesh Lines::mesh() const {
   r.end_conditions = m_.end_conditions;
   r.vertices = m_.vertices;
   r.points = m_.points;
-  const bool blocks = !natural_ && std::any_of(m_.vertices.begin(), m_.vertices.end(), [](const TMeshVertex& v) { return !v.block.empty(); });
   for (std::size_t v = 0; v < p.size(); ++v) {
-    const H& h = p[v];
-    const RationalPoint x{{h[0] / h[3], h[1] / h[3], h[2] / h[3]}, h[3]};
+    const RationalPoint x = rational(p[v]);
     if (v < m_.vertices.size()) {
-      // A moved boundary vertex takes its end-condition nodes along (they lie on it: complete_t_junction_lines).
       if (r.vertices[v].live && r.vertices[v].primary >= 0) r.points[static_cast<std::size_t>(r.vertices[v].primary)] = x;
-      for (int g : r.vertices[v].block)
-        if (g >= 0) r.points[static_cast<std::size_t>(g)] = x;
+      for (std::size_t k = 0; !natural_ && k < r.vertices[v].block.size(); ++k)
+        if (const int g = r.vertices[v].block[k]; g >= 0) r.points[static_cast<std::size_t>(g)] = rational(blk_[v][k]);
       continue;
     }
     r.points.push_back(x);
@@ -553,13 +612,15 @@ TMesh Lines::mesh() const {
       }
     for (std::size_t k = 0; k < round.size(); ++k) L(round[k]).frame = (((base + theta[k] - at) % 4) + 4) % 4;
   }
-  // A vertex inserted on the boundary gets the end-condition node of a straight boundary vertex, on it, when the
-  // mesh as given carries such nodes (else bezier_equivalent places them).
-  for (int l = 0; blocks && l < static_cast<int>(r.links.size()); ++l) {
-    TMeshVertex& x = r.vertices[static_cast<std::size_t>(L(l).vertex)];
-    if (L(l).face >= 0 || static_cast<std::size_t>(L(l).vertex) < m_.vertices.size() || !x.block.empty()) continue;
+  // A vertex inserted on the boundary gets the end-condition node of a straight boundary vertex, outwards, from the
+  // insertion along the boundary's block row, when the mesh as given carries such nodes (else bezier_equivalent
+  // places them).
+  for (int l = 0; blocks_ && l < static_cast<int>(r.links.size()); ++l) {
+    const std::size_t v = static_cast<std::size_t>(L(l).vertex);
+    TMeshVertex& x = r.vertices[v];
+    if (L(l).face >= 0 || v < m_.vertices.size() || !x.block.empty()) continue;
     x.block_dims[static_cast<std::size_t>((L(l).frame + 1) % 4)] = 1;
-    r.points.push_back(r.points[static_cast<std::size_t>(x.primary)]);
+    r.points.push_back(rational(blk_[v].at(0)));
     x.block = {static_cast<int>(r.points.size()) - 1};
   }
   // Edge conditions and crease lists on the pieces of their edges.
@@ -595,14 +656,6 @@ std::optional<CompletedLines> complete_t_junction_lines(const TMesh& m, int ring
   if (stars.empty() && irregular.empty()) return std::nullopt;
   for (const auto& loop : m.faces)
     if (loop.empty()) return std::nullopt;
-  // A Bezier boundary ends its rows clamped where their end-condition nodes lie on the vertex (or are still to be
-  // placed there: no grip map); other end-condition nodes are not taken. A subdivision crease carries none that count.
-  for (const TMeshVertex& v : m.vertices)
-    for (int g : v.block) {
-      if (!v.live || g < 0 || m.end_conditions == EndConditions::subd_creases) continue;
-      const RationalPoint &x = m.points[static_cast<std::size_t>(g)], &y = m.points[static_cast<std::size_t>(v.primary)];
-      if (v.primary < 0 || x.xyz != y.xyz || x.w != y.w) return std::nullopt;
-    }
   Lines lines(m, stars, irregular);
   std::array<int, 3> t = lines.t_junction_near_stars(rings);
   if (t[0] < 0) return std::nullopt;

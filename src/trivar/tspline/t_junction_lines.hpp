@@ -14,22 +14,24 @@
 // defines the surface as that of the completed mesh, whose faces the Catmull-Clark rules then take. The completed
 // mesh is no longer the T-mesh as given: its faces are pieces of the given ones (FacePiece).
 //
-// At a Bezier boundary a row ends in its end-condition node, which lies on the boundary vertex (clamped): the
-// insertion takes it at the vertex's knot, and a line that reaches the boundary ends there (its new boundary vertex
-// gets such a node). At a subdivision crease (Fusion's SUBD_CREASES boundary, and the sides of sharp creases, on
-// the mesh cut open along them) a row ends in the crease's natural end, zero second derivative across it: the
-// insertion acts on its clamped form (crease_ends: the node at the boundary vertex is Q1 = a P0 + b P1), which it
-// keeps, so the boundary vertex keeps its point and the refined row is again a natural end. A line that reaches a
-// side of a sharp crease goes on from the same place of the other side, whose copy of the crease row gets the same
-// insertion (as the T-spline's line would cross the crease's knot line): both sides keep one crease curve and one
-// set of vertices on it. tests/tspline/t_junction_lines_test.cpp checks all of these against the cage without the
-// T-junctions.
+// At a Bezier boundary a row ends in its end-condition node, at the boundary vertex's knot (clamped): the insertion
+// takes it as the row's end node, and a line that reaches the boundary ends there. A row along the boundary has the row
+// of its end-condition nodes outside (the boundary curve's control points) beside it, which takes the same insertion
+// (at a convex corner ending in the corner's diagonal node), and gives the new boundary vertex its node; without a grip
+// map the nodes lie on the vertices, where bezier_equivalent places them. At a subdivision crease (Fusion's
+// SUBD_CREASES boundary, and the sides of sharp creases, on the mesh cut open along them) a row ends in the crease's
+// natural end, zero second derivative across it: the insertion acts on its clamped form (crease_ends: the node at the
+// boundary vertex is Q1 = a P0 + b P1), which it keeps, so the boundary vertex keeps its point and the refined row is
+// again a natural end. A line that reaches a side of a sharp crease goes on from the same place of the other side,
+// whose copy of the crease row gets the same insertion (as the T-spline's line would cross the crease's knot line):
+// both sides keep one crease curve and one set of vertices on it. tests/tspline/t_junction_lines_test.cpp checks all of
+// these against the cage without the T-junctions.
 //
-// Scope: degree 3, Bezier end-condition nodes on their vertices (or none yet: no grip map); the rows the lines
-// cross must pass no star point next to a crossed edge, no irregular vertex of a crease boundary (a dart, a corner
-// of other than one face, a crease turning), no concave corner, carry one control point per vertex and not end at a
-// T-junction's stem within two vertices of a crossing; anything else is refused in one line naming the T-junction
-// and the cause.
+// Scope: degree 3, no deleted faces; the rows the lines cross must pass no star point next to a crossed edge, no
+// irregular vertex of a crease boundary (a dart, a crease corner of other than one face; where a crease turns or runs
+// through a star point, only the row along the crease), no concave corner, carry one control point per vertex (and
+// the end-condition nodes the grip map gives their boundary vertices) and not end at a T-junction's stem within two
+// vertices of a crossing; anything else is refused in one line naming the T-junction and the cause.
 #include <array>
 #include <optional>
 #include <vector>
@@ -55,7 +57,7 @@ struct CompletedLines {
 
 // The mesh with the lines of its T-junctions within `rings` face rings of the faces of a star point or of an irregular
 // crease-boundary vertex completed; `m` is cut open along its sharp creases (split_creases) if it has any. Empty when
-// it has none, or end-condition nodes off their vertices (no rule is attempted: the evaluation gives its own reason).
+// it has none, or deleted faces (no rule is attempted: the evaluation gives its own reason).
 std::optional<CompletedLines> complete_t_junction_lines(const TMesh& m, int rings);
 
 }  // namespace trivar

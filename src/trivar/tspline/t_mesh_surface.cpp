@@ -550,7 +550,7 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int th
                 (d == 1 ? " face ring" : " face rings") + " of star point " + std::to_string(star) +
                 "'s faces; no evaluation rule covers T-junctions within " + std::to_string(reach) +
                 " rings of a star point (the T-spline's blending functions there reach the star point, the Catmull-Clark rules take "
-                "quadrilaterals without T-junctions), and their lines are completed into knot lines only where the end-condition nodes of a Bezier boundary lie on their vertices");
+                "quadrilaterals without T-junctions), and their lines are completed into knot lines only in meshes without deleted faces");
   }
   // Local subdivision of the face's two face rings (crease_face): with the crease rules of the mesh cut open along
   // its creases, or in a mesh without creases with the smooth rule at every vertex (its nets are kept inside the
