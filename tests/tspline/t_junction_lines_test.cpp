@@ -440,6 +440,60 @@ TEST(TJunctionLines, ALineToAConvexCornerOfABezierBoundaryIsKnotInsertion) {
   expect_line_to_a_corner_exact(true);
 }
 
+// Fusion's open forms: a star point on a subdivision-crease boundary (K = 4 faces) or a concave corner of it (K = 3),
+// the irregular vertices whose faces local subdivision takes, with sectors of 7 x 7 faces and face (i, i) of the
+// first sector split 2 x 2. Rows along the boundary go through the vertex as the crease curve does; rows from inside
+// end in the crease's natural end there, as at every other vertex of the crease. Against the cage without the split
+// on its exact faces (away from the vertex), and one tangent plane across every edge of the completed mesh.
+void expect_lines_near_an_irregular_crease_vertex(int sectors, int i) {
+  const int n = 7;
+  const auto height = [](double x, double y) { return 0.3 * std::sin(x + 0.7 * y) + 0.05 * x * y; };
+  const test::QuadMesh fan = test::half_fan_mesh(sectors, n, height);
+  const auto subd = [](TMesh m) {
+    m.end_conditions = EndConditions::subd_creases;
+    for (TMeshVertex& v : m.vertices) v.block.clear(), v.block_dims = {};
+    return m;
+  };
+  const TMeshSurface plain(subd(mesh_of(fan, "fan.tsm")), 1);
+  const test::QuadMesh split = test::split_face(fan, static_cast<std::size_t>(i * n + i), {0.02, -0.03, 0.01, 0.04, 0.07});
+  const TMeshSurface lines(subd(mesh_of(split, "split.tsm")), 1);
+  ASSERT_NE(lines.completed_lines(), nullptr);
+  // The faces near the split face have other blending functions: compare those 4 knot intervals from its centre.
+  const double c = std::cos(std::numbers::pi / sectors), sn = std::sin(std::numbers::pi / sectors);
+  const std::array<double, 2> centre{(i + 0.5) * (1 + c), (i + 0.5) * sn};
+  const auto plain_faces = faces_by_corners(plain);
+  int compared = 0;
+  double worst = 0;
+  for (const auto& [corners, f] : faces_by_corners(lines)) {
+    const auto it = plain_faces.find(corners);
+    if (it == plain_faces.end() || plain.method(it->second) != FaceMethod::exact) continue;
+    bool far = true;
+    for (int v : corners) far = far && std::hypot(fan.points[static_cast<std::size_t>(v)][0] - centre[0], fan.points[static_cast<std::size_t>(v)][1] - centre[1]) > 4;
+    if (!far) continue;
+    for (double u : {0.0, 0.3, 0.5, 1.0})
+      for (double v : {0.0, 0.6, 1.0}) {
+        double a[9], b[9];
+        plain.eval(it->second, u, v, a);
+        lines.eval_source(f, u, v, b);
+        for (int k = 0; k < 9; ++k) worst = std::max(worst, std::abs(a[k] - b[k]) / (k < 3 ? 1 : 1 + std::abs(a[k])));
+      }
+    ++compared;
+  }
+  EXPECT_GT(compared, 10);
+  EXPECT_LT(worst, 1e-12);
+  const test::Continuity cont = test::continuity(lines.mesh(), [&](int f, double u, double v, double* o) { lines.eval(f, u, v, o); });
+  EXPECT_LT(cont.gap, 1e-12);
+  EXPECT_LT(cont.normal_angle, 1e-8);
+  std::printf("half fan of %d sectors (%s on the crease boundary), face (%d, %d) split: %d lines, %d vertices inserted; %d exact faces against "
+              "the cage without the split: %.1e; across %d edges gap %.1e, normals %.1e\n", sectors, sectors == 3 ? "a concave corner" : "a star point",
+              i, i, lines.completed_lines()->lines, lines.completed_lines()->vertices, compared, worst, cont.edges, cont.gap, cont.normal_angle);
+}
+
+TEST(TJunctionLines, NearAStarPointOrConcaveCornerOfASubdivisionCrease) {
+  for (int sectors : {3, 4})
+    for (int i : {1, 2}) expect_lines_near_an_irregular_crease_vertex(sectors, i);
+}
+
 // Fusion's box of 3 x 3 faces per side with the top side's centre face split 2 x 2 (T-junctions on the four faces
 // round it, each next to two corner faces of star points) and a strip of interval 2 at x < -10/3: the two lines
 // complete round the box, then two global non-uniform Catmull-Clark steps part the star points. The surface is

@@ -50,6 +50,8 @@ public:
       : m_(m), star_(m.vertices.size(), 0), natural_(m.end_conditions == EndConditions::subd_creases) {
     for (int s : stars) star_[static_cast<std::size_t>(s)] = 1;
     for (int s : irregular) star_[static_cast<std::size_t>(s)] = 2;
+    if (natural_) rules_ = boundary_rules(m);
+    rules_.resize(m.vertices.size(), CreaseRule::none);
     const auto L = [&](int l) -> const TMeshLink& { return m.links[static_cast<std::size_t>(l)]; };
     for (int f = 0; f < static_cast<int>(m.faces.size()); ++f) {
       Face face;
@@ -211,6 +213,7 @@ public:
 private:
   const TMesh& m_;
   std::vector<char> star_;  // 1: a star point, 2: an irregular vertex of a crease boundary
+  std::vector<CreaseRule> rules_;  // a subdivision crease's rules at its boundary vertices (boundary_rules)
   bool natural_;            // rows end in the natural end of a subdivision crease, not in Bezier end conditions
   bool blocks_ = false;     // Bezier end conditions with their block points given (else they lie on the vertices)
   // Per vertex, its end-condition block points as TMeshVertex::block (a vertex inserted on the boundary: its one,
@@ -342,6 +345,7 @@ private:
   };
   Beyond beyond(int a, int b, const std::string& where) const {
     if (const auto t = crease_turn(a, b, where)) return {t->to, t->d, false};
+    if (crease_end(a, b, where)) return {a, 0, true};
     require_regular(a, where);
     require(static_cast<std::size_t>(a) >= star_.size() || !star_[static_cast<std::size_t>(a)],
             [&] { return where + "its line passes star point " + std::to_string(a) + " (no row through it)"; });
@@ -356,8 +360,7 @@ private:
   // or running through a star point): the crease curve goes on along the vertex's other boundary edge, as on the
   // crease's other side. The spoke it goes on along, if so.
   std::optional<Spoke> crease_turn(int v, int from, const std::string& where) const {
-    if (static_cast<std::size_t>(v) >= star_.size() || star_[static_cast<std::size_t>(v)] != 2 ||
-        m_.vertices[static_cast<std::size_t>(v)].crease_rule != CreaseRule::crease)
+    if (static_cast<std::size_t>(v) >= star_.size() || star_[static_cast<std::size_t>(v)] != 2 || rules_[static_cast<std::size_t>(v)] != CreaseRule::crease)
       return std::nullopt;
     const Fan f = fan(v, from, where);
     if (!f.open) return std::nullopt;
@@ -366,7 +369,19 @@ private:
     if (last.to == from) return first;
     return std::nullopt;
   }
-  // Irregular vertices of a crease boundary take local subdivision's rules, which no row insertion follows.
+  // Whether a row arriving at an irregular vertex of a crease boundary from `from` ends there, as rows end at a
+  // regular one: one from inside the mesh (the interior spokes of a boundary star point or of a corner of several
+  // faces), and any at a corner (where the crease curve ends too). Its end is the crease's natural end.
+  bool crease_end(int v, int from, const std::string& where) const {
+    if (static_cast<std::size_t>(v) >= star_.size() || star_[static_cast<std::size_t>(v)] != 2) return false;
+    const CreaseRule r = rules_[static_cast<std::size_t>(v)];
+    if (r != CreaseRule::crease && r != CreaseRule::corner) return false;
+    const Fan f = fan(v, from, where);
+    if (!f.open) return false;
+    return r == CreaseRule::corner || (f.spokes.front().to != from && f.spokes.back().to != from);
+  }
+  // Other irregular vertices of a crease boundary (darts, cone points) take local subdivision's rules, which no row
+  // insertion follows.
   void require_regular(int v, const std::string& where) const {
     require(static_cast<std::size_t>(v) >= star_.size() || star_[static_cast<std::size_t>(v)] != 2, [&] {
       const int from = m_.vertices[static_cast<std::size_t>(v)].split_from;
@@ -383,6 +398,7 @@ private:
   Next interval_beyond(int c, int a, bool end, const std::string& where) const {
     if (end) return {0, false};
     if (const auto t = crease_turn(c, a, where)) return {t->d, false};
+    if (crease_end(c, a, where)) return {0, true};
     require_regular(c, where);
     const Fan f = fan(c, a, where);
     if (static_cast<std::size_t>(c) < star_.size() && star_[static_cast<std::size_t>(c)]) {
