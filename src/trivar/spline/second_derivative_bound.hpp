@@ -1,13 +1,12 @@
 #pragma once
 // Upper bounds on the second derivatives of a Bezier patch, rational or not, over its whole parameter square
 // (derivatives with respect to the unit parameters, not the domain's). With x = Y / W (Y the homogeneous
-// coordinates, W the weight function; W = 1 when not rational)
-//   x_uu = (W^2 Y_uu - 2 W W_u Y_u + (2 W_u^2 - W W_uu) Y) / W^3,
-//   x_uv = (W^2 Y_uv - W W_v Y_u - W W_u Y_v + (2 W_u W_v - W W_uv) Y) / W^3,
-// and x_vv alike: the numerators and W^3 are polynomials, written exactly in Bernstein form (products of
-// Bernstein polynomials), so |numerator| <= its largest coefficient (in the Euclidean norm over the components)
-// and W^3 >= its smallest coefficient: both bounds hold everywhere on the patch, and they are tight to the
-// extent the Bernstein coefficients are (no sampling).
+// coordinates, W the weight function; W = 1 when not rational) and Z = W Y_u - W_u Y (x_u = Z / W^2)
+//   x_uu = (W Z_u - 2 W_u Z) / W^3,   x_uv = (W Z_v - 2 W_v Z) / W^3,
+// and x_vv alike from W Y_v - W_v Y: the numerators and W^3 are polynomials, written exactly in Bernstein form
+// (products of Bernstein polynomials), so |numerator| <= its largest coefficient (in the Euclidean norm over the
+// components) and W^3 >= its smallest coefficient: both bounds hold everywhere on the patch, and they are tight
+// to the extent the Bernstein coefficients are (no sampling).
 #include "trivar/spline/bezier_extraction.hpp"
 
 namespace trivar {
