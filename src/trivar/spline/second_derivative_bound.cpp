@@ -208,12 +208,13 @@ SecondDerivativeBound second_derivative_bound(const BezierElement<2>& z) {
   // of Y plus terms with derivatives of W whose coefficients are at most the products of their factors' largest
   // coefficients (a product's Bernstein coefficients are convex combinations of the factors' coefficient
   // products): below 1% of the first term's size (the smallest W^2 times the second derivative's largest
-  // coefficient) they are added as they are; otherwise the numerator is formed exactly.
+  // coefficient, or 1e-9 of the patch's size |Y| when that vanishes) they are added as they are; otherwise the
+  // numerator is formed exactly.
   const double W = ws.W.largest, Wu = ws.Wu.largest, Wv = ws.Wv.largest, Y = ws.Y.largest;
   double wmin = inf;
   for (std::size_t k = 0; k < count; ++k) wmin = std::min(wmin, w[k * w_stride]);
   const auto shortcut = [&](Scaled& N, const Scaled& Y2, double rest) {
-    if (!(rest <= 0.01 * wmin * wmin * Y2.largest)) return -1.0;
+    if (!(rest <= 0.01 * wmin * wmin * std::max(Y2.largest, 1e-9 * Y))) return -1.0;
     add_product(ws.WW, Y2, 1, N);
     return (largest(N, ws) + rest) / w3;
   };

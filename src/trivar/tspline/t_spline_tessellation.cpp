@@ -50,12 +50,14 @@ std::array<int, 2> element_counts(const SecondDerivativeBound& D, double tol, in
   return {D.uu != 0 || D.uv != 0 ? max_n : 1, D.vv != 0 || D.uv != 0 ? max_n : 1};  // NaN counts as not zero
 }
 
-// Triangles between the outer row o (an element side, o.size() - 1 equal steps, listed counter-clockwise round
-// the element) and the inner row in (the element's lattice points one step inside, at 1 .. n - 1 of its n steps
-// along the same direction), merged in the order of their positions along the side. Either row's steps are at
-// most h (the element's sub-cell size), and any two current points are at most h apart (the first ones: 0 and
-// 1 / n), so every triangle spans at most h along the side and one lattice step across: the bound of
-// element_counts holds. Counter-clockwise: o runs counter-clockwise and in lies inside.
+// Triangles between the outer row o (an element side: o.size() - 1 equal steps, listed counter-clockwise round
+// the element) and the inner row in (the element's lattice points one lattice step inside, at 1 .. n - 1 of its
+// n steps along the side), always advancing the row whose next point comes first along the side. Let h be the
+// larger of the two steps: at most 1 / (the element's own count along the side), as the side is sampled at
+// least that finely and the lattice too. The current points o_k, in_r start h apart at most (0 and 1 / n) and
+// stay so (the one advanced does not pass the other's next point), and a triangle spans
+// max(step, |o_k - in_r|) <= h along the side and one lattice step across: the bound of element_counts holds.
+// Counter-clockwise: o runs counter-clockwise round the element and in lies inside.
 void zip(const std::vector<int>& o, const std::vector<int>& in, int n, std::vector<std::array<int, 3>>& out) {
   const long long mo = static_cast<long long>(o.size()) - 1, last = static_cast<long long>(in.size()) - 1;
   long long k = 0, r = 0;
