@@ -147,6 +147,9 @@ TEST(TSplineTessellation, CrackFreeAtTJunctionsAndWithinTheTolerance) {
     EXPECT_LE(chordal_deviation(surf, m), tol) << tol;
   }
   EXPECT_GT(tessellate(surf, 1e-4).triangles.size(), 4 * tessellate(surf, 1e-2).triangles.size());
+  // Counts capped at 1 to 5 per element side (every mix of ring and lattice elements, 1 x n lattices raised to
+  // 2 x n inside rings): still watertight and counter-clockwise.
+  for (int cap = 1; cap <= 5; ++cap) expect_watertight_cover(surf, tessellate(surf, 1e-3, cap));
 }
 
 // Strongly rational patches: the bound covers the weights' own curvature (not only the control net's).
