@@ -213,11 +213,6 @@ SecondDerivativeBound second_derivative_bound(const BezierElement<2>& z) {
   const double W = ws.W.largest, Wu = ws.Wu.largest, Wv = ws.Wv.largest, Y = ws.Y.largest;
   double wmin = inf;
   for (std::size_t k = 0; k < count; ++k) wmin = std::min(wmin, w[k * w_stride]);
-  const auto shortcut = [&](Scaled& N, const Scaled& Y2, double rest) {
-    if (!(rest <= 0.01 * wmin * wmin * std::max(Y2.largest, 1e-9 * Y))) return -1.0;
-    add_product(ws.WW, Y2, 1, N);
-    return (largest(N, ws) + rest) / w3;
-  };
   // Z (into Zu for u, Zv for v) and its derivatives.
   bool formed[2] = {false, false};
   const auto first_derivative_numerator = [&](int k) {
@@ -236,30 +231,24 @@ SecondDerivativeBound second_derivative_bound(const BezierElement<2>& z) {
       derivative(ws.z.data(), n, dim, Z.m, Z.n, 0, 1, ws, ws.Zvv);
     }
   };
+  // |N| / W^3 for N = W Zd - 2 Wd Z (Z of direction k), or by the shortcut.
+  const auto bound = [&](Scaled& N, const Scaled& Y2, double rest, int k, const Scaled& Zd, const Scaled& Wd) {
+    if (rest <= 0.01 * wmin * wmin * std::max(Y2.largest, 1e-9 * Y)) {
+      add_product(ws.WW, Y2, 1, N);
+      return (largest(N, ws) + rest) / w3;
+    }
+    first_derivative_numerator(k);
+    add_product(ws.W, Zd, 1, N);
+    add_product(Wd, k == 0 ? ws.Zu : ws.Zv, -2, N);
+    return largest(N, ws) / w3;
+  };
   ws.Nuu.reset(3 * p - 2, 3 * q, dim);
-  double uu = shortcut(ws.Nuu, ws.Yuu, 2 * W * Wu * ws.Yu.largest + (2 * Wu * Wu + W * ws.Wuu.largest) * Y);
-  if (uu < 0) {
-    first_derivative_numerator(0);
-    add_product(ws.W, ws.Zuu, 1, ws.Nuu);
-    add_product(ws.Wu, ws.Zu, -2, ws.Nuu);
-    uu = largest(ws.Nuu, ws) / w3;
-  }
+  const double uu = bound(ws.Nuu, ws.Yuu, 2 * W * Wu * ws.Yu.largest + (2 * Wu * Wu + W * ws.Wuu.largest) * Y, 0, ws.Zuu, ws.Wu);
   ws.Nvv.reset(3 * p, 3 * q - 2, dim);
-  double vv = shortcut(ws.Nvv, ws.Yvv, 2 * W * Wv * ws.Yv.largest + (2 * Wv * Wv + W * ws.Wvv.largest) * Y);
-  if (vv < 0) {
-    first_derivative_numerator(1);
-    add_product(ws.W, ws.Zvv, 1, ws.Nvv);
-    add_product(ws.Wv, ws.Zv, -2, ws.Nvv);
-    vv = largest(ws.Nvv, ws) / w3;
-  }
+  const double vv = bound(ws.Nvv, ws.Yvv, 2 * W * Wv * ws.Yv.largest + (2 * Wv * Wv + W * ws.Wvv.largest) * Y, 1, ws.Zvv, ws.Wv);
   ws.Nuv.reset(3 * p - 1, 3 * q - 1, dim);
-  double uv = shortcut(ws.Nuv, ws.Yuv, W * Wv * ws.Yu.largest + W * Wu * ws.Yv.largest + (2 * Wu * Wv + W * ws.Wuv.largest) * Y);
-  if (uv < 0) {
-    first_derivative_numerator(0);
-    add_product(ws.W, ws.Zuv, 1, ws.Nuv);
-    add_product(ws.Wv, ws.Zu, -2, ws.Nuv);
-    uv = largest(ws.Nuv, ws) / w3;
-  }
+  const double uv = bound(ws.Nuv, ws.Yuv, W * Wv * ws.Yu.largest + W * Wu * ws.Yv.largest + (2 * Wu * Wv + W * ws.Wuv.largest) * Y, 0,
+                          ws.Zuv, ws.Wv);
   return {uu, uv, vv};
 }
 
