@@ -156,7 +156,7 @@ TEST(TSplineTessellation, CrackFreeAtTJunctionsAndWithinTheTolerance) {
 TEST(TSplineTessellation, RationalPatchesStayWithinTheTolerance) {
   const TSplineSurface patch(io::read_tsm(std::string(TRIVAR_TEST_DATA) + "/tsm/bezier_patch.tsm").spline);  // one weight 2
   TSpline wavy = wavy_t_mesh();
-  for (std::size_t i = 0; i < wavy.pointset.points.size(); ++i) wavy.pointset.points[i].w = 0.4 + 1.6 * ((i * 7) % 5) / 4.0;
+  for (std::size_t i = 0; i < wavy.pointset.points.size(); ++i) wavy.pointset.points[i].w = 0.4 + 0.4 * static_cast<double>((i * 7) % 5);
   const TSplineSurface heavy(wavy);
   for (const TSplineSurface* s : {&patch, &heavy})
     for (double tol : {3e-2, 3e-3}) {
