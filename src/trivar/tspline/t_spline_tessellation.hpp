@@ -20,7 +20,8 @@ struct TSplineTriangulation {
   std::vector<std::array<int, 3>> triangles;   // counter-clockwise in (s, t)
 };
 
-// tolerance > 0 (model units); max_per_element bounds the subdivision of one element side.
+// tolerance > 0 (model units); max_per_element bounds the subdivision of one element side (an element that would
+// need more is cut max_per_element times, and the tolerance is not met there).
 TSplineTriangulation tessellate(const TSplineSurface& surface, double tolerance, int max_per_element = 64,
                                 int threads = 0);
 
