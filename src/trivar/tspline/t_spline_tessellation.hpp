@@ -1,10 +1,12 @@
 #pragma once
 // A crack-free triangulation of a T-spline surface to a chordal tolerance. The Bezier elements are the cells
-// of one grid (all knot values), so neighbouring elements share whole sides: every grid column and row gets one
-// subdivision count, and the sample points form one lattice shared by all elements (no T-vertices, so no
-// cracks at T-junctions). Counts come from the Bezier nets: on a patch with second differences D_uu, D_uv, D_vv
-// (degree-scaled, in element units) the bilinear interpolant of n_u x n_v sub-cells deviates by at most
-// (D_uu / n_u^2 + 2 D_uv / (n_u n_v) + D_vv / n_v^2) / 8 (the rational patch is estimated by its Cartesian net).
+// of one grid (all knot values), so neighbouring elements share whole sides. Each element gets its own
+// subdivision n_u x n_v from its Bezier net: a rigorous bound D_uu, D_uv, D_vv on the second derivatives of
+// its rational patch (element units) and the linear interpolation bound
+// (D_uu / n_u^2 + 2 D_uv / (n_u n_v) + D_vv / n_v^2) / 8 <= tolerance, with the fewest sub-cells. Each side is
+// sampled once, for both elements on it, as finely as the finer of them needs; an element whose sides are finer
+// than its own lattice keeps the lattice one step inside and zips the ring between to the sides. No T-vertices,
+// so no cracks, and every triangle spans at most one sub-cell of its element in each direction.
 #include <array>
 #include <vector>
 
@@ -18,7 +20,8 @@ struct TSplineTriangulation {
   std::vector<std::array<int, 3>> triangles;   // counter-clockwise in (s, t)
 };
 
-// tolerance > 0 (model units); max_per_element bounds the subdivision of one element side.
+// tolerance > 0 (model units); max_per_element bounds the subdivision of one element side (an element that would
+// need more is cut max_per_element times, and the tolerance is not met there).
 TSplineTriangulation tessellate(const TSplineSurface& surface, double tolerance, int max_per_element = 64,
                                 int threads = 0);
 
