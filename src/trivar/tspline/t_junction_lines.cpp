@@ -86,8 +86,9 @@ public:
       blocks_ = blocks_ || (!natural_ && !b.empty());
       blk_.push_back(std::move(b));
     }
+    for (std::size_t v = 0; v < m.vertices.size(); ++v) cut_ = cut_ || origin_[v] != static_cast<int>(v);
     for (const TMeshLink& k : m.links)
-      if (k.vertex >= 0 && k.frame >= 0) frame_[key(k.vertex, m.links[static_cast<std::size_t>(k.opp)].vertex)] = k.frame;
+      if (blocks_ && k.vertex >= 0 && k.frame >= 0) frame_[key(k.vertex, m.links[static_cast<std::size_t>(k.opp)].vertex)] = k.frame;
     for (int f = 0; f < static_cast<int>(faces.size()); ++f) index(f);
   }
 
@@ -192,11 +193,7 @@ public:
 
   TMesh mesh() const;
   // Whether the mesh was cut along sharp creases.
-  bool cut() const {
-    for (std::size_t v = 0; v < m_.vertices.size(); ++v)
-      if (origin_[v] != static_cast<int>(v)) return true;
-    return false;
-  }
+  bool cut() const { return cut_; }
   // The completed mesh (mesh()) with the two sides of its sharp creases joined again, their vertices one (by
   // origin_): the same faces, for a tessellation that welds across the creases.
   TMesh welded(const TMesh& completed) const {
@@ -217,14 +214,15 @@ private:
   bool natural_;            // rows end in the natural end of a subdivision crease, not in Bezier end conditions
   bool blocks_ = false;     // Bezier end conditions with their block points given (else they lie on the vertices)
   // Per vertex, its end-condition block points as TMeshVertex::block (a vertex inserted on the boundary: its one,
-  // outwards), moved by the insertions along the boundary rows; the frames of the links as given.
+  // outwards), moved by the insertions along the boundary rows; the frames of the links as given (with blocks).
   std::vector<std::vector<H>> blk_;
   std::unordered_map<long long, int> frame_;
   std::unordered_map<long long, Loc> at_map_;
   // Per vertex, the vertex of the mesh before the cut along sharp creases (split_from; an inserted vertex's copy on
   // the other side: the first of the two); the directed edges by those ends.
   std::vector<int> origin_;
-  std::unordered_map<long long, Loc> by_origin_;
+  bool cut_ = false;
+  std::unordered_map<long long, Loc> by_origin_;  // kept only in a mesh cut open
 
   // The links of the faces (with `weld`, of their vertices' origins), and of the boundary.
   void link_faces(TMesh& r, bool weld) const {
@@ -254,7 +252,7 @@ private:
       for (int i = 0; i < static_cast<int>(s.v.size()); ++i) {
         const int a = s.v[static_cast<std::size_t>(i)], b = vertex_after(f, k, i);
         at_map_[key(a, b)] = {f, k, i};
-        by_origin_[key(origin_[static_cast<std::size_t>(a)], origin_[static_cast<std::size_t>(b)])] = {f, k, i};
+        if (cut_) by_origin_[key(origin_[static_cast<std::size_t>(a)], origin_[static_cast<std::size_t>(b)])] = {f, k, i};
       }
     }
   }
