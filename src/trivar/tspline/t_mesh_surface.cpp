@@ -322,11 +322,16 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int th
                   ? nullptr
                   : std::make_unique<TMesh>(mesh)),
       stars_(star_points(mesh_)) {
-  // The mesh the crease rules read (cut open, with the points as given, or after the lines or global steps).
-  std::unique_ptr<TMesh> given = steps_ > 0 ? std::make_unique<TMesh>(mesh_)
-                                 : lines_   ? std::make_unique<TMesh>(std::move(lines_->mesh))
-                                 : cut      ? std::move(cut)
-                                            : nullptr;
+  // A crease boundary's irregular vertices (crease vertices of other than two faces, corners of other than one):
+  // their faces are evaluated by local subdivision of the mesh cut open along its creases (the vertices, faces and
+  // links of mesh_, the points as given: after the lines or the global steps, their points), as are the faces near
+  // star points that are too close to a crease boundary for Stam's patches.
+  std::unique_ptr<TMesh> split;
+  if (mesh.end_conditions == EndConditions::subd_creases)
+    split = steps_ > 0 ? std::make_unique<TMesh>(mesh_)
+            : lines_   ? std::make_unique<TMesh>(std::move(lines_->mesh))
+            : cut      ? std::move(cut)
+                       : std::make_unique<TMesh>(mesh);
   if (lines_) {
     lines_->mesh = TMesh{};
     pieces_of_.resize(mesh.faces.size());
@@ -337,17 +342,9 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int th
   const int nf = static_cast<int>(m.faces.size()), nv = static_cast<int>(m.vertices.size());
   const auto L = [&](int l) -> const TMeshLink& { return m.links[static_cast<std::size_t>(l)]; };
   faces_.resize(static_cast<std::size_t>(nf));
-  // A crease boundary's irregular vertices (crease vertices of other than two faces, corners of other than one):
-  // their faces are evaluated by local subdivision of the mesh cut open along its creases (the vertices, faces and
-  // links of mesh_, the points as given), as are the faces near star points that are too close to a crease
-  // boundary for Stam's patches.
-  std::unique_ptr<TMesh> split;
   std::vector<int> irregular;
   std::vector<CreaseRule> rules;  // of the split mesh's boundary vertices, once needed
-  if (mesh.end_conditions == EndConditions::subd_creases) {
-    split = given ? std::move(given) : std::make_unique<TMesh>(mesh);
-    irregular = irregular_crease_vertices(*split);
-  }
+  if (split) irregular = irregular_crease_vertices(*split);
   std::vector<char> is_irregular(static_cast<std::size_t>(nv), 0);
   for (int v : irregular) is_irregular[static_cast<std::size_t>(v)] = 1;
   std::vector<std::vector<int>> vertex_faces(static_cast<std::size_t>(nv));
