@@ -412,11 +412,6 @@ private:
     require(s.face >= 0, [&] { return where + "vertex " + std::to_string(c) + " has no straight spoke"; });
     return {faces[static_cast<std::size_t>(s.face)].side[static_cast<std::size_t>((s.side + 1) % 4)].length(), false};
   }
-  // The point a row ending at boundary vertex v takes for v's node in Boehm's rule. Bezier end conditions: v's own
-  // (its end-condition node lies on it). A subdivision crease: the row is the clamped cubic of crease_ends, whose
-  // node at v is Q1 = a P0 + b P1 (natural_end_weights, P1 the next vertex inward at d1, d2 the interval after it),
-  // while v keeps P0, its end-condition node Q0; the clamped insertion keeps the zero second derivative across the
-  // boundary, so the refined row is again that of its natural end.
   // The direction of edge v -> w in v's frame (v a vertex as given; w may be inserted on an edge as given).
   int frame(int v, int w) const {
     long long k = key(v, w);
@@ -443,6 +438,11 @@ private:
     if (!blocks_) return p[static_cast<std::size_t>(v)];
     return block(v, (frame(v, w) + 2) % 4, 0, where);
   }
+  // The point a row ending at boundary vertex v takes for v's node (Q1) in Boehm's rule. Bezier end conditions: v's
+  // own (the end node Q0 beyond it is end_block's). A subdivision crease: the row is the clamped cubic of
+  // crease_ends, whose node at v is Q1 = a P0 + b P1 (natural_end_weights, P1 the next vertex inward at d1, d2 the
+  // interval after it), while v keeps P0, its end node Q0; the clamped insertion keeps the zero second derivative
+  // across the boundary, so the refined row is again that of its natural end.
   H end_node(int v, int inward, double d1, double d2) const {
     if (!natural_) return p[static_cast<std::size_t>(v)];
     const auto [wa, wb] = natural_end_weights(d1, d2);
