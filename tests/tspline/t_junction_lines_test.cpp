@@ -594,5 +594,19 @@ TEST(TJunctionLines, ALineThroughAStarPointsEdgeIsRefused) {
   test::expect_surface_refusal(mesh_of(split, "corner.tsm"), "the T-junction at vertex 56 near a star point (completed into a knot line): its line passes star point 0 (no row through it)");
 }
 
+// A grip map that gives the rim vertices where a line ends no end-condition nodes (the others keep theirs): the
+// insertion along the rim has no row of block points there, and the mesh is refused in one line naming the
+// T-junction and the vertex.
+TEST(TJunctionLines, AMissingEndConditionNodeIsRefused) {
+  const test::QuadMesh box = test::box_mesh({11, 11, 11}, true);
+  TMesh m = mesh_of(test::split_face(box, test::top_face(box.points, box, 11, 4, 1), {0.02, -0.03, 0.01, 0.04, 0.07}), "split.tsm");
+  for (std::size_t v = 0; v < box.points.size(); ++v)  // the rim round the foot of the line at x = -1 + 9 / 11
+    if (box.points[v][2] < -1 + 1e-9 && std::abs(box.points[v][0] + 1 - 9.0 / 11) < 0.3) {
+      m.vertices[v].block.clear();
+      m.vertices[v].block_dims = {};
+    }
+  test::expect_surface_refusal(m, "has no end-condition node for a row it crosses");
+}
+
 }  // namespace
 }  // namespace trivar
