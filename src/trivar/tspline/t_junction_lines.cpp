@@ -4,6 +4,7 @@
 #include <climits>
 #include <cmath>
 #include <functional>
+#include <numbers>
 #include <string>
 #include <unordered_map>
 
@@ -334,25 +335,49 @@ private:
     }
     return out;
   }
-  // The node beyond a on the row from b: the vertex on, its interval, and whether the row ends at a (a boundary
-  // vertex: its end-condition node lies on it, at a's knot).
+  // The node beyond a on the row from b: the vertex on (-1 past a star point: `point`), its interval, and whether
+  // the row ends at a (a boundary vertex: its end-condition node lies on it, at a's knot).
   struct Beyond {
     int vertex;
     double d;
     bool end;
+    H point{};        // past a star point: the node across_star takes, and the interval after it
+    double past = 0;
   };
   Beyond beyond(int a, int b, const std::string& where) const {
     if (const auto t = crease_turn(a, b, where)) return {t->to, t->d, false};
     if (crease_end(a, b, where)) return {a, 0, true};
     require_regular(a, where);
-    require(static_cast<std::size_t>(a) >= star_.size() || !star_[static_cast<std::size_t>(a)],
-            [&] { return where + "its line passes star point " + std::to_string(a) + " (no row through it)"; });
+    if (static_cast<std::size_t>(a) < star_.size() && star_[static_cast<std::size_t>(a)]) return across_star(a, b, where);
     const Fan f = fan(a, b, where);
     require(!f.open || f.turn <= 2, [&] { return where + "a row it crosses passes the concave corner " + std::to_string(a); });
     const Straight s = straight(f, b);
     if (s.spoke >= 0) return {f.spokes[static_cast<std::size_t>(s.spoke)].to, f.spokes[static_cast<std::size_t>(s.spoke)].d, false};
     if (f.open) return {a, 0, true};
     throw Error(where + "the row through vertex " + std::to_string(b) + " ends at vertex " + std::to_string(a) + " (the stem of a T-junction)");
+  }
+  // The node beyond star point a on the row from b (the header says why): the backward spokes' nodes, and the
+  // intervals after them, in nurcc_across's weights. Only a's own point in Boehm's rule depends on it.
+  Beyond across_star(int a, int b, const std::string& where) const {
+    const Fan f = fan(a, b, where);
+    require(!f.open, [&] { return where + "a row it crosses runs through the boundary star point " + std::to_string(a); });
+    const std::size_t n = f.spokes.size();
+    Beyond r{-1, 0, false};
+    double sum = 0;
+    for (std::size_t m = 0; m < n; ++m) {
+      const double c = std::max(0.0, -std::cos(2 * std::numbers::pi * static_cast<double>(m) / static_cast<double>(n)));
+      if (c < 1e-12) continue;
+      const Spoke& s = f.spokes[m];
+      if (s.to < static_cast<int>(m_.vertices.size())) require_point(s.to, where);
+      for (std::size_t i = 0; i < 4; ++i) r.point[i] += c * p[static_cast<std::size_t>(s.to)][i];
+      r.d += c * s.d;
+      r.past += c * interval_beyond(s.to, a, false, where).d;
+      sum += c;
+    }
+    for (double& x : r.point) x /= sum;
+    r.d /= sum;
+    r.past /= sum;
+    return r;
   }
   // A row along a crease boundary through an irregular vertex whose rule is the crease rule (a crease turning there,
   // or running through a star point): the crease curve goes on along the vertex's other boundary edge, as on the
@@ -457,19 +482,22 @@ private:
   // Inserts a vertex on edge a -> b at knot distance t from a; Boehm's rule on the row moves a and b. Returns it.
   // `twin`: the vertex it is a copy of on the other side of a sharp crease (-1: none).
   int split_edge(int a, int b, double t, const std::string& where, int twin = -1) {
-    const auto [c, dca, c_end] = beyond(a, b, where);
-    const auto [e, dbe, e_end] = beyond(b, a, where);
+    const Beyond bc = beyond(a, b, where), be = beyond(b, a, where);
+    const int c = bc.vertex, e = be.vertex;
+    const double dca = bc.d, dbe = be.d;
+    const bool c_end = bc.end, e_end = be.end;
     require((c_end || dca > 0) && (e_end || dbe > 0), [&] {
       return where + "the row through vertices " + std::to_string(a) + " and " + std::to_string(b) + " has a zero knot interval";
     });
-    require(c != b && e != a && (c != e || c_end || e_end), [&] {
+    require(c != b && e != a && (c != e || c < 0 || c_end || e_end), [&] {
       return where + "the row through vertices " + std::to_string(a) + " and " + std::to_string(b) + " closes within 3 edges";
     });
     for (int v : {c, a, b, e})
-      if (v < static_cast<int>(m_.vertices.size())) require_point(v, where);
+      if (v >= 0 && v < static_cast<int>(m_.vertices.size())) require_point(v, where);
     const Loc ab = at_(key(a, b)), ba = at_(key(b, a));
     const double d = faces[static_cast<std::size_t>(ab.face)].side[static_cast<std::size_t>(ab.side)].d[static_cast<std::size_t>(ab.index)];
-    const Next past_c = interval_beyond(c, a, c_end, where), past_e = interval_beyond(e, b, e_end, where);
+    const Next past_c = c < 0 ? Next{bc.past, false} : interval_beyond(c, a, c_end, where);
+    const Next past_e = e < 0 ? Next{be.past, false} : interval_beyond(e, b, e_end, where);
     const double um1 = -dca, um2 = um1 - past_c.d, u1 = d, u2 = d + dbe, u3 = u2 + past_e.d;
     const double a1 = (t - um2) / (u1 - um2), a2 = (t - um1) / (u2 - um1), a3 = t / u3;
     const auto mix = [](const H& x, const H& y, double s) {  // (1 - s) x + s y
@@ -481,12 +509,14 @@ private:
     // boundaries has d2 = d1, as in crease_ends) or at c or e takes the end node there, and the end vertex stays.
     // Bezier end conditions: a row ending at a or b has its block point there as its end node Q0, the vertex's
     // point (Q1) moves.
-    const H pc = c_end ? (natural_ ? p[static_cast<std::size_t>(a)] : end_block(a, b, where))
-                       : past_c.ends ? end_node(c, a, dca, d) : p[static_cast<std::size_t>(c)];
+    const H pc = c < 0  ? bc.point
+                 : c_end ? (natural_ ? p[static_cast<std::size_t>(a)] : end_block(a, b, where))
+                         : past_c.ends ? end_node(c, a, dca, d) : p[static_cast<std::size_t>(c)];
     const H pa = c_end && natural_ ? end_node(a, b, d, e_end ? d : dbe) : p[static_cast<std::size_t>(a)];
     const H pb = e_end && natural_ ? end_node(b, a, d, c_end ? d : dca) : p[static_cast<std::size_t>(b)];
-    const H pe = e_end ? (natural_ ? p[static_cast<std::size_t>(b)] : end_block(b, a, where))
-                       : past_e.ends ? end_node(e, b, dbe, d) : p[static_cast<std::size_t>(e)];
+    const H pe = e < 0  ? be.point
+                 : e_end ? (natural_ ? p[static_cast<std::size_t>(b)] : end_block(b, a, where))
+                         : past_e.ends ? end_node(e, b, dbe, d) : p[static_cast<std::size_t>(e)];
     if (!c_end || !natural_) p[static_cast<std::size_t>(a)] = mix(pc, pa, a1);
     if (!e_end || !natural_) p[static_cast<std::size_t>(b)] = mix(pb, pe, a3);
     const int x = static_cast<int>(p.size());

@@ -14,6 +14,11 @@
 // defines the surface as that of the completed mesh, whose faces the Catmull-Clark rules then take. The completed
 // mesh is no longer the T-mesh as given: its faces are pieces of the given ones (FacePiece).
 //
+// No row goes straight through a star point. A line that crosses one of its spokes takes, as the row's node beyond
+// the star point, the backward spokes' nodes weighted by max(0, -cos) of their angle to the crossed spoke (and the
+// intervals after them so), the weights nurcc_across gives the interval there; at four faces that would be the
+// opposite spoke's row. Only the star point's own point depends on it.
+//
 // At a Bezier boundary a row ends in its end-condition node, at the boundary vertex's knot (clamped): the insertion
 // takes it as the row's end node, and a line that reaches the boundary ends there. A row along the boundary has the row
 // of its end-condition nodes outside (the boundary curve's control points) beside it, which takes the same insertion
@@ -27,7 +32,7 @@
 // both sides keep one crease curve and one set of vertices on it. tests/tspline/t_junction_lines_test.cpp checks all of
 // these against the cage without the T-junctions.
 //
-// Scope: degree 3, no deleted faces; the rows the lines cross must pass no star point next to a crossed edge, no
+// Scope: degree 3, no deleted faces; the rows the lines cross must pass no star point of a Bezier boundary, no
 // irregular vertex of a crease boundary (a dart, a crease corner of other than one face; where a crease turns or runs
 // through a star point, only the row along the crease), no concave corner, carry one control point per vertex (and
 // the end-condition nodes the grip map gives their boundary vertices) and not end at a T-junction's stem within two
