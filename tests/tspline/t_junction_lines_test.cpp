@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <map>
 #include <numbers>
 #include <optional>
@@ -584,6 +585,43 @@ TEST(TJunctionLines, ClosedSubdivisionCreaseMesh) {
         for (int k = 0; k < 9; ++k) worst = std::max(worst, std::abs(x[k] - y[k]));
       }
   EXPECT_EQ(worst, 0.0);
+}
+
+// A deleted face slot (an `f` record without a link, as Rhino's exports keep them after edits) is no face: Fusion's
+// box with the split face and a deleted slot after its faces completes the same lines and gives the same surface,
+// and the deleted face is refused by name.
+TEST(TJunctionLines, DeletedFaceSlotsAreNoFaces) {
+  std::ifstream in(std::string(TRIVAR_TEST_DATA) + "/tsm/fusion/a3_box3_tjunc_ring2_readback.tsm");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string with_slot = text.str();
+  const std::size_t last_face = with_slot.rfind("\nf ");
+  ASSERT_NE(last_face, std::string::npos);
+  with_slot.insert(with_slot.find('\n', last_face + 1) + 1, "f\n");
+  const TMesh given = io::parse_tsm(text.str(), "box.tsm").mesh, slotted = io::parse_tsm(with_slot, "slotted.tsm").mesh;
+  ASSERT_EQ(slotted.faces.size(), given.faces.size() + 1);
+  ASSERT_TRUE(slotted.faces.back().empty());
+  const TMeshSurface a(given, 1), b(slotted, 1);
+  ASSERT_NE(b.completed_lines(), nullptr);
+  EXPECT_EQ(b.completed_lines()->lines, 2);
+  EXPECT_EQ(b.num_faces(), a.num_faces());
+  double worst = 0;
+  for (int f = 0; f < static_cast<int>(given.faces.size()); ++f)
+    for (double u : {0.0, 0.3, 1.0})
+      for (double v : {0.0, 0.6, 1.0}) {
+        double x[9], y[9];
+        a.eval_source(f, u, v, x);
+        b.eval_source(f, u, v, y);
+        for (int k = 0; k < 9; ++k) worst = std::max(worst, std::abs(x[k] - y[k]));
+      }
+  EXPECT_EQ(worst, 0.0);
+  double x[9];
+  try {
+    b.eval_source(static_cast<int>(given.faces.size()), 0.5, 0.5, x);
+    ADD_FAILURE() << "a deleted face evaluated";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "T-mesh: face 57 is deleted");
+  }
 }
 
 // A line half a face from a star point crosses the star point's spoke, and no row goes straight on past a star point

@@ -55,9 +55,10 @@ public:
     rules_.resize(m.vertices.size(), CreaseRule::none);
     const auto L = [&](int l) -> const TMeshLink& { return m.links[static_cast<std::size_t>(l)]; };
     for (int f = 0; f < static_cast<int>(m.faces.size()); ++f) {
+      const auto& loop = m.faces[static_cast<std::size_t>(f)];
+      if (loop.empty()) continue;  // a deleted face: the completed mesh has none
       Face face;
       face.piece.source = f;
-      const auto& loop = m.faces[static_cast<std::size_t>(f)];
       const std::size_t start = static_cast<std::size_t>(std::find(loop.begin(), loop.end(), m.first_corner(f)) - loop.begin());
       int k = -1;
       for (std::size_t i = 0; i < loop.size(); ++i) {
@@ -698,8 +699,6 @@ TMesh Lines::mesh() const {
 std::optional<CompletedLines> complete_t_junction_lines(const TMesh& m, int rings) {
   const std::vector<int> stars = star_points(m), irregular = irregular_crease_vertices(m);
   if (stars.empty() && irregular.empty()) return std::nullopt;
-  for (const auto& loop : m.faces)
-    if (loop.empty()) return std::nullopt;
   Lines lines(m, stars, irregular);
   std::array<int, 3> t = lines.t_junction_near_stars(rings);
   if (t[0] < 0) return std::nullopt;

@@ -32,7 +32,7 @@
 // both sides keep one crease curve and one set of vertices on it. tests/tspline/t_junction_lines_test.cpp checks all of
 // these against the cage without the T-junctions.
 //
-// Scope: degree 3, no deleted faces; the rows the lines cross must pass no star point of a Bezier boundary, no
+// Scope: degree 3; the rows the lines cross must pass no star point of a Bezier boundary, no
 // irregular vertex of a crease boundary (a dart, a crease corner of other than one face; where a crease turns or runs
 // through a star point, only the row along the crease), no concave corner, carry one control point per vertex (and
 // the end-condition nodes the grip map gives their boundary vertices) and not end at a T-junction's stem within two
@@ -62,7 +62,7 @@ struct CompletedLines {
 
 // The mesh with the lines of its T-junctions within `rings` face rings of the faces of a star point or of an irregular
 // crease-boundary vertex completed; `m` is cut open along its sharp creases (split_creases) if it has any. Empty when
-// it has none, or deleted faces (no rule is attempted: the evaluation gives its own reason).
+// it has none. Deleted faces (empty loops) have no piece.
 std::optional<CompletedLines> complete_t_junction_lines(const TMesh& m, int rings);
 
 }  // namespace trivar

@@ -547,7 +547,7 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int th
                 (d == 1 ? " face ring" : " face rings") + " of star point " + std::to_string(star) +
                 "'s faces; no evaluation rule covers T-junctions within " + std::to_string(reach) +
                 " rings of a star point (the T-spline's blending functions there reach the star point, the Catmull-Clark rules take "
-                "quadrilaterals without T-junctions), and their lines are completed into knot lines only in meshes without deleted faces");
+                "quadrilaterals without T-junctions)");
   }
   // Local subdivision of the face's two face rings (crease_face): with the crease rules of the mesh cut open along
   // its creases, or in a mesh without creases with the smooth rule at every vertex (its nets are kept inside the
@@ -844,6 +844,7 @@ TMeshSurface::FacePoint TMeshSurface::refined_point(int source_face, double u, d
   if (lines_) {
     // The piece holding (u, v); on a side between two, the one above it.
     const auto& pieces = pieces_of_[static_cast<std::size_t>(source_face)];
+    require(!pieces.empty(), [&] { return "T-mesh: face " + std::to_string(source_face) + " is deleted"; });
     const auto holds = [&](const FacePiece& q, bool strict) {
       for (std::size_t a = 0; a < 2; ++a) {
         const double x = a == 0 ? u : v, hi = q.lo[a] + q.size[a];
