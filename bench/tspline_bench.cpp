@@ -12,6 +12,7 @@
 // subdivision-crease boundary against Bezier end conditions (crease_build).
 #include <benchmark/benchmark.h>
 
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -281,7 +282,8 @@ BENCHMARK(stepped_box_build)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMilliseco
 // here the cube of 3 x 3 faces per side with a strip of interval 2 at x < -1/3): T-junctions next to the star points'
 // faces, whose two lines are completed round the box (tspline/t_junction_lines) before two global steps. 1: the cube
 // of 11 x 11 faces per side with top face (4, 1) split (tests/tspline/t_junction_lines_test.cpp): two lines round the
-// box across 726 faces (85 vertices inserted), no steps.
+// box across 726 faces (85 vertices inserted), no steps. 2: the same cube with top face (5, 0) split: one line runs
+// half a face from the box's edges and crosses four star points' spokes (across_star).
 void t_junction_lines_build(benchmark::State& state) {
   const int n = state.range(0) == 0 ? 3 : 11;
   trivar::test::QuadMesh q = trivar::test::cube_mesh(n);
@@ -291,7 +293,8 @@ void t_junction_lines_build(benchmark::State& state) {
       const auto& b = q.points[static_cast<std::size_t>(f[static_cast<std::size_t>((k + 1) % 4)])];
       if (n == 3 && std::max(a[0], b[0]) < -0.3 && a[0] != b[0]) q.intervals[{f[static_cast<std::size_t>(k)], f[static_cast<std::size_t>((k + 1) % 4)]}] = 2;
     }
-  q = trivar::test::split_face(q, trivar::test::top_face(q.points, q, n, n == 3 ? 1 : 4, 1), {0, 0, 0, 0, 0});
+  const std::array<int, 2> split = state.range(0) == 0 ? std::array<int, 2>{1, 1} : state.range(0) == 1 ? std::array<int, 2>{4, 1} : std::array<int, 2>{5, 0};
+  q = trivar::test::split_face(q, trivar::test::top_face(q.points, q, n, split[0], split[1]), {0, 0, 0, 0, 0});
   const trivar::TMesh mesh = trivar::io::parse_tsm(trivar::test::tsm_text(q), "box.tsm").mesh;
   for (auto _ : state) {
     const trivar::TMeshSurface s(mesh, 1);
@@ -299,7 +302,7 @@ void t_junction_lines_build(benchmark::State& state) {
   }
   state.counters["faces"] = trivar::TMeshSurface(mesh, 1).num_faces();
 }
-BENCHMARK(t_junction_lines_build)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(t_junction_lines_build)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
 // 16 x 16 points per face of the box as given (on the 16 refined faces of a stepped face, 4 x 4 each).
 void stepped_box_eval(benchmark::State& state) {
