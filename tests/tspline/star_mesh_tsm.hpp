@@ -238,6 +238,82 @@ inline std::size_t top_face(const std::vector<std::array<double, 3>>& unbent, co
 // The surface of the cube [-1, 1]^3 in n x n faces per side.
 inline QuadMesh cube_mesh(int n) { return box_mesh({n, n, n}); }
 
+// Splits 2 x 2 the face of the top side (z = 1) of box_mesh({n, n, n}) whose corners' mean is the centre of cell
+// (i, j) of the side's grid refined `level` times (a face made by earlier splits, so splits nest), with new points
+// at its sides' midpoints and centre (a side that already has its midpoint keeps it; a T-junction elsewhere on a
+// side is not taken). Every face is kept as a loop in q.t_faces (quads are moved there first); `unbent` holds the
+// points as made, for finding faces, and grows with q.points.
+inline void split_top_face(QuadMesh& q, std::vector<std::array<double, 3>>& unbent, int n, int i, int j, int level) {
+  for (const auto& f : q.quads) q.t_faces.push_back({{f[0], f[1], f[2], f[3]}, {0, 0, 0, 0}});
+  q.quads.clear();
+  const auto interval = [&](int a, int b) {
+    const auto it = q.intervals.find({a, b});
+    return it != q.intervals.end() ? it->second : 1.0;
+  };
+  const auto set_interval = [&](int a, int b, double d) { q.intervals[{a, b}] = q.intervals[{b, a}] = d; };
+  const auto add_point = [&](const std::array<double, 3>& p, const std::array<double, 3>& u) {
+    q.points.push_back(p);
+    unbent.push_back(u);
+    return static_cast<int>(q.points.size()) - 1;
+  };
+  const double cell = std::ldexp(1.0, -level);
+  std::size_t at = q.t_faces.size();
+  for (std::size_t f = 0; f < q.t_faces.size() && at == q.t_faces.size(); ++f) {
+    std::array<double, 3> c{};
+    for (std::size_t k = 0; k < q.t_faces[f].loop.size(); ++k)
+      if (!q.t_faces[f].straight[k])
+        for (std::size_t a = 0; a < 3; ++a) c[a] += unbent[static_cast<std::size_t>(q.t_faces[f].loop[k])][a] / 4;
+    if (std::abs(c[2] - 1) < 1e-12 && std::abs((c[0] + 1) * n / 2 - (i + 0.5) * cell) < 1e-9 && std::abs((c[1] + 1) * n / 2 - (j + 0.5) * cell) < 1e-9)
+      at = f;
+  }
+  if (at == q.t_faces.size()) throw std::runtime_error("no top face at that cell");
+  const QuadMesh::TFace face = q.t_faces[at];
+  q.t_faces.erase(q.t_faces.begin() + static_cast<std::ptrdiff_t>(at));
+  std::vector<std::size_t> corner;
+  for (std::size_t k = 0; k < face.loop.size(); ++k)
+    if (!face.straight[k]) corner.push_back(k);
+  if (corner.size() != 4 || corner[0] != 0) throw std::runtime_error("a face loop that does not start at one of 4 corners");
+  std::array<int, 4> c{}, mid{};
+  std::array<double, 4> length{};
+  for (std::size_t k = 0; k < 4; ++k) c[k] = face.loop[corner[k]];
+  for (std::size_t k = 0; k < 4; ++k) {
+    const int a = c[k], b = c[(k + 1) % 4];
+    const std::size_t first = corner[k] + 1, last = k == 3 ? face.loop.size() : corner[k + 1];
+    if (last - first > 1) throw std::runtime_error("a side with several T-junctions");
+    if (last - first == 1) {
+      mid[k] = face.loop[first];
+      length[k] = interval(a, mid[k]) + interval(mid[k], b);
+      if (std::abs(interval(a, mid[k]) - interval(mid[k], b)) > 1e-12 * length[k]) throw std::runtime_error("a T-junction off a side's middle");
+      continue;
+    }
+    length[k] = interval(a, b);
+    std::array<double, 3> p{}, u{};
+    for (std::size_t x = 0; x < 3; ++x) {
+      p[x] = (q.points[static_cast<std::size_t>(a)][x] + q.points[static_cast<std::size_t>(b)][x]) / 2;
+      u[x] = (unbent[static_cast<std::size_t>(a)][x] + unbent[static_cast<std::size_t>(b)][x]) / 2;
+    }
+    mid[k] = add_point(p, u);
+    set_interval(a, mid[k], length[k] / 2);
+    set_interval(mid[k], b, length[k] / 2);
+    for (auto& g : q.t_faces)  // the face across gets the midpoint as a T-junction
+      for (std::size_t x = 0; x < g.loop.size(); ++x)
+        if (g.loop[x] == b && g.loop[(x + 1) % g.loop.size()] == a) {
+          g.loop.insert(g.loop.begin() + static_cast<std::ptrdiff_t>(x) + 1, mid[k]);
+          g.straight.insert(g.straight.begin() + static_cast<std::ptrdiff_t>(x) + 1, 1);
+          break;
+        }
+  }
+  std::array<double, 3> p{}, u{};
+  for (int v : c)
+    for (std::size_t x = 0; x < 3; ++x) {
+      p[x] += q.points[static_cast<std::size_t>(v)][x] / 4;
+      u[x] += unbent[static_cast<std::size_t>(v)][x] / 4;
+    }
+  const int o = add_point(p, u);
+  for (std::size_t k = 0; k < 4; ++k) set_interval(mid[k], o, length[(k + 1) % 4] / 2);
+  for (std::size_t k = 0; k < 4; ++k) q.t_faces.push_back({{c[k], mid[k], o, mid[(k + 3) % 4]}, {0, 0, 0, 0}});
+}
+
 // cube_mesh(4) with the edge between two adjacent quads inside one side turned: its ends drop to valence 3, the
 // ends of the new diagonal rise to 5, each valence-3 point joined by an edge to a valence-5 one. The valence-3
 // points move off the hexagon's centre (else the quads would have straight angles).

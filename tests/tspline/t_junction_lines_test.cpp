@@ -694,6 +694,47 @@ TEST(TJunctionLines, ALineNextToAStarPointCrossesItsSpoke) {
               corner_split.completed_lines()->lines, cc.gap, cc.normal_angle);
 }
 
+// Splits that nest: the box of 11 x 11 faces per side, bent, with top face (2, 1) split 2 x 2, then the quarter of it
+// at (4, 2) of the halved grid, then the quarter of that at (8, 4). A line of the innermost T-junctions crosses a row
+// that ends at the stem of another T-junction (its line would continue the row), so that line is completed first
+// and the first goes on from where it stopped (refused before). Away from the star points the T-spline is still the
+// cage's: the exact faces below z = 1/2 of the cage without the splits agree to rounding; tangent-plane continuous
+// across every edge, closed.
+TEST(TJunctionLines, NestedSplitsCompleteTheLinesOfStemsFirst) {
+  test::QuadMesh box = test::box_mesh({11, 11, 11});
+  std::vector<std::array<double, 3>> unbent = box.points;
+  for (auto& p : box.points) {
+    const auto [x, y, z] = p;
+    p = {x + 0.05 * std::sin(2 * y + z), y + 0.04 * std::cos(3 * x - z), z + 0.06 * std::sin(x * y + 1)};
+  }
+  test::QuadMesh nested = box;
+  test::split_top_face(nested, unbent, 11, 2, 1, 0);
+  test::split_top_face(nested, unbent, 11, 4, 2, 1);
+  test::split_top_face(nested, unbent, 11, 8, 4, 2);
+  const TMeshSurface plain(mesh_of(box, "box.tsm"), 1), lines(mesh_of(nested, "nested.tsm"), 1);
+  ASSERT_NE(lines.completed_lines(), nullptr);
+  EXPECT_EQ(lines.completed_lines()->lines, 6);
+  const TMesh& done = lines.mesh();
+  std::vector<char> moved(box.points.size(), 0);
+  for (std::size_t v = 0; v < box.points.size(); ++v) {
+    const auto& p = done.points[static_cast<std::size_t>(done.vertices[v].primary)].xyz;
+    moved[v] = std::hypot(p[0] - box.points[v][0], p[1] - box.points[v][1], p[2] - box.points[v][2]) > 1e-9;
+  }
+  const Agreement g = agreement(plain, lines, moved, [](const auto&, const double* centre) { return centre[2] <= 0.5; });
+  EXPECT_GT(g.compared, 80);
+  EXPECT_GT(g.touched, 10);
+  EXPECT_LT(g.values, 1e-13);
+  EXPECT_LT(g.derivatives, 1e-12);
+  const test::Continuity cont = test::continuity(lines.mesh(), [&](int f, double u, double v, double* o) { lines.eval(f, u, v, o); });
+  EXPECT_LT(cont.gap, 1e-12);
+  EXPECT_LT(cont.normal_angle, 1e-9);
+  EXPECT_EQ(test::closed_euler_characteristic(tessellate(lines, 0.05)), 2);
+  std::printf("box 11 x 11 with three nested splits near a star point: %d lines (%d vertices inserted); %d exact faces of the cage "
+              "without them (%d with moved corners) %.1e / %.1e; across %d edges gap %.1e, normals %.1e\n",
+              lines.completed_lines()->lines, lines.completed_lines()->vertices, g.compared, g.touched, g.values, g.derivatives, cont.edges,
+              cont.gap, cont.normal_angle);
+}
+
 // A grip map that gives the rim vertices where a line ends no end-condition nodes (the others keep theirs): the
 // insertion along the rim has no row of block points there, and the mesh is refused in one line naming the
 // T-junction and the vertex.

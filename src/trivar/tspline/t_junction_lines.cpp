@@ -44,6 +44,15 @@ struct Loc {
 
 long long key(int a, int b) { return static_cast<long long>(a) * (1LL << 32) + b; }
 
+// A row the line crosses ends at the stem of another T-junction (vertex `at`, the row coming from `from`): that
+// T-junction's line continues the row, so it is completed first. Thrown before the crossing changes anything.
+struct StemFirst {
+  int at, from;
+  std::string message() const {
+    return "the row through vertex " + std::to_string(from) + " ends at vertex " + std::to_string(at) + " (the stem of a T-junction)";
+  }
+};
+
 // The completed mesh while it is built: faces as four sides, the points of the vertices.
 class Lines {
 public:
@@ -150,7 +159,12 @@ public:
         const int b2 = faces[static_cast<std::size_t>(it->second.face)].side[static_cast<std::size_t>(it->second.side)].v[static_cast<std::size_t>(it->second.index)];
         const int a2 = vertex_after(it->second.face, it->second.side, it->second.index);
         require(b2 != b && at_(key(a2, b2)).face < 0, [&] { return where + "the two sides of the crease at vertex " + std::to_string(origin_[static_cast<std::size_t>(a)]) + " do not match"; });
-        const int x2 = split_edge(b2, a2, d - (target - at), where, x);
+        int x2 = -1;
+        try {
+          x2 = split_edge(b2, a2, d - (target - at), where, x);
+        } catch (const StemFirst& stem) {  // the crease's first side is split already: no going back
+          throw Error(where + stem.message());
+        }
         c = at_(key(x2, a2));
       }
       f = c.face;
@@ -160,6 +174,16 @@ public:
     throw Error(where + "its line does not end within " + std::to_string(faces.size()) + " faces");
   }
 
+  // Where vertex v is a T-junction (inside a side of a face): (face, side, index), or face -1.
+  std::array<int, 3> t_junction_of(int v) const {
+    for (int f = 0; f < static_cast<int>(faces.size()); ++f)
+      for (int k = 0; k < 4; ++k) {
+        const Side& s = faces[static_cast<std::size_t>(f)].side[static_cast<std::size_t>(k)];
+        for (std::size_t i = 1; i < s.v.size(); ++i)
+          if (s.v[i] == v) return {f, k, static_cast<int>(i)};
+      }
+    return {-1, 0, 0};
+  }
   // The first T-junction (a vertex inside a side) of a face within `rings` face rings of a star point's faces:
   // (face, side, index), or face -1.
   std::array<int, 3> t_junction_near_stars(int rings) const {
@@ -355,7 +379,7 @@ private:
     const Straight s = straight(f, b);
     if (s.spoke >= 0) return {f.spokes[static_cast<std::size_t>(s.spoke)].to, f.spokes[static_cast<std::size_t>(s.spoke)].d, false};
     if (f.open) return {a, 0, true};
-    throw Error(where + "the row through vertex " + std::to_string(b) + " ends at vertex " + std::to_string(a) + " (the stem of a T-junction)");
+    throw StemFirst{a, b};
   }
   // The node beyond star point a on the row from b (the header says why): the backward spokes' nodes, and the
   // intervals after them, in nurcc_across's weights. Only a's own point in Boehm's rule depends on it.
@@ -703,14 +727,30 @@ std::optional<CompletedLines> complete_t_junction_lines(const TMesh& m, int ring
   std::array<int, 3> t = lines.t_junction_near_stars(rings);
   if (t[0] < 0) return std::nullopt;
   CompletedLines out;
-  for (std::size_t guard = 0; t[0] >= 0; ++guard) {
-    const int v = lines.faces[static_cast<std::size_t>(t[0])].side[static_cast<std::size_t>(t[1])].v[static_cast<std::size_t>(t[2])];
-    const std::string where = "T-mesh: the T-junction at vertex " + std::to_string(v) + " near a star point (completed into a knot line): ";
-    require(m.degree == 3, [&] { return where + "degree " + std::to_string(m.degree) + ", not 3"; });
-    require(guard < 4 * m.faces.size() + 4, [&] { return where + "the lines do not end"; });
-    lines.complete(t[0], t[1], t[2], where);
-    ++out.lines;
-    t = lines.t_junction_near_stars(rings);
+  std::size_t guard = 0;
+  for (; t[0] >= 0; t = lines.t_junction_near_stars(rings)) {
+    // The T-junctions whose lines are under way: a line waits for those of the T-junctions whose stems end the rows
+    // it crosses, and goes on from where it stopped.
+    std::vector<int> pending{lines.faces[static_cast<std::size_t>(t[0])].side[static_cast<std::size_t>(t[1])].v[static_cast<std::size_t>(t[2])]};
+    while (!pending.empty()) {
+      const int v = pending.back();
+      const std::string where = "T-mesh: the T-junction at vertex " + std::to_string(v) + " near a star point (completed into a knot line): ";
+      require(m.degree == 3, [&] { return where + "degree " + std::to_string(m.degree) + ", not 3"; });
+      require(++guard < 4 * m.faces.size() + 4, [&] { return where + "the lines do not end"; });
+      const std::array<int, 3> at = lines.t_junction_of(v);
+      if (at[0] < 0) {  // another line has completed it
+        pending.pop_back();
+        continue;
+      }
+      try {
+        lines.complete(at[0], at[1], at[2], where);
+        ++out.lines;
+        pending.pop_back();
+      } catch (const StemFirst& stem) {
+        require(std::find(pending.begin(), pending.end(), stem.at) == pending.end(), [&] { return where + stem.message(); });
+        pending.push_back(stem.at);
+      }
+    }
   }
   out.vertices = lines.inserted;
   out.mesh = lines.mesh();

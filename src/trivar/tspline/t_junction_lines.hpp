@@ -17,7 +17,9 @@
 // No row goes straight through a star point. A line that crosses one of its spokes takes, as the row's node beyond
 // the star point, the backward spokes' nodes weighted by max(0, -cos) of their angle to the crossed spoke (and the
 // intervals after them so), the weights nurcc_across gives the interval there; at four faces that would be the
-// opposite spoke's row. Only the star point's own point depends on it.
+// opposite spoke's row. Only the star point's own point depends on it. A row that ends at the stem of another
+// T-junction goes on along that T-junction's line, which is completed first; the line that needed it goes on from
+// where it stopped.
 //
 // At a Bezier boundary a row ends in its end-condition node, at the boundary vertex's knot (clamped): the insertion
 // takes it as the row's end node, and a line that reaches the boundary ends there. A row along the boundary has the row
@@ -35,8 +37,9 @@
 // Scope: degree 3; the rows the lines cross must pass no star point of a Bezier boundary, no
 // irregular vertex of a crease boundary (a dart, a crease corner of other than one face; where a crease turns or runs
 // through a star point, only the row along the crease), no concave corner, carry one control point per vertex (and
-// the end-condition nodes the grip map gives their boundary vertices) and not end at a T-junction's stem within two
-// vertices of a crossing; anything else is refused in one line naming the T-junction and the cause.
+// the end-condition nodes the grip map gives their boundary vertices), and a row on a sharp crease's second side must
+// not end at a T-junction's stem (its first side is split by then); anything else is refused in one line naming the
+// T-junction and the cause.
 #include <array>
 #include <optional>
 #include <vector>
