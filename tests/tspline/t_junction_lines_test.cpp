@@ -80,6 +80,48 @@ Agreement agreement(const TMeshSurface& plain, const TMeshSurface& lines, const 
   return r;
 }
 
+// More than `compared` exact faces compared, more than `touched` of them with a moved corner, and the surface there
+// unchanged to rounding.
+void expect_unchanged(const Agreement& g, int compared, int touched) {
+  EXPECT_GT(g.compared, compared);
+  EXPECT_GT(g.touched, touched);
+  EXPECT_LT(g.values, 1e-13);
+  EXPECT_LT(g.derivatives, 1e-12);
+}
+
+// Bent so that no coordinate is linear in the knots.
+void bend(std::vector<std::array<double, 3>>& points) {
+  for (auto& p : points) {
+    const auto [x, y, z] = p;
+    p = {x + 0.05 * std::sin(2 * y + z), y + 0.04 * std::cos(3 * x - z), z + 0.06 * std::sin(x * y + 1)};
+  }
+}
+
+// Per vertex of the cage (`before`: its points), whether the completed mesh `done` moved its point.
+std::vector<char> moved_points(const TMesh& done, const std::vector<std::array<double, 3>>& before) {
+  std::vector<char> moved(before.size(), 0);
+  for (std::size_t v = 0; v < before.size(); ++v) {
+    const auto& p = done.points[static_cast<std::size_t>(done.vertices[v].primary)].xyz;
+    moved[v] = std::hypot(p[0] - before[v][0], p[1] - before[v][1], p[2] - before[v][2]) > 1e-9;
+  }
+  return moved;
+}
+
+// The largest difference of values and derivatives of two surfaces on the first `faces` faces as given (at 9 points
+// each).
+double largest_difference(const TMeshSurface& a, const TMeshSurface& b, int faces) {
+  double worst = 0;
+  for (int f = 0; f < faces; ++f)
+    for (double u : {0.0, 0.3, 1.0})
+      for (double v : {0.0, 0.6, 1.0}) {
+        double x[9], y[9];
+        a.eval_source(f, u, v, x);
+        b.eval_source(f, u, v, y);
+        for (int k = 0; k < 9; ++k) worst = std::max(worst, std::abs(x[k] - y[k]));
+      }
+  return worst;
+}
+
 // Every end-condition block point moved off its vertex, as Rhino's grip maps place them (by vertex id and entry,
 // so that two cages sharing vertex ids get the same blocks).
 void move_blocks_off(TMesh& m) {
@@ -113,10 +155,7 @@ void expect_insertion_exact(double strip, bool rational, bool open = false, bool
       const int a = q[static_cast<std::size_t>(k)], b = q[static_cast<std::size_t>((k + 1) % 4)];
       if (std::min(grid_x(a), grid_x(b)) == 3 && std::max(grid_x(a), grid_x(b)) == 4) box.intervals[{a, b}] = strip;
     }
-  for (auto& p : box.points) {
-    const auto [x, y, z] = p;
-    p = {x + 0.05 * std::sin(2 * y + z), y + 0.04 * std::cos(3 * x - z), z + 0.06 * std::sin(x * y + 1)};
-  }
+  bend(box.points);
   // The top side (z = 1): face (i, j) has corners (i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1) in the grid.
   const test::QuadMesh split = test::split_face(box, test::top_face(unbent, box, 11, 4, 1), {0.02, -0.03, 0.01, 0.04, 0.07});
   const auto weighted = [&](TMesh m) {
@@ -144,20 +183,12 @@ void expect_insertion_exact(double strip, bool rational, bool open = false, bool
   EXPECT_EQ(lines.mesh().conditions.size(), t_mesh.conditions.size() + (open ? 4 : 0));
   EXPECT_EQ(lines.global_steps(), 0);
   // Points the insertion moved.
-  const TMesh& done = lines.mesh();
-  std::vector<char> moved(box.points.size(), 0);
-  for (std::size_t v = 0; v < box.points.size(); ++v) {
-    const auto& p = done.points[static_cast<std::size_t>(done.vertices[v].primary)].xyz;
-    moved[v] = std::hypot(p[0] - box.points[v][0], p[1] - box.points[v][1], p[2] - box.points[v][2]) > 1e-9;
-  }
+  const std::vector<char> moved = moved_points(lines.mesh(), box.points);
   // Faces of the top side near the split face have other blending functions in the split cage: only the faces
   // below z = 1/2, which the lines cross on the sides and the bottom.
   const Agreement g = agreement(plain, lines, moved, [](const auto&, const double* centre) { return centre[2] <= 0.5; });
   // Faces with a corner the insertion moved: the comparison is not trivial there.
-  EXPECT_GT(g.compared, 60);
-  EXPECT_GT(g.touched, 10);
-  EXPECT_LT(g.values, 1e-13);
-  EXPECT_LT(g.derivatives, 1e-12);
+  expect_unchanged(g, 60, 10);
   std::printf("box 11 x 11 (strip %g%s%s%s) with a split face near a star point: %d lines, %d vertices inserted; %d exact faces of the cage "
               "without T-junctions (%d with moved corners): values %.1e, derivatives %.1e\n", strip, rational ? ", rational" : "",
               open ? (grip ? ", open" : ", open, no grip map") : "", off ? ", blocks off the vertices" : "", lines.completed_lines()->lines,
@@ -196,10 +227,7 @@ void expect_natural_end_insertion_exact(bool rational, bool crease) {
   }
   ASSERT_LT(side_face, box.quads.size());
   unbent = test::split_face(box, side_face, {0, 0, 0, 0, 0}).points;  // the split's new vertices too
-  for (auto& p : box.points) {
-    const auto [x, y, z] = p;
-    p = {x + 0.05 * std::sin(2 * y + z), y + 0.04 * std::cos(3 * x - z), z + 0.06 * std::sin(x * y + 1)};
-  }
+  bend(box.points);
   const test::QuadMesh split = test::split_face(box, side_face, {0.02, -0.03, 0.01, 0.04, 0.07});
   const auto creased = [&](TMesh m) {
     m.end_conditions = EndConditions::subd_creases;
@@ -238,10 +266,7 @@ void expect_natural_end_insertion_exact(bool rational, bool crease) {
     rim_moved += moved[v] && on(static_cast<int>(v), 2, 0);
   }
   const Agreement g = agreement(plain, lines, moved, [](const auto&, const double* centre) { return centre[1] >= 0; });
-  EXPECT_GT(g.compared, 20);
-  EXPECT_GT(g.touched, 10);
-  EXPECT_LT(g.values, 1e-13);
-  EXPECT_LT(g.derivatives, 1e-12);
+  expect_unchanged(g, 20, 10);
   // Every face, also those near the star points and the crease (Catmull-Clark, local subdivision): one tangent
   // plane across every edge off the crease, and closed across it.
   const test::Continuity cont = test::continuity(lines.mesh(), [&](int f, double u, double v, double* o) { lines.eval(f, u, v, o); });
@@ -575,16 +600,7 @@ TEST(TJunctionLines, ClosedSubdivisionCreaseMesh) {
   const TMeshSurface a(given, 1), b(creased, 1);
   ASSERT_NE(b.completed_lines(), nullptr);
   EXPECT_EQ(b.completed_lines()->lines, 2);
-  double worst = 0;
-  for (int f = 0; f < static_cast<int>(given.faces.size()); ++f)
-    for (double u : {0.0, 0.3, 1.0})
-      for (double v : {0.0, 0.6, 1.0}) {
-        double x[9], y[9];
-        a.eval_source(f, u, v, x);
-        b.eval_source(f, u, v, y);
-        for (int k = 0; k < 9; ++k) worst = std::max(worst, std::abs(x[k] - y[k]));
-      }
-  EXPECT_EQ(worst, 0.0);
+  EXPECT_EQ(largest_difference(a, b, static_cast<int>(given.faces.size())), 0.0);
 }
 
 // A deleted face slot (an `f` record without a link, as Rhino's exports keep them after edits) is no face: Fusion's
@@ -605,16 +621,7 @@ TEST(TJunctionLines, DeletedFaceSlotsAreNoFaces) {
   ASSERT_NE(b.completed_lines(), nullptr);
   EXPECT_EQ(b.completed_lines()->lines, 2);
   EXPECT_EQ(b.num_faces(), a.num_faces());
-  double worst = 0;
-  for (int f = 0; f < static_cast<int>(given.faces.size()); ++f)
-    for (double u : {0.0, 0.3, 1.0})
-      for (double v : {0.0, 0.6, 1.0}) {
-        double x[9], y[9];
-        a.eval_source(f, u, v, x);
-        b.eval_source(f, u, v, y);
-        for (int k = 0; k < 9; ++k) worst = std::max(worst, std::abs(x[k] - y[k]));
-      }
-  EXPECT_EQ(worst, 0.0);
+  EXPECT_EQ(largest_difference(a, b, static_cast<int>(given.faces.size())), 0.0);
   double x[9];
   try {
     b.eval_source(static_cast<int>(given.faces.size()), 0.5, 0.5, x);
@@ -635,26 +642,17 @@ TEST(TJunctionLines, DeletedFaceSlotsAreNoFaces) {
 TEST(TJunctionLines, ALineNextToAStarPointCrossesItsSpoke) {
   test::QuadMesh box = test::box_mesh({11, 11, 11});
   const std::vector<std::array<double, 3>> unbent = box.points;
-  for (auto& p : box.points) {
-    const auto [x, y, z] = p;
-    p = {x + 0.05 * std::sin(2 * y + z), y + 0.04 * std::cos(3 * x - z), z + 0.06 * std::sin(x * y + 1)};
-  }
+  bend(box.points);
   const TMeshSurface plain(mesh_of(box, "box.tsm"), 1);
   const TMeshSurface lines(mesh_of(test::split_face(box, test::top_face(unbent, box, 11, 5, 0), {0, 0, 0, 0, 0}), "split.tsm"), 1);
   ASSERT_NE(lines.completed_lines(), nullptr);
   EXPECT_EQ(lines.completed_lines()->lines, 2);
-  const TMesh& done = lines.mesh();
-  std::vector<char> moved(box.points.size(), 0), corner(box.points.size(), 0);
-  for (std::size_t v = 0; v < box.points.size(); ++v) {
-    const auto& p = done.points[static_cast<std::size_t>(done.vertices[v].primary)].xyz;
-    moved[v] = std::hypot(p[0] - box.points[v][0], p[1] - box.points[v][1], p[2] - box.points[v][2]) > 1e-9;
+  const std::vector<char> moved = moved_points(lines.mesh(), box.points);
+  std::vector<char> corner(box.points.size(), 0);
+  for (std::size_t v = 0; v < box.points.size(); ++v)
     corner[v] = std::all_of(unbent[v].begin(), unbent[v].end(), [](double x) { return std::abs(x) == 1; });
-  }
   const Agreement g = agreement(plain, lines, moved, [](const auto&, const double* centre) { return centre[2] <= 0.5; });
-  EXPECT_GT(g.compared, 80);
-  EXPECT_GT(g.touched, 30);
-  EXPECT_LT(g.values, 1e-13);
-  EXPECT_LT(g.derivatives, 1e-12);
+  expect_unchanged(g, 80, 30);
   // The faces at the star points the line passes against the cage without the split.
   const auto plain_faces = faces_by_corners(plain);
   double near_star = 0;
@@ -703,10 +701,7 @@ TEST(TJunctionLines, ALineNextToAStarPointCrossesItsSpoke) {
 TEST(TJunctionLines, NestedSplitsCompleteTheLinesOfStemsFirst) {
   test::QuadMesh box = test::box_mesh({11, 11, 11});
   std::vector<std::array<double, 3>> unbent = box.points;
-  for (auto& p : box.points) {
-    const auto [x, y, z] = p;
-    p = {x + 0.05 * std::sin(2 * y + z), y + 0.04 * std::cos(3 * x - z), z + 0.06 * std::sin(x * y + 1)};
-  }
+  bend(box.points);
   test::QuadMesh nested = box;
   test::split_top_face(nested, unbent, 11, 2, 1, 0);
   test::split_top_face(nested, unbent, 11, 4, 2, 1);
@@ -714,17 +709,9 @@ TEST(TJunctionLines, NestedSplitsCompleteTheLinesOfStemsFirst) {
   const TMeshSurface plain(mesh_of(box, "box.tsm"), 1), lines(mesh_of(nested, "nested.tsm"), 1);
   ASSERT_NE(lines.completed_lines(), nullptr);
   EXPECT_EQ(lines.completed_lines()->lines, 6);
-  const TMesh& done = lines.mesh();
-  std::vector<char> moved(box.points.size(), 0);
-  for (std::size_t v = 0; v < box.points.size(); ++v) {
-    const auto& p = done.points[static_cast<std::size_t>(done.vertices[v].primary)].xyz;
-    moved[v] = std::hypot(p[0] - box.points[v][0], p[1] - box.points[v][1], p[2] - box.points[v][2]) > 1e-9;
-  }
+  const std::vector<char> moved = moved_points(lines.mesh(), box.points);
   const Agreement g = agreement(plain, lines, moved, [](const auto&, const double* centre) { return centre[2] <= 0.5; });
-  EXPECT_GT(g.compared, 80);
-  EXPECT_GT(g.touched, 10);
-  EXPECT_LT(g.values, 1e-13);
-  EXPECT_LT(g.derivatives, 1e-12);
+  expect_unchanged(g, 80, 10);
   const test::Continuity cont = test::continuity(lines.mesh(), [&](int f, double u, double v, double* o) { lines.eval(f, u, v, o); });
   EXPECT_LT(cont.gap, 1e-12);
   EXPECT_LT(cont.normal_angle, 1e-9);
