@@ -26,6 +26,7 @@
 #include "trivar/tspline/t_junction_lines.hpp"
 #include "trivar/tspline/t_mesh_surface.hpp"
 #include "trivar/tspline/t_mesh_tessellation.hpp"
+#include "trivar/tspline/t_spline_surface.hpp"
 
 namespace trivar {
 namespace {
@@ -720,6 +721,65 @@ TEST(TJunctionLines, NestedSplitsCompleteTheLinesOfStemsFirst) {
               "without them (%d with moved corners) %.1e / %.1e; across %d edges gap %.1e, normals %.1e\n",
               lines.completed_lines()->lines, lines.completed_lines()->vertices, g.compared, g.touched, g.values, g.derivatives, cont.edges,
               cont.gap, cont.normal_angle);
+}
+
+// A split face 6 rings from the star points' faces: its T-junctions need no lines (they lie beyond the Catmull-Clark
+// faces' reach), but the faces 4 rings out, within two rings of them, are no Catmull-Clark faces either: they are the
+// T-spline of the largest chart without star points, whose knot vectors reach past the T-junctions (refused before,
+// when only charts of whole rings round them were tried). Against the T-spline of the box's top side alone (its own
+// chart), on its faces 3 faces and more inside its border, whose knot vectors it holds; tangent-plane continuous,
+// closed.
+TEST(TJunctionLines, FacesNearAStarPointAndATJunctionSixRingsOut) {
+  test::QuadMesh box = test::box_mesh({13, 13, 13});
+  std::vector<std::array<double, 3>> unbent = box.points;
+  bend(box.points);
+  test::split_top_face(box, unbent, 13, 6, 6, 0);
+  const TMesh mesh = mesh_of(box, "split.tsm");
+  const TMeshSurface s(mesh, 1);
+  EXPECT_EQ(s.completed_lines(), nullptr);
+  const auto centre = [&](int f) {
+    std::array<double, 3> c{};
+    for (int v : s.corners(f))
+      for (std::size_t k = 0; k < 3; ++k) c[k] += unbent[static_cast<std::size_t>(v)][k] / 4;
+    return c;
+  };
+  std::vector<int> top;
+  for (int f = 0; f < s.num_faces(); ++f)
+    if (std::abs(centre(f)[2] - 1) < 1e-12) top.push_back(f);
+  const TChart chart = t_spline_chart(mesh, top, top.front(), false);
+  const TSplineSurface side(chart.spline, 1);
+  double worst = 0;
+  int compared = 0, four_rings_out = 0;
+  for (int f : top) {
+    const auto c = centre(f);
+    if (std::max(std::abs(c[0]), std::abs(c[1])) > 1 - 3 * 2.0 / 13) continue;
+    ++compared;
+    // The faces 4 rings from the corner faces (whose centres lie 4.5 faces from two of the side's edges).
+    four_rings_out += std::abs(std::max(std::abs(c[0]), std::abs(c[1])) - (1 - 4.5 * 2 / 13)) < 1e-9 && std::abs(std::abs(c[0]) - std::abs(c[1])) < 1e-9;
+    const auto corners = s.corners(f);
+    const auto st = [&](int v) {
+      const TVertex& x = chart.spline.image.vertices[static_cast<std::size_t>(chart.vertex[static_cast<std::size_t>(v)])];
+      return std::array<double, 2>{x.s, x.t};
+    };
+    const auto p0 = st(corners[0]), p1 = st(corners[1]), p3 = st(corners[3]);
+    for (double u : {0.0, 0.3, 1.0})
+      for (double v : {0.0, 0.6, 1.0}) {
+        double a[9], b[9];
+        s.eval(f, u, v, a);
+        side.eval_first_derivatives(Param<2>{p0[0] + u * (p1[0] - p0[0]) + v * (p3[0] - p0[0]), p0[1] + u * (p1[1] - p0[1]) + v * (p3[1] - p0[1])}, b);
+        for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs(a[k] - b[k]));
+      }
+  }
+  EXPECT_EQ(compared, 7 * 7 + 3);
+  EXPECT_EQ(four_rings_out, 4);
+  EXPECT_LT(worst, 1e-13);
+  const test::Continuity cont = test::continuity(s.mesh(), [&](int f, double u, double v, double* o) { s.eval(f, u, v, o); });
+  EXPECT_LT(cont.gap, 1e-12);
+  EXPECT_LT(cont.normal_angle, 1e-9);
+  EXPECT_EQ(test::closed_euler_characteristic(tessellate(s, 0.05)), 2);
+  std::printf("box 13 x 13 with top face (6, 6) split: %d faces, %d exact in charts; against the T-spline of the top side on %d faces "
+              "(%d of them 4 rings from the star points' faces): %.1e; across %d edges gap %.1e, normals %.1e\n",
+              s.num_faces(), s.count(FaceMethod::exact), compared, four_rings_out, worst, cont.edges, cont.gap, cont.normal_angle);
 }
 
 // A grip map that gives the rim vertices where a line ends no end-condition nodes (the others keep theirs): the

@@ -679,9 +679,12 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int th
     face.chart = chart;
   };
   if (!singular.empty()) {
+    // Pending: 1 an exact face, 2 a face near a star point that the Catmull-Clark rules do not take (a T-junction
+    // nearby), whose blending functions reach `reach` rings and may still lie in a region's chart.
     std::vector<char> allowed(static_cast<std::size_t>(nf), 0), pending(static_cast<std::size_t>(nf), 0);
     for (int f = 0; f < nf; ++f) allowed[static_cast<std::size_t>(f)] = m.live_face(f) && star_dist[static_cast<std::size_t>(f)] > 0;
     for (int f : exact) pending[static_cast<std::size_t>(f)] = 1;
+    for (const NearExact& n : near_exact) pending[static_cast<std::size_t>(n.face)] = 2;
     struct Region {
       int seed;
       std::vector<int> faces, members;
@@ -700,7 +703,7 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int th
         }
       rings(outside, depth, dist);
       for (int h : g.faces)
-        if (pending[static_cast<std::size_t>(h)] && dist[static_cast<std::size_t>(h)] > depth) {
+        if (pending[static_cast<std::size_t>(h)] && dist[static_cast<std::size_t>(h)] > (pending[static_cast<std::size_t>(h)] == 2 ? reach : depth)) {
           pending[static_cast<std::size_t>(h)] = 0;
           g.members.push_back(h);
         }
@@ -731,8 +734,10 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int th
     std::string why;  // a face near a star point: why it is not a Catmull-Clark face
   };
   std::vector<Cluster> clusters;
-  // Faces near star points alone, from `reach` rings up to the ring before the star points' faces.
-  for (NearExact& n : near_exact) clusters.push_back({n.face, reach, {n.face}, std::move(n.why)});
+  // Faces near star points alone, from `reach` rings up to the ring before the star points' faces (those a region's
+  // chart did not take).
+  for (NearExact& n : near_exact)
+    if (!served[static_cast<std::size_t>(n.face)]) clusters.push_back({n.face, reach, {n.face}, std::move(n.why)});
   for (int f : exact) {
     if (served[static_cast<std::size_t>(f)]) continue;
     // Without star points the chart of all the faces it reaches (the global T-spline: small charts of a
