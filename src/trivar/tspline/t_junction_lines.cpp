@@ -45,9 +45,10 @@ struct Loc {
 long long key(int a, int b) { return static_cast<long long>(a) * (1LL << 32) + b; }
 
 // A row the line crosses ends at the stem of another T-junction (vertex `at`, the row coming from `from`): that
-// T-junction's line continues the row, so it is completed first. Thrown before the crossing changes anything.
+// T-junction's line continues the row, so it is completed first. Thrown before the crossing changes anything; the
+// line so far ends at the T-junction `front`, from where it goes on.
 struct StemFirst {
-  int at, from;
+  int at, from, front = -1;
   std::string message() const {
     return "the row through vertex " + std::to_string(from) + " ends at vertex " + std::to_string(at) + " (the stem of a T-junction)";
   }
@@ -147,7 +148,13 @@ public:
       const int a = faces[static_cast<std::size_t>(f)].side[static_cast<std::size_t>(e)].v[static_cast<std::size_t>(j)];
       const int b = vertex_after(f, e, j);
       const double d = faces[static_cast<std::size_t>(f)].side[static_cast<std::size_t>(e)].d[static_cast<std::size_t>(j)];
-      const int x = split_edge(a, b, target - at, where);
+      int x = -1;
+      try {
+        x = split_edge(a, b, target - at, where);
+      } catch (StemFirst& stem) {
+        stem.front = faces[static_cast<std::size_t>(f)].side[static_cast<std::size_t>(k)].v[static_cast<std::size_t>(index)];
+        throw;
+      }
       split_face(f, k, index, j + 1);
       Loc c = at_(key(x, a));
       if (c.face < 0) {
@@ -748,6 +755,7 @@ std::optional<CompletedLines> complete_t_junction_lines(const TMesh& m, int ring
         pending.pop_back();
       } catch (const StemFirst& stem) {
         require(std::find(pending.begin(), pending.end(), stem.at) == pending.end(), [&] { return where + stem.message(); });
+        pending.back() = stem.front;
         pending.push_back(stem.at);
       }
     }
