@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "chart_comparison.hpp"
 #include "face_continuity.hpp"
 #include "fusion_cages.hpp"
 #include "star_mesh_tsm.hpp"
@@ -723,39 +724,46 @@ TEST(TJunctionLines, NestedSplitsCompleteTheLinesOfStemsFirst) {
               cont.gap, cont.normal_angle);
 }
 
-// A split face 6 rings from the star points' faces: its T-junctions need no lines (they lie beyond the Catmull-Clark
-// faces' reach), but the faces 4 rings out, within two rings of them, are no Catmull-Clark faces either: they are the
-// T-spline of the largest chart without star points, whose knot vectors reach past the T-junctions (refused before,
-// when only charts of whole rings round them were tried). Against the T-spline of the box's top side alone (its own
-// chart), on its faces 3 faces and more inside its border, whose knot vectors it holds; tangent-plane continuous,
-// closed.
-TEST(TJunctionLines, FacesNearAStarPointAndATJunctionSixRingsOut) {
-  test::QuadMesh box = test::box_mesh({13, 13, 13});
+// A box of n x n faces per side, bent, with top face (i, j) split 6 or 7 rings from the star points' faces: its
+// T-junctions need no lines (they lie beyond the Catmull-Clark faces' reach), but the faces 4 rings out, within two
+// rings of them, are no Catmull-Clark faces either: they are the T-spline of a chart without star points that holds
+// their knot vectors, grown from them over the mesh (refused before, when only charts of whole rings round them were
+// tried, or large charts that a knot line far away crosses). Against the T-spline of the box's top side alone, or
+// with `front` of its top and front sides (their own chart), on every face whose three rings it holds: `compared`
+// faces, `four_rings_out` of them 4 rings from the star points' faces; tangent-plane continuous, closed.
+void expect_faces_near_a_star_point_and_a_t_junction(int n, int i, int j, bool front, int compared, int four_rings_out) {
+  test::QuadMesh box = test::box_mesh({n, n, n});
   std::vector<std::array<double, 3>> unbent = box.points;
   bend(box.points);
-  test::split_top_face(box, unbent, 13, 6, 6, 0);
+  test::split_top_face(box, unbent, n, i, j, 0);
   const TMesh mesh = mesh_of(box, "split.tsm");
   const TMeshSurface s(mesh, 1);
   EXPECT_EQ(s.completed_lines(), nullptr);
-  const auto centre = [&](int f) {
+  std::vector<int> in_chart;
+  std::vector<char> taken(mesh.faces.size(), 0);
+  std::vector<int> ring(mesh.faces.size(), -1);  // top faces: face rings from the corner faces of the top side
+  for (int f = 0; f < s.num_faces(); ++f) {
     std::array<double, 3> c{};
     for (int v : s.corners(f))
       for (std::size_t k = 0; k < 3; ++k) c[k] += unbent[static_cast<std::size_t>(v)][k] / 4;
-    return c;
-  };
-  std::vector<int> top;
-  for (int f = 0; f < s.num_faces(); ++f)
-    if (std::abs(centre(f)[2] - 1) < 1e-12) top.push_back(f);
-  const TChart chart = t_spline_chart(mesh, top, top.front(), false);
+    const bool top = std::abs(c[2] - 1) < 1e-12;
+    if (!top && !(front && std::abs(c[1] + 1) < 1e-12)) continue;
+    in_chart.push_back(f);
+    taken[static_cast<std::size_t>(f)] = 1;
+    if (top) {
+      const auto edge = [&](double x) { return static_cast<int>(std::floor(std::min(x + 1, 1 - x) * n / 2)); };
+      ring[static_cast<std::size_t>(f)] = std::max(edge(c[0]), edge(c[1]));
+    }
+  }
+  const TChart chart = t_spline_chart(mesh, in_chart, in_chart.front(), false);
   const TSplineSurface side(chart.spline, 1);
   double worst = 0;
-  int compared = 0, four_rings_out = 0;
-  for (int f : top) {
-    const auto c = centre(f);
-    if (std::max(std::abs(c[0]), std::abs(c[1])) > 1 - 3 * 2.0 / 13) continue;
-    ++compared;
-    // The faces 4 rings from the corner faces (whose centres lie 4.5 faces from two of the side's edges).
-    four_rings_out += std::abs(std::max(std::abs(c[0]), std::abs(c[1])) - (1 - 4.5 * 2 / 13)) < 1e-9 && std::abs(std::abs(c[0]) - std::abs(c[1])) < 1e-9;
+  int faces = 0, four = 0;
+  for (int f : in_chart) {
+    const std::vector<int> hood = test::face_rings(mesh, f, 3);
+    if (!std::all_of(hood.begin(), hood.end(), [&](int g) { return taken[static_cast<std::size_t>(g)] != 0; })) continue;
+    ++faces;
+    four += ring[static_cast<std::size_t>(f)] == 4;
     const auto corners = s.corners(f);
     const auto st = [&](int v) {
       const TVertex& x = chart.spline.image.vertices[static_cast<std::size_t>(chart.vertex[static_cast<std::size_t>(v)])];
@@ -770,16 +778,22 @@ TEST(TJunctionLines, FacesNearAStarPointAndATJunctionSixRingsOut) {
         for (int k = 0; k < 3; ++k) worst = std::max(worst, std::abs(a[k] - b[k]));
       }
   }
-  EXPECT_EQ(compared, 7 * 7 + 3);
-  EXPECT_EQ(four_rings_out, 4);
+  EXPECT_EQ(faces, compared);
+  EXPECT_EQ(four, four_rings_out);
   EXPECT_LT(worst, 1e-13);
   const test::Continuity cont = test::continuity(s.mesh(), [&](int f, double u, double v, double* o) { s.eval(f, u, v, o); });
   EXPECT_LT(cont.gap, 1e-12);
   EXPECT_LT(cont.normal_angle, 1e-9);
   EXPECT_EQ(test::closed_euler_characteristic(tessellate(s, 0.05)), 2);
-  std::printf("box 13 x 13 with top face (6, 6) split: %d faces, %d exact in charts; against the T-spline of the top side on %d faces "
+  std::printf("box %d x %d with top face (%d, %d) split: %d faces, %d exact in charts; against the T-spline of the top side%s on %d faces "
               "(%d of them 4 rings from the star points' faces): %.1e; across %d edges gap %.1e, normals %.1e\n",
-              s.num_faces(), s.count(FaceMethod::exact), compared, four_rings_out, worst, cont.edges, cont.gap, cont.normal_angle);
+              n, n, i, j, s.num_faces(), s.count(FaceMethod::exact), front ? " and the front side" : "", faces, four, worst, cont.edges,
+              cont.gap, cont.normal_angle);
+}
+
+TEST(TJunctionLines, FacesNearAStarPointAndATJunctionSixRingsOut) {
+  expect_faces_near_a_star_point_and_a_t_junction(13, 6, 6, false, 52, 12);
+  expect_faces_near_a_star_point_and_a_t_junction(15, 7, 0, true, 219, 18);
 }
 
 // A grip map that gives the rim vertices where a line ends no end-condition nodes (the others keep theirs): the

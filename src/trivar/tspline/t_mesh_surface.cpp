@@ -689,11 +689,10 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int th
       int seed;
       std::vector<int> faces, members;
     };
-    std::vector<Region> regions;
-    for (int f : exact) {
-      if (!pending[static_cast<std::size_t>(f)]) continue;
+    // The region grown from face f, its members the pending faces without a face outside it within depth rings
+    // (reach for the faces near star points), which are pending no more.
+    const auto region = [&](int f) {
       Region g{f, embedded_faces(m, f, allowed), {}};
-      // Members: the faces without a face outside the chart within depth rings.
       std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX), outside;
       for (int h : g.faces) dist[static_cast<std::size_t>(h)] = INT_MAX - 1;
       for (int h = 0; h < nf; ++h)
@@ -707,24 +706,43 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int th
           pending[static_cast<std::size_t>(h)] = 0;
           g.members.push_back(h);
         }
-      pending[static_cast<std::size_t>(f)] = 0;  // a seed its chart does not serve goes to the clusters below
-      if (!g.members.empty()) regions.push_back(std::move(g));
-    }
-    for (const Region& g : regions) {
+      return g;
+    };
+    // Its chart, for the members whose knot vectors it holds (with `whole`, only those that are one of its elements:
+    // the knot lines of faces far away cross a large chart, which splits a face's patches without changing it).
+    const auto serve_region = [&](const Region& g, bool whole) {
       ExactChart c;
       try {
         c = exact_chart(m, g.faces, g.seed, g.members, threads);
       } catch (const Error&) {
-        continue;  // the clusters below take its members (and name the reason if theirs fail too)
+        return;  // the clusters below take its members (and name the reason if theirs fail too)
       }
       bool used = false;
       for (std::size_t j = 0; j < g.members.size(); ++j) {
-        if (c.cut[j] || !c.whole[j]) continue;
+        if (c.cut[j] || (whole && !c.whole[j])) continue;
         take(g.members[j], c.frames[j], static_cast<int>(charts_.size()));
         served[static_cast<std::size_t>(g.members[j])] = 1;
         used = true;
       }
       if (used) charts_.push_back(std::move(c.surface));
+    };
+    std::vector<Region> regions;
+    for (int f : exact) {
+      if (!pending[static_cast<std::size_t>(f)]) continue;
+      Region g = region(f);
+      pending[static_cast<std::size_t>(f)] = 0;  // a seed its chart does not serve goes to the clusters below
+      if (!g.members.empty()) regions.push_back(std::move(g));
+    }
+    for (const Region& g : regions) serve_region(g, true);
+    // A face near a star point that no region served: a region grown from it, which holds its rings on every side it
+    // can (so reaches furthest along the knot vectors that pass a T-junction nearby), split into several elements if
+    // need be (the clusters below could only cut its knot vectors or reach the star point).
+    for (const NearExact& n : near_exact) {
+      if (served[static_cast<std::size_t>(n.face)]) continue;
+      for (const NearExact& o : near_exact)
+        if (!served[static_cast<std::size_t>(o.face)]) pending[static_cast<std::size_t>(o.face)] = 2;
+      const Region g = region(n.face);
+      if (!g.members.empty()) serve_region(g, false);
     }
   }
   const std::size_t region_charts = charts_.size();
