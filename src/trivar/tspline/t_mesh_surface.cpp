@@ -678,54 +678,54 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int th
     face.axis_v = fr.axis_v;
     face.chart = chart;
   };
+  // Regions: charts grown from a face over the faces not at a star point (embedded_faces). Pending: 1 an exact face,
+  // 2 a face near a star point that the Catmull-Clark rules do not take (a T-junction nearby), whose blending
+  // functions reach `reach` rings.
+  std::vector<char> allowed(static_cast<std::size_t>(nf), 0), pending(static_cast<std::size_t>(nf), 0);
+  for (int f = 0; f < nf; ++f) allowed[static_cast<std::size_t>(f)] = m.live_face(f) && star_dist[static_cast<std::size_t>(f)] > 0;
+  struct Region {
+    int seed;
+    std::vector<int> faces, members;
+  };
+  // The region grown from face f, its members the pending faces without a face outside it within depth rings
+  // (reach for the faces near star points), which are pending no more.
+  const auto region = [&](int f) {
+    Region g{f, embedded_faces(m, f, allowed), {}};
+    std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX), outside;
+    for (int h : g.faces) dist[static_cast<std::size_t>(h)] = INT_MAX - 1;
+    for (int h = 0; h < nf; ++h)
+      if (m.live_face(h) && dist[static_cast<std::size_t>(h)] == INT_MAX) {
+        dist[static_cast<std::size_t>(h)] = 0;
+        outside.push_back(h);
+      }
+    rings(outside, depth, dist);
+    for (int h : g.faces)
+      if (pending[static_cast<std::size_t>(h)] && dist[static_cast<std::size_t>(h)] > (pending[static_cast<std::size_t>(h)] == 2 ? reach : depth)) {
+        pending[static_cast<std::size_t>(h)] = 0;
+        g.members.push_back(h);
+      }
+    return g;
+  };
+  // Its chart, for the members whose knot vectors it holds (with `whole`, only those that are one of its elements:
+  // the knot lines of faces far away cross a large chart, which splits a face's patches without changing it).
+  const auto serve_region = [&](const Region& g, bool whole) {
+    ExactChart c;
+    try {
+      c = exact_chart(m, g.faces, g.seed, g.members, threads);
+    } catch (const Error&) {
+      return;  // the clusters below take its members (and name the reason if theirs fail too)
+    }
+    bool used = false;
+    for (std::size_t j = 0; j < g.members.size(); ++j) {
+      if (c.cut[j] || (whole && !c.whole[j])) continue;
+      take(g.members[j], c.frames[j], static_cast<int>(charts_.size()));
+      served[static_cast<std::size_t>(g.members[j])] = 1;
+      used = true;
+    }
+    if (used) charts_.push_back(std::move(c.surface));
+  };
   if (!singular.empty()) {
-    // Pending: 1 an exact face, 2 a face near a star point that the Catmull-Clark rules do not take (a T-junction
-    // nearby), whose blending functions reach `reach` rings and may still lie in a region's chart.
-    std::vector<char> allowed(static_cast<std::size_t>(nf), 0), pending(static_cast<std::size_t>(nf), 0);
-    for (int f = 0; f < nf; ++f) allowed[static_cast<std::size_t>(f)] = m.live_face(f) && star_dist[static_cast<std::size_t>(f)] > 0;
     for (int f : exact) pending[static_cast<std::size_t>(f)] = 1;
-    for (const NearExact& n : near_exact) pending[static_cast<std::size_t>(n.face)] = 2;
-    struct Region {
-      int seed;
-      std::vector<int> faces, members;
-    };
-    // The region grown from face f, its members the pending faces without a face outside it within depth rings
-    // (reach for the faces near star points), which are pending no more.
-    const auto region = [&](int f) {
-      Region g{f, embedded_faces(m, f, allowed), {}};
-      std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX), outside;
-      for (int h : g.faces) dist[static_cast<std::size_t>(h)] = INT_MAX - 1;
-      for (int h = 0; h < nf; ++h)
-        if (m.live_face(h) && dist[static_cast<std::size_t>(h)] == INT_MAX) {
-          dist[static_cast<std::size_t>(h)] = 0;
-          outside.push_back(h);
-        }
-      rings(outside, depth, dist);
-      for (int h : g.faces)
-        if (pending[static_cast<std::size_t>(h)] && dist[static_cast<std::size_t>(h)] > (pending[static_cast<std::size_t>(h)] == 2 ? reach : depth)) {
-          pending[static_cast<std::size_t>(h)] = 0;
-          g.members.push_back(h);
-        }
-      return g;
-    };
-    // Its chart, for the members whose knot vectors it holds (with `whole`, only those that are one of its elements:
-    // the knot lines of faces far away cross a large chart, which splits a face's patches without changing it).
-    const auto serve_region = [&](const Region& g, bool whole) {
-      ExactChart c;
-      try {
-        c = exact_chart(m, g.faces, g.seed, g.members, threads);
-      } catch (const Error&) {
-        return;  // the clusters below take its members (and name the reason if theirs fail too)
-      }
-      bool used = false;
-      for (std::size_t j = 0; j < g.members.size(); ++j) {
-        if (c.cut[j] || (whole && !c.whole[j])) continue;
-        take(g.members[j], c.frames[j], static_cast<int>(charts_.size()));
-        served[static_cast<std::size_t>(g.members[j])] = 1;
-        used = true;
-      }
-      if (used) charts_.push_back(std::move(c.surface));
-    };
     std::vector<Region> regions;
     for (int f : exact) {
       if (!pending[static_cast<std::size_t>(f)]) continue;
@@ -734,16 +734,6 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int th
       if (!g.members.empty()) regions.push_back(std::move(g));
     }
     for (const Region& g : regions) serve_region(g, true);
-    // A face near a star point that no region served: a region grown from it, which holds its rings on every side it
-    // can (so reaches furthest along the knot vectors that pass a T-junction nearby), split into several elements if
-    // need be (the clusters below could only cut its knot vectors or reach the star point).
-    for (const NearExact& n : near_exact) {
-      if (served[static_cast<std::size_t>(n.face)]) continue;
-      for (const NearExact& o : near_exact)
-        if (!served[static_cast<std::size_t>(o.face)]) pending[static_cast<std::size_t>(o.face)] = 2;
-      const Region g = region(n.face);
-      if (!g.members.empty()) serve_region(g, false);
-    }
   }
   const std::size_t region_charts = charts_.size();
   struct Cluster {
@@ -752,10 +742,8 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int th
     std::string why;  // a face near a star point: why it is not a Catmull-Clark face
   };
   std::vector<Cluster> clusters;
-  // Faces near star points alone, from `reach` rings up to the ring before the star points' faces (those a region's
-  // chart did not take).
-  for (NearExact& n : near_exact)
-    if (!served[static_cast<std::size_t>(n.face)]) clusters.push_back({n.face, reach, {n.face}, std::move(n.why)});
+  // Faces near star points alone, from `reach` rings up to the ring before the star points' faces.
+  for (NearExact& n : near_exact) clusters.push_back({n.face, reach, {n.face}, std::move(n.why)});
   for (int f : exact) {
     if (served[static_cast<std::size_t>(f)]) continue;
     // Without star points the chart of all the faces it reaches (the global T-spline: small charts of a
@@ -806,6 +794,21 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int th
     });
   };
   serve(0);
+  // A face near a star point whose chart of whole rings cuts its knot vectors before it reaches the star point (a
+  // T-junction nearby lengthens them): a region grown from it, which holds its rings on every side it can, split into
+  // several elements if need be.
+  for (std::size_t i = 0; i < clusters.size(); ++i)
+    if (!errors[i].empty() && !clusters[i].why.empty()) pending[static_cast<std::size_t>(clusters[i].centre)] = 2;
+  for (std::size_t i = 0; i < clusters.size(); ++i) {
+    const int f = clusters[i].centre;
+    if (errors[i].empty() || clusters[i].why.empty()) continue;
+    if (!served[static_cast<std::size_t>(f)]) {
+      pending[static_cast<std::size_t>(f)] = 2;
+      const Region g = region(f);
+      if (!g.members.empty()) serve_region(g, false);
+    }
+    if (served[static_cast<std::size_t>(f)]) errors[i].clear();
+  }
   if (periodic) {
     const std::size_t first = clusters.size();
     for (std::size_t i = 0; i < first; ++i)
