@@ -273,6 +273,7 @@ std::vector<std::array<int, 4>> given_corners(const TMesh& m) {
   return r;
 }
 
+// The corners of the surface's faces (its mesh's, after lines or global steps).
 std::vector<std::array<int, 4>> surface_corners(const TMeshSurface& s) {
   std::vector<std::array<int, 4>> r;
   for (int f = 0; f < s.num_faces(); ++f) r.push_back(s.corners(f));
