@@ -181,8 +181,9 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
   const bool subd_creases = s.source_mesh().end_conditions == EndConditions::subd_creases;
   const int faces = s.count(FaceMethod::exact) + s.count(FaceMethod::bicubic) + s.count(FaceMethod::star) + nu + sub + cr;
   const bool creases = r.crease_edges > 0 || cones > 0;
-  std::string continuity = stars.empty() ? "C2 across every edge"
-                                         : "C2 across every edge away from star points; C1 across the edges at a star point; G1 at star points";
+  std::string continuity = s.mesh().degree == 1 ? "C0 across every edge (degree 1: each face bilinear pieces, star points or not)"
+                           : stars.empty()     ? "C2 across every edge"
+                                               : "C2 across every edge away from star points; C1 across the edges at a star point; G1 at star points";
   if (creases) continuity += " but the sharp creases, C0 across those";
   if (darts > 0) continuity += "; C1 across the edges at a dart, G1 at the dart";
   if (cones > 0) continuity += "; no tangent plane at the cone points";

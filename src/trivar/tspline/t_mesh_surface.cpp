@@ -314,7 +314,7 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, int threads, int global_steps)
 // A crease boundary, or Bezier end conditions without block points, is evaluated as the Bezier end conditions
 // of the same surface with its block points (crease_ends); the mesh as given is kept for writing it back.
 TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int threads, int global_steps)
-    : lines_(complete_t_junction_lines(cut ? *cut : mesh, mesh.degree + 2)),
+    : lines_(mesh.degree == 1 ? std::nullopt : complete_t_junction_lines(cut ? *cut : mesh, mesh.degree + 2)),
       steps_(global_steps >= 0 ? global_steps : nurcc_steps_needed(lines_ ? lines_->mesh : mesh, kStarsApart)),
       mesh_(steps_ > 0 ? refined(lines_ ? lines_->mesh : mesh, steps_)
                        : bezier_equivalent_of_cut(lines_ ? lines_->mesh : cut ? *cut : mesh)),
@@ -342,6 +342,31 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int th
   const int nf = static_cast<int>(m.faces.size()), nv = static_cast<int>(m.vertices.size());
   const auto L = [&](int l) -> const TMeshLink& { return m.links[static_cast<std::size_t>(l)]; };
   faces_.resize(static_cast<std::size_t>(nf));
+  if (m.degree == 1 && !split) {
+    // Degree 1: a blending function restricted to a face is its hat on that face's own knots (the face's corners and
+    // the vertices on its sides, where the stems of those T-junctions, in the faces across, end the rays along the
+    // sides; the knots beyond bound its supports elsewhere), star point or not. So each face is the T-spline of the
+    // chart of itself and the faces across its T-junctions: bilinear pieces, continuous across every edge.
+    for (int f = 0; f < nf; ++f) {
+      if (!m.live_face(f)) continue;
+      const std::array<int, 1> self{f};
+      std::vector<int> chart{f};
+      const auto& loop = m.faces[static_cast<std::size_t>(f)];
+      for (std::size_t i = 0; i < loop.size(); ++i)
+        if (L(loop[i]).flag == 1)
+          for (int l : {loop[i], loop[(i + loop.size() - 1) % loop.size()]})
+            if (const int g = L(L(l).opp).face; g >= 0 && std::find(chart.begin(), chart.end(), g) == chart.end()) chart.push_back(g);
+      ExactChart c = exact_chart(m, chart, f, self, 1);
+      Face& face = faces_[static_cast<std::size_t>(f)];
+      face.method = FaceMethod::exact;
+      face.origin = c.frames[0].origin;
+      face.axis_u = c.frames[0].axis_u;
+      face.axis_v = c.frames[0].axis_v;
+      face.chart = static_cast<int>(charts_.size());
+      charts_.push_back(std::move(c.surface));
+    }
+    return;
+  }
   std::vector<int> irregular;
   std::vector<CreaseRule> rules;  // of the split mesh's boundary vertices, once needed
   if (split) irregular = irregular_crease_vertices(*split);

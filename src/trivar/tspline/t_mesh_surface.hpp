@@ -44,6 +44,8 @@
 //                  not apply (open meshes, T-junctions away from the star points). Their two face rings must be
 //                  quadrilaterals without T-junctions inside the mesh, with one interval per strip and one point per
 //                  vertex.
+// At degree 1 every face is exact, star point or not: the T-spline of the chart of the face and the faces across its
+// T-junctions (bilinear pieces, C0).
 // The faces within p + 2 rings of a star point (bicubic and star) need, and are checked to have, degree 3,
 // no T-junction and no boundary within (p + 1) / 2 rings of them, control points
 // without repeated-knot nodes, and at most one star corner per face or else equal intervals (subdivided).
