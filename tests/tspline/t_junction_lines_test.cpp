@@ -91,6 +91,15 @@ void expect_unchanged(const Agreement& g, int compared, int touched) {
   EXPECT_LT(g.derivatives, 1e-12);
 }
 
+// Tangent-plane continuous across every edge and closed: the continuity measured.
+test::Continuity expect_closed_g1(const TMeshSurface& s) {
+  const test::Continuity c = test::continuity(s.mesh(), [&](int f, double u, double v, double* o) { s.eval(f, u, v, o); });
+  EXPECT_LT(c.gap, 1e-12);
+  EXPECT_LT(c.normal_angle, 1e-9);
+  EXPECT_EQ(test::closed_euler_characteristic(tessellate(s, 0.05)), 2);
+  return c;
+}
+
 // Bent so that no coordinate is linear in the knots.
 void bend(std::vector<std::array<double, 3>>& points) {
   for (auto& p : points) {
@@ -357,10 +366,7 @@ void expect_creased_rim_unchanged(int n) {
   }
   EXPECT_EQ(sides, 8 * n);  // 4 n rim edges, each a side of a top face and of a wall face
   EXPECT_LT(worst, 1e-12);
-  const test::Continuity cont = test::continuity(lines.mesh(), [&](int f, double u, double v, double* o) { lines.eval(f, u, v, o); });
-  EXPECT_LT(cont.gap, 1e-12);
-  EXPECT_LT(cont.normal_angle, 1e-9);
-  EXPECT_EQ(test::closed_euler_characteristic(tessellate(lines, 0.05)), 2);
+  const test::Continuity cont = expect_closed_g1(lines);
   std::printf("box %d x %d x %d with a creased top rim and a split top face: %d lines, %d vertices inserted; the rim on %d face sides against "
               "the box without the split: %.1e; across %d edges gap %.1e, normals %.1e; closed\n", n, n, n, lines.completed_lines()->lines,
               lines.completed_lines()->vertices, sides, worst, cont.edges, cont.gap, cont.normal_angle);
@@ -675,18 +681,12 @@ TEST(TJunctionLines, ALineNextToAStarPointCrossesItsSpoke) {
   EXPECT_EQ(star_faces, 24);
   EXPECT_GT(near_star, 1e-4);  // no T-spline there: the rule's surface, not the cage's
   EXPECT_LT(near_star, 0.05 * 2 / 11);
-  const test::Continuity cont = test::continuity(lines.mesh(), [&](int f, double u, double v, double* o) { lines.eval(f, u, v, o); });
-  EXPECT_LT(cont.gap, 1e-12);
-  EXPECT_LT(cont.normal_angle, 1e-9);
-  EXPECT_EQ(test::closed_euler_characteristic(tessellate(lines, 0.05)), 2);
+  const test::Continuity cont = expect_closed_g1(lines);
   // The cube of 3 x 3 faces per side with its corner face split: both lines cross a spoke of the corner's star point.
   const test::QuadMesh cube = test::box_mesh({3, 3, 3});
   const TMeshSurface corner_split(mesh_of(test::split_face(cube, test::top_face(cube.points, cube, 3, 0, 0), {0, 0, 0, 0, 0.1}), "corner.tsm"), 1);
   ASSERT_NE(corner_split.completed_lines(), nullptr);
-  const test::Continuity cc = test::continuity(corner_split.mesh(), [&](int f, double u, double v, double* o) { corner_split.eval(f, u, v, o); });
-  EXPECT_LT(cc.gap, 1e-12);
-  EXPECT_LT(cc.normal_angle, 1e-9);
-  EXPECT_EQ(test::closed_euler_characteristic(tessellate(corner_split, 0.05)), 2);
+  const test::Continuity cc = expect_closed_g1(corner_split);
   std::printf("box 11 x 11 with a split face whose line passes next to four star points: %d exact faces of the cage without the split "
               "(%d with moved corners) %.1e / %.1e; the %d faces at those star points within %.1e of it (face width %.2f); across %d "
               "edges gap %.1e, normals %.1e; the cube of 3 x 3 with its corner face split: %d lines, gap %.1e, normals %.1e\n",
@@ -714,10 +714,7 @@ TEST(TJunctionLines, NestedSplitsCompleteTheLinesOfStemsFirst) {
   const std::vector<char> moved = moved_points(lines.mesh(), box.points);
   const Agreement g = agreement(plain, lines, moved, [](const auto&, const double* centre) { return centre[2] <= 0.5; });
   expect_unchanged(g, 80, 10);
-  const test::Continuity cont = test::continuity(lines.mesh(), [&](int f, double u, double v, double* o) { lines.eval(f, u, v, o); });
-  EXPECT_LT(cont.gap, 1e-12);
-  EXPECT_LT(cont.normal_angle, 1e-9);
-  EXPECT_EQ(test::closed_euler_characteristic(tessellate(lines, 0.05)), 2);
+  const test::Continuity cont = expect_closed_g1(lines);
   std::printf("box 11 x 11 with three nested splits near a star point: %d lines (%d vertices inserted); %d exact faces of the cage "
               "without them (%d with moved corners) %.1e / %.1e; across %d edges gap %.1e, normals %.1e\n",
               lines.completed_lines()->lines, lines.completed_lines()->vertices, g.compared, g.touched, g.values, g.derivatives, cont.edges,
@@ -781,10 +778,7 @@ void expect_faces_near_a_star_point_and_a_t_junction(int n, int i, int j, bool f
   EXPECT_EQ(faces, compared);
   EXPECT_EQ(four, four_rings_out);
   EXPECT_LT(worst, 1e-13);
-  const test::Continuity cont = test::continuity(s.mesh(), [&](int f, double u, double v, double* o) { s.eval(f, u, v, o); });
-  EXPECT_LT(cont.gap, 1e-12);
-  EXPECT_LT(cont.normal_angle, 1e-9);
-  EXPECT_EQ(test::closed_euler_characteristic(tessellate(s, 0.05)), 2);
+  const test::Continuity cont = expect_closed_g1(s);
   std::printf("box %d x %d with top face (%d, %d) split: %d faces, %d exact in charts; against the T-spline of the top side%s on %d faces "
               "(%d of them 4 rings from the star points' faces): %.1e; across %d edges gap %.1e, normals %.1e\n",
               n, n, i, j, s.num_faces(), s.count(FaceMethod::exact), front ? " and the front side" : "", faces, four, worst, cont.edges,
