@@ -138,16 +138,23 @@ std::array<double, 2> nurcc_curve_weights(double before, double d, double after)
   return {(d + 2 * after) / s, (2 * before + d) / s};
 }
 
-double nurcc_across(std::span<const double> spokes, int k) {
-  const int n = static_cast<int>(spokes.size());
-  double s = 0, t = 0;
+std::vector<double> nurcc_across_weights(int n, int k) {
+  std::vector<double> w(static_cast<std::size_t>(n));
+  double t = 0;
   for (int m = 0; m < n; ++m) {
     const double c = std::max(0.0, -std::cos(2 * std::numbers::pi * (m - k) / n));
-    if (c < 1e-12) continue;
-    s += c * spokes[static_cast<std::size_t>(m)];
-    t += c;
+    w[static_cast<std::size_t>(m)] = c < 1e-12 ? 0 : c;
+    t += w[static_cast<std::size_t>(m)];
   }
-  return s / t;
+  for (double& x : w) x /= t;
+  return w;
+}
+
+double nurcc_across(std::span<const double> spokes, int k) {
+  const std::vector<double> w = nurcc_across_weights(static_cast<int>(spokes.size()), k);
+  double s = 0;
+  for (std::size_t m = 0; m < w.size(); ++m) s += w[m] * spokes[m];
+  return s;
 }
 
 // At a vertex of four faces the weights 16 / N^2 a_k a_(k+1) and 8 / N^2 a_k are the tensor product rule's

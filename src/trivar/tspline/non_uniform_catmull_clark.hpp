@@ -51,8 +51,10 @@ namespace trivar {
 // The edge curve point M of an edge of interval d between P and Q (before: the interval beyond P, after: beyond
 // Q on the same line): the weights of P and Q.
 std::array<double, 2> nurcc_curve_weights(double before, double d, double after);
-// The interval beyond a vertex opposite its spoke k, from its spokes' intervals (valence 4: the opposite spoke's;
-// else the mean weighted by max(0, -cos(2 pi (m - k) / N))).
+// The weights of the spokes m of a vertex of valence n that stand for the line beyond it opposite spoke k:
+// max(0, -cos(2 pi (m - k) / n)), normalised (valence 4: the opposite spoke alone).
+std::vector<double> nurcc_across_weights(int n, int k);
+// The interval beyond a vertex opposite its spoke k, from its spokes' intervals (nurcc_across_weights' mean).
 double nurcc_across(std::span<const double> spokes, int k);
 // The vertex rule's weights at a vertex of valence N = spokes.size(): of the face between spokes k and k + 1
 // (faces[k]) and of the edge curve point of spoke k (curves[k]); the vertex itself gets the rest.

@@ -4,7 +4,6 @@
 #include <climits>
 #include <cmath>
 #include <functional>
-#include <numbers>
 #include <string>
 #include <unordered_map>
 
@@ -393,22 +392,16 @@ private:
   Beyond across_star(int a, int b, const std::string& where) const {
     const Fan f = fan(a, b, where);
     require(!f.open, [&] { return where + "a row it crosses runs through the boundary star point " + std::to_string(a); });
-    const std::size_t n = f.spokes.size();
+    const std::vector<double> w = nurcc_across_weights(static_cast<int>(f.spokes.size()), 0);  // spoke 0 comes from b
     Beyond r{-1, 0, false};
-    double sum = 0;
-    for (std::size_t m = 0; m < n; ++m) {
-      const double c = std::max(0.0, -std::cos(2 * std::numbers::pi * static_cast<double>(m) / static_cast<double>(n)));
-      if (c < 1e-12) continue;
+    for (std::size_t m = 0; m < w.size(); ++m) {
+      if (w[m] == 0) continue;
       const Spoke& s = f.spokes[m];
       if (s.to < static_cast<int>(m_.vertices.size())) require_point(s.to, where);
-      for (std::size_t i = 0; i < 4; ++i) r.point[i] += c * p[static_cast<std::size_t>(s.to)][i];
-      r.d += c * s.d;
-      r.past += c * interval_beyond(s.to, a, false, where).d;
-      sum += c;
+      for (std::size_t i = 0; i < 4; ++i) r.point[i] += w[m] * p[static_cast<std::size_t>(s.to)][i];
+      r.d += w[m] * s.d;
+      r.past += w[m] * interval_beyond(s.to, a, false, where).d;
     }
-    for (double& x : r.point) x /= sum;
-    r.d /= sum;
-    r.past /= sum;
     return r;
   }
   // A row along a crease boundary through an irregular vertex whose rule is the crease rule (a crease turning there,
