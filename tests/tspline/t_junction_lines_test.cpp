@@ -790,6 +790,16 @@ TEST(TJunctionLines, FacesNearAStarPointAndATJunctionSixRingsOut) {
   expect_faces_near_a_star_point_and_a_t_junction(15, 7, 0, true, 219, 18);
 }
 
+// A Bezier boundary's star point has no row through it that the lines could follow (its ghost layer's rules take
+// equal intervals): a half fan of 4 sectors of 7 x 7 faces on a Bezier boundary with face (1, 1) split is refused in
+// one line naming the T-junction and the star point.
+TEST(TJunctionLines, ALineNearABezierBoundaryStarPointIsRefused) {
+  const int n = 7;
+  const test::QuadMesh fan = test::half_fan_mesh(4, n, [](double x, double y) { return 0.3 * std::sin(x + 0.7 * y); });
+  test::expect_surface_refusal(mesh_of(test::split_face(fan, static_cast<std::size_t>(n + 1), {0, 0, 0, 0, 0}), "fan.tsm"),
+                               "near a star point (completed into a knot line): a row it crosses ends at the boundary star point 0");
+}
+
 // A grip map that gives the rim vertices where a line ends no end-condition nodes (the others keep theirs): the
 // insertion along the rim has no row of block points there, and the mesh is refused in one line naming the
 // T-junction and the vertex.
