@@ -13,17 +13,27 @@ namespace trivar {
 
 namespace {
 
+// The knot intervals across the boundary at a vertex: from it to the next row inside (d1) and on to the one after
+// (d2).
+struct Spacing {
+  double d1 = 1, d2 = 1;
+};
+
 // The 1-D rule across a straight boundary: the clamped cubic's rows Q0 (block point), Q1 (boundary), Q2 (inside)
-// as the uniform B-spline's ghost row P-1 and boundary row P0 (P1 = Q2).
+// as the ghost row P-1 and boundary row P0 (P1 = Q2) of the B-spline whose knots go on beyond the boundary at
+// the ghost interval g. Its blossom on the first interval [0, d1], with one argument 0, is the quadratic
+// c(x, y) = A + B (x + y) + C x y fixed by Q0 = c(0, 0), Q1 = c(0, d1), Q2 = c(d1, d1 + d2); then
+// P-1 = c(-2 g, -g) and P0 = c(-g, d1).
 struct Rows {
   HomogeneousPoint ghost, point;
 };
 
-Rows rows(const HomogeneousPoint& q0, const HomogeneousPoint& q1, const HomogeneousPoint& q2) {
+Rows rows(const HomogeneousPoint& q0, const HomogeneousPoint& q1, const HomogeneousPoint& q2, Spacing s, double g) {
   Rows r{};
   for (std::size_t i = 0; i < 4; ++i) {
-    r.ghost[i] = 6 * q0[i] - 6 * q1[i] + q2[i];
-    r.point[i] = 1.5 * q1[i] - 0.5 * q2[i];
+    const double a = q0[i], b = (q1[i] - q0[i]) / s.d1, c = (q2[i] - a - b * (2 * s.d1 + s.d2)) / (s.d1 * (s.d1 + s.d2));
+    r.ghost[i] = a - 3 * g * b + 2 * g * g * c;
+    r.point[i] = a + (s.d1 - g) * b - g * s.d1 * c;
   }
   return r;
 }
@@ -78,7 +88,7 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
     throw Error("T-mesh: corner vertex " + std::to_string(v) + " near a boundary star point has no end-condition block of three points (one across "
                 "each side and the diagonal one); the ghost layer needs them");
   };
-  // A straight boundary vertex: two faces with corners there, one interior edge; its inner end, else -1.
+  // A straight boundary vertex: two faces with corners there, one interior edge; the link along it, else -1.
   const auto inner_of_straight = [&](int v) {
     if (v < 0) return -1;
     int faces = 0, inner = -1, interior = 0;
@@ -88,10 +98,26 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
       if (L(l).flag != 0) return -1;
       if (opp_face(l)) {
         ++interior;
-        inner = target(l);
+        inner = l;
       }
     }
     return faces == 2 && interior == 1 ? inner : -1;
+  };
+  const auto interval = [&](int l) { return m.intervals[static_cast<std::size_t>(L(l).edge)]; };
+  // The intervals along link l and the next link straight on (its own where the line does not go on straight: a
+  // vertex there other than of four faces is a star point or a T-junction, whose faces the ghost layer does not
+  // make exact).
+  const auto spacing_along = [&](int l) {
+    const int n = straight_link(m, l);
+    return Spacing{interval(l), n >= 0 ? interval(n) : interval(l)};
+  };
+  // A boundary star point's interior edges (its spokes into the mesh).
+  const auto spokes_of = [&](int v) {
+    std::vector<int> out;
+    for (int l : leaving[static_cast<std::size_t>(v)])
+      if (is_face(L(l).face) && opp_face(l) && target(l) >= 0) out.push_back(l);
+    require(!out.empty(), [&] { return "T-mesh: boundary star point " + std::to_string(v) + " has no interior edge"; });
+    return out;
   };
   // A corner: one face there, a quadrilateral without T-junctions; its link leaving the corner, else -1.
   const auto corner_link = [&](int v) {
@@ -147,8 +173,8 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
     x.links.push_back(k);
     return static_cast<int>(x.links.size()) - 1;
   };
-  const auto new_edge = [&](double interval) {
-    x.intervals.push_back(interval);
+  const auto new_edge = [&](double d) {
+    x.intervals.push_back(d);
     return static_cast<int>(x.intervals.size()) - 1;
   };
   const auto outside = [&](int opp, int vertex) {  // a boundary link of the extended mesh
@@ -192,22 +218,25 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
   // product of the rule across its two sides (the T-spline there is the product of two clamped ends), on the 3 x 3
   // rows (block, vertex, inside) of each side: its point P(0, 0), a ghost across each side and a diagonal one.
   std::vector<std::array<int, 2>> corner_ghost(nv, {-1, -1});  // a corner's ghosts across its arriving link, diagonal
-  const auto vertex_rows = [&](int u) {  // a straight vertex or a star point
+  // The ghost interval: the star points' mean interval into the mesh (every interval where they are all equal).
+  double gap = 0;
+  for (int v : stars) {
+    const std::vector<int> spokes = spokes_of(v);
+    for (int l : spokes) gap += interval(l) / static_cast<double>(spokes.size() * stars.size());
+  }
+  const auto vertex_rows = [&](int u) {  // a straight vertex or a star point: the mean of its spokes inside
     HomogeneousPoint q2{};
-    if (is_star[static_cast<std::size_t>(u)]) {
-      int n = 0;
-      for (int l : leaving[static_cast<std::size_t>(u)])
-        if (is_face(L(l).face) && opp_face(l) && target(l) >= 0) {
-          const HomogeneousPoint h = point(target(l));
-          for (std::size_t c = 0; c < 4; ++c) q2[c] += h[c];
-          ++n;
-        }
-      require(n > 0, [&] { return "T-mesh: boundary star point " + std::to_string(u) + " has no interior edge"; });
-      for (double& c : q2) c /= n;
-    } else {
-      q2 = point(inner_of_straight(u));
+    Spacing sp{0, 0};
+    const std::vector<int> inner = is_star[static_cast<std::size_t>(u)] ? spokes_of(u) : std::vector<int>{inner_of_straight(u)};
+    const double share = 1.0 / static_cast<double>(inner.size());
+    for (int l : inner) {
+      const HomogeneousPoint h = point(target(l));
+      for (std::size_t c = 0; c < 4; ++c) q2[c] += share * h[c];
+      const Spacing a = spacing_along(l);
+      sp.d1 += share * a.d1;
+      sp.d2 += share * a.d2;
     }
-    return rows(block(u), point(u), q2);
+    return rows(block(u), point(u), q2, sp, gap);
   };
   const auto add_point = [&](const HomogeneousPoint& h, int v) {
     require(h[3] > 0, [&] { return "T-mesh: the ghost layer at boundary vertex " + std::to_string(v) + " has weight " + std::to_string(h[3]) + " (weights vary too much near a boundary star point)"; });
@@ -243,11 +272,15 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
         const HomogeneousPoint qa = corner_block(u, {out_a}), qb = corner_block(u, {out_b}), qd = corner_block(u, {out_a, out_b});
         const bool b_first = is_star[static_cast<std::size_t>(nb)] && !is_star[static_cast<std::size_t>(na)];
         const int first = b_first ? nb : na, second = b_first ? na : nb;
-        const Rows r0 = rows(qd, b_first ? qa : qb, block(second));
-        const Rows r1 = rows(b_first ? qb : qa, point(u), point(second));
+        // The intervals along side a from u (lf's, then the boundary's next) and along side b (ob's, then the next).
+        const Spacing sa{interval(lf), interval(L(L(ob).prev).prev)}, sb{interval(ob), interval(L(ob).next)};
+        const Spacing towards_second = b_first ? sa : sb, towards_first = b_first ? sb : sa;
+        const Rows r0 = rows(qd, b_first ? qa : qb, block(second), towards_second, gap);
+        const Rows r1 = rows(b_first ? qb : qa, point(u), point(second), towards_second, gap);
         const Rows r2 = vertex_rows(first);
-        const Rows on_line = rows(r0.point, r1.point, r2.point);  // the corner's point, its ghost across the second side
-        const Rows beyond = rows(r0.ghost, r1.ghost, r2.ghost);   // its ghost across the first side, the diagonal one
+        // The corner's point and its ghost across the second side; its ghost across the first side and the diagonal one.
+        const Rows on_line = rows(r0.point, r1.point, r2.point, towards_first, gap);
+        const Rows beyond = rows(r0.ghost, r1.ghost, r2.ghost, towards_first, gap);
         p = on_line.point;
         const HomogeneousPoint& arriving_ghost = b_first ? on_line.ghost : beyond.point;
         leaving_ghost = b_first ? beyond.point : on_line.ghost;
@@ -261,14 +294,15 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
     }
   }
   // The face (c, G_b(c), D(c), G_a(c)) at corner c between the ghost faces of its arriving link (whose side
-  // c -> G_a(c) is `arriving_side`) and its leaving link; returns its side c -> G_b(c).
-  const auto corner_face = [&](int c, int arriving_side, double d_in, double d_out) {
+  // c -> G_a(c) is `arriving_side`) and its leaving link; returns its side c -> G_b(c). Its sides are across the
+  // boundary: the ghost interval.
+  const auto corner_face = [&](int c, int arriving_side) {
     const int f = static_cast<int>(x.faces.size());
     const auto [ga, gd] = corner_ghost[static_cast<std::size_t>(c)];
     const int gb = g.ghost[static_cast<std::size_t>(c)];
-    const int k0 = new_link(c, f, new_edge(d_out));
-    const int k1 = new_link(gb, f, new_edge(d_in));
-    const int k2 = new_link(gd, f, new_edge(d_out));
+    const int k0 = new_link(c, f, new_edge(gap));
+    const int k1 = new_link(gb, f, new_edge(gap));
+    const int k2 = new_link(gd, f, new_edge(gap));
     const int k3 = new_link(ga, f, x.links[static_cast<std::size_t>(arriving_side)].edge);
     add_face({k0, k1, k2, k3});
     link_pair(k3, arriving_side);
@@ -301,18 +335,20 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
               [&] { return "T-mesh: boundary link " + std::to_string(c) + " has no opposite link or edge"; });
       const double d = m.intervals[static_cast<std::size_t>(L(c).edge)];
       if (i > 0 && corner_ghost[static_cast<std::size_t>(a)][0] >= 0)
-        last_side = corner_face(a, last_side, m.intervals[static_cast<std::size_t>(L(chain[i - 1]).edge)], d);
+        last_side = corner_face(a, last_side);
       const int f = static_cast<int>(x.faces.size());
       const int ga = g.ghost[static_cast<std::size_t>(a)];
       const int arriving_ghost = corner_ghost[static_cast<std::size_t>(b)][0];  // b a corner
       const int gb = arriving_ghost >= 0 ? arriving_ghost : g.ghost[static_cast<std::size_t>(b)];
       const bool last = i + 1 == chain.size();
       const int l0 = new_link(a, f, L(c).edge);
-      const int l1 = new_link(b, f, closed && last ? x.links[static_cast<std::size_t>(first_side)].edge : new_edge(d));
+      const int l1 = new_link(b, f, closed && last ? x.links[static_cast<std::size_t>(first_side)].edge : new_edge(gap));
       const int l2 = new_link(gb, f, new_edge(d));
-      const int l3 = new_link(ga, f, i == 0 ? new_edge(d) : x.links[static_cast<std::size_t>(last_side)].edge);
+      const int l3 = new_link(ga, f, i == 0 ? new_edge(gap) : x.links[static_cast<std::size_t>(last_side)].edge);
       add_face({l0, l1, l2, l3});
       link_pair(l0, inner);
+      x.links[static_cast<std::size_t>(c)].vertex = -1;  // the boundary link it replaces: a deleted slot
+      x.links[static_cast<std::size_t>(c)].opp = -1;
       if (i == 0) {
         first_side = l3;
         if (!closed) outside(l3, a);

@@ -15,6 +15,17 @@ int TMesh::first_corner(int f) const {
   throw Error("T-mesh: face " + std::to_string(f) + " has no corner");
 }
 
+int straight_link(const TMesh& m, int l) {
+  const auto L = [&](int x) -> const TMeshLink& { return m.links[static_cast<std::size_t>(x)]; };
+  const auto rot = [&](int x) { return x < 0 || L(x).face < 0 ? -1 : L(L(x).prev).opp; };
+  std::array<int, 4> r{L(l).opp, -1, -1, -1};  // back, right, straight, left
+  for (std::size_t i = 1; i < 4; ++i) r[i] = rot(r[i - 1]);
+  if (r[3] < 0 || rot(r[3]) != r[0]) return -1;
+  for (int x : r)
+    if (L(x).face < 0 || m.faces[static_cast<std::size_t>(L(x).face)].size() != 4) return -1;
+  return r[2];
+}
+
 std::vector<int> star_points(const TMesh& m) {
   const std::size_t nv = m.vertices.size();
   std::vector<int> angle(nv, 0);

@@ -62,6 +62,10 @@ struct TMesh {
   int first_corner(int f) const;
 };
 
+// The link leaving the far end of link l straight on (the opposite of l's link there), when that vertex is an
+// interior vertex of four quadrilaterals; -1 otherwise.
+int straight_link(const TMesh& m, int l);
+
 // Face angle sums at the vertices: a star point is an interior vertex whose faces' angles do not sum to 360
 // degrees, or a boundary vertex whose faces' angles exceed 270.
 std::vector<int> star_points(const TMesh& m);

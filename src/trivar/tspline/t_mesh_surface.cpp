@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <climits>
 #include <cmath>
+#include <span>
 #include <string>
 
 #include "trivar/core/error.hpp"
@@ -96,19 +97,6 @@ Gather gather(const TMesh& m, int l0) {
   }
   for (int x : {x2m, x20, x21, x22, x12, x02, xm2}) g.points.push_back(x);
   return g;
-}
-
-// The link leaving the far end of link l straight on (the opposite of l's link there), when that vertex is an
-// interior vertex of four faces; -1 otherwise.
-int straight_link(const TMesh& m, int l) {
-  const auto L = [&](int x) -> const TMeshLink& { return m.links[static_cast<std::size_t>(x)]; };
-  const auto rot = [&](int x) { return x < 0 || L(x).face < 0 ? -1 : L(L(x).prev).opp; };
-  std::array<int, 4> r{L(l).opp, -1, -1, -1};  // back, right, straight, left
-  for (std::size_t i = 1; i < 4; ++i) r[i] = rot(r[i - 1]);
-  if (r[3] < 0 || rot(r[3]) != r[0]) return -1;
-  for (int x : r)
-    if (L(x).face < 0 || m.faces[static_cast<std::size_t>(L(x).face)].size() != 4) return -1;
-  return r[2];
 }
 
 // The sectors around star point v for non-uniform Catmull-Clark: the level-0 points (NonUniformStar layout),
@@ -207,27 +195,63 @@ Sectors gather_sectors(const TMesh& m, int v) {
   return s;
 }
 
+// Faces of mesh m (vertex_faces: the faces at each vertex) in `ring_count` rings around `front`: each ring the faces
+// sharing a vertex with the previous one; dist holds each face's ring (faces already nearer are not revisited).
+std::vector<int> face_rings(const TMesh& m, const std::vector<std::vector<int>>& vertex_faces, std::vector<int> front, int ring_count,
+                            std::vector<int>& dist) {
+  std::vector<int> all = front;
+  for (int r = 1; r <= ring_count && !front.empty(); ++r) {
+    std::vector<int> next;
+    for (int f : front)
+      for (int l : m.faces[static_cast<std::size_t>(f)])
+        for (int g : vertex_faces[static_cast<std::size_t>(m.links[static_cast<std::size_t>(l)].vertex)])
+          if (dist[static_cast<std::size_t>(g)] > r) {
+            dist[static_cast<std::size_t>(g)] = r;
+            next.push_back(g);
+            all.push_back(g);
+          }
+    front = std::move(next);
+  }
+  return all;
+}
+
+std::vector<std::vector<int>> faces_at_vertices(const TMesh& m) {
+  std::vector<std::vector<int>> out(m.vertices.size());
+  for (const TMeshLink& k : m.links)
+    if (k.vertex >= 0 && k.face >= 0) out[static_cast<std::size_t>(k.vertex)].push_back(k.face);
+  return out;
+}
+
 // The knots of the bicubic cell of the quad whose corner link is l0 (from (0, 0) to (1, 0)), six per direction in
-// units of the cell's side: two intervals before it, its own, two after, read along the lines through (0, 0).
-std::optional<std::array<std::array<double, 6>, 2>> cell_knots(const TMesh& m, int l0) {
+// units of the cell's side: two intervals before it, its own, two after, read along the lines through (0, 0). A
+// line that ends at a vertex of a ghost layer (ids from first_ghost on, on the extended mesh's boundary) goes on
+// with its last interval: the ghost rows are placed for that (boundary_ghosts).
+std::optional<std::array<std::array<double, 6>, 2>> cell_knots(const TMesh& m, int l0, int first_ghost) {
   const auto L = [&](int x) -> const TMeshLink& { return m.links[static_cast<std::size_t>(x)]; };
+  const auto interval = [&](int x) { return m.intervals[static_cast<std::size_t>(L(x).edge)]; };
+  // The intervals of the links straight on after link l, into out[0], out[1], ... (a ghost vertex repeats the last).
+  const auto read_on = [&](int l, std::span<double> out) {
+    double last = interval(l);
+    for (double& o : out) {
+      if (l >= 0) {
+        const int n = straight_link(m, l);
+        if (n < 0 && L(L(l).next).vertex < first_ghost) return false;
+        if (n >= 0) last = interval(n);
+        l = n;
+      }
+      o = last;
+    }
+    return true;
+  };
   std::array<std::array<double, 6>, 2> k{};
   const std::array<int, 2> axis{l0, L(L(l0).prev).opp};
   for (std::size_t d = 0; d < 2; ++d) {
     std::array<double, 5> h{};  // intervals -2 .. 2
-    int f = axis[d];
-    h[2] = m.intervals[static_cast<std::size_t>(L(f).edge)];
-    for (std::size_t i = 3; i < 5; ++i) {
-      f = straight_link(m, f);
-      if (f < 0) return std::nullopt;
-      h[i] = m.intervals[static_cast<std::size_t>(L(f).edge)];
-    }
-    int b = L(axis[d]).opp;
-    for (std::size_t i = 2; i-- > 0;) {
-      b = straight_link(m, b);
-      if (b < 0) return std::nullopt;
-      h[i] = m.intervals[static_cast<std::size_t>(L(b).edge)];
-    }
+    h[2] = interval(axis[d]);
+    std::array<double, 2> before{};
+    if (!read_on(axis[d], std::span<double>(h).subspan(3, 2)) || !read_on(L(axis[d]).opp, before)) return std::nullopt;
+    h[1] = before[0];
+    h[0] = before[1];
     k[d][2] = 0;
     for (std::size_t i = 3; i < 6; ++i) k[d][i] = k[d][i - 1] + h[i - 1] / h[2];
     for (std::size_t i = 2; i-- > 0;) k[d][i] = k[d][i + 1] - h[i] / h[2];
@@ -368,19 +392,14 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int th
     return;
   }
   std::vector<int> irregular;
-  std::vector<CreaseRule> rules;  // of the split mesh's boundary vertices, once needed
+  std::vector<CreaseRule> rules;  // of the boundary vertices of local subdivision's mesh, once needed
   if (split) irregular = irregular_crease_vertices(*split);
   std::vector<char> is_irregular(static_cast<std::size_t>(nv), 0);
   for (int v : irregular) is_irregular[static_cast<std::size_t>(v)] = 1;
-  std::vector<std::vector<int>> vertex_faces(static_cast<std::size_t>(nv));
+  const std::vector<std::vector<int>> vertex_faces = faces_at_vertices(m);
   std::vector<char> boundary(static_cast<std::size_t>(nv), 0);
-  for (const TMeshLink& k : m.links) {
-    if (k.vertex < 0) continue;
-    if (k.face >= 0)
-      vertex_faces[static_cast<std::size_t>(k.vertex)].push_back(k.face);
-    else
-      boundary[static_cast<std::size_t>(k.vertex)] = 1;
-  }
+  for (const TMeshLink& k : m.links)
+    if (k.vertex >= 0 && k.face < 0) boundary[static_cast<std::size_t>(k.vertex)] = 1;
   const int depth = m.degree + 1;
   // Star points on the boundary: interior ones of the control mesh with a ghost layer (boundary_ghosts) over the
   // boundary vertices of every face within (p + 1) / 2 rings of a Catmull-Clark face (depth + 2 rings of the star
@@ -397,20 +416,7 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int th
   const TMesh& cm = cc_mesh();
   // Face rings: faces sharing a vertex with the previous ring.
   const auto rings = [&](std::vector<int> front, int ring_count, std::vector<int>& dist) {
-    std::vector<int> all = front;
-    for (int r = 1; r <= ring_count && !front.empty(); ++r) {
-      std::vector<int> next;
-      for (int f : front)
-        for (int l : m.faces[static_cast<std::size_t>(f)])
-          for (int g : vertex_faces[static_cast<std::size_t>(L(l).vertex)])
-            if (dist[static_cast<std::size_t>(g)] > r) {
-              dist[static_cast<std::size_t>(g)] = r;
-              next.push_back(g);
-              all.push_back(g);
-            }
-      front = std::move(next);
-    }
-    return all;
+    return face_rings(m, vertex_faces, std::move(front), ring_count, dist);
   };
   // The face rings the supports of the blending functions on a face span on a uniform quad mesh: their anchors
   // lie (p - 1) / 2 rings out and their supports (p + 1) / 2 further.
@@ -535,7 +541,7 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int th
           return where + unequal + "; non-uniform Catmull-Clark at star point " + std::to_string(x) + " needs its three rings of faces: " +
                  (sw.empty() ? std::string("degree 3") : sw);
         });
-      face.knots = cell_knots(m, loop[static_cast<std::size_t>(corner)]);
+      face.knots = cell_knots(cm, loop[static_cast<std::size_t>(corner)], static_cast<int>(m.vertices.size()));
       require(face.knots.has_value(), [&] { return where + unequal + "; its knot lines are not straight through vertices of four faces"; });
     }
     for (int x : gth.points) {
@@ -575,27 +581,34 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int th
                 "quadrilaterals without T-junctions)");
   }
   // Local subdivision of the face's two face rings (crease_face): with the crease rules of the mesh cut open along
-  // its creases, or in a mesh without creases with the smooth rule at every vertex (its nets are kept inside the
-  // mesh, boundary_within_two_rings).
+  // its creases, or in a mesh without creases on the mesh with the ghost layers of its boundary star points (the
+  // smooth rule at every vertex of the mesh; the layer's outer boundary takes the crease rules, its natural end,
+  // for which the ghost rows are placed; its nets are kept off the rest of the boundary,
+  // boundary_within_two_rings).
+  std::vector<std::vector<int>> cc_vertex_faces;
   const auto local_subdivision = [&](int f, const std::string& why) {
-    if (rules.empty()) rules = split ? boundary_rules(*split) : std::vector<CreaseRule>(static_cast<std::size_t>(nv), CreaseRule::none);
-    std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX);
+    const TMesh& topology = split ? m : cm;
+    if (rules.empty()) {
+      rules = boundary_rules(split ? *split : cm);
+      cc_vertex_faces = faces_at_vertices(topology);
+    }
+    std::vector<int> dist(topology.faces.size(), INT_MAX);
     dist[static_cast<std::size_t>(f)] = 0;
     const std::string where = "T-mesh: face " + std::to_string(f) + " (" + why + ", evaluated by local subdivision): ";
-    crease_faces_.emplace_back(crease_net(m, split ? *split : m, rules, f, rings({f}, 2, dist), where));
+    crease_faces_.emplace_back(crease_net(topology, split ? *split : cm, rules, f, face_rings(topology, cc_vertex_faces, {f}, 2, dist), where));
     Face& face = faces_[static_cast<std::size_t>(f)];
     face.method = FaceMethod::crease;
     face.crease = static_cast<int>(crease_faces_.size()) - 1;
     face.rational = crease_faces_.back().rational();
   };
-  // The first boundary vertex of face f's two face rings (-1: none). Without a crease boundary the smooth rule has
-  // no rule for it (a Bezier boundary is no subdivision rule), nor for the ghost layers of boundary star points.
+  // The first boundary vertex of face f's two face rings outside the ghost layers (-1: none). Without a crease
+  // boundary the smooth rule has no rule for it (a Bezier boundary is no subdivision rule).
   const auto boundary_within_two_rings = [&](int f) {
     std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX);
     dist[static_cast<std::size_t>(f)] = 0;
     for (int g : rings({f}, 2, dist))
       for (int l : m.faces[static_cast<std::size_t>(g)])
-        if (boundary[static_cast<std::size_t>(L(l).vertex)]) return L(l).vertex;
+        if (const int v = L(l).vertex; boundary[static_cast<std::size_t>(v)] && !ghosted[static_cast<std::size_t>(v)]) return v;
     return -1;
   };
   for (int f = 0; f < nf; ++f) {
@@ -650,8 +663,11 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int th
       // Unequal intervals round a star point whose three rings are no regular grid for NonUniformStar (another star
       // point or a crease boundary there; its own faces are taken above), or at a face with several star corners
       // or next to star points joined by an edge (no Stam patch): the face's 4 x 4 points hold the star point, and
-      // local subdivision's rules there are NonUniformStar's on two face rings (the global steps' too).
+      // local subdivision's rules there are NonUniformStar's on two face rings (the global steps' too). At a star
+      // point on the boundary the same on the mesh with its ghost layer.
       local_subdivision(f, "near a star point with unequal knot intervals: " + unequal);
+      for (int l : loop)
+        face.boundary_star = face.boundary_star || (is_star[static_cast<std::size_t>(L(l).vertex)] && boundary[static_cast<std::size_t>(L(l).vertex)]);
       continue;
     }
     if (!why.empty()) {
