@@ -5,6 +5,7 @@
 #include <map>
 #include <random>
 
+#include "chart_comparison.hpp"
 #include "face_continuity.hpp"
 #include "star_mesh_tsm.hpp"
 #include "trivar/core/error.hpp"
@@ -293,20 +294,26 @@ void expect_error(const std::string& text, const std::string& fragment) {
   }
 }
 
-// A star point 7 faces from the boundary (8 were needed without the fallback): the faces within 5 rings of it
-// whose 2-ring neighbourhood reaches the boundary (its Bezier end conditions) are not Catmull-Clark faces; from 4
-// rings out they are the T-spline of a chart without star points (3 rings around them: their blending
-// functions' supports), which meets the Catmull-Clark faces C2. With 6 faces the ring-3 faces are neither.
-TEST(StarPoints, FacesNearStarPointsAndTheBoundaryFallBackToCharts) {
-  expect_error(tsm_text(test::fan_mesh(5, 6, height)), "boundary vertex");
-  const io::TsmModel model = io::parse_tsm(tsm_text(test::fan_mesh(5, 7, height)), "fan.tsm");
-  const TMeshSurface s(model.mesh, 1);
-  EXPECT_EQ(s.count(FaceMethod::star), 5);
-  // Catmull-Clark: the faces [i, i + 1] x [j, j + 1] of a sector whose 2 rings stay off the boundary (i, j <= 3);
-  // exact: the rest (ring 4 in charts of 3 rings, beyond as before).
-  EXPECT_EQ(s.count(FaceMethod::bicubic), 5 * 16 - 5);
-  EXPECT_EQ(s.count(FaceMethod::exact), 5 * 33);
-  expect_one_smooth_surface(s, "valence-5 fan, 7 faces to the boundary");
+// A star point 2 to 7 faces from a Bezier boundary: the boundary near it gets the ghost layer of its end
+// condition (boundary_ghosts), so the faces within 5 rings of the star point are Catmull-Clark faces of the
+// extended mesh (bicubic: the T-spline itself, also where their 4 x 4 points hold ghost rows), the rest exact
+// in charts; one smooth surface, the bicubic faces equal to their charts where those exist.
+TEST(StarPoints, FacesNearStarPointsAndTheBoundaryReadTheGhostLayer) {
+  for (int rings : {2, 4, 7}) {
+    const io::TsmModel model = io::parse_tsm(tsm_text(test::fan_mesh(5, rings, height)), "fan.tsm");
+    const TMeshSurface s(model.mesh, 1);
+    const int within = std::min(rings, 5);
+    EXPECT_EQ(s.count(FaceMethod::star), 5);
+    EXPECT_EQ(s.count(FaceMethod::bicubic), 5 * within * within - 5) << rings;
+    EXPECT_EQ(s.count(FaceMethod::exact), 5 * (rings * rings - within * within)) << rings;
+    const test::ChartComparison cmp = test::compare_with_charts(model.mesh, s, FaceMethod::bicubic);
+    EXPECT_EQ(cmp.compared > 0, rings > 2) << rings;
+    EXPECT_LT(cmp.position, 1e-12) << rings;
+    EXPECT_LT(cmp.derivative, 1e-11) << rings;
+    char name[96];
+    std::snprintf(name, sizeof name, "valence-5 fan, %d faces to the boundary (%d bicubic faces as charts, %.1e)", rings, cmp.compared, cmp.position);
+    expect_one_smooth_surface(s, name);
+  }
 }
 
 // Unequal knot intervals near a star point: in the valence-5 fan of 8 x 8 faces per sector, the strip of edges
@@ -355,8 +362,7 @@ TEST(StarPoints, UnequalIntervalsNearAStarPoint) {
 }
 
 TEST(StarPoints, WhatTheCatmullClarkRegionDoesNotHoldIsRefused) {
-  // Boundary too close, unequal knot intervals (faces with several star corners: subdivided_face_test.cpp).
-  expect_error(tsm_text(test::fan_mesh(5, 4, height)), "boundary vertex");
+  // Unequal knot intervals (faces with several star corners: subdivided_face_test.cpp).
   std::string uneven = tsm_text(test::cube_mesh(3));
   const auto line = uneven.find("\ne ") + 1, end = uneven.find('\n', line);
   uneven.replace(end - 1, 1, "2");  // the first edge's interval 1 -> 2

@@ -53,8 +53,14 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
   std::vector<std::vector<int>> leaving(nv);
   for (int l = 0; l < static_cast<int>(m.links.size()); ++l)
     if (L(l).vertex >= 0) leaving[static_cast<std::size_t>(L(l).vertex)].push_back(l);
+  // is_star: the star points on the boundary (the others only place the layer).
   std::vector<char> is_star(nv, 0), in_layer(static_cast<std::size_t>(nl), 0);
-  for (int v : stars) is_star[static_cast<std::size_t>(v)] = 1;
+  std::vector<int> boundary_stars;
+  for (int v : stars)
+    if (std::any_of(leaving[static_cast<std::size_t>(v)].begin(), leaving[static_cast<std::size_t>(v)].end(), [&](int l) { return !is_face(L(l).face); })) {
+      is_star[static_cast<std::size_t>(v)] = 1;
+      boundary_stars.push_back(v);
+    }
   const auto point = [&](int v) -> HomogeneousPoint {
     const int p = m.vertices[static_cast<std::size_t>(v)].primary;
     require(p >= 0, [&] { return "T-mesh: boundary vertex " + std::to_string(v) + " near a boundary star point has no control point"; });
@@ -193,26 +199,29 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
     x.links[static_cast<std::size_t>(a)].opp = b;
     x.links[static_cast<std::size_t>(b)].opp = a;
   };
-  // Each star point's chain of boundary links, either way while their vertices lie within `reach` steps and the
-  // layer runs through them. The layer is their union: the ghost rows of a vertex do not depend on the star point
-  // that asks for them, so layers that overlap (star points close along the boundary, or both ends of a slit)
-  // are one layer.
-  for (int v : stars) {
+  // The layer: the boundary links between vertices within `reach` steps that it runs through (or boundary star
+  // points). The ghost rows of a vertex do not depend on the star point that asks for them, so layers that overlap
+  // (star points close along the boundary, or both ends of a slit) are one layer.
+  const auto in_reach = [&](int u) {
+    return u >= 0 && steps[static_cast<std::size_t>(u)] <= reach && (is_star[static_cast<std::size_t>(u)] || continues(u));
+  };
+  for (int l = 0; l < nl; ++l)
+    if (L(l).vertex >= 0 && !is_face(L(l).face) && L(l).next >= 0 && L(l).next < nl) in_layer[static_cast<std::size_t>(l)] = in_reach(L(l).vertex) && in_reach(target(l));
+  for (int v : boundary_stars) {
     std::vector<int> out;
     for (int l : leaving[static_cast<std::size_t>(v)])
       if (!is_face(L(l).face)) out.push_back(l);
     require(out.size() == 1, [&] {
       return "T-mesh: boundary star point " + std::to_string(v) + " lies on " + std::to_string(out.size()) + " boundary arcs; it is evaluated on one";
     });
-    const auto runs_to = [&](int u) { return u >= 0 && u != v && steps[static_cast<std::size_t>(u)] <= reach && continues(u); };
-    int ahead = 0, behind = 0;
-    for (int l = out[0]; l >= 0 && l < nl && ahead < nl && runs_to(target(l)); l = L(l).next, ++ahead) in_layer[static_cast<std::size_t>(l)] = 1;
-    for (int l = L(out[0]).prev; l >= 0 && l < nl && behind < nl && runs_to(L(l).vertex); l = L(l).prev, ++behind)
-      in_layer[static_cast<std::size_t>(l)] = 1;
-    require(ahead > 0 && behind > 0, [&] {
-      return "T-mesh: boundary star point " + std::to_string(v) +
-             " has a T-junction, a corner with a side of one edge or another star point next to it on the boundary";
-    });
+    const int behind = L(out[0]).prev;
+    const auto star_pair = [&](int l) { return is_star[static_cast<std::size_t>(L(l).vertex)] && is_star[static_cast<std::size_t>(target(l))]; };
+    require(in_layer[static_cast<std::size_t>(out[0])] && !star_pair(out[0]) && behind >= 0 && behind < nl &&
+                in_layer[static_cast<std::size_t>(behind)] && !star_pair(behind),
+            [&] {
+              return "T-mesh: boundary star point " + std::to_string(v) +
+                     " has a T-junction, a corner with a side of one edge or another star point next to it on the boundary";
+            });
   }
   // Ghost points. A straight vertex or a star point: P-1 and its point replaced by P0. A corner: the tensor
   // product of the rule across its two sides (the T-spline there is the product of two clamped ends), on the 3 x 3

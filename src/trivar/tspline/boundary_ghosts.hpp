@@ -31,6 +31,16 @@
 // The boundary curve is then the cubic B-spline of the block points wherever the 4 x 4 points of the boundary's
 // faces avoid the star point and g (from two faces along the boundary on); next to the star point it is the
 // Catmull-Clark limit curve of the extended mesh (C1, with the tangent plane of the star point).
+//
+// Unequal knot intervals. Across the boundary the clamped cubic has knots 0, 0, 0, 0, d1, d1 + d2, ... at a vertex
+// (d1, d2 the intervals into the mesh along its interior edge; a star point's mean over its interior edges; a
+// corner's along each side), and any knots -2 g, -g beyond the boundary span the same curve on t >= 0. With g the
+// star points' mean interval into the mesh (every interval when they are equal, giving the rule above) the ghost
+// rows are the blossoms P-1 = c(-2 g, -g), P0 = c(-g, d1) of the first piece, with one argument 0 a quadratic
+// c(x, y) = A + B (x + y) + C x y fixed by Q0 = c(0, 0), Q1 = c(0, d1), Q2 = c(d1, d1 + d2). The ghost faces'
+// sides across the boundary get the interval g, so every strip has one interval; beyond the ghost row the knots
+// repeat g (the natural end of a crease boundary of the extended mesh: knot reads and local subdivision there,
+// TMeshSurface).
 #include <span>
 #include <vector>
 
@@ -39,7 +49,8 @@
 namespace trivar {
 
 struct GhostedMesh {
-  TMesh mesh;                 // the input with ghost vertices, points, links and faces appended (input ids kept)
+  TMesh mesh;                 // the input with ghost vertices, points, links and faces appended (input ids kept; the
+                              // boundary links the ghost faces replace are deleted slots)
   // per input vertex: its ghost vertex in `mesh` across the boundary link leaving it (its own point there is P0;
   // a corner's P(0, 0)), -1: none
   std::vector<int> ghost;
@@ -49,8 +60,7 @@ struct GhostedMesh {
 // boundary vertices lie within `reach` steps across faces from a star point (on a grid the larger of the two index
 // distances: on a straight boundary `reach` edges) and the layer runs through them: straight vertices (two faces,
 // no T-junction, one block point) and corners whose neighbours along the boundary are straight or star points
-// (sides of one edge and T-junctions stop it; the rules assume equal knot intervals, which TMeshSurface checks
-// on the faces it evaluates through the layer). Layers that meet (star points within 2 reach edges along the
+// (sides of one edge and T-junctions stop it). Layers that meet (star points within 2 reach edges along the
 // boundary, or the two ends of a slit) are one layer through both star points, closed when it covers a whole
 // boundary loop.
 // Throws trivar::Error (one line) when a star point has more than one boundary arc or no vertex the layer runs

@@ -401,17 +401,15 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int th
   for (const TMeshLink& k : m.links)
     if (k.vertex >= 0 && k.face < 0) boundary[static_cast<std::size_t>(k.vertex)] = 1;
   const int depth = m.degree + 1;
-  // Star points on the boundary: interior ones of the control mesh with a ghost layer (boundary_ghosts) over the
-  // boundary vertices of every face within (p + 1) / 2 rings of a Catmull-Clark face (depth + 2 rings of the star
-  // points' faces, whose vertices lie depth + 3 steps across faces from the star points).
-  std::vector<int> boundary_stars;
-  for (int s : stars_)
-    if (boundary[static_cast<std::size_t>(s)] && !is_irregular[static_cast<std::size_t>(s)]) boundary_stars.push_back(s);
+  // Star points on or near a Bezier boundary: interior ones of the control mesh with a ghost layer (boundary_ghosts)
+  // over the boundary vertices of every face within (p + 1) / 2 rings of a Catmull-Clark face (depth + 2 rings of
+  // the star points' faces, whose vertices lie depth + 3 steps across faces from the star points). A crease
+  // boundary's rules are local subdivision's instead.
   std::vector<char> ghosted(static_cast<std::size_t>(nv), 0);
-  if (!boundary_stars.empty()) {
-    GhostedMesh gm = ghost_boundary(m, boundary_stars, depth + 3);
-    ghosted_ = std::make_unique<TMesh>(std::move(gm.mesh));
+  if (!split && m.degree == 3 && !stars_.empty() && std::find(boundary.begin(), boundary.end(), 1) != boundary.end()) {
+    GhostedMesh gm = ghost_boundary(m, stars_, depth + 3);
     for (int v = 0; v < nv; ++v) ghosted[static_cast<std::size_t>(v)] = gm.ghost[static_cast<std::size_t>(v)] >= 0;
+    if (std::find(ghosted.begin(), ghosted.end(), 1) != ghosted.end()) ghosted_ = std::make_unique<TMesh>(std::move(gm.mesh));
   }
   const TMesh& cm = cc_mesh();
   // Face rings: faces sharing a vertex with the previous ring.

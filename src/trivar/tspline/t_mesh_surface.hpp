@@ -155,7 +155,8 @@ public:
   int num_faces() const { return static_cast<int>(faces_.size()); }  // mesh face ids (deleted faces: none)
   FaceMethod method(int face) const { return faces_[static_cast<std::size_t>(face)].method; }
   int count(FaceMethod m) const;
-  // The star faces whose star point is on the boundary (Catmull-Clark of the mesh with its ghost layer).
+  // The faces at a star point on the boundary (Catmull-Clark of the mesh with its ghost layer: Stam's patches, or
+  // local non-uniform subdivision with unequal knot intervals nearby).
   int boundary_star_faces() const;
   const std::vector<int>& stars() const { return stars_; }
   int valence(int star) const;  // faces around a star point
@@ -205,7 +206,7 @@ private:
     std::optional<std::array<std::array<double, 6>, 2>> knots;
     int nurcc = -1, sector = 0;    // non_uniform: index into nurcc_, the sector and the face's cell in it
     std::array<int, 2> cell{-1, -1};
-    bool boundary_star = false;    // star: the star point is on the boundary
+    bool boundary_star = false;    // star or crease: a corner is a star point on the boundary
     int subdivided = -1;           // subdivided: index into subdivided_
     int crease = -1;               // crease: index into crease_faces_
   };
