@@ -814,5 +814,26 @@ TEST(TJunctionLines, AMissingEndConditionNodeIsRefused) {
   test::expect_surface_refusal(m, "has no end-condition node for a row it crosses");
 }
 
+// Open boxes of 2 to 6 faces per side (Bezier rim within reach of the star points: its ghost layer) with a top face
+// split: the lines cut the side walls down to the rim, whose ghost layer then has unequal intervals along it and
+// the interval into the mesh across it; faces whose points read the layer with another interval take its knots.
+// One surface, G1 across every edge, one boundary loop.
+TEST(TJunctionLines, SmallOpenBoxesWithASplitTopFace) {
+  for (const auto& [n, i, j] : {std::array<int, 3>{2, 0, 0}, {4, 0, 0}, {4, 1, 0}, {6, 2, 1}}) {
+    test::QuadMesh box = test::box_mesh({n, n, n}, true);
+    const auto unbent = box.points;
+    bend(box.points);
+    const TMeshSurface s(mesh_of(test::split_face(box, test::top_face(unbent, box, n, i, j), {0, 0, 0, 0, 0}), "split.tsm"), 1);
+    ASSERT_NE(s.completed_lines(), nullptr);
+    EXPECT_EQ(s.completed_lines()->lines, 4);
+    const test::Continuity c = test::continuity(s.mesh(), [&](int f, double u, double v, double* o) { s.eval(f, u, v, o); });
+    EXPECT_LT(c.gap, 1e-12) << n;
+    EXPECT_LT(c.normal_angle, 1e-9) << n;
+    EXPECT_EQ(test::boundary_loops(tessellate(s, 0.05)), 1) << n;
+    std::printf("open box of %d faces, top face (%d, %d) split: %d faces, %d by local subdivision; %d edges: gap %.1e, normals %.1e\n", n, i, j,
+                s.num_faces(), s.count(FaceMethod::crease), c.edges, c.gap, c.normal_angle);
+  }
+}
+
 }  // namespace
 }  // namespace trivar

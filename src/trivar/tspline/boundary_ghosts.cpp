@@ -227,12 +227,34 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
   // product of the rule across its two sides (the T-spline there is the product of two clamped ends), on the 3 x 3
   // rows (block, vertex, inside) of each side: its point P(0, 0), a ghost across each side and a diagonal one.
   std::vector<std::array<int, 2>> corner_ghost(nv, {-1, -1});  // a corner's ghosts across its arriving link, diagonal
-  // The ghost interval: the star points' mean interval into the mesh (every interval where they are all equal).
-  double gap = 0;
-  for (int v : stars) {
-    const std::vector<int> spokes = spokes_of(v);
-    for (int l : spokes) gap += interval(l) / static_cast<double>(spokes.size() * stars.size());
+  // The ghost interval: the interval into the mesh that most vertices of the layer have (straight vertices: their
+  // interior edge's; boundary star points: the mean of their interior edges'), so that faces whose intervals are
+  // all equal keep the uniform rules through the layer; every interval where they are all equal.
+  std::vector<double> into;
+  for (int l = 0; l < nl; ++l)
+    if (in_layer[static_cast<std::size_t>(l)]) {
+      const int u = L(l).vertex;
+      if (is_star[static_cast<std::size_t>(u)]) {
+        const std::vector<int> spokes = spokes_of(u);
+        double mean = 0;
+        for (int k : spokes) mean += interval(k) / static_cast<double>(spokes.size());
+        into.push_back(mean);
+      } else if (const int k = inner_of_straight(u); k >= 0) {
+        into.push_back(interval(k));
+      }
+    }
+  std::sort(into.begin(), into.end());
+  double gap = into.empty() ? 1 : into.front();
+  for (std::size_t i = 0, best = 0; i < into.size();) {
+    std::size_t j = i;
+    while (j < into.size() && into[j] - into[i] <= 1e-12 * into[i]) ++j;
+    if (j - i > best) {
+      best = j - i;
+      gap = into[i];
+    }
+    i = j;
   }
+  g.interval = gap;
   const auto vertex_rows = [&](int u) {  // a straight vertex or a star point: the mean of its spokes inside
     HomogeneousPoint q2{};
     Spacing sp{0, 0};

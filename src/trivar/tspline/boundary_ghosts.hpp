@@ -35,7 +35,9 @@
 // Unequal knot intervals. Across the boundary the clamped cubic has knots 0, 0, 0, 0, d1, d1 + d2, ... at a vertex
 // (d1, d2 the intervals into the mesh along its interior edge; a star point's mean over its interior edges; a
 // corner's along each side), and any knots -2 g, -g beyond the boundary span the same curve on t >= 0. With g the
-// star points' mean interval into the mesh (every interval when they are equal, giving the rule above) the ghost
+// interval into the mesh that most of the layer's vertices have (every interval when they are equal, giving the
+// rule above; faces whose 4 x 4 points read the layer take the uniform rules only where g is their interval too,
+// TMeshSurface) the ghost
 // rows are the blossoms P-1 = c(-2 g, -g), P0 = c(-g, d1) of the first piece, with one argument 0 a quadratic
 // c(x, y) = A + B (x + y) + C x y fixed by Q0 = c(0, 0), Q1 = c(0, d1), Q2 = c(d1, d1 + d2). The ghost faces'
 // sides across the boundary get the interval g, so every strip has one interval; beyond the ghost row the knots
@@ -54,6 +56,7 @@ struct GhostedMesh {
   // per input vertex: its ghost vertex in `mesh` across the boundary link leaving it (its own point there is P0;
   // a corner's P(0, 0)), -1: none
   std::vector<int> ghost;
+  double interval = 1;  // the ghost faces' knot interval across the boundary
 };
 
 // Ghost layers along the boundary from each star point in `stars` (boundary vertices), either way as long as the

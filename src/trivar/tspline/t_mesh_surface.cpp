@@ -406,9 +406,11 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int th
   // the star points' faces, whose vertices lie depth + 3 steps across faces from the star points). A crease
   // boundary's rules are local subdivision's instead.
   std::vector<char> ghosted(static_cast<std::size_t>(nv), 0);
+  double ghost_interval = 0;
   if (!split && m.degree == 3 && !stars_.empty() && std::find(boundary.begin(), boundary.end(), 1) != boundary.end()) {
     GhostedMesh gm = ghost_boundary(m, stars_, depth + 3);
     for (int v = 0; v < nv; ++v) ghosted[static_cast<std::size_t>(v)] = gm.ghost[static_cast<std::size_t>(v)] >= 0;
+    ghost_interval = gm.interval;
     if (std::find(ghosted.begin(), ghosted.end(), 1) != ghosted.end()) ghosted_ = std::make_unique<TMesh>(std::move(gm.mesh));
   }
   const TMesh& cm = cc_mesh();
@@ -522,6 +524,9 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int th
         const double d = m.intervals[static_cast<std::size_t>(L(l).edge)];
         if (std::abs(d - d0) > 1e-12 * d0 && unequal.empty())
           unequal = "edge " + std::to_string(L(l).edge) + " nearby has knot interval " + std::to_string(d) + ", not " + std::to_string(d0);
+        if (ghosted[static_cast<std::size_t>(L(l).vertex)] && std::abs(ghost_interval - d0) > 1e-12 * d0 && unequal.empty())
+          unequal = "the ghost layer at boundary vertex " + std::to_string(L(l).vertex) + " nearby has knot interval " + std::to_string(ghost_interval) +
+                    ", not " + std::to_string(d0);
       }
     return {};
   };
