@@ -726,5 +726,39 @@ TEST(BoundaryStar, UnequalIntervalsRoundACorner) {
               c.charts.compared, c.charts.position, c.continuity.edges, c.continuity.gap, c.continuity.normal_angle, c.spread);
 }
 
+// A concave corner (three faces at a boundary vertex: 270 degrees, no star point) takes Rhino's ring of eight
+// end-condition nodes: the T-spline is then one C2 surface across the corner's interior edges (exact faces, no
+// ghost layer). With nodes in one direction only their blending functions, clamped across one side, jump across
+// the interior edges at the corner (by 0.14 here): refused in one line.
+TEST(BoundaryConcaveCorner, TakesARingOfEndConditionNodes) {
+  const test::QuadMesh fan = test::half_fan_mesh(3, 7, bump);
+  const io::TsmModel model = io::parse_tsm(tsm_text(fan), "concave.tsm");
+  const TMesh& m = model.mesh;
+  EXPECT_EQ(model.report.star_points, 0);
+  EXPECT_EQ(m.vertices[0].block.size(), 8u);
+  const TMeshSurface s(m, 1);
+  EXPECT_EQ(s.count(FaceMethod::exact), 147);
+  const test::Continuity c = test::continuity(m, [&](int f, double u, double v, double* o) { s.eval(f, u, v, o); });
+  EXPECT_LT(c.gap, 1e-12);
+  EXPECT_LT(c.normal_angle, 1e-10);
+  EXPECT_LT(c.c1, 1e-10);
+  EXPECT_EQ(test::boundary_loops(tessellate(s, 1e-2)), 1);
+  std::printf("concave corner with a ring of end-condition nodes: %d edges, gap %.2e, normal defect (sin) %.2e, C1 defect %.2e\n", c.edges,
+              c.gap, c.normal_angle, c.c1);
+  TMesh one_way = m;
+  TMeshVertex& corner = one_way.vertices[0];
+  corner.block.resize(1);
+  corner.block_dims = {0, 0, 0, 1};
+  try {
+    const TMeshSurface bad(one_way, 1);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("T-mesh: concave corner vertex 0 has end-condition nodes in block dims 0 0 0 1; a concave corner needs them all round"),
+              std::string::npos) << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+  }
+}
+
 }  // namespace
 }  // namespace trivar

@@ -99,6 +99,7 @@ inline std::string tsm_text(const QuadMesh& m, double interval = 1.0, bool clamp
     std::array<int, 4> dims{0, 0, 0, 0};
     dims[(frame + 1) % 4] = 1;
     if (links[o].flag == 2) dims[(frame + 2) % 4] = 1;  // a convex corner: outwards across both sides
+    if (angle[v] == 3) dims = {1, 1, 1, 1};              // a concave corner: a ring all round (as Rhino writes)
     std::ostringstream b;
     b << "0m cg " << v << " 4 " << dims[0] << ' ' << dims[1] << ' ' << dims[2] << ' ' << dims[3];
     for (int k = 0; k < 4; ++k)
