@@ -269,7 +269,7 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
                 "rules (exact; the limit position at the vertex itself)\n", cr, s.mesh().degree + 1);
   else if (cr > 0)
     std::printf("  %d faces near star points with unequal knot intervals (several star corners, star points within three "
-                "rings of each other, star points on the boundary) by repeated local non-uniform Catmull-Clark subdivision "
+                "rings of each other, star points on or near a Bezier boundary) by repeated local non-uniform Catmull-Clark subdivision "
                 "(exact; the limit position and tangent plane at the star point itself)\n", cr);
   if (bs > 0)
     std::printf("  %d faces at star points on the boundary by Catmull-Clark of the control mesh extended by a ghost layer "
