@@ -790,16 +790,46 @@ TEST(TJunctionLines, FacesNearAStarPointAndATJunctionSixRingsOut) {
   expect_faces_near_a_star_point_and_a_t_junction(15, 7, 0, true, 219, 18);
 }
 
-// A Bezier boundary's star point has no row through it that the lines could follow (its ghost layer's rules take
-// equal intervals): a half fan of 4 sectors of 7 x 7 faces on a Bezier boundary with face (1, 1) split is refused in
-// one line naming the T-junction and the star point.
-TEST(TJunctionLines, ALineNearABezierBoundaryStarPointIsRefused) {
+// A star point on a Bezier boundary (a half fan of K = 4 and 5 sectors of 7 x 7 faces) with a face split 2 x 2: a
+// row crossed by a line that runs through the star point, or ends there, goes on along the ghost spoke of its
+// ghost layer (the fan closed as the ghost layer closes it, the node beyond from nurcc_across_weights as at an
+// interior star point). Against the cage without the split on its exact faces 4 knot intervals and more from the
+// split face's centre, G1 across every edge of the completed mesh, one boundary loop.
+TEST(TJunctionLines, RowsThroughAStarPointOfABezierBoundary) {
   const int n = 7;
-  const test::QuadMesh fan = test::half_fan_mesh(4, n, [](double x, double y) { return 0.3 * std::sin(x + 0.7 * y); });
-  test::expect_surface_refusal(mesh_of(test::split_face(fan, static_cast<std::size_t>(n + 1), {0, 0, 0, 0, 0}), "fan.tsm"),
-                               "near a star point (completed into a knot line): a row it crosses ends at the boundary star point 0");
+  const auto height = [](double x, double y) { return 0.3 * std::sin(x + 0.7 * y) + 0.05 * x * y; };
+  for (const auto& [sectors, sector, i, j] : {std::array<int, 4>{4, 0, 3, 0}, {4, 1, 1, 1}, {5, 1, 1, 2}}) {
+    const test::QuadMesh fan = test::half_fan_mesh(sectors, n, height);
+    const TMeshSurface plain(mesh_of(fan, "fan.tsm"), 1);
+    const test::QuadMesh split = test::split_face(fan, static_cast<std::size_t>((sector * n + j) * n + i), {0.02, -0.03, 0.01, 0.04, 0.07});
+    const TMeshSurface lines(mesh_of(split, "split.tsm"), 1);
+    ASSERT_NE(lines.completed_lines(), nullptr);
+    EXPECT_EQ(lines.boundary_star_faces(), sectors);
+    // The split face's centre: sector k spans the spokes at angles pi k / K and pi (k + 1) / K.
+    const double a0 = std::numbers::pi * sector / sectors, a1 = std::numbers::pi * (sector + 1) / sectors;
+    const std::array<double, 2> centre{(i + 0.5) * std::cos(a0) + (j + 0.5) * std::cos(a1), (i + 0.5) * std::sin(a0) + (j + 0.5) * std::sin(a1)};
+    const Agreement g = agreement(plain, lines, {}, [&](const std::array<int, 4>& corners, const double*) {
+      return std::all_of(corners.begin(), corners.end(), [&](int v) {
+        return std::hypot(fan.points[static_cast<std::size_t>(v)][0] - centre[0], fan.points[static_cast<std::size_t>(v)][1] - centre[1]) > 4;
+      });
+    });
+    EXPECT_GT(g.compared, 10);
+    EXPECT_LT(g.values, 1e-12);
+    EXPECT_LT(g.derivatives, 1e-12);
+    const test::Continuity cont = test::continuity(lines.mesh(), [&](int f, double u, double v, double* o) { lines.eval(f, u, v, o); });
+    EXPECT_LT(cont.gap, 1e-12);
+    EXPECT_LT(cont.normal_angle, 1e-9);
+    EXPECT_EQ(test::boundary_loops(tessellate(lines, 0.05)), 1);
+    std::printf("half fan of %d sectors (a star point on a Bezier boundary), sector %d face (%d, %d) split: %d lines, %d vertices inserted; %d "
+                "exact faces against the cage without the split: values %.1e, derivatives %.1e; across %d edges gap %.1e, normals %.1e\n",
+                sectors, sector, i, j, lines.completed_lines()->lines, lines.completed_lines()->vertices, g.compared, g.values, g.derivatives,
+                cont.edges, cont.gap, cont.normal_angle);
+  }
+  // A line that ends on the boundary next to the star point inserts into the boundary row through it, where the
+  // boundary curve is the limit of the mesh with the ghost layer: refused in one line naming both.
+  test::expect_surface_refusal(mesh_of(test::split_face(test::half_fan_mesh(4, n, height), static_cast<std::size_t>(n + 1), {0, 0, 0, 0, 0}), "fan.tsm"),
+                               "near a star point (completed into a knot line): a row it crosses runs along the boundary through the boundary star point 0");
 }
-
 // A grip map that gives the rim vertices where a line ends no end-condition nodes (the others keep theirs): the
 // insertion along the rim has no row of block points there, and the mesh is refused in one line naming the
 // T-junction and the vertex.

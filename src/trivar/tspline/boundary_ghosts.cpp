@@ -11,6 +11,19 @@
 
 namespace trivar {
 
+// The blossom of the clamped cubic's first piece [0, d1] with one argument 0 is the quadratic
+// c(x, y) = A + B (x + y) + C x y fixed by Q0 = c(0, 0), Q1 = c(0, d1), Q2 = c(d1, d1 + d2); the ghost row is
+// P-1 = c(-2 g, -g) and the boundary row P0 = c(-g, d1).
+GhostRows clamped_end_rows(const HomogeneousPoint& q0, const HomogeneousPoint& q1, const HomogeneousPoint& q2, double d1, double d2, double g) {
+  GhostRows r{};
+  for (std::size_t i = 0; i < 4; ++i) {
+    const double a = q0[i], b = (q1[i] - q0[i]) / d1, c = (q2[i] - a - b * (2 * d1 + d2)) / (d1 * (d1 + d2));
+    r.ghost[i] = a - 3 * g * b + 2 * g * g * c;
+    r.point[i] = a + (d1 - g) * b - g * d1 * c;
+  }
+  return r;
+}
+
 namespace {
 
 // The knot intervals across the boundary at a vertex: from it to the next row inside (d1) and on to the one after
@@ -19,23 +32,8 @@ struct Spacing {
   double d1 = 1, d2 = 1;
 };
 
-// The 1-D rule across a straight boundary: the clamped cubic's rows Q0 (block point), Q1 (boundary), Q2 (inside)
-// as the ghost row P-1 and boundary row P0 (P1 = Q2) of the B-spline whose knots go on beyond the boundary at
-// the ghost interval g. Its blossom on the first interval [0, d1], with one argument 0, is the quadratic
-// c(x, y) = A + B (x + y) + C x y fixed by Q0 = c(0, 0), Q1 = c(0, d1), Q2 = c(d1, d1 + d2); then
-// P-1 = c(-2 g, -g) and P0 = c(-g, d1).
-struct Rows {
-  HomogeneousPoint ghost, point;
-};
-
-Rows rows(const HomogeneousPoint& q0, const HomogeneousPoint& q1, const HomogeneousPoint& q2, Spacing s, double g) {
-  Rows r{};
-  for (std::size_t i = 0; i < 4; ++i) {
-    const double a = q0[i], b = (q1[i] - q0[i]) / s.d1, c = (q2[i] - a - b * (2 * s.d1 + s.d2)) / (s.d1 * (s.d1 + s.d2));
-    r.ghost[i] = a - 3 * g * b + 2 * g * g * c;
-    r.point[i] = a + (s.d1 - g) * b - g * s.d1 * c;
-  }
-  return r;
+GhostRows rows(const HomogeneousPoint& q0, const HomogeneousPoint& q1, const HomogeneousPoint& q2, Spacing s, double g) {
+  return clamped_end_rows(q0, q1, q2, s.d1, s.d2, g);
 }
 
 }  // namespace
@@ -287,7 +285,7 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
       const int lf = is_star[static_cast<std::size_t>(u)] ? -1 : corner_link(u);
       HomogeneousPoint p{}, leaving_ghost{};
       if (lf < 0) {
-        const Rows r = vertex_rows(u);
+        const GhostRows r = vertex_rows(u);
         p = r.point;
         leaving_ghost = r.ghost;
       } else {
@@ -306,12 +304,12 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
         // The intervals along side a from u (lf's, then the boundary's next) and along side b (ob's, then the next).
         const Spacing sa{interval(lf), interval(L(L(ob).prev).prev)}, sb{interval(ob), interval(L(ob).next)};
         const Spacing towards_second = b_first ? sa : sb, towards_first = b_first ? sb : sa;
-        const Rows r0 = rows(qd, b_first ? qa : qb, block(second), towards_second, gap);
-        const Rows r1 = rows(b_first ? qb : qa, point(u), point(second), towards_second, gap);
-        const Rows r2 = vertex_rows(first);
+        const GhostRows r0 = rows(qd, b_first ? qa : qb, block(second), towards_second, gap);
+        const GhostRows r1 = rows(b_first ? qb : qa, point(u), point(second), towards_second, gap);
+        const GhostRows r2 = vertex_rows(first);
         // The corner's point and its ghost across the second side; its ghost across the first side and the diagonal one.
-        const Rows on_line = rows(r0.point, r1.point, r2.point, towards_first, gap);
-        const Rows beyond = rows(r0.ghost, r1.ghost, r2.ghost, towards_first, gap);
+        const GhostRows on_line = rows(r0.point, r1.point, r2.point, towards_first, gap);
+        const GhostRows beyond = rows(r0.ghost, r1.ghost, r2.ghost, towards_first, gap);
         p = on_line.point;
         const HomogeneousPoint& arriving_ghost = b_first ? on_line.ghost : beyond.point;
         leaving_ghost = b_first ? beyond.point : on_line.ghost;

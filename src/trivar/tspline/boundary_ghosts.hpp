@@ -46,9 +46,18 @@
 #include <span>
 #include <vector>
 
+#include "trivar/tspline/homogeneous_point.hpp"
 #include "trivar/tspline/t_mesh.hpp"
 
 namespace trivar {
+
+// The 1-D rule across a straight boundary with Bezier end conditions: the ghost row P-1 and the boundary row P0
+// that replace the clamped cubic's rows q0 (the end-condition block point), q1 (the boundary vertex), q2 (the row
+// inside) on the intervals d1, d2 into the mesh, for the ghost interval g (the rows beyond stay).
+struct GhostRows {
+  HomogeneousPoint ghost, point;
+};
+GhostRows clamped_end_rows(const HomogeneousPoint& q0, const HomogeneousPoint& q1, const HomogeneousPoint& q2, double d1, double d2, double g);
 
 struct GhostedMesh {
   TMesh mesh;                 // the input with ghost vertices, points, links and faces appended (input ids kept; the

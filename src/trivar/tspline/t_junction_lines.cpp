@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include "trivar/core/error.hpp"
+#include "trivar/tspline/boundary_ghosts.hpp"
 #include "trivar/tspline/homogeneous_point.hpp"
 #include "trivar/tspline/link_builder.hpp"
 #include "trivar/tspline/non_uniform_catmull_clark.hpp"
@@ -387,20 +388,53 @@ private:
     if (f.open) return {a, 0, true};
     throw StemFirst{a, b};
   }
-  // The node beyond star point a on the row from b (the header says why): the backward spokes' nodes, and the
-  // intervals after them, in nurcc_across's weights. Only a's own point in Boehm's rule depends on it.
-  Beyond across_star(int a, int b, const std::string& where) const {
+  // The spokes of star point a counter-clockwise from the one to b, closed: a star point on a Bezier boundary is
+  // an interior one of the mesh with its ghost layer (boundary_ghosts), whose fan closes with the ghost spoke; its
+  // node is the ghost row of the clamped end across the boundary at a (from a's end-condition node, a and the
+  // mean of its interior spokes' ends, on their mean intervals), the ghost interval their mean first interval.
+  struct ClosedSpoke {
+    H point;
+    double d;  // the spoke's interval
+    int to;    // -1: the ghost spoke
+  };
+  std::vector<ClosedSpoke> closed_spokes(int a, int b, const std::string& where) const {
     const Fan f = fan(a, b, where);
-    require(!f.open, [&] { return where + "a row it crosses runs through the boundary star point " + std::to_string(a); });
-    const std::vector<double> w = nurcc_across_weights(static_cast<int>(f.spokes.size()), 0);  // spoke 0 comes from b
+    std::vector<ClosedSpoke> out;
+    for (const Spoke& s : f.spokes) {
+      if (s.to < static_cast<int>(m_.vertices.size())) require_point(s.to, where);
+      out.push_back({p[static_cast<std::size_t>(s.to)], s.d, s.to});
+    }
+    if (f.open) {
+      require(f.spokes.size() > 2, [&] { return where + "a row it crosses reaches the boundary star point " + std::to_string(a) + " without interior spokes"; });
+      H inner{};
+      double d1 = 0, d2 = 0;
+      const double share = 1.0 / static_cast<double>(f.spokes.size() - 2);
+      for (std::size_t k = 1; k + 1 < f.spokes.size(); ++k) {
+        for (std::size_t i = 0; i < 4; ++i) inner[i] += share * out[k].point[i];
+        d1 += share * out[k].d;
+        const int e = out[k].to;  // at a star point there its own interval (no recursion round adjacent star points)
+        d2 += share * (static_cast<std::size_t>(e) < star_.size() && star_[static_cast<std::size_t>(e)] ? out[k].d : interval_beyond(e, a, false, where).d);
+      }
+      const std::vector<H>& block = blk_[static_cast<std::size_t>(a)];
+      const H q0 = block.size() == 1 && !std::isnan(block[0][3]) ? block[0] : p[static_cast<std::size_t>(a)];
+      out.push_back({clamped_end_rows(q0, p[static_cast<std::size_t>(a)], inner, d1, d2 > 0 ? d2 : d1, d1).ghost, d1, -1});
+      std::rotate(out.begin(), std::find_if(out.begin(), out.end(), [&](const ClosedSpoke& s) { return s.to == b; }), out.end());
+    }
+    return out;
+  }
+  // The node beyond star point a on the row from b (the header says why): the backward spokes' nodes, and the
+  // intervals after them, in nurcc_across's weights (beyond the ghost spoke the ghost interval again). Only a's own
+  // point in Boehm's rule depends on it.
+  Beyond across_star(int a, int b, const std::string& where) const {
+    const std::vector<ClosedSpoke> spokes = closed_spokes(a, b, where);
+    const std::vector<double> w = nurcc_across_weights(static_cast<int>(spokes.size()), 0);  // spoke 0 comes from b
     Beyond r{-1, 0, false};
     for (std::size_t m = 0; m < w.size(); ++m) {
       if (w[m] == 0) continue;
-      const Spoke& s = f.spokes[m];
-      if (s.to < static_cast<int>(m_.vertices.size())) require_point(s.to, where);
-      for (std::size_t i = 0; i < 4; ++i) r.point[i] += w[m] * p[static_cast<std::size_t>(s.to)][i];
+      const ClosedSpoke& s = spokes[m];
+      for (std::size_t i = 0; i < 4; ++i) r.point[i] += w[m] * s.point[i];
       r.d += w[m] * s.d;
-      r.past += w[m] * interval_beyond(s.to, a, false, where).d;
+      r.past += w[m] * (s.to < 0 ? s.d : interval_beyond(s.to, a, false, where).d);
     }
     return r;
   }
@@ -450,9 +484,8 @@ private:
     require_regular(c, where);
     const Fan f = fan(c, a, where);
     if (static_cast<std::size_t>(c) < star_.size() && star_[static_cast<std::size_t>(c)]) {
-      require(!f.open, [&] { return where + "a row it crosses ends at the boundary star point " + std::to_string(c); });
       std::vector<double> iv;
-      for (const Spoke& s : f.spokes) iv.push_back(s.d);
+      for (const ClosedSpoke& s : closed_spokes(c, a, where)) iv.push_back(s.d);
       return {nurcc_across(iv, 0), false};
     }
     require(!f.open || f.turn <= 2, [&] { return where + "a row it crosses passes the concave corner " + std::to_string(c); });
@@ -552,6 +585,12 @@ private:
     // takes the same insertion; at a corner where the row ends, its end node is the corner's diagonal block point.
     std::vector<H> x_block;
     if (blocks_ && ba.face < 0) {
+      // Past a boundary star point (c or e virtual, from its ghost spoke) the boundary curve is the Catmull-Clark
+      // limit of the mesh with its ghost layer, whose block row no insertion follows.
+      for (int v : {c, a, b, e})
+        require(v >= 0 && (static_cast<std::size_t>(v) >= star_.size() || !star_[static_cast<std::size_t>(v)]), [&] {
+          return where + "a row it crosses runs along the boundary through the boundary star point " + std::to_string(v >= 0 ? v : c < 0 ? a : b);
+        });
       const int fa = frame(a, b), fb = frame(b, a);
       // The outside lies right of a -> b: clockwise of each vertex's direction along the row.
       const auto outside = [&](int v, int w, bool forward) { return v < static_cast<int>(m_.vertices.size()) ? (frame(v, w) + (forward ? 3 : 1)) % 4 : -1; };
