@@ -463,6 +463,21 @@ TEST(TJunctionLines, ALineToAConvexCornerOfABezierBoundaryIsKnotInsertion) {
   expect_line_to_a_corner_exact(true);
 }
 
+// The agreement of `plain` and `lines` (agreement) on the faces of the fan whose corners lie more than 4 knot
+// intervals from the split face's centre (the faces near it have other blending functions), and that it holds: more
+// than 10 faces, to rounding.
+Agreement expect_unchanged_away_from(const TMeshSurface& plain, const TMeshSurface& lines, const test::QuadMesh& fan, std::array<double, 2> centre) {
+  const Agreement g = agreement(plain, lines, {}, [&](const std::array<int, 4>& corners, const double*) {
+    return std::all_of(corners.begin(), corners.end(), [&](int v) {
+      return std::hypot(fan.points[static_cast<std::size_t>(v)][0] - centre[0], fan.points[static_cast<std::size_t>(v)][1] - centre[1]) > 4;
+    });
+  });
+  EXPECT_GT(g.compared, 10);
+  EXPECT_LT(g.values, 1e-12);
+  EXPECT_LT(g.derivatives, 1e-12);
+  return g;
+}
+
 // Fusion's open forms: a star point on a subdivision-crease boundary (K = 4 faces) or a concave corner of it (K = 3),
 // the irregular vertices whose faces local subdivision takes, with sectors of 7 x 7 faces and face (i, i) of the
 // first sector split 2 x 2. Rows along the boundary go through the vertex as the crease curve does; rows from inside
@@ -481,17 +496,8 @@ void expect_lines_near_an_irregular_crease_vertex(int sectors, int i) {
   const test::QuadMesh split = test::split_face(fan, static_cast<std::size_t>(i * n + i), {0.02, -0.03, 0.01, 0.04, 0.07});
   const TMeshSurface lines(subd(mesh_of(split, "split.tsm")), 1);
   ASSERT_NE(lines.completed_lines(), nullptr);
-  // The faces near the split face have other blending functions: compare those 4 knot intervals from its centre.
   const double c = std::cos(std::numbers::pi / sectors), sn = std::sin(std::numbers::pi / sectors);
-  const std::array<double, 2> centre{(i + 0.5) * (1 + c), (i + 0.5) * sn};
-  const Agreement g = agreement(plain, lines, {}, [&](const std::array<int, 4>& corners, const double*) {
-    return std::all_of(corners.begin(), corners.end(), [&](int v) {
-      return std::hypot(fan.points[static_cast<std::size_t>(v)][0] - centre[0], fan.points[static_cast<std::size_t>(v)][1] - centre[1]) > 4;
-    });
-  });
-  EXPECT_GT(g.compared, 10);
-  EXPECT_LT(g.values, 1e-12);
-  EXPECT_LT(g.derivatives, 1e-12);
+  const Agreement g = expect_unchanged_away_from(plain, lines, fan, {(i + 0.5) * (1 + c), (i + 0.5) * sn});
   const test::Continuity cont = test::continuity(lines.mesh(), [&](int f, double u, double v, double* o) { lines.eval(f, u, v, o); });
   EXPECT_LT(cont.gap, 1e-12);
   EXPECT_LT(cont.normal_angle, 1e-8);
@@ -807,15 +813,8 @@ TEST(TJunctionLines, RowsThroughAStarPointOfABezierBoundary) {
     EXPECT_EQ(lines.boundary_star_faces(), sectors);
     // The split face's centre: sector k spans the spokes at angles pi k / K and pi (k + 1) / K.
     const double a0 = std::numbers::pi * sector / sectors, a1 = std::numbers::pi * (sector + 1) / sectors;
-    const std::array<double, 2> centre{(i + 0.5) * std::cos(a0) + (j + 0.5) * std::cos(a1), (i + 0.5) * std::sin(a0) + (j + 0.5) * std::sin(a1)};
-    const Agreement g = agreement(plain, lines, {}, [&](const std::array<int, 4>& corners, const double*) {
-      return std::all_of(corners.begin(), corners.end(), [&](int v) {
-        return std::hypot(fan.points[static_cast<std::size_t>(v)][0] - centre[0], fan.points[static_cast<std::size_t>(v)][1] - centre[1]) > 4;
-      });
-    });
-    EXPECT_GT(g.compared, 10);
-    EXPECT_LT(g.values, 1e-12);
-    EXPECT_LT(g.derivatives, 1e-12);
+    const Agreement g = expect_unchanged_away_from(
+        plain, lines, fan, {(i + 0.5) * std::cos(a0) + (j + 0.5) * std::cos(a1), (i + 0.5) * std::sin(a0) + (j + 0.5) * std::sin(a1)});
     const test::Continuity cont = test::continuity(lines.mesh(), [&](int f, double u, double v, double* o) { lines.eval(f, u, v, o); });
     EXPECT_LT(cont.gap, 1e-12);
     EXPECT_LT(cont.normal_angle, 1e-9);
