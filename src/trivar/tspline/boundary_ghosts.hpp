@@ -68,16 +68,16 @@ struct GhostedMesh {
   double interval = 1;  // the ghost faces' knot interval across the boundary
 };
 
-// Ghost layers along the boundary from each star point in `stars` (boundary vertices), either way as long as the
-// boundary vertices lie within `reach` steps across faces from a star point (on a grid the larger of the two index
-// distances: on a straight boundary `reach` edges) and the layer runs through them: straight vertices (two faces,
-// no T-junction, one block point) and corners whose neighbours along the boundary are straight or star points
-// (sides of one edge and T-junctions stop it). Layers that meet (star points within 2 reach edges along the
-// boundary, or the two ends of a slit) are one layer through both star points, closed when it covers a whole
-// boundary loop.
-// Throws trivar::Error (one line) when a star point has more than one boundary arc or no vertex the layer runs
-// through on either side, a vertex of the layer has no single block point (a corner: no block of three), or a
-// weight of the extended mesh is not positive.
+// Ghost layers over the boundary links whose two vertices lie within `reach` steps across faces from a star point
+// of `stars` (on a grid the larger of the two index distances: on a straight boundary `reach` edges; star points
+// inside the mesh place layers too) and that the layer runs through: straight vertices (two faces, no T-junction,
+// one block point), corners whose neighbours along the boundary are straight or star points (sides of one edge
+// and T-junctions stop it) and the star points on the boundary. Layers that meet (star points within 2 reach
+// edges along the boundary, or the two ends of a slit) are one layer through both star points, closed when it
+// covers a whole boundary loop.
+// Throws trivar::Error (one line) when a star point on the boundary has more than one boundary arc, no link of the
+// layer on either side or another star point next to it, a vertex of the layer has no single block point (a
+// corner: no block of three), or a weight of the extended mesh is not positive.
 GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach);
 
 }  // namespace trivar

@@ -418,7 +418,9 @@ private:
       const std::vector<H>& block = blk_[static_cast<std::size_t>(a)];
       const H q0 = block.size() == 1 && !std::isnan(block[0][3]) ? block[0] : p[static_cast<std::size_t>(a)];
       out.push_back({clamped_end_rows(q0, p[static_cast<std::size_t>(a)], inner, d1, d2 > 0 ? d2 : d1, d1).ghost, d1, -1});
-      std::rotate(out.begin(), std::find_if(out.begin(), out.end(), [&](const ClosedSpoke& s) { return s.to == b; }), out.end());
+      const auto from_b = std::find_if(out.begin(), out.end(), [&](const ClosedSpoke& s) { return s.to == b; });
+      require(from_b != out.end(), [&] { return where + "vertex " + std::to_string(b) + " is no neighbour of the boundary star point " + std::to_string(a); });
+      std::rotate(out.begin(), from_b, out.end());
     }
     return out;
   }

@@ -608,9 +608,9 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int th
                 "quadrilaterals without T-junctions)");
   }
   // Local subdivision of the face's two face rings (crease_face): with the crease rules of the mesh cut open along
-  // its creases, or in a mesh without creases on the mesh with the ghost layers of its boundary star points (the
-  // smooth rule at every vertex of the mesh; the layer's outer boundary takes the crease rules, its natural end,
-  // for which the ghost rows are placed; its nets are kept off the rest of the boundary,
+  // its creases, or in a mesh without creases on the mesh with the ghost layers of its boundary near star points
+  // (the smooth rule at every vertex of the mesh; the layer's outer boundary takes the crease rules, its natural
+  // end, for which the ghost rows are placed; its nets are kept off the rest of the boundary,
   // boundary_within_two_rings).
   std::vector<std::vector<int>> cc_vertex_faces;
   const auto local_subdivision = [&](int f, const std::string& why) {
@@ -691,7 +691,7 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int th
       // point or a crease boundary there; its own faces are taken above), or at a face with several star corners
       // or next to star points joined by an edge (no Stam patch): the face's 4 x 4 points hold the star point, and
       // local subdivision's rules there are NonUniformStar's on two face rings (the global steps' too). At a star
-      // point on the boundary the same on the mesh with its ghost layer.
+      // point on or near a Bezier boundary the same on the mesh with the boundary's ghost layer.
       local_subdivision(f, "near a star point with unequal knot intervals: " + unequal);
       for (int l : loop)
         face.boundary_star = face.boundary_star || (is_star[static_cast<std::size_t>(L(l).vertex)] && boundary[static_cast<std::size_t>(L(l).vertex)]);
