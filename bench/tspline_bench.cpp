@@ -338,22 +338,30 @@ BENCHMARK(subdivided_cube)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 // A star point of 5 faces on a straight boundary (half_fan_mesh: 5 sectors of 10 x 10 faces, end-condition blocks
 // on the boundary): Catmull-Clark of valence 7 on the mesh with its ghost layer. range(0) = 1: only the faces at
-// the star point, 0: all faces; the build (ghost layer, charts) is timed by boundary_star_build.
-void boundary_star_eval(benchmark::State& state) {
-  const auto text = trivar::test::tsm_text(trivar::test::half_fan_mesh(5, 10, [](double x, double y) { return 0.05 * x * x - 0.03 * x * y; }));
-  const trivar::TMeshSurface s(trivar::io::parse_tsm(text, "boundary_star.tsm").mesh, 1);
-  eval_faces(state, s, state.range(0) == 1);
+// the star point, 0: all faces; range(1) = 1: every ring of faces its own knot interval (1, 2, 0.5, 1.5, 1, ...),
+// so the faces at the star point and their neighbours (20, those range(0) = 1 takes then) are local non-uniform
+// subdivision on the ghost layer; the build (ghost layer, charts) is timed by boundary_star_build.
+std::string boundary_star_text(bool graded) {
+  trivar::test::QuadMesh q = trivar::test::half_fan_mesh(5, 10, [](double x, double y) { return 0.05 * x * x - 0.03 * x * y; });
+  if (graded) trivar::test::grade_by_ring(q, std::vector<std::array<int, 2>>(5, {10, 10}), {1, 2, 0.5, 1.5, 1, 1, 1, 1, 1, 1});
+  return trivar::test::tsm_text(q);
 }
-BENCHMARK(boundary_star_eval)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+void boundary_star_eval(benchmark::State& state) {
+  const bool graded = state.range(1) == 1;
+  const trivar::TMeshSurface s(trivar::io::parse_tsm(boundary_star_text(graded), "boundary_star.tsm").mesh, 1);
+  eval_faces(state, s, state.range(0) == 1, graded ? trivar::FaceMethod::crease : trivar::FaceMethod::star);
+}
+BENCHMARK(boundary_star_eval)->Args({0, 0})->Args({1, 0})->Args({0, 1})->Args({1, 1})->Unit(benchmark::kMillisecond);
 
 void boundary_star_build(benchmark::State& state) {
-  const auto text = trivar::test::tsm_text(trivar::test::half_fan_mesh(5, 10, [](double x, double y) { return 0.05 * x * x - 0.03 * x * y; }));
+  const auto text = boundary_star_text(state.range(0) == 1);
   for (auto _ : state) {
     const trivar::TMeshSurface s(trivar::io::parse_tsm(text, "boundary_star.tsm").mesh, 1);
     benchmark::DoNotOptimize(s.boundary_star_faces());
   }
 }
-BENCHMARK(boundary_star_build)->Unit(benchmark::kMillisecond);
+BENCHMARK(boundary_star_build)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 // The per-face surface of the valence-5 fan of 5 x 10 x 10 faces from its parsed mesh: range(0) = 0 with Bezier
 // end conditions (block points on the boundary), 1 as a subdivision-crease boundary (no blocks; crease_ends

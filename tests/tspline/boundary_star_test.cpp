@@ -558,20 +558,6 @@ TEST(BoundaryCorner, RefusesACornerWithoutThreeBlockPoints) {
   }
 }
 
-// Unequal knot intervals near a boundary star point. The mesh of sectors (nu x nv faces each, in the order built)
-// gets the interval U[i] on the edges along spoke k of its face (i, j) and U[j] on those along spoke k + 1, so each
-// spoke carries the intervals U and every strip one interval, round the star point too.
-void grade(test::QuadMesh& q, const std::vector<std::array<int, 2>>& sectors, const std::vector<double>& u) {
-  std::size_t f = 0;
-  for (const auto& [nu, nv] : sectors)
-    for (int j = 0; j < nv; ++j)
-      for (int i = 0; i < nu; ++i, ++f) {
-        const auto& c = q.quads[f];
-        q.intervals[{c[0], c[1]}] = q.intervals[{c[3], c[2]}] = u[static_cast<std::size_t>(i)];
-        q.intervals[{c[0], c[3]}] = q.intervals[{c[1], c[2]}] = u[static_cast<std::size_t>(j)];
-      }
-}
-
 const std::vector<double> kGraded{1, 2, 0.5, 1.5, 1, 0.8, 1.2, 1};
 
 // The cubic B-spline of control points d[0..3] on knots[0..7] at t in [knots[3], knots[4]] (de Boor's algorithm).
@@ -591,7 +577,7 @@ TEST(BoundaryStar, GhostRowsOnUnequalIntervalsKeepTheClampedEnd) {
   // (g the ghost interval: the interval into the mesh at the vertex the layer was asked for) are one curve on
   // [0, y1] (de Boor for both).
   test::QuadMesh q = test::half_fan_mesh(2, 6, bump);
-  grade(q, {{6, 6}, {6, 6}}, kGraded);
+  test::grade_by_ring(q, {{6, 6}, {6, 6}}, kGraded);
   const io::TsmModel model = offset_model(q, 21);
   const TMesh& m = model.mesh;
   const int centre = vertex_at(m, 0, 0);
@@ -630,7 +616,7 @@ TEST_P(BoundaryStarIntervals, LoadAsOneSurfaceWithTheTSplineAwayFromTheStarPoint
   // every other face the T-spline (bicubic cells on their knots, read through the ghost layer at the boundary).
   const int sectors = GetParam();
   test::QuadMesh q = test::half_fan_mesh(sectors, 7, bump);
-  grade(q, std::vector<std::array<int, 2>>(static_cast<std::size_t>(sectors), {7, 7}), kGraded);
+  test::grade_by_ring(q, std::vector<std::array<int, 2>>(static_cast<std::size_t>(sectors), {7, 7}), kGraded);
   const io::TsmModel model = offset_model(q, 60u + static_cast<unsigned>(sectors));
   const TMesh& m = model.mesh;
   const TMeshSurface s(m, 1);
@@ -660,7 +646,7 @@ TEST(BoundaryStar, NearlyEqualIntervalsGiveStamsPatches) {
   near[1] = 1 + 1e-9;
   test::QuadMesh q = test::half_fan_mesh(5, 7, bump);
   const io::TsmModel equal = offset_model(q, 8);
-  grade(q, std::vector<std::array<int, 2>>(5, {7, 7}), near);
+  test::grade_by_ring(q, std::vector<std::array<int, 2>>(5, {7, 7}), near);
   const io::TsmModel graded = offset_model(q, 8);
   const TMeshSurface a(equal.mesh, 1), b(graded.mesh, 1);
   ASSERT_EQ(a.count(FaceMethod::star), 5);
@@ -713,7 +699,7 @@ TEST(BoundaryStar, UnequalIntervalsRoundACorner) {
   // The star point 4 edges from corners on both sides, every ring its own interval: the ghost layer goes round the
   // corners on the intervals of their two sides.
   SectorMesh sm = corner_fan({4, 7, 7, 7, 4});
-  grade(sm.q, {{4, 7}, {7, 7}, {7, 7}, {7, 4}}, kGraded);
+  test::grade_by_ring(sm.q, {{4, 7}, {7, 7}, {7, 7}, {7, 4}}, kGraded);
   const io::TsmModel model = offset_model(sm.q, 44);
   const TMesh& m = model.mesh;
   const TMeshSurface s(m, 1);

@@ -135,6 +135,20 @@ inline std::string tsm_text(const QuadMesh& m, double interval = 1.0, bool clamp
   return os.str();
 }
 
+// Unequal knot intervals round a star point: the mesh of sectors (nu x nv faces each, in the order built, as
+// half_fan_mesh builds them) gets the interval u[i] on the edges along spoke k of its face (i, j) and u[j] on those
+// along spoke k + 1, so each spoke carries the intervals u and every strip one interval, round the star point too.
+inline void grade_by_ring(QuadMesh& q, const std::vector<std::array<int, 2>>& sectors, const std::vector<double>& u) {
+  std::size_t f = 0;
+  for (const auto& [nu, nv] : sectors)
+    for (int j = 0; j < nv; ++j)
+      for (int i = 0; i < nu; ++i, ++f) {
+        const auto& c = q.quads[f];
+        q.intervals[{c[0], c[1]}] = q.intervals[{c[3], c[2]}] = u[static_cast<std::size_t>(i)];
+        q.intervals[{c[0], c[3]}] = q.intervals[{c[1], c[2]}] = u[static_cast<std::size_t>(j)];
+      }
+}
+
 // The surface of the box of n[0] x n[1] x n[2] unit grid cells, scaled by 2 / n[0] with its lowest corner at
 // (-1, -1, -1), without its bottom side (z lowest) when `open_bottom` (an open box whose rim is the boundary).
 inline QuadMesh box_mesh(const std::array<int, 3>& n, bool open_bottom = false) {
