@@ -18,6 +18,7 @@
 
 #include "chart_comparison.hpp"
 #include "face_continuity.hpp"
+#include "patch_check.hpp"
 #include "star_mesh_tsm.hpp"
 #include "triangulation_loops.hpp"
 #include "trivar/core/error.hpp"
@@ -637,6 +638,35 @@ TEST_P(BoundaryStarIntervals, LoadAsOneSurfaceWithTheTSplineAwayFromTheStarPoint
 }
 
 INSTANTIATE_TEST_SUITE_P(Faces, BoundaryStarIntervals, ::testing::Values(4, 5));
+
+// The Bezier patches of a boundary star point with unequal intervals: its local-subdivision faces are B-spline
+// cells, and four cells that are one polynomial (where the rules were knot insertion) are one exact patch. The
+// exact patches are the surface to rounding, the corner patches within the tolerance, tiling each face, C0; fewer
+// patches than cells.
+TEST(BoundaryStar, PatchesWithUnequalIntervalsMergeCellsOfOnePolynomial) {
+  test::QuadMesh q = test::half_fan_mesh(5, 7, bump);
+  test::grade_by_ring(q, std::vector<std::array<int, 2>>(5, {7, 7}), kGraded);
+  const io::TsmModel model = offset_model(q, 3);
+  const TMeshSurface s(model.mesh, 1);
+  ASSERT_EQ(s.count(FaceMethod::crease), 20);
+  const TMeshPatches p = t_mesh_patches(s);
+  std::size_t cells = 0, crease_patches = 0;
+  for (int f = 0; f < s.num_faces(); ++f)
+    if (s.method(f) == FaceMethod::crease)
+      s.crease_face(f).for_each_cell(p.levels + 1, [&](const CreaseFace::Cell&, const std::array<double, 2>&, double) { ++cells; });
+  for (const FacePatch& x : p.patches) crease_patches += s.method(x.face) == FaceMethod::crease && x.exact;
+  EXPECT_LT(crease_patches, cells);
+  const test::PatchCheck c = test::check_patches(s, p);
+  EXPECT_LT(c.exact, 1e-12);
+  EXPECT_LE(c.constructed, 2 * p.tolerance);
+  EXPECT_LT(c.area, 1e-12);
+  EXPECT_LT(c.inner_gap, 1e-12);
+  EXPECT_LT(c.edge_gap, 1e-12);
+  EXPECT_LE(c.corner_gap, 2 * p.tolerance);
+  std::printf("boundary star of 5 faces, intervals by ring: %zu patches (%d corner), %d levels, the local-subdivision faces' %zu cells as %zu "
+              "patches; exact patches off the surface by %.1e, corner patches by %.2e (tolerance %.2e)\n",
+              p.patches.size(), p.corner_patches, p.levels, cells, crease_patches, c.exact, c.constructed, p.tolerance);
+}
 
 TEST(BoundaryStar, NearlyEqualIntervalsGiveStamsPatches) {
   // One ring of faces at 1 + 1e-9: local non-uniform subdivision with the ghost layer's crease rules on its outer

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <map>
 #include <string>
 
 #include "trivar/core/error.hpp"
@@ -99,6 +100,64 @@ FacePatch to_face(int face, int p, const Box<2>& src, int stride, bool rational,
     knots[static_cast<std::size_t>(k)] = KnotVector(p, std::move(t));
   }
   return {face, piece, TensorSpline<2>(knots, 3, rational, std::move(out)), exact};
+}
+
+// A crease face's cells merged where they are one polynomial: a square [lo, lo + side]^2 of the face and the cell
+// whose bicubic it is (on the cell's own square [cell_lo, cell_lo + cell_side]^2, extended beyond it).
+struct CellSquare {
+  const CreaseFace::Cell* cell;
+  std::array<double, 2> cell_lo;
+  double cell_side;
+  std::array<double, 2> lo;
+  double side;
+  // Value, d/dx, d/dy (homogeneous) at (x, y) of the square.
+  void eval(double x, double y, double* o) const {
+    eval_cell(*cell, (lo[0] + x * side - cell_lo[0]) / cell_side, (lo[1] + y * side - cell_lo[1]) / cell_side, side / cell_side, o);
+  }
+};
+
+// The cells (squares of dyadic sides) merged bottom up: four squares that fill their parent square and whose
+// polynomials agree at the 16 points of each (two bicubics that agree there are one) become the parent, with the
+// first one's polynomial; to 1e-11 of the points' size, rounding of the extension.
+std::vector<CellSquare> merge_cells(std::vector<CellSquare> squares) {
+  for (bool merged = true; merged;) {
+    merged = false;
+    // Parent square -> its quarters present, by quarter.
+    std::map<std::array<long long, 3>, std::array<int, 4>> parents;
+    for (int i = 0; i < static_cast<int>(squares.size()); ++i) {
+      const CellSquare& q = squares[static_cast<std::size_t>(i)];
+      const long long x = std::llround(q.lo[0] / q.side), y = std::llround(q.lo[1] / q.side);
+      auto [it, fresh] = parents.try_emplace({std::llround(1 / q.side), x / 2, y / 2}, std::array<int, 4>{-1, -1, -1, -1});
+      it->second[static_cast<std::size_t>((x % 2) + 2 * (y % 2))] = i;
+    }
+    std::vector<char> gone(squares.size(), 0);
+    std::vector<CellSquare> out;
+    for (const auto& [key, quarter] : parents) {
+      if (std::find(quarter.begin(), quarter.end(), -1) != quarter.end()) continue;
+      const CellSquare& first = squares[static_cast<std::size_t>(quarter[0])];
+      double worst = 0, size = 0;
+      for (int k : quarter)
+        for (int j = 0; j <= 3; ++j)
+          for (int i = 0; i <= 3; ++i) {
+            const CellSquare& q = squares[static_cast<std::size_t>(k)];
+            double a[12], b[12];
+            q.eval(i / 3.0, j / 3.0, a);
+            first.eval((q.lo[0] - first.lo[0]) / first.side + i / 3.0, (q.lo[1] - first.lo[1]) / first.side + j / 3.0, b);
+            for (int c = 0; c < 4; ++c) {
+              worst = std::max(worst, std::abs(a[c] - b[c]));
+              size = std::max(size, std::abs(a[c]));
+            }
+          }
+      if (worst > 1e-11 * size) continue;
+      for (int k : quarter) gone[static_cast<std::size_t>(k)] = 1;
+      out.push_back({first.cell, first.cell_lo, first.cell_side, first.lo, 2 * first.side});
+      merged = true;
+    }
+    for (std::size_t i = 0; i < squares.size(); ++i)
+      if (!gone[i]) out.push_back(squares[i]);
+    squares = std::move(out);
+  }
+  return squares;
 }
 
 FacePatch net_to_face(int face, const Net& net, const Box<2>& src, const CornerFrame& fr, bool exact) {
@@ -323,11 +382,20 @@ TMeshPatches t_mesh_patches(const TMeshSurface& s, const TMeshPatchOptions& opti
           // Unequal intervals: a quarter is several B-spline cells (knot lines where the rules inserted them), each
           // one bicubic piece, so each cell is one exact patch; at an irregular corner the star's corner patch
           // covers the square of side 2^-levels of the quarter, which no cell reaches.
+          // Cells that are one polynomial (the rules' midpoint insertions past the star point's ring) are one patch.
           const CreaseFace& z = s.crease_face(f);
+          std::vector<CreaseFace::Cell> cells;
+          std::vector<std::pair<std::array<double, 2>, double>> where;
           z.for_each_cell(r.levels + 1, [&](const CreaseFace::Cell& cell, const std::array<double, 2>& lo, double side) {
-            const HomogeneousEval e = [&cell](double x, double y, double* o) { eval_cell(cell, x, y, 1, o); };
-            r.patches.push_back(net_to_face(f, interpolate_patch(e, 0, 0, 1), {{0, 0}, {1, 1}}, {lo, {side, 0}, {0, side}}, true));
+            cells.push_back(cell);
+            where.push_back({lo, side});
           });
+          std::vector<CellSquare> squares;
+          for (std::size_t i = 0; i < cells.size(); ++i) squares.push_back({&cells[i], where[i].first, where[i].second, where[i].first, where[i].second});
+          for (const CellSquare& q : merge_cells(std::move(squares))) {
+            const HomogeneousEval e = [&q](double x, double y, double* o) { q.eval(x, y, o); };
+            r.patches.push_back(net_to_face(f, interpolate_patch(e, 0, 0, 1), {{0, 0}, {1, 1}}, {q.lo, {q.side, 0}, {0, q.side}}, true));
+          }
           for (int q = 0; q < 4; ++q)
             if (z.irregular(q)) next_corner_patch(f, quarter_frame(q));
           break;

@@ -14,7 +14,9 @@
 //                  intervals alike.
 //   crease faces   with unequal knot intervals: the sub-faces are B-spline cells of different sizes (the NURCC
 //                  rules insert knots unevenly and subdivide next to an irregular vertex one level further), each
-//                  one bicubic piece on its square, so one exact patch per cell; at an irregular corner the corner
+//                  one bicubic piece on its square; four cells that fill a square and are one polynomial (where
+//                  the rules were knot insertion) are merged, so one exact patch per polynomial square; at an
+//                  irregular corner the corner
 //                  patch of a star face at half scale, [0, 2^-(levels + 1)]^2 of the face at that corner, which the
 //                  cells round it tile up to. Its sides away from the corner cross cell boundaries (knots of the
 //                  limit surface), so there it meets the cells C0 only within the tolerance.
