@@ -4,7 +4,10 @@
 // patches of two faces meet.
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "face_continuity.hpp"
 #include "trivar/tspline/t_mesh_patches.hpp"
@@ -67,6 +70,19 @@ inline PatchCheck check_patches(const TMeshSurface& s, const TMeshPatches& p) {
   };
   r.edge_gap = continuity(s.mesh(), patched).gap;
   return r;
+}
+
+// check_patches of p, and that it holds: exact patches the surface, the pieces tiling each face and meeting C0, to
+// rounding; the corner patches within twice the tolerance. `what` names the case in failures.
+inline PatchCheck expect_patches_hold(const TMeshSurface& s, const TMeshPatches& p, const std::string& what = {}) {
+  const PatchCheck c = check_patches(s, p);
+  EXPECT_LT(c.exact, 1e-12) << what;
+  EXPECT_LE(c.constructed, 2 * p.tolerance) << what;
+  EXPECT_LT(c.area, 1e-12) << what;
+  EXPECT_LT(c.inner_gap, 1e-12) << what;
+  EXPECT_LT(c.edge_gap, 1e-12) << what;
+  EXPECT_LE(c.corner_gap, 2 * p.tolerance) << what;
+  return c;
 }
 
 }  // namespace trivar::test
