@@ -827,7 +827,7 @@ TEST(TJunctionLines, RowsThroughAStarPointOfABezierBoundary) {
   // A line that ends on the boundary next to the star point inserts into the boundary row through it, where the
   // boundary curve is the limit of the mesh with the ghost layer: refused in one line naming both.
   test::expect_surface_refusal(mesh_of(test::split_face(test::half_fan_mesh(4, n, height), static_cast<std::size_t>(n + 1), {0, 0, 0, 0, 0}), "fan.tsm"),
-                               "near a star point (completed into a knot line): a row it crosses runs along the boundary through the boundary star point 0");
+                               "near a star point (completed into a knot line): a row it crosses runs along the boundary through the star point 0");
 }
 // A grip map that gives the rim vertices where a line ends no end-condition nodes (the others keep theirs): the
 // insertion along the rim has no row of block points there, and the mesh is refused in one line naming the

@@ -591,7 +591,7 @@ private:
       // limit of the mesh with its ghost layer, whose block row no insertion follows.
       for (int v : {c, a, b, e})
         require(v >= 0 && (static_cast<std::size_t>(v) >= star_.size() || !star_[static_cast<std::size_t>(v)]), [&] {
-          return where + "a row it crosses runs along the boundary through the boundary star point " + std::to_string(v >= 0 ? v : c < 0 ? a : b);
+          return where + "a row it crosses runs along the boundary through the star point " + std::to_string(v >= 0 ? v : c < 0 ? a : b);
         });
       const int fa = frame(a, b), fb = frame(b, a);
       // The outside lies right of a -> b: clockwise of each vertex's direction along the row.
