@@ -8,6 +8,7 @@
 #include "chart_comparison.hpp"
 #include "face_continuity.hpp"
 #include "star_mesh_tsm.hpp"
+#include "tsm_error.hpp"
 #include "trivar/core/error.hpp"
 #include "trivar/io/tsm_format.hpp"
 #include "trivar/tspline/catmull_clark_patch.hpp"
@@ -313,6 +314,32 @@ TEST(StarPoints, FacesNearStarPointsAndTheBoundaryReadTheGhostLayer) {
     char name[96];
     std::snprintf(name, sizeof name, "valence-5 fan, %d faces to the boundary (%d bicubic faces as charts, %.1e)", rings, cmp.compared, cmp.position);
     expect_one_smooth_surface(s, name);
+  }
+}
+
+// Star points inside the mesh place a ghost layer over the boundary near them only where its vertices have their
+// end-condition nodes: on an open box whose rim has none at six vertices the layer leaves that run out; the box of
+// 7 faces per side loads as without a layer (its faces there in charts), the box of 5 is refused in one line
+// naming the face and the boundary vertex.
+TEST(StarPoints, TheGhostLayerNeedsTheBoundarysEndConditionNodes) {
+  for (int n : {5, 7}) {
+    const test::QuadMesh box = test::box_mesh({n, n, n}, true);
+    TMesh m = io::parse_tsm(tsm_text(box), "box.tsm").mesh;
+    int cleared = 0;
+    for (std::size_t v = 0; v < box.points.size(); ++v)
+      if (box.points[v][2] < -1 + 1e-9 && std::abs(box.points[v][0] + 1 - 4.0 / n) < 2.2 / n) {  // three columns, front and back
+        m.vertices[v].block.clear();
+        m.vertices[v].block_dims = {};
+        ++cleared;
+      }
+    ASSERT_EQ(cleared, 6);
+    if (n == 5) {
+      test::expect_surface_refusal(m, "is within 2 rings; the Catmull-Clark evaluation around star points needs none");
+      continue;
+    }
+    const TMeshSurface s(m, 1);
+    EXPECT_GT(s.count(FaceMethod::exact), 0);
+    expect_one_smooth_surface(s, "open box of 7 faces, six rim vertices without end-condition nodes");
   }
 }
 

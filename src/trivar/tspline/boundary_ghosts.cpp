@@ -205,6 +205,36 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
   };
   for (int l = 0; l < nl; ++l)
     if (L(l).vertex >= 0 && !is_face(L(l).face) && L(l).next >= 0 && L(l).next < nl) in_layer[static_cast<std::size_t>(l)] = in_reach(L(l).vertex) && in_reach(target(l));
+  // A run of the layer that no boundary star point needs (placed by star points inside the mesh) is dropped where a
+  // vertex has no end-condition node to build it from (no grip map, a hole's rim): the faces near it stay as
+  // without the layer. At a boundary star point such a vertex is an error below.
+  const auto has_nodes = [&](int u) {
+    const TMeshVertex& mv = m.vertices[static_cast<std::size_t>(u)];
+    const auto valid = [&](int b) { return b >= 0; };
+    if (is_star[static_cast<std::size_t>(u)] || mv.primary < 0) return is_star[static_cast<std::size_t>(u)] && mv.primary >= 0;
+    const int lf = corner_link(u);
+    if (lf < 0) return mv.block.size() == 1 && valid(mv.block[0]);
+    return mv.block.size() == 3 && std::all_of(mv.block.begin(), mv.block.end(), valid) && L(lf).frame >= 0 && L(L(L(lf).prev).opp).frame >= 0;
+  };
+  std::vector<char> seen(static_cast<std::size_t>(nl), 0);
+  for (int o = 0; o < nl; ++o) {
+    if (!in_layer[static_cast<std::size_t>(o)] || seen[static_cast<std::size_t>(o)]) continue;
+    int first = o;
+    for (int l = L(o).prev; l >= 0 && l < nl && in_layer[static_cast<std::size_t>(l)] && l != o; l = L(l).prev) first = l;
+    std::vector<int> run;
+    for (int l = first; l >= 0 && l < nl && in_layer[static_cast<std::size_t>(l)] && !seen[static_cast<std::size_t>(l)]; l = L(l).next) {
+      seen[static_cast<std::size_t>(l)] = 1;
+      run.push_back(l);
+    }
+    bool star = false, nodes = true;
+    for (int l : run)
+      for (int u : {L(l).vertex, target(l)}) {
+        star = star || is_star[static_cast<std::size_t>(u)];
+        nodes = nodes && has_nodes(u);
+      }
+    if (!star && !nodes)
+      for (int l : run) in_layer[static_cast<std::size_t>(l)] = 0;
+  }
   for (int v : boundary_stars) {
     std::vector<int> out;
     for (int l : leaving[static_cast<std::size_t>(v)])
