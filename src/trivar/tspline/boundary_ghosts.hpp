@@ -74,9 +74,10 @@ struct GhostedMesh {
 // one block point), corners whose neighbours along the boundary are straight or star points (sides of one edge
 // and T-junctions stop it) and the star points on the boundary. Layers that meet (star points within 2 reach
 // edges along the boundary, or the two ends of a slit) are one layer through both star points, closed when it
-// covers a whole boundary loop.
+// covers a whole boundary loop. A run of the layer without a boundary star point is left out where a vertex has
+// no end-condition nodes (no single block point; a corner: no block of three).
 // Throws trivar::Error (one line) when a star point on the boundary has more than one boundary arc, no link of the
-// layer on either side or another star point next to it, a vertex of the layer has no single block point (a
+// layer on either side or another star point next to it, a vertex of its run has no single block point (a
 // corner: no block of three), or a weight of the extended mesh is not positive.
 GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach);
 
