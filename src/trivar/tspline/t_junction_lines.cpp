@@ -587,12 +587,20 @@ private:
     // takes the same insertion; at a corner where the row ends, its end node is the corner's diagonal block point.
     std::vector<H> x_block;
     if (blocks_ && ba.face < 0) {
-      // Past a boundary star point (c or e virtual, from its ghost spoke) the boundary curve is the Catmull-Clark
-      // limit of the mesh with its ghost layer, whose block row no insertion follows.
-      for (int v : {c, a, b, e})
-        require(v >= 0 && (static_cast<std::size_t>(v) >= star_.size() || !star_[static_cast<std::size_t>(v)]), [&] {
-          return where + "a row it crosses runs along the boundary through the star point " + std::to_string(v >= 0 ? v : c < 0 ? a : b);
-        });
+      // At a boundary star point the block row's node is its one block point, else its own point (as its ghost layer
+      // takes them); past it (c or e virtual, from the closed fan) the row's virtual node keeps the star point's
+      // offset from its block node. The star point's surface is its ghost layer's Catmull-Clark limit, which this
+      // choice, like across_star's, moves; the T-spline away from it is the same either way.
+      const auto star = [&](int v) { return v >= 0 && static_cast<std::size_t>(v) < star_.size() && star_[static_cast<std::size_t>(v)]; };
+      const auto star_node = [&](int v, const H& point) {
+        const std::vector<H>& nodes = blk_[static_cast<std::size_t>(v)];
+        return nodes.size() == 1 && !std::isnan(nodes[0][3]) ? nodes[0] : point;
+      };
+      const auto shifted = [](const H& virtual_node, const H& node, const H& point) {
+        H r;
+        for (std::size_t i = 0; i < 4; ++i) r[i] = virtual_node[i] + node[i] - point[i];
+        return r;
+      };
       const int fa = frame(a, b), fb = frame(b, a);
       // The outside lies right of a -> b: clockwise of each vertex's direction along the row.
       const auto outside = [&](int v, int w, bool forward) { return v < static_cast<int>(m_.vertices.size()) ? (frame(v, w) + (forward ? 3 : 1)) % 4 : -1; };
@@ -600,13 +608,26 @@ private:
         // The diagonal node: in the wedge of whichever of the two directions the other follows counter-clockwise.
         return (out_dir == (beyond_dir + 1) % 4) ? block(v, beyond_dir, 1, where) : block(v, out_dir, 1, where);
       };
-      const H qc = c_end ? corner(a, (fa + 2) % 4, (fa + 3) % 4) : block(c, outside(c, a, true), 0, where);
-      H& qa = block(a, (fa + 3) % 4, 0, where);
-      H& qb = block(b, (fb + 1) % 4, 0, where);
-      const H qe = e_end ? corner(b, (fb + 2) % 4, (fb + 1) % 4) : block(e, outside(e, b, false), 0, where);
+      const H qa = star(a) ? star_node(a, pa) : block(a, (fa + 3) % 4, 0, where);
+      const H qb = star(b) ? star_node(b, pb) : block(b, (fb + 1) % 4, 0, where);
+      const H qc = c < 0    ? shifted(pc, qa, pa)
+                   : c_end  ? corner(a, (fa + 2) % 4, (fa + 3) % 4)
+                   : star(c) ? star_node(c, p[static_cast<std::size_t>(c)])
+                             : block(c, outside(c, a, true), 0, where);
+      const H qe = e < 0    ? shifted(pe, qb, pb)
+                   : e_end  ? corner(b, (fb + 2) % 4, (fb + 1) % 4)
+                   : star(e) ? star_node(e, p[static_cast<std::size_t>(e)])
+                             : block(e, outside(e, b, false), 0, where);
       x_block = {mix(qa, qb, a2)};
-      qa = mix(qc, qa, a1);
-      qb = mix(qb, qe, a3);
+      // A star point without a block point keeps none: its new node is its new point.
+      const auto store = [&](int v, int dir, const H& value) {
+        if (!star(v))
+          block(v, dir, 0, where) = value;
+        else if (std::vector<H>& nodes = blk_[static_cast<std::size_t>(v)]; nodes.size() == 1 && !std::isnan(nodes[0][3]))
+          nodes[0] = value;
+      };
+      store(a, (fa + 3) % 4, mix(qc, qa, a1));
+      store(b, (fb + 1) % 4, mix(qb, qe, a3));
     }
     p.push_back(mix(pa, pb, a2));
     blk_.push_back(std::move(x_block));
