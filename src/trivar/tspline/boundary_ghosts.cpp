@@ -216,16 +216,24 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
     if (lf < 0) return mv.block.size() == 1 && valid(mv.block[0]);
     return mv.block.size() == 3 && std::all_of(mv.block.begin(), mv.block.end(), valid) && L(lf).frame >= 0 && L(L(L(lf).prev).opp).frame >= 0;
   };
-  std::vector<char> seen(static_cast<std::size_t>(nl), 0);
-  for (int o = 0; o < nl; ++o) {
-    if (!in_layer[static_cast<std::size_t>(o)] || seen[static_cast<std::size_t>(o)]) continue;
-    int first = o;
-    for (int l = L(o).prev; l >= 0 && l < nl && in_layer[static_cast<std::size_t>(l)] && l != o; l = L(l).prev) first = l;
-    std::vector<int> run;
-    for (int l = first; l >= 0 && l < nl && in_layer[static_cast<std::size_t>(l)] && !seen[static_cast<std::size_t>(l)]; l = L(l).next) {
-      seen[static_cast<std::size_t>(l)] = 1;
-      run.push_back(l);
+  // The layer's runs of consecutive boundary links (a whole boundary loop when it closes).
+  const auto layer_runs = [&] {
+    std::vector<std::vector<int>> runs;
+    std::vector<char> seen(static_cast<std::size_t>(nl), 0);
+    for (int o = 0; o < nl; ++o) {
+      if (!in_layer[static_cast<std::size_t>(o)] || seen[static_cast<std::size_t>(o)]) continue;
+      int first = o;
+      for (int l = L(o).prev; l >= 0 && l < nl && in_layer[static_cast<std::size_t>(l)] && l != o; l = L(l).prev) first = l;
+      std::vector<int> run;
+      for (int l = first; l >= 0 && l < nl && in_layer[static_cast<std::size_t>(l)] && !seen[static_cast<std::size_t>(l)]; l = L(l).next) {
+        seen[static_cast<std::size_t>(l)] = 1;
+        run.push_back(l);
+      }
+      runs.push_back(std::move(run));
     }
+    return runs;
+  };
+  for (const std::vector<int>& run : layer_runs()) {
     bool star = false, nodes = true;
     for (int l : run)
       for (int u : {L(l).vertex, target(l)}) {
@@ -369,18 +377,8 @@ GhostedMesh ghost_boundary(const TMesh& m, std::span<const int> stars, int reach
     outside(k2, ga);
     return k0;
   };
-  // The layer's runs of consecutive boundary links (a whole boundary loop when it closes, then started after a
-  // vertex that is not a corner).
-  std::vector<char> placed(static_cast<std::size_t>(nl), 0);
-  for (int o = 0; o < nl; ++o) {
-    if (!in_layer[static_cast<std::size_t>(o)] || placed[static_cast<std::size_t>(o)]) continue;
-    int first = o;
-    for (int l = L(o).prev; l >= 0 && l < nl && in_layer[static_cast<std::size_t>(l)] && l != o; l = L(l).prev) first = l;
-    std::vector<int> chain;
-    for (int l = first; l >= 0 && l < nl && in_layer[static_cast<std::size_t>(l)] && !placed[static_cast<std::size_t>(l)]; l = L(l).next) {
-      placed[static_cast<std::size_t>(l)] = 1;
-      chain.push_back(l);
-    }
+  // Each run of the layer, a whole boundary loop started after a vertex that is not a corner.
+  for (std::vector<int> chain : layer_runs()) {
     const bool closed = chain.size() > 2 && L(chain.back()).next == chain.front();
     const auto not_corner = [&](int l) { return corner_ghost[static_cast<std::size_t>(L(l).vertex)][0] < 0; };
     if (closed) std::rotate(chain.begin(), std::find_if(chain.begin(), chain.end(), not_corner), chain.end());
