@@ -50,12 +50,9 @@ TMesh bezier_equivalent_of_cut(const TMesh& m) {
   require(!crease || m.degree == 3, [&] { return "T-mesh: subdivision-crease boundaries are defined for degree 3, not " + std::to_string(m.degree); });
   const auto in_face = [&](int l) { return L(l).face >= 0 && m.live_face(L(l).face); };
   std::vector<std::vector<int>> leaving(nv);
-  std::vector<int> angle(nv, 0);  // the faces' angles at the vertex, in degrees
-  for (int l = 0; l < nl; ++l) {
-    if (L(l).vertex < 0) continue;
-    leaving[static_cast<std::size_t>(L(l).vertex)].push_back(l);
-    if (in_face(l)) angle[static_cast<std::size_t>(L(l).vertex)] += 90 * (L(l).flag + 1);
-  }
+  for (int l = 0; l < nl; ++l)
+    if (L(l).vertex >= 0) leaving[static_cast<std::size_t>(L(l).vertex)].push_back(l);
+  const std::vector<int> angle = vertex_angles(m).degrees;
   const auto boundary_links = [&](int v) {
     std::vector<int> out;
     for (int l : leaving[static_cast<std::size_t>(v)])

@@ -26,21 +26,24 @@ int straight_link(const TMesh& m, int l) {
   return r[2];
 }
 
-std::vector<int> star_points(const TMesh& m) {
-  const std::size_t nv = m.vertices.size();
-  std::vector<int> angle(nv, 0);
-  std::vector<char> boundary(nv, 0);
+VertexAngles vertex_angles(const TMesh& m) {
+  VertexAngles r{std::vector<int>(m.vertices.size(), 0), std::vector<char>(m.vertices.size(), 0)};
   for (const TMeshLink& k : m.links) {
     if (k.vertex < 0) continue;
     if (k.face >= 0 && m.live_face(k.face))
-      angle[static_cast<std::size_t>(k.vertex)] += 90 * (k.flag + 1);
+      r.degrees[static_cast<std::size_t>(k.vertex)] += 90 * (k.flag + 1);
     else
-      boundary[static_cast<std::size_t>(k.vertex)] = 1;
+      r.boundary[static_cast<std::size_t>(k.vertex)] = 1;
   }
+  return r;
+}
+
+std::vector<int> star_points(const TMesh& m) {
+  const VertexAngles angles = vertex_angles(m);
   std::vector<int> stars;
-  for (std::size_t v = 0; v < nv; ++v) {
-    const int a = angle[v];
-    if (a == 0 || (boundary[v] ? a <= 270 : a == 360)) continue;
+  for (std::size_t v = 0; v < m.vertices.size(); ++v) {
+    const int a = angles.degrees[v];
+    if (a == 0 || (angles.boundary[v] ? a <= 270 : a == 360)) continue;
     stars.push_back(static_cast<int>(v));
   }
   return stars;

@@ -66,6 +66,14 @@ struct TMesh {
 // interior vertex of four quadrilaterals; -1 otherwise.
 int straight_link(const TMesh& m, int l);
 
+// The faces' angles at each vertex in degrees (90 (flag + 1) per corner of a live face) and whether it is on the
+// boundary (a link of it outside the live faces).
+struct VertexAngles {
+  std::vector<int> degrees;
+  std::vector<char> boundary;
+};
+VertexAngles vertex_angles(const TMesh& m);
+
 // Face angle sums at the vertices: a star point is an interior vertex whose faces' angles do not sum to 360
 // degrees, or a boundary vertex whose faces' angles exceed 270.
 std::vector<int> star_points(const TMesh& m);

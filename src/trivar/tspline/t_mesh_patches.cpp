@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <functional>
 #include <map>
 #include <string>
@@ -127,7 +128,7 @@ std::vector<CellSquare> merge_cells(std::vector<CellSquare> squares) {
     for (int i = 0; i < static_cast<int>(squares.size()); ++i) {
       const CellSquare& q = squares[static_cast<std::size_t>(i)];
       const long long x = std::llround(q.lo[0] / q.side), y = std::llround(q.lo[1] / q.side);
-      auto [it, fresh] = parents.try_emplace({std::llround(1 / q.side), x / 2, y / 2}, std::array<int, 4>{-1, -1, -1, -1});
+      const auto it = parents.try_emplace({std::llround(1 / q.side), x / 2, y / 2}, std::array<int, 4>{-1, -1, -1, -1}).first;
       it->second[static_cast<std::size_t>((x % 2) + 2 * (y % 2))] = i;
     }
     std::vector<char> gone(squares.size(), 0);
@@ -384,14 +385,12 @@ TMeshPatches t_mesh_patches(const TMeshSurface& s, const TMeshPatchOptions& opti
           // covers the square of side 2^-levels of the quarter, which no cell reaches.
           // Cells that are one polynomial (the rules' midpoint insertions past the star point's ring) are one patch.
           const CreaseFace& z = s.crease_face(f);
-          std::vector<CreaseFace::Cell> cells;
-          std::vector<std::pair<std::array<double, 2>, double>> where;
-          z.for_each_cell(r.levels + 1, [&](const CreaseFace::Cell& cell, const std::array<double, 2>& lo, double side) {
-            cells.push_back(cell);
-            where.push_back({lo, side});
-          });
+          // The cells are kept (a std::deque does not move them) for the squares that point at them.
+          std::deque<CreaseFace::Cell> cells;
           std::vector<CellSquare> squares;
-          for (std::size_t i = 0; i < cells.size(); ++i) squares.push_back({&cells[i], where[i].first, where[i].second, where[i].first, where[i].second});
+          z.for_each_cell(r.levels + 1, [&](const CreaseFace::Cell& cell, const std::array<double, 2>& lo, double side) {
+            squares.push_back({&cells.emplace_back(cell), lo, side, lo, side});
+          });
           for (const CellSquare& q : merge_cells(std::move(squares))) {
             const HomogeneousEval e = [&q](double x, double y, double* o) { q.eval(x, y, o); };
             r.patches.push_back(net_to_face(f, interpolate_patch(e, 0, 0, 1), {{0, 0}, {1, 1}}, {q.lo, {q.side, 0}, {0, q.side}}, true));

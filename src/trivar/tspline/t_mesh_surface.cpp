@@ -370,17 +370,11 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int th
     // A concave corner's end-condition nodes form a ring all round it (Rhino writes 8 at degree 3): with some
     // directions only, the blending functions of those nodes, clamped across one side, reach over the corner's
     // interior edges, where they jump.
-    std::vector<int> angle(static_cast<std::size_t>(nv), 0);
-    std::vector<char> on_boundary(static_cast<std::size_t>(nv), 0);
-    for (const TMeshLink& k : m.links)
-      if (k.vertex >= 0 && k.face >= 0 && m.live_face(k.face))
-        angle[static_cast<std::size_t>(k.vertex)] += 90 * (k.flag + 1);
-      else if (k.vertex >= 0)
-        on_boundary[static_cast<std::size_t>(k.vertex)] = 1;
+    const VertexAngles angles = vertex_angles(m);
     for (int v = 0; v < nv; ++v) {
       const TMeshVertex& mv = m.vertices[static_cast<std::size_t>(v)];
       const auto& d = mv.block_dims;
-      require(!on_boundary[static_cast<std::size_t>(v)] || angle[static_cast<std::size_t>(v)] != 270 || mv.block.empty() ||
+      require(!angles.boundary[static_cast<std::size_t>(v)] || angles.degrees[static_cast<std::size_t>(v)] != 270 || mv.block.empty() ||
                   (d[0] > 0 && d[1] == d[0] && d[2] == d[0] && d[3] == d[0]),
               [&] {
                 return "T-mesh: concave corner vertex " + std::to_string(v) + " has end-condition nodes in block dims " + std::to_string(d[0]) + " " +
