@@ -177,12 +177,14 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
   const int bs = s.boundary_star_faces();
   const int sub = s.count(FaceMethod::subdivided);
   const int cr = s.count(FaceMethod::crease);
+  const int avg = s.count(FaceMethod::averaging);
   // Local subdivision serves the irregular vertices of a crease boundary, or in a mesh without one close star points.
   const bool subd_creases = s.source_mesh().end_conditions == EndConditions::subd_creases;
-  const int faces = s.count(FaceMethod::exact) + s.count(FaceMethod::bicubic) + s.count(FaceMethod::star) + nu + sub + cr;
+  const int faces = s.count(FaceMethod::exact) + s.count(FaceMethod::bicubic) + s.count(FaceMethod::star) + nu + sub + cr + avg;
   const bool creases = r.crease_edges > 0 || cones > 0;
   std::string continuity = s.mesh().degree == 1 ? "C0 across every edge (degree 1: each face bilinear pieces, star points or not)"
                            : stars.empty()     ? "C2 across every edge"
+                           : avg > 0 ? "C" + std::to_string(s.mesh().degree - 1) + " across every edge away from star points; C1 across the edges at a star point; G1 at star points (averaging subdivision, measured)"
                                                : "C2 across every edge away from star points; C1 across the edges at a star point; G1 at star points";
   if (creases) continuity += " but the sharp creases, C0 across those";
   if (darts > 0) continuity += "; C1 across the edges at a dart, G1 at the dart";
@@ -198,6 +200,7 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
                    {"faces_catmull_clark", s.count(FaceMethod::bicubic) + s.count(FaceMethod::star) + sub},
                    {"faces_at_star_points", s.count(FaceMethod::star)}, {"faces_at_boundary_star_points", bs},
                    {"faces_non_uniform_catmull_clark", nu}, {"faces_subdivided", sub}, {"faces_crease_subdivision", cr},
+                   {"faces_averaging_subdivision", avg},
                    {"non_uniform_star_points", s.non_uniform_stars()}, {"global_steps", s.global_steps()},
                    {"t_junction_lines", s.completed_lines() ? s.completed_lines()->lines : 0},
                    {"faces_as_given", static_cast<int>(s.source_mesh().faces.size())}, {"continuity", continuity},
@@ -251,6 +254,11 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
     std::printf("  %d faces by the Catmull-Clark limit surface (%d at a star point, evaluated exactly by subdivision; the "
                 "others bicubic B-spline cells on their knots, the T-spline)\n",
                 s.count(FaceMethod::exact) + s.count(FaceMethod::bicubic) + s.count(FaceMethod::star) + sub, s.count(FaceMethod::star));
+  else if (avg > 0)
+    std::printf("  %d faces exact (the T-spline in a chart of their neighbourhood), %d faces within %d rings of a star "
+                "point by the degree-%d averaging subdivision (linear subdivision and %d averaging passes per step: the uniform "
+                "B-spline where the mesh is a regular grid, evaluated by local subdivision)\n",
+                s.count(FaceMethod::exact), avg, s.mesh().degree + 2, s.mesh().degree, (s.mesh().degree - 1) / 2);
   else
     std::printf("  %d faces exact (the T-spline in a chart of their neighbourhood), %d faces within %d rings of a star "
                 "point by the Catmull-Clark limit surface (%d at a star point, evaluated exactly by subdivision)\n",

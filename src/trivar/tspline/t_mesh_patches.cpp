@@ -272,6 +272,11 @@ TMeshPatches t_mesh_patches(const TMeshSurface& s, const TMeshPatchOptions& opti
   using namespace t_mesh_patches_detail;
   require(options.max_levels >= 0 && options.max_levels <= 60 && options.levels <= 60,
           "T-mesh patches: levels above 60 (2^-60 of a face) are refused");
+  for (int f = 0; f < s.num_faces(); ++f)
+    require(s.method(f) != FaceMethod::averaging, [&] {
+      return "T-mesh patches: face " + std::to_string(f) + " near a star point of degree " + std::to_string(s.mesh().degree) +
+             " is averaging subdivision, whose corner patches are built for degree 3 only (tessellate it instead)";
+    });
   TMeshPatches r;
   r.tolerance = options.tolerance;
   if (r.tolerance <= 0) {
@@ -357,7 +362,8 @@ TMeshPatches t_mesh_patches(const TMeshSurface& s, const TMeshPatchOptions& opti
   };
   for (int f = 0; f < s.num_faces(); ++f) {
     switch (s.method(f)) {
-      case FaceMethod::none: break;
+      case FaceMethod::none:
+      case FaceMethod::averaging: break;
       case FaceMethod::exact: exact_face(s, f, r.patches); break;
       case FaceMethod::bicubic:
         r.patches.push_back(net_to_face(f, interpolate_patch(patch_eval(f), 0, 0, 1), {{0, 0}, {1, 1}},

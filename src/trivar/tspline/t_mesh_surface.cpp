@@ -27,6 +27,7 @@ const char* face_method_name(FaceMethod m) {
     case FaceMethod::non_uniform: return "non-uniform";
     case FaceMethod::subdivided: return "subdivided";
     case FaceMethod::crease: return "crease";
+    case FaceMethod::averaging: return "averaging";
   }
   return "?";
 }
@@ -654,6 +655,43 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int th
       exact.push_back(f);
       continue;
     }
+    if (m.degree > 3) {
+      // Odd degrees above 3: the averaging subdivision of that degree (averaging_face), the uniform B-spline of the
+      // mesh = the T-spline wherever the neighbourhood is a regular grid of equal intervals. It reads the face's
+      // m + 1 face rings: quadrilaterals inside the mesh, one interval, one point per vertex.
+      const std::string where = "T-mesh: face " + std::to_string(f) + " (within " + std::to_string(depth + 1) +
+                                " face rings of a star point, degree " + std::to_string(m.degree) + "): ";
+      std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX);
+      dist[static_cast<std::size_t>(f)] = 0;
+      const std::vector<int> hood = rings({f}, (m.degree - 1) / 2 + 1, dist);
+      const double d0 = m.intervals[static_cast<std::size_t>(L(m.faces[static_cast<std::size_t>(f)].front()).edge)];
+      std::string why;
+      for (int g : hood)
+        for (int l : m.faces[static_cast<std::size_t>(g)])
+          if (!why.empty()) {
+            break;
+          } else if (m.faces[static_cast<std::size_t>(g)].size() != 4) {
+            why = "face " + std::to_string(g) + " nearby has a T-junction" + t_junction_at(g);
+          } else if (boundary[static_cast<std::size_t>(L(l).vertex)]) {
+            why = "boundary vertex " + std::to_string(L(l).vertex) + " is nearby";
+          } else if (const double d = m.intervals[static_cast<std::size_t>(L(l).edge)]; std::abs(d - d0) > 1e-12 * d0) {
+            why = "edge " + std::to_string(L(l).edge) + " nearby has knot interval " + std::to_string(d) + ", not " + std::to_string(d0);
+          }
+      if (!why.empty()) {
+        why += "; the averaging subdivision at star points takes " + std::to_string((m.degree - 1) / 2 + 1) +
+               " face rings of quadrilaterals inside the mesh with equal knot intervals";
+        require(star_dist[static_cast<std::size_t>(f)] > reach, [&] { return where + why; });
+        face.method = FaceMethod::exact;
+        near_exact.push_back({f, where + why});
+        continue;
+      }
+      CreaseNet net = crease_net(m, m, std::vector<CreaseRule>(static_cast<std::size_t>(nv), CreaseRule::none), f, hood, where);
+      averaging_faces_.emplace_back(QuadNet{std::move(net.points), std::move(net.quads)}, m.degree);
+      face.method = FaceMethod::averaging;
+      face.averaging = static_cast<int>(averaging_faces_.size()) - 1;
+      face.rational = averaging_faces_.back().rational();
+      continue;
+    }
     if (const NurccFace& z = nurcc_of[static_cast<std::size_t>(f)]; z.star >= 0) {
       static constexpr std::array<std::array<int, 2>, 4> cells{{{0, 0}, {1, 0}, {1, 1}, {0, 1}}};
       face.method = FaceMethod::non_uniform;
@@ -1014,8 +1052,12 @@ void TMeshSurface::eval(int face, double u, double v, double* out) const {
 void TMeshSurface::eval_patch_homogeneous(int face, double up, double vp, double* out) const {
   const Face& f = faces_[static_cast<std::size_t>(face)];
   require(f.method == FaceMethod::bicubic || f.method == FaceMethod::star || f.method == FaceMethod::non_uniform ||
-              f.method == FaceMethod::subdivided || f.method == FaceMethod::crease,
-          [&] { return "T-mesh: face " + std::to_string(face) + " is not a Catmull-Clark face"; });
+              f.method == FaceMethod::subdivided || f.method == FaceMethod::crease || f.method == FaceMethod::averaging,
+          [&] { return "T-mesh: face " + std::to_string(face) + " is not a subdivision face"; });
+  if (f.method == FaceMethod::averaging) {
+    averaging_faces_[static_cast<std::size_t>(f.averaging)].eval(up, vp, out);
+    return;
+  }
   if (f.method == FaceMethod::subdivided) {
     subdivided_[static_cast<std::size_t>(f.subdivided)].eval(up, vp, out);
     return;

@@ -82,6 +82,7 @@
 #include <optional>
 #include <vector>
 
+#include "trivar/tspline/averaging_face.hpp"
 #include "trivar/tspline/crease_face.hpp"
 #include "trivar/tspline/subdivided_face.hpp"
 #include "trivar/tspline/t_junction_lines.hpp"
@@ -90,7 +91,7 @@
 
 namespace trivar {
 
-enum class FaceMethod { none, exact, bicubic, star, non_uniform, subdivided, crease };
+enum class FaceMethod { none, exact, bicubic, star, non_uniform, subdivided, crease, averaging };
 const char* face_method_name(FaceMethod m);
 
 // The frame of a Catmull-Clark patch starting at corner c (0..3, counter-clockwise from the face's first corner)
@@ -209,6 +210,7 @@ private:
     bool boundary_star = false;    // star or crease: a corner is a star point on the boundary
     int subdivided = -1;           // subdivided: index into subdivided_
     int crease = -1;               // crease: index into crease_faces_
+    int averaging = -1;            // averaging: index into averaging_faces_
   };
   // `cut`: the mesh cut open along its sharp creases (split_creases) when it has any, for its T-junction lines,
   // its Bezier end-condition form and its crease faces.
@@ -225,6 +227,7 @@ private:
   std::vector<std::unique_ptr<Nurcc>> nurcc_;
   std::vector<SubdividedFace> subdivided_;
   std::vector<CreaseFace> crease_faces_;
+  std::vector<AveragingFace> averaging_faces_;
   std::unique_ptr<TMesh> ghosted_;  // with star points on the boundary: the mesh with their ghost layers
   // The control mesh of the Catmull-Clark faces (bicubic and star: their `points` are its vertices).
   const TMesh& cc_mesh() const { return ghosted_ ? *ghosted_ : mesh_; }

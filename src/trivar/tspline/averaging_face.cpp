@@ -1,0 +1,344 @@
+#include "trivar/tspline/averaging_face.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <climits>
+
+#include "trivar/core/error.hpp"
+#include "trivar/spline/basis.hpp"
+
+namespace trivar {
+namespace {
+
+using H = std::array<double, 4>;
+
+// Levels kept in the tree; deeper ones (within 2^-kCachedLevels of an irregular corner) are refined at evaluation.
+constexpr int kCachedLevels = 10;
+// Within 2^-kCornerLevels of an irregular corner a point takes the corner's values.
+constexpr int kCornerLevels = 50;
+
+// Across every quad side (side k runs from corner k to k + 1): the twin side 4 q' + k' (-1: none); per vertex its
+// number of faces and whether its fan is closed (a face on both sides of every edge at it). By sorting the directed
+// edges: a net is refined or checked a few hundred times per face near a star point.
+struct NetTopology {
+  std::vector<int> twin;
+  std::vector<int> faces;
+  std::vector<char> closed;
+  explicit NetTopology(const QuadNet& net) : twin(4 * net.quads.size(), -1), faces(net.points.size(), 0), closed(net.points.size(), 1) {
+    std::vector<std::pair<std::uint64_t, int>> edges;
+    edges.reserve(4 * net.quads.size());
+    const auto key = [](int a, int b) { return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b); };
+    for (std::size_t q = 0; q < net.quads.size(); ++q)
+      for (std::size_t k = 0; k < 4; ++k) {
+        edges.push_back({key(net.quads[q][k], net.quads[q][(k + 1) % 4]), static_cast<int>(4 * q + k)});
+        ++faces[static_cast<std::size_t>(net.quads[q][k])];
+      }
+    std::sort(edges.begin(), edges.end());
+    for (std::size_t q = 0; q < net.quads.size(); ++q)
+      for (std::size_t k = 0; k < 4; ++k) {
+        const int a = net.quads[q][k], b = net.quads[q][(k + 1) % 4];
+        const auto it = std::lower_bound(edges.begin(), edges.end(), std::pair<std::uint64_t, int>{key(b, a), INT_MIN});
+        if (it != edges.end() && it->first == key(b, a))
+          twin[4 * q + k] = it->second;
+        else
+          closed[static_cast<std::size_t>(a)] = closed[static_cast<std::size_t>(b)] = 0;
+      }
+  }
+};
+
+// The (p + 1)^2 points of quad q when its block of 2 m + 1 faces per side is a grid whose inner vertices have four
+// faces each, else none. The block is walked cell by cell from the face: a cell is a quad and the quad corner at
+// the cell's corner 0.
+std::optional<std::vector<H>> regular_grid(const QuadNet& net, const NetTopology& topo, int q0, int passes) {
+  const int b = passes, cells = 2 * b + 1, side = cells + 1;
+  std::vector<std::array<int, 2>> cell(static_cast<std::size_t>(cells * cells), {-1, 0});
+  std::vector<int> grid(static_cast<std::size_t>(side * side), -1), place(net.points.size(), -1);
+  static constexpr std::array<int, 4> dx{0, 1, 1, 0}, dy{0, 0, 1, 1}, nx{0, 1, 0, -1}, ny{-1, 0, 1, 0};
+  std::vector<std::array<int, 2>> todo{{0, 0}};
+  cell[static_cast<std::size_t>(b * cells + b)] = {q0, 0};
+  for (std::size_t t = 0; t < todo.size(); ++t) {
+    const auto [i, j] = todo[t];
+    const auto [q, r] = cell[static_cast<std::size_t>((j + b) * cells + i + b)];
+    std::array<int, 4> v{};
+    for (int k = 0; k < 4; ++k) {
+      v[static_cast<std::size_t>(k)] = net.quads[static_cast<std::size_t>(q)][static_cast<std::size_t>((r + k) % 4)];
+      const int at = (j + b + dy[static_cast<std::size_t>(k)]) * side + i + b + dx[static_cast<std::size_t>(k)];
+      int& g = grid[static_cast<std::size_t>(at)];
+      int& p = place[static_cast<std::size_t>(v[static_cast<std::size_t>(k)])];
+      if ((g >= 0 && g != v[static_cast<std::size_t>(k)]) || (p >= 0 && p != at)) return std::nullopt;
+      g = v[static_cast<std::size_t>(k)];
+      p = at;
+    }
+    for (int k = 0; k < 4; ++k) {
+      const int ni = i + nx[static_cast<std::size_t>(k)], nj = j + ny[static_cast<std::size_t>(k)];
+      if (std::abs(ni) > b || std::abs(nj) > b) continue;
+      // Side k of the cell is side r + k of its quad; the cell across has the twin side as its side k + 2.
+      const int twin = topo.twin[static_cast<std::size_t>(4 * q + (r + k) % 4)];
+      if (twin < 0) return std::nullopt;
+      const std::array<int, 2> next{twin / 4, (twin % 4 - k + 2 + 8) % 4};
+      std::array<int, 2>& c = cell[static_cast<std::size_t>((nj + b) * cells + ni + b)];
+      if (c[0] < 0) {
+        c = next;
+        todo.push_back({ni, nj});
+      } else if (c != next) {
+        return std::nullopt;
+      }
+    }
+  }
+  for (int j = 1; j < cells; ++j)
+    for (int i = 1; i < cells; ++i)
+      if (const int g = grid[static_cast<std::size_t>(j * side + i)]; g < 0 || topo.faces[static_cast<std::size_t>(g)] != 4 || !topo.closed[static_cast<std::size_t>(g)])
+        return std::nullopt;
+  std::vector<H> out;
+  out.reserve(grid.size());
+  if (std::find(grid.begin(), grid.end(), -1) != grid.end()) return std::nullopt;
+  for (int g : grid) out.push_back(net.points[static_cast<std::size_t>(g)]);
+  return out;
+}
+
+}  // namespace
+
+QuadNet averaging_refine(const QuadNet& net, const std::vector<int>& sub_faces, int passes, int rings) {
+  // Linear subdivision: the old vertices keep their ids, then edge midpoints and face centroids; the four sub-quads
+  // of quad q are 4 q + k, k at corner k, oriented as q. A new vertex's fan: an old vertex's as before, an edge
+  // point's closed with four faces when its edge has two, a face point's closed with four.
+  const NetTopology topo(net);
+  std::vector<H> pts = net.points;
+  std::vector<int> faces = topo.faces;
+  std::vector<char> closed = topo.closed;
+  std::vector<int> side_point(4 * net.quads.size(), -1);
+  std::vector<std::array<int, 4>> quads;
+  quads.reserve(4 * net.quads.size());
+  for (std::size_t q = 0; q < net.quads.size(); ++q) {
+    const auto& quad = net.quads[q];
+    std::array<int, 4> e{};
+    for (std::size_t k = 0; k < 4; ++k) {
+      const int t = topo.twin[4 * q + k];
+      if (t >= 0 && side_point[static_cast<std::size_t>(t)] >= 0) {
+        e[k] = side_point[static_cast<std::size_t>(t)];
+      } else {
+        e[k] = static_cast<int>(pts.size());
+        H m;
+        for (std::size_t i = 0; i < 4; ++i) m[i] = 0.5 * (net.points[static_cast<std::size_t>(quad[k])][i] + net.points[static_cast<std::size_t>(quad[(k + 1) % 4])][i]);
+        pts.push_back(m);
+        faces.push_back(t >= 0 ? 4 : 2);
+        closed.push_back(t >= 0);
+      }
+      side_point[4 * q + k] = e[k];
+    }
+    H c{};
+    for (int v : quad)
+      for (std::size_t i = 0; i < 4; ++i) c[i] += 0.25 * net.points[static_cast<std::size_t>(v)][i];
+    const int f = static_cast<int>(pts.size());
+    pts.push_back(c);
+    faces.push_back(4);
+    closed.push_back(1);
+    quads.push_back({quad[0], e[0], f, e[3]});
+    quads.push_back({e[0], quad[1], e[1], f});
+    quads.push_back({f, e[1], quad[2], e[2]});
+    quads.push_back({e[3], f, e[2], quad[3]});
+  }
+  // Averaging passes. A point is right when its vertex's fan is closed and the points it averages were right.
+  std::vector<char> right(pts.size(), 1);
+  std::vector<H> sum(pts.size());
+  std::vector<char> next(pts.size());
+  for (int pass = 0; pass < passes; ++pass) {
+    std::fill(sum.begin(), sum.end(), H{});
+    for (std::size_t v = 0; v < pts.size(); ++v) next[v] = closed[v] && right[v];
+    for (const auto& q : quads) {
+      H c{};
+      bool ok = true;
+      for (int v : q) {
+        ok = ok && right[static_cast<std::size_t>(v)];
+        for (std::size_t i = 0; i < 4; ++i) c[i] += 0.25 * pts[static_cast<std::size_t>(v)][i];
+      }
+      for (int v : q) {
+        for (std::size_t i = 0; i < 4; ++i) sum[static_cast<std::size_t>(v)][i] += c[i];
+        if (!ok) next[static_cast<std::size_t>(v)] = 0;
+      }
+    }
+    for (std::size_t v = 0; v < pts.size(); ++v)
+      if (closed[v])
+        for (std::size_t i = 0; i < 4; ++i) pts[v][i] = sum[v][i] / faces[v];
+    right.swap(next);
+  }
+  // The sub-faces' face rings, in ring order from them (vertex -> quads in compressed rows).
+  std::vector<int> start(pts.size() + 1, 0), at_vertex(4 * quads.size());
+  for (const auto& q : quads)
+    for (int v : q) ++start[static_cast<std::size_t>(v) + 1];
+  for (std::size_t v = 0; v < pts.size(); ++v) start[v + 1] += start[v];
+  {
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (std::size_t q = 0; q < quads.size(); ++q)
+      for (int v : quads[q]) at_vertex[static_cast<std::size_t>(fill[static_cast<std::size_t>(v)]++)] = static_cast<int>(q);
+  }
+  std::vector<int> kept = sub_faces;
+  std::vector<char> taken(quads.size(), 0), seen(pts.size(), 0);
+  for (int q : kept) taken[static_cast<std::size_t>(q)] = 1;
+  for (std::size_t begin = 0, ring = 0; ring < static_cast<std::size_t>(rings); ++ring) {
+    const std::size_t end = kept.size();
+    for (std::size_t i = begin; i < end; ++i)
+      for (int v : quads[static_cast<std::size_t>(kept[i])]) {
+        if (seen[static_cast<std::size_t>(v)]) continue;
+        seen[static_cast<std::size_t>(v)] = 1;
+        for (int j = start[static_cast<std::size_t>(v)]; j < start[static_cast<std::size_t>(v) + 1]; ++j)
+          if (const int q = at_vertex[static_cast<std::size_t>(j)]; !taken[static_cast<std::size_t>(q)]) {
+            taken[static_cast<std::size_t>(q)] = 1;
+            kept.push_back(q);
+          }
+      }
+    begin = end;
+  }
+  QuadNet out;
+  out.quads.reserve(kept.size());
+  std::vector<int> id(pts.size(), -1);
+  for (int q : kept) {
+    std::array<int, 4> quad{};
+    for (std::size_t k = 0; k < 4; ++k) {
+      const int v = quads[static_cast<std::size_t>(q)][k];
+      if (id[static_cast<std::size_t>(v)] < 0) {
+        require(right[static_cast<std::size_t>(v)], "averaging subdivision: the net is too small for the rules at a vertex it keeps");
+        id[static_cast<std::size_t>(v)] = static_cast<int>(out.points.size());
+        out.points.push_back(pts[static_cast<std::size_t>(v)]);
+      }
+      quad[k] = id[static_cast<std::size_t>(v)];
+    }
+    out.quads.push_back(quad);
+  }
+  return out;
+}
+
+AveragingFace::AveragingFace(QuadNet net, int degree) : degree_(degree), passes_((degree - 1) / 2), rings_((degree - 1) / 2 + 1) {
+  require(degree >= 3 && degree <= 15 && degree % 2 == 1, [&] { return "averaging subdivision: degree " + std::to_string(degree) + ", not odd from 3 to 15"; });
+  require(!net.quads.empty(), "averaging subdivision: an empty net");
+  for (const H& p : net.points) rational_ = rational_ || p[3] != 1.0;
+  // Level by level, one net round every sub-face not yet regular: (tree node, its quad in the net).
+  tree_.emplace_back();
+  std::vector<std::array<int, 2>> pending{{0, 0}};
+  for (int level = 0; !pending.empty(); ++level) {
+    std::vector<std::array<int, 2>> next;
+    std::vector<int> sub_faces;
+    const NetTopology topo(net);
+    for (const auto [node, q] : pending) {
+      if (auto g = regular_grid(net, topo, q, passes_)) {
+        tree_[static_cast<std::size_t>(node)].grid = std::move(g);
+      } else if (level == kCachedLevels) {
+        tree_[static_cast<std::size_t>(node)].deep = q;
+      } else {
+        for (int c = 0; c < 4; ++c) {
+          tree_[static_cast<std::size_t>(node)].children[static_cast<std::size_t>(c)] = static_cast<int>(tree_.size());
+          next.push_back({static_cast<int>(tree_.size()), static_cast<int>(sub_faces.size())});
+          tree_.emplace_back();
+          sub_faces.push_back(4 * q + c);
+        }
+      }
+    }
+    if (level == kCachedLevels) {
+      deep_ = std::move(net);
+      break;
+    }
+    if (!next.empty()) net = averaging_refine(net, sub_faces, passes_, rings_);
+    pending = std::move(next);
+  }
+  for (int c = 0; c < 4; ++c) {
+    int node = 0;
+    while (tree_[static_cast<std::size_t>(node)].children[0] >= 0) node = tree_[static_cast<std::size_t>(node)].children[static_cast<std::size_t>(c)];
+    const int q = tree_[static_cast<std::size_t>(node)].deep;
+    if (q < 0) continue;
+    // The limit of the corner vertex's point (the corner of sub-face c is the face's corner c on every level).
+    double size = 0;
+    for (const H& p : deep_.points)
+      for (std::size_t i = 0; i < 4; ++i) size = std::max(size, std::abs(p[i] - deep_.points[0][i]));
+    QuadNet z = averaging_refine(deep_, {4 * q + c}, passes_, rings_);
+    H at = deep_.points[static_cast<std::size_t>(deep_.quads[static_cast<std::size_t>(q)][static_cast<std::size_t>(c)])];
+    for (int level = 0;; ++level) {
+      const H next = z.points[static_cast<std::size_t>(z.quads[0][static_cast<std::size_t>(c)])];
+      double change = 0;
+      for (std::size_t i = 0; i < 4; ++i) change = std::max(change, std::abs(next[i] - at[i]));
+      at = next;
+      if (change <= 1e-16 * size) break;
+      require(level < 400, "averaging subdivision: the corner point does not converge");
+      z = averaging_refine(z, {c}, passes_, rings_);
+    }
+    std::array<double, 12> values{};
+    const double h = std::ldexp(1.0, -30);
+    eval(c == 1 || c == 2 ? 1 - h : h, c >= 2 ? 1 - h : h, values.data());
+    std::copy(at.begin(), at.end(), values.begin());
+    corner_values_[static_cast<std::size_t>(c)] = values;
+  }
+}
+
+// The uniform B-spline of degree p on the points: control point i has the knots i - p .. i + 1, the face [0, 1].
+void AveragingFace::eval_grid(const Grid& g, double u, double v, double scale, double* out) const {
+  const int p = degree_, n = p + 1;
+  double knots[2 * kMaxDegree + 2];
+  for (int j = 0; j < 2 * n; ++j) knots[j] = j - p;
+  double bu[2 * (kMaxDegree + 1)], bv[2 * (kMaxDegree + 1)];
+  basis_derivatives(knots, p, p, std::clamp(u, 0.0, 1.0), 1, bu);
+  basis_derivatives(knots, p, p, std::clamp(v, 0.0, 1.0), 1, bv);
+  std::fill(out, out + 12, 0.0);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const H& x = g[static_cast<std::size_t>(j * n + i)];
+      const double w0 = bu[i] * bv[j], wu = scale * bu[n + i] * bv[j], wv = scale * bu[i] * bv[n + j];
+      for (std::size_t c = 0; c < 4; ++c) {
+        out[c] += w0 * x[c];
+        out[4 + c] += wu * x[c];
+        out[8 + c] += wv * x[c];
+      }
+    }
+}
+
+void AveragingFace::eval_below(int q, double u, double v, double scale, double* out) const {
+  QuadNet net;
+  const QuadNet* at = &deep_;
+  for (int level = kCachedLevels;; ++level) {
+    if (auto g = regular_grid(*at, NetTopology(*at), q, passes_)) {
+      eval_grid(*g, u, v, scale, out);
+      return;
+    }
+    require(level <= kCornerLevels + 2, "averaging subdivision: no regular sub-face holds the point");
+    const int cu = u >= 0.5, cv = v >= 0.5;
+    net = averaging_refine(*at, {4 * q + (cv ? (cu ? 2 : 3) : (cu ? 1 : 0))}, passes_, rings_);
+    at = &net;
+    q = 0;
+    u = 2 * u - cu;
+    v = 2 * v - cv;
+    scale *= 2;
+  }
+}
+
+void AveragingFace::eval(double u, double v, double* out) const {
+  u = std::clamp(u, 0.0, 1.0);
+  v = std::clamp(v, 0.0, 1.0);
+  const double near = std::ldexp(1.0, -kCornerLevels);
+  for (int c = 0; c < 4; ++c) {
+    const double cu = c == 1 || c == 2 ? 1.0 : 0.0, cv = c >= 2 ? 1.0 : 0.0;
+    if (corner_values_[static_cast<std::size_t>(c)] && std::abs(u - cu) < near && std::abs(v - cv) < near) {
+      std::copy(corner_values_[static_cast<std::size_t>(c)]->begin(), corner_values_[static_cast<std::size_t>(c)]->end(), out);
+      return;
+    }
+  }
+  int node = 0;
+  double scale = 1;
+  for (;;) {
+    const Node& n = tree_[static_cast<std::size_t>(node)];
+    if (n.grid) {
+      eval_grid(*n.grid, u, v, scale, out);
+      return;
+    }
+    if (n.deep >= 0) {
+      eval_below(n.deep, u, v, scale, out);
+      return;
+    }
+    const int cu = u >= 0.5, cv = v >= 0.5;
+    node = n.children[static_cast<std::size_t>(cv ? (cu ? 2 : 3) : (cu ? 1 : 0))];
+    u = 2 * u - cu;
+    v = 2 * v - cv;
+    scale *= 2;
+  }
+}
+
+}  // namespace trivar
