@@ -363,6 +363,28 @@ void boundary_star_build(benchmark::State& state) {
 }
 BENCHMARK(boundary_star_build)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
+// The cube of 3 x 3 faces per side (eight valence-3 star points, star_build/0 at degree 3) at degree range(0) = 5
+// or 7: every face is averaging subdivision (local subdivision of its (p + 1) / 2 face rings).
+std::string averaging_cube(int degree) {
+  std::string text = trivar::test::tsm_text(trivar::test::cube_mesh(3));
+  return text.replace(text.find("degree 3"), 8, "degree " + std::to_string(degree));
+}
+
+void averaging_build(benchmark::State& state) {
+  const std::string text = averaging_cube(static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    const trivar::TMeshSurface s(trivar::io::parse_tsm(text, "cube.tsm").mesh, 1);
+    benchmark::DoNotOptimize(s.num_faces());
+  }
+}
+BENCHMARK(averaging_build)->Arg(5)->Arg(7)->Unit(benchmark::kMillisecond);
+
+void averaging_eval(benchmark::State& state) {
+  const trivar::TMeshSurface s(trivar::io::parse_tsm(averaging_cube(static_cast<int>(state.range(0))), "cube.tsm").mesh, 1);
+  eval_faces(state, s, false);
+}
+BENCHMARK(averaging_eval)->Arg(5)->Arg(7)->Unit(benchmark::kMillisecond);
+
 // The per-face surface of the valence-5 fan of 5 x 10 x 10 faces from its parsed mesh: range(0) = 0 with Bezier
 // end conditions (block points on the boundary), 1 as a subdivision-crease boundary (no blocks; crease_ends
 // converts it to Bezier end conditions first).

@@ -16,34 +16,38 @@ using H = std::array<double, 4>;
 
 // Levels kept in the tree; deeper ones (within 2^-kCachedLevels of an irregular corner) are refined at evaluation.
 constexpr int kCachedLevels = 10;
-// Within 2^-kCornerLevels of an irregular corner a point takes the corner's values.
+// Within 2^-kCornerLevels of an irregular corner a point takes the corner's values, whose derivatives are those
+// 2^-kDerivativeLevel from it.
 constexpr int kCornerLevels = 50;
+constexpr int kDerivativeLevel = 30;
 
-// Across every quad side (side k runs from corner k to k + 1): the twin side 4 q' + k' (-1: none); per vertex its
-// number of faces and whether its fan is closed (a face on both sides of every edge at it). By sorting the directed
-// edges: a net is refined or checked a few hundred times per face near a star point.
+// Per vertex of a net its number of faces and whether its fan is closed (a face on both sides of every edge at it),
+// read from the sides' twins; the twins found by sorting the directed edges when the net does not carry them (the
+// nets refine builds do).
 struct NetTopology {
   std::vector<int> twin;
   std::vector<int> faces;
   std::vector<char> closed;
-  explicit NetTopology(const QuadNet& net) : twin(4 * net.quads.size(), -1), faces(net.points.size(), 0), closed(net.points.size(), 1) {
-    std::vector<std::pair<std::uint64_t, int>> edges;
-    edges.reserve(4 * net.quads.size());
-    const auto key = [](int a, int b) { return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b); };
+  explicit NetTopology(const QuadNet& net) : twin(net.twin), faces(net.points.size(), 0), closed(net.points.size(), 1) {
+    if (twin.empty()) {
+      twin.assign(4 * net.quads.size(), -1);
+      std::vector<std::pair<std::uint64_t, int>> edges;
+      edges.reserve(4 * net.quads.size());
+      const auto key = [](int a, int b) { return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b); };
+      for (std::size_t q = 0; q < net.quads.size(); ++q)
+        for (std::size_t k = 0; k < 4; ++k) edges.push_back({key(net.quads[q][k], net.quads[q][(k + 1) % 4]), static_cast<int>(4 * q + k)});
+      std::sort(edges.begin(), edges.end());
+      for (std::size_t q = 0; q < net.quads.size(); ++q)
+        for (std::size_t k = 0; k < 4; ++k) {
+          const std::uint64_t back = key(net.quads[q][(k + 1) % 4], net.quads[q][k]);
+          const auto it = std::lower_bound(edges.begin(), edges.end(), std::pair<std::uint64_t, int>{back, INT_MIN});
+          if (it != edges.end() && it->first == back) twin[4 * q + k] = it->second;
+        }
+    }
     for (std::size_t q = 0; q < net.quads.size(); ++q)
       for (std::size_t k = 0; k < 4; ++k) {
-        edges.push_back({key(net.quads[q][k], net.quads[q][(k + 1) % 4]), static_cast<int>(4 * q + k)});
         ++faces[static_cast<std::size_t>(net.quads[q][k])];
-      }
-    std::sort(edges.begin(), edges.end());
-    for (std::size_t q = 0; q < net.quads.size(); ++q)
-      for (std::size_t k = 0; k < 4; ++k) {
-        const int a = net.quads[q][k], b = net.quads[q][(k + 1) % 4];
-        const auto it = std::lower_bound(edges.begin(), edges.end(), std::pair<std::uint64_t, int>{key(b, a), INT_MIN});
-        if (it != edges.end() && it->first == key(b, a))
-          twin[4 * q + k] = it->second;
-        else
-          closed[static_cast<std::size_t>(a)] = closed[static_cast<std::size_t>(b)] = 0;
+        if (twin[4 * q + k] < 0) closed[static_cast<std::size_t>(net.quads[q][k])] = closed[static_cast<std::size_t>(net.quads[q][(k + 1) % 4])] = 0;
       }
   }
 };
@@ -140,6 +144,21 @@ QuadNet averaging_refine(const QuadNet& net, const std::vector<int>& sub_faces, 
     quads.push_back({f, e[1], quad[2], e[2]});
     quads.push_back({e[3], f, e[2], quad[3]});
   }
+  // The sub-quads' twins: inside a quad sub-quad k's sides k + 1 and k + 2 meet sub-quads k + 1 and k + 3; across
+  // side k of q the first half (sub-quad k's side k) meets the second half of the twin side k' of q' (sub-quad
+  // k' + 1's side k'), and the second half (sub-quad k + 1's side k) the first (sub-quad k''s side k').
+  std::vector<int> twin(4 * quads.size(), -1);
+  for (std::size_t q = 0; q < net.quads.size(); ++q)
+    for (std::size_t k = 0; k < 4; ++k) {
+      const std::size_t a = 4 * q + k, b = 4 * q + (k + 1) % 4, d = 4 * q + (k + 3) % 4;
+      twin[4 * a + (k + 1) % 4] = static_cast<int>(4 * b + (k + 3) % 4);
+      twin[4 * a + (k + 2) % 4] = static_cast<int>(4 * d + k);
+      if (const int t = topo.twin[4 * q + k]; t >= 0) {
+        const std::size_t q2 = static_cast<std::size_t>(t / 4), k2 = static_cast<std::size_t>(t % 4);
+        twin[4 * a + k] = static_cast<int>(4 * (4 * q2 + (k2 + 1) % 4) + k2);
+        twin[4 * b + k] = static_cast<int>(4 * (4 * q2 + k2) + k2);
+      }
+    }
   // Averaging passes. A point is right when its vertex's fan is closed and the points it averages were right.
   std::vector<char> right(pts.size(), 1);
   std::vector<H> sum(pts.size());
@@ -193,7 +212,15 @@ QuadNet averaging_refine(const QuadNet& net, const std::vector<int>& sub_faces, 
   }
   QuadNet out;
   out.quads.reserve(kept.size());
-  std::vector<int> id(pts.size(), -1);
+  std::vector<int> id(pts.size(), -1), new_quad(quads.size(), -1);
+  for (std::size_t i = 0; i < kept.size(); ++i) new_quad[static_cast<std::size_t>(kept[i])] = static_cast<int>(i);
+  out.twin.reserve(4 * kept.size());
+  for (int q : kept)
+    for (std::size_t k = 0; k < 4; ++k) {
+      const int t = twin[4 * static_cast<std::size_t>(q) + k];
+      const int to = t < 0 ? -1 : new_quad[static_cast<std::size_t>(t / 4)];
+      out.twin.push_back(to < 0 ? -1 : 4 * to + t % 4);
+    }
   for (int q : kept) {
     std::array<int, 4> quad{};
     for (std::size_t k = 0; k < 4; ++k) {
@@ -247,24 +274,25 @@ AveragingFace::AveragingFace(QuadNet net, int degree) : degree_(degree), passes_
     while (tree_[static_cast<std::size_t>(node)].children[0] >= 0) node = tree_[static_cast<std::size_t>(node)].children[static_cast<std::size_t>(c)];
     const int q = tree_[static_cast<std::size_t>(node)].deep;
     if (q < 0) continue;
-    // The limit of the corner vertex's point (the corner of sub-face c is the face's corner c on every level).
+    // Sub-face c's corner c is the face's corner c on every level: its point converges to the limit. The derivatives
+    // are taken on level 30 at the sub-face's opposite corner, 2^-30 from the face's corner along the diagonal.
     double size = 0;
     for (const H& p : deep_.points)
       for (std::size_t i = 0; i < 4; ++i) size = std::max(size, std::abs(p[i] - deep_.points[0][i]));
-    QuadNet z = averaging_refine(deep_, {4 * q + c}, passes_, rings_);
+    std::array<double, 12> values{};
     H at = deep_.points[static_cast<std::size_t>(deep_.quads[static_cast<std::size_t>(q)][static_cast<std::size_t>(c)])];
-    for (int level = 0;; ++level) {
+    QuadNet z = averaging_refine(deep_, {4 * q + c}, passes_, rings_);
+    for (int level = kCachedLevels + 1;; ++level) {
+      if (level == kDerivativeLevel)
+        descend(z, 0, level, c == 1 || c == 2 ? 0 : 1, c >= 2 ? 0 : 1, std::ldexp(1.0, kDerivativeLevel), values.data());
       const H next = z.points[static_cast<std::size_t>(z.quads[0][static_cast<std::size_t>(c)])];
       double change = 0;
       for (std::size_t i = 0; i < 4; ++i) change = std::max(change, std::abs(next[i] - at[i]));
       at = next;
-      if (change <= 1e-16 * size) break;
+      if (change <= 1e-16 * size && level >= kDerivativeLevel) break;
       require(level < 400, "averaging subdivision: the corner point does not converge");
       z = averaging_refine(z, {c}, passes_, rings_);
     }
-    std::array<double, 12> values{};
-    const double h = std::ldexp(1.0, -30);
-    eval(c == 1 || c == 2 ? 1 - h : h, c >= 2 ? 1 - h : h, values.data());
     std::copy(at.begin(), at.end(), values.begin());
     corner_values_[static_cast<std::size_t>(c)] = values;
   }
@@ -291,10 +319,10 @@ void AveragingFace::eval_grid(const Grid& g, double u, double v, double scale, d
     }
 }
 
-void AveragingFace::eval_below(int q, double u, double v, double scale, double* out) const {
+void AveragingFace::descend(const QuadNet& start, int q, int level, double u, double v, double scale, double* out) const {
   QuadNet net;
-  const QuadNet* at = &deep_;
-  for (int level = kCachedLevels;; ++level) {
+  const QuadNet* at = &start;
+  for (;; ++level) {
     if (auto g = regular_grid(*at, NetTopology(*at), q, passes_)) {
       eval_grid(*g, u, v, scale, out);
       return;
@@ -330,7 +358,7 @@ void AveragingFace::eval(double u, double v, double* out) const {
       return;
     }
     if (n.deep >= 0) {
-      eval_below(n.deep, u, v, scale, out);
+      descend(deep_, n.deep, kCachedLevels, u, v, scale, out);
       return;
     }
     const int cu = u >= 0.5, cv = v >= 0.5;

@@ -32,6 +32,8 @@ namespace trivar {
 struct QuadNet {
   std::vector<std::array<double, 4>> points;  // homogeneous (w x, w y, w z, w)
   std::vector<std::array<int, 4>> quads;
+  // Per quad side (side k from corner k to k + 1) the side across, 4 q' + k' (-1: none); empty: found from the quads.
+  std::vector<int> twin;
 };
 
 // One step of the scheme with `passes` averaging passes, kept within `rings` face rings (faces sharing a vertex with
@@ -59,7 +61,8 @@ private:
     std::array<int, 4> children{-1, -1, -1, -1};
   };
   void eval_grid(const Grid& g, double u, double v, double scale, double* out) const;
-  void eval_below(int q, double u, double v, double scale, double* out) const;
+  // From quad q of a net of the given level down to a regular sub-face holding (u, v) of q.
+  void descend(const QuadNet& start, int q, int level, double u, double v, double scale, double* out) const;
   int degree_, passes_, rings_;
   bool rational_ = false;
   std::vector<Node> tree_;  // tree_[0] the face

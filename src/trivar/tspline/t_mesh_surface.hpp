@@ -46,7 +46,10 @@
 //                  vertex.
 // At degree 1 every face is exact, star point or not: the T-spline of the chart of the face and the faces across its
 // T-junctions (bilinear pieces, C0).
-// The faces within p + 2 rings of a star point (bicubic and star) need, and are checked to have, degree 3,
+// At odd degrees above 3 the faces within p + 2 rings of a star point are averaging faces (averaging_face: the
+// uniform B-spline of degree p where the mesh is a regular grid, the same subdivision rules at star points) when
+// their (p + 1) / 2 face rings are quadrilaterals inside the mesh with equal knot intervals.
+// At degree 3 the faces within p + 2 rings of a star point (bicubic and star) need, and are checked to have,
 // no T-junction and no boundary within (p + 1) / 2 rings of them, control points
 // without repeated-knot nodes, and at most one star corner per face or else equal intervals (subdivided).
 // Weights other than 1 are rational Catmull-Clark: the rules act on the homogeneous points (w x, w) and the
@@ -62,7 +65,7 @@
 // repeated knots within two rings of a star point's faces, unequal intervals, T-junctions or
 // corners with a side of one edge near a star point on the boundary, unequal intervals near star points whose
 // faces have a boundary (a Bezier end condition, which has no subdivision rule) within their two face rings,
-// degrees other than 3). Close star points with unequal intervals in closed quadrilateral meshes without creases
+// at degrees above 3 T-junctions, a boundary or unequal intervals within an averaging face's rings). Close star points with unequal intervals in closed quadrilateral meshes without creases
 // are first moved apart by global non-uniform Catmull-Clark steps (see the constructor), after which their
 // faces are NonUniformStar's, Stam's or bicubic cells; elsewhere they are crease faces. A star point on a Bezier
 // end-condition boundary is an interior one of the mesh with a ghost layer along the boundary (boundary_ghosts:
