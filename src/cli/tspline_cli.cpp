@@ -446,12 +446,17 @@ void convert_tspline(const std::string& in, const std::string& out, const TSplin
       const bool cones = !crease_singularities(l.mesh->mesh()).cone_points.empty();
       bool cells = false;  // corner patches beside B-spline cells of unequal intervals meet them within the tolerance
       for (int f = 0; f < l.mesh->num_faces(); ++f) cells = cells || (l.mesh->method(f) == FaceMethod::crease && l.mesh->crease_face(f).has_cells());
+      // Averaging faces' corner patches interpolate the limit surface: C0 with their neighbours within the tolerance.
+      const bool averaging = l.mesh->count(FaceMethod::averaging) > 0;
       std::printf("%s: %zu Bezier patches (%d exact, %d corner patches at star points%s after %d subdivision levels, "
-                  "%s from the limit surface, tolerance %s); C0%s, G1 at star points%s\n",
+                  "%s from the limit surface, tolerance %s); C0%s, %s\n",
                   out.c_str(), p.patches.size(), p.exact_patches, p.corner_patches,
                   crease_corners ? " and irregular crease vertices" : "", p.levels, fmt(p.deviation).c_str(),
-                  fmt(p.tolerance).c_str(), cells ? " (within the tolerance where corner patches meet cells of unequal intervals)" : "",
-                  cones ? " (not at the cone points: no tangent plane)" : "");
+                  fmt(p.tolerance).c_str(),
+                  cells || averaging ? " (within the tolerance where corner patches meet the exact pieces beside them)" : "",
+                  (averaging ? "degree " + std::to_string(l.mesh->mesh().degree) + " (the corner patches interpolate the limit surface)"
+                             : std::string("G1 at star points") + (cones ? " (not at the cone points: no tangent plane)" : ""))
+                      .c_str());
       return;
     }
     require(ext == ".stl" || ext == ".obj" || ext == ".vtu",

@@ -338,6 +338,37 @@ void AveragingFace::descend(const QuadNet& start, int q, int level, double u, do
   }
 }
 
+void AveragingFace::for_each_square(int corner_level, const std::function<void(const std::array<double, 2>&, double, int)>& f) const {
+  using Lo = std::array<double, 2>;
+  // The irregular corner the square has as its own corner (-1: none).
+  const auto corner_of = [&](const Lo& lo, double side) {
+    for (int c = 0; c < 4; ++c) {
+      const double cu = c == 1 || c == 2 ? 1.0 : 0.0, cv = c >= 2 ? 1.0 : 0.0;
+      if (irregular(c) && (lo[0] == cu || lo[0] + side == cu) && (lo[1] == cv || lo[1] + side == cv)) return c;
+    }
+    return -1;
+  };
+  const auto child_lo = [](const Lo& lo, double half, int k) {
+    return Lo{lo[0] + (k == 1 || k == 2 ? half : 0), lo[1] + (k >= 2 ? half : 0)};
+  };
+  // Below the cached levels: the four sub-faces of quad q refined together.
+  std::function<void(const QuadNet&, int, int, const Lo&, double)> below = [&](const QuadNet& net, int q, int level, const Lo& lo, double side) {
+    if (regular_grid(net, NetTopology(net), q, passes_)) return f(lo, side, -1);
+    if (const int c = corner_of(lo, side); c >= 0 && level >= corner_level) return f(lo, side, c);
+    require(level < 64, "averaging subdivision: no regular sub-faces tile the face");
+    const QuadNet fine = averaging_refine(net, {4 * q, 4 * q + 1, 4 * q + 2, 4 * q + 3}, passes_, rings_);
+    for (int k = 0; k < 4; ++k) below(fine, k, level + 1, child_lo(lo, side / 2, k), side / 2);
+  };
+  std::function<void(int, int, const Lo&, double)> walk = [&](int node, int level, const Lo& lo, double side) {
+    const Node& n = tree_[static_cast<std::size_t>(node)];
+    if (n.grid) return f(lo, side, -1);
+    if (n.deep >= 0) return below(deep_, n.deep, level, lo, side);
+    if (const int c = corner_of(lo, side); c >= 0 && level >= corner_level) return f(lo, side, c);
+    for (int k = 0; k < 4; ++k) walk(n.children[static_cast<std::size_t>(k)], level + 1, child_lo(lo, side / 2, k), side / 2);
+  };
+  walk(0, 0, {0, 0}, 1);
+}
+
 void AveragingFace::eval(double u, double v, double* out) const {
   u = std::clamp(u, 0.0, 1.0);
   v = std::clamp(v, 0.0, 1.0);

@@ -22,6 +22,7 @@
 // tests/tspline/averaging_face_test.cpp). The rules are linear: they act on homogeneous points (w x, w).
 // Hand-written: no packaged library evaluates these schemes.
 #include <array>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -52,6 +53,10 @@ public:
   bool irregular(int corner) const { return corner_values_[static_cast<std::size_t>(corner)].has_value(); }
   // Homogeneous value, d/du, d/dv (12 values) at (u, v) in [0, 1]^2.
   void eval(double u, double v, double* out) const;
+  // The face tiled by squares [lo, lo + side]^2 of its sub-faces: f(lo, side, corner) with corner -1 for a regular
+  // sub-face (one polynomial of degree p: the uniform B-spline patch of its points), else the irregular corner
+  // whose square [0, 2^-corner_level]^2 at that corner it is.
+  void for_each_square(int corner_level, const std::function<void(const std::array<double, 2>&, double, int)>& f) const;
 
 private:
   using Grid = std::vector<std::array<double, 4>>;  // a regular sub-face's (p + 1)^2 points, u fastest

@@ -8,6 +8,8 @@
 #include <string>
 
 #include "trivar/core/error.hpp"
+#include "trivar/spline/basis.hpp"
+#include "trivar/spline/bernstein_interpolation.hpp"
 
 namespace trivar {
 
@@ -266,17 +268,55 @@ double corner_deviation(const HomogeneousEval& f, const Net& net, double h) {
   return worst;
 }
 
+// The polynomial of degree p through the homogeneous surface at the (p + 1)^2 nodes of the square [lo, lo + side]^2
+// of the face's (u, v), as its Bezier coefficients (4 per node, first index along u): the surface itself where it is
+// one polynomial of degree p there.
+std::vector<double> interpolate_square(const HomogeneousEval& f, int p, const std::array<double, 2>& lo, double side) {
+  std::vector<double> values;
+  values.reserve(static_cast<std::size_t>(4 * (p + 1) * (p + 1)));
+  for (int j = 0; j <= p; ++j)
+    for (int i = 0; i <= p; ++i) {
+      double o[12];
+      f(lo[0] + side * i / p, lo[1] + side * j / p, o);
+      values.insert(values.end(), o, o + 4);
+    }
+  BernsteinInterpolation<2>({p, p}).apply(values, 4, {});
+  return values;
+}
+
+FacePatch square_to_face(int face, int p, const std::vector<double>& coefs, const std::array<double, 2>& lo, double side, bool exact) {
+  bool rational = false;
+  for (std::size_t k = 3; k < coefs.size(); k += 4) rational = rational || std::abs(coefs[k] - 1) > 1e-14;
+  return to_face(face, p, {{lo[0], lo[1]}, {lo[0] + side, lo[1] + side}}, 4, rational, coefs.data(),
+                 [](double x, double y) { return std::array<double, 2>{x, y}; }, exact);
+}
+
+// The largest distance between the projected patch and the surface at 9 x 9 points of the square.
+double square_deviation(const HomogeneousEval& f, int p, const std::vector<double>& coefs, const std::array<double, 2>& lo, double side) {
+  double worst = 0;
+  std::vector<double> bu(static_cast<std::size_t>(p + 1)), bv(static_cast<std::size_t>(p + 1));
+  for (int j = 0; j <= 8; ++j)
+    for (int i = 0; i <= 8; ++i) {
+      bernstein_values<-1>(p, i / 8.0, 1, bu.data(), nullptr);
+      bernstein_values<-1>(p, j / 8.0, 1, bv.data(), nullptr);
+      P4 x{};
+      for (int b = 0; b <= p; ++b)
+        for (int a = 0; a <= p; ++a)
+          for (std::size_t c = 0; c < 4; ++c)
+            x[c] += bu[static_cast<std::size_t>(a)] * bv[static_cast<std::size_t>(b)] * coefs[static_cast<std::size_t>(4 * (a + (p + 1) * b)) + c];
+      double o[12];
+      f(lo[0] + side * i / 8.0, lo[1] + side * j / 8.0, o);
+      worst = std::max(worst, std::hypot(x[0] / x[3] - o[0] / o[3], x[1] / x[3] - o[1] / o[3], x[2] / x[3] - o[2] / o[3]));
+    }
+  return worst;
+}
+
 }  // namespace t_mesh_patches_detail
 
 TMeshPatches t_mesh_patches(const TMeshSurface& s, const TMeshPatchOptions& options) {
   using namespace t_mesh_patches_detail;
   require(options.max_levels >= 0 && options.max_levels <= 60 && options.levels <= 60,
           "T-mesh patches: levels above 60 (2^-60 of a face) are refused");
-  for (int f = 0; f < s.num_faces(); ++f)
-    require(s.method(f) != FaceMethod::averaging, [&] {
-      return "T-mesh patches: face " + std::to_string(f) + " near a star point of degree " + std::to_string(s.mesh().degree) +
-             " is averaging subdivision, whose corner patches are built for degree 3 only (tessellate it instead)";
-    });
   TMeshPatches r;
   r.tolerance = options.tolerance;
   if (r.tolerance <= 0) {
@@ -321,12 +361,24 @@ TMeshPatches t_mesh_patches(const TMeshSurface& s, const TMeshPatchOptions& opti
       for (int q = 0; q < 4; ++q)
         if (s.crease_face(f).irregular(q)) stars.push_back({f, crease_quarter_eval(f, q), {}});
   }
+  // Averaging faces (degree p above 3): their homogeneous surface, and their irregular corners.
+  const auto face_eval = [&s](int f) -> HomogeneousEval { return [&s, f](double x, double y, double* o) { s.eval_patch_homogeneous(f, x, y, o); }; };
+  const auto corner_lo = [](int c, double h) { return std::array<double, 2>{c == 1 || c == 2 ? 1 - h : 0, c >= 2 ? 1 - h : 0}; };
+  std::vector<std::array<int, 2>> averaging_corners;
+  for (int f = 0; f < s.num_faces(); ++f)
+    if (s.method(f) == FaceMethod::averaging)
+      for (int c = 0; c < 4; ++c)
+        if (s.averaging_face(f).irregular(c)) averaging_corners.push_back({f, c});
   for (int k = options.levels >= 0 ? options.levels : 0;; ++k) {
     const double h = std::ldexp(1.0, -k);
     double dev = 0;
     for (Star& st : stars) {
       st.corner = corner_patch(st.eval, h);
       dev = std::max(dev, corner_deviation(st.eval, st.corner, h));
+    }
+    for (const auto& [f, c] : averaging_corners) {
+      const int p = s.mesh().degree;
+      dev = std::max(dev, square_deviation(face_eval(f), p, interpolate_square(face_eval(f), p, corner_lo(c, h), h), corner_lo(c, h), h));
     }
     r.levels = k;
     r.deviation = dev;
@@ -362,8 +414,15 @@ TMeshPatches t_mesh_patches(const TMeshSurface& s, const TMeshPatchOptions& opti
   };
   for (int f = 0; f < s.num_faces(); ++f) {
     switch (s.method(f)) {
-      case FaceMethod::none:
-      case FaceMethod::averaging: break;
+      case FaceMethod::none: break;
+      case FaceMethod::averaging:
+        // Each regular sub-face one exact patch of degree p; each irregular corner's square [0, 2^-levels]^2 the
+        // polynomial through the surface at its nodes.
+        s.averaging_face(f).for_each_square(r.levels, [&](const std::array<double, 2>& lo, double side, int corner) {
+          const int p = s.mesh().degree;
+          r.patches.push_back(square_to_face(f, p, interpolate_square(face_eval(f), p, lo, side), lo, side, corner < 0));
+        });
+        break;
       case FaceMethod::exact: exact_face(s, f, r.patches); break;
       case FaceMethod::bicubic:
         r.patches.push_back(net_to_face(f, interpolate_patch(patch_eval(f), 0, 0, 1), {{0, 0}, {1, 1}},

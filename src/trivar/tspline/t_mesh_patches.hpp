@@ -20,6 +20,11 @@
 //                  patch of a star face at half scale, [0, 2^-(levels + 1)]^2 of the face at that corner, which the
 //                  cells round it tile up to. Its sides away from the corner cross cell boundaries (knots of the
 //                  limit surface), so there it meets the cells C0 only within the tolerance.
+//   averaging faces (odd degree p above 3): each regular sub-face one exact patch of degree p (the uniform
+//                  B-spline patch of its points, by interpolation at its (p + 1)^2 nodes); at an irregular corner
+//                  the square [0, 2^-levels]^2 the polynomial of degree p through the limit surface at those nodes
+//                  (its sides meet the exact patches beside it C0 within the tolerance; no tangent-plane
+//                  construction at the star point).
 // The corner patch (bicubic Bezier b_ij, i along u' from the star point):
 //   b_3j, b_i3  its sides away from the star point: the limit surface's exact cubics there (C0 exactly with
 //               the exact patches beside it);

@@ -1095,6 +1095,12 @@ const CreaseFace& TMeshSurface::crease_face(int face) const {
   return crease_faces_[static_cast<std::size_t>(f.crease)];
 }
 
+const AveragingFace& TMeshSurface::averaging_face(int face) const {
+  const Face& f = faces_[static_cast<std::size_t>(face)];
+  require(f.method == FaceMethod::averaging, [&] { return "T-mesh: face " + std::to_string(face) + " is not an averaging face"; });
+  return averaging_faces_[static_cast<std::size_t>(f.averaging)];
+}
+
 const SubdividedFace& TMeshSurface::subdivided(int face) const {
   const Face& f = faces_[static_cast<std::size_t>(face)];
   require(f.method == FaceMethod::subdivided, [&] { return "T-mesh: face " + std::to_string(face) + " is not a subdivided face"; });

@@ -195,6 +195,8 @@ public:
   // A face evaluated by local subdivision: near an irregular vertex of a crease boundary, or near star points with
   // unequal knot intervals that NonUniformStar and Stam's patches do not take.
   const CreaseFace& crease_face(int face) const;
+  // A face near a star point of odd degree above 3 (averaging subdivision).
+  const AveragingFace& averaging_face(int face) const;
 
 private:
   struct Face {
