@@ -1,10 +1,10 @@
 #include "trivar/tspline/averaging_face.hpp"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <cstdint>
 #include <string>
-#include <climits>
 
 #include "trivar/core/error.hpp"
 #include "trivar/spline/basis.hpp"
@@ -95,9 +95,9 @@ std::optional<std::vector<H>> regular_grid(const QuadNet& net, const NetTopology
     for (int i = 1; i < cells; ++i)
       if (const int g = grid[static_cast<std::size_t>(j * side + i)]; g < 0 || topo.faces[static_cast<std::size_t>(g)] != 4 || !topo.closed[static_cast<std::size_t>(g)])
         return std::nullopt;
+  if (std::find(grid.begin(), grid.end(), -1) != grid.end()) return std::nullopt;
   std::vector<H> out;
   out.reserve(grid.size());
-  if (std::find(grid.begin(), grid.end(), -1) != grid.end()) return std::nullopt;
   for (int g : grid) out.push_back(net.points[static_cast<std::size_t>(g)]);
   return out;
 }
@@ -276,9 +276,9 @@ AveragingFace::AveragingFace(QuadNet net, int degree) : degree_(degree), passes_
     if (q < 0) continue;
     // Sub-face c's corner c is the face's corner c on every level: its point converges to the limit. The derivatives
     // are taken on level 30 at the sub-face's opposite corner, 2^-30 from the face's corner along the diagonal.
-    double size = 0;
+    double size = 0;  // of the coordinates, whose rounding the rules' sums repeat
     for (const H& p : deep_.points)
-      for (std::size_t i = 0; i < 4; ++i) size = std::max(size, std::abs(p[i] - deep_.points[0][i]));
+      for (double x : p) size = std::max(size, std::abs(x));
     std::array<double, 12> values{};
     H at = deep_.points[static_cast<std::size_t>(deep_.quads[static_cast<std::size_t>(q)][static_cast<std::size_t>(c)])];
     QuadNet z = averaging_refine(deep_, {4 * q + c}, passes_, rings_);
@@ -289,7 +289,7 @@ AveragingFace::AveragingFace(QuadNet net, int degree) : degree_(degree), passes_
       double change = 0;
       for (std::size_t i = 0; i < 4; ++i) change = std::max(change, std::abs(next[i] - at[i]));
       at = next;
-      if (change <= 1e-16 * size && level >= kDerivativeLevel) break;
+      if (change <= 1e-15 * size && level >= kDerivativeLevel) break;
       require(level < 400, "averaging subdivision: the corner point does not converge");
       z = averaging_refine(z, {c}, passes_, rings_);
     }

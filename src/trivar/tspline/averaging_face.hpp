@@ -16,8 +16,8 @@
 // block within m - 1 rings of the parent, the parent's inner vertices; by induction every level below is then
 // the B-spline's knot insertion.) The levels towards each irregular corner are cached, one net per level round
 // the sub-faces not yet regular; at an irregular corner itself the value is the limit of the corner vertex's point
-// (its change per level below 1e-15 of the net's size) and the derivatives are those 2^-30 from it along the
-// diagonal (the face's parametrisation is singular there). Continuity: C^(p - 1) away from star points; at star
+// (refined until its change per level is below 1e-15 of the coordinates' size) and the derivatives are those 2^-30
+// from it along the diagonal (the face's parametrisation is singular there). Continuity: C^(p - 1) away from star points; at star
 // points tangent-plane continuity is what the eigenstructure of these schemes gives (checked numerically in
 // tests/tspline/averaging_face_test.cpp). The rules are linear: they act on homogeneous points (w x, w).
 // Hand-written: no packaged library evaluates these schemes.
