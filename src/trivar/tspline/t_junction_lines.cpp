@@ -148,6 +148,7 @@ public:
       const int a = faces[static_cast<std::size_t>(f)].side[static_cast<std::size_t>(e)].v[static_cast<std::size_t>(j)];
       const int b = vertex_after(f, e, j);
       const double d = faces[static_cast<std::size_t>(f)].side[static_cast<std::size_t>(e)].d[static_cast<std::size_t>(j)];
+      const H a_before = p[static_cast<std::size_t>(a)], b_before = p[static_cast<std::size_t>(b)];
       int x = -1;
       try {
         x = split_edge(a, b, target - at, where);
@@ -165,7 +166,11 @@ public:
         if (it == by_origin_.end()) return;
         const int b2 = faces[static_cast<std::size_t>(it->second.face)].side[static_cast<std::size_t>(it->second.side)].v[static_cast<std::size_t>(it->second.index)];
         const int a2 = vertex_after(it->second.face, it->second.side, it->second.index);
-        require(b2 != b && at_(key(a2, b2)).face < 0, [&] { return where + "the two sides of the crease at vertex " + std::to_string(origin_[static_cast<std::size_t>(a)]) + " do not match"; });
+        require((a2 != a || b2 != b) && at_(key(a2, b2)).face < 0, [&] { return where + "the two sides of the crease at vertex " + std::to_string(origin_[static_cast<std::size_t>(a)]) + " do not match"; });
+        // The dart that ends a slit is one vertex of both sides: the second side's insertion, the same row, starts
+        // from its point before the first.
+        if (a2 == a) p[static_cast<std::size_t>(a)] = a_before;
+        if (b2 == b) p[static_cast<std::size_t>(b)] = b_before;
         int x2 = -1;
         try {
           x2 = split_edge(b2, a2, d - (target - at), where, x);
@@ -191,22 +196,25 @@ public:
       }
     return {-1, 0, 0};
   }
-  // The first T-junction (a vertex inside a side) of a face within `rings` face rings of a star point's faces:
-  // (face, side, index), or face -1.
+  // The first T-junction (a vertex inside a side) of a face within `rings` face rings of a star point's faces, or
+  // rings + 1 of an irregular crease vertex's (whose faces within p + 1 rings take local subdivision of their two
+  // face rings): (face, side, index), or face -1.
   std::array<int, 3> t_junction_near_stars(int rings) const {
     const int nf = static_cast<int>(faces.size());
     std::vector<std::vector<int>> vertex_faces(p.size());
     for (int f = 0; f < nf; ++f)
       for (const Side& s : faces[static_cast<std::size_t>(f)].side)
         for (int v : s.v) vertex_faces[static_cast<std::size_t>(v)].push_back(f);
+    // Seeded in ring order: the irregular crease vertices' faces at -1, then the star points' at 0.
     std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX), front;
-    for (int f = 0; f < nf; ++f)
-      for (const Side& s : faces[static_cast<std::size_t>(f)].side)
-        for (int v : s.v)
-          if (static_cast<std::size_t>(v) < star_.size() && star_[static_cast<std::size_t>(v)] && dist[static_cast<std::size_t>(f)] != 0) {
-            dist[static_cast<std::size_t>(f)] = 0;
-            front.push_back(f);
-          }
+    for (const int kind : {2, 1})
+      for (int f = 0; f < nf; ++f)
+        for (const Side& s : faces[static_cast<std::size_t>(f)].side)
+          for (int v : s.v)
+            if (static_cast<std::size_t>(v) < star_.size() && star_[static_cast<std::size_t>(v)] == kind && dist[static_cast<std::size_t>(f)] == INT_MAX) {
+              dist[static_cast<std::size_t>(f)] = kind == 2 ? -1 : 0;
+              front.push_back(f);
+            }
     for (std::size_t i = 0; i < front.size(); ++i) {
       const int f = front[i];
       const Face& w = faces[static_cast<std::size_t>(f)];
@@ -335,6 +343,14 @@ private:
       if (c.face < 0) {  // the open fan's last spoke: its interval from the face right of it
         const Loc r = at_(key(to, a));
         f.spokes.push_back({to, faces[static_cast<std::size_t>(r.face)].side[static_cast<std::size_t>(r.side)].d[static_cast<std::size_t>(r.index)], -1, 0, 0, 0});
+        // A dart's fan runs from one side of its slit to the other: closed as before the cut, its two slit spokes
+        // (copies of one crease vertex, one point, or of one inserted vertex once both sides have it) one spoke,
+        // named by b when b is either.
+        if (static_cast<std::size_t>(a) < rules_.size() && rules_[static_cast<std::size_t>(a)] == CreaseRule::dart) {
+          f.spokes.pop_back();
+          if (to == b) f.spokes.front().to = b;
+          f.open = false;
+        }
         return f;
       }
       const Side& s = faces[static_cast<std::size_t>(c.face)].side[static_cast<std::size_t>(c.side)];
@@ -379,9 +395,9 @@ private:
   Beyond beyond(int a, int b, const std::string& where) const {
     if (const auto t = crease_turn(a, b, where)) return {t->to, t->d, false};
     if (crease_end(a, b, where)) return {a, 0, true};
-    require_regular(a, where);
-    if (static_cast<std::size_t>(a) < star_.size() && star_[static_cast<std::size_t>(a)]) return across_star(a, b, where);
     const Fan f = fan(a, b, where);
+    require_closed(a, f, where);
+    if (static_cast<std::size_t>(a) < star_.size() && star_[static_cast<std::size_t>(a)]) return across_star(a, b, where);
     require(!f.open || f.turn <= 2, [&] { return where + "a row it crosses passes the concave corner " + std::to_string(a); });
     const Straight s = straight(f, b);
     if (s.spoke >= 0) return {f.spokes[static_cast<std::size_t>(s.spoke)].to, f.spokes[static_cast<std::size_t>(s.spoke)].d, false};
@@ -464,10 +480,12 @@ private:
     if (!f.open) return false;
     return r == CreaseRule::corner || (f.spokes.front().to != from && f.spokes.back().to != from);
   }
-  // Other irregular vertices of a crease boundary (darts, cone points) take local subdivision's rules, which no row
-  // insertion follows.
-  void require_regular(int v, const std::string& where) const {
-    require(static_cast<std::size_t>(v) >= star_.size() || star_[static_cast<std::size_t>(v)] != 2, [&] {
+  // Other irregular vertices of a crease boundary: a dart (its fan closed across the slit) or a cone point (a corner
+  // inside the mesh) passes rows as a star point does (across_star: at four faces the opposite spoke's row), as
+  // local subdivision takes the faces round it; where the fan stays open (a crease vertex of other than two
+  // faces, a corner of several) no row goes on.
+  void require_closed(int v, const Fan& f, const std::string& where) const {
+    require(static_cast<std::size_t>(v) >= star_.size() || star_[static_cast<std::size_t>(v)] != 2 || !f.open, [&] {
       const int from = m_.vertices[static_cast<std::size_t>(v)].split_from;
       return where + "a row it crosses reaches the irregular crease vertex " + std::to_string(from >= 0 ? from : v);
     });
@@ -483,8 +501,8 @@ private:
     if (end) return {0, false};
     if (const auto t = crease_turn(c, a, where)) return {t->d, false};
     if (crease_end(c, a, where)) return {0, true};
-    require_regular(c, where);
     const Fan f = fan(c, a, where);
+    require_closed(c, f, where);
     if (static_cast<std::size_t>(c) < star_.size() && star_[static_cast<std::size_t>(c)]) {
       std::vector<double> iv;
       for (const ClosedSpoke& s : closed_spokes(c, a, where)) iv.push_back(s.d);
