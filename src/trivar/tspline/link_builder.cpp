@@ -19,7 +19,7 @@ int LinkBuilder::add_face(std::span<const int> loop, std::span<const char> strai
     k.face = f;
     k.flag = straight[static_cast<std::size_t>(i)] ? 1 : 0;
     const int a = k.vertex, b = loop[static_cast<std::size_t>((i + 1) % n)];
-    if (const auto it = by_ends_.find(key(b, a)); it != by_ends_.end()) {
+    if (const auto it = by_ends_.find(key(b, a)); it != by_ends_.end() && !apart_.count(key(a, b))) {
       k.opp = it->second;
       k.edge = m_.links[static_cast<std::size_t>(it->second)].edge;
       m_.links[static_cast<std::size_t>(it->second)].opp = base + i;

@@ -6,6 +6,7 @@
 #include <functional>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "trivar/core/error.hpp"
 #include "trivar/tspline/boundary_ghosts.hpp"
@@ -98,6 +99,13 @@ public:
       blocks_ = blocks_ || (!natural_ && !b.empty());
       blk_.push_back(std::move(b));
     }
+    // A sharp edge between two darts is cut without copies: its two sides join the same two vertices.
+    std::unordered_set<long long> face_edges;
+    for (const TMeshLink& k : m.links)
+      if (k.vertex >= 0 && k.face >= 0) face_edges.insert(key(k.vertex, L(k.opp).vertex));
+    for (const TMeshLink& k : m.links)
+      if (k.vertex >= 0 && k.face >= 0 && L(k.opp).face < 0 && face_edges.count(key(L(k.opp).vertex, k.vertex))) slit_.insert(key(k.vertex, L(k.opp).vertex));
+    cut_ = !slit_.empty();
     for (std::size_t v = 0; v < m.vertices.size(); ++v) cut_ = cut_ || origin_[v] != static_cast<int>(v);
     for (const TMeshLink& k : m.links)
       if (blocks_ && k.vertex >= 0 && k.frame >= 0) frame_[key(k.vertex, m.links[static_cast<std::size_t>(k.opp)].vertex)] = k.frame;
@@ -166,7 +174,7 @@ public:
         if (it == by_origin_.end()) return;
         const int b2 = faces[static_cast<std::size_t>(it->second.face)].side[static_cast<std::size_t>(it->second.side)].v[static_cast<std::size_t>(it->second.index)];
         const int a2 = vertex_after(it->second.face, it->second.side, it->second.index);
-        require((a2 != a || b2 != b) && at_(key(a2, b2)).face < 0, [&] { return where + "the two sides of the crease at vertex " + std::to_string(origin_[static_cast<std::size_t>(a)]) + " do not match"; });
+        require(across(b2, a2).face < 0 && (a2 != a || b2 != b || slit_.count(key(a, b))), [&] { return where + "the two sides of the crease at vertex " + std::to_string(origin_[static_cast<std::size_t>(a)]) + " do not match"; });
         // The dart that ends a slit is one vertex of both sides: the second side's insertion, the same row, starts
         // from its point before the first.
         if (a2 == a) p[static_cast<std::size_t>(a)] = a_before;
@@ -264,10 +272,16 @@ private:
   std::vector<int> origin_;
   bool cut_ = false;
   std::unordered_map<long long, Loc> by_origin_;  // kept only in a mesh cut open
+  std::unordered_set<long long> slit_;            // the sides of sharp edges between two darts, both directions
+
+  // The face across directed edge a -> b (the one holding b -> a), none across a slit between two darts.
+  Loc across(int a, int b) const { return slit_.count(key(a, b)) ? Loc{} : at_(key(b, a)); }
 
   // The links of the faces (with `weld`, of their vertices' origins), and of the boundary.
   void link_faces(TMesh& r, bool weld) const {
     LinkBuilder links(r);
+    if (!weld)
+      for (long long k : slit_) links.keep_apart(static_cast<int>(k >> 32), static_cast<int>(k & 0xffffffffLL));
     for (const Face& w : faces) {
       std::vector<int> loop;
       std::vector<double> iv;
@@ -350,6 +364,8 @@ private:
           f.spokes.pop_back();
           if (to == b) f.spokes.front().to = b;
           f.open = false;
+          // From b, as a closed fan is.
+          std::rotate(f.spokes.begin(), std::find_if(f.spokes.begin(), f.spokes.end(), [&](const Spoke& k) { return k.to == b; }), f.spokes.end());
         }
         return f;
       }
@@ -572,7 +588,7 @@ private:
     });
     for (int v : {c, a, b, e})
       if (v >= 0 && v < static_cast<int>(m_.vertices.size())) require_point(v, where);
-    const Loc ab = at_(key(a, b)), ba = at_(key(b, a));
+    const Loc ab = at_(key(a, b)), ba = across(a, b);
     const double d = faces[static_cast<std::size_t>(ab.face)].side[static_cast<std::size_t>(ab.side)].d[static_cast<std::size_t>(ab.index)];
     const Next past_c = c < 0 ? Next{bc.past, false} : interval_beyond(c, a, c_end, where);
     const Next past_e = e < 0 ? Next{be.past, false} : interval_beyond(e, b, e_end, where);
@@ -661,7 +677,7 @@ private:
     put(ab, t);
     if (ba.face >= 0) put(ba, d - t);  // else a boundary edge
     at_map_.erase(key(a, b));
-    at_map_.erase(key(b, a));
+    if (ba.face >= 0) at_map_.erase(key(b, a));
     by_origin_.erase(key(origin_[static_cast<std::size_t>(a)], origin_[static_cast<std::size_t>(b)]));
     if (ba.face >= 0) by_origin_.erase(key(origin_[static_cast<std::size_t>(b)], origin_[static_cast<std::size_t>(a)]));
     index(ab.face);
