@@ -588,6 +588,46 @@ TEST(TJunctionLines, RowsThroughConePointsAndDarts) {
   }
 }
 
+// A subdivision-crease box of 4 x 4 faces per side with, on its top side one diagonal step from a corner's star
+// point, a cone point, a sharp edge between two darts, or a crease of two edges between two darts, and each of the
+// top side's 16 faces split 2 x 2 in turn: the lines cross rows through the darts, the cone point and the star
+// points; the star points with unequal intervals whose three rings reach a side of the crease take local subdivision.
+// Every placement loads, closed and tangent-plane continuous across every edge but the crease's.
+TEST(TJunctionLines, CreasesNextToTheStarPointsOfABox) {
+  const int n = 4;
+  int loaded = 0;
+  double gap = 0, normals = 0;
+  for (int kind = 0; kind < 3; ++kind)
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) {
+        test::QuadMesh box = test::box_mesh({n, n, n});
+        std::vector<std::array<double, 3>> unbent = box.points;
+        const auto at = [&](double x, double y) {
+          for (std::size_t v = 0; v < unbent.size(); ++v)
+            if (std::hypot(unbent[v][0] - x, unbent[v][1] - y, unbent[v][2] - 1) < 1e-12) return static_cast<int>(v);
+          return -1;
+        };
+        test::split_top_face(box, unbent, n, i, j, 0);
+        bend(box.points);
+        const int a = at(-0.5, -0.5), b = at(0, -0.5), c = at(0.5, -0.5);
+        std::vector<std::array<int, 2>> crease;
+        if (kind >= 1) crease.push_back({a, b});
+        if (kind == 2) crease.push_back({b, c});
+        try {
+          const TMeshSurface s(with_creases(mesh_of(box, "box.tsm"), crease, kind == 0 ? a : -1), 1);
+          const test::Continuity cont = expect_closed_g1(s);
+          gap = std::max(gap, cont.gap);
+          normals = std::max(normals, cont.normal_angle);
+          ++loaded;
+        } catch (const Error& e) {
+          ADD_FAILURE() << "kind " << kind << ", top face (" << i << ", " << j << ") split: " << e.what();
+        }
+      }
+  std::printf("box of 4 faces per side with a cone point, a sharp edge or a crease of two edges between two darts next to a "
+              "star point, each top face split: %d / 48 load, gap %.1e, normals %.1e across every edge\n", loaded, gap, normals);
+  EXPECT_EQ(loaded, 48);
+}
+
 // Fusion's box of 3 x 3 faces per side with the top side's centre face split 2 x 2 (T-junctions on the four faces
 // round it, each next to two corner faces of star points) and a strip of interval 2 at x < -10/3: the two lines
 // complete round the box, then two global non-uniform Catmull-Clark steps part the star points. The surface is

@@ -17,7 +17,8 @@
 // No row goes straight through a star point. A line that crosses one of its spokes takes, as the row's node beyond
 // the star point, the backward spokes' nodes weighted by max(0, -cos) of their angle to the crossed spoke (and the
 // intervals after them so), the weights nurcc_across gives the interval there; at four faces that would be the
-// opposite spoke's row. Only the star point's own point depends on it. A row that ends at the stem of another
+// opposite spoke's row. Only the star point's own point depends on it. A star point on a Bezier boundary has its
+// fan closed by its ghost layer's spoke (boundary_ghosts' clamped-end row). A row that ends at the stem of another
 // T-junction goes on along that T-junction's line, which is completed first; the line that needed it goes on from
 // where it stopped.
 //
@@ -34,9 +35,15 @@
 // both sides keep one crease curve and one set of vertices on it. tests/tspline/t_junction_lines_test.cpp checks all of
 // these against the cage without the T-junctions.
 //
-// Scope: degree 3; the rows the lines cross must pass no star point of a Bezier boundary, no
-// irregular vertex of a crease boundary (a dart, a crease corner of other than one face; where a crease turns or runs
-// through a star point, only the row along the crease), no concave corner, carry one control point per vertex (and
+// A row through a dart (a sharp crease ending inside, cut open up to it) or a cone point (a corner inside the mesh)
+// passes it as a star point (across_star; at four faces the opposite spoke's row): the dart's fan closed across its
+// slit, the slit's two spokes one. The dart is one vertex of both sides of the slit: the second side's insertion
+// along a crease row through it starts from its point before the first's. A sharp edge between two darts has both
+// sides between the same two vertices; they are kept apart (across, and the completed mesh's links).
+//
+// Scope: degree 3; the rows the lines cross must pass no irregular vertex of a crease boundary other than darts
+// and cone points (a crease corner of other than one face; where a crease turns or runs through a star point, only
+// the row along the crease), no concave corner, carry one control point per vertex (and
 // the end-condition nodes the grip map gives their boundary vertices), and a row on a sharp crease's second side must
 // not end at a T-junction's stem (its first side is split by then); anything else is refused in one line naming the
 // T-junction and the cause.

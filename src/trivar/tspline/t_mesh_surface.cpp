@@ -484,13 +484,19 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int th
           return "T-mesh: knot interval " + std::to_string(d) + " within three rings of star point " + std::to_string(v) +
                  ": repeated knots near a star point are not evaluated";
         });
+    // A vertex without one point of its own (repeated-knot nodes: a side of a sharp crease in its Bezier form, or
+    // a boundary vertex) leaves the star point to the rules below (local subdivision in a creased mesh).
+    const auto own_point = [&](int x) {
+      const TMeshVertex& mv = m.vertices[static_cast<std::size_t>(x)];
+      return mv.primary >= 0 && mv.block.empty();
+    };
+    if (const auto x = std::find_if_not(sec.points.begin(), sec.points.end(), own_point); x != sec.points.end()) {
+      nurcc_why[static_cast<std::size_t>(v)] = "vertex " + std::to_string(*x) + " has no control point or repeated-knot nodes";
+      continue;
+    }
     auto z = std::make_unique<Nurcc>(Nurcc{NonUniformStar(static_cast<int>(sec.intervals.size()), sec.intervals), {}});
     for (int x : sec.points) {
       const TMeshVertex& mv = m.vertices[static_cast<std::size_t>(x)];
-      require(mv.primary >= 0 && mv.block.empty(), [&] {
-        return "T-mesh: vertex " + std::to_string(x) + " near star point " + std::to_string(v) +
-               " has no control point or repeated-knot nodes; non-uniform Catmull-Clark needs one point per vertex";
-      });
       const RationalPoint& pt = m.points[static_cast<std::size_t>(mv.primary)];
       z->points.push_back({pt.w * pt.xyz[0], pt.w * pt.xyz[1], pt.w * pt.xyz[2], pt.w});
     }
