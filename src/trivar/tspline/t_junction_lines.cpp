@@ -99,17 +99,17 @@ public:
       blocks_ = blocks_ || (!natural_ && !b.empty());
       blk_.push_back(std::move(b));
     }
-    // A sharp edge between two darts is cut without copies: its two sides join the same two vertices.
-    std::unordered_set<long long> face_edges;
-    for (const TMeshLink& k : m.links)
-      if (k.vertex >= 0 && k.face >= 0) face_edges.insert(key(k.vertex, L(k.opp).vertex));
-    for (const TMeshLink& k : m.links)
-      if (k.vertex >= 0 && k.face >= 0 && L(k.opp).face < 0 && face_edges.count(key(L(k.opp).vertex, k.vertex))) slit_.insert(key(k.vertex, L(k.opp).vertex));
-    cut_ = !slit_.empty();
     for (std::size_t v = 0; v < m.vertices.size(); ++v) cut_ = cut_ || origin_[v] != static_cast<int>(v);
     for (const TMeshLink& k : m.links)
       if (blocks_ && k.vertex >= 0 && k.frame >= 0) frame_[key(k.vertex, m.links[static_cast<std::size_t>(k.opp)].vertex)] = k.frame;
     for (int f = 0; f < static_cast<int>(faces.size()); ++f) index(f);
+    // A sharp edge between two darts is cut without copies: its two sides join the same two vertices.
+    for (const TMeshLink& k : m.links)
+      if (k.vertex >= 0 && k.face >= 0 && L(k.opp).face < 0 && at_map_.count(key(L(k.opp).vertex, k.vertex))) slit_.insert(key(k.vertex, L(k.opp).vertex));
+    if (!slit_.empty()) {
+      cut_ = true;
+      for (int f = 0; f < static_cast<int>(faces.size()); ++f) index(f);  // by_origin_ too
+    }
   }
 
   std::vector<Face> faces;
@@ -214,15 +214,18 @@ public:
       for (const Side& s : faces[static_cast<std::size_t>(f)].side)
         for (int v : s.v) vertex_faces[static_cast<std::size_t>(v)].push_back(f);
     // Seeded in ring order: the irregular crease vertices' faces at -1, then the star points' at 0.
-    std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX), front;
-    for (const int kind : {2, 1})
-      for (int f = 0; f < nf; ++f)
-        for (const Side& s : faces[static_cast<std::size_t>(f)].side)
-          for (int v : s.v)
-            if (static_cast<std::size_t>(v) < star_.size() && star_[static_cast<std::size_t>(v)] == kind && dist[static_cast<std::size_t>(f)] == INT_MAX) {
-              dist[static_cast<std::size_t>(f)] = kind == 2 ? -1 : 0;
-              front.push_back(f);
-            }
+    std::vector<int> dist(static_cast<std::size_t>(nf), INT_MAX), front, stars;
+    for (int f = 0; f < nf; ++f)
+      for (const Side& s : faces[static_cast<std::size_t>(f)].side)
+        for (int v : s.v)
+          if (static_cast<std::size_t>(v) < star_.size() && star_[static_cast<std::size_t>(v)])
+            dist[static_cast<std::size_t>(f)] = std::min(dist[static_cast<std::size_t>(f)], star_[static_cast<std::size_t>(v)] == 2 ? -1 : 0);
+    for (int f = 0; f < nf; ++f)
+      if (dist[static_cast<std::size_t>(f)] < 0)
+        front.push_back(f);
+      else if (dist[static_cast<std::size_t>(f)] == 0)
+        stars.push_back(f);
+    front.insert(front.end(), stars.begin(), stars.end());
     for (std::size_t i = 0; i < front.size(); ++i) {
       const int f = front[i];
       const Face& w = faces[static_cast<std::size_t>(f)];
