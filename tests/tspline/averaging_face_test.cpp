@@ -233,23 +233,32 @@ TEST(AveragingSubdivision, WhatItDoesNotTakeIsRefused) {
   test::expect_surface_refusal(io::parse_tsm(uneven, "uneven.tsm").mesh, "knot interval");
 }
 
-// Bezier patches: each regular sub-face one exact patch of degree p, each star corner's square the interpolant.
+// Bezier patches: each regular sub-face one exact patch of degree p, each star corner's square the interpolant;
+// polynomial where every weight is 1, rational with a weight 2.
 TEST(AveragingSubdivision, BezierPatchesOfDegreesFiveAndSeven) {
-  for (int p : {5, 7}) {
-    const TMeshSurface s(bent_cube(3, p), 1);
-    const TMeshPatches patches = t_mesh_patches(s);
-    int corners = 0;
-    for (const FacePatch& q : patches.patches) {
-      EXPECT_EQ(q.surface.degree(0), p);
-      corners += !q.exact;
+  for (int p : {5, 7})
+    for (const bool weighted : {false, true}) {
+      TMesh mesh = bent_cube(3, p);
+      if (weighted) mesh.points[5].w = 2;
+      const TMeshSurface s(mesh, 1);
+      const TMeshPatches patches = t_mesh_patches(s);
+      int corners = 0, rational = 0;
+      for (const FacePatch& q : patches.patches) {
+        EXPECT_EQ(q.surface.degree(0), p);
+        corners += !q.exact;
+        rational += q.surface.is_rational();
+      }
+      const test::PatchCheck c = test::expect_patches_hold(s, patches, "degree " + std::to_string(p));
+      std::printf("degree %d cube%s: %zu patches (%d at star corners, %d rational), %d levels; exact patches %.1e, corner patches "
+                  "%.1e (tolerance %.1e), gaps inside faces %.1e, across edges %.1e, at corner patches %.1e\n",
+                  p, weighted ? " with a weight 2" : "", patches.patches.size(), corners, rational, patches.levels, c.exact, c.constructed,
+                  patches.tolerance, c.inner_gap, c.edge_gap, c.corner_gap);
+      EXPECT_EQ(corners, 24);  // three faces at each of the eight star points
+      if (weighted)
+        EXPECT_GT(rational, 0);
+      else
+        EXPECT_EQ(rational, 0);
     }
-    const test::PatchCheck c = test::expect_patches_hold(s, patches, "degree " + std::to_string(p));
-    std::printf("degree %d cube: %zu patches (%d at star corners), %d levels; exact patches %.1e, corner patches %.1e "
-                "(tolerance %.1e), gaps inside faces %.1e, across edges %.1e, at corner patches %.1e\n",
-                p, patches.patches.size(), corners, patches.levels, c.exact, c.constructed, patches.tolerance, c.inner_gap,
-                c.edge_gap, c.corner_gap);
-    EXPECT_EQ(corners, 24);  // three faces at each of the eight star points
-  }
 }
 
 TEST(AveragingSubdivision, CommandLine) {

@@ -270,14 +270,19 @@ double corner_deviation(const HomogeneousEval& f, const Net& net, double h) {
 
 // The polynomial of degree p through the homogeneous surface at the (p + 1)^2 nodes of the square [lo, lo + side]^2
 // of the face's (u, v), as its Bezier coefficients (4 per node, first index along u): the surface itself where it is
-// one polynomial of degree p there.
-std::vector<double> interpolate_square(const HomogeneousEval& f, int p, const std::array<double, 2>& lo, double side) {
+// one polynomial of degree p there. A polynomial face's weights are 1 exactly (its basis sums to 1 only to rounding,
+// which the interpolation would amplify into weights that are not 1).
+std::vector<double> interpolate_square(const HomogeneousEval& f, int p, bool rational, const std::array<double, 2>& lo, double side) {
   std::vector<double> values;
   values.reserve(static_cast<std::size_t>(4 * (p + 1) * (p + 1)));
   for (int j = 0; j <= p; ++j)
     for (int i = 0; i <= p; ++i) {
       double o[12];
       f(lo[0] + side * i / p, lo[1] + side * j / p, o);
+      if (!rational) {
+        for (int c = 0; c < 3; ++c) o[c] /= o[3];
+        o[3] = 1;
+      }
       values.insert(values.end(), o, o + 4);
     }
   BernsteinInterpolation<2>({p, p}).apply(values, 4, {});
@@ -378,7 +383,8 @@ TMeshPatches t_mesh_patches(const TMeshSurface& s, const TMeshPatchOptions& opti
     }
     for (const auto& [f, c] : averaging_corners) {
       const int p = s.mesh().degree;
-      dev = std::max(dev, square_deviation(face_eval(f), p, interpolate_square(face_eval(f), p, corner_lo(c, h), h), corner_lo(c, h), h));
+      dev = std::max(dev, square_deviation(face_eval(f), p, interpolate_square(face_eval(f), p, s.rational_patch(f), corner_lo(c, h), h),
+                                           corner_lo(c, h), h));
     }
     r.levels = k;
     r.deviation = dev;
@@ -420,7 +426,7 @@ TMeshPatches t_mesh_patches(const TMeshSurface& s, const TMeshPatchOptions& opti
         // polynomial through the surface at its nodes.
         s.averaging_face(f).for_each_square(r.levels, [&](const std::array<double, 2>& lo, double side, int corner) {
           const int p = s.mesh().degree;
-          r.patches.push_back(square_to_face(f, p, interpolate_square(face_eval(f), p, lo, side), lo, side, corner < 0));
+          r.patches.push_back(square_to_face(f, p, interpolate_square(face_eval(f), p, s.rational_patch(f), lo, side), lo, side, corner < 0));
         });
         break;
       case FaceMethod::exact: exact_face(s, f, r.patches); break;
