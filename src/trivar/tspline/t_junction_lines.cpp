@@ -416,7 +416,7 @@ private:
     if (crease_end(a, b, where)) return {a, 0, true};
     const Fan f = fan(a, b, where);
     require_closed(a, f, where);
-    if (static_cast<std::size_t>(a) < star_.size() && star_[static_cast<std::size_t>(a)]) return across_star(a, b, where);
+    if (passes_as_star(a, f)) return across_star(a, b, where);
     require(!f.open || f.turn <= 2, [&] { return where + "a row it crosses passes the concave corner " + std::to_string(a); });
     const Straight s = straight(f, b);
     if (s.spoke >= 0) return {f.spokes[static_cast<std::size_t>(s.spoke)].to, f.spokes[static_cast<std::size_t>(s.spoke)].d, false};
@@ -500,9 +500,13 @@ private:
     return r == CreaseRule::corner || (f.spokes.front().to != from && f.spokes.back().to != from);
   }
   // Other irregular vertices of a crease boundary: a dart (its fan closed across the slit) or a cone point (a corner
-  // inside the mesh) passes rows as a star point does (across_star: at four faces the opposite spoke's row), as
-  // local subdivision takes the faces round it; where the fan stays open (a crease vertex of other than two
-  // faces, a corner of several) no row goes on.
+  // inside the mesh) passes rows as any vertex of its fan does (straight on where its faces' angles make four
+  // quarter turns, else as a star point), as local subdivision takes the faces round it; where the fan stays open
+  // (a crease vertex of other than two faces, a corner of several) no row goes on.
+  bool passes_as_star(int v, const Fan& f) const {
+    const int kind = static_cast<std::size_t>(v) < star_.size() ? star_[static_cast<std::size_t>(v)] : 0;
+    return kind == 1 || (kind == 2 && f.turn != 4);
+  }
   void require_closed(int v, const Fan& f, const std::string& where) const {
     require(static_cast<std::size_t>(v) >= star_.size() || star_[static_cast<std::size_t>(v)] != 2 || !f.open, [&] {
       const int from = m_.vertices[static_cast<std::size_t>(v)].split_from;
@@ -522,7 +526,7 @@ private:
     if (crease_end(c, a, where)) return {0, true};
     const Fan f = fan(c, a, where);
     require_closed(c, f, where);
-    if (static_cast<std::size_t>(c) < star_.size() && star_[static_cast<std::size_t>(c)]) {
+    if (passes_as_star(c, f)) {
       std::vector<double> iv;
       for (const ClosedSpoke& s : closed_spokes(c, a, where)) iv.push_back(s.d);
       return {nurcc_across(iv, 0), false};

@@ -36,8 +36,8 @@
 // these against the cage without the T-junctions.
 //
 // A row through a dart (a sharp crease ending inside, cut open up to it) or a cone point (a corner inside the mesh)
-// passes it as a star point (across_star; at four faces the opposite spoke's row): the dart's fan closed across its
-// slit, the slit's two spokes one. The dart is one vertex of both sides of the slit: the second side's insertion
+// passes it as through any vertex of its fan (straight on where its faces make four quarter turns, else as through a
+// star point): the dart's fan closed across its slit, the slit's two spokes one. The dart is one vertex of both sides of the slit: the second side's insertion
 // along a crease row through it starts from its point before the first's. A sharp edge between two darts has both
 // sides between the same two vertices; they are kept apart (across, and the completed mesh's links).
 //
