@@ -233,9 +233,10 @@ void print_mesh_info(const std::string& path, const Loaded& l, bool json) {
                 "point%s (a creased vertex inside the mesh on no crease: interpolated, no tangent plane)\n", darts,
                 darts == 1 ? "" : "s", cones, cones == 1 ? "" : "s");
   if (const CompletedLines* c = s.completed_lines())
-    std::printf("  %d T-junction line%s near star points completed first (%d vertices inserted by knot insertion along the rows "
+    std::printf("  %d T-junction line%s near star points%s completed first (%d vertices inserted by knot insertion along the rows "
                 "crossed; the T-spline unchanged where it is one): the %zu faces as given are %zu faces%s\n", c->lines,
-                c->lines == 1 ? "" : "s", c->vertices, s.source_mesh().faces.size(), c->pieces.size(),
+                c->lines == 1 ? "" : "s", creases || subd_creases ? " or irregular crease vertices" : "", c->vertices,
+                s.source_mesh().faces.size(), c->pieces.size(),
                 s.global_steps() > 0 ? "" : " (eval takes the faces as given; written back as given)");
   if (s.global_steps() > 0)
     std::printf("  refined first by %d global non-uniform Catmull-Clark steps (star points fewer than %d edges apart with "

@@ -588,6 +588,31 @@ TEST(TJunctionLines, RowsThroughConePointsAndDarts) {
   }
 }
 
+// The command line on a Fusion file of the grid with a dart and a split face next to it: read back as written (the
+// crease list), the line counted, the completed faces evaluated as the library does.
+TEST(TJunctionLines, ADartAndASplitFaceFromTheCommandLine) {
+  const test::TempDir dir;
+  const int n = 15, c = n / 2;
+  const auto vertex = [&](int i, int j) { return j * (n + 1) + i; };
+  std::vector<std::array<int, 2>> crease;
+  for (int i = 0; i <= c; ++i) crease.push_back({vertex(i, c), vertex(i + 1, c)});
+  const TMesh m = with_creases(mesh_of(test::split_face(test::grid_cage(n, n), static_cast<std::size_t>(c * n + c + 1),
+                                                        {0.02, -0.03, 0.01, 0.04, 0.07}), "split.tsm"), crease, -1);
+  io::TsmReport fusion;
+  fusion.end_conditions = "SUBD_CREASES";
+  const std::string path = dir.file("dart.tsm");
+  io::write_tsm(path, m, fusion);
+  const std::string info = test::run_cli(dir, "info " + path);
+  EXPECT_NE(info.find("1 dart"), std::string::npos) << info;
+  EXPECT_NE(info.find("near star points or irregular crease vertices completed first"), std::string::npos) << info;
+  const TMeshSurface s(io::read_tsm(path).mesh, 1);
+  ASSERT_NE(s.completed_lines(), nullptr);
+  const std::array<double, 3> printed = test::cli_face_point(dir, path, c * n + c, 0.3, 0.6);
+  double o[9];
+  s.eval_source(c * n + c, 0.3, 0.6, o);
+  for (std::size_t k = 0; k < 3; ++k) EXPECT_NEAR(printed[k], o[k], 1e-9);
+}
+
 // A subdivision-crease box of 4 x 4 faces per side with, on its top side one diagonal step from a corner's star
 // point, a cone point or a sharp edge between two darts, or one of the box's edges creased from star point to star
 // point (each a dart of three faces), and each of the top side's 16 faces split 2 x 2 in turn: the lines cross rows

@@ -837,7 +837,7 @@ std::optional<CompletedLines> complete_t_junction_lines(const TMesh& m, int ring
     std::vector<int> pending{lines.faces[static_cast<std::size_t>(t[0])].side[static_cast<std::size_t>(t[1])].v[static_cast<std::size_t>(t[2])]};
     while (!pending.empty()) {
       const int v = pending.back();
-      const std::string where = "T-mesh: the T-junction at vertex " + std::to_string(v) + " near a star point (completed into a knot line): ";
+      const std::string where = "T-mesh: the T-junction at vertex " + std::to_string(v) + " near a star point or an irregular crease vertex (completed into a knot line): ";
       require(m.degree == 3, [&] { return where + "degree " + std::to_string(m.degree) + ", not 3"; });
       require(++guard < 4 * m.faces.size() + 4, [&] { return where + "the lines do not end"; });
       const std::array<int, 3> at = lines.t_junction_of(v);
