@@ -588,6 +588,41 @@ TEST(TJunctionLines, RowsThroughConePointsAndDarts) {
   }
 }
 
+// A subdivision-crease grid of 9 x 9 faces (its boundary a crease, its corners interpolated) with a face next to a
+// corner split 2 x 2: the corner face gets a T-junction, and the natural end at a corner takes its four points, so its
+// line is completed first (refused before). All eight such placements load, tangent-plane continuous, with the exact
+// faces 4 faces from the split face unchanged against the grid without the split and one boundary loop.
+TEST(TJunctionLines, ASplitFaceNextToACornerOfACreaseBoundary) {
+  const int n = 9;
+  const test::QuadMesh grid = test::grid_cage(n, n);
+  const TMeshSurface plain(with_creases(mesh_of(grid, "grid.tsm"), {}, -1), 1);
+  int loaded = 0, compared = 0;
+  double gap = 0, normals = 0, values = 0;
+  for (const auto& [i, j] : std::vector<std::array<int, 2>>{{1, 0}, {0, 1}, {7, 0}, {8, 1}, {0, 7}, {1, 8}, {8, 7}, {7, 8}}) {
+    const test::QuadMesh split = test::split_face(grid, static_cast<std::size_t>(j * n + i), {0.02, -0.03, 0.01, 0.04, 0.07});
+    const TMeshSurface lines(with_creases(mesh_of(split, "split.tsm"), {}, -1), 1);
+    ASSERT_NE(lines.completed_lines(), nullptr);
+    ++loaded;
+    const test::Continuity cont = test::continuity(lines.mesh(), [&](int g, double u, double v, double* o) { lines.eval(g, u, v, o); });
+    gap = std::max(gap, cont.gap);
+    normals = std::max(normals, cont.normal_angle);
+    const Agreement g = agreement(plain, lines, {}, [&](const std::array<int, 4>& corners, const double*) {
+      return std::all_of(corners.begin(), corners.end(), [&](int v) {
+        return std::hypot(grid.points[static_cast<std::size_t>(v)][0] - (i + 0.5), grid.points[static_cast<std::size_t>(v)][1] - 1.3 * (j + 0.5)) > 4;
+      });
+    });
+    compared += g.compared;
+    values = std::max({values, g.values, g.derivatives});
+    EXPECT_EQ(test::boundary_loops(tessellate(lines, 0.05)), 1);
+  }
+  std::printf("9 x 9 subdivision-crease grid, a face next to a corner split: %d / 8 load; gap %.1e, normals %.1e across every "
+              "edge; %d exact faces against the grid without the split %.1e\n", loaded, gap, normals, compared, values);
+  EXPECT_LT(gap, 1e-12);
+  EXPECT_LT(normals, 1e-9);
+  EXPECT_GT(compared, 100);
+  EXPECT_LT(values, 1e-12);
+}
+
 // The command line on a Fusion file of the grid with a dart and a split face next to it: read back as written (the
 // crease list), the line counted, the completed faces evaluated as the library does.
 TEST(TJunctionLines, ADartAndASplitFaceFromTheCommandLine) {

@@ -62,7 +62,13 @@ public:
       : m_(m), star_(m.vertices.size(), 0), natural_(m.end_conditions == EndConditions::subd_creases) {
     for (int s : stars) star_[static_cast<std::size_t>(s)] = 1;
     for (int s : irregular) star_[static_cast<std::size_t>(s)] = 2;
-    if (natural_) rules_ = boundary_rules(m);
+    if (natural_) {
+      rules_ = boundary_rules(m);
+      // The corners of one face of a crease boundary: its natural end there takes the corner face's four points.
+      const VertexAngles angles = vertex_angles(m);
+      for (std::size_t v = 0; v < m.vertices.size(); ++v)
+        if (angles.boundary[v] && angles.degrees[v] == 90) corner_.push_back(static_cast<int>(v));
+    }
     rules_.resize(m.vertices.size(), CreaseRule::none);
     const auto L = [&](int l) -> const TMeshLink& { return m.links[static_cast<std::size_t>(l)]; };
     for (int f = 0; f < static_cast<int>(m.faces.size()); ++f) {
@@ -206,7 +212,8 @@ public:
   }
   // The first T-junction (a vertex inside a side) of a face within `rings` face rings of a star point's faces, or
   // rings + 1 of an irregular crease vertex's (whose faces within p + 1 rings take local subdivision of their two
-  // face rings): (face, side, index), or face -1.
+  // face rings), or of the face at a corner of a crease boundary (whose natural end needs it quadrilateral,
+  // crease_ends): (face, side, index), or face -1.
   std::array<int, 3> t_junction_near_stars(int rings) const {
     const int nf = static_cast<int>(faces.size());
     std::vector<std::vector<int>> vertex_faces(p.size());
@@ -226,6 +233,12 @@ public:
       else if (dist[static_cast<std::size_t>(f)] == 0)
         stars.push_back(f);
     front.insert(front.end(), stars.begin(), stars.end());
+    for (int v : corner_)
+      for (int f : vertex_faces[static_cast<std::size_t>(v)])
+        if (dist[static_cast<std::size_t>(f)] == INT_MAX) {
+          dist[static_cast<std::size_t>(f)] = rings;
+          front.push_back(f);
+        }
     for (std::size_t i = 0; i < front.size(); ++i) {
       const int f = front[i];
       const Face& w = faces[static_cast<std::size_t>(f)];
@@ -276,6 +289,7 @@ private:
   bool cut_ = false;
   std::unordered_map<long long, Loc> by_origin_;  // kept only in a mesh cut open
   std::unordered_set<long long> slit_;            // the sides of sharp edges between two darts, both directions
+  std::vector<int> corner_;                       // a crease boundary's corners of one face
 
   // The face across directed edge a -> b (the one holding b -> a), none across a slit between two darts.
   Loc across(int a, int b) const { return slit_.count(key(a, b)) ? Loc{} : at_(key(b, a)); }
@@ -825,7 +839,7 @@ TMesh Lines::mesh() const {
 
 std::optional<CompletedLines> complete_t_junction_lines(const TMesh& m, int rings) {
   const std::vector<int> stars = star_points(m), irregular = irregular_crease_vertices(m);
-  if (stars.empty() && irregular.empty()) return std::nullopt;
+  if (stars.empty() && irregular.empty() && m.end_conditions != EndConditions::subd_creases) return std::nullopt;
   Lines lines(m, stars, irregular);
   std::array<int, 3> t = lines.t_junction_near_stars(rings);
   if (t[0] < 0) return std::nullopt;
@@ -837,7 +851,7 @@ std::optional<CompletedLines> complete_t_junction_lines(const TMesh& m, int ring
     std::vector<int> pending{lines.faces[static_cast<std::size_t>(t[0])].side[static_cast<std::size_t>(t[1])].v[static_cast<std::size_t>(t[2])]};
     while (!pending.empty()) {
       const int v = pending.back();
-      const std::string where = "T-mesh: the T-junction at vertex " + std::to_string(v) + " near a star point or an irregular crease vertex (completed into a knot line): ";
+      const std::string where = "T-mesh: the T-junction at vertex " + std::to_string(v) + " near a star point, an irregular crease vertex or a crease corner (completed into a knot line): ";
       require(m.degree == 3, [&] { return where + "degree " + std::to_string(m.degree) + ", not 3"; });
       require(++guard < 4 * m.faces.size() + 4, [&] { return where + "the lines do not end"; });
       const std::array<int, 3> at = lines.t_junction_of(v);
