@@ -839,7 +839,8 @@ TMesh Lines::mesh() const {
 
 std::optional<CompletedLines> complete_t_junction_lines(const TMesh& m, int rings) {
   const std::vector<int> stars = star_points(m), irregular = irregular_crease_vertices(m);
-  if (stars.empty() && irregular.empty() && m.end_conditions != EndConditions::subd_creases) return std::nullopt;
+  const bool t_faces = std::any_of(m.faces.begin(), m.faces.end(), [](const std::vector<int>& loop) { return loop.size() > 4; });
+  if (!t_faces || (stars.empty() && irregular.empty() && m.end_conditions != EndConditions::subd_creases)) return std::nullopt;
   Lines lines(m, stars, irregular);
   std::array<int, 3> t = lines.t_junction_near_stars(rings);
   if (t[0] < 0) return std::nullopt;

@@ -70,9 +70,10 @@ struct CompletedLines {
   int vertices = 0;               // vertices inserted
 };
 
-// The mesh with the lines of its T-junctions within `rings` face rings of the faces of a star point or of an irregular
-// crease-boundary vertex completed; `m` is cut open along its sharp creases (split_creases) if it has any. Empty when
-// it has none. Deleted faces (empty loops) have no piece.
+// The mesh with the lines of its T-junctions within `rings` face rings of the faces of a star point, rings + 1 of an
+// irregular crease-boundary vertex's, and on the face at a corner of a crease boundary completed; `m` is cut open
+// along its sharp creases (split_creases) if it has any. Empty when it has none. Deleted faces (empty loops) have no
+// piece.
 std::optional<CompletedLines> complete_t_junction_lines(const TMesh& m, int rings);
 
 }  // namespace trivar

@@ -116,9 +116,10 @@ public:
   // the faces are then the refined mesh's (face F lies in face F >> 2 global_steps() of the mesh as given;
   // eval_source evaluates the faces as given).
   // global_steps >= 0 forces that many steps.
-  // T-junctions within p + 2 rings of a star point's faces (meshes without creases): their lines are completed
-  // first (t_junction_lines), and the completed mesh is the one refined and evaluated; its faces are pieces of the
-  // faces as given (eval_source and refined_point map between them).
+  // T-junctions within p + 2 rings of a star point's faces, p + 3 of an irregular crease vertex's, and on the face
+  // at a corner of a crease boundary: their lines are completed first (t_junction_lines), and the completed mesh is
+  // the one refined and evaluated; its faces are pieces of the faces as given (eval_source and refined_point map
+  // between them).
   static constexpr int kStarsApart = 7;
   explicit TMeshSurface(const TMesh& mesh, int threads = 0, int global_steps = -1);
   ~TMeshSurface();
