@@ -292,6 +292,7 @@ py::dict info(const PyTSpline& t) {
     d["faces_subdivided"] = t.mesh->count(FaceMethod::subdivided);
     d["faces_non_uniform"] = t.mesh->count(FaceMethod::non_uniform);
     d["faces_crease"] = t.mesh->count(FaceMethod::crease);
+    d["faces_averaging"] = t.mesh->count(FaceMethod::averaging);
     // The counts above are of the faces evaluated: pieces of the faces as given once T-junction lines near star
     // points are completed, each 4^global_steps faces after the global steps.
     d["global_steps"] = t.mesh->global_steps();

@@ -162,6 +162,25 @@ def test_star_points_are_evaluated_per_face(tmp_path):
     assert len(patches) > 54 and all(list(p.degrees) == [3, 3] for p in patches)
 
 
+def test_star_points_of_degree_five(tmp_path):
+    """The star cube read at degree 5: every face near the star points is averaging subdivision, whose rules are
+    convex combinations, so the surface lies in the box of the control points; closed as at degree 3; Bezier patches
+    of degree 5."""
+    path = tmp_path / "star_cube5.tsm"
+    path.write_text(open(STAR).read().replace("degree 3", "degree 5", 1))
+    [s] = trivar.read(str(path))
+    info = s.info()
+    assert info["faces_averaging"] == s.num_faces > 0
+    m = s.tessellate(tolerance=0.05)
+    grips = np.array([list(map(float, line.split()[1:4])) for line in open(path) if line.startswith("0g ")])
+    assert np.all(m.vertices >= grips.min(axis=0) - 1e-12) and np.all(m.vertices <= grips.max(axis=0) + 1e-12)
+    edges = np.sort(np.concatenate([m.triangles[:, [0, 1]], m.triangles[:, [1, 2]], m.triangles[:, [2, 0]]]), axis=1)
+    unique, counts = np.unique(edges, axis=0, return_counts=True)
+    assert np.all(counts == 2) and len(m.vertices) - len(unique) + len(m.triangles) == 2
+    s.write(str(tmp_path / "s.g2"))
+    assert all(list(p.degrees) == [5, 5] for p in trivar.read(str(tmp_path / "s.g2")))
+
+
 def test_malformed_tsm(tmp_path):
     bad = tmp_path / "bad.tsm"
     bad.write_text("#TS0200\nf 0 0\nv 7 EAST\n")
