@@ -412,6 +412,7 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int th
   }
   std::vector<int> irregular;
   std::vector<CreaseRule> rules;  // of the boundary vertices of local subdivision's mesh, once needed
+  std::vector<CreaseRule> smooth;  // the averaging faces' nets: no crease rule anywhere, once needed
   if (split) irregular = irregular_crease_vertices(*split);
   std::vector<char> is_irregular(static_cast<std::size_t>(nv), 0);
   for (int v : irregular) is_irregular[static_cast<std::size_t>(v)] = 1;
@@ -691,8 +692,9 @@ TMeshSurface::TMeshSurface(const TMesh& mesh, std::unique_ptr<TMesh> cut, int th
         near_exact.push_back({f, where + why});
         continue;
       }
-      CreaseNet net = crease_net(m, m, std::vector<CreaseRule>(static_cast<std::size_t>(nv), CreaseRule::none), f, hood, where);
-      averaging_faces_.emplace_back(QuadNet{std::move(net.points), std::move(net.quads)}, m.degree);
+      if (smooth.empty()) smooth.assign(static_cast<std::size_t>(nv), CreaseRule::none);
+      CreaseNet net = crease_net(m, m, smooth, f, hood, where);
+      averaging_faces_.emplace_back(QuadNet{std::move(net.points), std::move(net.quads), {}}, m.degree);
       face.method = FaceMethod::averaging;
       face.averaging = static_cast<int>(averaging_faces_.size()) - 1;
       face.rational = averaging_faces_.back().rational();
